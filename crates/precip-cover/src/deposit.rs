@@ -1,0 +1,106 @@
+//! [`DepositBuffer`]: landed water summed in fixed point, as the GPU's atomics do.
+//!
+//! ## Fixed point
+//!
+//! One unit is 2⁻²⁰ mm of water (≈ 0.95·10⁻⁶ mm). A `u32` per
+//! texel and channel then holds up to 4096 mm per cover step, three orders of
+//! magnitude above a cloudburst's water in one frame, and a single deposit is rounded
+//! to the nearest unit, so rounding is unbiased and far below a flake's water.
+//! Integer sums do not depend on the order of the additions: the CPU reference and
+//! the GPU get the same bits however their threads interleave.
+//!
+//! Layout: two `u32` per texel, interleaved `[snow, rain]` (WGSL twin:
+//! `deposits: array<atomic<u32>>` in `shaders/layout.wgsl`).
+
+use std::sync::atomic::{AtomicU32, Ordering};
+
+/// Fixed-point units per mm of water.
+pub const DEPOSIT_UNITS_PER_MM: f32 = 1_048_576.0;
+
+/// The largest single deposit, in units (2048 mm): keeps a sum of two in range.
+const MAX_DEPOSIT_UNITS: f32 = 2_147_483_648.0;
+
+/// `water_mm` in fixed-point units, rounded to nearest (WGSL twin: `deposit_units`).
+#[must_use]
+pub fn deposit_units(water_mm: f32) -> u32 {
+    (water_mm * DEPOSIT_UNITS_PER_MM + 0.5).clamp(0.0, MAX_DEPOSIT_UNITS) as u32
+}
+
+/// Water landed per texel during one step, fixed point, safe to add to from threads.
+#[derive(Debug, Default)]
+pub struct DepositBuffer {
+    units: Vec<AtomicU32>,
+}
+
+impl DepositBuffer {
+    /// Channel index of snow.
+    pub const SNOW: usize = 0;
+    /// Channel index of rain.
+    pub const RAIN: usize = 1;
+
+    /// An empty buffer for `texel_count` texels.
+    #[must_use]
+    pub fn new(texel_count: usize) -> Self {
+        Self {
+            units: (0..2 * texel_count).map(|_| AtomicU32::new(0)).collect(),
+        }
+    }
+
+    /// Adds `water_mm` to `channel` of texel `index` (wrapping like `atomicAdd`).
+    pub fn add(&self, index: usize, channel: usize, water_mm: f32) {
+        if let Some(slot) = self.units.get(2 * index + channel.min(1)) {
+            slot.fetch_add(deposit_units(water_mm), Ordering::Relaxed);
+        }
+    }
+
+    /// Snow and rain landed on texel `index`, mm, without clearing.
+    #[must_use]
+    pub fn peek_mm(&self, index: usize) -> (f32, f32) {
+        let read = |c: usize| {
+            self.units.get(2 * index + c).map_or(0.0, |u| u.load(Ordering::Relaxed) as f32 / DEPOSIT_UNITS_PER_MM)
+        };
+        (read(Self::SNOW), read(Self::RAIN))
+    }
+
+    /// Reads and clears texel `index`: (snow, rain) in mm.
+    pub fn take_mm(&mut self, index: usize) -> (f32, f32) {
+        let mut take = |c: usize| {
+            self.units.get_mut(2 * index + c).map_or(0.0, |u| std::mem::take(u.get_mut()) as f32 / DEPOSIT_UNITS_PER_MM)
+        };
+        (take(Self::SNOW), take(Self::RAIN))
+    }
+
+    /// The raw units, `[snow, rain]` per texel (for comparison with a GPU buffer).
+    #[must_use]
+    pub fn raw_units(&self) -> Vec<u32> {
+        self.units.iter().map(|u| u.load(Ordering::Relaxed)).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fixed_point_round_trips_and_sums_in_any_order() {
+        assert_eq!(deposit_units(1.0), 1 << 20);
+        assert_eq!(deposit_units(-3.0), 0);
+        assert_eq!(deposit_units(f32::NAN), 0);
+        let amounts: Vec<f32> = (0..1000).map(|i| 0.001 + (i as f32) * 1.3e-5).collect();
+        let forward = DepositBuffer::new(1);
+        let backward = DepositBuffer::new(1);
+        for a in &amounts {
+            forward.add(0, DepositBuffer::SNOW, *a);
+        }
+        for a in amounts.iter().rev() {
+            backward.add(0, DepositBuffer::SNOW, *a);
+        }
+        assert_eq!(forward.raw_units(), backward.raw_units());
+        let exact: f64 = amounts.iter().map(|&a| f64::from(a)).sum();
+        let mut f = forward;
+        let (snow, rain) = f.take_mm(0);
+        assert!((f64::from(snow) - exact).abs() < 1e-3 * exact);
+        assert!(rain.abs() < f32::MIN_POSITIVE);
+        assert_eq!(f.raw_units(), vec![0, 0], "take clears");
+    }
+}

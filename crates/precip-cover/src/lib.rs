@@ -1,0 +1,47 @@
+//! Snow that accumulates and melts on a scene (MODEL.md §4, seed 003).
+//!
+//! ## Design
+//!
+//! The cover is a grid over a world rectangle in the XZ plane (Y up), aligned with the
+//! scene's top-down ground map. Each [`CoverTexel`] holds the state of the snow pack
+//! there — snow water equivalent (SWE), held liquid water, depth, age, wetness — plus
+//! its eligibility (from the scene's masks and slope) and the seed's two threshold
+//! masks. The layout is the GPU's: one `#[repr(C)]` struct per texel in a storage
+//! buffer, twin of `CoverTexel` in `shaders/cover.wgsl`.
+//!
+//! Snow arrives two ways (DESIGN.md §2), never both for one texel:
+//! deposits from landed particles ([`DepositBuffer`], fixed-point, summed atomically,
+//! so the sum is independent of order), or the weather's rate applied directly.
+//! [`update_texel`] is the CPU form of the cover kernel: it adds the input, ages the
+//! snow, applies degree-day melt `M = C_m·(T_air − T_m)·t` with
+//! `C_m = k_m·k_v·R_l·(1 − A)`, refreezes held water when there is no heat, drains what
+//! the pack cannot hold, and compacts the pack. Water is conserved exactly in the books:
+//! `deposited = swe + liquid + runoff` per texel.
+//!
+//! [`shade_texel`] composes coverage `A_S`, melted fraction `M_S`, the threshold masks
+//! (`A_M = T_M.g − A_S`, `M_M = T_M.r − M_S`) and wet darkening into the values a
+//! surface shader needs.
+
+mod deposit;
+mod error;
+mod frame;
+mod grid;
+mod masks;
+mod melt;
+mod params;
+mod shading;
+mod snowpack;
+mod texel;
+mod update;
+
+pub use deposit::{DEPOSIT_UNITS_PER_MM, DepositBuffer, deposit_units};
+pub use error::CoverError;
+pub use frame::GridFrame;
+pub use grid::{CoverGrid, CoverTotals};
+pub use masks::{ThresholdMasks, generate_threshold_masks};
+pub use melt::{degree_day_melt_mm, melt_factor, snow_albedo, vegetation_transmission};
+pub use params::CoverParams;
+pub use shading::{CoverShading, accumulated_fraction, melted_fraction, shade_texel, shade_with_masks};
+pub use snowpack::{compacted_density, new_snow_density};
+pub use texel::{CoverFeed, CoverTexel};
+pub use update::{CoverInput, update_texel};
