@@ -57,7 +57,9 @@ impl DepositBuffer {
     #[must_use]
     pub fn peek_mm(&self, index: usize) -> (f32, f32) {
         let read = |c: usize| {
-            self.units.get(2 * index + c).map_or(0.0, |u| u.load(Ordering::Relaxed) as f32 / DEPOSIT_UNITS_PER_MM)
+            self.units.get(2 * index + c).map_or(0.0, |u| {
+                u.load(Ordering::Relaxed) as f32 / DEPOSIT_UNITS_PER_MM
+            })
         };
         (read(Self::SNOW), read(Self::RAIN))
     }
@@ -65,7 +67,9 @@ impl DepositBuffer {
     /// Reads and clears texel `index`: (snow, rain) in mm.
     pub fn take_mm(&mut self, index: usize) -> (f32, f32) {
         let mut take = |c: usize| {
-            self.units.get_mut(2 * index + c).map_or(0.0, |u| std::mem::take(u.get_mut()) as f32 / DEPOSIT_UNITS_PER_MM)
+            self.units.get_mut(2 * index + c).map_or(0.0, |u| {
+                std::mem::take(u.get_mut()) as f32 / DEPOSIT_UNITS_PER_MM
+            })
         };
         (take(Self::SNOW), take(Self::RAIN))
     }
@@ -73,7 +77,10 @@ impl DepositBuffer {
     /// The raw units, `[snow, rain]` per texel (for comparison with a GPU buffer).
     #[must_use]
     pub fn raw_units(&self) -> Vec<u32> {
-        self.units.iter().map(|u| u.load(Ordering::Relaxed)).collect()
+        self.units
+            .iter()
+            .map(|u| u.load(Ordering::Relaxed))
+            .collect()
     }
 }
 

@@ -15,7 +15,9 @@ pub enum CoverError {
         allowed: &'static str,
     },
     /// Two grids or arrays that must have the same size do not.
-    #[error("{what} has {got} texels but the cover grid has {expected}: give one value per cover texel")]
+    #[error(
+        "{what} has {got} texels but the cover grid has {expected}: give one value per cover texel"
+    )]
     SizeMismatch {
         /// Which input.
         what: &'static str,

@@ -41,10 +41,34 @@ impl GridFrame {
 
     /// Checks sizes: finite origin, positive size, `1..=16384` texels per side.
     pub fn validate(&self, what: &'static str) -> Result<(), CoverError> {
-        check_range(what, self.origin_m.x, -1.0e7, 1.0e7, "finite origin within ±10000 km")?;
-        check_range(what, self.origin_m.y, -1.0e7, 1.0e7, "finite origin within ±10000 km")?;
-        check_range(what, self.size_m.x, 1.0e-3, 1.0e7, "size in [1 mm, 10000 km]")?;
-        check_range(what, self.size_m.y, 1.0e-3, 1.0e7, "size in [1 mm, 10000 km]")?;
+        check_range(
+            what,
+            self.origin_m.x,
+            -1.0e7,
+            1.0e7,
+            "finite origin within ±10000 km",
+        )?;
+        check_range(
+            what,
+            self.origin_m.y,
+            -1.0e7,
+            1.0e7,
+            "finite origin within ±10000 km",
+        )?;
+        check_range(
+            what,
+            self.size_m.x,
+            1.0e-3,
+            1.0e7,
+            "size in [1 mm, 10000 km]",
+        )?;
+        check_range(
+            what,
+            self.size_m.y,
+            1.0e-3,
+            1.0e7,
+            "size in [1 mm, 10000 km]",
+        )?;
         for n in [self.texels.x, self.texels.y] {
             if !(1..=Self::MAX_TEXELS_PER_SIDE).contains(&n) {
                 return Err(CoverError::OutOfRange {
@@ -84,7 +108,8 @@ impl GridFrame {
         let t = ((xz_m - self.origin_m) / self.size_m) * self.texels.as_vec2();
         let f = t.floor();
         // Written so that NaN lands outside.
-        let inside = f.x >= 0.0 && f.y >= 0.0 && f.x < self.texels.x as f32 && f.y < self.texels.y as f32;
+        let inside =
+            f.x >= 0.0 && f.y >= 0.0 && f.x < self.texels.x as f32 && f.y < self.texels.y as f32;
         if !inside {
             return None;
         }
@@ -107,12 +132,20 @@ mod tests {
 
     #[test]
     fn index_and_centre_agree() {
-        let f = GridFrame::centred(Vec2::new(10.0, -5.0), Vec2::new(40.0, 20.0), UVec2::new(8, 4));
+        let f = GridFrame::centred(
+            Vec2::new(10.0, -5.0),
+            Vec2::new(40.0, 20.0),
+            UVec2::new(8, 4),
+        );
         for index in 0..f.texel_count() {
             assert_eq!(f.texel_index(f.texel_centre(index)), Some(index));
         }
         assert_eq!(f.texel_index(Vec2::new(-10.1, -5.0)), None);
-        assert_eq!(f.texel_index(Vec2::new(30.0, -5.0)), None, "max edge is outside");
+        assert_eq!(
+            f.texel_index(Vec2::new(30.0, -5.0)),
+            None,
+            "max edge is outside"
+        );
         assert_eq!(f.texel_index(Vec2::new(f32::NAN, 0.0)), None);
         assert!((f.texel_area_m2() - 25.0).abs() < 1e-6);
     }
@@ -121,8 +154,29 @@ mod tests {
     fn bad_frames_are_refused() {
         let good = GridFrame::centred(Vec2::ZERO, Vec2::splat(10.0), UVec2::splat(4));
         assert!(good.validate("cover").is_ok());
-        assert!(GridFrame { texels: UVec2::new(0, 4), ..good }.validate("cover").is_err());
-        assert!(GridFrame { size_m: Vec2::new(f32::NAN, 1.0), ..good }.validate("cover").is_err());
-        assert!(GridFrame { texels: UVec2::new(4, 20_000), ..good }.validate("cover").is_err());
+        assert!(
+            GridFrame {
+                texels: UVec2::new(0, 4),
+                ..good
+            }
+            .validate("cover")
+            .is_err()
+        );
+        assert!(
+            GridFrame {
+                size_m: Vec2::new(f32::NAN, 1.0),
+                ..good
+            }
+            .validate("cover")
+            .is_err()
+        );
+        assert!(
+            GridFrame {
+                texels: UVec2::new(4, 20_000),
+                ..good
+            }
+            .validate("cover")
+            .is_err()
+        );
     }
 }

@@ -58,12 +58,20 @@ impl CoverGrid {
             ("feed", feed.len()),
         ] {
             if got != n {
-                return Err(CoverError::SizeMismatch { what, got, expected: n });
+                return Err(CoverError::SizeMismatch {
+                    what,
+                    got,
+                    expected: n,
+                });
             }
         }
         let texels = (0..n)
             .map(|i| CoverTexel {
-                eligibility: if eligibility[i].is_finite() { eligibility[i].clamp(0.0, 1.0) } else { 0.0 },
+                eligibility: if eligibility[i].is_finite() {
+                    eligibility[i].clamp(0.0, 1.0)
+                } else {
+                    0.0
+                },
                 accumulation_mask: masks.accumulation[i],
                 melt_mask: masks.melt[i],
                 feed: feed[i] as u32,
@@ -87,31 +95,43 @@ impl CoverGrid {
         dt_days: f32,
         params: &CoverParams,
     ) {
-        let landed: Vec<(f32, f32)> = (0..self.texels.len()).map(|i| deposits.take_mm(i)).collect();
-        self.texels.par_iter_mut().zip(landed.par_iter()).for_each(|(texel, &(snow, rain))| {
-            let input = match CoverFeed::from_raw(texel.feed) {
-                CoverFeed::Particles => CoverInput { snow_mm: snow, rain_mm: rain, air_temperature_c, dt_days },
-                CoverFeed::WeatherRate => CoverInput {
-                    snow_mm: snow_rate_mm_per_day * dt_days,
-                    rain_mm: rain_rate_mm_per_day * dt_days,
-                    air_temperature_c,
-                    dt_days,
-                },
-            };
-            *texel = update_texel(*texel, input, params);
-        });
+        let landed: Vec<(f32, f32)> = (0..self.texels.len())
+            .map(|i| deposits.take_mm(i))
+            .collect();
+        self.texels
+            .par_iter_mut()
+            .zip(landed.par_iter())
+            .for_each(|(texel, &(snow, rain))| {
+                let input = match CoverFeed::from_raw(texel.feed) {
+                    CoverFeed::Particles => CoverInput {
+                        snow_mm: snow,
+                        rain_mm: rain,
+                        air_temperature_c,
+                        dt_days,
+                    },
+                    CoverFeed::WeatherRate => CoverInput {
+                        snow_mm: snow_rate_mm_per_day * dt_days,
+                        rain_mm: rain_rate_mm_per_day * dt_days,
+                        air_temperature_c,
+                        dt_days,
+                    },
+                };
+                *texel = update_texel(*texel, input, params);
+            });
     }
 
     /// The water books over the grid.
     #[must_use]
     pub fn totals(&self) -> CoverTotals {
         let area = f64::from(self.frame.texel_area_m2());
-        self.texels.iter().fold(CoverTotals::default(), |acc, t| CoverTotals {
-            deposited_kg: acc.deposited_kg + f64::from(t.deposited_mm) * area,
-            swe_kg: acc.swe_kg + f64::from(t.swe_mm) * area,
-            liquid_kg: acc.liquid_kg + f64::from(t.liquid_mm) * area,
-            runoff_kg: acc.runoff_kg + f64::from(t.runoff_mm) * area,
-        })
+        self.texels
+            .iter()
+            .fold(CoverTotals::default(), |acc, t| CoverTotals {
+                deposited_kg: acc.deposited_kg + f64::from(t.deposited_mm) * area,
+                swe_kg: acc.swe_kg + f64::from(t.swe_mm) * area,
+                liquid_kg: acc.liquid_kg + f64::from(t.liquid_mm) * area,
+                runoff_kg: acc.runoff_kg + f64::from(t.runoff_mm) * area,
+            })
     }
 
     /// What a shader needs, per texel.
@@ -123,7 +143,9 @@ impl CoverGrid {
     /// The texel under world `(x, z)`.
     #[must_use]
     pub fn texel_at(&self, x_m: f32, z_m: f32) -> Option<&CoverTexel> {
-        self.frame.texel_index(glam::Vec2::new(x_m, z_m)).and_then(|i| self.texels.get(i))
+        self.frame
+            .texel_index(glam::Vec2::new(x_m, z_m))
+            .and_then(|i| self.texels.get(i))
     }
 }
 
@@ -145,8 +167,16 @@ mod tests {
     fn sizes_must_match() {
         let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(8.0), UVec2::splat(4));
         let masks = generate_threshold_masks(&frame, 0, 4.0);
-        let err = CoverGrid::new(frame, &[1.0; 3], &masks, &[CoverFeed::Particles; 16]).unwrap_err();
-        assert!(matches!(err, CoverError::SizeMismatch { what: "eligibility", got: 3, expected: 16 }));
+        let err =
+            CoverGrid::new(frame, &[1.0; 3], &masks, &[CoverFeed::Particles; 16]).unwrap_err();
+        assert!(matches!(
+            err,
+            CoverError::SizeMismatch {
+                what: "eligibility",
+                got: 3,
+                expected: 16
+            }
+        ));
     }
 
     #[test]
@@ -163,8 +193,14 @@ mod tests {
         let alpha: Vec<f32> = g.shading(&params).iter().map(|s| s.snow_alpha).collect();
         let covered = alpha.iter().filter(|&&a| a > 0.99).count() as f32 / alpha.len() as f32;
         let bare = alpha.iter().filter(|&&a| a < 0.01).count() as f32 / alpha.len() as f32;
-        assert!((covered - a_s).abs() < 0.08, "covered {covered} vs A_S {a_s}");
-        assert!(covered + bare > 0.85, "patches are either covered or bare: {covered} + {bare}");
+        assert!(
+            (covered - a_s).abs() < 0.08,
+            "covered {covered} vs A_S {a_s}"
+        );
+        assert!(
+            covered + bare > 0.85,
+            "patches are either covered or bare: {covered} + {bare}"
+        );
         // Coherent: a covered texel's right neighbour is mostly covered too.
         let nx = 64;
         let (mut same, mut pairs) = (0, 0);
@@ -189,8 +225,14 @@ mod tests {
         particles.step(&mut d1, 10.0, 0.0, -5.0, 0.1, &params);
         rate.step(&mut d2, 10.0, 0.0, -5.0, 0.1, &params);
         assert!((particles.texels[5].swe_mm - 3.0).abs() < 1e-5);
-        assert!(particles.texels[4].swe_mm.abs() < f32::MIN_POSITIVE, "no rate on particle texels");
-        assert!((rate.texels[5].swe_mm - 1.0).abs() < 1e-5, "rate only, deposit dropped");
+        assert!(
+            particles.texels[4].swe_mm.abs() < f32::MIN_POSITIVE,
+            "no rate on particle texels"
+        );
+        assert!(
+            (rate.texels[5].swe_mm - 1.0).abs() < 1e-5,
+            "rate only, deposit dropped"
+        );
         assert!((particles.totals().deposited_kg - 3.0 * 256.0).abs() < 1e-2);
     }
 }

@@ -41,7 +41,9 @@ pub use grid::{CoverGrid, CoverTotals};
 pub use masks::{ThresholdMasks, generate_threshold_masks};
 pub use melt::{degree_day_melt_mm, melt_factor, snow_albedo, vegetation_transmission};
 pub use params::CoverParams;
-pub use shading::{CoverShading, accumulated_fraction, melted_fraction, shade_texel, shade_with_masks};
+pub use shading::{
+    CoverShading, accumulated_fraction, melted_fraction, shade_texel, shade_with_masks,
+};
 pub use snowpack::{compacted_density, new_snow_density};
 pub use texel::{CoverFeed, CoverTexel};
 pub use update::{CoverInput, update_texel};

@@ -22,10 +22,18 @@ pub struct ThresholdMasks {
 
 /// Generates the masks for `frame`, with patches about `patch_scale_m` across.
 #[must_use]
-pub fn generate_threshold_masks(frame: &GridFrame, seed: u32, patch_scale_m: f32) -> ThresholdMasks {
+pub fn generate_threshold_masks(
+    frame: &GridFrame,
+    seed: u32,
+    patch_scale_m: f32,
+) -> ThresholdMasks {
     let frequency = 1.0 / f64::from(patch_scale_m.max(1.0e-3));
-    let coarse = Fbm::<Perlin>::new(seed).set_octaves(4).set_frequency(frequency);
-    let own = Fbm::<Perlin>::new(seed.wrapping_add(0x85EB_CA6B)).set_octaves(3).set_frequency(2.0 * frequency);
+    let coarse = Fbm::<Perlin>::new(seed)
+        .set_octaves(4)
+        .set_frequency(frequency);
+    let own = Fbm::<Perlin>::new(seed.wrapping_add(0x85EB_CA6B))
+        .set_octaves(3)
+        .set_frequency(2.0 * frequency);
     let n = frame.texel_count();
     let mut raw_g = Vec::with_capacity(n);
     let mut raw_r = Vec::with_capacity(n);
@@ -73,7 +81,10 @@ mod tests {
             .map(|i| (m.accumulation[i + 1] - m.accumulation[i]).abs())
             .sum::<f32>()
             / (63.0 * 64.0);
-        assert!(mean_step < 0.12, "mean neighbour step {mean_step} (random would be ~0.33)");
+        assert!(
+            mean_step < 0.12,
+            "mean neighbour step {mean_step} (random would be ~0.33)"
+        );
         assert_eq!(m, generate_threshold_masks(&frame, 1, 20.0));
         assert_ne!(m, generate_threshold_masks(&frame, 2, 20.0));
     }

@@ -27,7 +27,12 @@ pub fn melt_factor(params: &CoverParams, age_days: f32) -> f32 {
 /// Potential melt `M = C_m·(T_air − T_m)·t` over `dt_days`, mm of water; `0` when
 /// `T_air ≤ T_m`.
 #[must_use]
-pub fn degree_day_melt_mm(params: &CoverParams, age_days: f32, air_temperature_c: f32, dt_days: f32) -> f32 {
+pub fn degree_day_melt_mm(
+    params: &CoverParams,
+    age_days: f32,
+    air_temperature_c: f32,
+    dt_days: f32,
+) -> f32 {
     let excess = air_temperature_c - params.melt_threshold_c;
     if excess <= 0.0 {
         0.0
@@ -65,7 +70,10 @@ mod tests {
     #[test]
     fn vegetation_shades_the_melt_like_a_forest() {
         // Kuusisto 1980: 2.42 forest vs 3.51 open, a ratio of 0.69.
-        let forest = CoverParams { vegetation_density: 0.09, ..CoverParams::default() };
+        let forest = CoverParams {
+            vegetation_density: 0.09,
+            ..CoverParams::default()
+        };
         let ratio = melt_factor(&forest, 7.0) / melt_factor(&CoverParams::default(), 7.0);
         assert!((ratio - 2.42 / 3.51).abs() < 0.02, "{ratio}");
     }

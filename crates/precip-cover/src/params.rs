@@ -65,7 +65,13 @@ impl Default for CoverParams {
 impl CoverParams {
     /// Checks every parameter; the error names it and its range.
     pub fn validate(&self) -> Result<(), CoverError> {
-        check_range("melt_threshold_c", self.melt_threshold_c, -10.0, 10.0, "[-10, 10] °C")?;
+        check_range(
+            "melt_threshold_c",
+            self.melt_threshold_c,
+            -10.0,
+            10.0,
+            "[-10, 10] °C",
+        )?;
         check_range(
             "melt_proportionality_mm_per_c_day",
             self.melt_proportionality_mm_per_c_day,
@@ -73,9 +79,27 @@ impl CoverParams {
             100.0,
             "[0, 100] mm/(°C·day)",
         )?;
-        check_range("solar_irradiance_factor", self.solar_irradiance_factor, 0.0, 10.0, "[0, 10]")?;
-        check_range("vegetation_density", self.vegetation_density, 0.0, 1.0, "[0, 1]")?;
-        check_range("albedo_decay_per_day", self.albedo_decay_per_day, 0.0, 10.0, "[0, 10] per day")?;
+        check_range(
+            "solar_irradiance_factor",
+            self.solar_irradiance_factor,
+            0.0,
+            10.0,
+            "[0, 10]",
+        )?;
+        check_range(
+            "vegetation_density",
+            self.vegetation_density,
+            0.0,
+            1.0,
+            "[0, 1]",
+        )?;
+        check_range(
+            "albedo_decay_per_day",
+            self.albedo_decay_per_day,
+            0.0,
+            10.0,
+            "[0, 10] per day",
+        )?;
         check_range(
             "refreeze_factor_mm_per_c_day",
             self.refreeze_factor_mm_per_c_day,
@@ -83,13 +107,49 @@ impl CoverParams {
             100.0,
             "[0, 100] mm/(°C·day)",
         )?;
-        check_range("water_holding_fraction", self.water_holding_fraction, 0.0, 1.0, "[0, 1]")?;
-        check_range("full_cover_depth_mm", self.full_cover_depth_mm, 0.1, 1.0e4, "[0.1, 10000] mm")?;
-        check_range("settled_density_kg_m3", self.settled_density_kg_m3, 50.0, 917.0, "[50, 917] kg/m³")?;
-        check_range("compaction_time_days", self.compaction_time_days, 0.01, 1.0e4, "[0.01, 10000] days")?;
+        check_range(
+            "water_holding_fraction",
+            self.water_holding_fraction,
+            0.0,
+            1.0,
+            "[0, 1]",
+        )?;
+        check_range(
+            "full_cover_depth_mm",
+            self.full_cover_depth_mm,
+            0.1,
+            1.0e4,
+            "[0.1, 10000] mm",
+        )?;
+        check_range(
+            "settled_density_kg_m3",
+            self.settled_density_kg_m3,
+            50.0,
+            917.0,
+            "[50, 917] kg/m³",
+        )?;
+        check_range(
+            "compaction_time_days",
+            self.compaction_time_days,
+            0.01,
+            1.0e4,
+            "[0.01, 10000] days",
+        )?;
         check_range("wet_darkening", self.wet_darkening, 0.0, 1.0, "[0, 1]")?;
-        check_range("wetting_mm", self.wetting_mm, 0.001, 1.0e3, "[0.001, 1000] mm")?;
-        check_range("drying_time_days", self.drying_time_days, 0.001, 1.0e3, "[0.001, 1000] days")?;
+        check_range(
+            "wetting_mm",
+            self.wetting_mm,
+            0.001,
+            1.0e3,
+            "[0.001, 1000] mm",
+        )?;
+        check_range(
+            "drying_time_days",
+            self.drying_time_days,
+            0.001,
+            1.0e3,
+            "[0.001, 1000] days",
+        )?;
         check_range("mask_edge", self.mask_edge, 0.001, 1.0, "(0, 1]")
     }
 }

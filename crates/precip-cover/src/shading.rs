@@ -53,7 +53,12 @@ pub fn shade_texel(texel: &CoverTexel, params: &CoverParams) -> CoverShading {
 /// Composes the cover with mask values `(T_M.g, T_M.r)` given by the caller (a shader
 /// samples a finer mask texture per fragment).
 #[must_use]
-pub fn shade_with_masks(texel: &CoverTexel, mask_g: f32, mask_r: f32, params: &CoverParams) -> CoverShading {
+pub fn shade_with_masks(
+    texel: &CoverTexel,
+    mask_g: f32,
+    mask_r: f32,
+    params: &CoverParams,
+) -> CoverShading {
     let edge = params.mask_edge;
     let a_s = accumulated_fraction(texel, params);
     let m_s = melted_fraction(texel);
@@ -78,9 +83,18 @@ mod tests {
     fn no_snow_shows_nothing_full_snow_shows_everywhere() {
         let p = CoverParams::default();
         for g in [0.0, 0.01, 0.5, 0.99, 1.0] {
-            let bare = CoverTexel { accumulation_mask: g, melt_mask: g, ..CoverTexel::default() };
+            let bare = CoverTexel {
+                accumulation_mask: g,
+                melt_mask: g,
+                ..CoverTexel::default()
+            };
             assert!(shade_texel(&bare, &p).snow_alpha.abs() < f32::MIN_POSITIVE);
-            let deep = CoverTexel { depth_mm: 1000.0, swe_mm: 100.0, peak_swe_mm: 100.0, ..bare };
+            let deep = CoverTexel {
+                depth_mm: 1000.0,
+                swe_mm: 100.0,
+                peak_swe_mm: 100.0,
+                ..bare
+            };
             assert!((shade_texel(&deep, &p).snow_alpha - 1.0).abs() < 1e-6);
         }
     }
@@ -88,9 +102,19 @@ mod tests {
     #[test]
     fn a_texel_is_covered_once_a_s_passes_its_threshold_and_bare_once_m_s_passes_its_own() {
         let p = CoverParams::default();
-        let t = CoverTexel { accumulation_mask: 0.3, melt_mask: 0.6, swe_mm: 10.0, peak_swe_mm: 10.0, ..CoverTexel::default() };
+        let t = CoverTexel {
+            accumulation_mask: 0.3,
+            melt_mask: 0.6,
+            swe_mm: 10.0,
+            peak_swe_mm: 10.0,
+            ..CoverTexel::default()
+        };
         let at = |depth_frac: f32, melted: f32| {
-            let x = CoverTexel { depth_mm: depth_frac * p.full_cover_depth_mm, swe_mm: 10.0 * (1.0 - melted), ..t };
+            let x = CoverTexel {
+                depth_mm: depth_frac * p.full_cover_depth_mm,
+                swe_mm: 10.0 * (1.0 - melted),
+                ..t
+            };
             shade_texel(&x, &p).snow_alpha
         };
         assert!(at(0.2, 0.0) < 0.01);
@@ -102,7 +126,10 @@ mod tests {
     #[test]
     fn wet_ground_is_darker() {
         let p = CoverParams::default();
-        let wet = CoverTexel { wetness: 1.0, ..CoverTexel::default() };
+        let wet = CoverTexel {
+            wetness: 1.0,
+            ..CoverTexel::default()
+        };
         assert!((shade_texel(&wet, &p).ground_darkening - (1.0 - p.wet_darkening)).abs() < 1e-6);
         assert!((shade_texel(&CoverTexel::default(), &p).ground_darkening - 1.0).abs() < 1e-6);
     }

@@ -15,7 +15,12 @@ pub fn new_snow_density(air_temperature_c: f32) -> f32 {
 /// The pack's bulk density after `dt_days` of settling toward `settled_kg_m3`
 /// with time constant `tau_days` (a pack already denser does not loosen).
 #[must_use]
-pub fn compacted_density(density_kg_m3: f32, settled_kg_m3: f32, tau_days: f32, dt_days: f32) -> f32 {
+pub fn compacted_density(
+    density_kg_m3: f32,
+    settled_kg_m3: f32,
+    tau_days: f32,
+    dt_days: f32,
+) -> f32 {
     if density_kg_m3 >= settled_kg_m3 {
         density_kg_m3
     } else {
@@ -31,7 +36,10 @@ mod tests {
     fn new_snow_density_follows_temperature_within_50_to_250() {
         assert!((new_snow_density(-30.0) - 50.0).abs() < 1e-3);
         assert!((60.0..80.0).contains(&new_snow_density(-10.0)));
-        assert!((90.0..115.0).contains(&new_snow_density(-5.0)), "~100 typical");
+        assert!(
+            (90.0..115.0).contains(&new_snow_density(-5.0)),
+            "~100 typical"
+        );
         assert!((140.0..160.0).contains(&new_snow_density(0.0)));
         let mut last = 0.0;
         for t in -60..=10 {

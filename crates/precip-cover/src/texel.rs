@@ -17,7 +17,11 @@ impl CoverFeed {
     /// From the stored `u32` (anything but 1 reads as the weather rate).
     #[must_use]
     pub const fn from_raw(raw: u32) -> Self {
-        if raw == 1 { Self::Particles } else { Self::WeatherRate }
+        if raw == 1 {
+            Self::Particles
+        } else {
+            Self::WeatherRate
+        }
     }
 }
 

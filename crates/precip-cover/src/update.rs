@@ -39,7 +39,7 @@ pub fn update_texel(texel: CoverTexel, input: CoverInput, params: &CoverParams) 
     t.runoff_mm += input.snow_mm - snow_kept;
     if snow_kept > 0.0 {
         let swe_total = t.swe_mm + snow_kept;
-        t.age_days = t.age_days * (t.swe_mm / swe_total);
+        t.age_days *= t.swe_mm / swe_total;
         t.depth_mm += snow_kept * WATER_DENSITY_KG_M3 / new_snow_density(input.air_temperature_c);
         t.swe_mm = swe_total;
     }
@@ -64,7 +64,9 @@ pub fn update_texel(texel: CoverTexel, input: CoverInput, params: &CoverParams) 
         wetting_mm += melt;
     } else {
         let cold = (params.melt_threshold_c - input.air_temperature_c).max(0.0);
-        let refreeze = t.liquid_mm.min(params.refreeze_factor_mm_per_c_day * cold * input.dt_days);
+        let refreeze = t
+            .liquid_mm
+            .min(params.refreeze_factor_mm_per_c_day * cold * input.dt_days);
         t.liquid_mm -= refreeze;
         t.swe_mm += refreeze;
     }
@@ -111,7 +113,12 @@ mod tests {
     use super::*;
 
     fn eligible() -> CoverTexel {
-        CoverTexel { eligibility: 1.0, accumulation_mask: 0.5, melt_mask: 0.5, ..CoverTexel::default() }
+        CoverTexel {
+            eligibility: 1.0,
+            accumulation_mask: 0.5,
+            melt_mask: 0.5,
+            ..CoverTexel::default()
+        }
     }
 
     fn books_balance(t: &CoverTexel) -> bool {
@@ -124,18 +131,46 @@ mod tests {
         let mut t = eligible();
         let rate_mm_per_day = 24.0;
         for _ in 0..100 {
-            t = update_texel(t, CoverInput { snow_mm: rate_mm_per_day * 0.01, rain_mm: 0.0, air_temperature_c: -5.0, dt_days: 0.01 }, &CoverParams::default());
+            t = update_texel(
+                t,
+                CoverInput {
+                    snow_mm: rate_mm_per_day * 0.01,
+                    rain_mm: 0.0,
+                    air_temperature_c: -5.0,
+                    dt_days: 0.01,
+                },
+                &CoverParams::default(),
+            );
         }
         assert!((t.swe_mm - 24.0).abs() < 1e-3, "{}", t.swe_mm);
-        assert!(t.depth_mm > 24.0 * 1000.0 / 350.0, "depth from new-snow density, settling toward 350");
-        assert!(t.age_days < 0.6, "mass-weighted age of snow fallen over the last day: {}", t.age_days);
+        assert!(
+            t.depth_mm > 24.0 * 1000.0 / 350.0,
+            "depth from new-snow density, settling toward 350"
+        );
+        assert!(
+            t.age_days < 0.6,
+            "mass-weighted age of snow fallen over the last day: {}",
+            t.age_days
+        );
     }
 
     #[test]
     fn ineligible_texels_never_hold_snow() {
-        let mut t = CoverTexel { eligibility: 0.0, ..eligible() };
+        let mut t = CoverTexel {
+            eligibility: 0.0,
+            ..eligible()
+        };
         for _ in 0..50 {
-            t = update_texel(t, CoverInput { snow_mm: 5.0, rain_mm: 0.0, air_temperature_c: -10.0, dt_days: 0.1 }, &CoverParams::default());
+            t = update_texel(
+                t,
+                CoverInput {
+                    snow_mm: 5.0,
+                    rain_mm: 0.0,
+                    air_temperature_c: -10.0,
+                    dt_days: 0.1,
+                },
+                &CoverParams::default(),
+            );
             assert!(t.swe_mm.abs() < f32::MIN_POSITIVE && t.depth_mm.abs() < f32::MIN_POSITIVE);
         }
         assert!((t.runoff_mm - 250.0).abs() < 1e-3);
@@ -146,36 +181,91 @@ mod tests {
         // A deep fresh pack melting for two weeks at +3 °C (a spring melt period):
         // the melt per degree-day must lie in 2.5–4 mm/(°C·day) (MODEL.md §7).
         let params = CoverParams::default();
-        let mut t = CoverTexel { swe_mm: 500.0, depth_mm: 2000.0, peak_swe_mm: 500.0, deposited_mm: 500.0, ..eligible() };
+        let mut t = CoverTexel {
+            swe_mm: 500.0,
+            depth_mm: 2000.0,
+            peak_swe_mm: 500.0,
+            deposited_mm: 500.0,
+            ..eligible()
+        };
         let days = 14.0;
         let dt = 0.01;
         let steps = (days / dt) as usize;
         let mut melted = 0.0f64;
         for _ in 0..steps {
             let before = t.swe_mm;
-            t = update_texel(t, CoverInput { snow_mm: 0.0, rain_mm: 0.0, air_temperature_c: 3.0, dt_days: dt }, &params);
+            t = update_texel(
+                t,
+                CoverInput {
+                    snow_mm: 0.0,
+                    rain_mm: 0.0,
+                    air_temperature_c: 3.0,
+                    dt_days: dt,
+                },
+                &params,
+            );
             melted += f64::from(before - t.swe_mm);
         }
         let factor = melted / (3.0 * f64::from(days));
-        assert!((2.5..=4.0).contains(&factor), "effective degree-day factor {factor}");
+        assert!(
+            (2.5..=4.0).contains(&factor),
+            "effective degree-day factor {factor}"
+        );
     }
 
     #[test]
     fn melt_water_refreezes_when_the_heat_runs_out() {
         let params = CoverParams::default();
-        let mut t = CoverTexel { swe_mm: 50.0, depth_mm: 200.0, peak_swe_mm: 50.0, deposited_mm: 50.0, age_days: 10.0, ..eligible() };
-        t = update_texel(t, CoverInput { air_temperature_c: 2.0, dt_days: 0.5, ..CoverInput::default() }, &params);
+        let mut t = CoverTexel {
+            swe_mm: 50.0,
+            depth_mm: 200.0,
+            peak_swe_mm: 50.0,
+            deposited_mm: 50.0,
+            age_days: 10.0,
+            ..eligible()
+        };
+        t = update_texel(
+            t,
+            CoverInput {
+                air_temperature_c: 2.0,
+                dt_days: 0.5,
+                ..CoverInput::default()
+            },
+            &params,
+        );
         assert!(t.liquid_mm > 0.0, "melt water held");
         let held = t.liquid_mm;
         let swe = t.swe_mm;
-        t = update_texel(t, CoverInput { air_temperature_c: -5.0, dt_days: 0.1, ..CoverInput::default() }, &params);
-        assert!(t.liquid_mm < held && t.swe_mm > swe, "refroze: liquid {} swe {}", t.liquid_mm, t.swe_mm);
+        t = update_texel(
+            t,
+            CoverInput {
+                air_temperature_c: -5.0,
+                dt_days: 0.1,
+                ..CoverInput::default()
+            },
+            &params,
+        );
+        assert!(
+            t.liquid_mm < held && t.swe_mm > swe,
+            "refroze: liquid {} swe {}",
+            t.liquid_mm,
+            t.swe_mm
+        );
         assert!(books_balance(&t));
     }
 
     #[test]
     fn rain_wets_and_runs_off_bare_ground() {
-        let t = update_texel(eligible(), CoverInput { rain_mm: 2.0, air_temperature_c: 8.0, dt_days: 0.001, ..CoverInput::default() }, &CoverParams::default());
+        let t = update_texel(
+            eligible(),
+            CoverInput {
+                rain_mm: 2.0,
+                air_temperature_c: 8.0,
+                dt_days: 0.001,
+                ..CoverInput::default()
+            },
+            &CoverParams::default(),
+        );
         assert!(t.wetness > 0.9 && (t.runoff_mm - 2.0).abs() < 1e-6);
     }
 

@@ -43,7 +43,9 @@ impl PeriodicNoise {
                 continue;
             }
             let q = p - c * self.period_m;
-            sum += w * self.fbm.get([f64::from(q.x), f64::from(q.y), f64::from(q.z)]);
+            sum += w * self
+                .fbm
+                .get([f64::from(q.x), f64::from(q.y), f64::from(q.z)]);
             sum_w2 += w * w;
         }
         (sum / sum_w2.sqrt()) as f32
@@ -54,7 +56,8 @@ impl PeriodicNoise {
 /// vertical gust `w = vertical_gust_mps · clamp(n_v, -1, 1)`, two independent noises.
 pub(crate) fn bake_texels(field: &WindField, spec: &WindVolumeSpec) -> Vec<WindTexel> {
     let phase_noise = PeriodicNoise::new(field.seed, field, spec.extent_m);
-    let vertical_noise = PeriodicNoise::new(field.seed.wrapping_add(0x9E37_79B9), field, spec.extent_m);
+    let vertical_noise =
+        PeriodicNoise::new(field.seed.wrapping_add(0x9E37_79B9), field, spec.extent_m);
     let cell = spec.cell_m();
     let (nx, ny) = (spec.texels.x as usize, spec.texels.y as usize);
     (0..spec.texel_count())
@@ -64,7 +67,8 @@ pub(crate) fn bake_texels(field: &WindField, spec: &WindVolumeSpec) -> Vec<WindT
             let j = (index / nx) % ny;
             let k = index / (nx * ny);
             let centre = (Vec3::new(i as f32, j as f32, k as f32) + 0.5) * cell;
-            let alpha = std::f32::consts::PI * (0.5 * (phase_noise.sample(centre) + 1.0)).clamp(0.0, 1.0);
+            let alpha =
+                std::f32::consts::PI * (0.5 * (phase_noise.sample(centre) + 1.0)).clamp(0.0, 1.0);
             let vertical = field.vertical_gust_mps * vertical_noise.sample(centre).clamp(-1.0, 1.0);
             WindTexel {
                 sin_alpha: alpha.sin().clamp(0.0, 1.0),

@@ -64,10 +64,22 @@ impl WindField {
             ("mean_wind_mps.y", self.mean_wind_mps.y),
             ("mean_wind_mps.z", self.mean_wind_mps.z),
         ] {
-            check_range(field, value, -100.0, 100.0, "finite, [-100, 100] m/s per axis")?;
+            check_range(
+                field,
+                value,
+                -100.0,
+                100.0,
+                "finite, [-100, 100] m/s per axis",
+            )?;
         }
         check_range("gust_factor", self.gust_factor, 0.0, 1.0, "[0, 1]")?;
-        check_range("noise_scale_m", self.noise_scale_m, 1.0, 1.0e4, "[1, 10000] m")?;
+        check_range(
+            "noise_scale_m",
+            self.noise_scale_m,
+            1.0,
+            1.0e4,
+            "[1, 10000] m",
+        )?;
         if !(1..=8).contains(&self.octaves) {
             return Err(WindError::OutOfRange {
                 field: "octaves",
@@ -75,7 +87,13 @@ impl WindField {
                 allowed: "1..=8",
             });
         }
-        check_range("vertical_gust_mps", self.vertical_gust_mps, 0.0, 20.0, "[0, 20] m/s")
+        check_range(
+            "vertical_gust_mps",
+            self.vertical_gust_mps,
+            0.0,
+            20.0,
+            "[0, 20] m/s",
+        )
     }
 
     /// True when baking `self` and `other` gives different volumes.
@@ -110,11 +128,41 @@ mod tests {
     #[test]
     fn each_bad_field_is_named() {
         let bad = [
-            ("mean_wind_mps.x", WindField { mean_wind_mps: Vec3::new(f32::NAN, 0.0, 0.0), ..WindField::calm() }),
-            ("gust_factor", WindField { gust_factor: -0.1, ..WindField::calm() }),
-            ("noise_scale_m", WindField { noise_scale_m: 0.0, ..WindField::calm() }),
-            ("octaves", WindField { octaves: 0, ..WindField::calm() }),
-            ("vertical_gust_mps", WindField { vertical_gust_mps: f32::INFINITY, ..WindField::calm() }),
+            (
+                "mean_wind_mps.x",
+                WindField {
+                    mean_wind_mps: Vec3::new(f32::NAN, 0.0, 0.0),
+                    ..WindField::calm()
+                },
+            ),
+            (
+                "gust_factor",
+                WindField {
+                    gust_factor: -0.1,
+                    ..WindField::calm()
+                },
+            ),
+            (
+                "noise_scale_m",
+                WindField {
+                    noise_scale_m: 0.0,
+                    ..WindField::calm()
+                },
+            ),
+            (
+                "octaves",
+                WindField {
+                    octaves: 0,
+                    ..WindField::calm()
+                },
+            ),
+            (
+                "vertical_gust_mps",
+                WindField {
+                    vertical_gust_mps: f32::INFINITY,
+                    ..WindField::calm()
+                },
+            ),
         ];
         for (name, field) in bad {
             match field.validate() {

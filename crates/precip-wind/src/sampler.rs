@@ -32,7 +32,9 @@ impl WindVolume {
         let base = texel_space.floor();
         let f = texel_space - base;
         let b: IVec3 = base.as_ivec3();
-        let load = |dx: i32, dy: i32, dz: i32| -> WindTexel { self.texel_wrapped(b.x + dx, b.y + dy, b.z + dz) };
+        let load = |dx: i32, dy: i32, dz: i32| -> WindTexel {
+            self.texel_wrapped(b.x + dx, b.y + dy, b.z + dz)
+        };
         let lerp = |a: WindTexel, c: WindTexel, t: f32| WindTexel {
             sin_alpha: a.sin_alpha + (c.sin_alpha - a.sin_alpha) * t,
             vertical_mps: a.vertical_mps + (c.vertical_mps - a.vertical_mps) * t,
@@ -62,7 +64,9 @@ impl WindVolume {
 /// `V_w = V̄_w + μ·V̄_w·sin α + (0, w, 0)`. WGSL twin: `wind_velocity` in wind.wgsl.
 #[must_use]
 pub fn wind_velocity(mean_wind_mps: Vec3, gust_factor: f32, sample: WindSample) -> Vec3 {
-    mean_wind_mps + mean_wind_mps * (gust_factor * sample.sin_alpha) + Vec3::new(0.0, sample.vertical_mps, 0.0)
+    mean_wind_mps
+        + mean_wind_mps * (gust_factor * sample.sin_alpha)
+        + Vec3::new(0.0, sample.vertical_mps, 0.0)
 }
 
 #[cfg(test)]
@@ -104,7 +108,10 @@ mod tests {
             let s = v.sample(centre, 0.0);
             let t = v.texel_wrapped(i, j, k);
             assert!((s.sin_alpha - t.sin_alpha).abs() < 1e-5, "{i},{j},{k}");
-            assert!((s.vertical_mps - t.vertical_mps).abs() < 1e-5, "{i},{j},{k}");
+            assert!(
+                (s.vertical_mps - t.vertical_mps).abs() < 1e-5,
+                "{i},{j},{k}"
+            );
         }
     }
 
@@ -131,12 +138,22 @@ mod tests {
         for j in 0..n.y {
             for k in 0..n.z {
                 for i in 0..n.x - 1 {
-                    inner = inner.max((v.texel_wrapped(i + 1, j, k).sin_alpha - v.texel_wrapped(i, j, k).sin_alpha).abs());
+                    inner = inner.max(
+                        (v.texel_wrapped(i + 1, j, k).sin_alpha
+                            - v.texel_wrapped(i, j, k).sin_alpha)
+                            .abs(),
+                    );
                 }
-                seam = seam.max((v.texel_wrapped(0, j, k).sin_alpha - v.texel_wrapped(n.x - 1, j, k).sin_alpha).abs());
+                seam = seam.max(
+                    (v.texel_wrapped(0, j, k).sin_alpha - v.texel_wrapped(n.x - 1, j, k).sin_alpha)
+                        .abs(),
+                );
             }
         }
-        assert!(seam <= inner * 1.5 + 1e-3, "seam step {seam} vs inner step {inner}");
+        assert!(
+            seam <= inner * 1.5 + 1e-3,
+            "seam step {seam} vs inner step {inner}"
+        );
     }
 
     #[test]
@@ -149,7 +166,10 @@ mod tests {
     #[test]
     fn rebake_only_when_noise_changes() {
         let a = gusty(1);
-        let b = WindField { mean_wind_mps: Vec3::X, ..a };
+        let b = WindField {
+            mean_wind_mps: Vec3::X,
+            ..a
+        };
         assert!(!a.needs_rebake(&b));
         assert!(a.needs_rebake(&WindField { seed: 2, ..a }));
     }
@@ -206,7 +226,15 @@ mod tests {
     fn deterministic_per_seed_and_different_across_seeds() {
         assert_eq!(volume(21).texels, volume(21).texels);
         let (a, b) = (volume(21), volume(22));
-        let differing = a.texels.iter().zip(&b.texels).filter(|(x, y)| x != y).count();
-        assert!(differing > a.texels.len() / 2, "only {differing} texels differ");
+        let differing = a
+            .texels
+            .iter()
+            .zip(&b.texels)
+            .filter(|(x, y)| x != y)
+            .count();
+        assert!(
+            differing > a.texels.len() / 2,
+            "only {differing} texels differ"
+        );
     }
 }

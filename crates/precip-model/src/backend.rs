@@ -1,0 +1,82 @@
+//! The [`Backend`] trait (DESIGN.md §3): one contract, implemented by the CPU
+//! reference and the GPU crates. The same inputs give the same outputs on every
+//! backend, within the tolerances of DESIGN.md §5.
+
+use precip_cover::CoverGrid;
+
+use crate::camera::{Camera, Image, View};
+use crate::error::BackendError;
+use crate::particle::Particle;
+use crate::setup::Setup;
+use crate::weather::Weather;
+
+/// What a backend is and how much it holds.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BackendInfo {
+    /// Short name: "cpu", "wgpu", "vk".
+    pub name: &'static str,
+    /// The device, in words.
+    pub device: String,
+    /// The most particles one configuration may hold.
+    pub max_particles: u64,
+    /// Whether `render` and `read_image` work.
+    pub renders: bool,
+}
+
+/// Where timings come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TimingSource {
+    /// Host wall clock around each pass (the CPU backend).
+    HostClock,
+    /// GPU timestamp queries.
+    GpuTimestamps,
+    /// The device cannot time passes.
+    Unavailable,
+}
+
+/// Time of one pass of the last frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PassTiming {
+    /// The pass ("wind_bake", "particle_step", "cover_update", …).
+    pub pass: &'static str,
+    /// Milliseconds.
+    pub milliseconds: f64,
+}
+
+/// Per-pass timings of the last `step`/`render`/`set_weather`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Timings {
+    /// Where they come from.
+    pub source: TimingSource,
+    /// Passes in order.
+    pub passes: Vec<PassTiming>,
+}
+
+/// A precipitation backend.
+///
+/// Every method validates its input before it changes anything: an `Err` leaves the
+/// backend as it was.
+pub trait Backend {
+    /// Name, device and limits.
+    fn info(&self) -> BackendInfo;
+    /// Allocates and initialises everything for `setup` (pre-warmed particles, bare
+    /// cover, baked wind).
+    fn configure(&mut self, setup: &Setup) -> Result<(), BackendError>;
+    /// Changes the weather; re-bakes the wind volume only when its noise changed.
+    fn set_weather(&mut self, weather: &Weather) -> Result<(), BackendError>;
+    /// Moves the camera (the camera volume follows it).
+    fn set_camera(&mut self, camera: &Camera) -> Result<(), BackendError>;
+    /// Advances the particles and the cover by `dt_s` seconds (sub-stepped so each
+    /// sub-step is at most 0.05 s); `dt_s` in `(0, 1]`.
+    fn step(&mut self, dt_s: f32) -> Result<(), BackendError>;
+    /// Draws the scene, cover and precipitation for `view`.
+    fn render(&mut self, view: &View) -> Result<(), BackendError>;
+    /// Copies the particles back (tests and tools, never the frame loop).
+    fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError>;
+    /// Copies the cover back.
+    fn read_cover(&mut self) -> Result<CoverGrid, BackendError>;
+    /// Copies the last rendered image back.
+    fn read_image(&mut self) -> Result<Image, BackendError>;
+    /// Timings of the last calls, per pass.
+    fn timings(&mut self) -> Result<Timings, BackendError>;
+}

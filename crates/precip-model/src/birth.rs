@@ -1,0 +1,151 @@
+//! Birth and re-birth of particles (MODEL.md §1): every property drawn from the
+//! counter-based RNG, keyed by (seed, index, generation). WGSL twin: `shaders/birth.wgsl`.
+
+use glam::{Vec2, Vec3};
+
+use crate::ground::GroundMap;
+use crate::particle::{Particle, ParticleKind, ParticleSource, pack_flags};
+use crate::raindrop::{draw_raindrop_diameter_mm, raindrop_terminal_speed_mps};
+use crate::rng::{draw, particle_key, random_unit};
+use crate::snowflake::{snow_terminal_speed_mps, snowflake_diameter_m};
+use crate::step::StepParams;
+
+/// `f − ½` for draw `d`.
+fn centred(key: u32, d: u32) -> f32 {
+    random_unit(key, d) - 0.5
+}
+
+/// `(f − ½, f − ½, f − ½)` from draws `d, d+1, d+2`: the seeds' `V_rand`.
+fn centred3(key: u32, d: u32) -> Vec3 {
+    Vec3::new(centred(key, d), centred(key, d + 1), centred(key, d + 2))
+}
+
+/// Kind, diameter (m) and terminal speed (m/s) of a newborn particle.
+///
+/// Snow with probability `snow_fraction` (sleet), else rain. Snow: `D = D̄(T)·(0.5 + f)`,
+/// `V_pmax` across the dry/wet range. Rain: D from the flux-weighted Marshall–Palmer
+/// draw, `V_pmax = v(D)`.
+#[must_use]
+pub fn draw_species(key: u32, params: &StepParams) -> (ParticleKind, f32, f32) {
+    let is_snow = random_unit(key, draw::KIND) < params.snow_fraction;
+    if is_snow {
+        let wet = params.snow_is_wet != 0;
+        let diameter =
+            snowflake_diameter_m(params.air_temperature_c, random_unit(key, draw::SNOW_SIZE));
+        let speed = snow_terminal_speed_mps(wet, random_unit(key, draw::SNOW_SPEED));
+        let kind = if wet {
+            ParticleKind::WetSnow
+        } else {
+            ParticleKind::DrySnow
+        };
+        (kind, diameter, speed)
+    } else {
+        let diameter_mm = draw_raindrop_diameter_mm(key, params.rain_slope_per_mm);
+        (
+            ParticleKind::Rain,
+            diameter_mm * 1.0e-3,
+            raindrop_terminal_speed_mps(diameter_mm),
+        )
+    }
+}
+
+/// Rotation at birth: `r0 = 2π·(f, f, f)`, `r = 4·k_rot·V_rand` kept as magnitude
+/// `|r|` plus direction (increasing where the drawn `r ≥ 0`).
+#[must_use]
+pub fn draw_rotation(key: u32, amplitude_rad: f32) -> (Vec3, Vec3, [bool; 3]) {
+    let r0 = Vec3::new(
+        random_unit(key, draw::ROTATION0_X),
+        random_unit(key, draw::ROTATION0_X + 1),
+        random_unit(key, draw::ROTATION0_X + 2),
+    ) * std::f32::consts::TAU;
+    let r = centred3(key, draw::ROTATION_X) * (4.0 * amplitude_rad);
+    (r0, r.abs(), [r.x >= 0.0, r.y >= 0.0, r.z >= 0.0])
+}
+
+/// A particle born on the world emitter (MODEL.md §1):
+/// `P = M_model·(W(f − ½), H(f − ½), 0, 1)`, `v = v0 + 2·k_v·V_rand`.
+#[must_use]
+pub fn birth_on_emitter(index: u32, generation: u32, params: &StepParams) -> Particle {
+    let key = particle_key(params.seed, index, generation);
+    let ocs = Vec3::new(
+        params.emitter_size_m.x * centred(key, draw::POSITION_U),
+        params.emitter_size_m.y * centred(key, draw::POSITION_V),
+        0.0,
+    );
+    let (kind, diameter, speed) = draw_species(key, params);
+    let (r0, r, increasing) = draw_rotation(key, params.world_rotation.x);
+    Particle {
+        position_m: params.emitter_model.transform_point3(ocs),
+        age_s: 0.0,
+        velocity_mps: params.emitter_velocity_mps
+            + centred3(key, draw::VELOCITY_X) * (2.0 * params.emitter_velocity_spread_mps),
+        terminal_speed_mps: speed,
+        rotation0_rad: r0,
+        diameter_m: diameter,
+        rotation_rad: r,
+        water_kg: 0.0,
+        generation,
+        flags: pack_flags(kind, ParticleSource::WorldEmitter, increasing),
+        reserved: [0; 2],
+    }
+}
+
+/// A particle born in the camera volume at `position_m`, already falling at its
+/// terminal speed through the mean wind (so no band of accelerating particles shows).
+#[must_use]
+pub fn birth_in_camera_volume(
+    index: u32,
+    generation: u32,
+    params: &StepParams,
+    position_m: Vec3,
+) -> Particle {
+    let key = particle_key(params.seed, index, generation);
+    let (kind, diameter, speed) = draw_species(key, params);
+    let (r0, r, increasing) = draw_rotation(key, params.camera_rotation.x);
+    Particle {
+        position_m,
+        age_s: 0.0,
+        velocity_mps: params.mean_wind_mps - Vec3::Y * speed,
+        terminal_speed_mps: speed,
+        rotation0_rad: r0,
+        diameter_m: diameter,
+        rotation_rad: r,
+        water_kg: 0.0,
+        generation,
+        flags: pack_flags(kind, ParticleSource::CameraVolume, increasing),
+        reserved: [0; 2],
+    }
+}
+
+/// The particle a slot starts with at configure time, pre-warmed so the air is
+/// already in steady state (no curtain falling from the emitter on the first frame).
+///
+/// World emitter: born at generation 0, then moved a random fraction of its fall
+/// (down to the ground under it, at most `t_max`) along its steady path — terminal
+/// speed through the mean wind — carrying the water it gathered on the way. Camera
+/// volume: uniform in the box.
+#[must_use]
+pub fn initial_particle(index: u32, params: &StepParams, ground: &GroundMap) -> Particle {
+    let key = particle_key(params.seed, index, 0);
+    if index < params.world_count {
+        let mut p = birth_on_emitter(index, 0, params);
+        let ground_m = ground
+            .height_at(Vec2::new(p.position_m.x, p.position_m.z))
+            .unwrap_or(params.ground_floor_m);
+        let fall_s = ((p.position_m.y - ground_m).max(0.0) / p.terminal_speed_mps)
+            .min(params.emitter_life_time_s);
+        let age = random_unit(key, draw::PREWARM) * fall_s;
+        p.velocity_mps = params.mean_wind_mps - Vec3::Y * p.terminal_speed_mps;
+        p.position_m += p.velocity_mps * age;
+        p.age_s = age;
+        p.water_kg = params.water_per_particle_kg_per_s * age;
+        p
+    } else {
+        let offset = Vec3::new(
+            centred(key, draw::VOLUME_X),
+            centred(key, draw::VOLUME_X + 1),
+            centred(key, draw::VOLUME_X + 2),
+        ) * (2.0 * params.camera_half_extent_m);
+        birth_in_camera_volume(index, 0, params, params.camera_centre_m + offset)
+    }
+}

@@ -1,0 +1,235 @@
+//! [`CpuBackend`]: the reference implementation of [`Backend`].
+//!
+//! ## Design
+//!
+//! A readable mirror of the GPU's frame: per sub-step, every particle runs
+//! [`step_particle`] (in parallel with rayon; each particle is independent and landed
+//! water is summed in integer fixed point, so the result does not depend on thread
+//! order), then every cover texel runs the cover kernel. It is the yardstick the GPU
+//! backends are compared with, not a renderer: `render` and `read_image` return
+//! [`BackendError::NotSupported`].
+
+use std::time::Instant;
+
+use precip_cover::{CoverGrid, DepositBuffer};
+use precip_wind::WindVolume;
+use rayon::prelude::*;
+
+use crate::backend::{Backend, BackendInfo, PassTiming, TimingSource, Timings};
+use crate::birth::initial_particle;
+use crate::camera::{Camera, Image, View};
+use crate::drag::MAX_SUBSTEP_S;
+use crate::error::BackendError;
+use crate::particle::Particle;
+use crate::setup::{SECONDS_PER_DAY, Setup};
+use crate::step::{StepInputs, step_particle};
+use crate::weather::Weather;
+
+/// The longest `dt` one `step` accepts, s (sub-stepped internally).
+pub const MAX_STEP_S: f32 = 1.0;
+
+/// The most particles the CPU backend holds (5.4 GB of particle state).
+pub const CPU_MAX_PARTICLES: u64 = 1 << 26;
+
+/// Name of this backend.
+const NAME: &str = "cpu";
+
+/// The state of a configured backend.
+#[derive(Debug)]
+struct State {
+    setup: Setup,
+    weather: Weather,
+    wind: WindVolume,
+    camera: Camera,
+    particles: Vec<Particle>,
+    cover: CoverGrid,
+    deposits: DepositBuffer,
+    time_s: f64,
+}
+
+/// The CPU reference backend.
+#[derive(Debug, Default)]
+pub struct CpuBackend {
+    state: Option<State>,
+    timings: Vec<PassTiming>,
+}
+
+impl CpuBackend {
+    /// An unconfigured backend.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn state_mut(&mut self, operation: &'static str) -> Result<&mut State, BackendError> {
+        self.state
+            .as_mut()
+            .ok_or(BackendError::NotConfigured { operation })
+    }
+
+    /// Simulated time since configure, s.
+    #[must_use]
+    pub fn time_s(&self) -> f64 {
+        self.state.as_ref().map_or(0.0, |s| s.time_s)
+    }
+}
+
+fn elapsed_ms(start: Instant) -> f64 {
+    start.elapsed().as_secs_f64() * 1.0e3
+}
+
+impl Backend for CpuBackend {
+    fn info(&self) -> BackendInfo {
+        BackendInfo {
+            name: NAME,
+            device: format!("host CPU, {} threads", rayon::current_num_threads()),
+            max_particles: CPU_MAX_PARTICLES,
+            renders: false,
+        }
+    }
+
+    fn configure(&mut self, setup: &Setup) -> Result<(), BackendError> {
+        setup.validate(CPU_MAX_PARTICLES, "CPU backend limit")?;
+        let start = Instant::now();
+        let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume)?;
+        let bake_ms = elapsed_ms(start);
+        let cover = setup.initial_cover()?;
+        let params = setup.step_params(&setup.weather, setup.camera.position_m, MAX_SUBSTEP_S, 0.0);
+        let particles: Vec<Particle> = (0..params.particle_count)
+            .into_par_iter()
+            .map(|i| initial_particle(i, &params, &setup.ground))
+            .collect();
+        let deposits = DepositBuffer::new(cover.texels.len());
+        self.state = Some(State {
+            setup: setup.clone(),
+            weather: setup.weather,
+            wind,
+            camera: setup.camera,
+            particles,
+            cover,
+            deposits,
+            time_s: 0.0,
+        });
+        self.timings = vec![PassTiming {
+            pass: "wind_bake",
+            milliseconds: bake_ms,
+        }];
+        Ok(())
+    }
+
+    fn set_weather(&mut self, weather: &Weather) -> Result<(), BackendError> {
+        weather.validate()?;
+        let state = self.state_mut("set_weather")?;
+        let mut timings = Vec::new();
+        if weather.wind.needs_rebake(&state.wind.field) {
+            let start = Instant::now();
+            state.wind = WindVolume::bake(&weather.wind, &state.setup.wind_volume)?;
+            timings.push(PassTiming {
+                pass: "wind_bake",
+                milliseconds: elapsed_ms(start),
+            });
+        } else {
+            state.wind.set_mean_wind(weather.wind.mean_wind_mps);
+        }
+        state.weather = *weather;
+        self.timings = timings;
+        Ok(())
+    }
+
+    fn set_camera(&mut self, camera: &Camera) -> Result<(), BackendError> {
+        camera.validate()?;
+        self.state_mut("set_camera")?.camera = *camera;
+        Ok(())
+    }
+
+    fn step(&mut self, dt_s: f32) -> Result<(), BackendError> {
+        if !(dt_s.is_finite() && dt_s > 0.0 && dt_s <= MAX_STEP_S) {
+            return Err(BackendError::InvalidTimeStep {
+                dt_s,
+                max_s: MAX_STEP_S,
+            });
+        }
+        let state = self.state_mut("step")?;
+        let substeps = (dt_s / MAX_SUBSTEP_S).ceil().max(1.0) as u32;
+        let h = dt_s / substeps as f32;
+        let (mut particle_ms, mut cover_ms) = (0.0, 0.0);
+        for _ in 0..substeps {
+            let start = Instant::now();
+            let params = state.setup.step_params(
+                &state.weather,
+                state.camera.position_m,
+                h,
+                state.time_s as f32,
+            );
+            let inputs = StepInputs {
+                params: &params,
+                wind: &state.wind,
+                ground: &state.setup.ground,
+                cover_frame: &state.cover.frame,
+                deposits: &state.deposits,
+            };
+            state
+                .particles
+                .par_iter_mut()
+                .enumerate()
+                .for_each(|(i, p)| {
+                    *p = step_particle(i as u32, p, &inputs).0;
+                });
+            particle_ms += elapsed_ms(start);
+
+            let start = Instant::now();
+            let scale = state.setup.cover.time_scale;
+            let dt_days = h * scale / SECONDS_PER_DAY;
+            state.cover.step(
+                &mut state.deposits,
+                state.weather.snow_rate_mm_per_h() * 24.0,
+                state.weather.rain_rate_mm_per_h() * 24.0,
+                state.weather.air_temperature_c,
+                dt_days,
+                &state.setup.cover.params,
+            );
+            cover_ms += elapsed_ms(start);
+            state.time_s += f64::from(h);
+        }
+        self.timings = vec![
+            PassTiming {
+                pass: "particle_step",
+                milliseconds: particle_ms,
+            },
+            PassTiming {
+                pass: "cover_update",
+                milliseconds: cover_ms,
+            },
+        ];
+        Ok(())
+    }
+
+    fn render(&mut self, _view: &View) -> Result<(), BackendError> {
+        Err(BackendError::NotSupported {
+            backend: NAME,
+            operation: "render",
+        })
+    }
+
+    fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {
+        Ok(self.state_mut("read_particles")?.particles.clone())
+    }
+
+    fn read_cover(&mut self) -> Result<CoverGrid, BackendError> {
+        Ok(self.state_mut("read_cover")?.cover.clone())
+    }
+
+    fn read_image(&mut self) -> Result<Image, BackendError> {
+        Err(BackendError::NotSupported {
+            backend: NAME,
+            operation: "read_image",
+        })
+    }
+
+    fn timings(&mut self) -> Result<Timings, BackendError> {
+        Ok(Timings {
+            source: TimingSource::HostClock,
+            passes: self.timings.clone(),
+        })
+    }
+}

@@ -1,0 +1,110 @@
+//! Typed errors of the model and of every backend.
+
+use precip_cover::CoverError;
+use precip_wind::WindError;
+
+use crate::weather::PrecipitationKind;
+
+/// What was wrong with a [`crate::Weather`].
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum WeatherError {
+    /// A field was non-finite or out of its range.
+    #[error("weather field `{field}` = {value} is out of range: allowed {allowed}")]
+    OutOfRange {
+        /// The field.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// The allowed range, in words.
+        allowed: &'static str,
+    },
+    /// The air temperature does not allow this kind of precipitation.
+    #[error(
+        "{kind:?} at {air_temperature_c} °C is not physical: allowed {allowed}; pick another kind (sleet or rain near 0 °C)"
+    )]
+    KindTemperature {
+        /// The kind asked for.
+        kind: PrecipitationKind,
+        /// The air temperature given.
+        air_temperature_c: f32,
+        /// The range of that kind, in words.
+        allowed: &'static str,
+    },
+    /// The wind field was invalid.
+    #[error("weather wind: {0}")]
+    Wind(#[from] WindError),
+}
+
+/// Everything a [`crate::Backend`] can refuse or fail at.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum BackendError {
+    /// Invalid weather; nothing was changed.
+    #[error(transparent)]
+    Weather(#[from] WeatherError),
+    /// Invalid wind volume size; nothing was changed.
+    #[error("wind volume: {0}")]
+    Wind(#[from] WindError),
+    /// Invalid cover grid or parameters; nothing was changed.
+    #[error("snow cover: {0}")]
+    Cover(#[from] CoverError),
+    /// Some part of the setup is invalid; nothing was changed.
+    #[error("invalid setup: `{field}` {problem}")]
+    Setup {
+        /// The field of [`crate::Setup`].
+        field: &'static str,
+        /// What is wrong and what to do.
+        problem: String,
+    },
+    /// The setup asks for no particles at all.
+    #[error(
+        "the setup asks for zero particles: give the world emitter or the camera volume a particle count above 0"
+    )]
+    ZeroCapacity,
+    /// More particles than the backend or device can hold.
+    #[error(
+        "{requested} particles requested but at most {max} fit ({limit}): lower the particle budget"
+    )]
+    CapacityTooLarge {
+        /// Particles asked for.
+        requested: u64,
+        /// The most this backend holds.
+        max: u64,
+        /// The limit that binds, named.
+        limit: String,
+    },
+    /// A step length that is not a positive finite number of seconds up to the maximum.
+    #[error("time step {dt_s} s is invalid: give a finite dt in (0, {max_s}] s")]
+    InvalidTimeStep {
+        /// The step given.
+        dt_s: f32,
+        /// The longest step accepted.
+        max_s: f32,
+    },
+    /// A camera with non-finite or degenerate values.
+    #[error("invalid camera: {0}")]
+    InvalidCamera(&'static str),
+    /// The call needs `configure` first.
+    #[error("{operation} needs a configured backend: call configure(&setup) first")]
+    NotConfigured {
+        /// The call made.
+        operation: &'static str,
+    },
+    /// This backend cannot do that at all.
+    #[error("the {backend} backend does not support {operation}: use a GPU backend for it")]
+    NotSupported {
+        /// The backend's name.
+        backend: &'static str,
+        /// What was asked.
+        operation: &'static str,
+    },
+    /// A device-level failure reported by a GPU backend.
+    #[error("{backend}: {message}")]
+    Device {
+        /// The backend's name.
+        backend: &'static str,
+        /// What happened and what to do.
+        message: String,
+    },
+}

@@ -1,0 +1,102 @@
+//! [`GroundMap`]: the scene seen from above, which particles land on.
+//!
+//! A height per texel (the top-most surface) and the snow eligibility of that surface.
+//! The rendering issue renders it from the scene; here it is any grid. Particles land
+//! against the nearest texel (no interpolation: an eave must not catch particles in
+//! mid-air beside it).
+
+use glam::Vec2;
+use precip_cover::GridFrame;
+
+use crate::error::BackendError;
+
+/// Heights and eligibility of the top-most surface on a grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroundMap {
+    /// Where the grid lies.
+    pub frame: GridFrame,
+    /// World height of the top-most surface per texel, m.
+    pub height_m: Vec<f32>,
+    /// Snow eligibility of that surface per texel, `[0, 1]`.
+    pub eligibility: Vec<f32>,
+}
+
+impl GroundMap {
+    /// Flat ground at `height_m`, uniformly eligible.
+    #[must_use]
+    pub fn flat(frame: GridFrame, height_m: f32, eligibility: f32) -> Self {
+        let n = frame.texel_count();
+        Self {
+            frame,
+            height_m: vec![height_m; n],
+            eligibility: vec![eligibility; n],
+        }
+    }
+
+    /// Checks the frame, sizes and values.
+    pub fn validate(&self) -> Result<(), BackendError> {
+        self.frame.validate("ground.frame")?;
+        let n = self.frame.texel_count();
+        for (field, len) in [
+            ("ground.height_m", self.height_m.len()),
+            ("ground.eligibility", self.eligibility.len()),
+        ] {
+            if len != n {
+                return Err(BackendError::Setup {
+                    field,
+                    problem: format!("has {len} values but the ground frame has {n} texels"),
+                });
+            }
+        }
+        if let Some(i) = self
+            .height_m
+            .iter()
+            .position(|h| !(h.is_finite() && h.abs() <= 1.0e5))
+        {
+            return Err(BackendError::Setup {
+                field: "ground.height_m",
+                problem: format!(
+                    "texel {i} is {} : heights must be finite, within ±100 km",
+                    self.height_m[i]
+                ),
+            });
+        }
+        if let Some(i) = self
+            .eligibility
+            .iter()
+            .position(|e| !(e.is_finite() && (0.0..=1.0).contains(e)))
+        {
+            return Err(BackendError::Setup {
+                field: "ground.eligibility",
+                problem: format!(
+                    "texel {i} is {}: eligibility must be in [0, 1]",
+                    self.eligibility[i]
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Height of the top-most surface under world `(x, z)`, or `None` off the map.
+    #[must_use]
+    pub fn height_at(&self, xz_m: Vec2) -> Option<f32> {
+        self.frame
+            .texel_index(xz_m)
+            .and_then(|i| self.height_m.get(i).copied())
+    }
+
+    /// Eligibility under world `(x, z)`; 0 off the map.
+    #[must_use]
+    pub fn eligibility_at(&self, xz_m: Vec2) -> f32 {
+        self.frame
+            .texel_index(xz_m)
+            .and_then(|i| self.eligibility.get(i).copied())
+            .unwrap_or(0.0)
+    }
+
+    /// The lowest ground height: below it a particle off the map has left the scene.
+    #[must_use]
+    pub fn floor_m(&self) -> f32 {
+        self.height_m.iter().copied().fold(f32::INFINITY, f32::min)
+    }
+}

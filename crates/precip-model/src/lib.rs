@@ -1,0 +1,49 @@
+//! The precip model: weather in physical units, snowflake and raindrop physics,
+//! particles and their emitters, the [`Backend`] trait and the CPU reference backend.
+//!
+//! ## Map
+//!
+//! - Weather and derived quantities: [`weather`], [`visibility`].
+//! - Physics (MODEL.md §2): [`snowflake`], [`raindrop`], [`snowfall`] (size spectra),
+//!   [`drag`] (gravity + drag, the stable integrator), [`rotation`].
+//! - Particles (MODEL.md §1): [`particle`] (the GPU layout), [`rng`] (counter-based
+//!   random numbers), [`emitter`] (world emitter, camera volume), [`birth`],
+//!   [`step`] (one particle's step), [`ground`] (what particles land on).
+//! - Contract: [`backend`] (the trait), [`setup`], [`camera`], [`error`].
+//! - [`cpu`]: the reference backend.
+//!
+//! Every formula here has a WGSL twin of the same name (`shaders/`, with the GPU
+//! issue), so a reader compares them function by function. The wind lives in
+//! `precip-wind` and the snow cover in `precip-cover`.
+
+pub mod backend;
+pub mod birth;
+pub mod camera;
+pub mod cpu;
+pub mod drag;
+pub mod emitter;
+pub mod error;
+pub mod ground;
+pub mod particle;
+pub mod raindrop;
+pub mod rng;
+pub mod rotation;
+pub mod setup;
+pub mod snowfall;
+pub mod snowflake;
+pub mod step;
+pub mod visibility;
+pub mod weather;
+
+pub use backend::{Backend, BackendInfo, PassTiming, TimingSource, Timings};
+pub use camera::{Camera, Image, View};
+pub use cpu::CpuBackend;
+pub use emitter::{CameraVolume, WorldEmitter};
+pub use error::{BackendError, WeatherError};
+pub use ground::GroundMap;
+pub use particle::{Particle, ParticleKind, ParticleSource};
+pub use setup::{CameraVolumeSetup, CoverSetup, EmitterSetup, Setup};
+pub use weather::{PrecipitationKind, Weather};
+
+pub use precip_cover as cover;
+pub use precip_wind as wind;

@@ -1,0 +1,257 @@
+//! [`Setup`]: everything `configure` needs, validated once at the boundary, and the
+//! derived values every backend computes the same way (cover grid, step uniforms).
+
+use glam::{UVec2, Vec2, Vec3};
+use precip_cover::{CoverFeed, CoverGrid, CoverParams, GridFrame, generate_threshold_masks};
+use precip_wind::WindVolumeSpec;
+
+use crate::camera::Camera;
+use crate::emitter::{CameraVolume, WorldEmitter};
+use crate::error::BackendError;
+use crate::ground::GroundMap;
+use crate::raindrop::marshall_palmer_slope_per_mm;
+use crate::step::StepParams;
+use crate::weather::Weather;
+
+/// Seconds per day.
+pub const SECONDS_PER_DAY: f32 = 86_400.0;
+
+/// The world emitter and its share of the particles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EmitterSetup {
+    /// The rectangle.
+    pub emitter: WorldEmitter,
+    /// Particles it owns.
+    pub particle_count: u32,
+}
+
+/// The camera volume and its share of the particles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CameraVolumeSetup {
+    /// The box.
+    pub volume: CameraVolume,
+    /// Particles it owns.
+    pub particle_count: u32,
+}
+
+/// The snow cover's grid and model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoverSetup {
+    /// Where the cover grid lies (usually the ground map's frame).
+    pub frame: GridFrame,
+    /// The model's constants.
+    pub params: CoverParams,
+    /// Seed of the threshold masks.
+    pub mask_seed: u32,
+    /// Size of the masks' patches, m.
+    pub mask_patch_scale_m: f32,
+    /// Cover seconds per simulated second, `[0, 10⁷]`: 1 is real time, 86400 a day
+    /// per second. Landed water is scaled by it too, so accumulation and melt keep
+    /// their proportions.
+    pub time_scale: f32,
+}
+
+impl CoverSetup {
+    /// A real-time cover over `frame` with default constants.
+    #[must_use]
+    pub fn real_time(frame: GridFrame) -> Self {
+        Self {
+            frame,
+            params: CoverParams::default(),
+            mask_seed: 0,
+            mask_patch_scale_m: 8.0,
+            time_scale: 1.0,
+        }
+    }
+}
+
+/// Everything a backend needs to start.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Setup {
+    /// Seed of every random draw.
+    pub seed: u32,
+    /// The initial weather.
+    pub weather: Weather,
+    /// Particles that fall on the scene and feed the cover.
+    pub world_emitter: Option<EmitterSetup>,
+    /// Particles that follow the camera.
+    pub camera_volume: Option<CameraVolumeSetup>,
+    /// The scene from above.
+    pub ground: GroundMap,
+    /// The snow cover.
+    pub cover: CoverSetup,
+    /// Size of the wind volume.
+    pub wind_volume: WindVolumeSpec,
+    /// The initial camera.
+    pub camera: Camera,
+}
+
+impl Setup {
+    /// Snowfall over flat eligible ground: a square of `extent_m` at height 0 with a
+    /// cover grid of `texels` per side, a world emitter over all of it at
+    /// `emitter_height_m` with `particle_count` particles, and no camera volume.
+    #[must_use]
+    pub fn over_flat_ground(
+        extent_m: f32,
+        texels: u32,
+        emitter_height_m: f32,
+        particle_count: u32,
+    ) -> Self {
+        let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(extent_m), UVec2::splat(texels));
+        Self {
+            seed: 1,
+            weather: Weather::default(),
+            world_emitter: Some(EmitterSetup {
+                emitter: WorldEmitter::horizontal(
+                    Vec3::new(0.0, emitter_height_m, 0.0),
+                    extent_m,
+                    extent_m,
+                    emitter_height_m,
+                ),
+                particle_count,
+            }),
+            camera_volume: None,
+            ground: GroundMap::flat(frame, 0.0, 1.0),
+            cover: CoverSetup::real_time(frame),
+            wind_volume: WindVolumeSpec::default(),
+            camera: Camera::default(),
+        }
+    }
+
+    /// World-emitter and camera-volume particle counts.
+    #[must_use]
+    pub fn particle_counts(&self) -> (u32, u32) {
+        (
+            self.world_emitter.map_or(0, |e| e.particle_count),
+            self.camera_volume.map_or(0, |c| c.particle_count),
+        )
+    }
+
+    /// Checks everything against a backend holding at most `max_particles`.
+    pub fn validate(&self, max_particles: u64, limit: &str) -> Result<(), BackendError> {
+        let (world, camera) = self.particle_counts();
+        let total = u64::from(world) + u64::from(camera);
+        if total == 0 {
+            return Err(BackendError::ZeroCapacity);
+        }
+        if total > max_particles {
+            return Err(BackendError::CapacityTooLarge {
+                requested: total,
+                max: max_particles,
+                limit: limit.to_owned(),
+            });
+        }
+        self.weather.validate()?;
+        if let Some(e) = &self.world_emitter {
+            e.emitter.validate()?;
+        }
+        if let Some(c) = &self.camera_volume {
+            c.volume.validate()?;
+        }
+        self.ground.validate()?;
+        self.cover.frame.validate("cover.frame")?;
+        self.cover.params.validate()?;
+        if !(self.cover.mask_patch_scale_m.is_finite()
+            && (0.01..=1.0e5).contains(&self.cover.mask_patch_scale_m))
+        {
+            return Err(BackendError::Setup {
+                field: "cover.mask_patch_scale_m",
+                problem: format!(
+                    "= {} must be in [0.01, 100000] m",
+                    self.cover.mask_patch_scale_m
+                ),
+            });
+        }
+        if !(self.cover.time_scale.is_finite() && (0.0..=1.0e7).contains(&self.cover.time_scale)) {
+            return Err(BackendError::Setup {
+                field: "cover.time_scale",
+                problem: format!(
+                    "= {} must be in [0, 10000000] (1 = real time, 86400 = a day per second)",
+                    self.cover.time_scale
+                ),
+            });
+        }
+        self.wind_volume.validate()?;
+        self.camera.validate()?;
+        Ok(())
+    }
+
+    /// The bare cover grid: eligibility from the ground map under each texel's centre,
+    /// fed by particles where the world emitter's footprint covers it, else by the
+    /// weather's rate.
+    pub fn initial_cover(&self) -> Result<CoverGrid, BackendError> {
+        let frame = self.cover.frame;
+        let n = frame.texel_count();
+        let centres: Vec<Vec2> = (0..n).map(|i| frame.texel_centre(i)).collect();
+        let eligibility: Vec<f32> = centres
+            .iter()
+            .map(|&c| self.ground.eligibility_at(c))
+            .collect();
+        let feed: Vec<CoverFeed> = centres
+            .iter()
+            .map(|&c| match &self.world_emitter {
+                Some(e) if e.particle_count > 0 && e.emitter.footprint_contains(c) => {
+                    CoverFeed::Particles
+                }
+                _ => CoverFeed::WeatherRate,
+            })
+            .collect();
+        let masks =
+            generate_threshold_masks(&frame, self.cover.mask_seed, self.cover.mask_patch_scale_m);
+        Ok(CoverGrid::new(frame, &eligibility, &masks, &feed)?)
+    }
+
+    /// The uniform block of a step of `dt_s` starting at `time_s` under `weather` with
+    /// the camera volume centred at `camera_centre_m`.
+    #[must_use]
+    pub fn step_params(
+        &self,
+        weather: &Weather,
+        camera_centre_m: Vec3,
+        dt_s: f32,
+        time_s: f32,
+    ) -> StepParams {
+        let (world_count, camera_count) = self.particle_counts();
+        let emitter = self.world_emitter.map(|e| e.emitter);
+        let rain_rate = weather.rain_rate_mm_per_h();
+        let water_per_particle_kg_per_s = match emitter {
+            Some(e) if world_count > 0 => {
+                weather.intensity_mm_per_h / 3600.0 * e.horizontal_area_m2() / world_count as f32
+            }
+            _ => 0.0,
+        };
+        let volume = self.camera_volume.map(|c| c.volume).unwrap_or_default();
+        let e = emitter.unwrap_or_else(|| WorldEmitter::horizontal(Vec3::ZERO, 1.0, 1.0, 1.0));
+        StepParams {
+            emitter_model: e.model,
+            emitter_size_m: Vec2::new(e.width_m, e.height_m),
+            emitter_life_time_s: e.life_time_s,
+            emitter_velocity_spread_mps: e.velocity_spread_mps,
+            emitter_velocity_mps: e.initial_velocity_mps,
+            water_per_particle_kg_per_s,
+            camera_centre_m,
+            dt_s,
+            camera_half_extent_m: volume.half_extent_m,
+            time_s,
+            mean_wind_mps: weather.wind.mean_wind_mps,
+            snow_fraction: weather.snow_fraction(),
+            world_rotation: Vec2::new(e.rotation_amplitude_rad, e.rotation_speed_rad_per_s),
+            camera_rotation: Vec2::new(
+                volume.rotation_amplitude_rad,
+                volume.rotation_speed_rad_per_s,
+            ),
+            seed: self.seed,
+            world_count,
+            particle_count: world_count + camera_count,
+            snow_is_wet: u32::from(weather.snow_is_wet()),
+            air_temperature_c: weather.air_temperature_c,
+            rain_slope_per_mm: marshall_palmer_slope_per_mm(if rain_rate > 0.0 {
+                rain_rate
+            } else {
+                1.0
+            }),
+            deposit_scale_mm_per_kg: self.cover.time_scale / self.cover.frame.texel_area_m2(),
+            ground_floor_m: self.ground.floor_m(),
+        }
+    }
+}

@@ -1,0 +1,258 @@
+//! One particle's step: the seeds' kinematics with physical acceleration, rotation,
+//! landing and deposit, re-birth, and the camera volume's wrap.
+//! WGSL twin: the `step_particles` kernel in `shaders/step.wgsl`.
+//!
+//! ## Order within a step
+//!
+//! 1. Wind sampled at the old position and time; velocity by [`drag_velocity`];
+//!    position `P' = P + ½(v + v')·dt`; age `t' = t + dt`; rotation advanced.
+//! 2. World emitter particles gather water, `R·A/n` per second (R the intensity,
+//!    A the emitter's ground area, n its particle count): over a long run the water
+//!    landed equals `R·A·time` exactly, whatever the particles' speeds (each particle
+//!    stands for 1/n of the emitter's flux for as long as it lives).
+//!    If `P'` is at or below the ground map, the water is added to the cover texel
+//!    there (fixed point, atomic) and the particle is re-born; below the lowest ground
+//!    off the map, or at `t' ≥ t_max`, it is re-born without a deposit.
+//! 3. Camera volume particles wrap through the box's sides and top; one that falls out
+//!    of the bottom or reaches the ground is re-born just under the top (spread over
+//!    one step's fall, so the flux in is continuous), at the same x, z.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec2, Vec3};
+use precip_cover::{DepositBuffer, GridFrame};
+use precip_wind::WindVolume;
+
+use crate::birth::{birth_in_camera_volume, birth_on_emitter};
+use crate::drag::drag_velocity;
+use crate::ground::GroundMap;
+use crate::particle::{Particle, ParticleSource, flags};
+use crate::rng::{draw, particle_key, random_unit};
+use crate::rotation::advance_rotation;
+
+/// Everything a step needs besides the buffers: the GPU's uniform block.
+///
+/// WGSL twin: `StepParams` in `shaders/layout.wgsl` (192 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct StepParams {
+    /// World emitter: OCS → world.
+    pub emitter_model: Mat4,
+    /// World emitter: W, H, m.
+    pub emitter_size_m: Vec2,
+    /// World emitter: t_max, s.
+    pub emitter_life_time_s: f32,
+    /// World emitter: k_v, m/s.
+    pub emitter_velocity_spread_mps: f32,
+    /// World emitter: v0, m/s.
+    pub emitter_velocity_mps: Vec3,
+    /// Water each world particle gathers per second, kg/s.
+    pub water_per_particle_kg_per_s: f32,
+    /// Camera volume centre, m.
+    pub camera_centre_m: Vec3,
+    /// Step length, s (≤ [`crate::drag::MAX_SUBSTEP_S`]).
+    pub dt_s: f32,
+    /// Camera volume half size, m.
+    pub camera_half_extent_m: Vec3,
+    /// Simulation time at the start of the step, s.
+    pub time_s: f32,
+    /// Mean wind, m/s.
+    pub mean_wind_mps: Vec3,
+    /// Fraction of births that are snow.
+    pub snow_fraction: f32,
+    /// World emitter (k_rot rad, k_vel rad/s).
+    pub world_rotation: Vec2,
+    /// Camera volume (k_rot rad, k_vel rad/s).
+    pub camera_rotation: Vec2,
+    /// Seed of every random draw.
+    pub seed: u32,
+    /// Particles `[0, world_count)` belong to the world emitter.
+    pub world_count: u32,
+    /// All particles.
+    pub particle_count: u32,
+    /// 1 when the snow is wet.
+    pub snow_is_wet: u32,
+    /// Air temperature, °C.
+    pub air_temperature_c: f32,
+    /// Marshall–Palmer Λ for the rain part, mm⁻¹.
+    pub rain_slope_per_mm: f32,
+    /// Cover mm per kg landed in one cover texel: cover time scale / texel area.
+    pub deposit_scale_mm_per_kg: f32,
+    /// Below this height a particle off the ground map has left the scene, m.
+    pub ground_floor_m: f32,
+}
+const _: () = assert!(size_of::<StepParams>() == 192);
+
+/// The buffers and fields a step reads and the deposit buffer it adds to.
+#[derive(Debug, Clone, Copy)]
+pub struct StepInputs<'a> {
+    /// The uniform block.
+    pub params: &'a StepParams,
+    /// The wind.
+    pub wind: &'a WindVolume,
+    /// The ground.
+    pub ground: &'a GroundMap,
+    /// The cover grid's frame (deposit texels).
+    pub cover_frame: &'a GridFrame,
+    /// Landed water, fixed point.
+    pub deposits: &'a DepositBuffer,
+}
+
+/// What happened to a particle in a step (for tests and statistics).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StepEvent {
+    /// It moved.
+    Moved,
+    /// It landed and deposited its water, then was re-born.
+    Landed,
+    /// It was re-born without a deposit (t_max, left the scene, left the camera box).
+    Reborn,
+}
+
+/// Advances particle `index` by one step (see the module docs).
+#[must_use]
+pub fn step_particle(
+    index: u32,
+    particle: &Particle,
+    inputs: &StepInputs<'_>,
+) -> (Particle, StepEvent) {
+    let params = inputs.params;
+    let dt = params.dt_s;
+    let wind = inputs.wind.velocity_mps(particle.position_m, params.time_s);
+    let velocity = drag_velocity(particle.velocity_mps, wind, particle.terminal_speed_mps, dt);
+    let position = particle.position_m + (particle.velocity_mps + velocity) * (0.5 * dt);
+
+    let source = particle.source();
+    let rotation = match source {
+        ParticleSource::WorldEmitter => params.world_rotation,
+        ParticleSource::CameraVolume => params.camera_rotation,
+    };
+    let mut rotation_rad = particle.rotation_rad;
+    let mut bits = particle.flags & !(0b111 * flags::ROTATION_INCREASING_X);
+    for axis in 0..3 {
+        let (m, increasing) = advance_rotation(
+            particle.rotation_rad[axis],
+            particle.rotation_increasing(axis as u32),
+            rotation.x,
+            rotation.y,
+            dt,
+        );
+        rotation_rad[axis] = m;
+        if increasing {
+            bits |= flags::ROTATION_INCREASING_X << axis;
+        }
+    }
+    let mut next = Particle {
+        position_m: position,
+        age_s: particle.age_s + dt,
+        velocity_mps: velocity,
+        rotation_rad,
+        flags: bits,
+        ..*particle
+    };
+
+    match source {
+        ParticleSource::WorldEmitter => {
+            next.water_kg += params.water_per_particle_kg_per_s * dt;
+            let xz = Vec2::new(position.x, position.z);
+            match inputs.ground.height_at(xz) {
+                Some(ground_m) if position.y <= ground_m => {
+                    if let Some(texel) = inputs.cover_frame.texel_index(xz) {
+                        let channel = if next.kind().is_snow() {
+                            DepositBuffer::SNOW
+                        } else {
+                            DepositBuffer::RAIN
+                        };
+                        inputs.deposits.add(
+                            texel,
+                            channel,
+                            next.water_kg * params.deposit_scale_mm_per_kg,
+                        );
+                    }
+                    return (
+                        birth_on_emitter(index, particle.generation.wrapping_add(1), params),
+                        StepEvent::Landed,
+                    );
+                }
+                None if position.y < params.ground_floor_m => {
+                    return (
+                        birth_on_emitter(index, particle.generation.wrapping_add(1), params),
+                        StepEvent::Reborn,
+                    );
+                }
+                _ => {}
+            }
+            if next.age_s >= params.emitter_life_time_s {
+                return (
+                    birth_on_emitter(index, particle.generation.wrapping_add(1), params),
+                    StepEvent::Reborn,
+                );
+            }
+            (next, StepEvent::Moved)
+        }
+        ParticleSource::CameraVolume => {
+            step_in_camera_volume(index, particle.generation, next, inputs)
+        }
+    }
+}
+
+/// Wraps `x` into `[−h, h)`.
+fn wrap_centred(x: f32, h: f32) -> f32 {
+    x - 2.0 * h * ((x + h) / (2.0 * h)).floor()
+}
+
+/// The camera volume's wrap and re-birth (step 3 of the module docs).
+fn step_in_camera_volume(
+    index: u32,
+    generation: u32,
+    mut next: Particle,
+    inputs: &StepInputs<'_>,
+) -> (Particle, StepEvent) {
+    let params = inputs.params;
+    let centre = params.camera_centre_m;
+    let half = params.camera_half_extent_m;
+    let mut local = next.position_m - centre;
+    local.x = wrap_centred(local.x, half.x);
+    local.z = wrap_centred(local.z, half.z);
+    if local.y > half.y {
+        local.y -= 2.0 * half.y;
+    }
+    let position = centre + local;
+    let xz = Vec2::new(position.x, position.z);
+    let grounded = inputs.ground.height_at(xz).is_some_and(|g| position.y <= g);
+    if local.y < -half.y || grounded {
+        let new_generation = generation.wrapping_add(1);
+        let key = particle_key(params.seed, index, new_generation);
+        let mut born = birth_in_camera_volume(index, new_generation, params, position);
+        born.position_m.y = centre.y + half.y
+            - random_unit(key, draw::PREWARM) * born.terminal_speed_mps * params.dt_s;
+        return (born, StepEvent::Reborn);
+    }
+    next.position_m = position;
+    (next, StepEvent::Moved)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn layout_is_pinned() {
+        assert_eq!(std::mem::offset_of!(StepParams, emitter_size_m), 64);
+        assert_eq!(std::mem::offset_of!(StepParams, emitter_velocity_mps), 80);
+        assert_eq!(std::mem::offset_of!(StepParams, camera_centre_m), 96);
+        assert_eq!(std::mem::offset_of!(StepParams, camera_half_extent_m), 112);
+        assert_eq!(std::mem::offset_of!(StepParams, mean_wind_mps), 128);
+        assert_eq!(std::mem::offset_of!(StepParams, world_rotation), 144);
+        assert_eq!(std::mem::offset_of!(StepParams, seed), 160);
+        assert_eq!(std::mem::offset_of!(StepParams, air_temperature_c), 176);
+        assert_eq!(std::mem::offset_of!(StepParams, ground_floor_m), 188);
+    }
+
+    #[test]
+    fn wrap_is_centred_and_periodic() {
+        assert!((wrap_centred(11.0, 10.0) + 9.0).abs() < 1e-5);
+        assert!((wrap_centred(-10.5, 10.0) - 9.5).abs() < 1e-5);
+        assert!((wrap_centred(3.0, 10.0) - 3.0).abs() < 1e-6);
+        assert!((wrap_centred(10.0, 10.0) + 10.0).abs() < 1e-6);
+    }
+}

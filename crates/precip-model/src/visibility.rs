@@ -1,0 +1,151 @@
+//! Visibility and particle budgets derived from the weather.
+//!
+//! Extinction by particles large against the wavelength is twice their cross-section
+//! (extinction efficiency 2), summed over the size spectrum; visibility is
+//! Koschmieder's `V = 3.912/σ` (2 % contrast). Snow uses Gunn–Marshall in melted
+//! diameter `d` and the seed's `ρ = C/D` to get the flake's real diameter
+//! (`D² = ρ_w·d³/C`); rain uses Marshall–Palmer.
+
+use crate::raindrop::{
+    MARSHALL_PALMER_N0, marshall_palmer_slope_per_mm, rain_number_density_per_m3,
+};
+use crate::snowfall::{
+    gunn_marshall_intercept, gunn_marshall_slope_per_mm, snow_number_density_per_m3,
+};
+use crate::snowflake::{WATER_DENSITY_KG_M3, snow_density_constant_kg_m2};
+use crate::weather::Weather;
+
+/// Visibility reported for clear air, m.
+pub const CLEAR_AIR_VISIBILITY_M: f32 = 100_000.0;
+
+/// Extinction coefficient of snow at `S` mm/h, per m:
+/// `σ = (π/2)·(ρ_w/C)·10⁻⁹·N0·6/Λ⁴` (∫ N(d)·2·πD²/4 dd with `D² = ρ_w d³/C`, d in mm).
+#[must_use]
+pub fn snow_extinction_per_m(snow_rate_mm_per_h: f32, wet: bool) -> f32 {
+    if snow_rate_mm_per_h <= 0.0 {
+        return 0.0;
+    }
+    let n0 = gunn_marshall_intercept(snow_rate_mm_per_h);
+    let slope = gunn_marshall_slope_per_mm(snow_rate_mm_per_h);
+    std::f32::consts::FRAC_PI_2
+        * (WATER_DENSITY_KG_M3 / snow_density_constant_kg_m2(wet))
+        * 1.0e-9
+        * n0
+        * 6.0
+        / slope.powi(4)
+}
+
+/// Extinction coefficient of rain at `R` mm/h, per m: `σ = π·10⁻⁶·N0/Λ³`.
+#[must_use]
+pub fn rain_extinction_per_m(rain_rate_mm_per_h: f32) -> f32 {
+    if rain_rate_mm_per_h <= 0.0 {
+        return 0.0;
+    }
+    std::f32::consts::PI * 1.0e-6 * MARSHALL_PALMER_N0
+        / marshall_palmer_slope_per_mm(rain_rate_mm_per_h).powi(3)
+}
+
+/// Koschmieder visibility `3.912/σ`, m, capped at [`CLEAR_AIR_VISIBILITY_M`].
+#[must_use]
+pub fn koschmieder_visibility_m(extinction_per_m: f32) -> f32 {
+    if extinction_per_m > 3.912 / CLEAR_AIR_VISIBILITY_M {
+        3.912 / extinction_per_m
+    } else {
+        CLEAR_AIR_VISIBILITY_M
+    }
+}
+
+impl Weather {
+    /// Extinction coefficient of the precipitation, per m (fog density follows it).
+    #[must_use]
+    pub fn extinction_per_m(&self) -> f32 {
+        snow_extinction_per_m(self.snow_rate_mm_per_h(), self.snow_is_wet())
+            + rain_extinction_per_m(self.rain_rate_mm_per_h())
+    }
+
+    /// Visibility in the precipitation, m.
+    #[must_use]
+    pub fn visibility_m(&self) -> f32 {
+        koschmieder_visibility_m(self.extinction_per_m())
+    }
+
+    /// Physical number of particles per m³ (flakes plus drops).
+    #[must_use]
+    pub fn number_density_per_m3(&self) -> f32 {
+        snow_number_density_per_m3(self.snow_rate_mm_per_h())
+            + rain_number_density_per_m3(self.rain_rate_mm_per_h())
+    }
+
+    /// How many particles a volume of `volume_m3` holds in reality.
+    #[must_use]
+    pub fn physical_particle_count(&self, volume_m3: f32) -> f64 {
+        f64::from(self.number_density_per_m3()) * f64::from(volume_m3.max(0.0))
+    }
+
+    /// The simulated count for a volume under a budget, and the fraction of the
+    /// physical count it is (1 when the budget covers reality). A renderer scales
+    /// sprite opacity by this fraction's inverse, within limits, to keep the look.
+    #[must_use]
+    pub fn simulated_particle_count(&self, volume_m3: f32, budget: u32) -> (u32, f32) {
+        let physical = self.physical_particle_count(volume_m3);
+        if physical <= 0.0 {
+            return (0, 1.0);
+        }
+        let count = physical.min(f64::from(budget));
+        (count.round() as u32, (count / physical) as f32)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::weather::PrecipitationKind;
+
+    #[test]
+    fn one_mm_per_hour_of_dry_snow_hides_things_beyond_half_a_kilometre_or_so() {
+        // MODEL.md §7: 0.4–1.2 km.
+        let w = Weather {
+            intensity_mm_per_h: 1.0,
+            ..Weather::default()
+        };
+        let v = w.visibility_m();
+        assert!((400.0..=1200.0).contains(&v), "{v} m");
+    }
+
+    #[test]
+    fn heavier_precipitation_sees_less_and_clear_air_sees_far() {
+        let light = Weather {
+            kind: PrecipitationKind::Rain,
+            intensity_mm_per_h: 1.0,
+            air_temperature_c: 10.0,
+            ..Weather::default()
+        };
+        let heavy = Weather {
+            intensity_mm_per_h: 50.0,
+            ..light
+        };
+        assert!(heavy.visibility_m() < light.visibility_m());
+        assert!(
+            (500.0..3_000.0).contains(&heavy.visibility_m()),
+            "{}",
+            heavy.visibility_m()
+        );
+        let none = Weather {
+            intensity_mm_per_h: 0.0,
+            ..light
+        };
+        assert!((none.visibility_m() - CLEAR_AIR_VISIBILITY_M).abs() < 1.0);
+    }
+
+    #[test]
+    fn budgets_are_documented_fractions() {
+        let w = Weather::default();
+        let volume = 100.0 * 100.0 * 50.0;
+        let (count, fraction) = w.simulated_particle_count(volume, 100_000);
+        assert_eq!(count, 100_000);
+        let physical = w.physical_particle_count(volume);
+        assert!((f64::from(fraction) - 1.0e5 / physical).abs() < 1e-6);
+        let (small, f1) = w.simulated_particle_count(1.0, 100_000);
+        assert!(small < 2_000 && (f1 - 1.0).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,255 @@
+//! The CPU reference in a scene: roofs, masked ground, wind, the camera volume, melt.
+
+mod common;
+
+use glam::{UVec2, Vec2, Vec3};
+use precip_model::cover::{CoverFeed, GridFrame};
+use precip_model::step::StepEvent;
+use precip_model::wind::WindField;
+use precip_model::{
+    Backend, Camera, CameraVolume, CameraVolumeSetup, GroundMap, ParticleSource, PrecipitationKind,
+    Setup, Weather,
+};
+
+/// 32 × 32 m with a 1 m grid: a flat roof at 6 m over x, z ∈ [−6, 2) × [−4, 4), a
+/// road at the ground masked off (eligibility 0) over x ∈ [6, 10).
+fn village() -> Setup {
+    let mut setup = Setup::over_flat_ground(32.0, 32, 20.0, 8_000);
+    let frame = setup.ground.frame;
+    let mut ground = GroundMap::flat(frame, 0.0, 1.0);
+    for index in 0..frame.texel_count() {
+        let c = frame.texel_centre(index);
+        if (-6.0..2.0).contains(&c.x) && (-4.0..4.0).contains(&c.y) {
+            ground.height_m[index] = 6.0;
+        }
+        if (6.0..10.0).contains(&c.x) {
+            ground.eligibility[index] = 0.0;
+        }
+    }
+    setup.ground = ground;
+    setup.cover.time_scale = 200.0;
+    setup.weather = Weather {
+        intensity_mm_per_h: 3.0,
+        air_temperature_c: -4.0,
+        ..Weather::default()
+    };
+    setup
+}
+
+#[test]
+fn snow_lies_on_roofs_and_ground_but_not_on_the_masked_road_and_nothing_falls_through() {
+    let mut backend = common::configured(&village());
+    for _ in 0..400 {
+        backend.step(0.05).expect("valid");
+        for p in backend
+            .read_particles()
+            .expect("configured")
+            .iter()
+            .take(2000)
+        {
+            let roof =
+                (-6.0..2.0).contains(&p.position_m.x) && (-4.0..4.0).contains(&p.position_m.z);
+            if roof {
+                assert!(
+                    p.position_m.y > 5.8,
+                    "fell through the roof: {:?}",
+                    p.position_m
+                );
+            }
+        }
+    }
+    let cover = backend.read_cover().expect("configured");
+    let at = |x: f32, z: f32| *cover.texel_at(x, z).expect("on grid");
+    assert!(
+        at(-2.5, 0.5).swe_mm > 0.05,
+        "roof holds snow: {:?}",
+        at(-2.5, 0.5)
+    );
+    assert!(at(-12.5, 10.5).swe_mm > 0.05, "open ground holds snow");
+    assert!(
+        at(8.5, 0.5).swe_mm.abs() < f32::MIN_POSITIVE,
+        "the road holds none"
+    );
+    assert!(at(8.5, 0.5).runoff_mm > 0.05, "its snow ran off instead");
+    let books = cover.totals();
+    assert!(
+        books.imbalance_kg().abs() < 1e-3 * books.deposited_kg.max(1.0),
+        "{books:?}"
+    );
+}
+
+#[test]
+fn flakes_drift_with_the_mean_wind() {
+    let mut setup = Setup::over_flat_ground(200.0, 20, 60.0, 3_000);
+    let wind = Vec3::new(6.0, 0.0, -2.0);
+    setup.weather.wind = WindField {
+        mean_wind_mps: wind,
+        ..WindField::calm()
+    };
+    let mut backend = common::configured(&setup);
+    common::run(&mut backend, 200, 0.05);
+    let particles = backend.read_particles().expect("configured");
+    let moving: Vec<_> = particles.iter().filter(|p| p.age_s > 3.0).collect();
+    assert!(moving.len() > 1000);
+    let mean = moving.iter().map(|p| p.velocity_mps).sum::<Vec3>() / moving.len() as f32;
+    // Seed 003's gust μ·V̄·sin α has sin α ∈ [0, 1]: gusts only add to the mean wind,
+    // by at most μ (4 %) of it.
+    let mu = setup.weather.wind.gust_factor;
+    for (got, mean_wind) in [(mean.x, wind.x), (mean.z, wind.z)] {
+        let (lo, hi) = if mean_wind > 0.0 {
+            (mean_wind, mean_wind * (1.0 + mu))
+        } else {
+            (mean_wind * (1.0 + mu), mean_wind)
+        };
+        assert!((lo - 0.05..=hi + 0.05).contains(&got), "{mean} vs {wind}");
+    }
+    assert!(
+        (-1.5..-0.5).contains(&mean.y),
+        "dry snow falls at 0.5–1.5 m/s: {mean}"
+    );
+}
+
+#[test]
+fn the_camera_volume_follows_the_camera_and_never_empties() {
+    let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(100.0), UVec2::splat(10));
+    let mut setup = Setup::over_flat_ground(100.0, 10, 30.0, 0);
+    setup.world_emitter = None;
+    setup.ground = GroundMap::flat(frame, -1000.0, 1.0);
+    let volume = CameraVolume {
+        half_extent_m: Vec3::new(15.0, 10.0, 15.0),
+        ..CameraVolume::default()
+    };
+    setup.camera_volume = Some(CameraVolumeSetup {
+        volume,
+        particle_count: 5_000,
+    });
+    setup.weather = Weather {
+        kind: PrecipitationKind::Rain,
+        intensity_mm_per_h: 5.0,
+        air_temperature_c: 8.0,
+        wind: WindField {
+            mean_wind_mps: Vec3::new(9.0, 0.0, 0.0),
+            ..WindField::calm()
+        },
+    };
+    let mut backend = common::configured(&setup);
+    let mut camera = Camera::default();
+    for frame_index in 0..200 {
+        camera.position_m += Vec3::new(3.0, 0.0, -2.0); // flying at ~70 m/s
+        backend.set_camera(&camera).expect("valid");
+        backend.step(0.05).expect("valid");
+        if frame_index % 20 == 19 {
+            let particles = backend.read_particles().expect("configured");
+            assert_eq!(particles.len(), 5_000);
+            for p in &particles {
+                assert_eq!(p.source(), ParticleSource::CameraVolume);
+                let local = p.position_m - camera.position_m;
+                assert!(
+                    local.x.abs() <= 15.01 && local.z.abs() <= 15.01 && local.y.abs() <= 10.5,
+                    "{local}"
+                );
+            }
+            // Spread through the box, not bunched at a face.
+            let mean_y = particles
+                .iter()
+                .map(|p| p.position_m.y - camera.position_m.y)
+                .sum::<f32>()
+                / 5000.0;
+            assert!(mean_y.abs() < 1.5, "mean height in box {mean_y}");
+        }
+    }
+    let cover = backend.read_cover().expect("configured");
+    assert!(
+        cover
+            .texels
+            .iter()
+            .all(|t| CoverFeed::from_raw(t.feed) == CoverFeed::WeatherRate)
+    );
+}
+
+#[test]
+fn a_warm_spell_melts_the_cover_and_wets_the_ground() {
+    // Only a camera volume: the cover is fed by the weather's rate.
+    let mut setup = Setup::over_flat_ground(16.0, 8, 10.0, 0);
+    setup.world_emitter = None;
+    setup.camera_volume = Some(CameraVolumeSetup {
+        volume: CameraVolume::default(),
+        particle_count: 1_000,
+    });
+    setup.cover.time_scale = 86_400.0; // a day per second
+    let mut backend = common::configured(&setup);
+    common::run(&mut backend, 40, 0.05); // two days of snow
+    let snowy = backend.read_cover().expect("configured").totals();
+    assert!(snowy.swe_kg > 0.0);
+    let warm = Weather {
+        intensity_mm_per_h: 0.0,
+        air_temperature_c: 6.0,
+        kind: PrecipitationKind::Rain,
+        ..Weather::default()
+    };
+    backend.set_weather(&warm).expect("valid");
+    let mut last = snowy.swe_kg;
+    for _ in 0..20 {
+        common::run(&mut backend, 1, 0.05); // an hour and 12 minutes a step: one warm day
+        let swe = backend.read_cover().expect("configured").totals().swe_kg;
+        assert!(swe <= last, "snow only melts in the warm: {last} -> {swe}");
+        last = swe;
+    }
+    let cover = backend.read_cover().expect("configured");
+    let melting = cover.totals();
+    assert!(
+        melting.swe_kg < snowy.swe_kg,
+        "melted: {} -> {}",
+        snowy.swe_kg,
+        melting.swe_kg
+    );
+    assert!(melting.runoff_kg > snowy.runoff_kg);
+    assert!(
+        cover.texels.iter().any(|t| t.wetness > 0.1),
+        "melt water wets the ground"
+    );
+    assert!(
+        melting.imbalance_kg().abs() < 1e-3 * melting.deposited_kg,
+        "{melting:?}"
+    );
+}
+
+#[test]
+fn landing_events_deposit_and_re_birth() {
+    use precip_model::cover::DepositBuffer;
+    use precip_model::step::{StepInputs, step_particle};
+    use precip_model::wind::WindVolume;
+
+    let setup = Setup::over_flat_ground(10.0, 5, 5.0, 10);
+    let weather = setup.weather;
+    let params = setup.step_params(&weather, Vec3::ZERO, 0.05, 0.0);
+    let wind = WindVolume::bake(&weather.wind, &setup.wind_volume).expect("valid");
+    let deposits = DepositBuffer::new(setup.cover.frame.texel_count());
+    let inputs = StepInputs {
+        params: &params,
+        wind: &wind,
+        ground: &setup.ground,
+        cover_frame: &setup.cover.frame,
+        deposits: &deposits,
+    };
+    let mut p = precip_model::birth::birth_on_emitter(3, 0, &params);
+    p.position_m = Vec3::new(1.0, 0.01, 1.0);
+    p.velocity_mps = Vec3::new(0.0, -1.0, 0.0);
+    p.water_kg = 0.25;
+    let (born, event) = step_particle(3, &p, &inputs);
+    assert_eq!(event, StepEvent::Landed);
+    assert_eq!(born.generation, 1);
+    assert!(
+        (born.position_m.y - 5.0).abs() < 1e-4,
+        "re-born on the emitter"
+    );
+    let texel = setup
+        .cover
+        .frame
+        .texel_index(Vec2::new(1.0, 1.0))
+        .expect("on grid");
+    let (snow_mm, _) = deposits.peek_mm(texel);
+    let expected =
+        (0.25 + params.water_per_particle_kg_per_s * 0.05) / setup.cover.frame.texel_area_m2();
+    assert!((snow_mm - expected).abs() < 1e-5, "{snow_mm} vs {expected}");
+}
