@@ -14,6 +14,10 @@
 
 use std::sync::atomic::{AtomicU32, Ordering};
 
+use glam::Vec2;
+
+use crate::frame::GridFrame;
+
 /// Fixed-point units per mm of water.
 pub const DEPOSIT_UNITS_PER_MM: f32 = 1_048_576.0;
 
@@ -50,6 +54,18 @@ impl DepositBuffer {
     pub fn add(&self, index: usize, channel: usize, water_mm: f32) {
         if let Some(slot) = self.units.get(2 * index + channel.min(1)) {
             slot.fetch_add(deposit_units(water_mm), Ordering::Relaxed);
+        }
+    }
+
+    /// Adds `water_mm` to `channel` of the texel of `frame` under world `(x, z)`;
+    /// returns whether a texel was there (water landing off the grid is not kept).
+    pub fn add_at(&self, frame: &GridFrame, xz_m: Vec2, channel: usize, water_mm: f32) -> bool {
+        match frame.texel_index(xz_m) {
+            Some(index) => {
+                self.add(index, channel, water_mm);
+                true
+            }
+            None => false,
         }
     }
 
@@ -109,5 +125,15 @@ mod tests {
         assert!((f64::from(snow) - exact).abs() < 1e-3 * exact);
         assert!(rain.abs() < f32::MIN_POSITIVE);
         assert_eq!(f.raw_units(), vec![0, 0], "take clears");
+    }
+
+    #[test]
+    fn deposits_at_a_world_position_find_their_texel() {
+        let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(4.0), glam::UVec2::splat(2));
+        let buffer = DepositBuffer::new(4);
+        assert!(buffer.add_at(&frame, Vec2::new(1.0, -1.0), DepositBuffer::RAIN, 2.0));
+        assert!(!buffer.add_at(&frame, Vec2::new(3.0, 0.0), DepositBuffer::RAIN, 2.0));
+        assert!((buffer.peek_mm(1).1 - 2.0).abs() < 1e-6);
+        assert_eq!(buffer.raw_units().iter().filter(|&&u| u > 0).count(), 1);
     }
 }

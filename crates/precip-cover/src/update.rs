@@ -207,6 +207,7 @@ mod tests {
             melted += f64::from(before - t.swe_mm);
         }
         let factor = melted / (3.0 * f64::from(days));
+        println!("effective degree-day factor over 14 days at +3 °C: {factor:.3} mm/(°C·day)");
         assert!(
             (2.5..=4.0).contains(&factor),
             "effective degree-day factor {factor}"

@@ -9,7 +9,11 @@ use precip_model::wind::{WindField, WindVolume, WindVolumeSpec};
 use precip_model::{Backend, CpuBackend, Setup};
 
 fn main() -> Result<(), precip_model::BackendError> {
-    let field = WindField { mean_wind_mps: Vec3::new(5.0, 0.0, 2.0), vertical_gust_mps: 0.5, ..WindField::calm() };
+    let field = WindField {
+        mean_wind_mps: Vec3::new(5.0, 0.0, 2.0),
+        vertical_gust_mps: 0.5,
+        ..WindField::calm()
+    };
     let spec = WindVolumeSpec::default();
     let start = Instant::now();
     let _volume = WindVolume::bake(&field, &spec)?;

@@ -156,18 +156,15 @@ pub fn step_particle(
             let xz = Vec2::new(position.x, position.z);
             match inputs.ground.height_at(xz) {
                 Some(ground_m) if position.y <= ground_m => {
-                    if let Some(texel) = inputs.cover_frame.texel_index(xz) {
-                        let channel = if next.kind().is_snow() {
-                            DepositBuffer::SNOW
-                        } else {
-                            DepositBuffer::RAIN
-                        };
-                        inputs.deposits.add(
-                            texel,
-                            channel,
-                            next.water_kg * params.deposit_scale_mm_per_kg,
-                        );
-                    }
+                    let channel = if next.kind().is_snow() {
+                        DepositBuffer::SNOW
+                    } else {
+                        DepositBuffer::RAIN
+                    };
+                    let water_mm = next.water_kg * params.deposit_scale_mm_per_kg;
+                    inputs
+                        .deposits
+                        .add_at(inputs.cover_frame, xz, channel, water_mm);
                     return (
                         birth_on_emitter(index, particle.generation.wrapping_add(1), params),
                         StepEvent::Landed,
