@@ -59,6 +59,7 @@ impl DepositBuffer {
 
     /// Adds `water_mm` to `channel` of the texel of `frame` under world `(x, z)`;
     /// returns whether a texel was there (water landing off the grid is not kept).
+    #[must_use = "water landing off the grid is dropped: say so where it is ignored"]
     pub fn add_at(&self, frame: &GridFrame, xz_m: Vec2, channel: usize, water_mm: f32) -> bool {
         match frame.texel_index(xz_m) {
             Some(index) => {

@@ -162,7 +162,8 @@ pub fn step_particle(
                         DepositBuffer::RAIN
                     };
                     let water_mm = next.water_kg * params.deposit_scale_mm_per_kg;
-                    inputs
+                    // Water landing off the cover grid fell outside the scene: not kept.
+                    let _kept = inputs
                         .deposits
                         .add_at(inputs.cover_frame, xz, channel, water_mm);
                     return (
