@@ -25,6 +25,7 @@
 mod deposit;
 mod error;
 mod frame;
+mod gpu;
 mod grid;
 mod masks;
 mod melt;
@@ -37,6 +38,7 @@ mod update;
 pub use deposit::{DEPOSIT_UNITS_PER_MM, DepositBuffer, deposit_units};
 pub use error::CoverError;
 pub use frame::GridFrame;
+pub use gpu::CoverStepParams;
 pub use grid::{CoverGrid, CoverTotals};
 pub use masks::{ThresholdMasks, generate_threshold_masks};
 pub use melt::{degree_day_melt_mm, melt_factor, snow_albedo, vegetation_transmission};

@@ -10,6 +10,25 @@ use crate::particle::Particle;
 use crate::setup::Setup;
 use crate::weather::Weather;
 
+/// The longest `dt` one `step` accepts, s (sub-stepped internally).
+pub const MAX_STEP_S: f32 = 1.0;
+
+/// The most sub-steps one `step` makes.
+pub const MAX_SUBSTEPS: u32 = 20;
+
+/// Checks `dt_s` and splits it into equal sub-steps of at most
+/// [`crate::drag::MAX_SUBSTEP_S`]: `(count, length)`. Every backend splits the same way.
+pub fn substeps(dt_s: f32) -> Result<(u32, f32), BackendError> {
+    if !(dt_s.is_finite() && dt_s > 0.0 && dt_s <= MAX_STEP_S) {
+        return Err(BackendError::InvalidTimeStep {
+            dt_s,
+            max_s: MAX_STEP_S,
+        });
+    }
+    let count = ((dt_s / crate::drag::MAX_SUBSTEP_S).ceil() as u32).clamp(1, MAX_SUBSTEPS);
+    Ok((count, dt_s / count as f32))
+}
+
 /// What a backend is and how much it holds.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct BackendInfo {

@@ -10,10 +10,12 @@
 //!   random numbers), [`emitter`] (world emitter, camera volume), [`birth`],
 //!   [`step`] (one particle's step), [`ground`] (what particles land on).
 //! - Contract: [`backend`] (the trait), [`setup`], [`camera`], [`error`].
-//! - [`cpu`]: the reference backend.
+//! - [`cpu`] — the reference backend.
+//! - GPU: [`shaders`] (the WGSL sources, joined per program), [`gpu`] (the frame
+//!   recipe, bindings and uniform blocks both GPU backends follow).
 //!
-//! Every formula here has a WGSL twin of the same name (`shaders/`, with the GPU
-//! issue), so a reader compares them function by function. The wind lives in
+//! Every formula here has a WGSL twin of the same name in `shaders/`, so a reader
+//! compares them function by function. The wind lives in
 //! `precip-wind` and the snow cover in `precip-cover`.
 
 pub mod backend;
@@ -23,19 +25,21 @@ pub mod cpu;
 pub mod drag;
 pub mod emitter;
 pub mod error;
+pub mod gpu;
 pub mod ground;
 pub mod particle;
 pub mod raindrop;
 pub mod rng;
 pub mod rotation;
 pub mod setup;
+pub mod shaders;
 pub mod snowfall;
 pub mod snowflake;
 pub mod step;
 pub mod visibility;
 pub mod weather;
 
-pub use backend::{Backend, BackendInfo, PassTiming, TimingSource, Timings};
+pub use backend::{Backend, BackendInfo, MAX_STEP_S, PassTiming, TimingSource, Timings, substeps};
 pub use camera::{Camera, Image, View};
 pub use cpu::CpuBackend;
 pub use emitter::{CameraVolume, WorldEmitter};

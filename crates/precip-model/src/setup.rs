@@ -2,7 +2,9 @@
 //! derived values every backend computes the same way (cover grid, step uniforms).
 
 use glam::{UVec2, Vec2, Vec3};
-use precip_cover::{CoverFeed, CoverGrid, CoverParams, GridFrame, generate_threshold_masks};
+use precip_cover::{
+    CoverFeed, CoverGrid, CoverParams, CoverStepParams, GridFrame, generate_threshold_masks,
+};
 use precip_wind::WindVolumeSpec;
 
 use crate::camera::Camera;
@@ -199,6 +201,29 @@ impl Setup {
         let masks =
             generate_threshold_masks(&frame, self.cover.mask_seed, self.cover.mask_patch_scale_m);
         Ok(CoverGrid::new(frame, &eligibility, &masks, &feed)?)
+    }
+
+    /// The cover kernel's block for a sub-step of `dt_s` seconds under `weather`: the
+    /// weather's rates in mm/day, and the step in days of cover time.
+    #[must_use]
+    pub fn cover_step_params(&self, weather: &Weather, dt_s: f32) -> CoverStepParams {
+        CoverStepParams::new(
+            &self.cover.params,
+            weather.snow_rate_mm_per_h() * 24.0,
+            weather.rain_rate_mm_per_h() * 24.0,
+            weather.air_temperature_c,
+            dt_s * self.cover.time_scale / SECONDS_PER_DAY,
+            self.cover.frame.texel_count() as u32,
+        )
+    }
+
+    /// The grids the particle kernels read.
+    #[must_use]
+    pub fn frames(&self) -> crate::gpu::Frames {
+        crate::gpu::Frames {
+            ground: self.ground.frame,
+            cover: self.cover.frame,
+        }
     }
 
     /// The uniform block of a step of `dt_s` starting at `time_s` under `weather` with

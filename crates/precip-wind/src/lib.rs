@@ -32,4 +32,5 @@ mod volume;
 pub use error::WindError;
 pub use field::WindField;
 pub use sampler::WindSample;
-pub use volume::{WindTexel, WindVolume, WindVolumeSpec};
+pub use sampler::wind_velocity;
+pub use volume::{WindParams, WindTexel, WindVolume, WindVolumeSpec};

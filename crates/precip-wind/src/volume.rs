@@ -127,3 +127,39 @@ impl WindVolume {
         self.field.mean_wind_mps = mean_wind_mps;
     }
 }
+
+/// The wind's uniform block for the GPU.
+///
+/// WGSL twin: `WindParams` in `shaders/layout.wgsl` (48 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct WindParams {
+    /// Mean wind, m/s.
+    pub mean_wind_mps: Vec3,
+    /// Gust factor μ.
+    pub gust_factor: f32,
+    /// Extent of one period of the volume, m.
+    pub extent_m: Vec3,
+    /// Unused (`0`).
+    pub reserved0: f32,
+    /// Texels per axis.
+    pub texels: UVec3,
+    /// Unused (`0`).
+    pub reserved1: u32,
+}
+const _: () = assert!(size_of::<WindParams>() == 48);
+
+impl WindVolume {
+    /// The uniform block the GPU samples this volume with.
+    #[must_use]
+    pub fn gpu_params(&self) -> WindParams {
+        WindParams {
+            mean_wind_mps: self.field.mean_wind_mps,
+            gust_factor: self.field.gust_factor,
+            extent_m: self.spec.extent_m,
+            reserved0: 0.0,
+            texels: self.spec.texels,
+            reserved1: 0,
+        }
+    }
+}

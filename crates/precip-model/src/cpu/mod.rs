@@ -15,18 +15,15 @@ use precip_cover::{CoverGrid, DepositBuffer};
 use precip_wind::WindVolume;
 use rayon::prelude::*;
 
-use crate::backend::{Backend, BackendInfo, PassTiming, TimingSource, Timings};
+use crate::backend::{Backend, BackendInfo, PassTiming, TimingSource, Timings, substeps};
 use crate::birth::initial_particle;
 use crate::camera::{Camera, Image, View};
 use crate::drag::MAX_SUBSTEP_S;
 use crate::error::BackendError;
 use crate::particle::Particle;
-use crate::setup::{SECONDS_PER_DAY, Setup};
+use crate::setup::Setup;
 use crate::step::{StepInputs, step_particle};
 use crate::weather::Weather;
-
-/// The longest `dt` one `step` accepts, s (sub-stepped internally).
-pub const MAX_STEP_S: f32 = 1.0;
 
 /// The most particles the CPU backend holds (5.4 GB of particle state).
 pub const CPU_MAX_PARTICLES: u64 = 1 << 26;
@@ -143,17 +140,10 @@ impl Backend for CpuBackend {
     }
 
     fn step(&mut self, dt_s: f32) -> Result<(), BackendError> {
-        if !(dt_s.is_finite() && dt_s > 0.0 && dt_s <= MAX_STEP_S) {
-            return Err(BackendError::InvalidTimeStep {
-                dt_s,
-                max_s: MAX_STEP_S,
-            });
-        }
+        let (count, h) = substeps(dt_s)?;
         let state = self.state_mut("step")?;
-        let substeps = (dt_s / MAX_SUBSTEP_S).ceil().max(1.0) as u32;
-        let h = dt_s / substeps as f32;
         let (mut particle_ms, mut cover_ms) = (0.0, 0.0);
-        for _ in 0..substeps {
+        for _ in 0..count {
             let start = Instant::now();
             let params = state.setup.step_params(
                 &state.weather,
@@ -178,14 +168,13 @@ impl Backend for CpuBackend {
             particle_ms += elapsed_ms(start);
 
             let start = Instant::now();
-            let scale = state.setup.cover.time_scale;
-            let dt_days = h * scale / SECONDS_PER_DAY;
+            let cover = state.setup.cover_step_params(&state.weather, h);
             state.cover.step(
                 &mut state.deposits,
-                state.weather.snow_rate_mm_per_h() * 24.0,
-                state.weather.rain_rate_mm_per_h() * 24.0,
-                state.weather.air_temperature_c,
-                dt_days,
+                cover.snow_rate_mm_per_day,
+                cover.rain_rate_mm_per_day,
+                cover.air_temperature_c,
+                cover.dt_days,
                 &state.setup.cover.params,
             );
             cover_ms += elapsed_ms(start);

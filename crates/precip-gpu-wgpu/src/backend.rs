@@ -1,0 +1,353 @@
+//! [`WgpuBackend`]: the [`Backend`] over wgpu (compute half: configure, weather, step,
+//! read-back, timings). Rendering arrives with the rendering issue.
+
+use precip_model::cover::{CoverGrid, CoverTexel};
+use precip_model::drag::MAX_SUBSTEP_S;
+use precip_model::gpu::{DispatchOver, INIT_PASS, SUBSTEP_PASSES, dispatch_size};
+use precip_model::wind::WindVolume;
+use precip_model::{
+    Backend, BackendError, BackendInfo, Camera, Image, Particle, Setup, TimingSource, Timings,
+    View, Weather, substeps,
+};
+
+use crate::conv::{NAME, map_scope_error};
+use crate::device::GpuDevice;
+use crate::pipelines::Pipelines;
+use crate::readback::read_buffer;
+use crate::resources::{Resources, upload_wind};
+use crate::timestamps::Timestamps;
+
+/// Bytes of one particle on the GPU.
+const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
+
+/// A configured simulation.
+#[derive(Debug)]
+struct State {
+    setup: Setup,
+    weather: Weather,
+    wind: WindVolume,
+    camera: Camera,
+    resources: Resources,
+    time_s: f64,
+}
+
+/// precip on wgpu.
+#[derive(Debug)]
+pub struct WgpuBackend {
+    gpu: GpuDevice,
+    pipelines: Pipelines,
+    timestamps: Option<Timestamps>,
+    state: Option<State>,
+}
+
+/// Runs `f` inside out-of-memory and validation error scopes; any captured error
+/// becomes a [`BackendError`].
+fn scoped<T>(gpu: &GpuDevice, operation: &str, f: impl FnOnce() -> T) -> Result<T, BackendError> {
+    let memory = gpu.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+    let validation = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let value = f();
+    let validation_error = pollster::block_on(validation.pop());
+    let memory_error = pollster::block_on(memory.pop());
+    match memory_error.or(validation_error) {
+        Some(error) => Err(map_scope_error(operation, &error)),
+        None => Ok(value),
+    }
+}
+
+impl WgpuBackend {
+    /// Opens a device on the default adapter.
+    pub fn new() -> Result<Self, BackendError> {
+        Ok(Self::with_device(GpuDevice::new_headless()?))
+    }
+
+    /// Opens a device on `adapter`.
+    pub fn on_adapter(adapter: &wgpu::Adapter) -> Result<Self, BackendError> {
+        Ok(Self::with_device(GpuDevice::open(adapter)?))
+    }
+
+    /// Runs on a device the caller owns.
+    #[must_use]
+    pub fn with_device(gpu: GpuDevice) -> Self {
+        let pipelines = Pipelines::new(&gpu.device);
+        let timestamps = Timestamps::new(&gpu);
+        Self {
+            gpu,
+            pipelines,
+            timestamps,
+            state: None,
+        }
+    }
+
+    /// The device.
+    #[must_use]
+    pub fn device(&self) -> &GpuDevice {
+        &self.gpu
+    }
+
+    /// The most particles one configuration holds on this device.
+    #[must_use]
+    pub fn max_particles(&self) -> u64 {
+        (self.gpu.max_storage_binding_bytes() / PARTICLE_BYTES).min(u64::from(u32::MAX))
+    }
+
+    fn state_mut(&mut self, operation: &'static str) -> Result<&mut State, BackendError> {
+        self.state
+            .as_mut()
+            .ok_or(BackendError::NotConfigured { operation })
+    }
+
+    /// Checks that the grids fit the device's storage bindings.
+    fn check_grid_sizes(&self, setup: &Setup) -> Result<(), BackendError> {
+        let max = self.gpu.max_storage_binding_bytes();
+        let cover_bytes = setup.cover.frame.texel_count() as u64 * size_of::<CoverTexel>() as u64;
+        let ground_bytes = setup.ground.frame.texel_count() as u64 * 4;
+        for (field, bytes) in [("cover.frame", cover_bytes), ("ground.frame", ground_bytes)] {
+            if bytes > max {
+                return Err(BackendError::Setup {
+                    field,
+                    problem: format!(
+                        "needs {bytes} bytes but this device binds at most {max} (max_storage_buffer_binding_size): use fewer texels"
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Backend for WgpuBackend {
+    fn info(&self) -> BackendInfo {
+        BackendInfo {
+            name: NAME,
+            device: self.gpu.describe(),
+            max_particles: self.max_particles(),
+            renders: false,
+        }
+    }
+
+    fn configure(&mut self, setup: &Setup) -> Result<(), BackendError> {
+        let limit = format!(
+            "max_storage_buffer_binding_size = {} bytes on {}, {PARTICLE_BYTES} bytes a particle",
+            self.gpu.max_storage_binding_bytes(),
+            self.gpu.info.name
+        );
+        setup.validate(self.max_particles(), &limit)?;
+        self.check_grid_sizes(setup)?;
+        let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume)?;
+        let cover = setup.initial_cover()?;
+        let (world, camera) = setup.particle_counts();
+        let count = world + camera;
+        let gpu = &self.gpu;
+        let pipelines = &self.pipelines;
+        let resources = scoped(gpu, "configure", || {
+            let resources = Resources::new(
+                gpu,
+                pipelines,
+                count,
+                &setup.ground,
+                &cover,
+                &setup.frames(),
+                &wind,
+            );
+            let params =
+                setup.step_params(&setup.weather, setup.camera.position_m, MAX_SUBSTEP_S, 0.0);
+            gpu.queue
+                .write_buffer(&resources.step_uniforms, 0, bytemuck::bytes_of(&params));
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("precip init"),
+                });
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(INIT_PASS.entry_point),
+                    timestamp_writes: None,
+                });
+                pass.set_pipeline(&pipelines.init);
+                pass.set_bind_group(0, &resources.step_bind_group, &[0]);
+                let (x, y) = dispatch_size(count);
+                pass.dispatch_workgroups(x, y, 1);
+            }
+            gpu.queue.submit([encoder.finish()]);
+            resources
+        })?;
+        self.gpu.wait()?;
+        if let Some(t) = self.timestamps.as_mut() {
+            t.written = 0;
+        }
+        self.state = Some(State {
+            setup: setup.clone(),
+            weather: setup.weather,
+            wind,
+            camera: setup.camera,
+            resources,
+            time_s: 0.0,
+        });
+        Ok(())
+    }
+
+    fn set_weather(&mut self, weather: &Weather) -> Result<(), BackendError> {
+        weather.validate()?;
+        let gpu = self.gpu.clone();
+        let state = self.state_mut("set_weather")?;
+        let mut wind = state.wind.clone();
+        if weather.wind.needs_rebake(&wind.field) {
+            wind = WindVolume::bake(&weather.wind, &state.setup.wind_volume)?;
+            upload_wind(&gpu, &state.resources.wind_texture, &wind);
+        } else {
+            wind.set_mean_wind(weather.wind.mean_wind_mps);
+        }
+        state.resources.write_wind_params(&gpu, &wind.gpu_params());
+        state.wind = wind;
+        state.weather = *weather;
+        Ok(())
+    }
+
+    fn set_camera(&mut self, camera: &Camera) -> Result<(), BackendError> {
+        camera.validate()?;
+        self.state_mut("set_camera")?.camera = *camera;
+        Ok(())
+    }
+
+    fn step(&mut self, dt_s: f32) -> Result<(), BackendError> {
+        let (count, h) = substeps(dt_s)?;
+        let gpu = self.gpu.clone();
+        let pipelines = &self.pipelines;
+        let timestamps = self.timestamps.as_mut();
+        let state = self
+            .state
+            .as_mut()
+            .ok_or(BackendError::NotConfigured { operation: "step" })?;
+        let resources = &state.resources;
+        let stride = resources.uniform_stride;
+
+        // One uniform block per sub-step; the host clock advances as the CPU's does.
+        let mut step_blocks = vec![0u8; (stride * u64::from(count)) as usize];
+        let mut cover_blocks = step_blocks.clone();
+        let mut time_s = state.time_s;
+        for k in 0..count as usize {
+            let at = k * stride as usize;
+            let step =
+                state
+                    .setup
+                    .step_params(&state.weather, state.camera.position_m, h, time_s as f32);
+            let cover = state.setup.cover_step_params(&state.weather, h);
+            step_blocks[at..at + size_of_val(&step)].copy_from_slice(bytemuck::bytes_of(&step));
+            cover_blocks[at..at + size_of_val(&cover)].copy_from_slice(bytemuck::bytes_of(&cover));
+            time_s += f64::from(h);
+        }
+
+        let written = scoped(&gpu, "step", || {
+            gpu.queue
+                .write_buffer(&resources.step_uniforms, 0, &step_blocks);
+            gpu.queue
+                .write_buffer(&resources.cover_uniforms, 0, &cover_blocks);
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("precip step"),
+                });
+            let mut written = 0;
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("precip step"),
+                    timestamp_writes: None,
+                });
+                let mut stamp = |pass: &mut wgpu::ComputePass<'_>| {
+                    if let Some(t) = &timestamps {
+                        pass.write_timestamp(&t.set, written);
+                        written += 1;
+                    }
+                };
+                stamp(&mut pass);
+                for k in 0..count {
+                    let offset = (u64::from(k) * stride) as u32;
+                    for kernel in SUBSTEP_PASSES {
+                        let (pipeline, bind_group, items) = match kernel.over {
+                            DispatchOver::Particles => (
+                                &pipelines.step,
+                                &resources.step_bind_group,
+                                resources.particle_count,
+                            ),
+                            DispatchOver::CoverTexels => (
+                                &pipelines.cover,
+                                &resources.cover_bind_group,
+                                resources.cover_texel_count,
+                            ),
+                        };
+                        pass.set_pipeline(pipeline);
+                        pass.set_bind_group(0, bind_group, &[offset]);
+                        let (x, y) = dispatch_size(items);
+                        pass.dispatch_workgroups(x, y, 1);
+                        stamp(&mut pass);
+                    }
+                }
+            }
+            if let Some(t) = &timestamps {
+                encoder.resolve_query_set(&t.set, 0..written, t.resolve_buffer(), 0);
+            }
+            gpu.queue.submit([encoder.finish()]);
+            written
+        })?;
+        if let Some(t) = timestamps {
+            t.written = written;
+        }
+        state.time_s = time_s;
+        // Free finished work without waiting for the GPU.
+        let _ = gpu.device.poll(wgpu::PollType::Poll);
+        Ok(())
+    }
+
+    fn render(&mut self, _view: &View) -> Result<(), BackendError> {
+        Err(BackendError::NotSupported {
+            backend: NAME,
+            operation: "render (not yet: the rendering issue adds it)",
+        })
+    }
+
+    fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {
+        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
+            operation: "read_particles",
+        })?;
+        let r = &state.resources;
+        let bytes = read_buffer(
+            &self.gpu,
+            &r.particles,
+            u64::from(r.particle_count) * PARTICLE_BYTES,
+        )?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
+    }
+
+    fn read_cover(&mut self) -> Result<CoverGrid, BackendError> {
+        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
+            operation: "read_cover",
+        })?;
+        let r = &state.resources;
+        let bytes = read_buffer(
+            &self.gpu,
+            &r.cover,
+            u64::from(r.cover_texel_count) * size_of::<CoverTexel>() as u64,
+        )?;
+        Ok(CoverGrid {
+            frame: state.setup.cover.frame,
+            texels: bytemuck::pod_collect_to_vec(&bytes),
+        })
+    }
+
+    fn read_image(&mut self) -> Result<Image, BackendError> {
+        Err(BackendError::NotSupported {
+            backend: NAME,
+            operation: "read_image (not yet: the rendering issue adds it)",
+        })
+    }
+
+    fn timings(&mut self) -> Result<Timings, BackendError> {
+        match &self.timestamps {
+            Some(t) => t.read(&self.gpu),
+            None => Ok(Timings {
+                source: TimingSource::Unavailable,
+                passes: Vec::new(),
+            }),
+        }
+    }
+}

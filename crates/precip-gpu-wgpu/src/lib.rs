@@ -1,0 +1,33 @@
+//! precip's [`Backend`](precip_model::Backend) over wgpu.
+//!
+//! ## Design
+//!
+//! This crate holds no physics: it runs the WGSL programs of
+//! [`precip_model::shaders`] in the order of the frame recipe in
+//! [`precip_model::gpu`], with the uniform blocks precip-model builds. The CPU
+//! reference runs the same functions in Rust, so the two can be compared.
+//!
+//! - [`device`] — finding adapters and opening a device (or adopting the caller's).
+//! - [`pipelines`] — shader modules, bind group layouts and compute pipelines.
+//! - [`resources`] — the buffers and the wind texture of one configuration.
+//! - [`timestamps`] — GPU timestamp queries per kernel, where the adapter has them.
+//! - [`readback`] — copying a buffer back (tests and tools; never the frame loop).
+//! - [`conv`] — pure conversions of wgpu errors into [`BackendError`](precip_model::BackendError).
+//! - [`backend`] — [`WgpuBackend`].
+//!
+//! ## Frames
+//!
+//! `step(dt)` writes one uniform block per sub-step (a dynamic offset each), records
+//! every sub-step's kernels in one compute pass and submits once. Nothing is read
+//! back while stepping.
+
+pub mod backend;
+pub mod conv;
+pub mod device;
+pub mod pipelines;
+pub mod readback;
+pub mod resources;
+pub mod timestamps;
+
+pub use backend::WgpuBackend;
+pub use device::{GpuDevice, adapters};

@@ -1,0 +1,117 @@
+// birth.wgsl: birth and re-birth. Rust twin: precip_model::birth.
+// Needs the global `step_params: StepParams` (and ground.wgsl for initial_particle).
+
+fn centred(key: u32, d: u32) -> f32 {
+    return random_unit(key, d) - 0.5;
+}
+
+fn centred3(key: u32, d: u32) -> vec3<f32> {
+    return vec3<f32>(centred(key, d), centred(key, d + 1u), centred(key, d + 2u));
+}
+
+struct Species {
+    kind: u32,
+    diameter_m: f32,
+    terminal_speed_mps: f32,
+}
+
+fn draw_species(key: u32) -> Species {
+    let is_snow = random_unit(key, DRAW_KIND) < step_params.snow_fraction;
+    if (is_snow) {
+        let wet = step_params.snow_is_wet != 0u;
+        let diameter = snowflake_diameter_m(step_params.air_temperature_c, random_unit(key, DRAW_SNOW_SIZE));
+        let speed = snow_terminal_speed_mps(wet, random_unit(key, DRAW_SNOW_SPEED));
+        return Species(select(KIND_DRY_SNOW, KIND_WET_SNOW, wet), diameter, speed);
+    }
+    let diameter_mm = draw_raindrop_diameter_mm(key, step_params.rain_slope_per_mm);
+    return Species(KIND_RAIN, diameter_mm * 1.0e-3, raindrop_terminal_speed_mps(diameter_mm));
+}
+
+struct Rotation {
+    r0: vec3<f32>,
+    magnitude: vec3<f32>,
+    increasing_bits: u32,
+}
+
+fn draw_rotation(key: u32, amplitude_rad: f32) -> Rotation {
+    let r0 = vec3<f32>(
+        random_unit(key, DRAW_ROTATION0_X),
+        random_unit(key, DRAW_ROTATION0_X + 1u),
+        random_unit(key, DRAW_ROTATION0_X + 2u),
+    ) * 6.2831855;
+    let r = centred3(key, DRAW_ROTATION_X) * (4.0 * amplitude_rad);
+    let bits = select(0u, 1u, r.x >= 0.0) | select(0u, 2u, r.y >= 0.0) | select(0u, 4u, r.z >= 0.0);
+    return Rotation(r0, abs(r), bits);
+}
+
+fn pack_flags(kind: u32, camera_volume: bool, increasing_bits: u32) -> u32 {
+    return (kind << FLAG_KIND_SHIFT) | select(0u, FLAG_CAMERA_VOLUME, camera_volume) | increasing_bits;
+}
+
+fn birth_on_emitter(index: u32, generation: u32) -> Particle {
+    let key = particle_key(step_params.seed, index, generation);
+    let ocs = vec3<f32>(
+        step_params.emitter_size_m.x * centred(key, DRAW_POSITION_U),
+        step_params.emitter_size_m.y * centred(key, DRAW_POSITION_V),
+        0.0,
+    );
+    let species = draw_species(key);
+    let rotation = draw_rotation(key, step_params.world_rotation.x);
+    var p: Particle;
+    p.position_m = (step_params.emitter_model * vec4<f32>(ocs, 1.0)).xyz;
+    p.age_s = 0.0;
+    p.velocity_mps = step_params.emitter_velocity_mps
+        + centred3(key, DRAW_VELOCITY_X) * (2.0 * step_params.emitter_velocity_spread_mps);
+    p.terminal_speed_mps = species.terminal_speed_mps;
+    p.rotation0_rad = rotation.r0;
+    p.diameter_m = species.diameter_m;
+    p.rotation_rad = rotation.magnitude;
+    p.water_kg = 0.0;
+    p.generation = generation;
+    p.flags = pack_flags(species.kind, false, rotation.increasing_bits);
+    p.reserved0 = 0u;
+    p.reserved1 = 0u;
+    return p;
+}
+
+fn birth_in_camera_volume(index: u32, generation: u32, position_m: vec3<f32>) -> Particle {
+    let key = particle_key(step_params.seed, index, generation);
+    let species = draw_species(key);
+    let rotation = draw_rotation(key, step_params.camera_rotation.x);
+    var p: Particle;
+    p.position_m = position_m;
+    p.age_s = 0.0;
+    p.velocity_mps = step_params.mean_wind_mps - vec3<f32>(0.0, 1.0, 0.0) * species.terminal_speed_mps;
+    p.terminal_speed_mps = species.terminal_speed_mps;
+    p.rotation0_rad = rotation.r0;
+    p.diameter_m = species.diameter_m;
+    p.rotation_rad = rotation.magnitude;
+    p.water_kg = 0.0;
+    p.generation = generation;
+    p.flags = pack_flags(species.kind, true, rotation.increasing_bits);
+    p.reserved0 = 0u;
+    p.reserved1 = 0u;
+    return p;
+}
+
+fn initial_particle(index: u32) -> Particle {
+    let key = particle_key(step_params.seed, index, 0u);
+    if (index < step_params.world_count) {
+        var p = birth_on_emitter(index, 0u);
+        let ground = ground_height_at(vec2<f32>(p.position_m.x, p.position_m.z));
+        let ground_m = select(step_params.ground_floor_m, ground.y, ground.x > 0.0);
+        let fall_s = min(max(p.position_m.y - ground_m, 0.0) / p.terminal_speed_mps, step_params.emitter_life_time_s);
+        let age = random_unit(key, DRAW_PREWARM) * fall_s;
+        p.velocity_mps = step_params.mean_wind_mps - vec3<f32>(0.0, 1.0, 0.0) * p.terminal_speed_mps;
+        p.position_m += p.velocity_mps * age;
+        p.age_s = age;
+        p.water_kg = step_params.water_per_particle_kg_per_s * age;
+        return p;
+    }
+    let offset = vec3<f32>(
+        centred(key, DRAW_VOLUME_X),
+        centred(key, DRAW_VOLUME_X + 1u),
+        centred(key, DRAW_VOLUME_X + 2u),
+    ) * (2.0 * step_params.camera_half_extent_m);
+    return birth_in_camera_volume(index, 0u, step_params.camera_centre_m + offset);
+}

@@ -1,0 +1,147 @@
+// cover.wgsl: the snow cover model. Rust twins: precip_cover::{snowpack, melt, update}.
+
+struct CoverStepParams {
+    melt_threshold_c: f32,
+    melt_proportionality_mm_per_c_day: f32,
+    solar_irradiance_factor: f32,
+    vegetation_density: f32,
+    albedo_decay_per_day: f32,
+    refreeze_factor_mm_per_c_day: f32,
+    water_holding_fraction: f32,
+    full_cover_depth_mm: f32,
+    settled_density_kg_m3: f32,
+    compaction_time_days: f32,
+    wet_darkening: f32,
+    wetting_mm: f32,
+    drying_time_days: f32,
+    mask_edge: f32,
+    snow_rate_mm_per_day: f32,
+    rain_rate_mm_per_day: f32,
+    air_temperature_c: f32,
+    dt_days: f32,
+    texel_count: u32,
+    reserved: u32,
+}
+
+struct CoverTexel {
+    swe_mm: f32,
+    liquid_mm: f32,
+    depth_mm: f32,
+    age_days: f32,
+    peak_swe_mm: f32,
+    wetness: f32,
+    runoff_mm: f32,
+    deposited_mm: f32,
+    eligibility: f32,
+    accumulation_mask: f32,
+    melt_mask: f32,
+    feed: u32,
+}
+
+const COVER_FEED_PARTICLES: u32 = 1u;
+const WATER_DENSITY_KG_M3: f32 = 1000.0;
+const BARE_SWE_MM: f32 = 1.0e-6;
+
+// snowpack.rs
+fn new_snow_density(air_temperature_c: f32) -> f32 {
+    let above = max(air_temperature_c + 15.0, 0.0);
+    return clamp(50.0 + 1.7 * above * sqrt(above), 50.0, 250.0);
+}
+
+fn compacted_density(density_kg_m3: f32, settled_kg_m3: f32, tau_days: f32, dt_days: f32) -> f32 {
+    if (density_kg_m3 >= settled_kg_m3) {
+        return density_kg_m3;
+    }
+    return settled_kg_m3 + (density_kg_m3 - settled_kg_m3) * exp(-dt_days / tau_days);
+}
+
+// melt.rs
+fn snow_albedo(age_days: f32, albedo_decay_per_day: f32) -> f32 {
+    return 0.4 * (1.0 + exp(-albedo_decay_per_day * max(age_days, 0.0)));
+}
+
+fn vegetation_transmission(vegetation_density: f32) -> f32 {
+    return exp(-4.0 * vegetation_density);
+}
+
+fn melt_factor(p: CoverStepParams, age_days: f32) -> f32 {
+    return p.melt_proportionality_mm_per_c_day
+        * vegetation_transmission(p.vegetation_density)
+        * p.solar_irradiance_factor
+        * (1.0 - snow_albedo(age_days, p.albedo_decay_per_day));
+}
+
+fn degree_day_melt_mm(p: CoverStepParams, age_days: f32, air_temperature_c: f32, dt_days: f32) -> f32 {
+    let excess = air_temperature_c - p.melt_threshold_c;
+    if (excess <= 0.0) {
+        return 0.0;
+    }
+    return melt_factor(p, age_days) * excess * dt_days;
+}
+
+// update.rs: one texel, one step.
+fn update_texel(texel: CoverTexel, snow_mm: f32, rain_mm: f32, p: CoverStepParams) -> CoverTexel {
+    var t = texel;
+    let air = p.air_temperature_c;
+    let dt_days = p.dt_days;
+    let eligibility = clamp(t.eligibility, 0.0, 1.0);
+    t.deposited_mm += snow_mm + rain_mm;
+
+    let snow_kept = snow_mm * eligibility;
+    t.runoff_mm += snow_mm - snow_kept;
+    if (snow_kept > 0.0) {
+        let swe_total = t.swe_mm + snow_kept;
+        t.age_days *= t.swe_mm / swe_total;
+        t.depth_mm += snow_kept * WATER_DENSITY_KG_M3 / new_snow_density(air);
+        t.swe_mm = swe_total;
+    }
+
+    var wetting_mm = rain_mm;
+    if (t.swe_mm > 0.0) {
+        t.liquid_mm += rain_mm;
+    } else {
+        t.runoff_mm += rain_mm;
+    }
+
+    let potential = degree_day_melt_mm(p, t.age_days, air, dt_days);
+    if (potential > 0.0) {
+        let melt = min(potential, t.swe_mm);
+        if (t.swe_mm > 0.0) {
+            t.depth_mm -= t.depth_mm * (melt / t.swe_mm);
+        }
+        t.swe_mm -= melt;
+        t.liquid_mm += melt;
+        wetting_mm += melt;
+    } else {
+        let cold = max(p.melt_threshold_c - air, 0.0);
+        let refreeze = min(t.liquid_mm, p.refreeze_factor_mm_per_c_day * cold * dt_days);
+        t.liquid_mm -= refreeze;
+        t.swe_mm += refreeze;
+    }
+
+    let capacity = p.water_holding_fraction * t.swe_mm;
+    if (t.liquid_mm > capacity) {
+        t.runoff_mm += t.liquid_mm - capacity;
+        t.liquid_mm = capacity;
+    }
+
+    if (t.swe_mm > BARE_SWE_MM && t.depth_mm > 0.0) {
+        let density = t.swe_mm * WATER_DENSITY_KG_M3 / t.depth_mm;
+        let settled = compacted_density(density, p.settled_density_kg_m3, p.compaction_time_days, dt_days);
+        t.depth_mm = t.swe_mm * WATER_DENSITY_KG_M3 / settled;
+    }
+
+    t.peak_swe_mm = max(t.peak_swe_mm, t.swe_mm);
+    t.wetness = clamp(t.wetness + wetting_mm / p.wetting_mm, 0.0, 1.0) * exp(-dt_days / p.drying_time_days);
+    t.age_days += dt_days;
+
+    if (t.swe_mm <= BARE_SWE_MM) {
+        t.runoff_mm += t.swe_mm + t.liquid_mm;
+        t.swe_mm = 0.0;
+        t.liquid_mm = 0.0;
+        t.depth_mm = 0.0;
+        t.age_days = 0.0;
+        t.peak_swe_mm = 0.0;
+    }
+    return t;
+}

@@ -1,0 +1,89 @@
+// layout.wgsl: every struct that crosses between Rust and the GPU, and grid lookups.
+// Rust twins: precip_model::particle::Particle, precip_model::step::StepParams,
+// precip_cover::GridFrame, precip_model::gpu::Frames, precip_wind::WindParams.
+
+struct Particle {
+    position_m: vec3<f32>,
+    age_s: f32,
+    velocity_mps: vec3<f32>,
+    terminal_speed_mps: f32,
+    rotation0_rad: vec3<f32>,
+    diameter_m: f32,
+    rotation_rad: vec3<f32>,
+    water_kg: f32,
+    generation: u32,
+    flags: u32,
+    reserved0: u32,
+    reserved1: u32,
+}
+
+// Particle.flags (Rust: precip_model::particle::flags).
+const FLAG_ROTATION_INCREASING_X: u32 = 1u;
+const FLAG_KIND_SHIFT: u32 = 4u;
+const FLAG_KIND_MASK: u32 = 3u;
+const FLAG_CAMERA_VOLUME: u32 = 256u;
+const KIND_DRY_SNOW: u32 = 0u;
+const KIND_WET_SNOW: u32 = 1u;
+const KIND_RAIN: u32 = 2u;
+
+struct StepParams {
+    emitter_model: mat4x4<f32>,
+    emitter_size_m: vec2<f32>,
+    emitter_life_time_s: f32,
+    emitter_velocity_spread_mps: f32,
+    emitter_velocity_mps: vec3<f32>,
+    water_per_particle_kg_per_s: f32,
+    camera_centre_m: vec3<f32>,
+    dt_s: f32,
+    camera_half_extent_m: vec3<f32>,
+    time_s: f32,
+    mean_wind_mps: vec3<f32>,
+    snow_fraction: f32,
+    world_rotation: vec2<f32>,
+    camera_rotation: vec2<f32>,
+    seed: u32,
+    world_count: u32,
+    particle_count: u32,
+    snow_is_wet: u32,
+    air_temperature_c: f32,
+    rain_slope_per_mm: f32,
+    deposit_scale_mm_per_kg: f32,
+    ground_floor_m: f32,
+}
+
+struct GridFrame {
+    origin_m: vec2<f32>,
+    size_m: vec2<f32>,
+    texels: vec2<u32>,
+    reserved: vec2<u32>,
+}
+
+struct Frames {
+    ground: GridFrame,
+    cover: GridFrame,
+}
+
+struct WindParams {
+    mean_wind_mps: vec3<f32>,
+    gust_factor: f32,
+    extent_m: vec3<f32>,
+    reserved0: f32,
+    texels: vec3<u32>,
+    reserved1: u32,
+}
+
+// Rust: GridFrame::texel_index. -1 outside the grid (NaN lands outside).
+fn grid_texel_index(frame: GridFrame, xz_m: vec2<f32>) -> i32 {
+    let t = ((xz_m - frame.origin_m) / frame.size_m) * vec2<f32>(frame.texels);
+    let f = floor(t);
+    let inside = f.x >= 0.0 && f.y >= 0.0 && f.x < f32(frame.texels.x) && f.y < f32(frame.texels.y);
+    if (!inside) {
+        return -1;
+    }
+    return i32(u32(f.x) + frame.texels.x * u32(f.y));
+}
+
+// The linear index of an invocation in a 2D dispatch (Rust: gpu::dispatch_size).
+fn linear_index(id: vec3<u32>, workgroups: vec3<u32>) -> u32 {
+    return id.x + id.y * workgroups.x * 64u;
+}

@@ -1,0 +1,83 @@
+// physics.wgsl: snowflakes, raindrops, drag and rotation.
+// Rust twins, function for function: precip_model::{snowflake, raindrop, drag, rotation}.
+
+const GRAVITY_MPS2: f32 = 9.81;
+const GRAVITY: vec3<f32> = vec3<f32>(0.0, -9.81, 0.0);
+
+// snowflake.rs
+fn mean_snowflake_diameter_m(air_temperature_c: f32) -> f32 {
+    if (air_temperature_c <= -0.061) {
+        return 0.015 * pow(abs(air_temperature_c), -0.35);
+    }
+    return 0.04;
+}
+
+fn snowflake_diameter_m(air_temperature_c: f32, f: f32) -> f32 {
+    return mean_snowflake_diameter_m(air_temperature_c) * (0.5 + f);
+}
+
+fn snow_terminal_speed_mps(wet: bool, f: f32) -> f32 {
+    var lo = 0.5;
+    var hi = 1.5;
+    if (wet) {
+        lo = 1.0;
+        hi = 2.0;
+    }
+    return lo + (hi - lo) * f;
+}
+
+// raindrop.rs
+const RAIN_DIAMETER_MIN_MM: f32 = 0.3;
+const RAIN_DIAMETER_MAX_MM: f32 = 6.0;
+const RAIN_DIAMETER_TRIES: u32 = 32u;
+
+fn raindrop_terminal_speed_mps(diameter_mm: f32) -> f32 {
+    let d = clamp(diameter_mm, RAIN_DIAMETER_MIN_MM, RAIN_DIAMETER_MAX_MM);
+    return 9.65 - 10.3 * exp(-0.6 * d);
+}
+
+fn marshall_palmer_diameter_mm(slope_per_mm: f32, f: f32) -> f32 {
+    let span = RAIN_DIAMETER_MAX_MM - RAIN_DIAMETER_MIN_MM;
+    let tail = 1.0 - exp(-slope_per_mm * span);
+    return RAIN_DIAMETER_MIN_MM - log(1.0 - f * tail) / slope_per_mm;
+}
+
+fn draw_raindrop_diameter_mm(key: u32, slope_per_mm: f32) -> f32 {
+    let v_max = raindrop_terminal_speed_mps(RAIN_DIAMETER_MAX_MM);
+    var d = RAIN_DIAMETER_MIN_MM;
+    for (var k = 0u; k < RAIN_DIAMETER_TRIES; k++) {
+        d = marshall_palmer_diameter_mm(slope_per_mm, random_unit(key, DRAW_RAIN_DIAMETER + 2u * k));
+        if (random_unit(key, DRAW_RAIN_DIAMETER + 2u * k + 1u) * v_max < raindrop_terminal_speed_mps(d)) {
+            break;
+        }
+    }
+    return d;
+}
+
+// drag.rs: backward Euler of a = g + k·|V_f|·V_f, closed form.
+fn drag_velocity(velocity_mps: vec3<f32>, wind_mps: vec3<f32>, terminal_speed_mps: f32, dt_s: f32) -> vec3<f32> {
+    let k = GRAVITY_MPS2 / (terminal_speed_mps * terminal_speed_mps);
+    let b = wind_mps - velocity_mps - GRAVITY * dt_s;
+    let b_len = length(b);
+    if (b_len <= 0.0) {
+        return wind_mps;
+    }
+    let w_len = 2.0 * b_len / (1.0 + sqrt(1.0 + 4.0 * dt_s * k * b_len));
+    return wind_mps - b * (w_len / b_len);
+}
+
+// rotation.rs: returns (|r'|, increasing' as 0/1).
+fn advance_rotation(magnitude_rad: f32, increasing: bool, amplitude_rad: f32, speed_rad_per_s: f32, dt_s: f32) -> vec2<f32> {
+    let step = speed_rad_per_s * dt_s;
+    var moved = magnitude_rad - step;
+    if (increasing) {
+        moved = magnitude_rad + step;
+    }
+    let top = 2.0 * amplitude_rad;
+    if (moved > top) {
+        return vec2<f32>(top, 0.0);
+    } else if (moved < 0.0) {
+        return vec2<f32>(0.0, 1.0);
+    }
+    return vec2<f32>(moved, select(0.0, 1.0, increasing));
+}

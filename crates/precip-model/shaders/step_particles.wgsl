@@ -1,0 +1,109 @@
+// step_particles.wgsl: the particle kernels. Rust twin: precip_model::step::step_particle
+// and precip_model::birth::initial_particle. Program: layout, rng, physics, wind,
+// ground, deposit, birth, this file (precip_model::shaders::Program::StepParticles).
+
+@group(0) @binding(0) var<uniform> step_params: StepParams;
+@group(0) @binding(1) var<uniform> frames: Frames;
+@group(0) @binding(2) var<uniform> wind: WindParams;
+@group(0) @binding(3) var wind_volume: texture_3d<f32>;
+@group(0) @binding(4) var<storage, read> ground_height: array<f32>;
+@group(0) @binding(5) var<storage, read_write> particles: array<Particle>;
+@group(0) @binding(6) var<storage, read_write> deposits: array<atomic<u32>>;
+
+fn wrap_centred(x: f32, h: f32) -> f32 {
+    return x - 2.0 * h * floor((x + h) / (2.0 * h));
+}
+
+fn step_in_camera_volume(index: u32, generation: u32, moved: Particle) -> Particle {
+    var next = moved;
+    let centre = step_params.camera_centre_m;
+    let half = step_params.camera_half_extent_m;
+    var local = next.position_m - centre;
+    local.x = wrap_centred(local.x, half.x);
+    local.z = wrap_centred(local.z, half.z);
+    if (local.y > half.y) {
+        local.y -= 2.0 * half.y;
+    }
+    let position = centre + local;
+    let ground = ground_height_at(vec2<f32>(position.x, position.z));
+    let grounded = ground.x > 0.0 && position.y <= ground.y;
+    if (local.y < -half.y || grounded) {
+        let new_generation = generation + 1u;
+        let key = particle_key(step_params.seed, index, new_generation);
+        var born = birth_in_camera_volume(index, new_generation, position);
+        born.position_m.y = centre.y + half.y
+            - random_unit(key, DRAW_PREWARM) * born.terminal_speed_mps * step_params.dt_s;
+        return born;
+    }
+    next.position_m = position;
+    return next;
+}
+
+fn step_particle(index: u32, particle: Particle) -> Particle {
+    let dt = step_params.dt_s;
+    let wind_mps = wind_velocity_at(particle.position_m, step_params.time_s);
+    let velocity = drag_velocity(particle.velocity_mps, wind_mps, particle.terminal_speed_mps, dt);
+    let position = particle.position_m + (particle.velocity_mps + velocity) * (0.5 * dt);
+
+    let camera = (particle.flags & FLAG_CAMERA_VOLUME) != 0u;
+    let rotation = select(step_params.world_rotation, step_params.camera_rotation, camera);
+    var rotation_rad = particle.rotation_rad;
+    var bits = particle.flags & ~(7u * FLAG_ROTATION_INCREASING_X);
+    for (var axis = 0u; axis < 3u; axis++) {
+        let increasing = (particle.flags & (FLAG_ROTATION_INCREASING_X << axis)) != 0u;
+        let r = advance_rotation(particle.rotation_rad[axis], increasing, rotation.x, rotation.y, dt);
+        rotation_rad[axis] = r.x;
+        if (r.y > 0.5) {
+            bits |= FLAG_ROTATION_INCREASING_X << axis;
+        }
+    }
+    var next = particle;
+    next.position_m = position;
+    next.age_s = particle.age_s + dt;
+    next.velocity_mps = velocity;
+    next.rotation_rad = rotation_rad;
+    next.flags = bits;
+
+    if (camera) {
+        return step_in_camera_volume(index, particle.generation, next);
+    }
+    next.water_kg += step_params.water_per_particle_kg_per_s * dt;
+    let xz = vec2<f32>(position.x, position.z);
+    let ground = ground_height_at(xz);
+    if (ground.x > 0.0 && position.y <= ground.y) {
+        let kind = (next.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
+        let channel = select(DEPOSIT_SNOW, DEPOSIT_RAIN, kind == KIND_RAIN);
+        let water_mm = next.water_kg * step_params.deposit_scale_mm_per_kg;
+        // Water landing off the cover grid fell outside the scene: not kept.
+        let texel = grid_texel_index(frames.cover, xz);
+        if (texel >= 0) {
+            atomicAdd(&deposits[2u * u32(texel) + channel], deposit_units(water_mm));
+        }
+        return birth_on_emitter(index, particle.generation + 1u);
+    }
+    if (ground.x == 0.0 && position.y < step_params.ground_floor_m) {
+        return birth_on_emitter(index, particle.generation + 1u);
+    }
+    if (next.age_s >= step_params.emitter_life_time_s) {
+        return birth_on_emitter(index, particle.generation + 1u);
+    }
+    return next;
+}
+
+@compute @workgroup_size(64)
+fn step_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= step_params.particle_count) {
+        return;
+    }
+    particles[i] = step_particle(i, particles[i]);
+}
+
+@compute @workgroup_size(64)
+fn init_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= step_params.particle_count) {
+        return;
+    }
+    particles[i] = initial_particle(i);
+}

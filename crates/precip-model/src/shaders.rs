@@ -1,0 +1,116 @@
+//! The WGSL sources: one file per kernel plus shared files, joined in a fixed order.
+//!
+//! WGSL has no `#include`, so each GPU program is the concatenation of the shared
+//! files it needs and its kernel file, in the order [`Program::files`] gives. Every
+//! backend takes its source from [`Program::source`]: wgpu loads it as it is, the
+//! Vulkan backend translates the same text to SPIR-V with naga at build time.
+
+/// One WGSL file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ShaderFile {
+    /// File name under `crates/precip-model/shaders/`.
+    pub name: &'static str,
+    /// Its text.
+    pub source: &'static str,
+}
+
+macro_rules! shader_file {
+    ($name:literal) => {
+        ShaderFile {
+            name: $name,
+            source: include_str!(concat!("../shaders/", $name)),
+        }
+    };
+}
+
+/// Structs shared with Rust, grid lookups.
+pub const LAYOUT: ShaderFile = shader_file!("layout.wgsl");
+/// Counter-based RNG.
+pub const RNG: ShaderFile = shader_file!("rng.wgsl");
+/// Flakes, drops, drag, rotation.
+pub const PHYSICS: ShaderFile = shader_file!("physics.wgsl");
+/// The wind sampler.
+pub const WIND: ShaderFile = shader_file!("wind.wgsl");
+/// The ground height map.
+pub const GROUND: ShaderFile = shader_file!("ground.wgsl");
+/// Fixed-point deposits.
+pub const DEPOSIT: ShaderFile = shader_file!("deposit.wgsl");
+/// Birth and re-birth.
+pub const BIRTH: ShaderFile = shader_file!("birth.wgsl");
+/// The snow cover model.
+pub const COVER: ShaderFile = shader_file!("cover.wgsl");
+/// Kernels `step_particles` and `init_particles`.
+pub const STEP_PARTICLES: ShaderFile = shader_file!("step_particles.wgsl");
+/// Kernel `cover_update`.
+pub const COVER_UPDATE: ShaderFile = shader_file!("cover_update.wgsl");
+/// Test kernel `probe_rng`.
+pub const PROBE_RNG: ShaderFile = shader_file!("probe_rng.wgsl");
+
+/// A GPU program: the files it is joined from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Program {
+    /// Particle initialisation and step.
+    StepParticles,
+    /// The cover update.
+    CoverUpdate,
+    /// A test probe of the RNG.
+    ProbeRng,
+}
+
+impl Program {
+    /// Every program.
+    pub const ALL: [Self; 3] = [Self::StepParticles, Self::CoverUpdate, Self::ProbeRng];
+
+    /// The files, in the order they are joined.
+    #[must_use]
+    pub const fn files(self) -> &'static [ShaderFile] {
+        match self {
+            Self::StepParticles => &[
+                LAYOUT,
+                RNG,
+                PHYSICS,
+                WIND,
+                GROUND,
+                DEPOSIT,
+                BIRTH,
+                STEP_PARTICLES,
+            ],
+            Self::CoverUpdate => &[LAYOUT, DEPOSIT, COVER, COVER_UPDATE],
+            Self::ProbeRng => &[RNG, PROBE_RNG],
+        }
+    }
+
+    /// Its entry points.
+    #[must_use]
+    pub const fn entry_points(self) -> &'static [&'static str] {
+        match self {
+            Self::StepParticles => &["step_particles", "init_particles"],
+            Self::CoverUpdate => &["cover_update"],
+            Self::ProbeRng => &["probe_rng"],
+        }
+    }
+
+    /// A label for debuggers.
+    #[must_use]
+    pub const fn label(self) -> &'static str {
+        match self {
+            Self::StepParticles => "precip step_particles",
+            Self::CoverUpdate => "precip cover_update",
+            Self::ProbeRng => "precip probe_rng",
+        }
+    }
+
+    /// The joined WGSL text, each file headed by a comment naming it.
+    #[must_use]
+    pub fn source(self) -> String {
+        let mut text = String::new();
+        for file in self.files() {
+            text.push_str("// ---- ");
+            text.push_str(file.name);
+            text.push_str(" ----\n");
+            text.push_str(file.source);
+            text.push('\n');
+        }
+        text
+    }
+}

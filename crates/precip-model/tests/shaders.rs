@@ -1,0 +1,180 @@
+//! Every GPU program parses and validates with naga, has its entry points, and every
+//! struct that crosses to the GPU has the same size and member offsets in WGSL as its
+//! `#[repr(C)]` Rust twin.
+
+use std::collections::HashMap;
+use std::mem::{offset_of, size_of};
+
+use naga::valid::{Capabilities, ValidationFlags, Validator};
+use precip_model::Particle;
+use precip_model::cover::{CoverStepParams, CoverTexel, GridFrame};
+use precip_model::gpu::Frames;
+use precip_model::shaders::Program;
+use precip_model::step::StepParams;
+use precip_model::wind::WindParams;
+
+fn parse(program: Program) -> naga::Module {
+    let source = program.source();
+    naga::front::wgsl::parse_str(&source)
+        .unwrap_or_else(|e| panic!("{program:?} does not parse:\n{}", e.emit_to_string(&source)))
+}
+
+#[test]
+fn every_program_validates_with_all_its_entry_points() {
+    for program in Program::ALL {
+        let module = parse(program);
+        Validator::new(ValidationFlags::all(), Capabilities::default())
+            .validate(&module)
+            .unwrap_or_else(|e| {
+                panic!(
+                    "{program:?} is invalid:\n{}",
+                    e.emit_to_string(&program.source())
+                )
+            });
+        for name in program.entry_points() {
+            assert!(
+                module.entry_points.iter().any(|ep| ep.name == *name),
+                "{program:?} lacks {name}"
+            );
+        }
+        assert_eq!(
+            module.entry_points.len(),
+            program.entry_points().len(),
+            "{program:?}"
+        );
+    }
+}
+
+/// WGSL struct name → (size, member name → offset).
+fn wgsl_layouts() -> HashMap<String, (u32, HashMap<String, u32>)> {
+    let mut out = HashMap::new();
+    for program in [Program::StepParticles, Program::CoverUpdate] {
+        let module = parse(program);
+        for (_, ty) in module.types.iter() {
+            if let naga::TypeInner::Struct { members, span } = &ty.inner {
+                let offsets = members
+                    .iter()
+                    .filter_map(|m| Some((m.name.clone()?, m.offset)))
+                    .collect();
+                out.insert(ty.name.clone().unwrap_or_default(), (*span, offsets));
+            }
+        }
+    }
+    out
+}
+
+macro_rules! rust_layout {
+    ($ty:ty { $($field:ident),* $(,)? }) => {
+        (stringify!($ty), size_of::<$ty>(), vec![$((stringify!($field), offset_of!($ty, $field))),*])
+    };
+}
+
+#[test]
+fn rust_and_wgsl_layouts_match() {
+    let wgsl = wgsl_layouts();
+    let rust = [
+        rust_layout!(Particle {
+            position_m,
+            age_s,
+            velocity_mps,
+            terminal_speed_mps,
+            rotation0_rad,
+            diameter_m,
+            rotation_rad,
+            water_kg,
+            generation,
+            flags
+        }),
+        rust_layout!(StepParams {
+            emitter_model,
+            emitter_size_m,
+            emitter_life_time_s,
+            emitter_velocity_spread_mps,
+            emitter_velocity_mps,
+            water_per_particle_kg_per_s,
+            camera_centre_m,
+            dt_s,
+            camera_half_extent_m,
+            time_s,
+            mean_wind_mps,
+            snow_fraction,
+            world_rotation,
+            camera_rotation,
+            seed,
+            world_count,
+            particle_count,
+            snow_is_wet,
+            air_temperature_c,
+            rain_slope_per_mm,
+            deposit_scale_mm_per_kg,
+            ground_floor_m
+        }),
+        rust_layout!(GridFrame {
+            origin_m,
+            size_m,
+            texels,
+            reserved
+        }),
+        rust_layout!(Frames { ground, cover }),
+        rust_layout!(WindParams {
+            mean_wind_mps,
+            gust_factor,
+            extent_m,
+            reserved0,
+            texels,
+            reserved1
+        }),
+        rust_layout!(CoverStepParams {
+            melt_threshold_c,
+            melt_proportionality_mm_per_c_day,
+            solar_irradiance_factor,
+            vegetation_density,
+            albedo_decay_per_day,
+            refreeze_factor_mm_per_c_day,
+            water_holding_fraction,
+            full_cover_depth_mm,
+            settled_density_kg_m3,
+            compaction_time_days,
+            wet_darkening,
+            wetting_mm,
+            drying_time_days,
+            mask_edge,
+            snow_rate_mm_per_day,
+            rain_rate_mm_per_day,
+            air_temperature_c,
+            dt_days,
+            texel_count,
+            reserved
+        }),
+        rust_layout!(CoverTexel {
+            swe_mm,
+            liquid_mm,
+            depth_mm,
+            age_days,
+            peak_swe_mm,
+            wetness,
+            runoff_mm,
+            deposited_mm,
+            eligibility,
+            accumulation_mask,
+            melt_mask,
+            feed
+        }),
+    ];
+    for (name, size, fields) in rust {
+        let (span, offsets) = wgsl
+            .get(name)
+            .unwrap_or_else(|| panic!("no WGSL struct {name}"));
+        assert_eq!(
+            *span as usize, size,
+            "{name}: WGSL size {span} vs Rust {size}"
+        );
+        for (field, offset) in fields {
+            let wgsl_offset = offsets
+                .get(field)
+                .unwrap_or_else(|| panic!("WGSL {name} has no member {field}"));
+            assert_eq!(*wgsl_offset as usize, offset, "{name}.{field}");
+        }
+        assert!(offsets.len() >= 2, "{name}");
+    }
+}
