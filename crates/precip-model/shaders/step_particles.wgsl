@@ -47,16 +47,16 @@ fn step_particle(index: u32, particle: Particle) -> Particle {
 
     let camera = (particle.flags & FLAG_CAMERA_VOLUME) != 0u;
     let rotation = select(step_params.world_rotation, step_params.camera_rotation, camera);
-    var rotation_rad = particle.rotation_rad;
-    var bits = particle.flags & ~(7u * FLAG_ROTATION_INCREASING_X);
-    for (var axis = 0u; axis < 3u; axis++) {
-        let increasing = (particle.flags & (FLAG_ROTATION_INCREASING_X << axis)) != 0u;
-        let r = advance_rotation(particle.rotation_rad[axis], increasing, rotation.x, rotation.y, dt);
-        rotation_rad[axis] = r.x;
-        if (r.y > 0.5) {
-            bits |= FLAG_ROTATION_INCREASING_X << axis;
-        }
-    }
+    // Written out per axis (no dynamic indexing into a vector, which some drivers
+    // spill to memory).
+    let rx = advance_rotation(particle.rotation_rad.x, (particle.flags & FLAG_ROTATION_INCREASING_X) != 0u, rotation.x, rotation.y, dt);
+    let ry = advance_rotation(particle.rotation_rad.y, (particle.flags & (FLAG_ROTATION_INCREASING_X << 1u)) != 0u, rotation.x, rotation.y, dt);
+    let rz = advance_rotation(particle.rotation_rad.z, (particle.flags & (FLAG_ROTATION_INCREASING_X << 2u)) != 0u, rotation.x, rotation.y, dt);
+    let rotation_rad = vec3<f32>(rx.x, ry.x, rz.x);
+    let bits = (particle.flags & ~(7u * FLAG_ROTATION_INCREASING_X))
+        | select(0u, FLAG_ROTATION_INCREASING_X, rx.y > 0.5)
+        | select(0u, FLAG_ROTATION_INCREASING_X << 1u, ry.y > 0.5)
+        | select(0u, FLAG_ROTATION_INCREASING_X << 2u, rz.y > 0.5);
     var next = particle;
     next.position_m = position;
     next.age_s = particle.age_s + dt;
@@ -70,7 +70,8 @@ fn step_particle(index: u32, particle: Particle) -> Particle {
     next.water_kg += step_params.water_per_particle_kg_per_s * dt;
     let xz = vec2<f32>(position.x, position.z);
     let ground = ground_height_at(xz);
-    if (ground.x > 0.0 && position.y <= ground.y) {
+    let landed = ground.x > 0.0 && position.y <= ground.y;
+    if (landed) {
         let kind = (next.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
         let channel = select(DEPOSIT_SNOW, DEPOSIT_RAIN, kind == KIND_RAIN);
         let water_mm = next.water_kg * step_params.deposit_scale_mm_per_kg;
@@ -79,12 +80,11 @@ fn step_particle(index: u32, particle: Particle) -> Particle {
         if (texel >= 0) {
             atomicAdd(&deposits[2u * u32(texel) + channel], deposit_units(water_mm));
         }
-        return birth_on_emitter(index, particle.generation + 1u);
     }
-    if (ground.x == 0.0 && position.y < step_params.ground_floor_m) {
-        return birth_on_emitter(index, particle.generation + 1u);
-    }
-    if (next.age_s >= step_params.emitter_life_time_s) {
+    let left_scene = ground.x == 0.0 && position.y < step_params.ground_floor_m;
+    // One call site for all three re-births (landed, left the scene, t_max): the birth
+    // code is large, and inlining it thrice costs registers on every invocation.
+    if (landed || left_scene || next.age_s >= step_params.emitter_life_time_s) {
         return birth_on_emitter(index, particle.generation + 1u);
     }
     return next;
