@@ -3,7 +3,7 @@
 
 use precip_model::cover::{CoverGrid, CoverTexel};
 use precip_model::drag::MAX_SUBSTEP_S;
-use precip_model::gpu::{DispatchOver, INIT_PASS, SUBSTEP_PASSES, dispatch_size};
+use precip_model::gpu::{DispatchOver, INIT_PASS, dispatch_size};
 use precip_model::wind::WindVolume;
 use precip_model::{
     Backend, BackendError, BackendInfo, Camera, Image, Particle, Setup, TimingSource, Timings,
@@ -262,18 +262,14 @@ impl Backend for WgpuBackend {
                 stamp(&mut pass);
                 for k in 0..count {
                     let offset = (u64::from(k) * stride) as u32;
-                    for kernel in SUBSTEP_PASSES {
-                        let (pipeline, bind_group, items) = match kernel.over {
-                            DispatchOver::Particles => (
-                                &pipelines.step,
-                                &resources.step_bind_group,
-                                resources.particle_count,
-                            ),
-                            DispatchOver::CoverTexels => (
-                                &pipelines.cover,
-                                &resources.cover_bind_group,
-                                resources.cover_texel_count,
-                            ),
+                    for (kernel, pipeline) in &pipelines.substep {
+                        let (bind_group, items) = match kernel.over {
+                            DispatchOver::Particles => {
+                                (&resources.step_bind_group, resources.particle_count)
+                            }
+                            DispatchOver::CoverTexels => {
+                                (&resources.cover_bind_group, resources.cover_texel_count)
+                            }
                         };
                         pass.set_pipeline(pipeline);
                         pass.set_bind_group(0, bind_group, &[offset]);

@@ -3,7 +3,7 @@
 use std::num::NonZeroU64;
 
 use precip_model::cover::CoverStepParams;
-use precip_model::gpu::{INIT_PASS, SUBSTEP_PASSES, cover_bindings, step_bindings};
+use precip_model::gpu::{INIT_PASS, KernelPass, SUBSTEP_PASSES, cover_bindings, step_bindings};
 use precip_model::shaders::Program;
 use precip_model::step::StepParams;
 
@@ -16,10 +16,8 @@ pub struct Pipelines {
     pub cover_layout: wgpu::BindGroupLayout,
     /// `init_particles`.
     pub init: wgpu::ComputePipeline,
-    /// `step_particles`.
-    pub step: wgpu::ComputePipeline,
-    /// `cover_update`.
-    pub cover: wgpu::ComputePipeline,
+    /// The kernels of one sub-step, in the recipe's order.
+    pub substep: Vec<(KernelPass, wgpu::ComputePipeline)>,
 }
 
 fn uniform(binding: u32, size: usize, dynamic: bool) -> wgpu::BindGroupLayoutEntry {
@@ -125,11 +123,22 @@ impl Pipelines {
         });
         let step_module = shader_module(device, Program::StepParticles);
         let cover_module = shader_module(device, Program::CoverUpdate);
-        let [step_pass, cover_pass] = SUBSTEP_PASSES;
+        let substep = SUBSTEP_PASSES
+            .iter()
+            .map(|kernel| {
+                let (layout, module) = match kernel.program {
+                    Program::CoverUpdate => (&cover_layout, &cover_module),
+                    _ => (&step_layout, &step_module),
+                };
+                (
+                    *kernel,
+                    pipeline(device, layout, module, kernel.entry_point),
+                )
+            })
+            .collect();
         Self {
             init: pipeline(device, &step_layout, &step_module, INIT_PASS.entry_point),
-            step: pipeline(device, &step_layout, &step_module, step_pass.entry_point),
-            cover: pipeline(device, &cover_layout, &cover_module, cover_pass.entry_point),
+            substep,
             step_layout,
             cover_layout,
         }

@@ -2,16 +2,21 @@
 //!
 //! Where the device has `TIMESTAMP_QUERY_INSIDE_PASSES`, a timestamp is written
 //! before the first kernel and after every kernel of every sub-step; `timings()`
-//! resolves and reads them (on demand only) and sums the time per kernel.
+//! resolves and reads them (on demand only) and sums the time per kernel, named by
+//! its entry point.
 
 use precip_model::backend::MAX_SUBSTEPS;
+use precip_model::gpu::SUBSTEP_PASSES;
 use precip_model::{BackendError, PassTiming, TimingSource, Timings};
 
 use crate::device::GpuDevice;
 use crate::readback::read_buffer;
 
-/// Queries: one at the start, one after each of the two kernels of each sub-step.
-pub const QUERY_COUNT: u32 = 1 + 2 * MAX_SUBSTEPS;
+/// Kernels of one sub-step.
+const KERNELS: usize = SUBSTEP_PASSES.len();
+
+/// Queries: one at the start, one after each kernel of each sub-step.
+pub const QUERY_COUNT: u32 = 1 + KERNELS as u32 * MAX_SUBSTEPS;
 
 /// The query set and its resolve buffer.
 #[derive(Debug)]
@@ -58,7 +63,7 @@ impl Timestamps {
 
     /// Reads the resolved queries: time per kernel, summed over sub-steps.
     pub fn read(&self, gpu: &GpuDevice) -> Result<Timings, BackendError> {
-        if self.written < 3 {
+        if (self.written as usize) < 1 + KERNELS {
             return Ok(Timings {
                 source: TimingSource::GpuTimestamps,
                 passes: Vec::new(),
@@ -69,24 +74,21 @@ impl Timestamps {
             .chunks_exact(8)
             .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
             .collect();
-        let ms = |a: u64, b: u64| f64::from(self.period_ns) * b.saturating_sub(a) as f64 * 1.0e-6;
-        let (mut step_ms, mut cover_ms) = (0.0, 0.0);
-        for k in 0..(self.written as usize - 1) / 2 {
-            step_ms += ms(ticks[2 * k], ticks[2 * k + 1]);
-            cover_ms += ms(ticks[2 * k + 1], ticks[2 * k + 2]);
+        let mut passes: Vec<PassTiming> = SUBSTEP_PASSES
+            .iter()
+            .map(|k| PassTiming {
+                pass: k.entry_point,
+                milliseconds: 0.0,
+            })
+            .collect();
+        for (i, pair) in ticks.windows(2).enumerate() {
+            let elapsed =
+                pair[1].saturating_sub(pair[0]) as f64 * f64::from(self.period_ns) * 1.0e-6;
+            passes[i % KERNELS].milliseconds += elapsed;
         }
         Ok(Timings {
             source: TimingSource::GpuTimestamps,
-            passes: vec![
-                PassTiming {
-                    pass: "particle_step",
-                    milliseconds: step_ms,
-                },
-                PassTiming {
-                    pass: "cover_update",
-                    milliseconds: cover_ms,
-                },
-            ],
+            passes,
         })
     }
 }

@@ -151,7 +151,10 @@ fn timings_come_from_gpu_timestamps_where_the_adapter_has_them() {
         println!("{name}: {timings:?}");
         if gpu.device().has_timestamps() {
             assert_eq!(timings.source, TimingSource::GpuTimestamps);
-            assert_eq!(timings.passes.len(), 2);
+            assert_eq!(
+                timings.passes.len(),
+                precip_model::gpu::SUBSTEP_PASSES.len()
+            );
             assert!(
                 timings
                     .passes

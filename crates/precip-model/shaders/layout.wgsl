@@ -22,6 +22,8 @@ const FLAG_ROTATION_INCREASING_X: u32 = 1u;
 const FLAG_KIND_SHIFT: u32 = 4u;
 const FLAG_KIND_MASK: u32 = 3u;
 const FLAG_CAMERA_VOLUME: u32 = 256u;
+// Set by step_particles, cleared by birth_particles within the same sub-step.
+const FLAG_PENDING_BIRTH: u32 = 512u;
 const KIND_DRY_SNOW: u32 = 0u;
 const KIND_WET_SNOW: u32 = 1u;
 const KIND_RAIN: u32 = 2u;

@@ -1,5 +1,12 @@
 // step_particles.wgsl: the particle kernels. Rust twin: precip_model::step::step_particle
-// and precip_model::birth::initial_particle. Program: layout, rng, physics, wind,
+// and precip_model::birth::initial_particle.
+//
+// The Rust step re-births inline; here step_particles only marks a particle
+// FLAG_PENDING_BIRTH (keeping the position the camera volume needs) and
+// birth_particles, dispatched right after it, re-births the marked ones with the same
+// inputs. Same result; but the large birth code lives in its own kernel, so the step
+// kernel that every particle runs stays small (on lavapipe the inlined birth code made
+// every invocation slower, taken or not). Program: layout, rng, physics, wind,
 // ground, deposit, birth, this file (precip_model::shaders::Program::StepParticles).
 
 @group(0) @binding(0) var<uniform> step_params: StepParams;
@@ -27,15 +34,10 @@ fn step_in_camera_volume(index: u32, generation: u32, moved: Particle) -> Partic
     let position = centre + local;
     let ground = ground_height_at(vec2<f32>(position.x, position.z));
     let grounded = ground.x > 0.0 && position.y <= ground.y;
-    if (local.y < -half.y || grounded) {
-        let new_generation = generation + 1u;
-        let key = particle_key(step_params.seed, index, new_generation);
-        var born = birth_in_camera_volume(index, new_generation, position);
-        born.position_m.y = centre.y + half.y
-            - random_unit(key, DRAW_PREWARM) * born.terminal_speed_mps * step_params.dt_s;
-        return born;
-    }
     next.position_m = position;
+    if (local.y < -half.y || grounded) {
+        next.flags |= FLAG_PENDING_BIRTH;
+    }
     return next;
 }
 
@@ -82,10 +84,8 @@ fn step_particle(index: u32, particle: Particle) -> Particle {
         }
     }
     let left_scene = ground.x == 0.0 && position.y < step_params.ground_floor_m;
-    // One call site for all three re-births (landed, left the scene, t_max): the birth
-    // code is large, and inlining it thrice costs registers on every invocation.
     if (landed || left_scene || next.age_s >= step_params.emitter_life_time_s) {
-        return birth_on_emitter(index, particle.generation + 1u);
+        next.flags |= FLAG_PENDING_BIRTH;
     }
     return next;
 }
@@ -97,6 +97,32 @@ fn step_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
         return;
     }
     particles[i] = step_particle(i, particles[i]);
+}
+
+// Re-birth of the particles step_particles marked (Rust: the birth calls inside
+// step_particle).
+fn birth_particle(index: u32, particle: Particle) -> Particle {
+    let generation = particle.generation + 1u;
+    if ((particle.flags & FLAG_CAMERA_VOLUME) != 0u) {
+        let key = particle_key(step_params.seed, index, generation);
+        var born = birth_in_camera_volume(index, generation, particle.position_m);
+        born.position_m.y = step_params.camera_centre_m.y + step_params.camera_half_extent_m.y
+            - random_unit(key, DRAW_PREWARM) * born.terminal_speed_mps * step_params.dt_s;
+        return born;
+    }
+    return birth_on_emitter(index, generation);
+}
+
+@compute @workgroup_size(64)
+fn birth_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= step_params.particle_count) {
+        return;
+    }
+    // Only the flags are read for the particles that stay (most of them).
+    if ((particles[i].flags & FLAG_PENDING_BIRTH) != 0u) {
+        particles[i] = birth_particle(i, particles[i]);
+    }
 }
 
 @compute @workgroup_size(64)

@@ -56,7 +56,7 @@ pub enum TimingSource {
 /// Time of one pass of the last frame.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PassTiming {
-    /// The pass ("wind_bake", "particle_step", "cover_update", …).
+    /// The pass: a kernel's entry point ("step_particles", "cover_update", …) or "wind_bake".
     pub pass: &'static str,
     /// Milliseconds.
     pub milliseconds: f64,

@@ -67,13 +67,19 @@ pub const INIT_PASS: KernelPass = KernelPass {
     over: DispatchOver::Particles,
 };
 
-/// One sub-step, in order: the particles move and deposit, then the cover takes the
-/// deposits (or the rate), melts and ages. Sub-steps repeat this with their own
-/// uniform blocks (dynamic offsets).
-pub const SUBSTEP_PASSES: [KernelPass; 2] = [
+/// One sub-step, in order: the particles move and deposit (marking those to re-birth),
+/// the marked ones are re-born, then the cover takes the deposits (or the rate),
+/// melts and ages. Sub-steps repeat this with their own uniform blocks (dynamic
+/// offsets).
+pub const SUBSTEP_PASSES: [KernelPass; 3] = [
     KernelPass {
         program: Program::StepParticles,
         entry_point: "step_particles",
+        over: DispatchOver::Particles,
+    },
+    KernelPass {
+        program: Program::StepParticles,
+        entry_point: "birth_particles",
         over: DispatchOver::Particles,
     },
     KernelPass {
@@ -114,6 +120,27 @@ pub mod cover_bindings {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_kernel_of_the_recipe_is_an_entry_point_of_its_program() {
+        for kernel in SUBSTEP_PASSES.iter().chain([&INIT_PASS]) {
+            assert!(
+                kernel.program.entry_points().contains(&kernel.entry_point),
+                "{kernel:?}"
+            );
+        }
+        let in_recipe = |name: &str| {
+            SUBSTEP_PASSES
+                .iter()
+                .chain([&INIT_PASS])
+                .any(|k| k.entry_point == name)
+        };
+        for program in [Program::StepParticles, Program::CoverUpdate] {
+            for name in program.entry_points() {
+                assert!(in_recipe(name), "{name} of {program:?} is never dispatched");
+            }
+        }
+    }
 
     #[test]
     fn dispatch_covers_every_count() {

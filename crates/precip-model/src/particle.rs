@@ -42,6 +42,9 @@ pub mod flags {
     pub const KIND_MASK: u32 = 0b11;
     /// Bit 8: the particle belongs to the camera volume.
     pub const CAMERA_VOLUME: u32 = 1 << 8;
+    /// Bit 9: GPU only, between the `step_particles` and `birth_particles` kernels of
+    /// one sub-step; never set in a particle read back.
+    pub const PENDING_BIRTH: u32 = 1 << 9;
 }
 
 /// One particle: the seeds' state `(t, P, v, r0, r)` plus what the physics needs.

@@ -39,7 +39,7 @@ pub const DEPOSIT: ShaderFile = shader_file!("deposit.wgsl");
 pub const BIRTH: ShaderFile = shader_file!("birth.wgsl");
 /// The snow cover model.
 pub const COVER: ShaderFile = shader_file!("cover.wgsl");
-/// Kernels `step_particles` and `init_particles`.
+/// Kernels `step_particles`, `birth_particles` and `init_particles`.
 pub const STEP_PARTICLES: ShaderFile = shader_file!("step_particles.wgsl");
 /// Kernel `cover_update`.
 pub const COVER_UPDATE: ShaderFile = shader_file!("cover_update.wgsl");
@@ -84,7 +84,7 @@ impl Program {
     #[must_use]
     pub const fn entry_points(self) -> &'static [&'static str] {
         match self {
-            Self::StepParticles => &["step_particles", "init_particles"],
+            Self::StepParticles => &["step_particles", "birth_particles", "init_particles"],
             Self::CoverUpdate => &["cover_update"],
             Self::ProbeRng => &["probe_rng"],
         }

@@ -182,7 +182,7 @@ impl Backend for CpuBackend {
         }
         self.timings = vec![
             PassTiming {
-                pass: "particle_step",
+                pass: "step_particles",
                 milliseconds: particle_ms,
             },
             PassTiming {
