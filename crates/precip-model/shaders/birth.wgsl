@@ -48,6 +48,24 @@ fn pack_flags(kind: u32, camera_volume: bool, increasing_bits: u32) -> u32 {
     return (kind << FLAG_KIND_SHIFT) | select(0u, FLAG_CAMERA_VOLUME, camera_volume) | increasing_bits;
 }
 
+// Rust: newborn.
+fn newborn(position_m: vec3<f32>, velocity_mps: vec3<f32>, species: Species, rotation: Rotation, generation: u32, camera_volume: bool) -> Particle {
+    var p: Particle;
+    p.position_m = position_m;
+    p.age_s = 0.0;
+    p.velocity_mps = velocity_mps;
+    p.terminal_speed_mps = species.terminal_speed_mps;
+    p.rotation0_rad = rotation.r0;
+    p.diameter_m = species.diameter_m;
+    p.rotation_rad = rotation.magnitude;
+    p.water_kg = 0.0;
+    p.generation = generation;
+    p.flags = pack_flags(species.kind, camera_volume, rotation.increasing_bits);
+    p.reserved0 = 0u;
+    p.reserved1 = 0u;
+    return p;
+}
+
 fn birth_on_emitter(index: u32, generation: u32) -> Particle {
     let key = particle_key(step_params.seed, index, generation);
     let ocs = vec3<f32>(
@@ -55,43 +73,29 @@ fn birth_on_emitter(index: u32, generation: u32) -> Particle {
         step_params.emitter_size_m.y * centred(key, DRAW_POSITION_V),
         0.0,
     );
-    let species = draw_species(key);
-    let rotation = draw_rotation(key, step_params.world_rotation.x);
-    var p: Particle;
-    p.position_m = (step_params.emitter_model * vec4<f32>(ocs, 1.0)).xyz;
-    p.age_s = 0.0;
-    p.velocity_mps = step_params.emitter_velocity_mps
+    let velocity = step_params.emitter_velocity_mps
         + centred3(key, DRAW_VELOCITY_X) * (2.0 * step_params.emitter_velocity_spread_mps);
-    p.terminal_speed_mps = species.terminal_speed_mps;
-    p.rotation0_rad = rotation.r0;
-    p.diameter_m = species.diameter_m;
-    p.rotation_rad = rotation.magnitude;
-    p.water_kg = 0.0;
-    p.generation = generation;
-    p.flags = pack_flags(species.kind, false, rotation.increasing_bits);
-    p.reserved0 = 0u;
-    p.reserved1 = 0u;
-    return p;
+    return newborn(
+        (step_params.emitter_model * vec4<f32>(ocs, 1.0)).xyz,
+        velocity,
+        draw_species(key),
+        draw_rotation(key, step_params.world_rotation.x),
+        generation,
+        false,
+    );
 }
 
 fn birth_in_camera_volume(index: u32, generation: u32, position_m: vec3<f32>) -> Particle {
     let key = particle_key(step_params.seed, index, generation);
     let species = draw_species(key);
-    let rotation = draw_rotation(key, step_params.camera_rotation.x);
-    var p: Particle;
-    p.position_m = position_m;
-    p.age_s = 0.0;
-    p.velocity_mps = step_params.mean_wind_mps - vec3<f32>(0.0, 1.0, 0.0) * species.terminal_speed_mps;
-    p.terminal_speed_mps = species.terminal_speed_mps;
-    p.rotation0_rad = rotation.r0;
-    p.diameter_m = species.diameter_m;
-    p.rotation_rad = rotation.magnitude;
-    p.water_kg = 0.0;
-    p.generation = generation;
-    p.flags = pack_flags(species.kind, true, rotation.increasing_bits);
-    p.reserved0 = 0u;
-    p.reserved1 = 0u;
-    return p;
+    return newborn(
+        position_m,
+        step_params.mean_wind_mps - vec3<f32>(0.0, 1.0, 0.0) * species.terminal_speed_mps,
+        species,
+        draw_rotation(key, step_params.camera_rotation.x),
+        generation,
+        true,
+    );
 }
 
 fn initial_particle(index: u32) -> Particle {

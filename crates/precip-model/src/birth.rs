@@ -62,6 +62,32 @@ pub fn draw_rotation(key: u32, amplitude_rad: f32) -> (Vec3, Vec3, [bool; 3]) {
     (r0, r.abs(), [r.x >= 0.0, r.y >= 0.0, r.z >= 0.0])
 }
 
+/// A newborn particle of `kind`, `diameter` and `speed` at `position_m` moving at
+/// `velocity_mps`, with its drawn rotation: age 0, no water yet.
+#[must_use]
+fn newborn(
+    position_m: Vec3,
+    velocity_mps: Vec3,
+    (kind, diameter, speed): (ParticleKind, f32, f32),
+    (r0, r, increasing): (Vec3, Vec3, [bool; 3]),
+    generation: u32,
+    source: ParticleSource,
+) -> Particle {
+    Particle {
+        position_m,
+        age_s: 0.0,
+        velocity_mps,
+        terminal_speed_mps: speed,
+        rotation0_rad: r0,
+        diameter_m: diameter,
+        rotation_rad: r,
+        water_kg: 0.0,
+        generation,
+        flags: pack_flags(kind, source, increasing),
+        reserved: [0; 2],
+    }
+}
+
 /// A particle born on the world emitter (MODEL.md §1):
 /// `P = M_model·(W(f − ½), H(f − ½), 0, 1)`, `v = v0 + 2·k_v·V_rand`.
 #[must_use]
@@ -72,22 +98,16 @@ pub fn birth_on_emitter(index: u32, generation: u32, params: &StepParams) -> Par
         params.emitter_size_m.y * centred(key, draw::POSITION_V),
         0.0,
     );
-    let (kind, diameter, speed) = draw_species(key, params);
-    let (r0, r, increasing) = draw_rotation(key, params.world_rotation.x);
-    Particle {
-        position_m: params.emitter_model.transform_point3(ocs),
-        age_s: 0.0,
-        velocity_mps: params.emitter_velocity_mps
-            + centred3(key, draw::VELOCITY_X) * (2.0 * params.emitter_velocity_spread_mps),
-        terminal_speed_mps: speed,
-        rotation0_rad: r0,
-        diameter_m: diameter,
-        rotation_rad: r,
-        water_kg: 0.0,
+    let velocity = params.emitter_velocity_mps
+        + centred3(key, draw::VELOCITY_X) * (2.0 * params.emitter_velocity_spread_mps);
+    newborn(
+        params.emitter_model.transform_point3(ocs),
+        velocity,
+        draw_species(key, params),
+        draw_rotation(key, params.world_rotation.x),
         generation,
-        flags: pack_flags(kind, ParticleSource::WorldEmitter, increasing),
-        reserved: [0; 2],
-    }
+        ParticleSource::WorldEmitter,
+    )
 }
 
 /// A particle born in the camera volume at `position_m`, already falling at its
@@ -100,21 +120,15 @@ pub fn birth_in_camera_volume(
     position_m: Vec3,
 ) -> Particle {
     let key = particle_key(params.seed, index, generation);
-    let (kind, diameter, speed) = draw_species(key, params);
-    let (r0, r, increasing) = draw_rotation(key, params.camera_rotation.x);
-    Particle {
+    let species = draw_species(key, params);
+    newborn(
         position_m,
-        age_s: 0.0,
-        velocity_mps: params.mean_wind_mps - Vec3::Y * speed,
-        terminal_speed_mps: speed,
-        rotation0_rad: r0,
-        diameter_m: diameter,
-        rotation_rad: r,
-        water_kg: 0.0,
+        params.mean_wind_mps - Vec3::Y * species.2,
+        species,
+        draw_rotation(key, params.camera_rotation.x),
         generation,
-        flags: pack_flags(kind, ParticleSource::CameraVolume, increasing),
-        reserved: [0; 2],
-    }
+        ParticleSource::CameraVolume,
+    )
 }
 
 /// The particle a slot starts with at configure time, pre-warmed so the air is
