@@ -157,6 +157,15 @@ mod tests {
     }
 
     #[test]
+    fn a_hand_built_volume_with_missing_texels_does_not_panic() {
+        let mut v = volume(1);
+        v.texels.truncate(10);
+        let _ = v.sample(Vec3::new(40.0, 20.0, 30.0), 1.0);
+        v.spec.texels = UVec3::ZERO;
+        assert_eq!(v.sample(Vec3::ONE, 0.0), WindSample::default());
+    }
+
+    #[test]
     fn calm_air_has_no_horizontal_gust() {
         let v = WindVolume::bake(&WindField::calm(), &small_spec()).expect("valid");
         let w = v.velocity_mps(Vec3::new(3.0, 4.0, 5.0), 2.0);

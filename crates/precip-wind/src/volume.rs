@@ -109,11 +109,17 @@ impl WindVolume {
 
     /// The texel at integer coordinates, wrapped periodically.
     #[must_use]
+    ///
+    /// A volume built by hand whose `texels` do not match its `spec` reads as calm
+    /// air where they are missing, rather than panicking.
     pub fn texel_wrapped(&self, i: i32, j: i32, k: i32) -> WindTexel {
         let n = self.spec.texels.as_ivec3();
+        if n.min_element() <= 0 {
+            return WindTexel::default();
+        }
         let (i, j, k) = (i.rem_euclid(n.x), j.rem_euclid(n.y), k.rem_euclid(n.z));
-        // In range by rem_euclid; indexes are non-negative.
-        self.texels[(i + n.x * (j + n.y * k)) as usize]
+        let index = i as usize + n.x as usize * (j as usize + n.y as usize * k as usize);
+        self.texels.get(index).copied().unwrap_or_default()
     }
 
     /// The texels as bytes, ready for a texture upload.
