@@ -9,6 +9,7 @@
 //! - Particles (MODEL.md §1): [`particle`] (the GPU layout), [`rng`] (counter-based
 //!   random numbers), [`emitter`] (world emitter, camera volume), [`birth`],
 //!   [`step`] (one particle's step), [`ground`] (what particles land on).
+//! - Drawing (MODEL.md §5): [`drawing`] (sprite, tetrahedron, view cone, lighting, fog).
 //! - Contract: [`backend`] (the trait), [`setup`], [`camera`], [`error`].
 //! - [`cpu`] — the reference backend.
 //! - GPU: [`shaders`] (the WGSL sources, joined per program), [`gpu`] (the frame
@@ -23,6 +24,7 @@ pub mod birth;
 pub mod camera;
 pub mod cpu;
 pub mod drag;
+pub mod drawing;
 pub mod emitter;
 pub mod error;
 pub mod gpu;

@@ -1,0 +1,234 @@
+//! Drawing formulas of seeds 000/001 (MODEL.md §5), CPU forms: the snow sprite, the
+//! raindrop tetrahedron, view-cone culling, the seed's Blinn–Phong lighting and fog.
+//!
+//! These are the Rust halves the renderer's WGSL will mirror (the rendering issue);
+//! tests pin them to hand-computed cases so the vertex shaders can be checked against
+//! them.
+
+use glam::Vec3;
+
+/// The four corners of a camera-facing snow sprite of side `side_m` centred at
+/// `centre_m`, seen from `camera_m`, in strip order V0 V1 V2 V3 (texture coordinates
+/// T0 (1,0), T1 (1,1), T2 (0,0), T3 (0,1)).
+///
+/// `N = n(O − P)`, `A = n(Y × N)`, `B = n(N × A)`, `V0 = P + ½s(A − B)`,
+/// `V1 = V0 + sB`, `V2 = V0 − sA`, `V3 = V1 − sA`. Where the camera looks straight
+/// down or up (`Y ∥ N`), Z stands in for Y. `None` when the camera is at the centre.
+#[must_use]
+pub fn snow_sprite_corners(centre_m: Vec3, camera_m: Vec3, side_m: f32) -> Option<[Vec3; 4]> {
+    let n = (camera_m - centre_m).try_normalize()?;
+    let a = Vec3::Y
+        .cross(n)
+        .try_normalize()
+        .or_else(|| Vec3::Z.cross(n).try_normalize())?;
+    let b = n.cross(a).normalize();
+    let v0 = centre_m + 0.5 * side_m * (a - b);
+    let v1 = v0 + side_m * b;
+    let v2 = v0 - side_m * a;
+    let v3 = v1 - side_m * a;
+    Some([v0, v1, v2, v3])
+}
+
+/// Texture coordinates of the sprite's strip V0 V1 V2 V3.
+pub const SNOW_SPRITE_UV: [[f32; 2]; 4] = [[1.0, 0.0], [1.0, 1.0], [0.0, 0.0], [0.0, 1.0]];
+
+/// A raindrop's tetrahedron: vertices V0..V3 and the seed's vertex normals N0..N3.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RainTetrahedron {
+    /// V0 (apex, trailing the drop) and the base V1, V2, V3.
+    pub vertices: [Vec3; 4],
+    /// N0..N3 (not normalised, as the seed writes them).
+    pub normals: [Vec3; 4],
+}
+
+/// The tetrahedron of a drop at `centre_m` moving at `velocity_mps` with designer
+/// size `size` and speed factor `speed_factor`: height `h = k·s·|v|`, base side
+/// `a = 0.1·h`, axis along the velocity (MODEL.md §5). Where the velocity is parallel
+/// to X, Z stands in for X. `None` for a drop at rest.
+#[must_use]
+pub fn raindrop_tetrahedron(
+    centre_m: Vec3,
+    velocity_mps: Vec3,
+    size: f32,
+    speed_factor: f32,
+) -> Option<RainTetrahedron> {
+    let speed = velocity_mps.length();
+    let e_y = (-velocity_mps).try_normalize()?;
+    let e_z = Vec3::X
+        .cross(e_y)
+        .try_normalize()
+        .or_else(|| Vec3::Z.cross(e_y).try_normalize())?;
+    let e_x = e_y.cross(e_z).normalize();
+    let h = speed_factor * size * speed;
+    let a = 0.1 * h;
+    let r = 3f32.sqrt() / 3.0 * a;
+    let v0 = centre_m + h * e_y;
+    let v1 = centre_m - 0.5 * r * e_x - 0.5 * a * e_z;
+    let v2 = centre_m + r * e_x;
+    let v3 = v1 + a * e_z;
+    let n = |v: Vec3| v.normalize_or_zero();
+    Some(RainTetrahedron {
+        vertices: [v0, v1, v2, v3],
+        normals: [
+            e_y,
+            n(v1 - centre_m) + n(v1 - v0),
+            e_x + n(v2 - v0),
+            n(v3 - centre_m) + n(v3 - v0),
+        ],
+    })
+}
+
+/// The right side of the view-cone test, computed once per frame:
+/// `(1 + tan²(α/2) + tan²(β/2))^(−1/2)` for horizontal and vertical fields of view.
+#[must_use]
+pub fn view_cone_cos(horizontal_fov_rad: f32, vertical_fov_rad: f32) -> f32 {
+    let (th, tv) = (
+        (0.5 * horizontal_fov_rad).tan(),
+        (0.5 * vertical_fov_rad).tan(),
+    );
+    1.0 / (1.0 + th * th + tv * tv).sqrt()
+}
+
+/// Whether a particle at `position_m` is drawn: `dot(n(P − C), view_dir) ≥ cone_cos`.
+/// The cone circumscribes the frustum, so nothing visible is culled.
+#[must_use]
+pub fn in_view_cone(position_m: Vec3, camera_m: Vec3, view_dir: Vec3, cone_cos: f32) -> bool {
+    (position_m - camera_m)
+        .try_normalize()
+        .is_some_and(|d| d.dot(view_dir) >= cone_cos)
+}
+
+/// The material and light terms of the seed's lighting.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lighting {
+    /// k_A·I_A.
+    pub ambient: f32,
+    /// k_D·I_D.
+    pub diffuse: f32,
+    /// k_S·I_S.
+    pub specular: f32,
+    /// Shininess s ∈ [0, 128].
+    pub shininess: f32,
+    /// Shadow colour sc.
+    pub shadow_colour: f32,
+    /// Shadow density ∈ [0, 1].
+    pub shadow_density: f32,
+    /// Light attenuation λ.
+    pub attenuation: f32,
+}
+
+/// Blinn–Phong with a shadow-map visibility `lit ∈ [0, 1]` (MODEL.md §5):
+/// `I = λ(k_A I_A + (1 − sh) k_D I_D max(0, L·N) + sh·sc + lit·k_S I_S max(0, H·N)^s)`,
+/// `sh = density·(1 − lit)`, `H = n(L + V)`. `normal`, `to_light` and `to_viewer`
+/// are unit vectors.
+#[must_use]
+pub fn blinn_phong(l: &Lighting, normal: Vec3, to_light: Vec3, to_viewer: Vec3, lit: f32) -> f32 {
+    let sh = l.shadow_density * (1.0 - lit);
+    let half = (to_light + to_viewer).normalize_or_zero();
+    l.attenuation
+        * (l.ambient
+            + (1.0 - sh) * l.diffuse * to_light.dot(normal).max(0.0)
+            + sh * l.shadow_colour
+            + lit * l.specular * half.dot(normal).max(0.0).powf(l.shininess))
+}
+
+/// Fraction of light that crosses `distance_m` of precipitation of extinction
+/// `extinction_per_m` (Beer–Lambert; at the Koschmieder visibility it is 2 %).
+#[must_use]
+pub fn fog_transmittance(distance_m: f32, extinction_per_m: f32) -> f32 {
+    (-extinction_per_m * distance_m.max(0.0)).exp()
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::visibility::koschmieder_visibility_m;
+
+    fn close(a: Vec3, b: Vec3) -> bool {
+        (a - b).length() < 1e-5
+    }
+
+    #[test]
+    fn sprite_faces_the_camera_with_side_s() {
+        // Camera on +Z: N = Z, A = Y × Z = X, B = Z × X = Y.
+        let c = snow_sprite_corners(Vec3::ZERO, Vec3::new(0.0, 0.0, 10.0), 2.0)
+            .expect("not degenerate");
+        assert!(close(c[0], Vec3::new(1.0, -1.0, 0.0)));
+        assert!(close(c[1], Vec3::new(1.0, 1.0, 0.0)));
+        assert!(close(c[2], Vec3::new(-1.0, -1.0, 0.0)));
+        assert!(close(c[3], Vec3::new(-1.0, 1.0, 0.0)));
+        let from_above =
+            snow_sprite_corners(Vec3::ZERO, Vec3::new(0.0, 5.0, 0.0), 1.0).expect("fallback axis");
+        assert!(
+            from_above.iter().all(|v| v.y.abs() < 1e-6),
+            "lies flat under a camera straight above"
+        );
+        assert!(snow_sprite_corners(Vec3::ONE, Vec3::ONE, 1.0).is_none());
+    }
+
+    #[test]
+    fn tetrahedron_trails_the_velocity_with_an_equilateral_base() {
+        let t = raindrop_tetrahedron(Vec3::ZERO, Vec3::new(0.0, -8.0, 0.0), 0.01, 10.0)
+            .expect("moving");
+        let h = 10.0 * 0.01 * 8.0;
+        assert!(
+            close(t.vertices[0], Vec3::new(0.0, h, 0.0)),
+            "apex above a falling drop"
+        );
+        let a = 0.1 * h;
+        for (i, j) in [(1, 2), (2, 3), (3, 1)] {
+            assert!(
+                ((t.vertices[i] - t.vertices[j]).length() - a).abs() < 1e-5,
+                "base side {i}{j}"
+            );
+        }
+        let centroid = (t.vertices[1] + t.vertices[2] + t.vertices[3]) / 3.0;
+        assert!(close(centroid, Vec3::ZERO));
+        assert!(close(t.normals[0], Vec3::Y));
+        assert!(
+            raindrop_tetrahedron(Vec3::ZERO, Vec3::X * 3.0, 0.01, 10.0).is_some(),
+            "parallel to X"
+        );
+        assert!(raindrop_tetrahedron(Vec3::ZERO, Vec3::ZERO, 0.01, 10.0).is_none());
+    }
+
+    proptest! {
+        #[test]
+        fn nothing_inside_the_frustum_is_culled(u in -1.0f32..1.0, v in -1.0f32..1.0, depth in 0.1f32..500.0, hfov in 0.2f32..2.5, vfov in 0.2f32..2.5) {
+            let cone = view_cone_cos(hfov, vfov);
+            let point = Vec3::new(u * (0.5 * hfov).tan(), v * (0.5 * vfov).tan(), -1.0) * depth;
+            prop_assert!(in_view_cone(point, Vec3::ZERO, Vec3::NEG_Z, cone - 1e-6));
+            prop_assert!(!in_view_cone(-point, Vec3::ZERO, Vec3::NEG_Z, cone), "behind the camera");
+        }
+    }
+
+    #[test]
+    fn lighting_terms() {
+        let l = Lighting {
+            ambient: 0.2,
+            diffuse: 0.6,
+            specular: 0.5,
+            shininess: 16.0,
+            shadow_colour: 0.05,
+            shadow_density: 1.0,
+            attenuation: 1.0,
+        };
+        let up = Vec3::Y;
+        let lit = blinn_phong(&l, up, up, up, 1.0);
+        assert!((lit - (0.2 + 0.6 + 0.5)).abs() < 1e-6);
+        let shadowed = blinn_phong(&l, up, up, up, 0.0);
+        assert!((shadowed - (0.2 + 0.05)).abs() < 1e-6);
+        let grazing = blinn_phong(&l, up, Vec3::X, Vec3::X, 1.0);
+        assert!((grazing - 0.2).abs() < 1e-6);
+    }
+
+    #[test]
+    fn fog_leaves_two_percent_at_the_visibility() {
+        let sigma = 0.005;
+        let v = koschmieder_visibility_m(sigma);
+        assert!((fog_transmittance(v, sigma) - 0.02).abs() < 1e-3);
+        assert!((fog_transmittance(0.0, sigma) - 1.0).abs() < 1e-6);
+    }
+}
