@@ -9,6 +9,7 @@
 //! - Particles (MODEL.md §1): [`particle`] (the GPU layout), [`rng`] (counter-based
 //!   random numbers), [`emitter`] (world emitter, camera volume), [`birth`],
 //!   [`step`] (one particle's step), [`ground`] (what particles land on).
+//! - Scenes: [`scene`] (the neutral triangle scene, validated, with slope eligibility).
 //! - Drawing (MODEL.md §5): [`drawing`] (sprite, tetrahedron, view cone, lighting, fog).
 //! - Contract: [`backend`] (the trait), [`setup`], [`camera`], [`error`].
 //! - [`cpu`] — the reference backend.
@@ -33,6 +34,7 @@ pub mod particle;
 pub mod raindrop;
 pub mod rng;
 pub mod rotation;
+pub mod scene;
 pub mod setup;
 pub mod shaders;
 pub mod snowfall;
@@ -48,6 +50,7 @@ pub use emitter::{CameraVolume, WorldEmitter};
 pub use error::{BackendError, WeatherError};
 pub use ground::GroundMap;
 pub use particle::{Particle, ParticleKind, ParticleSource};
+pub use scene::{Material, Mesh, Scene, SceneError, SceneReport, TextureRgba8};
 pub use setup::{CameraVolumeSetup, CoverSetup, EmitterSetup, Setup};
 pub use weather::{PrecipitationKind, Weather};
 
