@@ -1,9 +1,11 @@
 //! [`WgpuBackend`]: the [`Backend`] over wgpu (compute half: configure, weather, step,
 //! read-back, timings). Rendering arrives with the rendering issue.
 
+use glam::Vec3;
 use precip_model::cover::{CoverGrid, CoverTexel};
 use precip_model::drag::MAX_SUBSTEP_S;
 use precip_model::gpu::{DispatchOver, INIT_PASS, dispatch_size};
+use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
 use precip_model::{
     Backend, BackendError, BackendInfo, Camera, Image, Particle, Setup, TimingSource, Timings,
@@ -28,6 +30,8 @@ struct State {
     wind: WindVolume,
     camera: Camera,
     resources: Resources,
+    /// Step uniforms of the current weather; sub-steps set camera, dt and time.
+    step_template: StepParams,
     time_s: f64,
 }
 
@@ -139,6 +143,7 @@ impl Backend for WgpuBackend {
         let count = world + camera;
         let gpu = &self.gpu;
         let pipelines = &self.pipelines;
+        let step_template = setup.step_params(&setup.weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
         let resources = scoped(gpu, "configure", || {
             let resources = Resources::new(
                 gpu,
@@ -149,8 +154,7 @@ impl Backend for WgpuBackend {
                 &setup.frames(),
                 &wind,
             );
-            let params =
-                setup.step_params(&setup.weather, setup.camera.position_m, MAX_SUBSTEP_S, 0.0);
+            let params = step_template.at(setup.camera.position_m, MAX_SUBSTEP_S, 0.0);
             gpu.queue
                 .write_buffer(&resources.step_uniforms, 0, bytemuck::bytes_of(&params));
             let mut encoder = gpu
@@ -181,6 +185,7 @@ impl Backend for WgpuBackend {
             wind,
             camera: setup.camera,
             resources,
+            step_template,
             time_s: 0.0,
         });
         Ok(())
@@ -199,6 +204,9 @@ impl Backend for WgpuBackend {
         }
         state.resources.write_wind_params(&gpu, &wind.gpu_params());
         state.wind = wind;
+        state.step_template = state
+            .setup
+            .step_params(weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
         state.weather = *weather;
         Ok(())
     }
@@ -227,10 +235,9 @@ impl Backend for WgpuBackend {
         let mut time_s = state.time_s;
         for k in 0..count as usize {
             let at = k * stride as usize;
-            let step =
-                state
-                    .setup
-                    .step_params(&state.weather, state.camera.position_m, h, time_s as f32);
+            let step = state
+                .step_template
+                .at(state.camera.position_m, h, time_s as f32);
             let cover = state.setup.cover_step_params(&state.weather, h);
             step_blocks[at..at + size_of_val(&step)].copy_from_slice(bytemuck::bytes_of(&step));
             cover_blocks[at..at + size_of_val(&cover)].copy_from_slice(bytemuck::bytes_of(&cover));

@@ -226,7 +226,9 @@ impl Setup {
         }
     }
 
-    /// The uniform block of a step of `dt_s` starting at `time_s` under `weather` with
+    /// The uniform block of a step of `dt_s` (it scans the ground map for its floor:
+    /// compute it once per weather change and set the per-sub-step fields with
+    /// [`StepParams::at`]) starting at `time_s` under `weather` with
     /// the camera volume centred at `camera_centre_m`.
     #[must_use]
     pub fn step_params(
@@ -267,7 +269,7 @@ impl Setup {
             ),
             seed: self.seed,
             world_count,
-            particle_count: world_count + camera_count,
+            particle_count: world_count.saturating_add(camera_count),
             snow_is_wet: u32::from(weather.snow_is_wet()),
             air_temperature_c: weather.air_temperature_c,
             rain_slope_per_mm: marshall_palmer_slope_per_mm(if rain_rate > 0.0 {

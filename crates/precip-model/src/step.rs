@@ -82,6 +82,20 @@ pub struct StepParams {
 }
 const _: () = assert!(size_of::<StepParams>() == 192);
 
+impl StepParams {
+    /// This block for one sub-step: the per-sub-step fields set, the rest (weather,
+    /// emitter, grids; computed once per configure or weather change) kept.
+    #[must_use]
+    pub fn at(self, camera_centre_m: Vec3, dt_s: f32, time_s: f32) -> Self {
+        Self {
+            camera_centre_m,
+            dt_s,
+            time_s,
+            ..self
+        }
+    }
+}
+
 /// The buffers and fields a step reads and the deposit buffer it adds to.
 #[derive(Debug, Clone, Copy)]
 pub struct StepInputs<'a> {

@@ -11,6 +11,7 @@
 
 use std::time::Instant;
 
+use glam::Vec3;
 use precip_cover::{CoverGrid, DepositBuffer};
 use precip_wind::WindVolume;
 use rayon::prelude::*;
@@ -22,7 +23,7 @@ use crate::drag::MAX_SUBSTEP_S;
 use crate::error::BackendError;
 use crate::particle::Particle;
 use crate::setup::Setup;
-use crate::step::{StepInputs, step_particle};
+use crate::step::{StepInputs, StepParams, step_particle};
 use crate::weather::Weather;
 
 /// The most particles the CPU backend holds (5.4 GB of particle state).
@@ -41,6 +42,8 @@ struct State {
     particles: Vec<Particle>,
     cover: CoverGrid,
     deposits: DepositBuffer,
+    /// Step uniforms of the current weather; sub-steps set camera, dt and time.
+    step_template: StepParams,
     time_s: f64,
 }
 
@@ -105,6 +108,7 @@ impl Backend for CpuBackend {
             particles,
             cover,
             deposits,
+            step_template: params,
             time_s: 0.0,
         });
         self.timings = vec![PassTiming {
@@ -128,6 +132,9 @@ impl Backend for CpuBackend {
         } else {
             state.wind.set_mean_wind(weather.wind.mean_wind_mps);
         }
+        state.step_template = state
+            .setup
+            .step_params(weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
         state.weather = *weather;
         self.timings = timings;
         Ok(())
@@ -145,12 +152,9 @@ impl Backend for CpuBackend {
         let (mut particle_ms, mut cover_ms) = (0.0, 0.0);
         for _ in 0..count {
             let start = Instant::now();
-            let params = state.setup.step_params(
-                &state.weather,
-                state.camera.position_m,
-                h,
-                state.time_s as f32,
-            );
+            let params = state
+                .step_template
+                .at(state.camera.position_m, h, state.time_s as f32);
             let inputs = StepInputs {
                 params: &params,
                 wind: &state.wind,
