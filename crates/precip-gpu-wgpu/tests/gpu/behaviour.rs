@@ -1,7 +1,7 @@
 //! The wgpu backend on its own: determinism, the mass link, bad input, timings,
 //! and running on a device the caller owns.
 
-mod common;
+use crate::common;
 
 use precip_gpu_wgpu::{GpuDevice, WgpuBackend};
 use precip_model::cover::CoverFeed;

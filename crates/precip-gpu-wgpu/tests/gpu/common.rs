@@ -1,9 +1,5 @@
 //! Helpers for the GPU tests: run on every adapter found, skip loudly without one
 //! (fail instead when `PRECIP_REQUIRE_GPU=1`), and compare with the CPU reference.
-#![allow(
-    dead_code,
-    reason = "each test file uses a different subset of the helpers"
-)]
 
 use precip_gpu_wgpu::{WgpuBackend, adapters};
 use precip_model::{Backend, CpuBackend, Particle, Setup};

@@ -9,7 +9,7 @@
 //! a particle whose discrete decision (landing or re-birth) flipped between the two
 //! shows as a different generation and is counted, and must stay at most 0.1 %.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use precip_model::cover::CoverGrid;

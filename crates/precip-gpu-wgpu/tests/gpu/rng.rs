@@ -1,6 +1,6 @@
 //! The WGSL hash equals the Rust hash, bit for bit, for many keys.
 
-mod common;
+use crate::common;
 
 use precip_gpu_wgpu::pipelines::shader_module;
 use precip_gpu_wgpu::readback::read_buffer;

@@ -1,6 +1,6 @@
 //! Bad input gives the typed error and leaves the backend as it was.
 
-mod common;
+use crate::common;
 
 use precip_model::wind::WindField;
 use precip_model::{

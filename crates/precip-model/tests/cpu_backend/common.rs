@@ -1,8 +1,4 @@
 //! Helpers shared by the CPU backend's integration tests.
-#![allow(
-    dead_code,
-    reason = "each test file uses a different subset of the helpers"
-)]
 
 use precip_model::cover::CoverGrid;
 use precip_model::{Backend, CpuBackend, Particle, Setup};

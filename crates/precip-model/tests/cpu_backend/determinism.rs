@@ -1,7 +1,7 @@
 //! The same seed gives bit-identical particles and cover; another seed does not; a
 //! long step equals its sub-steps.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use precip_model::wind::WindField;

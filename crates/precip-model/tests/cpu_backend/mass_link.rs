@@ -1,7 +1,7 @@
 //! The mass link: particles falling on flat eligible ground deposit, per m² per hour,
 //! the weather's intensity (within 5 %).
 
-mod common;
+use crate::common;
 
 use precip_model::cover::CoverFeed;
 use precip_model::{Backend, PrecipitationKind, Setup, Weather};

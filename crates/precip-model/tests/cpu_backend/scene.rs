@@ -1,6 +1,6 @@
 //! The CPU reference in a scene: roofs, masked ground, wind, the camera volume, melt.
 
-mod common;
+use crate::common;
 
 use glam::{UVec2, Vec2, Vec3};
 use precip_model::cover::{CoverFeed, GridFrame};

@@ -1,0 +1,8 @@
+//! The wgpu backend on every adapter found: one test binary (its modules share
+//! helpers). Without an adapter the tests print why and pass, unless
+//! `PRECIP_REQUIRE_GPU=1`.
+
+mod behaviour;
+mod common;
+mod equivalence;
+mod rng;

@@ -1,0 +1,7 @@
+//! The CPU reference backend end to end: one test binary (its modules share helpers).
+
+mod bad_input;
+mod common;
+mod determinism;
+mod mass_link;
+mod scene;
