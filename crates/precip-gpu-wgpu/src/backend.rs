@@ -1,5 +1,5 @@
-//! [`WgpuBackend`]: the [`Backend`] over wgpu (compute half: configure, weather, step,
-//! read-back, timings). Rendering arrives with the rendering issue.
+//! [`WgpuBackend`]: the [`Backend`] over wgpu: configure, weather, step, render (see
+//! [`crate::render`]), read-back and timings.
 
 use glam::Vec3;
 use precip_model::cover::{CoverGrid, CoverTexel};
@@ -16,8 +16,14 @@ use crate::conv::{NAME, map_scope_error};
 use crate::device::GpuDevice;
 use crate::pipelines::Pipelines;
 use crate::readback::read_buffer;
+use crate::render::frame::FrameResources;
+use crate::render::scene::SceneGpu;
+use crate::render::stamps::RenderStamps;
+use crate::render::target::{ColourTarget, DepthBuffer, OFFSCREEN_FORMAT};
+use crate::render::{FrameTarget, RenderState, Renderer, encode_frame};
 use crate::resources::{Resources, upload_wind};
 use crate::timestamps::Timestamps;
+use precip_model::render::{FrameInputs, RenderParams, validate_view};
 
 /// Bytes of one particle on the GPU.
 const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
@@ -33,6 +39,8 @@ struct State {
     /// Step uniforms of the current weather; sub-steps set camera, dt and time.
     step_template: StepParams,
     time_s: f64,
+    /// Drawing's resources, made on the first render.
+    render: Option<RenderState>,
 }
 
 /// precip on wgpu.
@@ -41,6 +49,8 @@ pub struct WgpuBackend {
     gpu: GpuDevice,
     pipelines: Pipelines,
     timestamps: Option<Timestamps>,
+    render_stamps: Option<RenderStamps>,
+    renderer: Option<Renderer>,
     state: Option<State>,
 }
 
@@ -74,10 +84,13 @@ impl WgpuBackend {
     pub fn with_device(gpu: GpuDevice) -> Self {
         let pipelines = Pipelines::new(&gpu.device);
         let timestamps = Timestamps::new(&gpu);
+        let render_stamps = RenderStamps::new(&gpu);
         Self {
             gpu,
             pipelines,
             timestamps,
+            render_stamps,
+            renderer: None,
             state: None,
         }
     }
@@ -119,13 +132,146 @@ impl WgpuBackend {
     }
 }
 
+impl WgpuBackend {
+    /// Draws a frame for `view` into the caller's `target` (a window surface's texture,
+    /// of `format` and `view`'s size); the caller presents it. `read_image` still reads
+    /// the last offscreen `render`.
+    pub fn render_to(
+        &mut self,
+        view: &View,
+        target: &wgpu::TextureView,
+        format: wgpu::TextureFormat,
+    ) -> Result<(), BackendError> {
+        self.draw(view, Some((target, format)))
+    }
+
+    /// The frame: into `external` when given, else into the offscreen target.
+    fn draw(
+        &mut self,
+        view: &View,
+        external: Option<(&wgpu::TextureView, wgpu::TextureFormat)>,
+    ) -> Result<(), BackendError> {
+        validate_view(view)?;
+        let max = self.gpu.device.limits().max_texture_dimension_2d;
+        if view.width_px > max || view.height_px > max {
+            return Err(BackendError::InvalidView(format!(
+                "{}×{} px exceeds this device's largest texture ({max} px a side): render smaller",
+                view.width_px, view.height_px
+            )));
+        }
+        let gpu = self.gpu.clone();
+        let state = self.state.as_mut().ok_or(BackendError::NotConfigured {
+            operation: "render",
+        })?;
+        let format = external.map_or(OFFSCREEN_FORMAT, |(_, f)| f);
+        let renderer = self
+            .renderer
+            .get_or_insert_with(|| Renderer::new(&gpu.device));
+        scoped(&gpu, "preparing to render", || {
+            renderer.prepare_format(&gpu.device, format);
+        })?;
+        if state.render.is_none() {
+            let settings = &state.setup.render;
+            let scene = match &state.setup.scene {
+                Some(scene) => Some(SceneGpu::upload(&gpu, &renderer.layouts, scene, settings)?),
+                None => None,
+            };
+            let frame = scoped(&gpu, "preparing to render", || {
+                FrameResources::new(
+                    &gpu,
+                    &renderer.layouts,
+                    &state.resources,
+                    settings.shadow_map_px,
+                )
+            })?;
+            state.render = Some(RenderState {
+                scene,
+                frame,
+                offscreen: None,
+                depth: None,
+                rendered: false,
+            });
+        }
+        let Some(render) = state.render.as_mut() else {
+            return Err(BackendError::NotConfigured {
+                operation: "render",
+            });
+        };
+        let size = (view.width_px, view.height_px);
+        if external.is_none() && render.offscreen.as_ref().is_none_or(|t| t.size != size) {
+            render.offscreen = Some(ColourTarget::new(&gpu, size.0, size.1));
+        }
+        if render.depth.as_ref().is_none_or(|d| d.size != size) {
+            render.depth = Some(DepthBuffer::new(&gpu, size.0, size.1));
+        }
+        let setup = &state.setup;
+        let params = RenderParams::new(&FrameInputs {
+            view,
+            weather: &state.weather,
+            settings: &setup.render,
+            cover_params: &setup.cover.params,
+            ground: setup.ground.frame,
+            cover: setup.cover.frame,
+            shadow_bounds_m: setup.scene_bounds_m(),
+            time_s: state.time_s as f32,
+            particle_count: state.resources.particle_count,
+            cull_groups: render.frame.cull_groups,
+        });
+        let stamps = self.render_stamps.as_ref();
+        let draws = renderer.draws(format);
+        let render_ref = &*render;
+        scoped(&gpu, "render", || {
+            let (Some(draws), Some(depth)) = (draws, render_ref.depth.as_ref()) else {
+                return;
+            };
+            let colour = match (external, render_ref.offscreen.as_ref()) {
+                (Some((view, _)), _) => view,
+                (None, Some(target)) => &target.view,
+                (None, None) => return,
+            };
+            gpu.queue
+                .write_buffer(&render_ref.frame.params, 0, bytemuck::bytes_of(&params));
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("precip frame"),
+                });
+            encode_frame(
+                &mut encoder,
+                draws,
+                &renderer.cull,
+                render_ref,
+                FrameTarget {
+                    colour,
+                    depth: &depth.view,
+                    sky: setup.render.sky_colour,
+                },
+                stamps,
+                state.resources.particle_count,
+            );
+            if let Some(s) = stamps {
+                s.resolve(&mut encoder);
+            }
+            gpu.queue.submit([encoder.finish()]);
+        })?;
+        if let Some(s) = self.render_stamps.as_mut() {
+            s.written = true;
+        }
+        if external.is_none() {
+            render.rendered = true;
+        }
+        let _ = gpu.device.poll(wgpu::PollType::Poll);
+        Ok(())
+    }
+}
+
 impl Backend for WgpuBackend {
     fn info(&self) -> BackendInfo {
         BackendInfo {
             name: NAME,
             device: self.gpu.describe(),
             max_particles: self.max_particles(),
-            renders: false,
+            renders: true,
         }
     }
 
@@ -187,7 +333,11 @@ impl Backend for WgpuBackend {
             resources,
             step_template,
             time_s: 0.0,
+            render: None,
         });
+        if let Some(s) = self.render_stamps.as_mut() {
+            s.written = false;
+        }
         Ok(())
     }
 
@@ -277,6 +427,7 @@ impl Backend for WgpuBackend {
                             DispatchOver::CoverTexels => {
                                 (&resources.cover_bind_group, resources.cover_texel_count)
                             }
+                            DispatchOver::OneWorkgroup => (&resources.step_bind_group, 1),
                         };
                         pass.set_pipeline(pipeline);
                         pass.set_bind_group(0, bind_group, &[offset]);
@@ -301,11 +452,8 @@ impl Backend for WgpuBackend {
         Ok(())
     }
 
-    fn render(&mut self, _view: &View) -> Result<(), BackendError> {
-        Err(BackendError::NotSupported {
-            backend: NAME,
-            operation: "render (not yet: the rendering issue adds it)",
-        })
+    fn render(&mut self, view: &View) -> Result<(), BackendError> {
+        self.draw(view, None)
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {
@@ -338,19 +486,33 @@ impl Backend for WgpuBackend {
     }
 
     fn read_image(&mut self) -> Result<Image, BackendError> {
-        Err(BackendError::NotSupported {
-            backend: NAME,
-            operation: "read_image (not yet: the rendering issue adds it)",
-        })
+        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
+            operation: "read_image",
+        })?;
+        match state.render.as_ref() {
+            Some(RenderState {
+                offscreen: Some(target),
+                rendered: true,
+                ..
+            }) => target.read(&self.gpu),
+            _ => Err(BackendError::NothingRendered),
+        }
     }
 
     fn timings(&mut self) -> Result<Timings, BackendError> {
-        match &self.timestamps {
-            Some(t) => t.read(&self.gpu),
-            None => Ok(Timings {
+        let mut timings = match &self.timestamps {
+            Some(t) => t.read(&self.gpu)?,
+            None => Timings {
                 source: TimingSource::Unavailable,
                 passes: Vec::new(),
-            }),
+            },
+        };
+        if let Some(stamps) = &self.render_stamps {
+            timings.passes.extend(stamps.read(&self.gpu)?);
+            if !timings.passes.is_empty() {
+                timings.source = TimingSource::GpuTimestamps;
+            }
         }
+        Ok(timings)
     }
 }

@@ -13,6 +13,8 @@
 //! - [`timestamps`] — GPU timestamp queries per kernel, where the adapter has them.
 //! - [`readback`] — copying a buffer back (tests and tools; never the frame loop).
 //! - [`conv`] — pure conversions of wgpu errors into [`BackendError`](precip_model::BackendError).
+//! - [`render`] — drawing: scene with cover, culling, sprites and tetrahedra, shadows,
+//!   fog; offscreen targets and read-back.
 //! - [`backend`] — [`WgpuBackend`].
 //!
 //! ## Frames
@@ -26,6 +28,7 @@ pub mod conv;
 pub mod device;
 pub mod pipelines;
 pub mod readback;
+pub mod render;
 pub mod resources;
 pub mod timestamps;
 

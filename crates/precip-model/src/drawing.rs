@@ -16,17 +16,163 @@ use glam::Vec3;
 /// down or up (`Y ∥ N`), Z stands in for Y. `None` when the camera is at the centre.
 #[must_use]
 pub fn snow_sprite_corners(centre_m: Vec3, camera_m: Vec3, side_m: f32) -> Option<[Vec3; 4]> {
+    snow_sprite_corners_turned(centre_m, camera_m, side_m, 0.0, 1.0)
+}
+
+/// The sprite of [`snow_sprite_corners`] turned by `spin_rad` in its plane and with its
+/// `B` side foreshortened by `tumble ∈ (0, 1]`: how a tumbling flake's silhouette
+/// changes (the seeds' r0/r rotation, which seed 003 names as missing). `A' = cos·A +
+/// sin·B`, `B' = tumble·(cos·B − sin·A)`, then the seed's corners with `A'`, `B'`.
+///
+/// WGSL twin: `snow_sprite_corner` in drawing.wgsl.
+#[must_use]
+pub fn snow_sprite_corners_turned(
+    centre_m: Vec3,
+    camera_m: Vec3,
+    side_m: f32,
+    spin_rad: f32,
+    tumble: f32,
+) -> Option<[Vec3; 4]> {
     let n = (camera_m - centre_m).try_normalize()?;
     let a = Vec3::Y
         .cross(n)
         .try_normalize()
         .or_else(|| Vec3::Z.cross(n).try_normalize())?;
     let b = n.cross(a).normalize();
+    let (sin, cos) = spin_rad.sin_cos();
+    let (a, b) = (cos * a + sin * b, tumble * (cos * b - sin * a));
     let v0 = centre_m + 0.5 * side_m * (a - b);
     let v1 = v0 + side_m * b;
     let v2 = v0 - side_m * a;
     let v3 = v1 - side_m * a;
     Some([v0, v1, v2, v3])
+}
+
+/// A flake's in-plane spin and tumble from its rotation state: orientation
+/// `o = r0 + r`, spin `o.y + o.z`, tumble `max(|cos o.x|, 0.3)`.
+///
+/// WGSL twin: `flake_spin_tumble` in drawing.wgsl.
+#[must_use]
+pub fn flake_spin_tumble(rotation0_rad: Vec3, rotation_rad: Vec3) -> (f32, f32) {
+    let o = rotation0_rad + rotation_rad;
+    (o.y + o.z, o.x.cos().abs().max(MIN_TUMBLE))
+}
+
+/// The narrowest a tumbling flake's sprite gets, relative to its side.
+pub const MIN_TUMBLE: f32 = 0.3;
+
+/// How big a sprite is drawn: the flake's diameter times `scale` (the seed's designer
+/// size), but never under `min_px` pixels; a sprite enlarged to `min_px` keeps the
+/// light of the flake it stands for (opacity × area ratio), not less than
+/// `min_opacity`. `pixel_angle_rad` is the angle one pixel spans at the image centre.
+/// Returns `(side_m, opacity)`.
+///
+/// WGSL twin: `snow_sprite_sizing` in drawing.wgsl.
+#[must_use]
+pub fn snow_sprite_sizing(
+    diameter_m: f32,
+    distance_m: f32,
+    pixel_angle_rad: f32,
+    sizing: &SpriteSizing,
+) -> (f32, f32) {
+    let side = diameter_m * sizing.snow_scale;
+    let min_side = sizing.min_px * pixel_angle_rad * distance_m;
+    if side >= min_side {
+        (side, 1.0)
+    } else {
+        let ratio = side / min_side;
+        (min_side, (ratio * ratio).max(sizing.min_opacity))
+    }
+}
+
+/// How particles are sized on screen.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpriteSizing {
+    /// Sprite side per flake diameter (the seed's designer size s).
+    pub snow_scale: f32,
+    /// Smallest sprite or streak width, px.
+    pub min_px: f32,
+    /// Lowest opacity of an enlarged sprite or streak.
+    pub min_opacity: f32,
+    /// The seed's k·s for rain: streak length per speed, s (an exposure time).
+    pub rain_streak_s: f32,
+}
+
+impl Default for SpriteSizing {
+    fn default() -> Self {
+        Self {
+            snow_scale: 3.0,
+            min_px: 1.5,
+            min_opacity: 0.15,
+            rain_streak_s: 1.0 / 40.0,
+        }
+    }
+}
+
+/// A raindrop streak's height and base: `h = k·s·|v|`, base `a = 0.1·h` but never
+/// under `min_px` pixels, opacity scaled by `0.1·h / a` (not under `min_opacity`).
+/// Returns `(h_m, a_m, opacity_factor)`.
+///
+/// WGSL twin: `raindrop_sizing` in drawing.wgsl.
+#[must_use]
+pub fn raindrop_sizing(
+    speed_mps: f32,
+    distance_m: f32,
+    pixel_angle_rad: f32,
+    sizing: &SpriteSizing,
+) -> (f32, f32, f32) {
+    let h = sizing.rain_streak_s * speed_mps;
+    let a = 0.1 * h;
+    let min_a = sizing.min_px * pixel_angle_rad * distance_m;
+    if a >= min_a {
+        (h, a, 1.0)
+    } else {
+        (h, min_a, (a / min_a).max(sizing.min_opacity))
+    }
+}
+
+/// A grey-scale opacity texture of a six-armed dendritic flake, `side_px²` bytes
+/// (white opaque, black transparent, rows top to bottom): a soft core, six arms with
+/// side branches, fading toward the rim.
+#[must_use]
+pub fn snowflake_opacity(side_px: u32) -> Vec<u8> {
+    let side = side_px.max(2);
+    let mut out = Vec::with_capacity((side * side) as usize);
+    for y in 0..side {
+        for x in 0..side {
+            let p = (glam::Vec2::new(x as f32, y as f32) + 0.5) / side as f32 * 2.0 - 1.0;
+            let r = p.length();
+            let core = 1.0 - smoothstep(0.12, 0.3, r);
+            // Distance to the nearest of six arms (angle folded into one 60° sector).
+            let sector = std::f32::consts::PI / 3.0;
+            let angle = p.y.atan2(p.x).rem_euclid(sector) - 0.5 * sector;
+            let along = r * angle.cos();
+            let across = (r * angle.sin()).abs();
+            let arm = 1.0 - smoothstep(0.03, 0.09, across);
+            // Side branches: at 0.45 and 0.7 of the radius, 60° off the arm.
+            let branch = [0.45f32, 0.7]
+                .iter()
+                .map(|&at| {
+                    let d = along - at;
+                    let off = (d * 0.5 - across * 0.866).abs();
+                    if d > 0.0 && d < 0.2 {
+                        1.0 - smoothstep(0.02, 0.06, off)
+                    } else {
+                        0.0
+                    }
+                })
+                .fold(0.0f32, f32::max);
+            let rim = 1.0 - smoothstep(0.8, 1.0, r);
+            let value = core.max(arm.max(branch) * rim);
+            out.push((value.clamp(0.0, 1.0) * 255.0).round() as u8);
+        }
+    }
+    out
+}
+
+fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
+    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
 }
 
 /// Texture coordinates of the sprite's strip V0 V1 V2 V3.
@@ -52,15 +198,28 @@ pub fn raindrop_tetrahedron(
     size: f32,
     speed_factor: f32,
 ) -> Option<RainTetrahedron> {
-    let speed = velocity_mps.length();
+    let h = speed_factor * size * velocity_mps.length();
+    raindrop_tetrahedron_sized(centre_m, velocity_mps, h, 0.1 * h)
+}
+
+/// The tetrahedron with height `h_m` and base side `a_m` given (the renderer widens
+/// the base of distant drops to a pixel, [`raindrop_sizing`]). `None` for a drop at
+/// rest.
+///
+/// WGSL twin: `raindrop_vertex` in drawing.wgsl.
+#[must_use]
+pub fn raindrop_tetrahedron_sized(
+    centre_m: Vec3,
+    velocity_mps: Vec3,
+    h: f32,
+    a: f32,
+) -> Option<RainTetrahedron> {
     let e_y = (-velocity_mps).try_normalize()?;
     let e_z = Vec3::X
         .cross(e_y)
         .try_normalize()
         .or_else(|| Vec3::Z.cross(e_y).try_normalize())?;
     let e_x = e_y.cross(e_z).normalize();
-    let h = speed_factor * size * speed;
-    let a = 0.1 * h;
     let r = 3f32.sqrt() / 3.0 * a;
     let v0 = centre_m + h * e_y;
     let v1 = centre_m - 0.5 * r * e_x - 0.5 * a * e_z;
@@ -77,6 +236,10 @@ pub fn raindrop_tetrahedron(
         ],
     })
 }
+
+/// The tetrahedron's four faces as vertex numbers, outward-facing order irrelevant
+/// (drawn two-sided): triangle list of 12 vertices.
+pub const RAIN_TETRAHEDRON_FACES: [u32; 12] = [0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2];
 
 /// The right side of the view-cone test, computed once per frame:
 /// `(1 + tan²(α/2) + tan²(β/2))^(−1/2)` for horizontal and vertical fields of view.

@@ -85,6 +85,15 @@ pub enum BackendError {
     /// A camera with non-finite or degenerate values.
     #[error("invalid camera: {0}")]
     InvalidCamera(&'static str),
+    /// A render target or view that cannot be drawn.
+    #[error("invalid view: {0}")]
+    InvalidView(String),
+    /// The scene cannot be used.
+    #[error("scene: {0}")]
+    Scene(#[from] crate::scene::SceneError),
+    /// Nothing has been rendered yet.
+    #[error("read_image needs a rendered frame: call render(&view) first")]
+    NothingRendered,
     /// The call needs `configure` first.
     #[error("{operation} needs a configured backend: call configure(&setup) first")]
     NotConfigured {

@@ -47,6 +47,8 @@ pub enum DispatchOver {
     Particles,
     /// One invocation per cover texel.
     CoverTexels,
+    /// A single workgroup.
+    OneWorkgroup,
 }
 
 /// One kernel of the frame.
@@ -88,6 +90,132 @@ pub const SUBSTEP_PASSES: [KernelPass; 3] = [
         over: DispatchOver::CoverTexels,
     },
 ];
+
+/// The culling kernels of a frame, in order; `cull_scan` runs as one workgroup,
+/// the others over the particles' workgroups (the same count `dispatch_size` gives).
+pub const CULL_PASSES: [KernelPass; 3] = [
+    KernelPass {
+        program: Program::CullParticles,
+        entry_point: "cull_count",
+        over: DispatchOver::Particles,
+    },
+    KernelPass {
+        program: Program::CullParticles,
+        entry_point: "cull_scan",
+        over: DispatchOver::OneWorkgroup,
+    },
+    KernelPass {
+        program: Program::CullParticles,
+        entry_point: "cull_write",
+        over: DispatchOver::Particles,
+    },
+];
+
+/// The draws of a frame, in order, each a vertex and fragment entry point of
+/// [`Program::Render`]. The shadow pass writes depth only (no fragment stage).
+pub mod render_passes {
+    /// Sun's depth: the scene's displaced geometry.
+    pub const SHADOW: (&str, Option<&str>) = ("vs_shadow", None);
+    /// The scene with its cover.
+    pub const SCENE: (&str, Option<&str>) = ("vs_scene", Some("fs_scene"));
+    /// Snow sprites: triangle strip of 4 vertices per drawn particle, indirect draw 0.
+    pub const SNOW: (&str, Option<&str>) = ("vs_snow", Some("fs_snow"));
+    /// Rain tetrahedra: triangle list of 12 vertices per drawn particle, indirect draw 1.
+    pub const RAIN: (&str, Option<&str>) = ("vs_rain", Some("fs_rain"));
+}
+
+/// Workgroups of the culling kernels for `particle_count` particles: every
+/// workgroup of the 2D dispatch, padding included (`RenderParams.counts.z`).
+#[must_use]
+pub fn cull_groups(particle_count: u32) -> u32 {
+    let (x, y) = dispatch_size(particle_count);
+    x * y
+}
+
+/// Bindings of [`Program::CullParticles`], group 0.
+pub mod cull_bindings {
+    /// `RenderParams`, uniform.
+    pub const PARAMS: u32 = 0;
+    /// Particles, read-only storage.
+    pub const PARTICLES: u32 = 1;
+    /// Per-workgroup counts, then offsets: `array<vec2<u32>>`, one per cull workgroup.
+    pub const GROUP_COUNTS: u32 = 2;
+    /// The drawn lists: `array<u32>` of 2 × particle count.
+    pub const DRAWN: u32 = 3;
+    /// The two indirect draws (snow, rain), `array<DrawArgs, 2>`, 32 bytes.
+    pub const DRAWS: u32 = 4;
+}
+
+/// Bindings of [`Program::Render`].
+pub mod render_bindings {
+    /// Group 0 (the frame; vertex and fragment): `RenderParams`, uniform.
+    pub const PARAMS: u32 = 0;
+    /// Group 0: cover texels, read-only storage.
+    pub const COVER: u32 = 1;
+    /// Group 0: ground heights, read-only storage.
+    pub const GROUND_HEIGHT: u32 = 2;
+    /// Group 0: particles, read-only storage.
+    pub const PARTICLES: u32 = 3;
+    /// Group 0: the drawn lists, read-only storage.
+    pub const DRAWN: u32 = 4;
+    /// Group 1 (light): the shadow map, `texture_depth_2d`.
+    pub const SHADOW_MAP: u32 = 0;
+    /// Group 1: its comparison sampler (less-equal, linear).
+    pub const SHADOW_SAMPLER: u32 = 1;
+    /// Group 1: the flake's opacity, `texture_2d<f32>` (R8).
+    pub const FLAKE_OPACITY: u32 = 2;
+    /// Group 1: its sampler (linear, clamped).
+    pub const FLAKE_SAMPLER: u32 = 3;
+    /// Group 2 (material): `Material { base_colour: vec4 }`, uniform.
+    pub const MATERIAL: u32 = 0;
+    /// Group 2: base-colour texture (sRGB).
+    pub const BASE_COLOUR_TEXTURE: u32 = 1;
+    /// Group 2: its sampler (linear, repeat).
+    pub const MATERIAL_SAMPLER: u32 = 2;
+    /// The shadow map's format.
+    pub const SHADOW_FORMAT_NAME: &str = "Depth32Float";
+}
+
+/// Vertex layout of the scene: position (3 × f32), normal (3 × f32), uv (2 × f32),
+/// snow eligibility (f32); 36 bytes. WGSL: `SceneVertex` in render_scene.wgsl.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct SceneVertex {
+    /// Position, m.
+    pub position_m: [f32; 3],
+    /// Unit normal.
+    pub normal: [f32; 3],
+    /// Texture coordinates.
+    pub uv: [f32; 2],
+    /// Snow eligibility, `[0, 1]`.
+    pub eligibility: f32,
+}
+const _: () = assert!(size_of::<SceneVertex>() == 36);
+
+/// One input of the `probe_drawing` test kernel (64 bytes). WGSL: `ProbeDrawing`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct ProbeDrawing {
+    /// Particle centre, m.
+    pub centre_m: [f32; 3],
+    /// Sprite side, m.
+    pub side_m: f32,
+    /// Camera, m.
+    pub camera_m: [f32; 3],
+    /// Sprite spin, rad.
+    pub spin_rad: f32,
+    /// Drop velocity, m/s.
+    pub velocity_mps: [f32; 3],
+    /// Sprite tumble.
+    pub tumble: f32,
+    /// Tetrahedron height, m.
+    pub h_m: f32,
+    /// Tetrahedron base side, m.
+    pub a_m: f32,
+    /// Unused.
+    pub reserved: [f32; 2],
+}
+const _: () = assert!(size_of::<ProbeDrawing>() == 64);
 
 /// Bindings of [`Program::StepParticles`], group 0.
 pub mod step_bindings {
@@ -135,6 +263,18 @@ mod tests {
                 .chain([&INIT_PASS])
                 .any(|k| k.entry_point == name)
         };
+        for kernel in CULL_PASSES {
+            assert!(kernel.program.entry_points().contains(&kernel.entry_point));
+        }
+        for (vs, fs) in [
+            render_passes::SHADOW,
+            render_passes::SCENE,
+            render_passes::SNOW,
+            render_passes::RAIN,
+        ] {
+            assert!(Program::Render.entry_points().contains(&vs));
+            assert!(fs.is_none_or(|f| Program::Render.entry_points().contains(&f)));
+        }
         for program in [Program::StepParticles, Program::CoverUpdate] {
             for name in program.entry_points() {
                 assert!(in_recipe(name), "{name} of {program:?} is never dispatched");

@@ -9,8 +9,11 @@
 //! - Particles (MODEL.md §1): [`particle`] (the GPU layout), [`rng`] (counter-based
 //!   random numbers), [`emitter`] (world emitter, camera volume), [`birth`],
 //!   [`step`] (one particle's step), [`ground`] (what particles land on).
-//! - Scenes: [`scene`] (the neutral triangle scene, validated, with slope eligibility).
-//! - Drawing (MODEL.md §5): [`drawing`] (sprite, tetrahedron, view cone, lighting, fog).
+//! - Scenes: [`scene`] (the neutral triangle scene, validated, with slope eligibility),
+//!   [`top_down`] (its ground map), [`tessellate`] (vertices for the snow's
+//!   displacement), [`builtin`] (a house on a plane).
+//! - Drawing (MODEL.md §5): [`drawing`] (sprite, tetrahedron, view cone, lighting, fog),
+//!   [`render`] (settings and the per-frame block of the renderers).
 //! - Contract: [`backend`] (the trait), [`setup`], [`camera`], [`error`].
 //! - [`cpu`] — the reference backend.
 //! - GPU: [`shaders`] (the WGSL sources, joined per program), [`gpu`] (the frame
@@ -22,6 +25,7 @@
 
 pub mod backend;
 pub mod birth;
+pub mod builtin;
 pub mod camera;
 pub mod cpu;
 pub mod drag;
@@ -32,6 +36,7 @@ pub mod gpu;
 pub mod ground;
 pub mod particle;
 pub mod raindrop;
+pub mod render;
 pub mod rng;
 pub mod rotation;
 pub mod scene;
@@ -40,6 +45,8 @@ pub mod shaders;
 pub mod snowfall;
 pub mod snowflake;
 pub mod step;
+pub mod tessellate;
+pub mod top_down;
 pub mod visibility;
 pub mod weather;
 
@@ -50,6 +57,7 @@ pub use emitter::{CameraVolume, WorldEmitter};
 pub use error::{BackendError, WeatherError};
 pub use ground::GroundMap;
 pub use particle::{Particle, ParticleKind, ParticleSource};
+pub use render::RenderSettings;
 pub use scene::{Material, Mesh, Scene, SceneError, SceneReport, TextureRgba8};
 pub use setup::{CameraVolumeSetup, CoverSetup, EmitterSetup, Setup};
 pub use weather::{PrecipitationKind, Weather};

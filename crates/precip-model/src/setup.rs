@@ -1,6 +1,8 @@
 //! [`Setup`]: everything `configure` needs, validated once at the boundary, and the
 //! derived values every backend computes the same way (cover grid, step uniforms).
 
+use std::sync::Arc;
+
 use glam::{UVec2, Vec2, Vec3};
 use precip_cover::{
     CoverFeed, CoverGrid, CoverParams, CoverStepParams, GridFrame, generate_threshold_masks,
@@ -12,6 +14,8 @@ use crate::emitter::{CameraVolume, WorldEmitter};
 use crate::error::BackendError;
 use crate::ground::GroundMap;
 use crate::raindrop::marshall_palmer_slope_per_mm;
+use crate::render::RenderSettings;
+use crate::scene::{Scene, SceneReport};
 use crate::step::StepParams;
 use crate::weather::Weather;
 
@@ -86,6 +90,12 @@ pub struct Setup {
     pub wind_volume: WindVolumeSpec,
     /// The initial camera.
     pub camera: Camera,
+    /// The scene drawn under the precipitation, prepared ([`Scene::prepare`]); `None`
+    /// draws the precipitation alone. Its top-down view should be `ground`
+    /// ([`Setup::over_scene`] does both).
+    pub scene: Option<Arc<Scene>>,
+    /// How frames look.
+    pub render: RenderSettings,
 }
 
 impl Setup {
@@ -117,7 +127,80 @@ impl Setup {
             cover: CoverSetup::real_time(frame),
             wind_volume: WindVolumeSpec::default(),
             camera: Camera::default(),
+            scene: None,
+            render: RenderSettings::default(),
         }
+    }
+
+    /// Snowfall onto `scene`: the scene is prepared (validated, completed), the ground
+    /// map is its top-down view on a square grid of `texels` a side around it (with a
+    /// margin of a tenth of its size), the cover grid covers the same square at half
+    /// that resolution (each cover texel gathers four ground texels' landings, so the
+    /// pack is less grainy), and a world emitter
+    /// of `particle_count` particles covers it from `emitter_clearance_m` above its
+    /// highest point. The camera looks at the scene from the south-east.
+    pub fn over_scene(
+        scene: Scene,
+        texels: u32,
+        emitter_clearance_m: f32,
+        particle_count: u32,
+    ) -> Result<(Self, SceneReport), BackendError> {
+        let (scene, report) = scene.prepare()?;
+        let (lo, hi) = scene.bounds_m().ok_or(crate::scene::SceneError::Empty)?;
+        let centre = Vec2::new(0.5 * (lo.x + hi.x), 0.5 * (lo.z + hi.z));
+        let side = (hi.x - lo.x).max(hi.z - lo.z).max(1.0) * 1.1;
+        let frame = GridFrame::centred(centre, Vec2::splat(side), UVec2::splat(texels));
+        frame.validate("ground.frame")?;
+        let ground = GroundMap::from_scene(&scene, frame);
+        let top = hi.y + emitter_clearance_m.max(1.0);
+        let emitter =
+            WorldEmitter::horizontal(Vec3::new(centre.x, top, centre.y), side, side, top - lo.y);
+        let look_at = Vec3::new(centre.x, lo.y + 0.25 * (hi.y - lo.y), centre.y);
+        let eye = look_at + Vec3::new(0.45, 0.3, 0.75) * side * 0.6;
+        let setup = Self {
+            seed: 1,
+            weather: Weather::default(),
+            world_emitter: Some(EmitterSetup {
+                emitter,
+                particle_count,
+            }),
+            camera_volume: None,
+            ground,
+            cover: CoverSetup::real_time(GridFrame::centred(
+                centre,
+                Vec2::splat(side),
+                UVec2::splat((texels / 2).max(1)),
+            )),
+            wind_volume: WindVolumeSpec::default(),
+            camera: Camera {
+                position_m: eye,
+                forward: look_at - eye,
+                ..Camera::default()
+            },
+            scene: Some(Arc::new(scene)),
+            render: RenderSettings::default(),
+        };
+        Ok((setup, report))
+    }
+
+    /// The box the shadow map and the renderer must enclose: the scene's bounds, or
+    /// the ground map's area when there is no scene, m.
+    #[must_use]
+    pub fn scene_bounds_m(&self) -> (Vec3, Vec3) {
+        if let Some((lo, hi)) = self.scene.as_ref().and_then(|s| s.bounds_m()) {
+            return (lo, hi);
+        }
+        let f = self.ground.frame;
+        let floor = self.ground.floor_m();
+        let top = self.ground.height_m.iter().copied().fold(floor, f32::max);
+        (
+            Vec3::new(f.origin_m.x, floor, f.origin_m.y),
+            Vec3::new(
+                f.origin_m.x + f.size_m.x,
+                top + 1.0,
+                f.origin_m.y + f.size_m.y,
+            ),
+        )
     }
 
     /// World-emitter and camera-volume particle counts.
@@ -175,6 +258,11 @@ impl Setup {
         }
         self.wind_volume.validate()?;
         self.camera.validate()?;
+        self.render.validate()?;
+        if let Some(scene) = &self.scene {
+            // The same checks `prepare` makes (a prepared scene passes unchanged).
+            Scene::clone(scene).prepare()?;
+        }
         Ok(())
     }
 

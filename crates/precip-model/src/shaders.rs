@@ -45,6 +45,20 @@ pub const STEP_PARTICLES: ShaderFile = shader_file!("step_particles.wgsl");
 pub const COVER_UPDATE: ShaderFile = shader_file!("cover_update.wgsl");
 /// Test kernel `probe_rng`.
 pub const PROBE_RNG: ShaderFile = shader_file!("probe_rng.wgsl");
+/// The renderer's structs.
+pub const RENDER_LAYOUT: ShaderFile = shader_file!("render_layout.wgsl");
+/// Sprite, tetrahedron, view cone, lighting, fog.
+pub const DRAWING: ShaderFile = shader_file!("drawing.wgsl");
+/// The cover as a surface sees it.
+pub const SHADING: ShaderFile = shader_file!("shading.wgsl");
+/// The render bindings, shadow map and scene passes.
+pub const RENDER_SCENE: ShaderFile = shader_file!("render_scene.wgsl");
+/// Snow sprites and rain tetrahedra.
+pub const RENDER_PARTICLES: ShaderFile = shader_file!("render_particles.wgsl");
+/// Kernels `cull_count`, `cull_scan`, `cull_write`.
+pub const CULL_PARTICLES: ShaderFile = shader_file!("cull_particles.wgsl");
+/// Test kernel `probe_drawing`.
+pub const PROBE_DRAWING: ShaderFile = shader_file!("probe_drawing.wgsl");
 
 /// A GPU program: the files it is joined from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -55,11 +69,24 @@ pub enum Program {
     CoverUpdate,
     /// A test probe of the RNG.
     ProbeRng,
+    /// The scene and precipitation draws (vertex and fragment entry points).
+    Render,
+    /// View-cone culling and compaction of the particles.
+    CullParticles,
+    /// A test probe of the drawing formulas.
+    ProbeDrawing,
 }
 
 impl Program {
     /// Every program.
-    pub const ALL: [Self; 3] = [Self::StepParticles, Self::CoverUpdate, Self::ProbeRng];
+    pub const ALL: [Self; 6] = [
+        Self::StepParticles,
+        Self::CoverUpdate,
+        Self::ProbeRng,
+        Self::Render,
+        Self::CullParticles,
+        Self::ProbeDrawing,
+    ];
 
     /// The files, in the order they are joined.
     #[must_use]
@@ -77,6 +104,17 @@ impl Program {
             ],
             Self::CoverUpdate => &[LAYOUT, DEPOSIT, COVER, COVER_UPDATE],
             Self::ProbeRng => &[RNG, PROBE_RNG],
+            Self::Render => &[
+                LAYOUT,
+                COVER,
+                RENDER_LAYOUT,
+                DRAWING,
+                SHADING,
+                RENDER_SCENE,
+                RENDER_PARTICLES,
+            ],
+            Self::CullParticles => &[LAYOUT, RENDER_LAYOUT, DRAWING, CULL_PARTICLES],
+            Self::ProbeDrawing => &[DRAWING, PROBE_DRAWING],
         }
     }
 
@@ -87,6 +125,17 @@ impl Program {
             Self::StepParticles => &["step_particles", "birth_particles", "init_particles"],
             Self::CoverUpdate => &["cover_update"],
             Self::ProbeRng => &["probe_rng"],
+            Self::Render => &[
+                "vs_shadow",
+                "vs_scene",
+                "fs_scene",
+                "vs_snow",
+                "fs_snow",
+                "vs_rain",
+                "fs_rain",
+            ],
+            Self::CullParticles => &["cull_count", "cull_scan", "cull_write"],
+            Self::ProbeDrawing => &["probe_drawing"],
         }
     }
 
@@ -97,6 +146,9 @@ impl Program {
             Self::StepParticles => "precip step_particles",
             Self::CoverUpdate => "precip cover_update",
             Self::ProbeRng => "precip probe_rng",
+            Self::Render => "precip render",
+            Self::CullParticles => "precip cull_particles",
+            Self::ProbeDrawing => "precip probe_drawing",
         }
     }
 

@@ -8,7 +8,8 @@ use std::mem::{offset_of, size_of};
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use precip_model::Particle;
 use precip_model::cover::{CoverStepParams, CoverTexel, GridFrame};
-use precip_model::gpu::Frames;
+use precip_model::gpu::{Frames, ProbeDrawing};
+use precip_model::render::RenderParams;
 use precip_model::shaders::Program;
 use precip_model::step::StepParams;
 use precip_model::wind::WindParams;
@@ -48,7 +49,12 @@ fn every_program_validates_with_all_its_entry_points() {
 /// WGSL struct name → (size, member name → offset).
 fn wgsl_layouts() -> HashMap<String, (u32, HashMap<String, u32>)> {
     let mut out = HashMap::new();
-    for program in [Program::StepParticles, Program::CoverUpdate] {
+    for program in [
+        Program::StepParticles,
+        Program::CoverUpdate,
+        Program::Render,
+        Program::ProbeDrawing,
+    ] {
         let module = parse(program);
         for (_, ty) in module.types.iter() {
             if let naga::TypeInner::Struct { members, span } = &ty.inner {
@@ -159,6 +165,33 @@ fn rust_and_wgsl_layouts_match() {
             accumulation_mask,
             melt_mask,
             feed
+        }),
+        rust_layout!(RenderParams {
+            view_proj,
+            sun_view_proj,
+            camera_m_cone_cos,
+            view_dir_pixel_angle,
+            to_sun_extinction,
+            sky_colour_time,
+            light,
+            shadow,
+            sizing,
+            cover_look,
+            cover_look2,
+            ground,
+            cover,
+            counts
+        }),
+        rust_layout!(ProbeDrawing {
+            centre_m,
+            side_m,
+            camera_m,
+            spin_rad,
+            velocity_mps,
+            tumble,
+            h_m,
+            a_m,
+            reserved
         }),
     ];
     for (name, size, fields) in rust {

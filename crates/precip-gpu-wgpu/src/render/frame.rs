@@ -1,0 +1,193 @@
+//! The per-configuration resources of drawing: the frame's uniform block, the cull
+//! lists and indirect draws, the shadow map, the flake texture and the bind groups.
+
+use precip_model::drawing::snowflake_opacity;
+use precip_model::gpu::{cull_bindings as cb, cull_groups, render_bindings as rb};
+use precip_model::render::RenderParams;
+
+use super::layouts::RenderLayouts;
+use super::pipelines::DEPTH_FORMAT;
+use crate::device::GpuDevice;
+use crate::resources::Resources;
+
+/// Side of the generated flake opacity texture, px.
+pub const FLAKE_TEXTURE_PX: u32 = 64;
+
+/// Bytes of the two indirect draws.
+const DRAWS_BYTES: u64 = 32;
+
+/// What drawing adds to a configuration.
+#[derive(Debug)]
+pub struct FrameResources {
+    /// `RenderParams`.
+    pub params: wgpu::Buffer,
+    /// The two `DrawArgs` (snow, rain).
+    pub draws: wgpu::Buffer,
+    /// Workgroups of the cull kernels.
+    pub cull_groups: u32,
+    /// The shadow map's view (a depth attachment in the shadow pass).
+    pub shadow_view: wgpu::TextureView,
+    /// Group 0 of the draws.
+    pub frame_group: wgpu::BindGroup,
+    /// Group 1 of the draws.
+    pub light_group: wgpu::BindGroup,
+    /// Group 0 of the cull kernels.
+    pub cull_group: wgpu::BindGroup,
+}
+
+fn storage(gpu: &GpuDevice, label: &str, size: u64, usage: wgpu::BufferUsages) -> wgpu::Buffer {
+    gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size.max(16),
+        usage: wgpu::BufferUsages::STORAGE | usage,
+        mapped_at_creation: false,
+    })
+}
+
+fn bind(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry {
+        binding,
+        resource: buffer.as_entire_binding(),
+    }
+}
+
+impl FrameResources {
+    /// Allocates drawing's resources beside the simulation's `sim`.
+    #[must_use]
+    pub fn new(
+        gpu: &GpuDevice,
+        layouts: &RenderLayouts,
+        sim: &Resources,
+        shadow_map_px: u32,
+    ) -> Self {
+        let device = &gpu.device;
+        let count = sim.particle_count;
+        let groups = cull_groups(count);
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("precip render params"),
+            size: size_of::<RenderParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let group_counts = storage(
+            gpu,
+            "precip cull groups",
+            u64::from(groups) * 8,
+            wgpu::BufferUsages::empty(),
+        );
+        let drawn = storage(
+            gpu,
+            "precip drawn",
+            u64::from(count) * 8,
+            wgpu::BufferUsages::empty(),
+        );
+        let draws = storage(
+            gpu,
+            "precip draws",
+            DRAWS_BYTES,
+            wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
+        );
+        let shadow = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("precip shadow map"),
+            size: wgpu::Extent3d {
+                width: shadow_map_px,
+                height: shadow_map_px,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let shadow_view = shadow.create_view(&wgpu::TextureViewDescriptor::default());
+        let shadow_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("precip shadow"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            compare: Some(wgpu::CompareFunction::LessEqual),
+            ..Default::default()
+        });
+        let flake = wgpu::util::DeviceExt::create_texture_with_data(
+            device,
+            &gpu.queue,
+            &wgpu::TextureDescriptor {
+                label: Some("precip flake opacity"),
+                size: wgpu::Extent3d {
+                    width: FLAKE_TEXTURE_PX,
+                    height: FLAKE_TEXTURE_PX,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::R8Unorm,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            },
+            wgpu::util::TextureDataOrder::LayerMajor,
+            &snowflake_opacity(FLAKE_TEXTURE_PX),
+        );
+        let flake_view = flake.create_view(&wgpu::TextureViewDescriptor::default());
+        let flake_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("precip flake"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("precip render frame"),
+            layout: &layouts.frame,
+            entries: &[
+                bind(rb::PARAMS, &params),
+                bind(rb::COVER, &sim.cover),
+                bind(rb::GROUND_HEIGHT, &sim.ground),
+                bind(rb::PARTICLES, &sim.particles),
+                bind(rb::DRAWN, &drawn),
+            ],
+        });
+        let light_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("precip render light"),
+            layout: &layouts.light,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: rb::SHADOW_MAP,
+                    resource: wgpu::BindingResource::TextureView(&shadow_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: rb::SHADOW_SAMPLER,
+                    resource: wgpu::BindingResource::Sampler(&shadow_sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: rb::FLAKE_OPACITY,
+                    resource: wgpu::BindingResource::TextureView(&flake_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: rb::FLAKE_SAMPLER,
+                    resource: wgpu::BindingResource::Sampler(&flake_sampler),
+                },
+            ],
+        });
+        let cull_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("precip cull"),
+            layout: &layouts.cull,
+            entries: &[
+                bind(cb::PARAMS, &params),
+                bind(cb::PARTICLES, &sim.particles),
+                bind(cb::GROUP_COUNTS, &group_counts),
+                bind(cb::DRAWN, &drawn),
+                bind(cb::DRAWS, &draws),
+            ],
+        });
+        Self {
+            params,
+            draws,
+            cull_groups: groups,
+            shadow_view,
+            frame_group,
+            light_group,
+            cull_group,
+        }
+    }
+}

@@ -1,0 +1,135 @@
+//! Bind group layouts of the render and cull programs (bindings:
+//! `precip_model::gpu::{render_bindings, cull_bindings}`).
+
+use std::num::NonZeroU64;
+
+use precip_model::gpu::{cull_bindings, render_bindings as rb};
+use precip_model::render::RenderParams;
+
+/// The layouts, made once per device.
+#[derive(Debug)]
+pub struct RenderLayouts {
+    /// Group 0 of the render program: the frame.
+    pub frame: wgpu::BindGroupLayout,
+    /// Group 1: shadow map and flake opacity.
+    pub light: wgpu::BindGroupLayout,
+    /// Group 2: a mesh's material.
+    pub material: wgpu::BindGroupLayout,
+    /// Group 0 of the cull kernels.
+    pub cull: wgpu::BindGroupLayout,
+}
+
+const DRAW: wgpu::ShaderStages = wgpu::ShaderStages::VERTEX_FRAGMENT;
+
+fn entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    ty: wgpu::BindingType,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty,
+        count: None,
+    }
+}
+
+fn uniform(size: usize) -> wgpu::BindingType {
+    wgpu::BindingType::Buffer {
+        ty: wgpu::BufferBindingType::Uniform,
+        has_dynamic_offset: false,
+        min_binding_size: NonZeroU64::new(size as u64),
+    }
+}
+
+fn storage(read_only: bool) -> wgpu::BindingType {
+    wgpu::BindingType::Buffer {
+        ty: wgpu::BufferBindingType::Storage { read_only },
+        has_dynamic_offset: false,
+        min_binding_size: None,
+    }
+}
+
+fn texture(sample_type: wgpu::TextureSampleType) -> wgpu::BindingType {
+    wgpu::BindingType::Texture {
+        sample_type,
+        view_dimension: wgpu::TextureViewDimension::D2,
+        multisampled: false,
+    }
+}
+
+impl RenderLayouts {
+    /// Creates the layouts.
+    #[must_use]
+    pub fn new(device: &wgpu::Device) -> Self {
+        let params = uniform(size_of::<RenderParams>());
+        let frame = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("precip render frame"),
+            entries: &[
+                entry(rb::PARAMS, DRAW, params),
+                entry(rb::COVER, DRAW, storage(true)),
+                entry(rb::GROUND_HEIGHT, DRAW, storage(true)),
+                entry(rb::PARTICLES, DRAW, storage(true)),
+                entry(rb::DRAWN, DRAW, storage(true)),
+            ],
+        });
+        let light = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("precip render light"),
+            entries: &[
+                entry(
+                    rb::SHADOW_MAP,
+                    DRAW,
+                    texture(wgpu::TextureSampleType::Depth),
+                ),
+                entry(
+                    rb::SHADOW_SAMPLER,
+                    DRAW,
+                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                ),
+                entry(
+                    rb::FLAKE_OPACITY,
+                    DRAW,
+                    texture(wgpu::TextureSampleType::Float { filterable: true }),
+                ),
+                entry(
+                    rb::FLAKE_SAMPLER,
+                    DRAW,
+                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                ),
+            ],
+        });
+        let material = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("precip render material"),
+            entries: &[
+                entry(rb::MATERIAL, DRAW, uniform(16)),
+                entry(
+                    rb::BASE_COLOUR_TEXTURE,
+                    DRAW,
+                    texture(wgpu::TextureSampleType::Float { filterable: true }),
+                ),
+                entry(
+                    rb::MATERIAL_SAMPLER,
+                    DRAW,
+                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                ),
+            ],
+        });
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let cull = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("precip cull"),
+            entries: &[
+                entry(cull_bindings::PARAMS, compute, params),
+                entry(cull_bindings::PARTICLES, compute, storage(true)),
+                entry(cull_bindings::GROUP_COUNTS, compute, storage(false)),
+                entry(cull_bindings::DRAWN, compute, storage(false)),
+                entry(cull_bindings::DRAWS, compute, storage(false)),
+            ],
+        });
+        Self {
+            frame,
+            light,
+            material,
+            cull,
+        }
+    }
+}

@@ -1,0 +1,194 @@
+//! The scene on the GPU: one vertex and one index buffer for all meshes (tessellated
+//! for the snow's displacement), and a material bind group per mesh.
+
+use std::ops::Range;
+
+use precip_model::gpu::{SceneVertex, render_bindings as rb};
+use precip_model::{BackendError, RenderSettings, Scene, TextureRgba8};
+use wgpu::util::DeviceExt;
+
+use super::layouts::RenderLayouts;
+use crate::device::GpuDevice;
+
+/// One mesh's draw.
+#[derive(Debug)]
+pub struct MeshDraw {
+    /// Its indices in the shared index buffer.
+    pub indices: Range<u32>,
+    /// Group 2: its material.
+    pub material: wgpu::BindGroup,
+}
+
+/// The uploaded scene.
+#[derive(Debug)]
+pub struct SceneGpu {
+    /// `SceneVertex` of every mesh.
+    pub vertices: wgpu::Buffer,
+    /// `u32` indices, each mesh's offset by its first vertex.
+    pub indices: wgpu::Buffer,
+    /// The meshes.
+    pub meshes: Vec<MeshDraw>,
+    /// Triangles drawn (after tessellation).
+    pub triangles: u64,
+}
+
+fn texture_of(
+    gpu: &GpuDevice,
+    texture: Option<&TextureRgba8>,
+) -> Result<wgpu::Texture, BackendError> {
+    let white = TextureRgba8 {
+        width_px: 1,
+        height_px: 1,
+        rgba8: vec![255; 4],
+    };
+    let t = texture.unwrap_or(&white);
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    if t.width_px > max || t.height_px > max {
+        return Err(BackendError::Setup {
+            field: "scene",
+            problem: format!(
+                "a base-colour texture is {}×{} px but this device takes at most {max} a side: downscale it",
+                t.width_px, t.height_px
+            ),
+        });
+    }
+    Ok(gpu.device.create_texture_with_data(
+        &gpu.queue,
+        &wgpu::TextureDescriptor {
+            label: Some("precip base colour"),
+            size: wgpu::Extent3d {
+                width: t.width_px,
+                height: t.height_px,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8UnormSrgb,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &t.rgba8,
+    ))
+}
+
+impl SceneGpu {
+    /// Tessellates and uploads `scene` (prepared: complete attributes).
+    pub fn upload(
+        gpu: &GpuDevice,
+        layouts: &RenderLayouts,
+        scene: &Scene,
+        settings: &RenderSettings,
+    ) -> Result<Self, BackendError> {
+        let scene = scene.tessellated(settings.tessellation_edge_m, settings.max_scene_triangles);
+        let mut vertices: Vec<SceneVertex> = Vec::new();
+        let mut indices: Vec<u32> = Vec::new();
+        let mut ranges = Vec::with_capacity(scene.meshes.len());
+        for mesh in &scene.meshes {
+            let base = u32::try_from(vertices.len()).map_err(|_| too_big("vertices"))?;
+            for (i, p) in mesh.positions_m.iter().enumerate() {
+                vertices.push(SceneVertex {
+                    position_m: p.to_array(),
+                    normal: mesh.normals[i].to_array(),
+                    uv: mesh.uvs[i].to_array(),
+                    eligibility: mesh.snow_eligibility[i],
+                });
+            }
+            let start = u32::try_from(indices.len()).map_err(|_| too_big("indices"))?;
+            indices.extend(mesh.indices.iter().map(|i| i + base));
+            let end = u32::try_from(indices.len()).map_err(|_| too_big("indices"))?;
+            ranges.push(start..end);
+        }
+        let max = gpu.device.limits().max_buffer_size;
+        let vertex_bytes = (vertices.len() * size_of::<SceneVertex>()) as u64;
+        if vertex_bytes > max {
+            return Err(too_big("vertex bytes"));
+        }
+        let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("precip material"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let mut meshes = Vec::with_capacity(ranges.len());
+        for (mesh, range) in scene.meshes.iter().zip(ranges) {
+            let texture = texture_of(gpu, mesh.material.base_colour_texture.as_ref())?;
+            let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+            let colour = gpu
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("precip material"),
+                    contents: bytemuck::cast_slice(&mesh.material.base_colour),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+            let material = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("precip material"),
+                layout: &layouts.material,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: rb::MATERIAL,
+                        resource: colour.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: rb::BASE_COLOUR_TEXTURE,
+                        resource: wgpu::BindingResource::TextureView(&view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: rb::MATERIAL_SAMPLER,
+                        resource: wgpu::BindingResource::Sampler(&sampler),
+                    },
+                ],
+            });
+            meshes.push(MeshDraw {
+                indices: range,
+                material,
+            });
+        }
+        let init = |label, contents: &[u8], usage| {
+            gpu.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents,
+                    usage,
+                })
+        };
+        Ok(Self {
+            vertices: init(
+                "precip scene vertices",
+                bytemuck::cast_slice(&vertices),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            indices: init(
+                "precip scene indices",
+                bytemuck::cast_slice(&indices),
+                wgpu::BufferUsages::INDEX,
+            ),
+            triangles: indices.len() as u64 / 3,
+            meshes,
+        })
+    }
+
+    /// Draws every mesh; group 2 (materials) only when `with_materials`.
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, with_materials: bool) {
+        pass.set_vertex_buffer(0, self.vertices.slice(..));
+        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+        for mesh in &self.meshes {
+            if with_materials {
+                pass.set_bind_group(2, &mesh.material, &[]);
+            }
+            pass.draw_indexed(mesh.indices.clone(), 0, 0..1);
+        }
+    }
+}
+
+fn too_big(what: &str) -> BackendError {
+    BackendError::Setup {
+        field: "scene",
+        problem: format!(
+            "its {what} exceed what one GPU buffer holds: lower render.tessellation_edge_m's density (raise it) or render.max_scene_triangles"
+        ),
+    }
+}

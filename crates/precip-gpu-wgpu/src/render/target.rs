@@ -1,0 +1,130 @@
+//! Offscreen targets: an sRGB colour texture and a depth buffer of the view's size,
+//! and reading the colour back as an [`Image`].
+
+use precip_model::{BackendError, Image};
+
+use super::pipelines::DEPTH_FORMAT;
+use crate::device::GpuDevice;
+use crate::readback::read_buffer;
+
+/// The offscreen colour format: what `read_image` returns (RGBA8, sRGB).
+pub const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+
+/// A depth buffer of a size.
+#[derive(Debug)]
+pub struct DepthBuffer {
+    /// Width, height, px.
+    pub size: (u32, u32),
+    /// Its view.
+    pub view: wgpu::TextureView,
+}
+
+impl DepthBuffer {
+    /// A depth buffer of `width × height`.
+    #[must_use]
+    pub fn new(gpu: &GpuDevice, width: u32, height: u32) -> Self {
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("precip depth"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
+        Self {
+            size: (width, height),
+            view: texture.create_view(&wgpu::TextureViewDescriptor::default()),
+        }
+    }
+}
+
+/// The offscreen colour target.
+#[derive(Debug)]
+pub struct ColourTarget {
+    /// Width, height, px.
+    pub size: (u32, u32),
+    /// The texture.
+    pub texture: wgpu::Texture,
+    /// Its view.
+    pub view: wgpu::TextureView,
+}
+
+impl ColourTarget {
+    /// An sRGB RGBA8 target of `width × height`.
+    #[must_use]
+    pub fn new(gpu: &GpuDevice, width: u32, height: u32) -> Self {
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("precip image"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: OFFSCREEN_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        Self {
+            size: (width, height),
+            texture,
+            view,
+        }
+    }
+
+    /// Copies the image back (rows top to bottom).
+    pub fn read(&self, gpu: &GpuDevice) -> Result<Image, BackendError> {
+        let (width, height) = self.size;
+        let row = width * 4;
+        let padded =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("precip image copy"),
+            size: u64::from(padded) * u64::from(height),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("precip image copy"),
+            });
+        encoder.copy_texture_to_buffer(
+            self.texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded),
+                    rows_per_image: Some(height),
+                },
+            },
+            wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+        );
+        gpu.queue.submit([encoder.finish()]);
+        let bytes = read_buffer(gpu, &buffer, u64::from(padded) * u64::from(height))?;
+        let mut rgba8 = Vec::with_capacity((row * height) as usize);
+        for r in 0..height as usize {
+            let start = r * padded as usize;
+            rgba8.extend_from_slice(&bytes[start..start + row as usize]);
+        }
+        Ok(Image {
+            width_px: width,
+            height_px: height,
+            rgba8,
+        })
+    }
+}

@@ -1,0 +1,99 @@
+// cull_particles.wgsl: view-cone culling and stable compaction of the particles into
+// the lists the draws read (MODEL.md §5), in three kernels over 64-particle groups:
+//   cull_count  — each group counts its drawn sprites and streaks;
+//   cull_scan   — one workgroup turns the counts into each group's offsets and writes
+//                 the two indirect draws' instance counts;
+//   cull_write  — each drawn particle writes its index at its group's offset plus its
+//                 rank within the group.
+// The lists keep buffer order, so a frame draws (and blends) in the same order with
+// culling on or off: only what is outside the cone is missing.
+
+@group(0) @binding(0) var<uniform> params: RenderParams;
+@group(0) @binding(1) var<storage, read> particles: array<Particle>;
+@group(0) @binding(2) var<storage, read_write> group_counts: array<vec2<u32>>;
+@group(0) @binding(3) var<storage, read_write> drawn: array<u32>;
+@group(0) @binding(4) var<storage, read_write> draws: array<DrawArgs, 2>;
+
+var<workgroup> group_kinds: array<u32, 64>;
+var<workgroup> partial: array<vec2<u32>, 64>;
+
+// How particle `i` is drawn this frame.
+fn drawn_as(i: u32) -> u32 {
+    if (i >= params.counts.x) {
+        return DRAWN_NOT;
+    }
+    let p = particles[i];
+    if (params.counts.y != 0u && !in_view_cone(p.position_m, params.camera_m_cone_cos.xyz, params.view_dir_pixel_angle.xyz, params.camera_m_cone_cos.w)) {
+        return DRAWN_NOT;
+    }
+    let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
+    return select(DRAWN_SNOW, DRAWN_RAIN, kind == KIND_RAIN);
+}
+
+@compute @workgroup_size(64)
+fn cull_count(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let g = wid.x + wid.y * groups.x;
+    group_kinds[lid] = drawn_as(g * 64u + lid);
+    workgroupBarrier();
+    if (lid == 0u) {
+        var c = vec2<u32>(0u);
+        for (var k = 0u; k < 64u; k++) {
+            let kind = group_kinds[k];
+            c += vec2<u32>(u32(kind == DRAWN_SNOW), u32(kind == DRAWN_RAIN));
+        }
+        group_counts[g] = c;
+    }
+}
+
+@compute @workgroup_size(64)
+fn cull_scan(@builtin(local_invocation_index) lid: u32) {
+    let groups = params.counts.z;
+    let per = (groups + 63u) / 64u;
+    let start = min(lid * per, groups);
+    let end = min(start + per, groups);
+    var sum = vec2<u32>(0u);
+    for (var k = start; k < end; k++) {
+        sum += group_counts[k];
+    }
+    partial[lid] = sum;
+    workgroupBarrier();
+    if (lid == 0u) {
+        var total = vec2<u32>(0u);
+        for (var k = 0u; k < 64u; k++) {
+            let s = partial[k];
+            partial[k] = total;
+            total += s;
+        }
+        draws[0] = DrawArgs(SNOW_SPRITE_VERTICES, total.x, 0u, 0u);
+        draws[1] = DrawArgs(RAIN_TETRAHEDRON_VERTICES, total.y, 0u, 0u);
+    }
+    workgroupBarrier();
+    var run = partial[lid];
+    for (var k = start; k < end; k++) {
+        let c = group_counts[k];
+        group_counts[k] = run;
+        run += c;
+    }
+}
+
+@compute @workgroup_size(64)
+fn cull_write(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let g = wid.x + wid.y * groups.x;
+    let i = g * 64u + lid;
+    let kind = drawn_as(i);
+    group_kinds[lid] = kind;
+    workgroupBarrier();
+    if (kind == DRAWN_NOT) {
+        return;
+    }
+    var rank = 0u;
+    for (var k = 0u; k < lid; k++) {
+        rank += u32(group_kinds[k] == kind);
+    }
+    let offset = group_counts[g];
+    if (kind == DRAWN_SNOW) {
+        drawn[offset.x + rank] = i;
+    } else {
+        drawn[params.counts.x + offset.y + rank] = i;
+    }
+}

@@ -1,0 +1,141 @@
+// drawing.wgsl: the drawing formulas of MODEL.md §5. Rust twins: precip_model::drawing.
+
+// snow_sprite_corners_turned: corner `corner` (0..3, strip order V0 V1 V2 V3).
+fn snow_sprite_corner(centre_m: vec3<f32>, camera_m: vec3<f32>, side_m: f32, spin_rad: f32, tumble: f32, corner: u32) -> vec3<f32> {
+    let to_camera = camera_m - centre_m;
+    if (dot(to_camera, to_camera) <= 0.0) {
+        return centre_m;
+    }
+    let n = normalize(to_camera);
+    var a = cross(vec3<f32>(0.0, 1.0, 0.0), n);
+    if (dot(a, a) < 1.0e-12) {
+        a = cross(vec3<f32>(0.0, 0.0, 1.0), n);
+    }
+    a = normalize(a);
+    let b = normalize(cross(n, a));
+    let s = sin(spin_rad);
+    let c = cos(spin_rad);
+    let a2 = c * a + s * b;
+    let b2 = tumble * (c * b - s * a);
+    let v0 = centre_m + 0.5 * side_m * (a2 - b2);
+    switch corner {
+        case 0u: { return v0; }
+        case 1u: { return v0 + side_m * b2; }
+        case 2u: { return v0 - side_m * a2; }
+        default: { return v0 + side_m * b2 - side_m * a2; }
+    }
+}
+
+// SNOW_SPRITE_UV
+fn snow_sprite_uv(corner: u32) -> vec2<f32> {
+    switch corner {
+        case 0u: { return vec2<f32>(1.0, 0.0); }
+        case 1u: { return vec2<f32>(1.0, 1.0); }
+        case 2u: { return vec2<f32>(0.0, 0.0); }
+        default: { return vec2<f32>(0.0, 1.0); }
+    }
+}
+
+const MIN_TUMBLE: f32 = 0.3;
+
+// flake_spin_tumble: (spin, tumble).
+fn flake_spin_tumble(rotation0_rad: vec3<f32>, rotation_rad: vec3<f32>) -> vec2<f32> {
+    let o = rotation0_rad + rotation_rad;
+    return vec2<f32>(o.y + o.z, max(abs(cos(o.x)), MIN_TUMBLE));
+}
+
+// snow_sprite_sizing: (side_m, opacity). sizing = (snow scale, min px, min opacity, _).
+fn snow_sprite_sizing(diameter_m: f32, distance_m: f32, pixel_angle_rad: f32, sizing: vec4<f32>) -> vec2<f32> {
+    let side = diameter_m * sizing.x;
+    let min_side = sizing.y * pixel_angle_rad * distance_m;
+    if (side >= min_side) {
+        return vec2<f32>(side, 1.0);
+    }
+    let ratio = side / min_side;
+    return vec2<f32>(min_side, max(ratio * ratio, sizing.z));
+}
+
+// raindrop_sizing: (h_m, a_m, opacity factor). sizing.w = rain streak s.
+fn raindrop_sizing(speed_mps: f32, distance_m: f32, pixel_angle_rad: f32, sizing: vec4<f32>) -> vec3<f32> {
+    let h = sizing.w * speed_mps;
+    let a = 0.1 * h;
+    let min_a = sizing.y * pixel_angle_rad * distance_m;
+    if (a >= min_a) {
+        return vec3<f32>(h, a, 1.0);
+    }
+    return vec3<f32>(h, min_a, max(a / min_a, sizing.z));
+}
+
+struct TetrahedronVertex {
+    position_m: vec3<f32>,
+    normal: vec3<f32>,
+}
+
+fn normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
+    let l2 = dot(v, v);
+    if (l2 > 0.0) {
+        return v * inverseSqrt(l2);
+    }
+    return vec3<f32>(0.0);
+}
+
+// raindrop_tetrahedron_sized: vertex `k` (0..3) with the seed's normal N_k.
+fn raindrop_vertex(centre_m: vec3<f32>, velocity_mps: vec3<f32>, h: f32, a: f32, k: u32) -> TetrahedronVertex {
+    if (dot(velocity_mps, velocity_mps) <= 0.0) {
+        return TetrahedronVertex(centre_m, vec3<f32>(0.0, 1.0, 0.0));
+    }
+    let e_y = normalize(-velocity_mps);
+    var e_z = cross(vec3<f32>(1.0, 0.0, 0.0), e_y);
+    if (dot(e_z, e_z) < 1.0e-12) {
+        e_z = cross(vec3<f32>(0.0, 0.0, 1.0), e_y);
+    }
+    e_z = normalize(e_z);
+    let e_x = normalize(cross(e_y, e_z));
+    let r = sqrt(3.0) / 3.0 * a;
+    let v0 = centre_m + h * e_y;
+    let v1 = centre_m - 0.5 * r * e_x - 0.5 * a * e_z;
+    let v2 = centre_m + r * e_x;
+    let v3 = v1 + a * e_z;
+    switch k {
+        case 0u: { return TetrahedronVertex(v0, e_y); }
+        case 1u: { return TetrahedronVertex(v1, normalize_or_zero(v1 - centre_m) + normalize_or_zero(v1 - v0)); }
+        case 2u: { return TetrahedronVertex(v2, e_x + normalize_or_zero(v2 - v0)); }
+        default: { return TetrahedronVertex(v3, normalize_or_zero(v3 - centre_m) + normalize_or_zero(v3 - v0)); }
+    }
+}
+
+// RAIN_TETRAHEDRON_FACES
+fn rain_tetrahedron_face_vertex(i: u32) -> u32 {
+    var faces = array<u32, 12>(0u, 1u, 2u, 0u, 2u, 3u, 0u, 3u, 1u, 1u, 3u, 2u);
+    return faces[i % 12u];
+}
+
+// in_view_cone
+fn in_view_cone(position_m: vec3<f32>, camera_m: vec3<f32>, view_dir: vec3<f32>, cone_cos: f32) -> bool {
+    let d = position_m - camera_m;
+    let l2 = dot(d, d);
+    if (!(l2 > 0.0)) {
+        return false;
+    }
+    return dot(d * inverseSqrt(l2), view_dir) >= cone_cos;
+}
+
+// blinn_phong. light = (k_A·I_A, k_D·I_D, k_S·I_S, s); shadow = (sc, density, λ, _).
+fn blinn_phong(light: vec4<f32>, shadow: vec4<f32>, normal: vec3<f32>, to_light: vec3<f32>, to_viewer: vec3<f32>, lit: f32) -> f32 {
+    let sh = shadow.y * (1.0 - lit);
+    let half_vector = normalize_or_zero(to_light + to_viewer);
+    var highlight = 0.0;
+    let hn = max(dot(half_vector, normal), 0.0);
+    if (hn > 0.0) {
+        highlight = pow(hn, light.w);
+    }
+    return shadow.z * (light.x
+        + (1.0 - sh) * light.y * max(dot(to_light, normal), 0.0)
+        + sh * shadow.x
+        + lit * light.z * highlight);
+}
+
+// fog_transmittance
+fn fog_transmittance(distance_m: f32, extinction_per_m: f32) -> f32 {
+    return exp(-extinction_per_m * max(distance_m, 0.0));
+}

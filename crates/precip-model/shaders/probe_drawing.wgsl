@@ -1,0 +1,34 @@
+// probe_drawing.wgsl: a test kernel that builds sprite corners and tetrahedron vertices
+// for a list of inputs, so tests compare the WGSL drawing with the Rust one.
+// Program: drawing, this file.
+
+struct ProbeDrawing {
+    centre_m: vec3<f32>,
+    side_m: f32,
+    camera_m: vec3<f32>,
+    spin_rad: f32,
+    velocity_mps: vec3<f32>,
+    tumble: f32,
+    h_m: f32,
+    a_m: f32,
+    reserved: vec2<f32>,
+}
+
+@group(0) @binding(0) var<storage, read> probe_drawing_in: array<ProbeDrawing>;
+// Per input: 4 sprite corners, 4 tetrahedron vertices, 4 normals (xyz; w = 0).
+@group(0) @binding(1) var<storage, read_write> probe_drawing_out: array<vec4<f32>>;
+
+@compute @workgroup_size(64)
+fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if (i >= arrayLength(&probe_drawing_in)) {
+        return;
+    }
+    let q = probe_drawing_in[i];
+    for (var k = 0u; k < 4u; k++) {
+        probe_drawing_out[12u * i + k] = vec4<f32>(snow_sprite_corner(q.centre_m, q.camera_m, q.side_m, q.spin_rad, q.tumble, k), 0.0);
+        let v = raindrop_vertex(q.centre_m, q.velocity_mps, q.h_m, q.a_m, k);
+        probe_drawing_out[12u * i + 4u + k] = vec4<f32>(v.position_m, 0.0);
+        probe_drawing_out[12u * i + 8u + k] = vec4<f32>(v.normal, 0.0);
+    }
+}

@@ -1,0 +1,170 @@
+// render_scene.wgsl: the render program's bindings, the shadow map, the cover seen by
+// a surface, and the scene's passes (vs_shadow; vs_scene + fs_scene). The bindings
+// are listed in precip_model::gpu::render_bindings.
+
+// Group 0: the frame.
+@group(0) @binding(0) var<uniform> params: RenderParams;
+@group(0) @binding(1) var<storage, read> cover: array<CoverTexel>;
+@group(0) @binding(2) var<storage, read> ground_height: array<f32>;
+@group(0) @binding(3) var<storage, read> particles: array<Particle>;
+// Drawn particles: sprites at [0, N), streaks at [N, 2N) (N = particle count).
+@group(0) @binding(4) var<storage, read> drawn: array<u32>;
+// Group 1: light and the flake's opacity.
+@group(1) @binding(0) var shadow_map: texture_depth_2d;
+@group(1) @binding(1) var shadow_sampler: sampler_comparison;
+@group(1) @binding(2) var flake_opacity: texture_2d<f32>;
+@group(1) @binding(3) var flake_sampler: sampler;
+// Group 2: the mesh's material.
+struct Material {
+    base_colour: vec4<f32>,
+}
+@group(2) @binding(0) var<uniform> material: Material;
+@group(2) @binding(1) var base_colour_texture: texture_2d<f32>;
+@group(2) @binding(2) var material_sampler: sampler;
+
+// Depth offset (NDC) of the shadow test, against acne.
+const SHADOW_BIAS: f32 = 0.0005;
+
+// Visibility of the sun at `world_m`, 3×3 percentage-closer filtered; 1 outside the map.
+fn shadow_lit(world_m: vec3<f32>) -> f32 {
+    let p = params.sun_view_proj * vec4<f32>(world_m, 1.0);
+    let ndc = p.xyz / p.w;
+    let uv = vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y);
+    if (any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0 || ndc.z < 0.0) {
+        return 1.0;
+    }
+    let texel = params.shadow.w;
+    var sum = 0.0;
+    for (var dy = -1; dy <= 1; dy++) {
+        for (var dx = -1; dx <= 1; dx++) {
+            let offset = vec2<f32>(f32(dx), f32(dy)) * texel;
+            sum += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + offset, ndc.z - SHADOW_BIAS);
+        }
+    }
+    return sum / 9.0;
+}
+
+// Whether a surface point is the top-most at its (x, z): within a tolerance (texel
+// size, slope) of the ground map's height there. Off the map: exposed.
+fn exposure(world_m: vec3<f32>, normal: vec3<f32>) -> f32 {
+    let i = grid_texel_index(params.ground, world_m.xz);
+    if (i < 0) {
+        return 1.0;
+    }
+    let top = ground_height[i];
+    let cell = params.ground.size_m / vec2<f32>(params.ground.texels);
+    let slope = length(normal.xz) / max(abs(normal.y), 0.05);
+    let tolerance = params.cover_look2.z + max(cell.x, cell.y) * min(slope, 4.0);
+    return select(0.0, 1.0, world_m.y >= top - tolerance);
+}
+
+// How much a surface faces up for snow: none below 0.2, full from 0.6.
+fn upward(normal: vec3<f32>) -> f32 {
+    return smoothstep(0.2, 0.6, normal.y);
+}
+
+fn mix_texel(a: CoverTexel, b: CoverTexel, t: f32) -> CoverTexel {
+    var m = a;
+    m.swe_mm = mix(a.swe_mm, b.swe_mm, t);
+    m.liquid_mm = mix(a.liquid_mm, b.liquid_mm, t);
+    m.depth_mm = mix(a.depth_mm, b.depth_mm, t);
+    m.age_days = mix(a.age_days, b.age_days, t);
+    m.peak_swe_mm = mix(a.peak_swe_mm, b.peak_swe_mm, t);
+    m.wetness = mix(a.wetness, b.wetness, t);
+    m.accumulation_mask = mix(a.accumulation_mask, b.accumulation_mask, t);
+    m.melt_mask = mix(a.melt_mask, b.melt_mask, t);
+    return m;
+}
+
+// The cover at (x, z), interpolated between texel centres (clamped at the grid's
+// edges): the particles' landings are discrete, so a surface reads a smoothed pack,
+// and the threshold masks give patches with smooth borders finer than the grid.
+fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
+    let n = vec2<i32>(params.cover.texels);
+    let t = (xz_m - params.cover.origin_m) / params.cover.size_m * vec2<f32>(params.cover.texels) - 0.5;
+    let f = clamp(t - floor(t), vec2<f32>(0.0), vec2<f32>(1.0));
+    let i0 = clamp(vec2<i32>(floor(t)), vec2<i32>(0), n - 1);
+    let i1 = clamp(i0 + 1, vec2<i32>(0), n - 1);
+    let a = cover[u32(i0.x + n.x * i0.y)];
+    let b = cover[u32(i1.x + n.x * i0.y)];
+    let c = cover[u32(i0.x + n.x * i1.y)];
+    let d = cover[u32(i1.x + n.x * i1.y)];
+    return mix_texel(mix_texel(a, b, f.x), mix_texel(c, d, f.x), f.y);
+}
+
+struct SceneVertex {
+    @location(0) position_m: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) eligibility: f32,
+}
+
+struct SceneVarying {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world_m: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) eligibility: f32,
+    // The surface before displacement: where the cover is looked up.
+    @location(4) surface_m: vec3<f32>,
+}
+
+// The vertex raised by the snow on it (upward, eligible, exposed surfaces).
+fn displaced(v: SceneVertex) -> vec3<f32> {
+    var p = v.position_m;
+    if (params.cover_look.y < 0.5) {
+        return p;
+    }
+    let n = normalize(v.normal);
+    if (grid_texel_index(params.cover, p.xz) >= 0) {
+        let depth_m = cover_at(p.xz).depth_mm * 1.0e-3;
+        p.y += depth_m * clamp(v.eligibility, 0.0, 1.0) * upward(n) * exposure(p, n);
+    }
+    return p;
+}
+
+@vertex
+fn vs_shadow(v: SceneVertex) -> @builtin(position) vec4<f32> {
+    return params.sun_view_proj * vec4<f32>(displaced(v), 1.0);
+}
+
+@vertex
+fn vs_scene(v: SceneVertex) -> SceneVarying {
+    let p = displaced(v);
+    var out: SceneVarying;
+    out.clip = params.view_proj * vec4<f32>(p, 1.0);
+    out.world_m = p;
+    out.normal = v.normal;
+    out.uv = v.uv;
+    out.eligibility = v.eligibility;
+    out.surface_m = v.position_m;
+    return out;
+}
+
+@fragment
+fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
+    let base = material.base_colour * textureSample(base_colour_texture, material_sampler, in.uv);
+    let camera = params.camera_m_cone_cos.xyz;
+    let to_viewer = normalize_or_zero(camera - in.world_m);
+    var n = normalize_or_zero(in.normal);
+    // Two-sided: a face seen from behind (a roof's underside) is lit as its back.
+    if (dot(n, to_viewer) < 0.0) {
+        n = -n;
+    }
+    var colour = base.rgb;
+    let i = grid_texel_index(params.cover, in.surface_m.xz);
+    if (i >= 0) {
+        let texel = cover_at(in.surface_m.xz);
+        let s = cover_shading(texel, texel.accumulation_mask, texel.melt_mask, params.cover_look.z, params.cover_look.w, params.cover_look2.x);
+        let sky_facing = exposure(in.surface_m, n) * upward(n);
+        let snow = s.snow_alpha * clamp(in.eligibility, 0.0, 1.0) * sky_facing;
+        let darkening = mix(1.0, s.ground_darkening, sky_facing);
+        // Fresh snow (albedo 0.8) shows near white; it greys as it ages.
+        let snow_colour = vec3<f32>(min(1.0, 1.2 * snow_albedo(texel.age_days, params.cover_look2.y)));
+        colour = mix(colour * darkening, snow_colour, snow);
+    }
+    let lit = shadow_lit(in.world_m);
+    let intensity = blinn_phong(params.light, params.shadow, n, params.to_sun_extinction.xyz, to_viewer, lit);
+    let fog = fog_transmittance(distance(in.world_m, camera), params.to_sun_extinction.w);
+    return vec4<f32>(mix(params.sky_colour_time.xyz, colour * intensity, fog), 1.0);
+}
