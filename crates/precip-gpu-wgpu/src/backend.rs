@@ -145,6 +145,21 @@ impl WgpuBackend {
         self.draw(view, Some((target, format)))
     }
 
+    /// How many snow sprites and rain tetrahedra the last frame drew (after culling):
+    /// reads the indirect draws back (tests and tools, not the frame loop). `(0, 0)`
+    /// before the first frame.
+    pub fn drawn_counts(&mut self) -> Result<(u32, u32), BackendError> {
+        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
+            operation: "drawn_counts",
+        })?;
+        let Some(render) = &state.render else {
+            return Ok((0, 0));
+        };
+        let bytes = read_buffer(&self.gpu, &render.frame.draws, 32)?;
+        let args: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
+        Ok((args[1], args[5]))
+    }
+
     /// The frame: into `external` when given, else into the offscreen target.
     fn draw(
         &mut self,

@@ -186,7 +186,12 @@ mod tests {
         let (scene, report) = house_on_plane().prepare().expect("valid");
         assert_eq!(report.degenerate_triangles, 0);
         let by_name = |n: &str| scene.meshes.iter().find(|m| m.name == n).expect(n);
-        assert!(by_name("walls").snow_eligibility.iter().all(|e| e.abs() < 1e-6));
+        assert!(
+            by_name("walls")
+                .snow_eligibility
+                .iter()
+                .all(|e| e.abs() < 1e-6)
+        );
         assert!(by_name("roof").snow_eligibility.iter().all(|e| *e > 0.99));
         assert!(by_name("ground").snow_eligibility.iter().all(|e| *e > 0.99));
         assert!(by_name("roof").normals.iter().all(|n| n.y > 0.8));

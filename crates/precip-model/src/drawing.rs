@@ -394,4 +394,78 @@ mod tests {
         assert!((fog_transmittance(v, sigma) - 0.02).abs() < 1e-3);
         assert!((fog_transmittance(0.0, sigma) - 1.0).abs() < 1e-6);
     }
+
+    #[test]
+    fn a_turned_sprite_stays_facing_the_camera_and_keeps_its_size() {
+        let (centre, camera) = (Vec3::new(1.0, 2.0, 3.0), Vec3::new(4.0, 6.0, 15.0));
+        let seed = snow_sprite_corners(centre, camera, 0.5).expect("not degenerate");
+        let same = snow_sprite_corners_turned(centre, camera, 0.5, 0.0, 1.0).expect("ok");
+        assert_eq!(seed, same);
+        let turned = snow_sprite_corners_turned(centre, camera, 0.5, 0.7, 1.0).expect("ok");
+        let n = (camera - centre).normalize();
+        for v in turned {
+            assert!(
+                (v - centre).dot(n).abs() < 1e-5,
+                "in the plane facing the camera"
+            );
+            assert!(((v - centre).length() - 0.5 / 2f32.sqrt()).abs() < 1e-5);
+        }
+        assert!(!close(turned[0], seed[0]), "spin moves the corners");
+        let flat = snow_sprite_corners_turned(centre, camera, 0.5, 0.0, 0.3).expect("ok");
+        assert!(
+            ((flat[1] - flat[0]).length() - 0.15).abs() < 1e-5,
+            "B side × tumble"
+        );
+        assert!(
+            ((flat[0] - flat[2]).length() - 0.5).abs() < 1e-5,
+            "A side kept"
+        );
+        let (spin, tumble) = flake_spin_tumble(Vec3::new(3.0, 0.1, 0.2), Vec3::new(0.0, 0.3, 0.4));
+        assert!((spin - 1.0).abs() < 1e-6);
+        assert!((tumble - 3f32.cos().abs()).abs() < 1e-6);
+        let (_, edge_on) =
+            flake_spin_tumble(Vec3::new(std::f32::consts::FRAC_PI_2, 0.0, 0.0), Vec3::ZERO);
+        assert!((edge_on - MIN_TUMBLE).abs() < 1e-6);
+    }
+
+    #[test]
+    fn sprites_and_streaks_never_shrink_under_the_minimum_and_keep_their_light() {
+        let sizing = SpriteSizing::default();
+        let pixel = 0.01;
+        // A 5 mm flake at 1 m: 1.5 cm sprite, more than 1.5 px (1.5 cm)? equal: full.
+        let (side, opacity) = snow_sprite_sizing(0.005, 1.0, pixel, &sizing);
+        assert!((side - 0.015).abs() < 1e-6 && (opacity - 1.0).abs() < 1e-6);
+        // At 4 m the minimum (6 cm) binds: opacity = (1.5/6)² = 1/16, floored at 0.15.
+        let (side, opacity) = snow_sprite_sizing(0.005, 4.0, pixel, &sizing);
+        assert!((side - 0.06).abs() < 1e-6);
+        assert!((opacity - sizing.min_opacity).abs() < 1e-6);
+        let (_, opacity) = snow_sprite_sizing(0.005, 2.0, pixel, &sizing);
+        assert!((opacity - 0.25).abs() < 1e-6, "(1.5/3)²");
+        // Rain at 8 m/s: h = 0.2 m, a = 2 cm; at 1 m the base is wide enough.
+        let (h, a, o) = raindrop_sizing(8.0, 1.0, pixel, &sizing);
+        assert!((h - 0.2).abs() < 1e-6 && (a - 0.02).abs() < 1e-6 && (o - 1.0).abs() < 1e-6);
+        let (_, a, o) = raindrop_sizing(8.0, 2.0, pixel, &sizing);
+        assert!((a - 0.03).abs() < 1e-6 && (o - 2.0 / 3.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn the_flake_texture_is_opaque_at_the_core_clear_at_the_corners_and_six_fold() {
+        let n = 64u32;
+        let t = snowflake_opacity(n);
+        assert_eq!(t.len(), 64 * 64);
+        let at = |x: f32, y: f32| {
+            let (i, j) = (
+                ((x + 1.0) / 2.0 * n as f32) as u32,
+                ((y + 1.0) / 2.0 * n as f32) as u32,
+            );
+            t[(j.min(n - 1) * n + i.min(n - 1)) as usize]
+        };
+        assert_eq!(at(0.0, 0.0), 255);
+        assert_eq!(at(-0.99, -0.99), 0);
+        // Arms at 30° + k·60° (one points straight up the sprite); clear between them.
+        let r = 0.6f32;
+        let arm = |deg: f32| at(r * deg.to_radians().cos(), r * deg.to_radians().sin());
+        assert!(arm(30.0) > 200 && arm(90.0) > 200 && arm(150.0) > 200);
+        assert!(arm(0.0) < 40 && arm(60.0) < 40);
+    }
 }

@@ -4,5 +4,8 @@
 
 mod behaviour;
 mod common;
+mod drawing;
 mod equivalence;
+mod images;
+mod render;
 mod rng;

@@ -253,3 +253,53 @@ fn landing_events_deposit_and_re_birth() {
         (0.25 + params.water_per_particle_kg_per_s * 0.05) / setup.cover.frame.texel_area_m2();
     assert!((snow_mm - expected).abs() < 1e-5, "{snow_mm} vs {expected}");
 }
+
+#[test]
+fn particles_land_on_the_roof_of_a_scene_and_never_inside_the_house() {
+    use precip_model::builtin::{HousePlan, house_on_plane};
+    let plan = HousePlan::default();
+    let (mut setup, _) = Setup::over_scene(house_on_plane(), 64, 4.0, 6_000).expect("valid");
+    setup.cover.time_scale = 200.0;
+    let mut cpu = precip_model::CpuBackend::new();
+    cpu.configure(&setup).expect("valid");
+    let (rx, rz) = (
+        plan.width_m / 2.0 + plan.overhang_m,
+        plan.depth_m / 2.0 + plan.overhang_m,
+    );
+    let under_roof = |p: Vec3| p.x.abs() < rx - 0.3 && p.z.abs() < rz - 0.3;
+    for _ in 0..40 {
+        cpu.step(0.1).expect("valid step");
+        for p in cpu.read_particles().expect("particles") {
+            if under_roof(p.position_m) {
+                let roof = setup
+                    .ground
+                    .height_at(Vec2::new(p.position_m.x, p.position_m.z))
+                    .expect("on the map");
+                assert!(
+                    p.position_m.y >= roof - 0.05,
+                    "a particle at {} is under the roof at {roof} m",
+                    p.position_m
+                );
+            }
+        }
+    }
+    let cover = cpu.read_cover().expect("cover");
+    let (mut roof, mut roof_n, mut open, mut open_n) = (0.0, 0, 0.0, 0);
+    for (i, t) in cover.texels.iter().enumerate() {
+        let c = cover.frame.texel_centre(i);
+        let p = Vec3::new(c.x, 0.0, c.y);
+        if under_roof(p) {
+            roof += t.deposited_mm;
+            roof_n += 1;
+        } else if c.x.abs() > rx + 3.0 && c.x.abs() < 15.0 && c.y.abs() < 15.0 {
+            open += t.deposited_mm;
+            open_n += 1;
+        }
+    }
+    let (roof, open) = (roof / roof_n as f32, open / open_n as f32);
+    assert!(roof > 0.0 && open > 0.0, "roof {roof} mm, open {open} mm");
+    assert!(
+        (0.5..2.0).contains(&(roof / open)),
+        "the roof gathers what open ground does: roof {roof} mm, open {open} mm per texel"
+    );
+}

@@ -1,0 +1,123 @@
+//! The WGSL drawing formulas equal the Rust ones (sprite corners, tetrahedron vertices
+//! and normals), read back through the `probe_drawing` test kernel.
+
+use glam::Vec3;
+use precip_gpu_wgpu::pipelines::shader_module;
+use precip_gpu_wgpu::readback::read_buffer;
+use precip_model::drawing::{raindrop_tetrahedron_sized, snow_sprite_corners_turned};
+use precip_model::gpu::ProbeDrawing;
+use precip_model::rng::{particle_key, random_unit};
+use precip_model::shaders::Program;
+use wgpu::util::DeviceExt;
+
+use crate::common;
+
+fn inputs() -> Vec<ProbeDrawing> {
+    let r = |i: u32, d: u32| random_unit(particle_key(7, i, 0), d);
+    let v3 = |i: u32, d: u32, scale: f32| {
+        Vec3::new(r(i, d) - 0.5, r(i, d + 1) - 0.5, r(i, d + 2) - 0.5) * scale
+    };
+    let mut out: Vec<ProbeDrawing> = (0..500)
+        .map(|i| ProbeDrawing {
+            centre_m: v3(i, 0, 100.0).to_array(),
+            side_m: 0.001 + r(i, 3) * 0.5,
+            camera_m: v3(i, 4, 100.0).to_array(),
+            spin_rad: r(i, 7) * 12.0 - 6.0,
+            velocity_mps: v3(i, 8, 20.0).to_array(),
+            tumble: 0.3 + 0.7 * r(i, 11),
+            h_m: r(i, 12) * 2.0,
+            a_m: r(i, 13) * 0.2,
+            reserved: [0.0; 2],
+        })
+        .collect();
+    // The fallbacks: a camera straight above, a velocity along X.
+    out.push(ProbeDrawing {
+        centre_m: [1.0, 2.0, 3.0],
+        camera_m: [1.0, 50.0, 3.0],
+        velocity_mps: [7.0, 0.0, 0.0],
+        ..out[0]
+    });
+    out
+}
+
+#[test]
+fn wgsl_drawing_equals_rust_drawing() {
+    let inputs = inputs();
+    for (name, backend) in common::gpu_backends("wgsl_drawing_equals_rust_drawing") {
+        let gpu = backend.device();
+        let device = &gpu.device;
+        let module = shader_module(device, Program::ProbeDrawing);
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("probe_drawing"),
+            layout: None,
+            module: &module,
+            entry_point: Some("probe_drawing"),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+        let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("inputs"),
+            contents: bytemuck::cast_slice(&inputs),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let size = (inputs.len() * 12 * 16) as u64;
+        let output = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("vertices"),
+            size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: input.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: output.as_entire_binding(),
+                },
+            ],
+        });
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor::default());
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.dispatch_workgroups((inputs.len() as u32).div_ceil(64), 1, 1);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        let bytes = read_buffer(gpu, &output, size).expect("read back");
+        let got: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
+        for (i, q) in inputs.iter().enumerate() {
+            let centre = Vec3::from(q.centre_m);
+            let sprite = snow_sprite_corners_turned(
+                centre,
+                Vec3::from(q.camera_m),
+                q.side_m,
+                q.spin_rad,
+                q.tumble,
+            )
+            .expect("camera away from the centre");
+            let tetra =
+                raindrop_tetrahedron_sized(centre, Vec3::from(q.velocity_mps), q.h_m, q.a_m)
+                    .expect("moving");
+            let expected = sprite
+                .iter()
+                .chain(&tetra.vertices)
+                .chain(&tetra.normals)
+                .copied();
+            for (k, want) in expected.enumerate() {
+                let g = got[12 * i + k];
+                let have = Vec3::new(g[0], g[1], g[2]);
+                let tolerance = 1e-5 * (1.0 + want.abs().max_element());
+                assert!(
+                    (have - want).abs().max_element() <= tolerance,
+                    "{name}: input {i} value {k}: WGSL {have} vs Rust {want}"
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,537 @@
+//! Rendering: sprites where particles are, culling that changes nothing visible, snow
+//! on the roof only, rain streaks along the velocity, fog by distance, surfaces of
+//! another format, and bad input.
+
+use glam::{Vec2, Vec3};
+use precip_gpu_wgpu::WgpuBackend;
+use precip_model::builtin::{HousePlan, house_on_plane};
+use precip_model::wind::WindField;
+use precip_model::{
+    Backend, BackendError, Camera, CameraVolume, CameraVolumeSetup, Material, Mesh,
+    PrecipitationKind, Scene, SceneError, Setup, View, WorldEmitter,
+};
+
+use crate::common;
+use crate::images::{keep, linear, luma, max_difference, mean_luma, pixel_of, project};
+
+/// A dark sky so every particle shows.
+fn dark_sky(setup: &mut Setup) {
+    setup.render.sky_colour = Vec3::new(0.02, 0.02, 0.03);
+    setup.render.sizing.min_opacity = 0.6;
+}
+
+fn view(camera: Camera, width_px: u32, height_px: u32) -> View {
+    View {
+        camera,
+        width_px,
+        height_px,
+    }
+}
+
+/// A column of snow 3 m across over flat ground, seen from the side.
+fn snow_column() -> (Setup, View) {
+    let mut setup = Setup::over_flat_ground(40.0, 32, 12.0, 3_000);
+    setup.world_emitter = setup.world_emitter.map(|mut e| {
+        e.emitter = WorldEmitter::horizontal(Vec3::new(0.0, 12.0, 0.0), 3.0, 3.0, 12.0);
+        e
+    });
+    dark_sky(&mut setup);
+    let camera = Camera {
+        position_m: Vec3::new(0.0, 6.0, 14.0),
+        forward: Vec3::NEG_Z,
+        ..Camera::default()
+    };
+    setup.camera = camera;
+    (setup, view(camera, 96, 64))
+}
+
+#[test]
+fn sprites_are_bright_where_particles_project_and_the_empty_sky_is_untouched() {
+    let (setup, view) = snow_column();
+    for (name, mut gpu) in common::gpu_backends("sprites_appear_where_particles_project") {
+        common::run(&mut gpu, &setup, 4, 0.05);
+        gpu.render(&view).expect("renders");
+        let image = gpu.read_image().expect("an image");
+        keep(&image, "snow_column");
+        assert_eq!((image.width_px, image.height_px), (96, 64));
+        let sky = luma(&image, 0, 0);
+        let particles = gpu.read_particles().expect("particles");
+        let mut seen = 0;
+        let mut projected = 0;
+        let mut columns = [false; 96];
+        for p in &particles {
+            let Some(s) = project(&view, p.position_m) else {
+                continue;
+            };
+            for dx in -3..=3 {
+                let x = s.x as i32 + dx;
+                if (0..96).contains(&x) {
+                    columns[x as usize] = true;
+                }
+            }
+            if s.x < 1.0 || s.y < 1.0 || s.x > 94.0 || s.y > 62.0 {
+                continue;
+            }
+            projected += 1;
+            let (x, y) = (s.x as u32, s.y as u32);
+            let brightest = (x - 1..=x + 1)
+                .flat_map(|x| (y - 1..=y + 1).map(move |y| (x, y)))
+                .map(|(x, y)| luma(&image, x, y))
+                .fold(0.0, f32::max);
+            if brightest > sky + 10.0 {
+                seen += 1;
+            }
+        }
+        assert!(
+            projected > 500,
+            "{name}: only {projected} particles in view"
+        );
+        assert!(
+            seen as f32 >= 0.95 * projected as f32,
+            "{name}: {seen} of {projected} particles show a bright sprite"
+        );
+        // Columns no particle projects near stay exactly the sky.
+        let mut empty = 0;
+        for x in (0..96).filter(|&x| !columns[x as usize]) {
+            empty += 1;
+            for y in 0..64 {
+                assert!(
+                    (luma(&image, x, y) - sky).abs() <= 1.0,
+                    "{name}: pixel ({x}, {y}) lit with no particle near"
+                );
+            }
+        }
+        assert!(
+            empty > 40,
+            "{name}: the column should leave most of the sky empty"
+        );
+    }
+}
+
+#[test]
+fn culling_on_and_off_give_the_same_image_and_culling_draws_fewer() {
+    let (mut setup, _) = Setup::over_scene(house_on_plane(), 64, 6.0, 8_000).expect("valid");
+    // Look at one corner of the house: most particles are outside the view.
+    let camera = Camera {
+        position_m: Vec3::new(8.0, 3.0, 9.0),
+        forward: Vec3::new(-0.6, -0.1, -1.0),
+        ..Camera::default()
+    };
+    setup.camera = camera;
+    let view = view(camera, 80, 60);
+    for (name, mut gpu) in common::gpu_backends("culling_on_and_off_give_the_same_image") {
+        let mut images = Vec::new();
+        let mut drawn = Vec::new();
+        for culling in [true, false] {
+            setup.render.view_cone_culling = culling;
+            common::run(&mut gpu, &setup, 3, 0.05);
+            gpu.render(&view).expect("renders");
+            images.push(gpu.read_image().expect("an image"));
+            drawn.push(gpu.drawn_counts().expect("counts"));
+        }
+        keep(&images[0], "culling_on");
+        let difference = max_difference(&images[0], &images[1]);
+        assert!(difference <= 1, "{name}: images differ by {difference}/255");
+        assert_eq!(
+            drawn[1].0 + drawn[1].1,
+            8_000,
+            "{name}: off draws every particle"
+        );
+        assert!(
+            drawn[0].0 + drawn[0].1 < 4_000,
+            "{name}: culling kept {:?} of 8000",
+            drawn[0]
+        );
+        assert!(drawn[0].0 > 0, "{name}: some particles are in view");
+    }
+}
+
+/// The house under a day of snow per simulated second, fed by the weather's rate.
+fn snowed_house() -> (Setup, HousePlan) {
+    let plan = HousePlan::default();
+    let (mut setup, _) = Setup::over_scene(house_on_plane(), 128, 6.0, 1).expect("valid");
+    setup.world_emitter = None;
+    setup.camera_volume = Some(CameraVolumeSetup {
+        volume: CameraVolume::default(),
+        particle_count: 1_000,
+    });
+    setup.weather.intensity_mm_per_h = 5.0;
+    setup.weather.air_temperature_c = -6.0;
+    setup.cover.time_scale = 86_400.0;
+    (setup, plan)
+}
+
+#[test]
+fn after_snowing_the_roof_is_white_and_the_walls_and_the_ground_under_the_eaves_are_not() {
+    let (setup, plan) = snowed_house();
+    // From the south-east, a little above the eaves.
+    let camera = Camera {
+        position_m: Vec3::new(6.0, 9.0, 14.0),
+        forward: Vec3::new(-6.0, -8.0, -11.0),
+        ..Camera::default()
+    };
+    let view = view(camera, 240, 180);
+    let z_wall = plan.depth_m / 2.0;
+    let points = [
+        (
+            "roof",
+            Vec3::new(0.0, plan.wall_height_m + 0.6, z_wall * 0.5),
+        ),
+        ("wall", Vec3::new(-1.0, 1.2, z_wall)),
+        ("open ground", Vec3::new(-2.0, 0.0, z_wall + 5.0)),
+        // Under the eaves of the south side, just outside the wall.
+        ("sheltered ground", Vec3::new(-1.0, 0.0, z_wall + 0.35)),
+    ];
+    for (name, mut gpu) in common::gpu_backends("after_snowing_the_roof_is_white") {
+        let mut lumas = Vec::new();
+        for steps in [0, 4] {
+            common::run(&mut gpu, &setup, steps, 0.05);
+            gpu.render(&view).expect("renders");
+            let image = gpu.read_image().expect("an image");
+            keep(&image, &format!("house_after_{steps}_steps"));
+            lumas.push(
+                points
+                    .iter()
+                    .map(|(what, p)| {
+                        let px = pixel_of(&view, *p).unwrap_or_else(|| panic!("{what} in view"));
+                        (*what, mean_luma(&image, px, 1))
+                    })
+                    .collect::<Vec<_>>(),
+            );
+        }
+        let cover = gpu.read_cover().expect("cover");
+        let depth = |p: Vec3| {
+            let i = cover
+                .frame
+                .texel_index(Vec2::new(p.x, p.z))
+                .expect("on the grid");
+            cover.texels[i].depth_mm
+        };
+        assert!(
+            depth(points[0].1) > 100.0,
+            "{name}: the roof holds {} mm",
+            depth(points[0].1)
+        );
+        let (before, after) = (&lumas[0], &lumas[1]);
+        let at = |set: &Vec<(&str, f32)>, what: &str| {
+            set.iter()
+                .find(|(w, _)| *w == what)
+                .map(|(_, l)| *l)
+                .expect(what)
+        };
+        let summary = format!("{name}: before {before:?}, after {after:?}");
+        assert!(at(after, "roof") > 200.0, "roof not white: {summary}");
+        assert!(
+            at(after, "open ground") > 180.0,
+            "open ground not white: {summary}"
+        );
+        for bare in ["wall", "sheltered ground"] {
+            assert!(
+                (at(after, bare) - at(before, bare)).abs() < 10.0 && at(after, bare) < 200.0,
+                "{bare} changed under snow: {summary}"
+            );
+        }
+    }
+}
+
+/// Direction of streaks in `image` (degrees, 0 = image x axis, y down, mod 180) from
+/// the structure tensor of its gradients (the uniform sky adds nothing).
+fn streak_angle_deg(image: &precip_model::Image) -> f32 {
+    let (mut jxx, mut jyy, mut jxy) = (0.0f64, 0.0f64, 0.0f64);
+    for y in 1..image.height_px - 1 {
+        for x in 1..image.width_px - 1 {
+            let gx = f64::from(luma(image, x + 1, y) - luma(image, x - 1, y));
+            let gy = f64::from(luma(image, x, y + 1) - luma(image, x, y - 1));
+            jxx += gx * gx;
+            jyy += gy * gy;
+            jxy += gx * gy;
+        }
+    }
+    // The gradients' dominant direction is across the streaks.
+    let across = 0.5 * (2.0 * jxy).atan2(jxx - jyy);
+    ((across.to_degrees() + 90.0) as f32).rem_euclid(180.0)
+}
+
+#[test]
+fn rain_frames_show_streaks_along_the_velocity() {
+    let camera = Camera {
+        position_m: Vec3::new(0.0, 20.0, 0.0),
+        forward: Vec3::NEG_Z,
+        ..Camera::default()
+    };
+    let view = view(camera, 128, 96);
+    for (name, mut gpu) in common::gpu_backends("rain_frames_show_streaks_along_the_velocity") {
+        let mut angles = Vec::new();
+        for wind_x in [0.0, 9.0] {
+            let mut setup = Setup::over_flat_ground(60.0, 16, 40.0, 1);
+            setup.world_emitter = None;
+            setup.camera_volume = Some(CameraVolumeSetup {
+                volume: CameraVolume {
+                    half_extent_m: Vec3::splat(6.0),
+                    ..CameraVolume::default()
+                },
+                particle_count: 3_000,
+            });
+            setup.camera = camera;
+            setup.weather.kind = PrecipitationKind::Rain;
+            setup.weather.air_temperature_c = 10.0;
+            setup.weather.intensity_mm_per_h = 10.0;
+            setup.weather.wind = WindField {
+                mean_wind_mps: Vec3::new(wind_x, 0.0, 0.0),
+                ..WindField::calm()
+            };
+            dark_sky(&mut setup);
+            setup.render.rain_opacity = 0.8;
+            setup.render.sizing.rain_streak_s = 0.05;
+            // Let the drops reach the wind's speed.
+            common::run(&mut gpu, &setup, 30, 0.1);
+            gpu.render(&view).expect("renders");
+            let image = gpu.read_image().expect("an image");
+            keep(&image, &format!("rain_wind_{wind_x}"));
+            let particles = gpu.read_particles().expect("particles");
+            let mean_velocity = particles
+                .iter()
+                .map(|p| p.velocity_mps)
+                .fold(Vec3::ZERO, |a, v| a + v)
+                / particles.len() as f32;
+            // The velocity's direction on screen at the image centre.
+            let ahead = camera.position_m + camera.forward * 5.0;
+            let a = project(&view, ahead).expect("in front");
+            let b = project(&view, ahead + mean_velocity * 0.1).expect("in front");
+            let d = b - a;
+            let expected = d.y.atan2(d.x).to_degrees().rem_euclid(180.0);
+            let got = streak_angle_deg(&image);
+            let error = (got - expected).abs();
+            let error = error.min(180.0 - error);
+            assert!(
+                error < 12.0,
+                "{name}: wind {wind_x} m/s: streaks at {got:.1}°, velocity at {expected:.1}° on screen"
+            );
+            angles.push(got);
+        }
+        let apart = (angles[0] - angles[1]).abs();
+        assert!(
+            apart.min(180.0 - apart) > 20.0,
+            "{name}: wind should tilt the streaks: {angles:?}"
+        );
+    }
+}
+
+/// Black walls facing the camera at `distances_m` along −Z, 6 m wide and tall.
+fn black_walls(distances_m: &[f32]) -> Scene {
+    Scene {
+        meshes: distances_m
+            .iter()
+            .enumerate()
+            .map(|(i, &d)| {
+                let x = 8.0 * i as f32 - 4.0;
+                Mesh {
+                    name: format!("wall at {d} m"),
+                    positions_m: vec![
+                        Vec3::new(x - 3.0, 0.0, -d),
+                        Vec3::new(x + 3.0, 0.0, -d),
+                        Vec3::new(x + 3.0, 6.0, -d),
+                        Vec3::new(x - 3.0, 6.0, -d),
+                    ],
+                    indices: vec![0, 1, 2, 0, 2, 3],
+                    material: Material {
+                        base_colour: [0.0, 0.0, 0.0, 1.0],
+                        base_colour_texture: None,
+                    },
+                    ..Mesh::default()
+                }
+            })
+            .collect(),
+    }
+}
+
+#[test]
+fn fog_lowers_contrast_with_distance_and_with_the_precipitation() {
+    let distances = [10.0f32, 60.0];
+    let camera = Camera {
+        position_m: Vec3::new(0.0, 3.0, 0.0),
+        forward: Vec3::NEG_Z,
+        vertical_fov_rad: 50f32.to_radians(),
+        ..Camera::default()
+    };
+    let view = view(camera, 96, 64);
+    for (name, mut gpu) in common::gpu_backends("fog_lowers_contrast_with_distance") {
+        let mut contrasts = Vec::new();
+        for intensity in [1.0f32, 8.0] {
+            let (mut setup, _) =
+                Setup::over_scene(black_walls(&distances), 32, 5.0, 1).expect("valid");
+            // The one particle falls far behind the camera.
+            setup.world_emitter = setup.world_emitter.map(|mut e| {
+                e.emitter = WorldEmitter::horizontal(Vec3::new(0.0, 10.0, 500.0), 1.0, 1.0, 10.0);
+                e
+            });
+            setup.weather.intensity_mm_per_h = intensity;
+            setup.camera = camera;
+            common::run(&mut gpu, &setup, 1, 0.05);
+            gpu.render(&view).expect("renders");
+            let image = gpu.read_image().expect("an image");
+            keep(&image, &format!("fog_{intensity}"));
+            let sky = linear(image.rgba8[0]);
+            let extinction =
+                setup.render.clear_air_extinction_per_m + setup.weather.extinction_per_m();
+            for (i, &d) in distances.iter().enumerate() {
+                let x = 8.0 * i as f32 - 4.0;
+                let centre = Vec3::new(x, 3.0, -d);
+                let (px, py) = pixel_of(&view, centre).expect("wall in view");
+                let wall = linear(crate::images::rgb(&image, px, py)[0]);
+                // A black wall shows the sky's colour times (1 − T): contrast is T.
+                let contrast = 1.0 - wall / sky;
+                let along_ray = (centre - camera.position_m).length();
+                let expected = precip_model::drawing::fog_transmittance(along_ray, extinction);
+                assert!(
+                    (contrast - expected).abs() < 0.03,
+                    "{name}: {intensity} mm/h at {d} m: contrast {contrast:.3}, Beer–Lambert {expected:.3}"
+                );
+                contrasts.push(contrast);
+            }
+        }
+        assert!(
+            contrasts[1] < contrasts[0],
+            "{name}: far walls fade: {contrasts:?}"
+        );
+        assert!(
+            contrasts[3] < contrasts[1],
+            "{name}: heavier snow, thicker fog: {contrasts:?}"
+        );
+    }
+}
+
+#[test]
+fn a_surface_format_renders_the_same_frame() {
+    let (setup, view) = snow_column();
+    for (name, mut gpu) in common::gpu_backends("a_surface_format_renders_the_same_frame") {
+        common::run(&mut gpu, &setup, 2, 0.05);
+        gpu.render(&view).expect("renders");
+        let offscreen = gpu.read_image().expect("an image");
+        let texture = gpu
+            .device()
+            .device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some("surface stand-in"),
+                size: wgpu::Extent3d {
+                    width: view.width_px,
+                    height: view.height_px,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Bgra8UnormSrgb,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            });
+        let target = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        gpu.render_to(&view, &target, wgpu::TextureFormat::Bgra8UnormSrgb)
+            .expect("renders into a BGRA target");
+        // read_image still returns the offscreen frame.
+        assert_eq!(gpu.read_image().expect("an image"), offscreen, "{name}");
+    }
+}
+
+#[test]
+fn bad_views_and_scenes_are_typed_errors() {
+    for (name, mut gpu) in common::gpu_backends("bad_views_and_scenes_are_typed_errors") {
+        let (setup, good) = snow_column();
+        assert!(
+            matches!(gpu.render(&good), Err(BackendError::NotConfigured { .. })),
+            "{name}: render before configure"
+        );
+        gpu.configure(&setup).expect("valid");
+        assert!(
+            matches!(gpu.read_image(), Err(BackendError::NothingRendered)),
+            "{name}"
+        );
+        for (w, h) in [(0, 64), (64, 0), (100_000, 64), (64, u32::MAX)] {
+            let bad = View {
+                width_px: w,
+                height_px: h,
+                ..good
+            };
+            assert!(
+                matches!(gpu.render(&bad), Err(BackendError::InvalidView(_))),
+                "{name}: {w}×{h}"
+            );
+        }
+        let nan_camera = View {
+            camera: Camera {
+                forward: Vec3::NAN,
+                ..good.camera
+            },
+            ..good
+        };
+        assert!(matches!(
+            gpu.render(&nan_camera),
+            Err(BackendError::InvalidCamera(_))
+        ));
+        // Still renders after the refusals.
+        gpu.render(&good).expect("renders");
+
+        // Scenes: empty, NaN vertex → typed errors at configure; degenerate triangles
+        // are dropped and the rest renders.
+        let mut with_scene = setup.clone();
+        with_scene.scene = Some(std::sync::Arc::new(Scene::default()));
+        assert!(matches!(
+            gpu.configure(&with_scene),
+            Err(BackendError::Scene(SceneError::Empty))
+        ));
+        let mut nan = black_walls(&[10.0]);
+        nan.meshes[0].positions_m[2].y = f32::NAN;
+        with_scene.scene = Some(std::sync::Arc::new(nan.clone()));
+        assert!(matches!(
+            gpu.configure(&with_scene),
+            Err(BackendError::Scene(SceneError::NonFinite { .. }))
+        ));
+        assert!(matches!(
+            Setup::over_scene(nan, 16, 5.0, 10),
+            Err(BackendError::Scene(SceneError::NonFinite { .. }))
+        ));
+        let mut degenerate = black_walls(&[10.0]);
+        let m = &mut degenerate.meshes[0];
+        m.positions_m.push(Vec3::new(1.0, 1.0, -10.0));
+        m.indices.extend_from_slice(&[4, 4, 4, 0, 1, 0]);
+        let (setup, report) =
+            Setup::over_scene(degenerate, 16, 5.0, 10).expect("degenerate dropped");
+        assert_eq!(report.degenerate_triangles, 2, "{name}");
+        gpu.configure(&setup).expect("valid");
+        gpu.render(&good).expect("renders");
+        let image = gpu.read_image().expect("an image");
+        assert_eq!(image.rgba8.len(), 4 * 96 * 64);
+    }
+}
+
+#[test]
+fn timings_name_every_pass_of_a_frame() {
+    let (setup, view) = snow_column();
+    for (name, mut gpu) in common::gpu_backends("timings_name_every_pass_of_a_frame") {
+        common::run(&mut gpu, &setup, 1, 0.05);
+        gpu.render(&view).expect("renders");
+        let timings = gpu.timings().expect("timings");
+        if timings.source == precip_model::TimingSource::Unavailable {
+            eprintln!("{name}: no timestamps on this adapter");
+            continue;
+        }
+        for pass in ["shadow", "cull_particles", "scene", "particles"] {
+            let t = timings
+                .passes
+                .iter()
+                .find(|p| p.pass == pass)
+                .unwrap_or_else(|| panic!("{name}: no timing for {pass}: {timings:?}"));
+            assert!(t.milliseconds.is_finite() && t.milliseconds >= 0.0);
+        }
+    }
+}
+
+/// The backend is usable as a `dyn Backend` that renders.
+#[test]
+fn the_wgpu_backend_says_it_renders() {
+    for (name, gpu) in common::gpu_backends("the_wgpu_backend_says_it_renders") {
+        let gpu: Box<dyn Backend> = Box::new(gpu);
+        assert!(gpu.info().renders, "{name}");
+    }
+    let _: fn() -> Result<WgpuBackend, BackendError> = WgpuBackend::new;
+}
