@@ -133,16 +133,31 @@ impl WgpuBackend {
 }
 
 impl WgpuBackend {
-    /// Draws a frame for `view` into the caller's `target` (a window surface's texture,
-    /// of `format` and `view`'s size); the caller presents it. `read_image` still reads
-    /// the last offscreen `render`.
+    /// Draws a frame for `view` into the caller's `target` (a window surface's texture
+    /// view, of `view`'s size, made with `RENDER_ATTACHMENT`); the caller presents it.
+    /// `read_image` still reads the last offscreen `render`.
     pub fn render_to(
         &mut self,
         view: &View,
         target: &wgpu::TextureView,
-        format: wgpu::TextureFormat,
     ) -> Result<(), BackendError> {
-        self.draw(view, Some((target, format)))
+        let texture = target.texture();
+        let size = texture.size();
+        if (size.width, size.height) != (view.width_px, view.height_px) {
+            return Err(BackendError::InvalidView(format!(
+                "the target is {}×{} px but the view asks for {}×{}: give the view the target's size",
+                size.width, size.height, view.width_px, view.height_px
+            )));
+        }
+        if !texture
+            .usage()
+            .contains(wgpu::TextureUsages::RENDER_ATTACHMENT)
+        {
+            return Err(BackendError::InvalidView(
+                "the target texture lacks RENDER_ATTACHMENT usage".into(),
+            ));
+        }
+        self.draw(view, Some((target, texture.format())))
     }
 
     /// How many snow sprites and rain tetrahedra the last frame drew (after culling):
@@ -188,7 +203,9 @@ impl WgpuBackend {
         if state.render.is_none() {
             let settings = &state.setup.render;
             let scene = match &state.setup.scene {
-                Some(scene) => Some(SceneGpu::upload(&gpu, &renderer.layouts, scene, settings)?),
+                Some(scene) => Some(scoped(&gpu, "uploading the scene", || {
+                    SceneGpu::upload(&gpu, &renderer.layouts, scene, settings)
+                })??),
                 None => None,
             };
             let frame = scoped(&gpu, "preparing to render", || {

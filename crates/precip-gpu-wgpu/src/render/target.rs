@@ -83,48 +83,54 @@ impl ColourTarget {
 
     /// Copies the image back (rows top to bottom).
     pub fn read(&self, gpu: &GpuDevice) -> Result<Image, BackendError> {
-        let (width, height) = self.size;
-        let row = width * 4;
-        let padded =
-            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("precip image copy"),
-            size: u64::from(padded) * u64::from(height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("precip image copy"),
-            });
-        encoder.copy_texture_to_buffer(
-            self.texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded),
-                    rows_per_image: Some(height),
-                },
-            },
-            wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-        );
-        gpu.queue.submit([encoder.finish()]);
-        let bytes = read_buffer(gpu, &buffer, u64::from(padded) * u64::from(height))?;
-        let mut rgba8 = Vec::with_capacity((row * height) as usize);
-        for r in 0..height as usize {
-            let start = r * padded as usize;
-            rgba8.extend_from_slice(&bytes[start..start + row as usize]);
-        }
-        Ok(Image {
-            width_px: width,
-            height_px: height,
-            rgba8,
-        })
+        read_texture(gpu, &self.texture)
     }
+}
+
+/// Copies a 4-byte-per-pixel 2D texture (made with `COPY_SRC`) back, rows top to
+/// bottom, bytes in the texture's own channel order (tests and tools).
+pub fn read_texture(gpu: &GpuDevice, texture: &wgpu::Texture) -> Result<Image, BackendError> {
+    let (width, height) = (texture.width(), texture.height());
+    let row = width * 4;
+    let padded =
+        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("precip image copy"),
+        size: u64::from(padded) * u64::from(height),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("precip image copy"),
+        });
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
+        },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+    );
+    gpu.queue.submit([encoder.finish()]);
+    let bytes = read_buffer(gpu, &buffer, u64::from(padded) * u64::from(height))?;
+    let mut rgba8 = Vec::with_capacity((row * height) as usize);
+    for r in 0..height as usize {
+        let start = r * padded as usize;
+        rgba8.extend_from_slice(&bytes[start..start + row as usize]);
+    }
+    Ok(Image {
+        width_px: width,
+        height_px: height,
+        rgba8,
+    })
 }

@@ -426,9 +426,30 @@ fn a_surface_format_renders_the_same_frame() {
                 view_formats: &[],
             });
         let target = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        gpu.render_to(&view, &target, wgpu::TextureFormat::Bgra8UnormSrgb)
+        gpu.render_to(&view, &target)
             .expect("renders into a BGRA target");
-        // read_image still returns the offscreen frame.
+        let smaller = View {
+            width_px: view.width_px - 1,
+            ..view
+        };
+        assert!(
+            matches!(
+                gpu.render_to(&smaller, &target),
+                Err(BackendError::InvalidView(_))
+            ),
+            "{name}: a view of another size than the target"
+        );
+        // The same frame, channels swapped; read_image still returns the offscreen one.
+        let mut bgra = precip_gpu_wgpu::render::target::read_texture(gpu.device(), &texture)
+            .expect("read back");
+        for px in bgra.rgba8.chunks_exact_mut(4) {
+            px.swap(0, 2);
+        }
+        let difference = max_difference(&bgra, &offscreen);
+        assert!(
+            difference <= 1,
+            "{name}: the BGRA frame differs by {difference}/255"
+        );
         assert_eq!(gpu.read_image().expect("an image"), offscreen, "{name}");
     }
 }
@@ -534,4 +555,44 @@ fn the_wgpu_backend_says_it_renders() {
         assert!(gpu.info().renders, "{name}");
     }
     let _: fn() -> Result<WgpuBackend, BackendError> = WgpuBackend::new;
+}
+
+#[test]
+fn the_house_casts_a_shadow_away_from_the_sun() {
+    let (mut setup, _) = Setup::over_scene(house_on_plane(), 64, 6.0, 1).expect("valid");
+    setup.weather.intensity_mm_per_h = 0.0;
+    setup.render.clear_air_extinction_per_m = 0.0;
+    setup.render.to_sun = Vec3::new(0.4, 0.8, 0.3);
+    // A clear day's hard shadow (the default, 0.6, is a snowy sky's soft one).
+    setup.render.lighting.shadow_density = 1.0;
+    let camera = Camera {
+        position_m: Vec3::new(2.0, 30.0, 18.0),
+        forward: Vec3::new(-5.0, -30.0, -20.0),
+        ..Camera::default()
+    };
+    setup.camera = camera;
+    let view = view(camera, 160, 120);
+    // The roof's corner (−5, 2.4, −4) and the ridge's end (−5, 4.7, 0) fall on the
+    // ground about (−6.2, −4.9) and (−7.4, −1.8): the point between is in shadow.
+    let shaded = Vec3::new(-6.3, 0.0, -3.0);
+    let sunlit = [Vec3::new(-6.3, 0.0, 6.0), Vec3::new(8.0, 0.0, -3.0)];
+    for (name, mut gpu) in common::gpu_backends("the_house_casts_a_shadow_away_from_the_sun") {
+        gpu.configure(&setup).expect("valid");
+        gpu.render(&view).expect("renders");
+        let image = gpu.read_image().expect("an image");
+        keep(&image, "shadow");
+        // Linear green: ambient 0.45 in the shadow against 0.45 + 0.55 in the sun.
+        let at = |p: Vec3| {
+            let (x, y) = pixel_of(&view, p).expect("in view");
+            linear(crate::images::rgb(&image, x, y)[1])
+        };
+        for lit in sunlit {
+            assert!(
+                at(shaded) < 0.6 * at(lit),
+                "{name}: shadow {} vs sunlit {} at {lit}",
+                at(shaded),
+                at(lit)
+            );
+        }
+    }
 }
