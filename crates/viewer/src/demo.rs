@@ -1,0 +1,151 @@
+//! The built-in demo scene, written by this code as a small GLB (shipped as
+//! `assets/demo.glb`; `precip demo --out FILE` writes it again): hilly terrain
+//! carrying a `_SNOW_MASK` (a heated patio stays bare), the gabled house of
+//! `precip_model::builtin` (its walls' material says `"snow": false`; the ground under
+//! its eaves is sheltered), a road whose node says `"snow": false`, and fence posts
+//! whose tops hold snow by slope. It shows every mask convention of DESIGN.md §6.
+
+use glam::{Vec2, Vec3};
+use precip_model::builtin::{HousePlan, house};
+use serde_json::json;
+
+use crate::glb::{GlbMesh, write_glb};
+
+/// The shipped demo file.
+pub const DEMO_GLB: &[u8] = include_bytes!("../assets/demo.glb");
+
+/// Side of the terrain, m.
+pub const TERRAIN_SIDE_M: f32 = 80.0;
+/// The road runs along Z over these X, m.
+pub const ROAD_X_M: (f32, f32) = (11.0, 15.0);
+/// The heated patio: centre (x, z) and radius, m.
+pub const PATIO: (Vec2, f32) = (Vec2::new(-9.0, 7.0), 2.5);
+
+/// Terrain height at (x, z): two hills and a gentle swell, flattened around the
+/// house and along the road.
+#[must_use]
+pub fn terrain_height_m(x: f32, z: f32) -> f32 {
+    let hill = |cx: f32, cz: f32, h: f32, r2: f32| h * (-((x - cx).powi(2) + (z - cz).powi(2)) / r2).exp();
+    let raw = hill(-24.0, -22.0, 5.0, 160.0) + hill(26.0, 24.0, 3.5, 120.0) + 0.6 * (x / 9.0).sin() * (z / 11.0).cos();
+    let near_house = ((x * x + z * z).sqrt() - 9.0).clamp(0.0, 8.0) / 8.0;
+    let road_mid = 0.5 * (ROAD_X_M.0 + ROAD_X_M.1);
+    let near_road = ((x - road_mid).abs() - 3.0).clamp(0.0, 6.0) / 6.0;
+    raw * near_house * near_road
+}
+
+fn grid(
+    name: &str,
+    (x0, x1): (f32, f32),
+    (z0, z1): (f32, f32),
+    (nx, nz): (u32, u32),
+    lift_m: f32,
+) -> GlbMesh {
+    let mut m = GlbMesh {
+        name: name.to_owned(),
+        ..GlbMesh::default()
+    };
+    for j in 0..=nz {
+        for i in 0..=nx {
+            let x = x0 + (x1 - x0) * i as f32 / nx as f32;
+            let z = z0 + (z1 - z0) * j as f32 / nz as f32;
+            let h = |x: f32, z: f32| terrain_height_m(x, z) + lift_m;
+            let e = 0.05;
+            let normal = Vec3::new(h(x - e, z) - h(x + e, z), 2.0 * e, h(x, z - e) - h(x, z + e)).normalize();
+            m.positions.push([x, h(x, z), z]);
+            m.normals.push(normal.to_array());
+            m.uvs.push([x / 4.0, z / 4.0]);
+        }
+    }
+    let row = nx + 1;
+    for j in 0..nz {
+        for i in 0..nx {
+            let a = j * row + i;
+            // Counter-clockwise seen from above (+Y).
+            m.indices.extend_from_slice(&[a, a + row, a + 1, a + 1, a + row, a + row + 1]);
+        }
+    }
+    m
+}
+
+fn post(name: &str, at: Vec2) -> GlbMesh {
+    let (w, h) = (0.12, 1.2);
+    let base = terrain_height_m(at.x, at.y);
+    let mut m = GlbMesh {
+        name: name.to_owned(),
+        base_colour: [0.35, 0.25, 0.15, 1.0],
+        ..GlbMesh::default()
+    };
+    let faces: [(Vec3, Vec3, Vec3); 5] = [
+        (Vec3::Y, Vec3::X, Vec3::Z),
+        (Vec3::X, Vec3::Z, Vec3::Y),
+        (Vec3::NEG_X, Vec3::NEG_Z, Vec3::Y),
+        (Vec3::Z, Vec3::NEG_X, Vec3::Y),
+        (Vec3::NEG_Z, Vec3::X, Vec3::Y),
+    ];
+    let centre = Vec3::new(at.x, base + h / 2.0, at.y);
+    let half = Vec3::new(w, h, w) / 2.0;
+    for (n, u, v) in faces {
+        let start = m.positions.len() as u32;
+        for (su, sv) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            let p = centre + n * half + u * half * su + v * half * sv;
+            m.positions.push(p.to_array());
+            m.normals.push(n.to_array());
+            m.uvs.push([0.5 + 0.5 * su, 0.5 + 0.5 * sv]);
+        }
+        // Wind so the face's normal is n (u × v = n for the faces above).
+        let (a, b, c, d) = (start, start + 1, start + 2, start + 3);
+        if u.cross(v).dot(n) > 0.0 {
+            m.indices.extend_from_slice(&[a, b, c, a, c, d]);
+        } else {
+            m.indices.extend_from_slice(&[a, c, b, a, d, c]);
+        }
+    }
+    m
+}
+
+/// The demo's meshes.
+#[must_use]
+pub fn demo_meshes() -> Vec<GlbMesh> {
+    let half = TERRAIN_SIDE_M / 2.0;
+    let mut terrain = grid("terrain", (-half, half), (-half, half), (64, 64), 0.0);
+    terrain.base_colour = [0.24, 0.3, 0.16, 1.0];
+    terrain.snow_mask = terrain
+        .positions
+        .iter()
+        .map(|p| {
+            let d = Vec2::new(p[0], p[2]).distance(PATIO.0);
+            if d < PATIO.1 { 0.0 } else { 1.0 }
+        })
+        .collect();
+    let mut road = grid("road", ROAD_X_M, (-half, half), (2, 40), 0.04);
+    road.base_colour = [0.12, 0.12, 0.13, 1.0];
+    road.node_extras = Some(json!({ "snow": false }));
+
+    let mut meshes = vec![terrain, road];
+    let plan = HousePlan::default();
+    for mesh in house(&plan).meshes.into_iter().filter(|m| m.name != "ground") {
+        let material_extras = (mesh.name == "walls").then(|| json!({ "snow": false }));
+        let c = mesh.material.base_colour;
+        meshes.push(GlbMesh {
+            name: format!("house {}", mesh.name),
+            positions: mesh.positions_m.iter().map(|p| p.to_array()).collect(),
+            normals: mesh.normals.iter().map(|n| n.to_array()).collect(),
+            uvs: mesh.uvs.iter().map(|u| u.to_array()).collect(),
+            indices: mesh.indices,
+            snow_mask: Vec::new(),
+            base_colour: c,
+            material_extras,
+            node_extras: None,
+        });
+    }
+    for (k, z) in [-12.0f32, -6.0, 0.0, 6.0, 12.0].into_iter().enumerate() {
+        meshes.push(post(&format!("post {k}"), Vec2::new(ROAD_X_M.0 - 1.0, z)));
+    }
+    meshes
+}
+
+/// The demo as GLB bytes (deterministic: the same bytes every time).
+#[must_use]
+pub fn demo_glb() -> Vec<u8> {
+    write_glb(&demo_meshes(), "precip demo scene")
+}

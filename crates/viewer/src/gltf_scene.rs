@@ -1,0 +1,451 @@
+//! glTF 2.0 → [`Scene`]: any valid file (.gltf with external .bin or data URIs, .glb),
+//! indexed or not, the node hierarchy with its transforms, base colour factor and
+//! texture, snow eligibility by DESIGN.md §6 (`_SNOW_MASK`, then `extras.snow` on the
+//! material, mesh or node (nearest ancestor first), then the slope).
+//!
+//! Content the viewer does not draw (points, lines, cameras, skins, animation,
+//! unknown extensions, float textures) is skipped and listed in the
+//! [`LoadReport`]; what cannot be shown (no triangles at all, broken buffers,
+//! accessors out of range, indices beyond the vertices, non-finite positions) is a
+//! [`LoadError`] naming the file and the part. Every accessor is checked against its
+//! buffer before it is read, so no input reaches the `gltf` crate's debug assertions;
+//! a panic inside that crate (a bug there) is still caught and reported as an error.
+
+use std::path::{Path, PathBuf};
+
+use glam::{Mat3, Mat4, Vec2, Vec3};
+use gltf::accessor::{DataType, Dimensions};
+use gltf::mesh::Mode;
+use precip_model::{Material, Mesh, Scene, SceneReport, TextureRgba8};
+
+use crate::eligibility::snow_extra;
+use crate::error::LoadError;
+
+/// What loading skipped or changed.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct LoadReport {
+    /// One line per thing skipped, saying why.
+    pub skipped: Vec<String>,
+    /// Primitives read.
+    pub primitives: usize,
+    /// Primitives whose eligibility came from `_SNOW_MASK`.
+    pub snow_mask_attribute: usize,
+    /// Primitives whose eligibility came from `extras.snow`.
+    pub snow_extras: usize,
+    /// What `Scene::prepare` did (degenerate triangles, computed normals, slope).
+    pub scene: SceneReport,
+}
+
+/// A loaded, prepared scene.
+#[derive(Debug, Clone)]
+pub struct LoadedScene {
+    /// The scene, prepared.
+    pub scene: Scene,
+    /// What was skipped.
+    pub report: LoadReport,
+}
+
+/// Loads the glTF or GLB file at `path`.
+pub fn load_scene(path: &Path) -> Result<LoadedScene, LoadError> {
+    let file = path.to_path_buf();
+    guarded(&file, || {
+        let (document, buffers, images) = gltf::import(path).map_err(|e| LoadError::Gltf {
+            file: file.clone(),
+            detail: e.to_string(),
+        })?;
+        convert(&file, &document, &buffers, &images)
+    })
+}
+
+/// Loads a self-contained glTF or GLB from bytes (`name` names it in messages;
+/// external files cannot be resolved).
+pub fn load_scene_from_slice(bytes: &[u8], name: &str) -> Result<LoadedScene, LoadError> {
+    let file = PathBuf::from(name);
+    guarded(&file, || {
+        let (document, buffers, images) =
+            gltf::import_slice(bytes).map_err(|e| LoadError::Gltf {
+                file: file.clone(),
+                detail: e.to_string(),
+            })?;
+        convert(&file, &document, &buffers, &images)
+    })
+}
+
+/// Runs `f`, turning a panic inside the glTF reader into an error.
+fn guarded(
+    file: &Path,
+    f: impl FnOnce() -> Result<LoadedScene, LoadError>,
+) -> Result<LoadedScene, LoadError> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).unwrap_or_else(|_| {
+        Err(LoadError::Gltf {
+            file: file.to_path_buf(),
+            detail: "the glTF reader failed on this file (it is malformed)".into(),
+        })
+    })
+}
+
+/// The bytes an accessor reads, checked: `Err` names the problem.
+fn check_accessor(
+    accessor: &gltf::Accessor<'_>,
+    buffers: &[gltf::buffer::Data],
+    want: &[(Dimensions, &[DataType])],
+) -> Result<(), String> {
+    let index = accessor.index();
+    if accessor.sparse().is_some() {
+        return Err(format!("accessor {index} is sparse (not supported)"));
+    }
+    let Some(view) = accessor.view() else {
+        return Err(format!("accessor {index} has no buffer view"));
+    };
+    if !want
+        .iter()
+        .any(|(d, types)| *d == accessor.dimensions() && types.contains(&accessor.data_type()))
+    {
+        return Err(format!(
+            "accessor {index} is {:?} of {:?}, which this attribute cannot be",
+            accessor.dimensions(),
+            accessor.data_type()
+        ));
+    }
+    let count = accessor.count();
+    if count == 0 {
+        return Err(format!("accessor {index} is empty"));
+    }
+    let buffer = buffers
+        .get(view.buffer().index())
+        .ok_or_else(|| format!("accessor {index}: buffer {} is missing", view.buffer().index()))?;
+    let view_end = view.offset().checked_add(view.length());
+    if view_end.is_none_or(|end| end > buffer.len()) {
+        return Err(format!(
+            "buffer view {} reaches past its buffer ({} bytes)",
+            view.index(),
+            buffer.len()
+        ));
+    }
+    let size = accessor.size();
+    let stride = view.stride().unwrap_or(size);
+    if stride < size {
+        return Err(format!("buffer view {} has a stride below its element size", view.index()));
+    }
+    let end = (count - 1)
+        .checked_mul(stride)
+        .and_then(|x| x.checked_add(size))
+        .and_then(|x| x.checked_add(accessor.offset()));
+    if end.is_none_or(|end| end > view.length()) {
+        return Err(format!(
+            "accessor {index} ({count} elements) reaches past buffer view {} ({} bytes)",
+            view.index(),
+            view.length()
+        ));
+    }
+    Ok(())
+}
+
+const FLOAT: &[DataType] = &[DataType::F32];
+const UV_TYPES: &[DataType] = &[DataType::F32, DataType::U8, DataType::U16];
+const INDEX_TYPES: &[DataType] = &[DataType::U8, DataType::U16, DataType::U32];
+
+/// RGBA8 from a decoded glTF image, or `None` for formats the viewer does not show.
+fn rgba8(image: &gltf::image::Data) -> Option<TextureRgba8> {
+    use gltf::image::Format;
+    let (w, h) = (image.width, image.height);
+    let n = (w as usize).checked_mul(h as usize)?;
+    let px = &image.pixels;
+    let channels = match image.format {
+        Format::R8 => 1,
+        Format::R8G8 => 2,
+        Format::R8G8B8 => 3,
+        Format::R8G8B8A8 => 4,
+        Format::R16 => 2,
+        Format::R16G16 => 4,
+        Format::R16G16B16 => 6,
+        Format::R16G16B16A16 => 8,
+        _ => return None,
+    };
+    if px.len() < n * channels {
+        return None;
+    }
+    let wide = matches!(
+        image.format,
+        Format::R16 | Format::R16G16 | Format::R16G16B16 | Format::R16G16B16A16
+    );
+    let (bytes_per, count) = if wide { (2, channels / 2) } else { (1, channels) };
+    let mut out = Vec::with_capacity(n * 4);
+    for i in 0..n {
+        // The high byte of 16-bit channels (little endian).
+        let c = |k: usize| px[i * channels + k * bytes_per + bytes_per - 1];
+        let (r, g, b, a) = match count {
+            1 => (c(0), c(0), c(0), 255),
+            2 => (c(0), c(0), c(0), c(1)),
+            3 => (c(0), c(1), c(2), 255),
+            _ => (c(0), c(1), c(2), c(3)),
+        };
+        out.extend_from_slice(&[r, g, b, a]);
+    }
+    Some(TextureRgba8 {
+        width_px: w,
+        height_px: h,
+        rgba8: out,
+    })
+}
+
+struct Converter<'a> {
+    file: &'a Path,
+    buffers: &'a [gltf::buffer::Data],
+    images: &'a [gltf::image::Data],
+    report: LoadReport,
+    meshes: Vec<Mesh>,
+}
+
+impl Converter<'_> {
+    fn invalid(&self, problem: String) -> LoadError {
+        LoadError::Invalid {
+            file: self.file.to_path_buf(),
+            problem,
+        }
+    }
+
+    fn node(&mut self, node: &gltf::Node<'_>, parent: Mat4, inherited_snow: Option<f32>) -> Result<(), LoadError> {
+        let local = Mat4::from_cols_array_2d(&node.transform().matrix());
+        let world = parent * local;
+        let node_snow = snow_extra(node.extras())
+            .map_err(|e| self.invalid(format!("node {}: {e}", node.index())))?
+            .or(inherited_snow);
+        if let Some(mesh) = node.mesh() {
+            if world.is_finite() {
+                self.mesh(&mesh, world, node_snow)?;
+            } else {
+                self.report
+                    .skipped
+                    .push(format!("node {}: a non-finite transform", node.index()));
+            }
+        }
+        if node.camera().is_some() || node.skin().is_some() {
+            self.report
+                .skipped
+                .push(format!("node {}: cameras and skins are not used", node.index()));
+        }
+        for child in node.children() {
+            self.node(&child, world, node_snow)?;
+        }
+        Ok(())
+    }
+
+    fn mesh(&mut self, mesh: &gltf::Mesh<'_>, world: Mat4, node_snow: Option<f32>) -> Result<(), LoadError> {
+        let mesh_name = mesh.name().map_or_else(|| format!("mesh {}", mesh.index()), str::to_owned);
+        let mesh_snow = snow_extra(mesh.extras()).map_err(|e| self.invalid(format!("{mesh_name}: {e}")))?;
+        for primitive in mesh.primitives() {
+            let name = format!("{mesh_name} primitive {}", primitive.index());
+            match self.primitive(&primitive, &name, world, mesh_snow.or(node_snow)) {
+                Ok(Some(m)) => {
+                    self.report.primitives += 1;
+                    self.meshes.push(m);
+                }
+                Ok(None) => {}
+                Err(problem) => return Err(self.invalid(format!("{name}: {problem}"))),
+            }
+        }
+        Ok(())
+    }
+
+    fn primitive(
+        &mut self,
+        primitive: &gltf::Primitive<'_>,
+        name: &str,
+        world: Mat4,
+        outer_snow: Option<f32>,
+    ) -> Result<Option<Mesh>, String> {
+        let mode = primitive.mode();
+        if !matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
+            self.report.skipped.push(format!("{name}: {mode:?} are not drawn"));
+            return Ok(None);
+        }
+        let buffers = self.buffers;
+        let get = |b: gltf::Buffer<'_>| buffers.get(b.index()).map(|d| &d.0[..]);
+        let Some(position) = primitive.get(&gltf::Semantic::Positions) else {
+            self.report.skipped.push(format!("{name}: no POSITION attribute"));
+            return Ok(None);
+        };
+        check_accessor(&position, buffers, &[(Dimensions::Vec3, FLOAT)])?;
+        let reader = primitive.reader(get);
+        let positions: Vec<Vec3> = reader
+            .read_positions()
+            .ok_or("positions unreadable")?
+            .map(Vec3::from)
+            .collect();
+        let n = positions.len();
+        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(format!("vertex {v} has a non-finite position"));
+        }
+        let normals: Vec<Vec3> = match primitive.get(&gltf::Semantic::Normals) {
+            Some(a) => {
+                check_accessor(&a, buffers, &[(Dimensions::Vec3, FLOAT)])?;
+                reader.read_normals().ok_or("normals unreadable")?.map(Vec3::from).collect()
+            }
+            None => Vec::new(),
+        };
+        let material = primitive.material();
+        let pbr = material.pbr_metallic_roughness();
+        let mut texture = None;
+        let mut uvs = Vec::new();
+        if let Some(info) = pbr.base_color_texture() {
+            let set = info.tex_coord();
+            let source = info.texture().source().index();
+            match (primitive.get(&gltf::Semantic::TexCoords(set)), self.images.get(source)) {
+                (Some(a), Some(image)) => {
+                    check_accessor(&a, buffers, &[(Dimensions::Vec2, UV_TYPES)])?;
+                    uvs = reader
+                        .read_tex_coords(set)
+                        .ok_or("texture coordinates unreadable")?
+                        .into_f32()
+                        .map(Vec2::from)
+                        .collect();
+                    texture = rgba8(image);
+                    if texture.is_none() {
+                        self.report
+                            .skipped
+                            .push(format!("{name}: image {source}'s pixel format is not shown"));
+                    }
+                }
+                _ => self.report.skipped.push(format!(
+                    "{name}: base-colour texture without TEXCOORD_{set} or image: drawn untextured"
+                )),
+            }
+        }
+        let mut snow_eligibility = Vec::new();
+        if let Some(a) = primitive.get(&gltf::Semantic::Extras("SNOW_MASK".into())) {
+            check_accessor(&a, buffers, &[(Dimensions::Scalar, FLOAT)])?;
+            let view = a.view().ok_or("_SNOW_MASK has no buffer view")?;
+            let data = &buffers[view.buffer().index()].0;
+            let stride = view.stride().unwrap_or(4);
+            let base = view.offset() + a.offset();
+            snow_eligibility = (0..a.count())
+                .map(|i| {
+                    let at = base + i * stride;
+                    f32::from_le_bytes([data[at], data[at + 1], data[at + 2], data[at + 3]])
+                })
+                .map(|x| if x.is_finite() { x.clamp(0.0, 1.0) } else { 0.0 })
+                .collect();
+            self.report.snow_mask_attribute += 1;
+        } else {
+            let material_snow = snow_extra(material.extras())?;
+            if let Some(e) = material_snow.or(outer_snow) {
+                snow_eligibility = vec![e; n];
+                self.report.snow_extras += 1;
+            }
+        }
+        let mut indices: Vec<u32> = match primitive.indices() {
+            Some(a) => {
+                check_accessor(&a, buffers, &[(Dimensions::Scalar, INDEX_TYPES)])?;
+                reader.read_indices().ok_or("indices unreadable")?.into_u32().collect()
+            }
+            None => (0..n as u32).collect(),
+        };
+        if let Some(&i) = indices.iter().find(|&&i| i as usize >= n) {
+            return Err(format!("index {i} is beyond its {n} vertices"));
+        }
+        indices = match mode {
+            Mode::TriangleStrip => (2..indices.len())
+                .flat_map(|k| {
+                    let (a, b, c) = (indices[k - 2], indices[k - 1], indices[k]);
+                    if k % 2 == 0 { [a, b, c] } else { [b, a, c] }
+                })
+                .collect(),
+            Mode::TriangleFan => (2..indices.len())
+                .flat_map(|k| [indices[0], indices[k - 1], indices[k]])
+                .collect(),
+            _ => {
+                let whole = indices.len() / 3 * 3;
+                indices.truncate(whole);
+                indices
+            }
+        };
+        // World space: positions by the node's matrix, normals by its inverse transpose;
+        // a mirroring transform flips the winding.
+        let normal_matrix = Mat3::from_mat4(world).inverse().transpose();
+        let positions_m: Vec<Vec3> = positions.iter().map(|&p| world.transform_point3(p)).collect();
+        let normals: Vec<Vec3> = normals
+            .iter()
+            .map(|&v| (normal_matrix * v).normalize_or(Vec3::Y))
+            .collect();
+        if Mat3::from_mat4(world).determinant() < 0.0 {
+            for t in indices.chunks_exact_mut(3) {
+                t.swap(1, 2);
+            }
+        }
+        let f = pbr.base_color_factor();
+        Ok(Some(Mesh {
+            name: name.to_owned(),
+            positions_m,
+            normals,
+            uvs: if texture.is_some() { uvs } else { Vec::new() },
+            indices,
+            snow_eligibility,
+            material: Material {
+                base_colour: f,
+                base_colour_texture: texture,
+            },
+        }))
+    }
+}
+
+fn convert(
+    file: &Path,
+    document: &gltf::Document,
+    buffers: &[gltf::buffer::Data],
+    images: &[gltf::image::Data],
+) -> Result<LoadedScene, LoadError> {
+    let mut c = Converter {
+        file,
+        buffers,
+        images,
+        report: LoadReport::default(),
+        meshes: Vec::new(),
+    };
+    for ext in document.extensions_used() {
+        c.report.skipped.push(format!("extension {ext} is not used"));
+    }
+    if document.animations().next().is_some() {
+        c.report.skipped.push("animations are not played".into());
+    }
+    let scene = document.default_scene().or_else(|| document.scenes().next());
+    match scene {
+        Some(scene) => {
+            for node in scene.nodes() {
+                c.node(&node, Mat4::IDENTITY, None)?;
+            }
+        }
+        None => {
+            // No scene: every mesh once, untransformed.
+            for mesh in document.meshes() {
+                c.mesh(&mesh, Mat4::IDENTITY, None)?;
+            }
+        }
+    }
+    let Converter {
+        mut report, meshes, ..
+    } = c;
+    if meshes.is_empty() {
+        let detail = if report.skipped.is_empty() {
+            "the file has no meshes".to_owned()
+        } else {
+            report.skipped.join("; ")
+        };
+        return Err(LoadError::NoTriangles {
+            file: file.to_path_buf(),
+            detail,
+        });
+    }
+    let (scene, scene_report) = Scene { meshes }.prepare().map_err(|source| match source {
+        precip_model::SceneError::Empty => LoadError::NoTriangles {
+            file: file.to_path_buf(),
+            detail: "every triangle is degenerate".into(),
+        },
+        source => LoadError::Scene {
+            file: file.to_path_buf(),
+            source,
+        },
+    })?;
+    report.scene = scene_report;
+    Ok(LoadedScene { scene, report })
+}

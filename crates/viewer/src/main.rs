@@ -1,0 +1,268 @@
+//! `precip`: the viewer's command line. `cargo run --release` shows snow falling and
+//! settling on the built-in demo scene; `precip SCENE.glb` views your own glTF.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context as _;
+use clap::{Parser, Subcommand};
+use glam::Vec3;
+use precip_gpu_wgpu::WgpuBackend;
+use precip_model::{Backend, Camera, View};
+use precip_viewer::demo::{DEMO_GLB, demo_glb};
+use precip_viewer::headless::run_headless;
+use precip_viewer::presets::{KindName, Preset};
+use precip_viewer::scene_setup::{SceneOptions, scene_setup};
+use precip_viewer::window::{WindowError, display_available, run_window};
+use precip_viewer::{LoadedScene, load_scene, load_scene_from_slice};
+
+/// Frames a headless fallback writes when no display is available.
+const FALLBACK_FRAMES: u32 = 60;
+
+#[derive(Parser, Debug)]
+#[command(name = "precip", version, about = "Real-time snow and rain over any glTF scene")]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+    #[command(flatten)]
+    run: RunArgs,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Load a scene without a GPU and print its summary.
+    Inspect {
+        /// A .gltf or .glb file.
+        file: PathBuf,
+    },
+    /// Write the built-in demo scene as a .glb.
+    Demo {
+        /// Where to write it.
+        #[arg(long, default_value = "crates/viewer/assets/demo.glb")]
+        out: PathBuf,
+    },
+}
+
+#[derive(clap::Args, Debug)]
+struct RunArgs {
+    /// The scene (.gltf or .glb); the built-in demo when absent.
+    scene: Option<PathBuf>,
+    /// The backend: wgpu (the Vulkan backend joins with its issue).
+    #[arg(long, default_value = "wgpu", value_parser = ["wgpu"])]
+    backend: String,
+    /// A weather preset: a TOML file or a shipped name (light-snow, blizzard,
+    /// wet-snow, drizzle, downpour, sleet); the options below override it.
+    #[arg(long)]
+    preset: Option<String>,
+    /// Kind of precipitation.
+    #[arg(long, value_enum)]
+    kind: Option<KindName>,
+    /// Intensity as water, mm/h.
+    #[arg(long)]
+    intensity: Option<f32>,
+    /// Air temperature, °C.
+    #[arg(long)]
+    temperature: Option<f32>,
+    /// Mean wind speed, m/s.
+    #[arg(long)]
+    wind: Option<f32>,
+    /// Where the wind blows from, degrees clockwise from north (−Z).
+    #[arg(long)]
+    wind_from: Option<f32>,
+    /// Gust factor μ.
+    #[arg(long)]
+    gust: Option<f32>,
+    /// Particles in all.
+    #[arg(long, default_value_t = 150_000)]
+    particles: u32,
+    /// Seed of every random draw.
+    #[arg(long, default_value_t = 1)]
+    seed: u32,
+    /// Simulated cover days per real second (0.05 ≈ 1 h 12 min per second).
+    #[arg(long, default_value_t = 0.05)]
+    time_scale: f32,
+    /// Ground and cover texel size, m.
+    #[arg(long, default_value_t = 0.5)]
+    texel: f32,
+    /// Window or image size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    size: (u32, u32),
+    /// Camera position x,y,z (m); with --look-at.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    camera: Option<Vec3>,
+    /// Point the camera looks at x,y,z (m).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    look_at: Option<Vec3>,
+    /// Headless: render this many frames into --out instead of opening a window.
+    #[arg(long)]
+    frames: Option<u32>,
+    /// Headless: where the PNGs go.
+    #[arg(long, default_value = "precip-frames")]
+    out: PathBuf,
+    /// Seconds of simulation per headless frame.
+    #[arg(long, default_value_t = 1.0 / 30.0)]
+    dt: f32,
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or("expected WIDTHxHEIGHT, e.g. 1280x720")?;
+    let w: u32 = w.trim().parse().map_err(|e| format!("width: {e}"))?;
+    let h: u32 = h.trim().parse().map_err(|e| format!("height: {e}"))?;
+    if w == 0 || h == 0 || w > 16_384 || h > 16_384 {
+        return Err("each side must be 1 to 16384 pixels".into());
+    }
+    Ok((w, h))
+}
+
+fn parse_vec3(s: &str) -> Result<Vec3, String> {
+    let parts: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|e| format!("{p}: {e}")))
+        .collect::<Result<_, _>>()?;
+    match parts[..] {
+        [x, y, z] if x.is_finite() && y.is_finite() && z.is_finite() => Ok(Vec3::new(x, y, z)),
+        _ => Err("expected x,y,z".into()),
+    }
+}
+
+fn inspect(file: &PathBuf) -> anyhow::Result<()> {
+    let LoadedScene { scene, report } = load_scene(file)?;
+    let (lo, hi) = scene.bounds_m().unwrap_or_default();
+    let vertices: usize = scene.meshes.iter().map(|m| m.positions_m.len()).sum();
+    let eligibility: Vec<f32> = scene.meshes.iter().flat_map(|m| m.snow_eligibility.iter().copied()).collect();
+    let none = eligibility.iter().filter(|e| **e <= 0.0).count();
+    let full = eligibility.iter().filter(|e| **e >= 1.0).count();
+    let mean = eligibility.iter().map(|e| f64::from(*e)).sum::<f64>() / eligibility.len().max(1) as f64;
+    println!("{}", file.display());
+    println!("  meshes: {} ({} primitives read)", scene.meshes.len(), report.primitives);
+    println!("  triangles: {}, vertices: {vertices}", report.scene.triangles);
+    println!("  bounds: {lo:.2} .. {hi:.2} m (size {:.2})", hi - lo);
+    println!(
+        "  snow eligibility: mean {mean:.2}; {full} vertices full, {none} none; from _SNOW_MASK: {} primitives, from extras: {}, from slope: {} meshes",
+        report.snow_mask_attribute, report.snow_extras, report.scene.slope_eligibility
+    );
+    println!(
+        "  dropped: {} degenerate triangles, {} empty meshes; normals computed for {} meshes",
+        report.scene.degenerate_triangles, report.scene.empty_meshes, report.scene.computed_normals
+    );
+    for line in &report.skipped {
+        println!("  skipped: {line}");
+    }
+    for m in &scene.meshes {
+        let e = &m.snow_eligibility;
+        let mean = e.iter().sum::<f32>() / e.len().max(1) as f32;
+        println!("    {}: {} triangles, eligibility mean {mean:.2}", m.name, m.indices.len() / 3);
+    }
+    Ok(())
+}
+
+fn run(args: &RunArgs) -> anyhow::Result<()> {
+    let loaded = match &args.scene {
+        Some(path) => load_scene(path)?,
+        None => load_scene_from_slice(DEMO_GLB, "built-in demo.glb")?,
+    };
+    for line in &loaded.report.skipped {
+        eprintln!("warning: skipped {line}");
+    }
+    let mut preset = match &args.preset {
+        Some(p) => Preset::load(p)?,
+        None => Preset::load("light-snow")?,
+    };
+    if args.preset.is_none() {
+        preset.intensity_mm_per_h = 2.0;
+    }
+    if let Some(k) = args.kind {
+        preset.kind = k;
+        if args.temperature.is_none() {
+            preset.air_temperature_c = match k {
+                KindName::DrySnow => -5.0,
+                KindName::WetSnow => 0.0,
+                KindName::Rain => 8.0,
+                KindName::Sleet => 1.0,
+            };
+        }
+    }
+    preset.intensity_mm_per_h = args.intensity.unwrap_or(preset.intensity_mm_per_h);
+    preset.air_temperature_c = args.temperature.unwrap_or(preset.air_temperature_c);
+    preset.wind_speed_mps = args.wind.unwrap_or(preset.wind_speed_mps);
+    preset.wind_from_deg = args.wind_from.unwrap_or(preset.wind_from_deg);
+    preset.gust_factor = args.gust.unwrap_or(preset.gust_factor);
+    let weather = preset.weather().context("the weather")?;
+    let camera = match (args.camera, args.look_at) {
+        (Some(eye), Some(at)) => Some(Camera {
+            position_m: eye,
+            forward: at - eye,
+            ..Camera::default()
+        }),
+        (Some(eye), None) => Some(Camera {
+            position_m: eye,
+            ..Camera::default()
+        }),
+        _ => None,
+    };
+    let options = SceneOptions {
+        particle_budget: args.particles,
+        seed: args.seed,
+        texel_m: args.texel,
+        cover_days_per_second: args.time_scale,
+        weather,
+        camera,
+    };
+    let setup = scene_setup(loaded.scene, &options)?;
+    let frames = match args.frames {
+        Some(n) => n,
+        None if display_available() => match run_window(setup.clone(), args.size) {
+            Ok(()) => return Ok(()),
+            Err(WindowError::NoDisplay(why)) => {
+                eprintln!("no window ({why}): rendering {FALLBACK_FRAMES} frames headless into {} instead", args.out.display());
+                FALLBACK_FRAMES
+            }
+            Err(e) => return Err(e.into()),
+        },
+        None => {
+            eprintln!(
+                "no display (DISPLAY and WAYLAND_DISPLAY are unset): rendering {FALLBACK_FRAMES} frames headless into {} instead",
+                args.out.display()
+            );
+            FALLBACK_FRAMES
+        }
+    };
+    let mut backend = WgpuBackend::new()?;
+    eprintln!("{}", backend.info().device);
+    backend.configure(&setup)?;
+    let view = View {
+        camera: setup.camera,
+        width_px: args.size.0,
+        height_px: args.size.1,
+    };
+    let summary = run_headless(&mut backend, &view, frames, args.dt.clamp(1e-3, 1.0), &args.out, true)?;
+    println!(
+        "{} frames in {}: mean {:.1} ms, p95 {:.1} ms per frame; {} particles; cover water {:.2} mm on average, deepest snow {:.0} mm",
+        summary.frames,
+        args.out.display(),
+        summary.mean_frame_ms,
+        summary.p95_frame_ms,
+        summary.particles,
+        summary.cover_water_mm,
+        summary.max_depth_mm
+    );
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Some(Command::Inspect { file }) => inspect(file),
+        Some(Command::Demo { out }) => std::fs::write(out, demo_glb())
+            .with_context(|| format!("writing {}", out.display()))
+            .map(|()| println!("wrote {}", out.display())),
+        None => run(&cli.run),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

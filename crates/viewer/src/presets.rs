@@ -1,0 +1,153 @@
+//! Weather presets: TOML files (serde) naming the weather in physical units. Six ship
+//! with the viewer (`presets/*.toml` at the repository root, also built in by name).
+
+use std::path::Path;
+
+use glam::Vec3;
+use precip_model::wind::WindField;
+use precip_model::{PrecipitationKind, Weather};
+use serde::{Deserialize, Serialize};
+
+/// The weather of a preset.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Preset {
+    /// "dry-snow", "wet-snow", "rain" or "sleet".
+    pub kind: KindName,
+    /// Precipitation rate as water, mm/h.
+    pub intensity_mm_per_h: f32,
+    /// Air temperature, °C.
+    pub air_temperature_c: f32,
+    /// Mean wind speed, m/s.
+    pub wind_speed_mps: f32,
+    /// Where the wind blows from, degrees clockwise from north (−Z); 270 = from the west.
+    pub wind_from_deg: f32,
+    /// Gust factor μ.
+    pub gust_factor: f32,
+}
+
+/// A kind of precipitation, as written in presets and on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum KindName {
+    /// Dry snow.
+    DrySnow,
+    /// Wet snow.
+    WetSnow,
+    /// Rain.
+    Rain,
+    /// Sleet.
+    Sleet,
+}
+
+impl From<KindName> for PrecipitationKind {
+    fn from(k: KindName) -> Self {
+        match k {
+            KindName::DrySnow => Self::DrySnow,
+            KindName::WetSnow => Self::WetSnow,
+            KindName::Rain => Self::Rain,
+            KindName::Sleet => Self::Sleet,
+        }
+    }
+}
+
+/// The shipped presets, by name.
+pub const BUILT_IN: [(&str, &str); 6] = [
+    ("light-snow", include_str!("../../../presets/light-snow.toml")),
+    ("blizzard", include_str!("../../../presets/blizzard.toml")),
+    ("wet-snow", include_str!("../../../presets/wet-snow.toml")),
+    ("drizzle", include_str!("../../../presets/drizzle.toml")),
+    ("downpour", include_str!("../../../presets/downpour.toml")),
+    ("sleet", include_str!("../../../presets/sleet.toml")),
+];
+
+/// A preset that cannot be used.
+#[derive(Debug, thiserror::Error)]
+#[error("preset {name}: {problem}")]
+pub struct PresetError {
+    /// The file or name.
+    pub name: String,
+    /// What is wrong.
+    pub problem: String,
+}
+
+/// The wind vector of a speed and a meteorological direction (from, clockwise from
+/// north = −Z; east = +X).
+#[must_use]
+pub fn wind_vector(speed_mps: f32, from_deg: f32) -> Vec3 {
+    let from = from_deg.to_radians();
+    let toward_from = Vec3::new(from.sin(), 0.0, -from.cos());
+    -speed_mps * toward_from
+}
+
+impl Preset {
+    /// Parses TOML text.
+    pub fn parse(text: &str, name: &str) -> Result<Self, PresetError> {
+        toml::from_str(text).map_err(|e| PresetError {
+            name: name.to_owned(),
+            problem: e.to_string(),
+        })
+    }
+
+    /// A shipped preset by name, or a TOML file by path.
+    pub fn load(name_or_path: &str) -> Result<Self, PresetError> {
+        if let Some((_, text)) = BUILT_IN.iter().find(|(n, _)| *n == name_or_path) {
+            return Self::parse(text, name_or_path);
+        }
+        let text = std::fs::read_to_string(Path::new(name_or_path)).map_err(|e| PresetError {
+            name: name_or_path.to_owned(),
+            problem: format!(
+                "{e} (built-in presets: {})",
+                BUILT_IN.map(|(n, _)| n).join(", ")
+            ),
+        })?;
+        Self::parse(&text, name_or_path)
+    }
+
+    /// The weather, validated.
+    pub fn weather(&self) -> Result<Weather, precip_model::WeatherError> {
+        let weather = Weather {
+            kind: self.kind.into(),
+            intensity_mm_per_h: self.intensity_mm_per_h,
+            air_temperature_c: self.air_temperature_c,
+            wind: WindField {
+                mean_wind_mps: wind_vector(self.wind_speed_mps, self.wind_from_deg),
+                gust_factor: self.gust_factor,
+                ..WindField::calm()
+            },
+        };
+        weather.validate()?;
+        Ok(weather)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_shipped_preset_gives_a_valid_weather() {
+        for (name, text) in BUILT_IN {
+            let preset = Preset::parse(text, name).expect("parses");
+            preset.weather().unwrap_or_else(|e| panic!("{name}: {e}"));
+        }
+    }
+
+    #[test]
+    fn wind_from_the_west_blows_east() {
+        let v = wind_vector(5.0, 270.0);
+        assert!((v - Vec3::new(5.0, 0.0, 0.0)).length() < 1e-4, "{v}");
+        let v = wind_vector(2.0, 0.0);
+        assert!((v - Vec3::new(0.0, 0.0, 2.0)).length() < 1e-4, "from the north blows south (+Z)");
+    }
+
+    #[test]
+    fn unknown_fields_and_bad_values_are_refused() {
+        assert!(Preset::parse("kind = \"hail\"", "x").is_err());
+        assert!(Preset::load("no-such-preset").is_err());
+        let text = BUILT_IN[0].1.replace("intensity_mm_per_h = 0.5", "intensity_mm_per_h = -3.0");
+        assert!(Preset::parse(&text, "x").expect("parses").weather().is_err());
+        let text = format!("{}\ncolour = 1\n", BUILT_IN[0].1);
+        assert!(Preset::parse(&text, "x").is_err());
+    }
+}

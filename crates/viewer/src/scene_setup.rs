@@ -1,0 +1,144 @@
+//! From a loaded scene and the user's choices to a [`Setup`] (DESIGN.md §2):
+//! the ground map and cover grid fit the scene's bounds at a chosen resolution; the
+//! camera volume always holds precipitation around the camera; a world emitter covers
+//! the scene (shifted upwind by the drift of a fall) when the scene is small enough
+//! for the particle budget, so the cover there is fed by landing particles, and by the
+//! weather's rate elsewhere.
+
+use glam::{UVec2, Vec2, Vec3};
+use precip_model::cover::GridFrame;
+use precip_model::{
+    BackendError, Camera, CameraVolume, CameraVolumeSetup, CoverSetup, EmitterSetup, GroundMap,
+    Scene, Setup, Weather, WorldEmitter,
+};
+
+/// Fewest world-emitter particles per m² of scene for particles to feed the cover.
+pub const MIN_WORLD_DENSITY_PER_M2: f32 = 2.0;
+/// Share of the budget the world emitter takes when it runs.
+pub const WORLD_SHARE: f32 = 0.75;
+
+/// What the user chose.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneOptions {
+    /// Particles in all.
+    pub particle_budget: u32,
+    /// Seed of every random draw.
+    pub seed: u32,
+    /// Ground/cover texel size, m (the grid side is capped at 1024 texels).
+    pub texel_m: f32,
+    /// Simulated cover days per real second.
+    pub cover_days_per_second: f32,
+    /// The weather.
+    pub weather: Weather,
+    /// The camera, or `None` for a view of the whole scene.
+    pub camera: Option<Camera>,
+}
+
+/// Typical fall speed of the weather's particles, m/s (for the emitter's upwind shift).
+fn typical_fall_speed_mps(weather: &Weather) -> f32 {
+    1.0 + 4.0 * (1.0 - weather.snow_fraction())
+}
+
+/// The setup for `scene` (prepared) under `options`.
+pub fn scene_setup(scene: Scene, options: &SceneOptions) -> Result<Setup, BackendError> {
+    let (lo, hi) = scene.bounds_m().ok_or(precip_model::SceneError::Empty)?;
+    let centre = Vec2::new(0.5 * (lo.x + hi.x), 0.5 * (lo.z + hi.z));
+    let side = (hi.x - lo.x).max(hi.z - lo.z).max(1.0) * 1.05;
+    let texel = if options.texel_m.is_finite() && options.texel_m > 0.0 { options.texel_m } else { 0.5 };
+    let texels = ((side / texel).ceil() as u32).clamp(8, 1024);
+    let frame = GridFrame::centred(centre, Vec2::splat(side), UVec2::splat(texels));
+    let cover_frame = GridFrame::centred(centre, Vec2::splat(side), UVec2::splat((texels / 2).max(4)));
+    let ground = GroundMap::from_scene(&scene, frame);
+
+    let budget = options.particle_budget.max(1);
+    let area = side * side;
+    let world_particles = (budget as f32 * WORLD_SHARE) as u32;
+    let world = (world_particles as f32 / area >= MIN_WORLD_DENSITY_PER_M2).then(|| {
+        let clearance = 10.0;
+        let top = hi.y + clearance;
+        let fall_s = (top - lo.y) / typical_fall_speed_mps(&options.weather);
+        let upwind = -options.weather.wind.mean_wind_mps * fall_s;
+        // Cover the scene and the drift: centre upwind, enlarged by the drift.
+        let reach = side + upwind.truncate().abs().max_element().min(side);
+        EmitterSetup {
+            emitter: WorldEmitter::horizontal(
+                Vec3::new(centre.x + 0.5 * upwind.x.clamp(-side, side), top, centre.y + 0.5 * upwind.z.clamp(-side, side)),
+                reach,
+                reach,
+                top - lo.y,
+            ),
+            particle_count: world_particles,
+        }
+    });
+    let camera_particles = budget - world.map_or(0, |w| w.particle_count);
+    let camera = options.camera.unwrap_or_else(|| {
+        let look_at = Vec3::new(centre.x, lo.y + 0.2 * (hi.y - lo.y), centre.y);
+        let eye = look_at + Vec3::new(0.35, 0.28, 0.8) * side * 0.45;
+        Camera {
+            position_m: eye,
+            forward: look_at - eye,
+            far_m: (side * 4.0).max(100.0),
+            ..Camera::default()
+        }
+    });
+    let setup = Setup {
+        seed: options.seed,
+        weather: options.weather,
+        world_emitter: world,
+        camera_volume: (camera_particles > 0).then_some(CameraVolumeSetup {
+            volume: CameraVolume::default(),
+            particle_count: camera_particles,
+        }),
+        ground,
+        cover: CoverSetup {
+            time_scale: (options.cover_days_per_second * 86_400.0).clamp(0.0, 1.0e7),
+            ..CoverSetup::real_time(cover_frame)
+        },
+        wind_volume: precip_model::wind::WindVolumeSpec::default(),
+        camera,
+        scene: Some(std::sync::Arc::new(scene)),
+        render: precip_model::RenderSettings::default(),
+    };
+    setup.validate(u64::MAX, "the viewer's budget")?;
+    Ok(setup)
+}
+
+#[cfg(test)]
+mod tests {
+    use precip_model::builtin::house_on_plane;
+
+    use super::*;
+
+    fn options(budget: u32) -> SceneOptions {
+        SceneOptions {
+            particle_budget: budget,
+            seed: 1,
+            texel_m: 0.5,
+            cover_days_per_second: 0.0,
+            weather: Weather::default(),
+            camera: None,
+        }
+    }
+
+    #[test]
+    fn small_scenes_get_a_world_emitter_large_ones_only_the_camera_volume() {
+        let scene = house_on_plane().prepare().expect("valid").0;
+        let setup = scene_setup(scene.clone(), &options(100_000)).expect("valid");
+        let (world, camera) = setup.particle_counts();
+        assert_eq!(world + camera, 100_000);
+        assert!(world > 0 && camera > 0);
+        let setup = scene_setup(scene, &options(1_000)).expect("valid");
+        assert_eq!(setup.particle_counts(), (0, 1_000), "40 m needs 3.2k particles");
+        assert_eq!(setup.ground.frame.texels.x, 84, "42 m at 0.5 m");
+    }
+
+    #[test]
+    fn the_emitter_moves_upwind() {
+        let scene = house_on_plane().prepare().expect("valid").0;
+        let mut o = options(100_000);
+        o.weather.wind.mean_wind_mps = Vec3::new(3.0, 0.0, 0.0);
+        let setup = scene_setup(scene, &o).expect("valid");
+        let e = setup.world_emitter.expect("an emitter").emitter;
+        assert!(e.model.w_axis.x < -5.0, "centre at x = {}", e.model.w_axis.x);
+    }
+}
