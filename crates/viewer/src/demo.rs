@@ -25,8 +25,11 @@ pub const PATIO: (Vec2, f32) = (Vec2::new(-9.0, 7.0), 2.5);
 /// house and along the road.
 #[must_use]
 pub fn terrain_height_m(x: f32, z: f32) -> f32 {
-    let hill = |cx: f32, cz: f32, h: f32, r2: f32| h * (-((x - cx).powi(2) + (z - cz).powi(2)) / r2).exp();
-    let raw = hill(-24.0, -22.0, 5.0, 160.0) + hill(26.0, 24.0, 3.5, 120.0) + 0.6 * (x / 9.0).sin() * (z / 11.0).cos();
+    let hill =
+        |cx: f32, cz: f32, h: f32, r2: f32| h * (-((x - cx).powi(2) + (z - cz).powi(2)) / r2).exp();
+    let raw = hill(-24.0, -22.0, 5.0, 160.0)
+        + hill(26.0, 24.0, 3.5, 120.0)
+        + 0.6 * (x / 9.0).sin() * (z / 11.0).cos();
     let near_house = ((x * x + z * z).sqrt() - 9.0).clamp(0.0, 8.0) / 8.0;
     let road_mid = 0.5 * (ROAD_X_M.0 + ROAD_X_M.1);
     let near_road = ((x - road_mid).abs() - 3.0).clamp(0.0, 6.0) / 6.0;
@@ -50,7 +53,12 @@ fn grid(
             let z = z0 + (z1 - z0) * j as f32 / nz as f32;
             let h = |x: f32, z: f32| terrain_height_m(x, z) + lift_m;
             let e = 0.05;
-            let normal = Vec3::new(h(x - e, z) - h(x + e, z), 2.0 * e, h(x, z - e) - h(x, z + e)).normalize();
+            let normal = Vec3::new(
+                h(x - e, z) - h(x + e, z),
+                2.0 * e,
+                h(x, z - e) - h(x, z + e),
+            )
+            .normalize();
             m.positions.push([x, h(x, z), z]);
             m.normals.push(normal.to_array());
             m.uvs.push([x / 4.0, z / 4.0]);
@@ -61,7 +69,8 @@ fn grid(
         for i in 0..nx {
             let a = j * row + i;
             // Counter-clockwise seen from above (+Y).
-            m.indices.extend_from_slice(&[a, a + row, a + 1, a + 1, a + row, a + row + 1]);
+            m.indices
+                .extend_from_slice(&[a, a + row, a + 1, a + 1, a + row, a + row + 1]);
         }
     }
     m
@@ -123,7 +132,11 @@ pub fn demo_meshes() -> Vec<GlbMesh> {
 
     let mut meshes = vec![terrain, road];
     let plan = HousePlan::default();
-    for mesh in house(&plan).meshes.into_iter().filter(|m| m.name != "ground") {
+    for mesh in house(&plan)
+        .meshes
+        .into_iter()
+        .filter(|m| m.name != "ground")
+    {
         let material_extras = (mesh.name == "walls").then(|| json!({ "snow": false }));
         let c = mesh.material.base_colour;
         meshes.push(GlbMesh {

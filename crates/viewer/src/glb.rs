@@ -38,7 +38,15 @@ struct Binary {
 
 impl Binary {
     /// Appends `data` as a buffer view plus an accessor; returns the accessor index.
-    fn push(&mut self, data: &[u8], target: u32, count: usize, component: u32, kind: &str, bounds: Option<(Value, Value)>) -> usize {
+    fn push(
+        &mut self,
+        data: &[u8],
+        target: u32,
+        count: usize,
+        component: u32,
+        kind: &str,
+        bounds: Option<(Value, Value)>,
+    ) -> usize {
         while !self.bytes.len().is_multiple_of(4) {
             self.bytes.push(0);
         }
@@ -80,15 +88,50 @@ pub fn write_glb(meshes: &[GlbMesh], generator: &str) -> Vec<u8> {
             }
         }
         let n = m.positions.len();
-        let position = bin.push(bytemuck::cast_slice(&m.positions), ARRAY_BUFFER, n, FLOAT, "VEC3", Some((json!(lo), json!(hi))));
-        let normal = bin.push(bytemuck::cast_slice(&m.normals), ARRAY_BUFFER, n, FLOAT, "VEC3", None);
-        let uv = bin.push(bytemuck::cast_slice(&m.uvs), ARRAY_BUFFER, n, FLOAT, "VEC2", None);
+        let position = bin.push(
+            bytemuck::cast_slice(&m.positions),
+            ARRAY_BUFFER,
+            n,
+            FLOAT,
+            "VEC3",
+            Some((json!(lo), json!(hi))),
+        );
+        let normal = bin.push(
+            bytemuck::cast_slice(&m.normals),
+            ARRAY_BUFFER,
+            n,
+            FLOAT,
+            "VEC3",
+            None,
+        );
+        let uv = bin.push(
+            bytemuck::cast_slice(&m.uvs),
+            ARRAY_BUFFER,
+            n,
+            FLOAT,
+            "VEC2",
+            None,
+        );
         let mut attributes = json!({ "POSITION": position, "NORMAL": normal, "TEXCOORD_0": uv });
         if !m.snow_mask.is_empty() {
-            let mask = bin.push(bytemuck::cast_slice(&m.snow_mask), ARRAY_BUFFER, n, FLOAT, "SCALAR", None);
+            let mask = bin.push(
+                bytemuck::cast_slice(&m.snow_mask),
+                ARRAY_BUFFER,
+                n,
+                FLOAT,
+                "SCALAR",
+                None,
+            );
             attributes["_SNOW_MASK"] = json!(mask);
         }
-        let indices = bin.push(bytemuck::cast_slice(&m.indices), ELEMENT_ARRAY_BUFFER, m.indices.len(), UNSIGNED_INT, "SCALAR", None);
+        let indices = bin.push(
+            bytemuck::cast_slice(&m.indices),
+            ELEMENT_ARRAY_BUFFER,
+            m.indices.len(),
+            UNSIGNED_INT,
+            "SCALAR",
+            None,
+        );
         let mut material = json!({
             "name": m.name,
             "pbrMetallicRoughness": {

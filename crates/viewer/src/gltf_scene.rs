@@ -45,30 +45,68 @@ pub struct LoadedScene {
     pub report: LoadReport,
 }
 
-/// Loads the glTF or GLB file at `path`.
+/// Loads the glTF or GLB file at `path` (external buffers and images relative to it).
 pub fn load_scene(path: &Path) -> Result<LoadedScene, LoadError> {
     let file = path.to_path_buf();
     guarded(&file, || {
-        let (document, buffers, images) = gltf::import(path).map_err(|e| LoadError::Gltf {
+        let bytes = std::fs::read(path).map_err(|e| LoadError::Gltf {
             file: file.clone(),
             detail: e.to_string(),
         })?;
-        convert(&file, &document, &buffers, &images)
+        let base = path.parent().unwrap_or(Path::new("."));
+        import(&file, &bytes, base)
     })
 }
 
-/// Loads a self-contained glTF or GLB from bytes (`name` names it in messages;
-/// external files cannot be resolved).
+/// Loads a glTF or GLB from bytes (`name` names it in messages). Buffers and images
+/// must be inside it (GLB chunk or data URIs): a slice has no directory, so external
+/// references fail with an error naming them.
 pub fn load_scene_from_slice(bytes: &[u8], name: &str) -> Result<LoadedScene, LoadError> {
     let file = PathBuf::from(name);
     guarded(&file, || {
-        let (document, buffers, images) =
-            gltf::import_slice(bytes).map_err(|e| LoadError::Gltf {
-                file: file.clone(),
-                detail: e.to_string(),
-            })?;
-        convert(&file, &document, &buffers, &images)
+        import(&file, bytes, Path::new("/nonexistent/precip-slice"))
     })
+}
+
+/// Reads the document and its buffers (errors are fatal) and its images (a broken
+/// image is skipped with a warning: the mesh is drawn untextured).
+fn import(file: &Path, bytes: &[u8], base: &Path) -> Result<LoadedScene, LoadError> {
+    let gltf_error = |e: gltf::Error| LoadError::Gltf {
+        file: file.to_path_buf(),
+        detail: e.to_string(),
+    };
+    let gltf = gltf::Gltf::from_slice(bytes).map_err(gltf_error)?;
+    let document = gltf.document;
+    let buffers = gltf::import_buffers(&document, Some(base), gltf.blob).map_err(gltf_error)?;
+    let mut warnings = Vec::new();
+    // The image importer indexes buffer views without checking them: check first.
+    let views_ok = document.images().all(|image| match image.source() {
+        gltf::image::Source::View { view, .. } => {
+            buffers.get(view.buffer().index()).is_some_and(|b| {
+                view.offset()
+                    .checked_add(view.length())
+                    .is_some_and(|end| end <= b.len())
+            })
+        }
+        gltf::image::Source::Uri { .. } => true,
+    });
+    let images = if document.images().next().is_none() {
+        Vec::new()
+    } else if !views_ok {
+        warnings.push("images: a buffer view reaches past its buffer; drawn untextured".to_owned());
+        Vec::new()
+    } else {
+        match gltf::import_images(&document, Some(base), &buffers) {
+            Ok(images) => images,
+            Err(e) => {
+                warnings.push(format!("images: {e}; drawn untextured"));
+                Vec::new()
+            }
+        }
+    };
+    let mut loaded = convert(file, &document, &buffers, &images)?;
+    loaded.report.skipped.extend(warnings);
+    Ok(loaded)
 }
 
 /// Runs `f`, turning a panic inside the glTF reader into an error.
@@ -111,9 +149,12 @@ fn check_accessor(
     if count == 0 {
         return Err(format!("accessor {index} is empty"));
     }
-    let buffer = buffers
-        .get(view.buffer().index())
-        .ok_or_else(|| format!("accessor {index}: buffer {} is missing", view.buffer().index()))?;
+    let buffer = buffers.get(view.buffer().index()).ok_or_else(|| {
+        format!(
+            "accessor {index}: buffer {} is missing",
+            view.buffer().index()
+        )
+    })?;
     let view_end = view.offset().checked_add(view.length());
     if view_end.is_none_or(|end| end > buffer.len()) {
         return Err(format!(
@@ -125,7 +166,10 @@ fn check_accessor(
     let size = accessor.size();
     let stride = view.stride().unwrap_or(size);
     if stride < size {
-        return Err(format!("buffer view {} has a stride below its element size", view.index()));
+        return Err(format!(
+            "buffer view {} has a stride below its element size",
+            view.index()
+        ));
     }
     let end = (count - 1)
         .checked_mul(stride)
@@ -169,7 +213,11 @@ fn rgba8(image: &gltf::image::Data) -> Option<TextureRgba8> {
         image.format,
         Format::R16 | Format::R16G16 | Format::R16G16B16 | Format::R16G16B16A16
     );
-    let (bytes_per, count) = if wide { (2, channels / 2) } else { (1, channels) };
+    let (bytes_per, count) = if wide {
+        (2, channels / 2)
+    } else {
+        (1, channels)
+    };
     let mut out = Vec::with_capacity(n * 4);
     for i in 0..n {
         // The high byte of 16-bit channels (little endian).
@@ -205,7 +253,12 @@ impl Converter<'_> {
         }
     }
 
-    fn node(&mut self, node: &gltf::Node<'_>, parent: Mat4, inherited_snow: Option<f32>) -> Result<(), LoadError> {
+    fn node(
+        &mut self,
+        node: &gltf::Node<'_>,
+        parent: Mat4,
+        inherited_snow: Option<f32>,
+    ) -> Result<(), LoadError> {
         let local = Mat4::from_cols_array_2d(&node.transform().matrix());
         let world = parent * local;
         let node_snow = snow_extra(node.extras())
@@ -221,9 +274,10 @@ impl Converter<'_> {
             }
         }
         if node.camera().is_some() || node.skin().is_some() {
-            self.report
-                .skipped
-                .push(format!("node {}: cameras and skins are not used", node.index()));
+            self.report.skipped.push(format!(
+                "node {}: cameras and skins are not used",
+                node.index()
+            ));
         }
         for child in node.children() {
             self.node(&child, world, node_snow)?;
@@ -231,9 +285,17 @@ impl Converter<'_> {
         Ok(())
     }
 
-    fn mesh(&mut self, mesh: &gltf::Mesh<'_>, world: Mat4, node_snow: Option<f32>) -> Result<(), LoadError> {
-        let mesh_name = mesh.name().map_or_else(|| format!("mesh {}", mesh.index()), str::to_owned);
-        let mesh_snow = snow_extra(mesh.extras()).map_err(|e| self.invalid(format!("{mesh_name}: {e}")))?;
+    fn mesh(
+        &mut self,
+        mesh: &gltf::Mesh<'_>,
+        world: Mat4,
+        node_snow: Option<f32>,
+    ) -> Result<(), LoadError> {
+        let mesh_name = mesh
+            .name()
+            .map_or_else(|| format!("mesh {}", mesh.index()), str::to_owned);
+        let mesh_snow =
+            snow_extra(mesh.extras()).map_err(|e| self.invalid(format!("{mesh_name}: {e}")))?;
         for primitive in mesh.primitives() {
             let name = format!("{mesh_name} primitive {}", primitive.index());
             match self.primitive(&primitive, &name, world, mesh_snow.or(node_snow)) {
@@ -256,14 +318,21 @@ impl Converter<'_> {
         outer_snow: Option<f32>,
     ) -> Result<Option<Mesh>, String> {
         let mode = primitive.mode();
-        if !matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
-            self.report.skipped.push(format!("{name}: {mode:?} are not drawn"));
+        if !matches!(
+            mode,
+            Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+        ) {
+            self.report
+                .skipped
+                .push(format!("{name}: {mode:?} are not drawn"));
             return Ok(None);
         }
         let buffers = self.buffers;
         let get = |b: gltf::Buffer<'_>| buffers.get(b.index()).map(|d| &d.0[..]);
         let Some(position) = primitive.get(&gltf::Semantic::Positions) else {
-            self.report.skipped.push(format!("{name}: no POSITION attribute"));
+            self.report
+                .skipped
+                .push(format!("{name}: no POSITION attribute"));
             return Ok(None);
         };
         check_accessor(&position, buffers, &[(Dimensions::Vec3, FLOAT)])?;
@@ -280,7 +349,11 @@ impl Converter<'_> {
         let normals: Vec<Vec3> = match primitive.get(&gltf::Semantic::Normals) {
             Some(a) => {
                 check_accessor(&a, buffers, &[(Dimensions::Vec3, FLOAT)])?;
-                reader.read_normals().ok_or("normals unreadable")?.map(Vec3::from).collect()
+                reader
+                    .read_normals()
+                    .ok_or("normals unreadable")?
+                    .map(Vec3::from)
+                    .collect()
             }
             None => Vec::new(),
         };
@@ -291,7 +364,10 @@ impl Converter<'_> {
         if let Some(info) = pbr.base_color_texture() {
             let set = info.tex_coord();
             let source = info.texture().source().index();
-            match (primitive.get(&gltf::Semantic::TexCoords(set)), self.images.get(source)) {
+            match (
+                primitive.get(&gltf::Semantic::TexCoords(set)),
+                self.images.get(source),
+            ) {
                 (Some(a), Some(image)) => {
                     check_accessor(&a, buffers, &[(Dimensions::Vec2, UV_TYPES)])?;
                     uvs = reader
@@ -302,9 +378,9 @@ impl Converter<'_> {
                         .collect();
                     texture = rgba8(image);
                     if texture.is_none() {
-                        self.report
-                            .skipped
-                            .push(format!("{name}: image {source}'s pixel format is not shown"));
+                        self.report.skipped.push(format!(
+                            "{name}: image {source}'s pixel format is not shown"
+                        ));
                     }
                 }
                 _ => self.report.skipped.push(format!(
@@ -324,7 +400,13 @@ impl Converter<'_> {
                     let at = base + i * stride;
                     f32::from_le_bytes([data[at], data[at + 1], data[at + 2], data[at + 3]])
                 })
-                .map(|x| if x.is_finite() { x.clamp(0.0, 1.0) } else { 0.0 })
+                .map(|x| {
+                    if x.is_finite() {
+                        x.clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    }
+                })
                 .collect();
             self.report.snow_mask_attribute += 1;
         } else {
@@ -337,7 +419,11 @@ impl Converter<'_> {
         let mut indices: Vec<u32> = match primitive.indices() {
             Some(a) => {
                 check_accessor(&a, buffers, &[(Dimensions::Scalar, INDEX_TYPES)])?;
-                reader.read_indices().ok_or("indices unreadable")?.into_u32().collect()
+                reader
+                    .read_indices()
+                    .ok_or("indices unreadable")?
+                    .into_u32()
+                    .collect()
             }
             None => (0..n as u32).collect(),
         };
@@ -363,7 +449,10 @@ impl Converter<'_> {
         // World space: positions by the node's matrix, normals by its inverse transpose;
         // a mirroring transform flips the winding.
         let normal_matrix = Mat3::from_mat4(world).inverse().transpose();
-        let positions_m: Vec<Vec3> = positions.iter().map(|&p| world.transform_point3(p)).collect();
+        let positions_m: Vec<Vec3> = positions
+            .iter()
+            .map(|&p| world.transform_point3(p))
+            .collect();
         let normals: Vec<Vec3> = normals
             .iter()
             .map(|&v| (normal_matrix * v).normalize_or(Vec3::Y))
@@ -403,12 +492,16 @@ fn convert(
         meshes: Vec::new(),
     };
     for ext in document.extensions_used() {
-        c.report.skipped.push(format!("extension {ext} is not used"));
+        c.report
+            .skipped
+            .push(format!("extension {ext} is not used"));
     }
     if document.animations().next().is_some() {
         c.report.skipped.push("animations are not played".into());
     }
-    let scene = document.default_scene().or_else(|| document.scenes().next());
+    let scene = document
+        .default_scene()
+        .or_else(|| document.scenes().next());
     match scene {
         Some(scene) => {
             for node in scene.nodes() {

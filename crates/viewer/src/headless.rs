@@ -62,8 +62,10 @@ pub fn run_headless(
         indicatif::ProgressBar::hidden()
     };
     bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {per_sec}, eta {eta}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        indicatif::ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} frames, {per_sec}, eta {eta}",
+        )
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     let mut times = Vec::with_capacity(frames as usize);
     let mut files = Vec::with_capacity(frames as usize);
@@ -74,11 +76,17 @@ pub fn run_headless(
         backend.render(view)?;
         let image = backend.read_image()?;
         let file = out.join(format!("frame_{frame:04}.png"));
-        image::save_buffer(&file, &image.rgba8, image.width_px, image.height_px, image::ExtendedColorType::Rgba8)
-            .map_err(|e| HeadlessError::Write {
-                file: file.clone(),
-                detail: e.to_string(),
-            })?;
+        image::save_buffer(
+            &file,
+            &image.rgba8,
+            image.width_px,
+            image.height_px,
+            image::ExtendedColorType::Rgba8,
+        )
+        .map_err(|e| HeadlessError::Write {
+            file: file.clone(),
+            detail: e.to_string(),
+        })?;
         files.push(file);
         times.push(start.elapsed().as_secs_f64() * 1e3);
         bar.inc(1);

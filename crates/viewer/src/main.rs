@@ -20,7 +20,11 @@ use precip_viewer::{LoadedScene, load_scene, load_scene_from_slice};
 const FALLBACK_FRAMES: u32 = 60;
 
 #[derive(Parser, Debug)]
-#[command(name = "precip", version, about = "Real-time snow and rain over any glTF scene")]
+#[command(
+    name = "precip",
+    version,
+    about = "Real-time snow and rain over any glTF scene"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -105,7 +109,9 @@ struct RunArgs {
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s.split_once(['x', 'X']).ok_or("expected WIDTHxHEIGHT, e.g. 1280x720")?;
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or("expected WIDTHxHEIGHT, e.g. 1280x720")?;
     let w: u32 = w.trim().parse().map_err(|e| format!("width: {e}"))?;
     let h: u32 = h.trim().parse().map_err(|e| format!("height: {e}"))?;
     if w == 0 || h == 0 || w > 16_384 || h > 16_384 {
@@ -125,17 +131,29 @@ fn parse_vec3(s: &str) -> Result<Vec3, String> {
     }
 }
 
-fn inspect(file: &PathBuf) -> anyhow::Result<()> {
+fn inspect(file: &std::path::Path) -> anyhow::Result<()> {
     let LoadedScene { scene, report } = load_scene(file)?;
     let (lo, hi) = scene.bounds_m().unwrap_or_default();
     let vertices: usize = scene.meshes.iter().map(|m| m.positions_m.len()).sum();
-    let eligibility: Vec<f32> = scene.meshes.iter().flat_map(|m| m.snow_eligibility.iter().copied()).collect();
+    let eligibility: Vec<f32> = scene
+        .meshes
+        .iter()
+        .flat_map(|m| m.snow_eligibility.iter().copied())
+        .collect();
     let none = eligibility.iter().filter(|e| **e <= 0.0).count();
     let full = eligibility.iter().filter(|e| **e >= 1.0).count();
-    let mean = eligibility.iter().map(|e| f64::from(*e)).sum::<f64>() / eligibility.len().max(1) as f64;
+    let mean =
+        eligibility.iter().map(|e| f64::from(*e)).sum::<f64>() / eligibility.len().max(1) as f64;
     println!("{}", file.display());
-    println!("  meshes: {} ({} primitives read)", scene.meshes.len(), report.primitives);
-    println!("  triangles: {}, vertices: {vertices}", report.scene.triangles);
+    println!(
+        "  meshes: {} ({} primitives read)",
+        scene.meshes.len(),
+        report.primitives
+    );
+    println!(
+        "  triangles: {}, vertices: {vertices}",
+        report.scene.triangles
+    );
     println!("  bounds: {lo:.2} .. {hi:.2} m (size {:.2})", hi - lo);
     println!(
         "  snow eligibility: mean {mean:.2}; {full} vertices full, {none} none; from _SNOW_MASK: {} primitives, from extras: {}, from slope: {} meshes",
@@ -151,7 +169,11 @@ fn inspect(file: &PathBuf) -> anyhow::Result<()> {
     for m in &scene.meshes {
         let e = &m.snow_eligibility;
         let mean = e.iter().sum::<f32>() / e.len().max(1) as f32;
-        println!("    {}: {} triangles, eligibility mean {mean:.2}", m.name, m.indices.len() / 3);
+        println!(
+            "    {}: {} triangles, eligibility mean {mean:.2}",
+            m.name,
+            m.indices.len() / 3
+        );
     }
     Ok(())
 }
@@ -214,7 +236,10 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         None if display_available() => match run_window(setup.clone(), args.size) {
             Ok(()) => return Ok(()),
             Err(WindowError::NoDisplay(why)) => {
-                eprintln!("no window ({why}): rendering {FALLBACK_FRAMES} frames headless into {} instead", args.out.display());
+                eprintln!(
+                    "no window ({why}): rendering {FALLBACK_FRAMES} frames headless into {} instead",
+                    args.out.display()
+                );
                 FALLBACK_FRAMES
             }
             Err(e) => return Err(e.into()),
@@ -235,7 +260,14 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         width_px: args.size.0,
         height_px: args.size.1,
     };
-    let summary = run_headless(&mut backend, &view, frames, args.dt.clamp(1e-3, 1.0), &args.out, true)?;
+    let summary = run_headless(
+        &mut backend,
+        &view,
+        frames,
+        args.dt.clamp(1e-3, 1.0),
+        &args.out,
+        true,
+    )?;
     println!(
         "{} frames in {}: mean {:.1} ms, p95 {:.1} ms per frame; {} particles; cover water {:.2} mm on average, deepest snow {:.0} mm",
         summary.frames,

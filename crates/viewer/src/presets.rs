@@ -53,7 +53,10 @@ impl From<KindName> for PrecipitationKind {
 
 /// The shipped presets, by name.
 pub const BUILT_IN: [(&str, &str); 6] = [
-    ("light-snow", include_str!("../../../presets/light-snow.toml")),
+    (
+        "light-snow",
+        include_str!("../../../presets/light-snow.toml"),
+    ),
     ("blizzard", include_str!("../../../presets/blizzard.toml")),
     ("wet-snow", include_str!("../../../presets/wet-snow.toml")),
     ("drizzle", include_str!("../../../presets/drizzle.toml")),
@@ -138,15 +141,25 @@ mod tests {
         let v = wind_vector(5.0, 270.0);
         assert!((v - Vec3::new(5.0, 0.0, 0.0)).length() < 1e-4, "{v}");
         let v = wind_vector(2.0, 0.0);
-        assert!((v - Vec3::new(0.0, 0.0, 2.0)).length() < 1e-4, "from the north blows south (+Z)");
+        assert!(
+            (v - Vec3::new(0.0, 0.0, 2.0)).length() < 1e-4,
+            "from the north blows south (+Z)"
+        );
     }
 
     #[test]
     fn unknown_fields_and_bad_values_are_refused() {
         assert!(Preset::parse("kind = \"hail\"", "x").is_err());
         assert!(Preset::load("no-such-preset").is_err());
-        let text = BUILT_IN[0].1.replace("intensity_mm_per_h = 0.5", "intensity_mm_per_h = -3.0");
-        assert!(Preset::parse(&text, "x").expect("parses").weather().is_err());
+        let text = BUILT_IN[0]
+            .1
+            .replace("intensity_mm_per_h = 0.5", "intensity_mm_per_h = -3.0");
+        assert!(
+            Preset::parse(&text, "x")
+                .expect("parses")
+                .weather()
+                .is_err()
+        );
         let text = format!("{}\ncolour = 1\n", BUILT_IN[0].1);
         assert!(Preset::parse(&text, "x").is_err());
     }

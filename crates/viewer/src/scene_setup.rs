@@ -44,10 +44,15 @@ pub fn scene_setup(scene: Scene, options: &SceneOptions) -> Result<Setup, Backen
     let (lo, hi) = scene.bounds_m().ok_or(precip_model::SceneError::Empty)?;
     let centre = Vec2::new(0.5 * (lo.x + hi.x), 0.5 * (lo.z + hi.z));
     let side = (hi.x - lo.x).max(hi.z - lo.z).max(1.0) * 1.05;
-    let texel = if options.texel_m.is_finite() && options.texel_m > 0.0 { options.texel_m } else { 0.5 };
+    let texel = if options.texel_m.is_finite() && options.texel_m > 0.0 {
+        options.texel_m
+    } else {
+        0.5
+    };
     let texels = ((side / texel).ceil() as u32).clamp(8, 1024);
     let frame = GridFrame::centred(centre, Vec2::splat(side), UVec2::splat(texels));
-    let cover_frame = GridFrame::centred(centre, Vec2::splat(side), UVec2::splat((texels / 2).max(4)));
+    let cover_frame =
+        GridFrame::centred(centre, Vec2::splat(side), UVec2::splat((texels / 2).max(4)));
     let ground = GroundMap::from_scene(&scene, frame);
 
     let budget = options.particle_budget.max(1);
@@ -62,7 +67,11 @@ pub fn scene_setup(scene: Scene, options: &SceneOptions) -> Result<Setup, Backen
         let reach = side + upwind.truncate().abs().max_element().min(side);
         EmitterSetup {
             emitter: WorldEmitter::horizontal(
-                Vec3::new(centre.x + 0.5 * upwind.x.clamp(-side, side), top, centre.y + 0.5 * upwind.z.clamp(-side, side)),
+                Vec3::new(
+                    centre.x + 0.5 * upwind.x.clamp(-side, side),
+                    top,
+                    centre.y + 0.5 * upwind.z.clamp(-side, side),
+                ),
                 reach,
                 reach,
                 top - lo.y,
@@ -128,7 +137,11 @@ mod tests {
         assert_eq!(world + camera, 100_000);
         assert!(world > 0 && camera > 0);
         let setup = scene_setup(scene, &options(1_000)).expect("valid");
-        assert_eq!(setup.particle_counts(), (0, 1_000), "40 m needs 3.2k particles");
+        assert_eq!(
+            setup.particle_counts(),
+            (0, 1_000),
+            "40 m needs 3.2k particles"
+        );
         assert_eq!(setup.ground.frame.texels.x, 84, "42 m at 0.5 m");
     }
 
@@ -139,6 +152,10 @@ mod tests {
         o.weather.wind.mean_wind_mps = Vec3::new(3.0, 0.0, 0.0);
         let setup = scene_setup(scene, &o).expect("valid");
         let e = setup.world_emitter.expect("an emitter").emitter;
-        assert!(e.model.w_axis.x < -5.0, "centre at x = {}", e.model.w_axis.x);
+        assert!(
+            e.model.w_axis.x < -5.0,
+            "centre at x = {}",
+            e.model.w_axis.x
+        );
     }
 }

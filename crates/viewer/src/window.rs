@@ -110,14 +110,17 @@ impl App {
         let size = window.inner_size();
         let mut config = surface
             .get_default_config(&adapter, size.width.max(1), size.height.max(1))
-            .ok_or_else(|| WindowError::Surface("the adapter cannot present to this window".into()))?;
+            .ok_or_else(|| {
+                WindowError::Surface("the adapter cannot present to this window".into())
+            })?;
         let caps = surface.get_capabilities(&adapter);
         if let Some(srgb) = caps.formats.iter().find(|f| f.is_srgb()) {
             config.format = *srgb;
         }
         surface.configure(&backend.device().device, &config);
         backend.configure(&self.setup)?;
-        let particles = u64::from(self.setup.particle_counts().0) + u64::from(self.setup.particle_counts().1);
+        let particles =
+            u64::from(self.setup.particle_counts().0) + u64::from(self.setup.particle_counts().1);
         Ok(Running {
             fly: FlyCamera::from_camera(&self.setup.camera),
             lens: self.setup.camera,
@@ -161,12 +164,24 @@ fn weather_key(key: KeyCode, w: &Weather) -> Option<Weather> {
             w.kind = PrecipitationKind::Sleet;
             w.air_temperature_c = 1.0;
         }
-        KeyCode::Equal | KeyCode::NumpadAdd => w.intensity_mm_per_h = (w.intensity_mm_per_h * 1.5).clamp(0.1, 100.0),
-        KeyCode::Minus | KeyCode::NumpadSubtract => w.intensity_mm_per_h = (w.intensity_mm_per_h / 1.5).clamp(0.1, 100.0),
+        KeyCode::Equal | KeyCode::NumpadAdd => {
+            w.intensity_mm_per_h = (w.intensity_mm_per_h * 1.5).clamp(0.1, 100.0)
+        }
+        KeyCode::Minus | KeyCode::NumpadSubtract => {
+            w.intensity_mm_per_h = (w.intensity_mm_per_h / 1.5).clamp(0.1, 100.0)
+        }
         KeyCode::BracketLeft | KeyCode::BracketRight => {
             let v = w.wind.mean_wind_mps;
-            let dir = if v.length() > 1e-3 { v.normalize() } else { Vec3::X };
-            let step = if key == KeyCode::BracketRight { 1.0 } else { -1.0 };
+            let dir = if v.length() > 1e-3 {
+                v.normalize()
+            } else {
+                Vec3::X
+            };
+            let step = if key == KeyCode::BracketRight {
+                1.0
+            } else {
+                -1.0
+            };
             w.wind.mean_wind_mps = dir * (v.length() + step).clamp(0.0, 40.0);
         }
         KeyCode::Comma | KeyCode::Period => {
@@ -181,10 +196,17 @@ fn weather_key(key: KeyCode, w: &Weather) -> Option<Weather> {
 impl Running {
     fn frame(&mut self) -> Result<(), WindowError> {
         let now = Instant::now();
-        let dt = now.duration_since(self.last_frame).as_secs_f32().clamp(1e-4, 0.1);
+        let dt = now
+            .duration_since(self.last_frame)
+            .as_secs_f32()
+            .clamp(1e-4, 0.1);
         self.last_frame = now;
         self.frame_ms = 0.9 * self.frame_ms + 0.1 * f64::from(dt) * 1e3;
-        let fast = if self.keys.contains(&KeyCode::ShiftLeft) { 5.0 } else { 1.0 };
+        let fast = if self.keys.contains(&KeyCode::ShiftLeft) {
+            5.0
+        } else {
+            1.0
+        };
         let turn = 1.2 * dt;
         self.fly.turn(
             turn * held(self, KeyCode::ArrowLeft, KeyCode::ArrowRight),
@@ -204,14 +226,18 @@ impl Running {
         self.backend.set_camera(&view.camera)?;
         self.backend.step(dt)?;
         let frame = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(f) | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
+            wgpu::CurrentSurfaceTexture::Success(f)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
-                self.surface.configure(&self.backend.device().device, &self.config);
+                self.surface
+                    .configure(&self.backend.device().device, &self.config);
                 return Ok(());
             }
             _ => return Ok(()),
         };
-        let target = frame.texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let target = frame
+            .texture
+            .create_view(&wgpu::TextureViewDescriptor::default());
         self.backend.render_to(&view, &target)?;
         self.backend.device().queue.present(frame);
         self.window.set_title(&title(self));
@@ -285,17 +311,22 @@ impl ApplicationHandler for App {
                     }
                 }
             }
-            WindowEvent::MouseInput { state, button: MouseButton::Left, .. } => {
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Left,
+                ..
+            } => {
                 r.looking = state == ElementState::Pressed;
                 r.last_cursor = None;
             }
-            WindowEvent::CursorMoved { position, .. } => {
-                if r.looking {
-                    if let Some((x, y)) = r.last_cursor {
-                        r.fly.turn(-(position.x - x) as f32 * 0.004, -(position.y - y) as f32 * 0.004);
-                    }
-                    r.last_cursor = Some((position.x, position.y));
+            WindowEvent::CursorMoved { position, .. } if r.looking => {
+                if let Some((x, y)) = r.last_cursor {
+                    r.fly.turn(
+                        -(position.x - x) as f32 * 0.004,
+                        -(position.y - y) as f32 * 0.004,
+                    );
                 }
+                r.last_cursor = Some((position.x, position.y));
             }
             WindowEvent::RedrawRequested => {
                 if let Err(e) = r.frame() {
@@ -317,7 +348,9 @@ impl ApplicationHandler for App {
 /// Opens a window of `size` over `setup` and runs until it is closed.
 pub fn run_window(setup: Setup, size: (u32, u32)) -> Result<(), WindowError> {
     if !display_available() {
-        return Err(WindowError::NoDisplay("neither DISPLAY nor WAYLAND_DISPLAY is set".into()));
+        return Err(WindowError::NoDisplay(
+            "neither DISPLAY nor WAYLAND_DISPLAY is set".into(),
+        ));
     }
     let event_loop = EventLoop::new().map_err(|e| WindowError::NoDisplay(e.to_string()))?;
     let mut app = App {

@@ -1,0 +1,6 @@
+//! The viewer: scene files (fixtures written here, the demo), bad files, headless runs.
+
+mod bad_files;
+mod fixtures;
+mod headless;
+mod loading;
