@@ -77,8 +77,12 @@ fn step_particle(index: u32, particle: Particle) -> Particle {
         let kind = (next.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
         let channel = select(DEPOSIT_SNOW, DEPOSIT_RAIN, kind == KIND_RAIN);
         let water_mm = next.water_kg * step_params.deposit_scale_mm_per_kg;
+        // Already below this surface before the step: it came in from the side (a
+        // wall, an eave) and deposits where it was, at the wall's foot.
+        let from_side = particle.position_m.y < ground.y;
+        let at = select(xz, particle.position_m.xz, from_side);
         // Water landing off the cover grid fell outside the scene: not kept.
-        let texel = grid_texel_index(frames.cover, xz);
+        let texel = grid_texel_index(frames.cover, at);
         if (texel >= 0) {
             atomicAdd(&deposits[2u * u32(texel) + channel], deposit_units(water_mm));
         }

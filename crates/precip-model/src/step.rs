@@ -11,7 +11,10 @@
 //!    landed equals `R·A·time` exactly, whatever the particles' speeds (each particle
 //!    stands for 1/n of the emitter's flux for as long as it lives).
 //!    If `P'` is at or below the ground map, the water is added to the cover texel
-//!    there (fixed point, atomic) and the particle is re-born; below the lowest ground
+//!    there (fixed point, atomic) and the particle is re-born. A particle that was
+//!    already below that surface at `P` came in from the side (blown against a wall
+//!    or under an eave): it deposits at `P`, the wall's foot on the side it came from,
+//!    not on the roof above. Below the lowest ground
 //!    off the map, or at `t' ≥ t_max`, it is re-born without a deposit.
 //! 3. Camera volume particles wrap through the box's sides and top; one that falls out
 //!    of the bottom or reaches the ground is re-born just under the top (spread over
@@ -176,10 +179,16 @@ pub fn step_particle(
                         DepositBuffer::RAIN
                     };
                     let water_mm = next.water_kg * params.deposit_scale_mm_per_kg;
+                    let from_side = particle.position_m.y < ground_m;
+                    let at = if from_side {
+                        Vec2::new(particle.position_m.x, particle.position_m.z)
+                    } else {
+                        xz
+                    };
                     // Water landing off the cover grid fell outside the scene: not kept.
                     let _kept = inputs
                         .deposits
-                        .add_at(inputs.cover_frame, xz, channel, water_mm);
+                        .add_at(inputs.cover_frame, at, channel, water_mm);
                     return (
                         birth_on_emitter(index, particle.generation.wrapping_add(1), params),
                         StepEvent::Landed,

@@ -154,6 +154,10 @@ pub fn demo_meshes() -> Vec<GlbMesh> {
     for (k, z) in [-12.0f32, -6.0, 0.0, 6.0, 12.0].into_iter().enumerate() {
         meshes.push(post(&format!("post {k}"), Vec2::new(ROAD_X_M.0 - 1.0, z)));
     }
+    // Untextured: no texture coordinates (the Khronos validator flags unused ones).
+    for m in &mut meshes {
+        m.uvs.clear();
+    }
     meshes
 }
 

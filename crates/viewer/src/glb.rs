@@ -1,6 +1,6 @@
 //! A small glTF 2.0 binary (GLB) writer for triangle meshes: what the demo scene and
 //! the test fixtures are written with. Each mesh becomes one node, one mesh with one
-//! indexed triangle primitive (POSITION with min/max, NORMAL, TEXCOORD_0, optional
+//! indexed triangle primitive (POSITION with min/max, NORMAL, optional TEXCOORD_0 and
 //! `_SNOW_MASK`) and one material; `extras` can go on the material or the node.
 
 use serde_json::{Value, json};
@@ -14,7 +14,7 @@ pub struct GlbMesh {
     pub positions: Vec<[f32; 3]>,
     /// Unit normals (one per position).
     pub normals: Vec<[f32; 3]>,
-    /// Texture coordinates (one per position).
+    /// Texture coordinates (one per position), or empty for none.
     pub uvs: Vec<[f32; 2]>,
     /// Triangle list.
     pub indices: Vec<u32>,
@@ -104,15 +104,18 @@ pub fn write_glb(meshes: &[GlbMesh], generator: &str) -> Vec<u8> {
             "VEC3",
             None,
         );
-        let uv = bin.push(
-            bytemuck::cast_slice(&m.uvs),
-            ARRAY_BUFFER,
-            n,
-            FLOAT,
-            "VEC2",
-            None,
-        );
-        let mut attributes = json!({ "POSITION": position, "NORMAL": normal, "TEXCOORD_0": uv });
+        let mut attributes = json!({ "POSITION": position, "NORMAL": normal });
+        if !m.uvs.is_empty() {
+            let uv = bin.push(
+                bytemuck::cast_slice(&m.uvs),
+                ARRAY_BUFFER,
+                n,
+                FLOAT,
+                "VEC2",
+                None,
+            );
+            attributes["TEXCOORD_0"] = json!(uv);
+        }
         if !m.snow_mask.is_empty() {
             let mask = bin.push(
                 bytemuck::cast_slice(&m.snow_mask),

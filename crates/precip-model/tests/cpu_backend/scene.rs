@@ -303,3 +303,61 @@ fn particles_land_on_the_roof_of_a_scene_and_never_inside_the_house() {
         "the roof gathers what open ground does: roof {roof} mm, open {open} mm per texel"
     );
 }
+
+#[test]
+fn flakes_blown_under_an_eave_pile_at_the_wall_not_on_the_roof_edge() {
+    use precip_model::builtin::{HousePlan, house_on_plane};
+    let plan = HousePlan::default();
+    let (mut setup, _) = Setup::over_scene(house_on_plane(), 88, 4.0, 12_000).expect("valid");
+    setup.cover.time_scale = 200.0;
+    // Cover texels as fine as the ground's (0.5 m), so the roof's edge and the ground
+    // at the wall's foot are different texels.
+    setup.cover.frame = setup.ground.frame;
+    setup.weather.wind = WindField {
+        mean_wind_mps: Vec3::new(3.0, 0.0, 0.0),
+        ..WindField::calm()
+    };
+    // The emitter upwind, so the wind carries flakes over the whole scene.
+    if let Some(e) = setup.world_emitter.as_mut() {
+        let height = e.emitter.model.w_axis.y;
+        e.emitter = precip_model::WorldEmitter::horizontal(
+            Vec3::new(-20.0, height, 0.0),
+            60.0,
+            44.0,
+            height,
+        );
+    }
+    let mut cpu = precip_model::CpuBackend::new();
+    cpu.configure(&setup).expect("valid");
+    for _ in 0..150 {
+        cpu.step(0.1).expect("valid step");
+    }
+    let cover = cpu.read_cover().expect("cover");
+    let (rx, rz) = (
+        plan.width_m / 2.0 + plan.overhang_m,
+        plan.depth_m / 2.0 + plan.overhang_m,
+    );
+    let mean_where = |keep: &dyn Fn(Vec2) -> bool| {
+        let values: Vec<f32> = cover
+            .texels
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| keep(cover.frame.texel_centre(*i)))
+            .map(|(_, t)| t.deposited_mm)
+            .collect();
+        values.iter().sum::<f32>() / values.len().max(1) as f32
+    };
+    let along = |c: Vec2| c.y.abs() < rz - 1.0;
+    let roof = mean_where(&|c| c.x.abs() < rx - 0.1 && along(c));
+    let windward_roof_edge = mean_where(&|c| c.x > -rx && c.x < -rx + 0.6 && along(c));
+    let wall_foot = mean_where(&|c| c.x < -rx && c.x > -rx - 0.6 && along(c));
+    let summary = format!(
+        "roof {roof:.2} mm, its windward edge {windward_roof_edge:.2} mm, the ground at the wall {wall_foot:.2} mm"
+    );
+    assert!(roof > 0.0, "{summary}");
+    assert!(windward_roof_edge < 2.0 * roof, "{summary}");
+    assert!(
+        wall_foot > roof,
+        "a drift forms at the windward wall: {summary}"
+    );
+}
