@@ -17,6 +17,9 @@ pub const MIN_WORLD_DENSITY_PER_M2: f32 = 2.0;
 /// Share of the budget the world emitter takes when it runs.
 pub const WORLD_SHARE: f32 = 0.75;
 
+/// Half size of the box of particles around the camera, m.
+pub const CAMERA_VOLUME_HALF_EXTENT_M: Vec3 = Vec3::new(15.0, 12.0, 15.0);
+
 /// What the user chose.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SceneOptions {
@@ -95,7 +98,12 @@ pub fn scene_setup(scene: Scene, options: &SceneOptions) -> Result<Setup, Backen
         weather: options.weather,
         world_emitter: world,
         camera_volume: (camera_particles > 0).then_some(CameraVolumeSetup {
-            volume: CameraVolume::default(),
+            // Close around the camera, so the flakes that are seen one by one are dense;
+            // the world emitter and the fog carry the distance.
+            volume: CameraVolume {
+                half_extent_m: CAMERA_VOLUME_HALF_EXTENT_M,
+                ..CameraVolume::default()
+            },
             particle_count: camera_particles,
         }),
         ground,
@@ -106,7 +114,14 @@ pub fn scene_setup(scene: Scene, options: &SceneOptions) -> Result<Setup, Backen
         wind_volume: precip_model::wind::WindVolumeSpec::default(),
         camera,
         scene: Some(std::sync::Arc::new(scene)),
-        render: precip_model::RenderSettings::default(),
+        render: precip_model::RenderSettings {
+            // Distant flakes enlarged to 1.5 px keep at least this opacity on screen.
+            sizing: precip_model::drawing::SpriteSizing {
+                min_opacity: 0.3,
+                ..precip_model::drawing::SpriteSizing::default()
+            },
+            ..precip_model::RenderSettings::default()
+        },
     };
     setup.validate(u64::MAX, "the viewer's budget")?;
     Ok(setup)
