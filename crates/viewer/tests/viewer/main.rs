@@ -1,6 +1,7 @@
 //! The viewer: scene files (fixtures written here, the demo), bad files, headless runs.
 
 mod bad_files;
+mod cli;
 mod fixtures;
 mod headless;
 mod loading;
