@@ -1,0 +1,33 @@
+//! Compiles precip-model's WGSL programs to SPIR-V with naga (DESIGN.md §4: WGSL is the
+//! single source). One `.spv` per program in OUT_DIR, all entry points in each.
+
+use naga::back::spv;
+use naga::valid::{Capabilities, ValidationFlags, Validator};
+use precip_model::shaders::Program;
+
+fn main() {
+    let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+    for program in [
+        Program::StepParticles,
+        Program::CoverUpdate,
+        Program::ProbeRng,
+    ] {
+        let source = program.source();
+        let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| {
+            panic!("{program:?}: {}", e.emit_to_string(&source));
+        });
+        let info = Validator::new(ValidationFlags::all(), Capabilities::empty())
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{program:?}: {}", e.emit_to_string(&source)));
+        let options = spv::Options {
+            lang_version: (1, 0),
+            flags: spv::WriterFlags::empty(),
+            ..spv::Options::default()
+        };
+        let words = spv::write_vec(&module, &info, &options, None)
+            .unwrap_or_else(|e| panic!("{program:?}: SPIR-V: {e}"));
+        let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+        std::fs::write(out.join(format!("{program:?}.spv")), bytes).expect("write SPIR-V");
+    }
+    println!("cargo:rerun-if-changed=../precip-model/shaders");
+}

@@ -1,0 +1,398 @@
+//! [`VkBackend`]: the [`Backend`] on raw Vulkan — the simulation half (configure,
+//! weather, camera, step, read-back, timings) with the wgpu backend's kernels and
+//! recipe. Rendering is not there yet: `render`/`read_image` say so.
+
+use glam::Vec3;
+use precip_model::cover::CoverGrid;
+use precip_model::drag::MAX_SUBSTEP_S;
+use precip_model::gpu::{DispatchOver, dispatch_size};
+use precip_model::step::StepParams;
+use precip_model::wind::WindVolume;
+use precip_model::{
+    Backend, BackendError, BackendInfo, Camera, Image, Particle, Setup, TimingSource, Timings,
+    View, Weather, substeps,
+};
+
+use ash::vk;
+
+use crate::commands::{InFlight, compute_barrier, submit};
+use crate::device::Device;
+use crate::error::NAME;
+use crate::instance::Instance;
+use crate::programs::Programs;
+use crate::query::Timestamps;
+use crate::resources::{COVER_TEXEL_BYTES, Resources, download, upload_wind};
+
+const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
+
+#[derive(Debug)]
+struct State {
+    setup: Setup,
+    weather: Weather,
+    wind: WindVolume,
+    camera: Camera,
+    resources: Resources,
+    step_template: StepParams,
+    time_s: f64,
+}
+
+/// precip on Vulkan.
+#[derive(Debug)]
+pub struct VkBackend {
+    state: Option<State>,
+    in_flight: Option<InFlight>,
+    timestamps: Option<Timestamps>,
+    programs: Programs,
+    device: Device,
+}
+
+impl VkBackend {
+    /// Opens its own instance and device; `validation` enables the Khronos validation
+    /// layer (its messages are kept: [`VkBackend::validation_messages`]).
+    pub fn new(validation: bool) -> Result<Self, BackendError> {
+        let device = Device::new(Instance::new(validation)?)?;
+        let programs = Programs::new(&device)?;
+        let timestamps = Timestamps::new(&device)?;
+        Ok(Self {
+            state: None,
+            in_flight: None,
+            timestamps,
+            programs,
+            device,
+        })
+    }
+
+    /// The validation layer's warnings and errors so far, taken.
+    #[must_use]
+    pub fn validation_messages(&self) -> Vec<String> {
+        self.device.instance.take_messages()
+    }
+
+    /// The list the validation layer writes into; it outlives the backend, so leak
+    /// reports at device destruction can be read after a drop.
+    #[must_use]
+    pub fn validation_log(&self) -> crate::instance::Messages {
+        self.device.instance.messages.clone()
+    }
+
+    /// The device (its raw `ash::Device`, queue and allocator), for an engine that
+    /// records its own work beside precip's.
+    #[must_use]
+    pub fn device(&self) -> &Device {
+        &self.device
+    }
+
+    /// The device's name.
+    #[must_use]
+    pub fn device_name(&self) -> String {
+        self.device.name()
+    }
+
+    /// The most particles one configuration holds.
+    #[must_use]
+    pub fn max_particles(&self) -> u64 {
+        (self.device.max_storage_range() / PARTICLE_BYTES).min(u64::from(u32::MAX))
+    }
+
+    /// Waits for the submission in flight, if any.
+    fn settle(&mut self) -> Result<(), BackendError> {
+        match self.in_flight.take() {
+            Some(f) => f.wait(&self.device),
+            None => Ok(()),
+        }
+    }
+
+    fn state(&self, operation: &'static str) -> Result<&State, BackendError> {
+        self.state
+            .as_ref()
+            .ok_or(BackendError::NotConfigured { operation })
+    }
+}
+
+impl Drop for VkBackend {
+    fn drop(&mut self) {
+        let _ = self.settle();
+        let _ = self.device.wait_idle();
+        if let Some(state) = self.state.take() {
+            state.resources.destroy(&self.device);
+        }
+        if let Some(t) = self.timestamps.take() {
+            t.destroy(&self.device);
+        }
+        self.programs.destroy(&self.device);
+    }
+}
+
+impl Backend for VkBackend {
+    fn info(&self) -> BackendInfo {
+        BackendInfo {
+            name: NAME,
+            device: format!("{} (Vulkan)", self.device.name()),
+            max_particles: self.max_particles(),
+            renders: false,
+        }
+    }
+
+    fn configure(&mut self, setup: &Setup) -> Result<(), BackendError> {
+        let limit = format!(
+            "maxStorageBufferRange = {} bytes on {}, {PARTICLE_BYTES} bytes a particle",
+            self.device.max_storage_range(),
+            self.device.name()
+        );
+        setup.validate(self.max_particles(), &limit)?;
+        let cover_bytes = setup.cover.frame.texel_count() as u64 * COVER_TEXEL_BYTES;
+        if cover_bytes > self.device.max_storage_range() {
+            return Err(BackendError::Setup {
+                field: "cover.frame",
+                problem: format!(
+                    "needs {cover_bytes} bytes, more than this device binds: use fewer texels"
+                ),
+            });
+        }
+        let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume)?;
+        let cover = setup.initial_cover()?;
+        let (world, camera) = setup.particle_counts();
+        let count = world + camera;
+        self.settle()?;
+        self.device.wait_idle()?;
+        if let Some(old) = self.state.take() {
+            old.resources.destroy(&self.device);
+        }
+        let mut resources = Resources::new(
+            &self.device,
+            &self.programs,
+            count,
+            &setup.ground,
+            &cover,
+            &setup.frames(),
+            &wind,
+        )?;
+        let step_template = setup.step_params(&setup.weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
+        let params = step_template.at(setup.camera.position_m, MAX_SUBSTEP_S, 0.0);
+        resources
+            .step_uniforms
+            .write(0, bytemuck::bytes_of(&params))?;
+        let device = &self.device;
+        let programs = &self.programs;
+        let r = &resources;
+        submit(device, |cb| {
+            let (x, y) = dispatch_size(count);
+            // SAFETY: `cb` is recording; the pipeline, layout and set are live and match.
+            unsafe {
+                device
+                    .raw
+                    .cmd_bind_pipeline(cb, vk::PipelineBindPoint::COMPUTE, programs.init);
+                device.raw.cmd_bind_descriptor_sets(
+                    cb,
+                    vk::PipelineBindPoint::COMPUTE,
+                    programs.step_layout,
+                    0,
+                    &[r.step_set],
+                    &[0],
+                );
+                device.raw.cmd_dispatch(cb, x, y, 1);
+            }
+            compute_barrier(device, cb);
+        })?
+        .wait(device)?;
+        if let Some(t) = self.timestamps.as_mut() {
+            t.written = 0;
+        }
+        self.state = Some(State {
+            setup: setup.clone(),
+            weather: setup.weather,
+            wind,
+            camera: setup.camera,
+            resources,
+            step_template,
+            time_s: 0.0,
+        });
+        Ok(())
+    }
+
+    fn set_weather(&mut self, weather: &Weather) -> Result<(), BackendError> {
+        weather.validate()?;
+        self.state("set_weather")?;
+        self.settle()?;
+        let device = &self.device;
+        let Some(state) = self.state.as_mut() else {
+            return Err(BackendError::NotConfigured {
+                operation: "set_weather",
+            });
+        };
+        let mut wind = state.wind.clone();
+        if weather.wind.needs_rebake(&wind.field) {
+            wind = WindVolume::bake(&weather.wind, &state.setup.wind_volume)?;
+            upload_wind(device, &state.resources.wind, &wind)?;
+        } else {
+            wind.set_mean_wind(weather.wind.mean_wind_mps);
+        }
+        state.resources.write_wind_params(&wind.gpu_params())?;
+        state.wind = wind;
+        state.step_template = state
+            .setup
+            .step_params(weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
+        state.weather = *weather;
+        Ok(())
+    }
+
+    fn set_camera(&mut self, camera: &Camera) -> Result<(), BackendError> {
+        camera.validate()?;
+        self.state
+            .as_mut()
+            .ok_or(BackendError::NotConfigured {
+                operation: "set_camera",
+            })?
+            .camera = *camera;
+        Ok(())
+    }
+
+    fn step(&mut self, dt_s: f32) -> Result<(), BackendError> {
+        let (count, h) = substeps(dt_s)?;
+        self.state("step")?;
+        // The uniform blocks of the last step may still be read: wait for it.
+        self.settle()?;
+        let device = &self.device;
+        let programs = &self.programs;
+        let timestamps = self.timestamps.as_ref();
+        let Some(state) = self.state.as_mut() else {
+            return Err(BackendError::NotConfigured { operation: "step" });
+        };
+        let stride = state.resources.uniform_stride as usize;
+        let mut time_s = state.time_s;
+        for k in 0..count as usize {
+            let step = state
+                .step_template
+                .at(state.camera.position_m, h, time_s as f32);
+            let cover = state.setup.cover_step_params(&state.weather, h);
+            state
+                .resources
+                .step_uniforms
+                .write(k * stride, bytemuck::bytes_of(&step))?;
+            state
+                .resources
+                .cover_uniforms
+                .write(k * stride, bytemuck::bytes_of(&cover))?;
+            time_s += f64::from(h);
+        }
+        let r = &state.resources;
+        let mut written = 0;
+        let in_flight = submit(device, |cb| {
+            let stamp = |written: &mut u32| {
+                if let Some(t) = timestamps {
+                    // SAFETY: `cb` is recording; the query index is below QUERY_COUNT.
+                    unsafe {
+                        device.raw.cmd_write_timestamp(
+                            cb,
+                            vk::PipelineStageFlags::BOTTOM_OF_PIPE,
+                            t.pool,
+                            *written,
+                        )
+                    };
+                    *written += 1;
+                }
+            };
+            if let Some(t) = timestamps {
+                // SAFETY: `cb` is recording; resets the queries this step writes.
+                unsafe {
+                    device
+                        .raw
+                        .cmd_reset_query_pool(cb, t.pool, 0, crate::query::QUERY_COUNT)
+                };
+            }
+            stamp(&mut written);
+            for k in 0..count {
+                let offset = (u64::from(k) * r.uniform_stride) as u32;
+                for (kernel, pipeline) in &programs.substep {
+                    let (layout, set, items) = match kernel.over {
+                        DispatchOver::Particles => {
+                            (programs.step_layout, r.step_set, r.particle_count)
+                        }
+                        DispatchOver::CoverTexels => {
+                            (programs.cover_layout, r.cover_set, r.cover_texel_count)
+                        }
+                        DispatchOver::OneWorkgroup => (programs.step_layout, r.step_set, 1),
+                    };
+                    let (x, y) = dispatch_size(items);
+                    // SAFETY: `cb` is recording; pipeline, layout and set match; the
+                    // dynamic offset is aligned and within the uniform buffer.
+                    unsafe {
+                        device
+                            .raw
+                            .cmd_bind_pipeline(cb, vk::PipelineBindPoint::COMPUTE, *pipeline);
+                        device.raw.cmd_bind_descriptor_sets(
+                            cb,
+                            vk::PipelineBindPoint::COMPUTE,
+                            layout,
+                            0,
+                            &[set],
+                            &[offset],
+                        );
+                        device.raw.cmd_dispatch(cb, x, y, 1);
+                    }
+                    compute_barrier(device, cb);
+                    stamp(&mut written);
+                }
+            }
+        })?;
+        self.in_flight = Some(in_flight);
+        if let Some(t) = self.timestamps.as_mut() {
+            t.written = written;
+        }
+        if let Some(state) = self.state.as_mut() {
+            state.time_s = time_s;
+        }
+        Ok(())
+    }
+
+    fn render(&mut self, _view: &View) -> Result<(), BackendError> {
+        Err(BackendError::NotSupported {
+            backend: NAME,
+            operation: "render (the Vulkan renderer is not written yet: use the wgpu backend)",
+        })
+    }
+
+    fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {
+        self.settle()?;
+        let r = &self.state("read_particles")?.resources;
+        let bytes = download(
+            &self.device,
+            &r.particles,
+            u64::from(r.particle_count) * PARTICLE_BYTES,
+        )?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
+    }
+
+    fn read_cover(&mut self) -> Result<CoverGrid, BackendError> {
+        self.settle()?;
+        let state = self.state("read_cover")?;
+        let r = &state.resources;
+        let bytes = download(
+            &self.device,
+            &r.cover,
+            u64::from(r.cover_texel_count) * COVER_TEXEL_BYTES,
+        )?;
+        Ok(CoverGrid {
+            frame: state.setup.cover.frame,
+            texels: bytemuck::pod_collect_to_vec(&bytes),
+        })
+    }
+
+    fn read_image(&mut self) -> Result<Image, BackendError> {
+        Err(BackendError::NotSupported {
+            backend: NAME,
+            operation: "read_image (the Vulkan renderer is not written yet)",
+        })
+    }
+
+    fn timings(&mut self) -> Result<Timings, BackendError> {
+        self.settle()?;
+        match &self.timestamps {
+            Some(t) => t.read(&self.device),
+            None => Ok(Timings {
+                source: TimingSource::Unavailable,
+                passes: Vec::new(),
+            }),
+        }
+    }
+}

@@ -1,0 +1,167 @@
+//! The logical device: a physical device with a queue that computes (and draws), its
+//! limits, the memory allocator, a command pool and a fence for one submission at a
+//! time.
+
+use std::mem::ManuallyDrop;
+use std::sync::Mutex;
+
+use ash::vk;
+use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
+use precip_model::BackendError;
+
+use crate::error::{NAME, map_allocation, map_vk};
+use crate::instance::Instance;
+
+/// A device, its queue and allocator.
+pub struct Device {
+    /// The instance it came from (dropped after the device).
+    pub instance: ManuallyDrop<Instance>,
+    /// The physical device.
+    pub physical: vk::PhysicalDevice,
+    /// Its properties (limits, name, timestamp period).
+    pub properties: vk::PhysicalDeviceProperties,
+    /// The device.
+    pub raw: ash::Device,
+    /// The queue.
+    pub queue: vk::Queue,
+    /// Its family.
+    pub queue_family: u32,
+    /// Whether the queue writes timestamps.
+    pub timestamps: bool,
+    /// Memory.
+    pub allocator: ManuallyDrop<Mutex<Allocator>>,
+    /// Command buffers come from here.
+    pub command_pool: vk::CommandPool,
+}
+
+impl std::fmt::Debug for Device {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Device")
+            .field("name", &self.name())
+            .finish_non_exhaustive()
+    }
+}
+
+impl Device {
+    /// Opens the first device with a compute-and-graphics queue (discrete GPUs first).
+    pub fn new(instance: Instance) -> Result<Self, BackendError> {
+        // SAFETY: enumeration on a live instance.
+        let physicals = unsafe { instance.raw.enumerate_physical_devices() }
+            .map_err(|e| map_vk("listing devices", e))?;
+        let mut best: Option<(vk::PhysicalDevice, u32, u32)> = None;
+        for physical in physicals {
+            // SAFETY: `physical` comes from this instance.
+            let (properties, families) = unsafe {
+                (
+                    instance.raw.get_physical_device_properties(physical),
+                    instance
+                        .raw
+                        .get_physical_device_queue_family_properties(physical),
+                )
+            };
+            let Some(family) = families.iter().position(|f| {
+                f.queue_flags
+                    .contains(vk::QueueFlags::COMPUTE | vk::QueueFlags::GRAPHICS)
+            }) else {
+                continue;
+            };
+            let rank = match properties.device_type {
+                vk::PhysicalDeviceType::DISCRETE_GPU => 3,
+                vk::PhysicalDeviceType::INTEGRATED_GPU => 2,
+                vk::PhysicalDeviceType::VIRTUAL_GPU => 1,
+                _ => 0,
+            };
+            if best.is_none_or(|(_, _, r)| rank > r) {
+                best = Some((physical, family as u32, rank));
+            }
+        }
+        let Some((physical, queue_family, _)) = best else {
+            return Err(BackendError::Device {
+                backend: NAME,
+                message: "no Vulkan device with a compute and graphics queue: install a driver, e.g. `apt-get install mesa-vulkan-drivers`".into(),
+            });
+        };
+        // SAFETY: `physical` comes from this instance.
+        let (properties, families) = unsafe {
+            (
+                instance.raw.get_physical_device_properties(physical),
+                instance
+                    .raw
+                    .get_physical_device_queue_family_properties(physical),
+            )
+        };
+        let timestamps = families[queue_family as usize].timestamp_valid_bits > 0
+            && properties.limits.timestamp_compute_and_graphics == vk::TRUE;
+        let priorities = [1.0];
+        let queues = [vk::DeviceQueueCreateInfo::default()
+            .queue_family_index(queue_family)
+            .queue_priorities(&priorities)];
+        let info = vk::DeviceCreateInfo::default().queue_create_infos(&queues);
+        // SAFETY: the create info outlives the call; `physical` is from this instance.
+        let raw = unsafe { instance.raw.create_device(physical, &info, None) }
+            .map_err(|e| map_vk("creating the device", e))?;
+        // SAFETY: the queue family and index were requested above.
+        let queue = unsafe { raw.get_device_queue(queue_family, 0) };
+        let allocator = Allocator::new(&AllocatorCreateDesc {
+            instance: instance.raw.clone(),
+            device: raw.clone(),
+            physical_device: physical,
+            debug_settings: gpu_allocator::AllocatorDebugSettings::default(),
+            buffer_device_address: false,
+            allocation_sizes: gpu_allocator::AllocationSizes::default(),
+        })
+        .map_err(|e| map_allocation("creating the allocator", &e))?;
+        let pool_info = vk::CommandPoolCreateInfo::default()
+            .queue_family_index(queue_family)
+            .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
+        // SAFETY: a valid device and create info.
+        let command_pool = unsafe { raw.create_command_pool(&pool_info, None) }
+            .map_err(|e| map_vk("creating a command pool", e))?;
+        Ok(Self {
+            instance: ManuallyDrop::new(instance),
+            physical,
+            properties,
+            raw,
+            queue,
+            queue_family,
+            timestamps,
+            allocator: ManuallyDrop::new(Mutex::new(allocator)),
+            command_pool,
+        })
+    }
+
+    /// The device's name.
+    #[must_use]
+    pub fn name(&self) -> String {
+        self.properties
+            .device_name_as_c_str()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    }
+
+    /// The largest storage buffer range, bytes.
+    #[must_use]
+    pub fn max_storage_range(&self) -> u64 {
+        u64::from(self.properties.limits.max_storage_buffer_range)
+    }
+
+    /// Waits until the device is idle.
+    pub fn wait_idle(&self) -> Result<(), BackendError> {
+        // SAFETY: a live device; no other thread submits to it.
+        unsafe { self.raw.device_wait_idle() }.map_err(|e| map_vk("waiting for the device", e))
+    }
+}
+
+impl Drop for Device {
+    fn drop(&mut self) {
+        // SAFETY: waits for all work, then destroys what this struct created, children
+        // before parents: pool, allocator (its memory), device, instance.
+        unsafe {
+            let _ = self.raw.device_wait_idle();
+            self.raw.destroy_command_pool(self.command_pool, None);
+            ManuallyDrop::drop(&mut self.allocator);
+            self.raw.destroy_device(None);
+            ManuallyDrop::drop(&mut self.instance);
+        }
+    }
+}

@@ -1,0 +1,81 @@
+//! Timestamp queries around each kernel of a step (as the wgpu backend names them).
+
+use ash::vk;
+use precip_model::backend::MAX_SUBSTEPS;
+use precip_model::gpu::SUBSTEP_PASSES;
+use precip_model::{BackendError, PassTiming, TimingSource, Timings};
+
+use crate::device::Device;
+use crate::error::map_vk;
+
+/// Queries: one at the start, one after each kernel of each sub-step.
+pub const QUERY_COUNT: u32 = 1 + SUBSTEP_PASSES.len() as u32 * MAX_SUBSTEPS;
+
+/// The query pool.
+#[derive(Debug)]
+pub struct Timestamps {
+    /// The pool.
+    pub pool: vk::QueryPool,
+    /// Queries the last step wrote.
+    pub written: u32,
+}
+
+impl Timestamps {
+    /// A pool, or `None` when the queue cannot time.
+    pub fn new(device: &Device) -> Result<Option<Self>, BackendError> {
+        if !device.timestamps {
+            return Ok(None);
+        }
+        let info = vk::QueryPoolCreateInfo::default()
+            .query_type(vk::QueryType::TIMESTAMP)
+            .query_count(QUERY_COUNT);
+        // SAFETY: a valid device and create info.
+        let pool = unsafe { device.raw.create_query_pool(&info, None) }
+            .map_err(|e| map_vk("creating a query pool", e))?;
+        Ok(Some(Self { pool, written: 0 }))
+    }
+
+    /// Time per kernel of the last step (the step must be finished).
+    pub fn read(&self, device: &Device) -> Result<Timings, BackendError> {
+        let kernels = SUBSTEP_PASSES.len();
+        let mut passes: Vec<PassTiming> = SUBSTEP_PASSES
+            .iter()
+            .map(|k| PassTiming {
+                pass: k.entry_point,
+                milliseconds: 0.0,
+            })
+            .collect();
+        if (self.written as usize) < 1 + kernels {
+            return Ok(Timings {
+                source: TimingSource::GpuTimestamps,
+                passes: Vec::new(),
+            });
+        }
+        let mut ticks = vec![0u64; self.written as usize];
+        // SAFETY: the queries 0..written were written by a finished submission.
+        unsafe {
+            device.raw.get_query_pool_results(
+                self.pool,
+                0,
+                &mut ticks,
+                vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+            )
+        }
+        .map_err(|e| map_vk("reading timestamps", e))?;
+        let period = f64::from(device.properties.limits.timestamp_period);
+        for (i, pair) in ticks.windows(2).enumerate() {
+            passes[i % kernels].milliseconds +=
+                pair[1].saturating_sub(pair[0]) as f64 * period * 1e-6;
+        }
+        Ok(Timings {
+            source: TimingSource::GpuTimestamps,
+            passes,
+        })
+    }
+
+    /// Destroys the pool (the device must be idle).
+    pub fn destroy(&self, device: &Device) {
+        // SAFETY: the device is idle; destroyed once (by the backend's Drop).
+        unsafe { device.raw.destroy_query_pool(self.pool, None) };
+    }
+}

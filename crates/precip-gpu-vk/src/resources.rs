@@ -1,0 +1,406 @@
+//! The buffers, wind volume and descriptor sets of one configuration, and uploads.
+
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+use precip_model::backend::MAX_SUBSTEPS;
+use precip_model::cover::{CoverGrid, CoverStepParams, CoverTexel};
+use precip_model::gpu::{Frames, cover_bindings, step_bindings};
+use precip_model::step::StepParams;
+use precip_model::wind::{WindParams, WindVolume};
+use precip_model::{BackendError, GroundMap, Particle};
+
+use crate::buffer::Buffer;
+use crate::commands::{compute_barrier, submit};
+use crate::device::Device;
+use crate::error::map_vk;
+use crate::image::{COLOUR, Volume};
+use crate::programs::Programs;
+
+/// Everything one configuration allocates.
+#[derive(Debug)]
+pub struct Resources {
+    /// `array<Particle>`.
+    pub particles: Buffer,
+    /// How many.
+    pub particle_count: u32,
+    /// `array<CoverTexel>`.
+    pub cover: Buffer,
+    /// How many.
+    pub cover_texel_count: u32,
+    /// Two `u32` per cover texel.
+    pub deposits: Buffer,
+    ground: Buffer,
+    frames: Buffer,
+    wind_params: Buffer,
+    /// The wind volume.
+    pub wind: Volume,
+    /// One `StepParams` per sub-step at `uniform_stride`.
+    pub step_uniforms: Buffer,
+    /// One `CoverStepParams` per sub-step.
+    pub cover_uniforms: Buffer,
+    /// Bytes between sub-steps' blocks.
+    pub uniform_stride: u64,
+    pool: vk::DescriptorPool,
+    /// Set 0 of the particle kernels.
+    pub step_set: vk::DescriptorSet,
+    /// Set 0 of the cover kernel.
+    pub cover_set: vk::DescriptorSet,
+}
+
+const STORAGE: vk::BufferUsageFlags = vk::BufferUsageFlags::from_raw(
+    vk::BufferUsageFlags::STORAGE_BUFFER.as_raw()
+        | vk::BufferUsageFlags::TRANSFER_SRC.as_raw()
+        | vk::BufferUsageFlags::TRANSFER_DST.as_raw(),
+);
+
+fn uniform(device: &Device, name: &str, size: u64) -> Result<Buffer, BackendError> {
+    Buffer::new(
+        device,
+        name,
+        size,
+        vk::BufferUsageFlags::UNIFORM_BUFFER,
+        MemoryLocation::CpuToGpu,
+    )
+}
+
+/// Copies `bytes` into `target` through a staging buffer (waits).
+pub fn upload(device: &Device, target: &Buffer, bytes: &[u8]) -> Result<(), BackendError> {
+    if bytes.is_empty() {
+        return Ok(());
+    }
+    let mut staging = Buffer::new(
+        device,
+        "staging",
+        bytes.len() as u64,
+        vk::BufferUsageFlags::TRANSFER_SRC,
+        MemoryLocation::CpuToGpu,
+    )?;
+    staging.write(0, bytes)?;
+    let result = submit(device, |cb| {
+        let region = vk::BufferCopy {
+            src_offset: 0,
+            dst_offset: 0,
+            size: bytes.len() as u64,
+        };
+        // SAFETY: both buffers are live and large enough; `cb` is recording.
+        unsafe {
+            device
+                .raw
+                .cmd_copy_buffer(cb, staging.raw, target.raw, &[region])
+        };
+        compute_barrier(device, cb);
+    })
+    .and_then(|f| f.wait(device));
+    staging.destroy(device);
+    result
+}
+
+/// Copies the first `size` bytes of `source` back (waits).
+pub fn download(device: &Device, source: &Buffer, size: u64) -> Result<Vec<u8>, BackendError> {
+    if size == 0 {
+        return Ok(Vec::new());
+    }
+    let staging = Buffer::new(
+        device,
+        "read-back",
+        size,
+        vk::BufferUsageFlags::TRANSFER_DST,
+        MemoryLocation::GpuToCpu,
+    )?;
+    let result = submit(device, |cb| {
+        let region = vk::BufferCopy {
+            src_offset: 0,
+            dst_offset: 0,
+            size,
+        };
+        // SAFETY: both buffers are live and large enough; `cb` is recording.
+        unsafe {
+            device
+                .raw
+                .cmd_copy_buffer(cb, source.raw, staging.raw, &[region])
+        };
+    })
+    .and_then(|f| f.wait(device))
+    .and_then(|()| staging.read(size as usize));
+    staging.destroy(device);
+    result
+}
+
+/// Writes the wind volume's texels (waits).
+pub fn upload_wind(
+    device: &Device,
+    volume: &Volume,
+    wind: &WindVolume,
+) -> Result<(), BackendError> {
+    let bytes = wind.as_bytes();
+    let mut staging = Buffer::new(
+        device,
+        "wind staging",
+        bytes.len() as u64,
+        vk::BufferUsageFlags::TRANSFER_SRC,
+        MemoryLocation::CpuToGpu,
+    )?;
+    staging.write(0, bytes)?;
+    let e = volume.extent;
+    let result = submit(device, |cb| {
+        let to_transfer = vk::ImageMemoryBarrier::default()
+            .old_layout(vk::ImageLayout::UNDEFINED)
+            .new_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
+            .src_access_mask(vk::AccessFlags::empty())
+            .dst_access_mask(vk::AccessFlags::TRANSFER_WRITE)
+            .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+            .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+            .image(volume.raw)
+            .subresource_range(COLOUR);
+        let to_shader = vk::ImageMemoryBarrier::default()
+            .old_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
+            .new_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)
+            .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
+            .dst_access_mask(vk::AccessFlags::SHADER_READ)
+            .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+            .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+            .image(volume.raw)
+            .subresource_range(COLOUR);
+        let region = vk::BufferImageCopy::default()
+            .image_subresource(vk::ImageSubresourceLayers {
+                aspect_mask: vk::ImageAspectFlags::COLOR,
+                mip_level: 0,
+                base_array_layer: 0,
+                layer_count: 1,
+            })
+            .image_extent(vk::Extent3D {
+                width: e.x,
+                height: e.y,
+                depth: e.z,
+            });
+        // SAFETY: `cb` is recording; the image and staging buffer are live; the
+        // barriers move the whole image through the layouts the copy and the shaders
+        // need (the earlier contents are discarded: UNDEFINED).
+        unsafe {
+            device.raw.cmd_pipeline_barrier(
+                cb,
+                vk::PipelineStageFlags::TOP_OF_PIPE | vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::PipelineStageFlags::TRANSFER,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &[to_transfer],
+            );
+            device.raw.cmd_copy_buffer_to_image(
+                cb,
+                staging.raw,
+                volume.raw,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &[region],
+            );
+            device.raw.cmd_pipeline_barrier(
+                cb,
+                vk::PipelineStageFlags::TRANSFER,
+                vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &[to_shader],
+            );
+        }
+    })
+    .and_then(|f| f.wait(device));
+    staging.destroy(device);
+    result
+}
+
+impl Resources {
+    /// Allocates, uploads and binds everything but the particles (the init kernel
+    /// fills them).
+    pub fn new(
+        device: &Device,
+        programs: &Programs,
+        particle_count: u32,
+        ground: &GroundMap,
+        cover: &CoverGrid,
+        frames: &Frames,
+        wind: &WindVolume,
+    ) -> Result<Self, BackendError> {
+        let align = device
+            .properties
+            .limits
+            .min_uniform_buffer_offset_alignment
+            .max(16);
+        let block = size_of::<StepParams>().max(size_of::<CoverStepParams>()) as u64;
+        let uniform_stride = block.div_ceil(align) * align;
+        let count = u64::from(MAX_SUBSTEPS);
+        let particles = Buffer::new(
+            device,
+            "particles",
+            u64::from(particle_count) * size_of::<Particle>() as u64,
+            STORAGE,
+            MemoryLocation::GpuOnly,
+        )?;
+        let cover_bytes: &[u8] = bytemuck::cast_slice(&cover.texels);
+        let cover_buffer = Buffer::new(
+            device,
+            "cover",
+            cover_bytes.len() as u64,
+            STORAGE,
+            MemoryLocation::GpuOnly,
+        )?;
+        upload(device, &cover_buffer, cover_bytes)?;
+        let deposits = Buffer::new(
+            device,
+            "deposits",
+            cover.texels.len() as u64 * 8,
+            STORAGE,
+            MemoryLocation::GpuOnly,
+        )?;
+        upload(device, &deposits, &vec![0u8; cover.texels.len() * 8])?;
+        let ground_bytes: &[u8] = bytemuck::cast_slice(&ground.height_m);
+        let ground_buffer = Buffer::new(
+            device,
+            "ground",
+            ground_bytes.len() as u64,
+            STORAGE,
+            MemoryLocation::GpuOnly,
+        )?;
+        upload(device, &ground_buffer, ground_bytes)?;
+        let mut frames_buffer = uniform(device, "frames", size_of::<Frames>() as u64)?;
+        frames_buffer.write(0, bytemuck::bytes_of(frames))?;
+        let mut wind_params = uniform(device, "wind params", size_of::<WindParams>() as u64)?;
+        wind_params.write(0, bytemuck::bytes_of(&wind.gpu_params()))?;
+        let volume = Volume::new(device, wind.spec.texels)?;
+        upload_wind(device, &volume, wind)?;
+        let step_uniforms = uniform(device, "step uniforms", uniform_stride * count)?;
+        let cover_uniforms = uniform(device, "cover uniforms", uniform_stride * count)?;
+
+        use vk::DescriptorType as T;
+        let sizes = [
+            vk::DescriptorPoolSize {
+                ty: T::UNIFORM_BUFFER_DYNAMIC,
+                descriptor_count: 2,
+            },
+            vk::DescriptorPoolSize {
+                ty: T::UNIFORM_BUFFER,
+                descriptor_count: 2,
+            },
+            vk::DescriptorPoolSize {
+                ty: T::SAMPLED_IMAGE,
+                descriptor_count: 1,
+            },
+            vk::DescriptorPoolSize {
+                ty: T::STORAGE_BUFFER,
+                descriptor_count: 5,
+            },
+        ];
+        let pool_info = vk::DescriptorPoolCreateInfo::default()
+            .max_sets(2)
+            .pool_sizes(&sizes);
+        // SAFETY: a valid device and create info.
+        let pool = unsafe { device.raw.create_descriptor_pool(&pool_info, None) }
+            .map_err(|e| map_vk("creating a descriptor pool", e))?;
+        let layouts = [programs.step_set_layout, programs.cover_set_layout];
+        let alloc = vk::DescriptorSetAllocateInfo::default()
+            .descriptor_pool(pool)
+            .set_layouts(&layouts);
+        // SAFETY: the pool has room for both sets.
+        let sets = unsafe { device.raw.allocate_descriptor_sets(&alloc) }
+            .map_err(|e| map_vk("allocating descriptor sets", e))?;
+        let (step_set, cover_set) = (sets[0], sets[1]);
+        let info = |b: &Buffer, range: u64| {
+            [vk::DescriptorBufferInfo {
+                buffer: b.raw,
+                offset: 0,
+                range,
+            }]
+        };
+        let whole = vk::WHOLE_SIZE;
+        let step_params = info(&step_uniforms, size_of::<StepParams>() as u64);
+        let frames_info = info(&frames_buffer, size_of::<Frames>() as u64);
+        let wind_info = info(&wind_params, size_of::<WindParams>() as u64);
+        let ground_info = info(&ground_buffer, whole);
+        let particles_info = info(&particles, whole);
+        let deposits_info = info(&deposits, whole);
+        let cover_params = info(&cover_uniforms, size_of::<CoverStepParams>() as u64);
+        let cover_info = info(&cover_buffer, whole);
+        let image = [vk::DescriptorImageInfo {
+            sampler: vk::Sampler::null(),
+            image_view: volume.view,
+            image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+        }];
+        let write = |set, b, ty| {
+            vk::WriteDescriptorSet::default()
+                .dst_set(set)
+                .dst_binding(b)
+                .descriptor_type(ty)
+        };
+        let writes = [
+            write(
+                step_set,
+                step_bindings::STEP_PARAMS,
+                T::UNIFORM_BUFFER_DYNAMIC,
+            )
+            .buffer_info(&step_params),
+            write(step_set, step_bindings::FRAMES, T::UNIFORM_BUFFER).buffer_info(&frames_info),
+            write(step_set, step_bindings::WIND, T::UNIFORM_BUFFER).buffer_info(&wind_info),
+            write(step_set, step_bindings::WIND_VOLUME, T::SAMPLED_IMAGE).image_info(&image),
+            write(step_set, step_bindings::GROUND_HEIGHT, T::STORAGE_BUFFER)
+                .buffer_info(&ground_info),
+            write(step_set, step_bindings::PARTICLES, T::STORAGE_BUFFER)
+                .buffer_info(&particles_info),
+            write(step_set, step_bindings::DEPOSITS, T::STORAGE_BUFFER).buffer_info(&deposits_info),
+            write(
+                cover_set,
+                cover_bindings::COVER_PARAMS,
+                T::UNIFORM_BUFFER_DYNAMIC,
+            )
+            .buffer_info(&cover_params),
+            write(cover_set, cover_bindings::COVER, T::STORAGE_BUFFER).buffer_info(&cover_info),
+            write(cover_set, cover_bindings::DEPOSITS, T::STORAGE_BUFFER)
+                .buffer_info(&deposits_info),
+        ];
+        // SAFETY: every write names a live buffer or view of the right type and usage.
+        unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
+        Ok(Self {
+            particles,
+            particle_count,
+            cover: cover_buffer,
+            cover_texel_count: cover.texels.len() as u32,
+            deposits,
+            ground: ground_buffer,
+            frames: frames_buffer,
+            wind_params,
+            wind: volume,
+            step_uniforms,
+            cover_uniforms,
+            uniform_stride,
+            pool,
+            step_set,
+            cover_set,
+        })
+    }
+
+    /// Writes the wind's uniform block.
+    pub fn write_wind_params(&mut self, params: &WindParams) -> Result<(), BackendError> {
+        self.wind_params.write(0, bytemuck::bytes_of(params))
+    }
+
+    /// Frees everything (the device must be idle).
+    pub fn destroy(self, device: &Device) {
+        // SAFETY: the device is idle; the pool (and its sets) is destroyed once.
+        unsafe { device.raw.destroy_descriptor_pool(self.pool, None) };
+        for b in [
+            self.particles,
+            self.cover,
+            self.deposits,
+            self.ground,
+            self.frames,
+            self.wind_params,
+            self.step_uniforms,
+            self.cover_uniforms,
+        ] {
+            b.destroy(device);
+        }
+        self.wind.destroy(device);
+    }
+}
+
+/// Bytes of one cover texel.
+pub const COVER_TEXEL_BYTES: u64 = size_of::<CoverTexel>() as u64;

@@ -1,0 +1,38 @@
+//! The SPIR-V the build script compiled from precip-model's WGSL (one module per
+//! program, every entry point in it).
+
+use precip_model::shaders::Program;
+
+/// The SPIR-V words of `program`, or `None` for programs this backend does not run.
+#[must_use]
+pub fn words(program: Program) -> Option<Vec<u32>> {
+    let bytes: &[u8] = match program {
+        Program::StepParticles => include_bytes!(concat!(env!("OUT_DIR"), "/StepParticles.spv")),
+        Program::CoverUpdate => include_bytes!(concat!(env!("OUT_DIR"), "/CoverUpdate.spv")),
+        Program::ProbeRng => include_bytes!(concat!(env!("OUT_DIR"), "/ProbeRng.spv")),
+        _ => return None,
+    };
+    Some(
+        bytes
+            .chunks_exact(4)
+            .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect(),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_module_starts_with_the_spirv_magic() {
+        for program in [
+            Program::StepParticles,
+            Program::CoverUpdate,
+            Program::ProbeRng,
+        ] {
+            let w = words(program).expect("compiled");
+            assert_eq!(w[0], 0x0723_0203, "{program:?}");
+        }
+    }
+}
