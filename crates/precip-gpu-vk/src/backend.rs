@@ -62,6 +62,27 @@ impl VkBackend {
         })
     }
 
+    /// Runs on a device the caller owns (an engine's renderer); see
+    /// [`Device::external`] for what the caller must guarantee.
+    ///
+    /// # Safety
+    /// As [`Device::external`].
+    pub unsafe fn on_external_device(
+        external: crate::device::ExternalDevice,
+    ) -> Result<Self, BackendError> {
+        // SAFETY: forwarded to the caller.
+        let device = unsafe { Device::external(external) }?;
+        let programs = Programs::new(&device)?;
+        let timestamps = Timestamps::new(&device)?;
+        Ok(Self {
+            state: None,
+            in_flight: None,
+            timestamps,
+            programs,
+            device,
+        })
+    }
+
     /// The validation layer's warnings and errors so far, taken.
     #[must_use]
     pub fn validation_messages(&self) -> Vec<String> {

@@ -32,6 +32,34 @@ pub struct Device {
     pub allocator: ManuallyDrop<Mutex<Allocator>>,
     /// Command buffers come from here.
     pub command_pool: vk::CommandPool,
+    /// Whether dropping this destroys the device (false for the caller's).
+    owned: bool,
+}
+
+/// A device the caller owns (an engine's), for [`Device::external`].
+#[derive(Clone)]
+pub struct ExternalDevice {
+    /// The loader the instance came from.
+    pub entry: ash::Entry,
+    /// The caller's instance (Vulkan 1.1 or later).
+    pub instance: ash::Instance,
+    /// The physical device of `device`.
+    pub physical: vk::PhysicalDevice,
+    /// The caller's device.
+    pub device: ash::Device,
+    /// A queue family with compute and graphics that `device` was created with.
+    pub queue_family: u32,
+    /// Which queue of that family precip submits to.
+    pub queue_index: u32,
+}
+
+impl std::fmt::Debug for ExternalDevice {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ExternalDevice")
+            .field("queue_family", &self.queue_family)
+            .field("queue_index", &self.queue_index)
+            .finish_non_exhaustive()
+    }
 }
 
 impl std::fmt::Debug for Device {
@@ -43,6 +71,104 @@ impl std::fmt::Debug for Device {
 }
 
 impl Device {
+    /// Runs on the caller's device: precip makes its own allocator and command pool on
+    /// it and destroys only those.
+    ///
+    /// # Safety
+    /// `external` must hold live objects created from one another as its fields say,
+    /// the queue must not be used by another thread while precip submits, and the
+    /// device and instance must outlive the backend.
+    pub unsafe fn external(external: ExternalDevice) -> Result<Self, BackendError> {
+        let instance = Instance::external(external.entry, external.instance);
+        // SAFETY: the caller guarantees `physical` belongs to this instance.
+        let (properties, families) = unsafe {
+            (
+                instance
+                    .raw
+                    .get_physical_device_properties(external.physical),
+                instance
+                    .raw
+                    .get_physical_device_queue_family_properties(external.physical),
+            )
+        };
+        let family = families
+            .get(external.queue_family as usize)
+            .ok_or_else(|| BackendError::Device {
+                backend: NAME,
+                message: format!("queue family {} does not exist", external.queue_family),
+            })?;
+        if !family
+            .queue_flags
+            .contains(vk::QueueFlags::COMPUTE | vk::QueueFlags::GRAPHICS)
+        {
+            return Err(BackendError::Device {
+                backend: NAME,
+                message: format!(
+                    "queue family {} cannot both compute and draw: give a family with COMPUTE and GRAPHICS",
+                    external.queue_family
+                ),
+            });
+        }
+        let timestamps = family.timestamp_valid_bits > 0
+            && properties.limits.timestamp_compute_and_graphics == vk::TRUE;
+        let raw = external.device;
+        // SAFETY: the caller guarantees the device was created with this queue.
+        let queue = unsafe { raw.get_device_queue(external.queue_family, external.queue_index) };
+        Self::finish(
+            instance,
+            external.physical,
+            properties,
+            raw,
+            queue,
+            external.queue_family,
+            timestamps,
+            false,
+        )
+    }
+
+    #[expect(
+        clippy::too_many_arguments,
+        reason = "the parts of a device, assembled once"
+    )]
+    fn finish(
+        instance: Instance,
+        physical: vk::PhysicalDevice,
+        properties: vk::PhysicalDeviceProperties,
+        raw: ash::Device,
+        queue: vk::Queue,
+        queue_family: u32,
+        timestamps: bool,
+        owned: bool,
+    ) -> Result<Self, BackendError> {
+        let allocator = Allocator::new(&AllocatorCreateDesc {
+            instance: instance.raw.clone(),
+            device: raw.clone(),
+            physical_device: physical,
+            debug_settings: gpu_allocator::AllocatorDebugSettings::default(),
+            buffer_device_address: false,
+            allocation_sizes: gpu_allocator::AllocationSizes::default(),
+        })
+        .map_err(|e| map_allocation("creating the allocator", &e))?;
+        let pool_info = vk::CommandPoolCreateInfo::default()
+            .queue_family_index(queue_family)
+            .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
+        // SAFETY: a valid device and create info.
+        let command_pool = unsafe { raw.create_command_pool(&pool_info, None) }
+            .map_err(|e| map_vk("creating a command pool", e))?;
+        Ok(Self {
+            instance: ManuallyDrop::new(instance),
+            physical,
+            properties,
+            raw,
+            queue,
+            queue_family,
+            timestamps,
+            allocator: ManuallyDrop::new(Mutex::new(allocator)),
+            command_pool,
+            owned,
+        })
+    }
+
     /// Opens the first device with a compute-and-graphics queue (discrete GPUs first).
     pub fn new(instance: Instance) -> Result<Self, BackendError> {
         // SAFETY: enumeration on a live instance.
@@ -102,32 +228,16 @@ impl Device {
             .map_err(|e| map_vk("creating the device", e))?;
         // SAFETY: the queue family and index were requested above.
         let queue = unsafe { raw.get_device_queue(queue_family, 0) };
-        let allocator = Allocator::new(&AllocatorCreateDesc {
-            instance: instance.raw.clone(),
-            device: raw.clone(),
-            physical_device: physical,
-            debug_settings: gpu_allocator::AllocatorDebugSettings::default(),
-            buffer_device_address: false,
-            allocation_sizes: gpu_allocator::AllocationSizes::default(),
-        })
-        .map_err(|e| map_allocation("creating the allocator", &e))?;
-        let pool_info = vk::CommandPoolCreateInfo::default()
-            .queue_family_index(queue_family)
-            .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
-        // SAFETY: a valid device and create info.
-        let command_pool = unsafe { raw.create_command_pool(&pool_info, None) }
-            .map_err(|e| map_vk("creating a command pool", e))?;
-        Ok(Self {
-            instance: ManuallyDrop::new(instance),
+        Self::finish(
+            instance,
             physical,
             properties,
             raw,
             queue,
             queue_family,
             timestamps,
-            allocator: ManuallyDrop::new(Mutex::new(allocator)),
-            command_pool,
-        })
+            true,
+        )
     }
 
     /// The device's name.
@@ -155,12 +265,15 @@ impl Device {
 impl Drop for Device {
     fn drop(&mut self) {
         // SAFETY: waits for all work, then destroys what this struct created, children
-        // before parents: pool, allocator (its memory), device, instance.
+        // before parents: pool, allocator (its memory), and the device and instance
+        // only when they are precip's own.
         unsafe {
             let _ = self.raw.device_wait_idle();
             self.raw.destroy_command_pool(self.command_pool, None);
             ManuallyDrop::drop(&mut self.allocator);
-            self.raw.destroy_device(None);
+            if self.owned {
+                self.raw.destroy_device(None);
+            }
             ManuallyDrop::drop(&mut self.instance);
         }
     }

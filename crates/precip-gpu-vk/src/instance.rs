@@ -26,6 +26,8 @@ pub struct Instance {
     _messages_box: Option<Box<Messages>>,
     /// What the validation layer said.
     pub messages: Messages,
+    /// Whether dropping this destroys the instance (false for the caller's).
+    owned: bool,
 }
 
 impl std::fmt::Debug for Instance {
@@ -108,6 +110,7 @@ impl Instance {
             debug: None,
             _messages_box: None,
             messages: messages.clone(),
+            owned: true,
         };
         if validation {
             let boxed = Box::new(messages);
@@ -134,6 +137,19 @@ impl Instance {
         Ok(instance)
     }
 
+    /// Wraps an instance the caller owns (no messenger; never destroyed here).
+    #[must_use]
+    pub fn external(entry: ash::Entry, raw: ash::Instance) -> Self {
+        Self {
+            entry,
+            raw,
+            debug: None,
+            _messages_box: None,
+            messages: Messages::default(),
+            owned: false,
+        }
+    }
+
     /// The messages so far, taken.
     #[must_use]
     pub fn take_messages(&self) -> Vec<String> {
@@ -150,8 +166,10 @@ impl Drop for Instance {
             // SAFETY: the messenger was created from this instance and is destroyed once.
             unsafe { loader.destroy_debug_utils_messenger(messenger, None) };
         }
-        // SAFETY: every child object (the device) is destroyed before the instance: the
-        // backend drops its `Device` first.
-        unsafe { self.raw.destroy_instance(None) };
+        if self.owned {
+            // SAFETY: every child object (the device) is destroyed before the instance:
+            // the backend drops its `Device` first.
+            unsafe { self.raw.destroy_instance(None) };
+        }
     }
 }

@@ -20,9 +20,10 @@
 //!
 //! ## State
 //!
-//! The simulation runs (configure, weather, camera, step, read-back, timings), with
-//! the validation layer clean in tests. Rendering, swapchains and running on a
-//! caller's `VkDevice` are still to come (see the README).
+//! The simulation runs (configure, weather, camera, step, read-back, timings), on
+//! precip's own device or the caller's ([`VkBackend::on_external_device`]), with the
+//! validation layer clean in tests. Rendering and swapchains are still to come:
+//! `render` and `read_image` return `NotSupported`.
 
 #![expect(
     unsafe_code,

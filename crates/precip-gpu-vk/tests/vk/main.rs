@@ -226,3 +226,82 @@ proptest! {
         assert_clean(&vk, "in the equivalence run");
     }
 }
+
+#[test]
+#[expect(
+    unsafe_code,
+    reason = "the test plays an engine that owns its Vulkan device"
+)]
+fn runs_on_a_device_the_caller_owns_and_leaves_it_alive() {
+    use ash::vk;
+    use precip_gpu_vk::device::ExternalDevice;
+    use precip_gpu_vk::instance::Instance;
+    let instance = match Instance::new(true) {
+        Ok(i) => i,
+        Err(e) => {
+            assert!(
+                std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
+                "{e}"
+            );
+            eprintln!("SKIPPED runs_on_a_device_the_caller_owns: {e}");
+            return;
+        }
+    };
+    // The engine's device: the first physical device, a compute+graphics family.
+    // SAFETY: plain queries and creation on a live instance; everything is destroyed
+    // below in reverse order.
+    let (physical, family, device) = unsafe {
+        let physical = instance.raw.enumerate_physical_devices().expect("devices")[0];
+        let family = instance
+            .raw
+            .get_physical_device_queue_family_properties(physical)
+            .iter()
+            .position(|f| {
+                f.queue_flags
+                    .contains(vk::QueueFlags::COMPUTE | vk::QueueFlags::GRAPHICS)
+            })
+            .expect("a family") as u32;
+        let priorities = [1.0];
+        let queues = [vk::DeviceQueueCreateInfo::default()
+            .queue_family_index(family)
+            .queue_priorities(&priorities)];
+        let info = vk::DeviceCreateInfo::default().queue_create_infos(&queues);
+        let device = instance
+            .raw
+            .create_device(physical, &info, None)
+            .expect("a device");
+        (physical, family, device)
+    };
+    let external = ExternalDevice {
+        entry: instance.entry.clone(),
+        instance: instance.raw.clone(),
+        physical,
+        device: device.clone(),
+        queue_family: family,
+        queue_index: 0,
+    };
+    {
+        // SAFETY: the objects are live and outlive the backend (dropped in this block).
+        let mut backend =
+            unsafe { VkBackend::on_external_device(external) }.expect("adopts the device");
+        let particles = run(
+            &mut backend,
+            &scenario(5, PrecipitationKind::DrySnow, 2.0, 2_000),
+            3,
+            0.05,
+        );
+        assert_eq!(particles.len(), 2_000);
+    }
+    // The device is still the engine's: it can still be used, then destroyed by it.
+    // SAFETY: the backend is gone and freed only its own objects.
+    unsafe {
+        device.device_wait_idle().expect("the device is alive");
+        device.destroy_device(None);
+    }
+    let messages = instance.take_messages();
+    assert!(
+        messages.is_empty(),
+        "validation layer:\n{}",
+        messages.join("\n")
+    );
+}
