@@ -13,6 +13,8 @@ use precip_model::{
     View, Weather, substeps,
 };
 
+use std::collections::VecDeque;
+
 use ash::vk;
 
 use crate::commands::{InFlight, compute_barrier, submit};
@@ -21,7 +23,7 @@ use crate::error::NAME;
 use crate::instance::Instance;
 use crate::programs::Programs;
 use crate::query::Timestamps;
-use crate::resources::{COVER_TEXEL_BYTES, Resources, download, upload_wind};
+use crate::resources::{COVER_TEXEL_BYTES, FRAMES_IN_FLIGHT, Resources, download, upload_wind};
 
 const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
 
@@ -40,7 +42,10 @@ struct State {
 #[derive(Debug)]
 pub struct VkBackend {
     state: Option<State>,
-    in_flight: Option<InFlight>,
+    /// Submitted steps, oldest first (at most `FRAMES_IN_FLIGHT`).
+    in_flight: VecDeque<InFlight>,
+    /// Steps submitted since configure (picks the in-flight slot).
+    steps_submitted: usize,
     timestamps: Option<Timestamps>,
     programs: Programs,
     device: Device,
@@ -55,7 +60,8 @@ impl VkBackend {
         let timestamps = Timestamps::new(&device)?;
         Ok(Self {
             state: None,
-            in_flight: None,
+            in_flight: VecDeque::new(),
+            steps_submitted: 0,
             timestamps,
             programs,
             device,
@@ -76,7 +82,8 @@ impl VkBackend {
         let timestamps = Timestamps::new(&device)?;
         Ok(Self {
             state: None,
-            in_flight: None,
+            in_flight: VecDeque::new(),
+            steps_submitted: 0,
             timestamps,
             programs,
             device,
@@ -115,12 +122,19 @@ impl VkBackend {
         (self.device.max_storage_range() / PARTICLE_BYTES).min(u64::from(u32::MAX))
     }
 
-    /// Waits for the submission in flight, if any.
+    /// Waits for every submission in flight.
     fn settle(&mut self) -> Result<(), BackendError> {
-        match self.in_flight.take() {
-            Some(f) => f.wait(&self.device),
-            None => Ok(()),
+        self.wait_until(0)
+    }
+
+    /// Waits for the oldest submissions until at most `pending` are in flight.
+    fn wait_until(&mut self, pending: usize) -> Result<(), BackendError> {
+        while self.in_flight.len() > pending {
+            if let Some(f) = self.in_flight.pop_front() {
+                f.wait(&self.device)?;
+            }
         }
+        Ok(())
     }
 
     fn state(&self, operation: &'static str) -> Result<&State, BackendError> {
@@ -219,6 +233,7 @@ impl Backend for VkBackend {
         if let Some(t) = self.timestamps.as_mut() {
             t.written = 0;
         }
+        self.steps_submitted = 0;
         self.state = Some(State {
             setup: setup.clone(),
             weather: setup.weather,
@@ -271,8 +286,10 @@ impl Backend for VkBackend {
     fn step(&mut self, dt_s: f32) -> Result<(), BackendError> {
         let (count, h) = substeps(dt_s)?;
         self.state("step")?;
-        // The uniform blocks of the last step may still be read: wait for it.
-        self.settle()?;
+        // This step's slot of uniform blocks and queries was last used FRAMES_IN_FLIGHT
+        // steps ago: wait for that submission only.
+        self.wait_until(FRAMES_IN_FLIGHT - 1)?;
+        let slot = self.steps_submitted % FRAMES_IN_FLIGHT;
         let device = &self.device;
         let programs = &self.programs;
         let timestamps = self.timestamps.as_ref();
@@ -280,6 +297,7 @@ impl Backend for VkBackend {
             return Err(BackendError::NotConfigured { operation: "step" });
         };
         let stride = state.resources.uniform_stride as usize;
+        let base = state.resources.slot_base(slot) as usize;
         let mut time_s = state.time_s;
         for k in 0..count as usize {
             let step = state
@@ -289,15 +307,17 @@ impl Backend for VkBackend {
             state
                 .resources
                 .step_uniforms
-                .write(k * stride, bytemuck::bytes_of(&step))?;
+                .write(base + k * stride, bytemuck::bytes_of(&step))?;
             state
                 .resources
                 .cover_uniforms
-                .write(k * stride, bytemuck::bytes_of(&cover))?;
+                .write(base + k * stride, bytemuck::bytes_of(&cover))?;
             time_s += f64::from(h);
         }
         let r = &state.resources;
         let mut written = 0;
+        let first_query = slot as u32 * crate::query::QUERY_COUNT;
+        let slot_base = r.slot_base(slot);
         let in_flight = submit(device, |cb| {
             let stamp = |written: &mut u32| {
                 if let Some(t) = timestamps {
@@ -307,7 +327,7 @@ impl Backend for VkBackend {
                             cb,
                             vk::PipelineStageFlags::BOTTOM_OF_PIPE,
                             t.pool,
-                            *written,
+                            first_query + *written,
                         )
                     };
                     *written += 1;
@@ -316,14 +336,17 @@ impl Backend for VkBackend {
             if let Some(t) = timestamps {
                 // SAFETY: `cb` is recording; resets the queries this step writes.
                 unsafe {
-                    device
-                        .raw
-                        .cmd_reset_query_pool(cb, t.pool, 0, crate::query::QUERY_COUNT)
+                    device.raw.cmd_reset_query_pool(
+                        cb,
+                        t.pool,
+                        first_query,
+                        crate::query::QUERY_COUNT,
+                    )
                 };
             }
             stamp(&mut written);
             for k in 0..count {
-                let offset = (u64::from(k) * r.uniform_stride) as u32;
+                let offset = (slot_base + u64::from(k) * r.uniform_stride) as u32;
                 for (kernel, pipeline) in &programs.substep {
                     let (layout, set, items) = match kernel.over {
                         DispatchOver::Particles => {
@@ -356,9 +379,11 @@ impl Backend for VkBackend {
                 }
             }
         })?;
-        self.in_flight = Some(in_flight);
+        self.in_flight.push_back(in_flight);
+        self.steps_submitted += 1;
         if let Some(t) = self.timestamps.as_mut() {
             t.written = written;
+            t.slot = slot;
         }
         if let Some(state) = self.state.as_mut() {
             state.time_s = time_s;

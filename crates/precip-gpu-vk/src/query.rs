@@ -11,13 +11,15 @@ use crate::error::map_vk;
 /// Queries: one at the start, one after each kernel of each sub-step.
 pub const QUERY_COUNT: u32 = 1 + SUBSTEP_PASSES.len() as u32 * MAX_SUBSTEPS;
 
-/// The query pool.
+/// The query pool: [`QUERY_COUNT`] queries per in-flight slot.
 #[derive(Debug)]
 pub struct Timestamps {
     /// The pool.
     pub pool: vk::QueryPool,
     /// Queries the last step wrote.
     pub written: u32,
+    /// The in-flight slot of the last step.
+    pub slot: usize,
 }
 
 impl Timestamps {
@@ -28,11 +30,15 @@ impl Timestamps {
         }
         let info = vk::QueryPoolCreateInfo::default()
             .query_type(vk::QueryType::TIMESTAMP)
-            .query_count(QUERY_COUNT);
+            .query_count(QUERY_COUNT * crate::resources::FRAMES_IN_FLIGHT as u32);
         // SAFETY: a valid device and create info.
         let pool = unsafe { device.raw.create_query_pool(&info, None) }
             .map_err(|e| map_vk("creating a query pool", e))?;
-        Ok(Some(Self { pool, written: 0 }))
+        Ok(Some(Self {
+            pool,
+            written: 0,
+            slot: 0,
+        }))
     }
 
     /// Time per kernel of the last step (the step must be finished).
@@ -52,11 +58,12 @@ impl Timestamps {
             });
         }
         let mut ticks = vec![0u64; self.written as usize];
-        // SAFETY: the queries 0..written were written by a finished submission.
+        let first = self.slot as u32 * QUERY_COUNT;
+        // SAFETY: the slot's queries 0..written were written by a finished submission.
         unsafe {
             device.raw.get_query_pool_results(
                 self.pool,
-                0,
+                first,
                 &mut ticks,
                 vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
             )

@@ -16,6 +16,10 @@ use crate::error::map_vk;
 use crate::image::{COLOUR, Volume};
 use crate::programs::Programs;
 
+/// Steps recorded ahead of the GPU: each has its own ring of uniform blocks and
+/// queries, so the host writes step n + 1's while step n runs.
+pub const FRAMES_IN_FLIGHT: usize = 2;
+
 /// Everything one configuration allocates.
 #[derive(Debug)]
 pub struct Resources {
@@ -34,7 +38,7 @@ pub struct Resources {
     wind_params: Buffer,
     /// The wind volume.
     pub wind: Volume,
-    /// One `StepParams` per sub-step at `uniform_stride`.
+    /// One `StepParams` per sub-step at `uniform_stride`, [`FRAMES_IN_FLIGHT`] rings.
     pub step_uniforms: Buffer,
     /// One `CoverStepParams` per sub-step.
     pub cover_uniforms: Buffer,
@@ -228,7 +232,7 @@ impl Resources {
             .max(16);
         let block = size_of::<StepParams>().max(size_of::<CoverStepParams>()) as u64;
         let uniform_stride = block.div_ceil(align) * align;
-        let count = u64::from(MAX_SUBSTEPS);
+        let count = u64::from(MAX_SUBSTEPS) * FRAMES_IN_FLIGHT as u64;
         let particles = Buffer::new(
             device,
             "particles",
@@ -375,6 +379,12 @@ impl Resources {
             step_set,
             cover_set,
         })
+    }
+
+    /// Byte offset of in-flight slot `slot`'s ring of uniform blocks.
+    #[must_use]
+    pub fn slot_base(&self, slot: usize) -> u64 {
+        slot as u64 * self.uniform_stride * u64::from(MAX_SUBSTEPS)
     }
 
     /// Writes the wind's uniform block.
