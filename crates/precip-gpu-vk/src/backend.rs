@@ -113,7 +113,7 @@ impl VkBackend {
     /// The device's name.
     #[must_use]
     pub fn device_name(&self) -> String {
-        self.device.name()
+        self.device.name_of_device()
     }
 
     /// The most particles one configuration holds.
@@ -162,7 +162,7 @@ impl Backend for VkBackend {
     fn info(&self) -> BackendInfo {
         BackendInfo {
             name: NAME,
-            device: format!("{} (Vulkan)", self.device.name()),
+            device: format!("{} (Vulkan)", self.device.name_of_device()),
             max_particles: self.max_particles(),
             renders: false,
         }
@@ -172,7 +172,7 @@ impl Backend for VkBackend {
         let limit = format!(
             "maxStorageBufferRange = {} bytes on {}, {PARTICLE_BYTES} bytes a particle",
             self.device.max_storage_range(),
-            self.device.name()
+            self.device.name_of_device()
         );
         setup.validate(self.max_particles(), &limit)?;
         let cover_bytes = setup.cover.frame.texel_count() as u64 * COVER_TEXEL_BYTES;

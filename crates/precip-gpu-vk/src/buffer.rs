@@ -65,6 +65,7 @@ impl Buffer {
                 .bind_buffer_memory(raw, allocation.memory(), allocation.offset())
         }
         .map_err(|e| map_vk(&format!("binding memory of {name}"), e))?;
+        device.name(raw, &format!("precip {name}"));
         Ok(Self {
             raw,
             allocation: Some(allocation),

@@ -34,6 +34,8 @@ pub struct Device {
     pub command_pool: vk::CommandPool,
     /// Whether dropping this destroys the device (false for the caller's).
     owned: bool,
+    /// Sets object names (when the instance has VK_EXT_debug_utils).
+    names: Option<ash::ext::debug_utils::Device>,
 }
 
 /// A device the caller owns (an engine's), for [`Device::external`].
@@ -65,7 +67,7 @@ impl std::fmt::Debug for ExternalDevice {
 impl std::fmt::Debug for Device {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Device")
-            .field("name", &self.name())
+            .field("name", &self.name_of_device())
             .finish_non_exhaustive()
     }
 }
@@ -155,7 +157,10 @@ impl Device {
         // SAFETY: a valid device and create info.
         let command_pool = unsafe { raw.create_command_pool(&pool_info, None) }
             .map_err(|e| map_vk("creating a command pool", e))?;
-        Ok(Self {
+        let names = instance
+            .has_debug_utils()
+            .then(|| ash::ext::debug_utils::Device::new(&instance.raw, &raw));
+        let device = Self {
             instance: ManuallyDrop::new(instance),
             physical,
             properties,
@@ -166,7 +171,10 @@ impl Device {
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
             command_pool,
             owned,
-        })
+            names,
+        };
+        device.name(device.command_pool, "precip commands");
+        Ok(device)
     }
 
     /// Opens the first device with a compute-and-graphics queue (discrete GPUs first).
@@ -240,9 +248,22 @@ impl Device {
         )
     }
 
+    /// Names a Vulkan object for debuggers and validation messages (a no-op without
+    /// VK_EXT_debug_utils).
+    pub fn name<H: vk::Handle>(&self, handle: H, name: &str) {
+        let (Some(names), Ok(name)) = (&self.names, std::ffi::CString::new(name)) else {
+            return;
+        };
+        let info = vk::DebugUtilsObjectNameInfoEXT::default()
+            .object_handle(handle)
+            .object_name(&name);
+        // SAFETY: `handle` is a live object of this device; the name outlives the call.
+        let _ = unsafe { names.set_debug_utils_object_name(&info) };
+    }
+
     /// The device's name.
     #[must_use]
-    pub fn name(&self) -> String {
+    pub fn name_of_device(&self) -> String {
         self.properties
             .device_name_as_c_str()
             .map(|n| n.to_string_lossy().into_owned())

@@ -81,6 +81,8 @@ impl Volume {
         // SAFETY: a view of the image just created.
         let view = unsafe { device.raw.create_image_view(&view_info, None) }
             .map_err(|e| map_vk("creating the wind volume's view", e))?;
+        device.name(raw, "precip wind volume");
+        device.name(view, "precip wind volume view");
         Ok(Self {
             raw,
             view,

@@ -150,6 +150,12 @@ impl Instance {
         }
     }
 
+    /// Whether VK_EXT_debug_utils is enabled (object names can be set).
+    #[must_use]
+    pub fn has_debug_utils(&self) -> bool {
+        self.debug.is_some()
+    }
+
     /// The messages so far, taken.
     #[must_use]
     pub fn take_messages(&self) -> Vec<String> {
