@@ -1,0 +1,61 @@
+//! The CPU-side model work every backend shares: baking the wind volume (on each
+//! weather change with new noise) and one cover update on the CPU reference.
+//!
+//! `cargo bench -p precip-benches --bench model`
+
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use precip_benches::scenario;
+use precip_model::wind::{WindField, WindVolume, WindVolumeSpec};
+
+fn wind_bake(c: &mut Criterion) {
+    let mut group = c.benchmark_group("wind_bake");
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(4));
+    let field = WindField {
+        mean_wind_mps: glam::Vec3::new(5.0, 0.0, 2.0),
+        ..WindField::calm()
+    };
+    for side in [32u32, 64] {
+        let spec = WindVolumeSpec {
+            texels: glam::UVec3::new(side, side / 2, side),
+            ..WindVolumeSpec::default()
+        };
+        group.throughput(Throughput::Elements(u64::from(side * side / 2 * side)));
+        group.bench_function(BenchmarkId::from_parameter(side), |b| {
+            b.iter(|| WindVolume::bake(&field, &spec).expect("valid"));
+        });
+    }
+    group.finish();
+}
+
+fn cover_update(c: &mut Criterion) {
+    let mut group = c.benchmark_group("cover_update");
+    group
+        .sample_size(20)
+        .measurement_time(Duration::from_secs(3));
+    let setup = scenario(1_000);
+    let mut grid = setup.initial_cover().expect("valid");
+    let w = setup.weather;
+    let dt_days = 0.02 * setup.cover.time_scale / precip_model::setup::SECONDS_PER_DAY;
+    group.throughput(Throughput::Elements(grid.texels.len() as u64));
+    let mut deposits = precip_model::cover::DepositBuffer::new(grid.texels.len());
+    group.bench_function(BenchmarkId::new("cpu", grid.texels.len()), |b| {
+        b.iter(|| {
+            grid.step(
+                &mut deposits,
+                w.snow_rate_mm_per_h() * 24.0,
+                w.rain_rate_mm_per_h() * 24.0,
+                w.air_temperature_c,
+                dt_days,
+                &setup.cover.params,
+            );
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, wind_bake, cover_update);
+criterion_main!(benches);
