@@ -75,9 +75,29 @@ fn import(file: &Path, bytes: &[u8], base: &Path) -> Result<LoadedScene, LoadErr
         file: file.to_path_buf(),
         detail: e.to_string(),
     };
-    let gltf = gltf::Gltf::from_slice(bytes).map_err(gltf_error)?;
-    let document = gltf.document;
-    let buffers = gltf::import_buffers(&document, Some(base), gltf.blob).map_err(gltf_error)?;
+    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(gltf_error)?;
+    let blob = gltf.blob;
+    let json = gltf.document.into_json();
+    // gltf-json 1.4's validation indexes each primitive's POSITION accessor before
+    // checking that it exists (a panic on a bad index): check every attribute first.
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            for (semantic, index) in &primitive.attributes {
+                if index.value() >= json.accessors.len() {
+                    return Err(LoadError::Invalid {
+                        file: file.to_path_buf(),
+                        problem: format!(
+                            "mesh {m} primitive {p}: attribute {semantic:?} names accessor {} but the file has {}",
+                            index.value(),
+                            json.accessors.len()
+                        ),
+                    });
+                }
+            }
+        }
+    }
+    let document = gltf::Document::from_json(json).map_err(gltf_error)?;
+    let buffers = gltf::import_buffers(&document, Some(base), blob).map_err(gltf_error)?;
     let mut warnings = Vec::new();
     // The image importer indexes buffer views without checking them: check first.
     let views_ok = document.images().all(|image| match image.source() {

@@ -58,6 +58,16 @@ fn each_kind_of_broken_file_names_its_problem() {
         "{text}"
     );
 
+    // A POSITION naming an accessor that does not exist (gltf-json's validation
+    // would index it unchecked; found by the mutation proptest).
+    let mut missing_accessor = json.clone();
+    missing_accessor["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(99);
+    let text = message(load_scene_from_slice(
+        &gltf_with(&missing_accessor, &bin),
+        "accessor.gltf",
+    ));
+    assert!(text.contains("accessor 99"), "{text}");
+
     // An index beyond the vertices (indices are the last view: 6 × u32).
     let mut bad_index = bin.clone();
     let at = bad_index.len() - 4;
@@ -99,7 +109,7 @@ fn caught_a_panic(e: &LoadError) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
 
     #[test]
     fn mutated_files_load_or_fail_cleanly(
