@@ -55,7 +55,11 @@ impl VkBackend {
     /// Opens its own instance and device; `validation` enables the Khronos validation
     /// layer (its messages are kept: [`VkBackend::validation_messages`]).
     pub fn new(validation: bool) -> Result<Self, BackendError> {
-        let device = Device::new(Instance::new(validation)?)?;
+        Self::on(Device::new(Instance::new(validation)?)?)
+    }
+
+    /// Compiles the programs on `device` and wraps it.
+    fn on(device: Device) -> Result<Self, BackendError> {
         let programs = Programs::new(&device)?;
         let timestamps = Timestamps::new(&device)?;
         Ok(Self {
@@ -78,16 +82,7 @@ impl VkBackend {
     ) -> Result<Self, BackendError> {
         // SAFETY: forwarded to the caller.
         let device = unsafe { Device::external(external) }?;
-        let programs = Programs::new(&device)?;
-        let timestamps = Timestamps::new(&device)?;
-        Ok(Self {
-            state: None,
-            in_flight: VecDeque::new(),
-            steps_submitted: 0,
-            timestamps,
-            programs,
-            device,
-        })
+        Self::on(device)
     }
 
     /// The validation layer's warnings and errors so far, taken.
@@ -256,12 +251,9 @@ impl Backend for VkBackend {
                 operation: "set_weather",
             });
         };
-        let mut wind = state.wind.clone();
-        if weather.wind.needs_rebake(&wind.field) {
-            wind = WindVolume::bake(&weather.wind, &state.setup.wind_volume)?;
+        let (wind, rebaked) = state.wind.for_field(&weather.wind)?;
+        if rebaked {
             upload_wind(device, &state.resources.wind, &wind)?;
-        } else {
-            wind.set_mean_wind(weather.wind.mean_wind_mps);
         }
         state.resources.write_wind_params(&wind.gpu_params())?;
         state.wind = wind;

@@ -377,12 +377,9 @@ impl Backend for WgpuBackend {
         weather.validate()?;
         let gpu = self.gpu.clone();
         let state = self.state_mut("set_weather")?;
-        let mut wind = state.wind.clone();
-        if weather.wind.needs_rebake(&wind.field) {
-            wind = WindVolume::bake(&weather.wind, &state.setup.wind_volume)?;
+        let (wind, rebaked) = state.wind.for_field(&weather.wind)?;
+        if rebaked {
             upload_wind(&gpu, &state.resources.wind_texture, &wind);
-        } else {
-            wind.set_mean_wind(weather.wind.mean_wind_mps);
         }
         state.resources.write_wind_params(&gpu, &wind.gpu_params());
         state.wind = wind;

@@ -181,6 +181,13 @@ mod tests {
         };
         assert!(!a.needs_rebake(&b));
         assert!(a.needs_rebake(&WindField { seed: 2, ..a }));
+
+        let v = WindVolume::bake(&a, &small_spec()).expect("valid");
+        let (same, rebaked) = v.for_field(&b).expect("valid");
+        assert!(!rebaked && same.texels == v.texels);
+        assert_eq!(same.field.mean_wind_mps, Vec3::X);
+        let (other, rebaked) = v.for_field(&WindField { seed: 2, ..a }).expect("valid");
+        assert!(rebaked && other.texels != v.texels);
     }
 
     proptest! {

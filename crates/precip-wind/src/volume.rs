@@ -132,6 +132,20 @@ impl WindVolume {
     pub fn set_mean_wind(&mut self, mean_wind_mps: Vec3) {
         self.field.mean_wind_mps = mean_wind_mps;
     }
+
+    /// The volume for a new wind `field`, and whether its texels changed: re-baked
+    /// when the noise changed ([`WindField::needs_rebake`]), else this volume with the
+    /// new mean wind (nothing to upload). Every backend's `set_weather` goes through
+    /// here.
+    pub fn for_field(&self, field: &WindField) -> Result<(Self, bool), WindError> {
+        if field.needs_rebake(&self.field) {
+            Ok((Self::bake(field, &self.spec)?, true))
+        } else {
+            let mut same = self.clone();
+            same.set_mean_wind(field.mean_wind_mps);
+            Ok((same, false))
+        }
+    }
 }
 
 /// The wind's uniform block for the GPU.

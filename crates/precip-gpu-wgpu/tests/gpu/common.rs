@@ -46,6 +46,62 @@ pub fn cpu_run(setup: &Setup, steps: usize, dt: f32) -> CpuBackend {
     cpu
 }
 
+/// Runs test kernel `program` (entry point = its only one) over `items` inputs:
+/// binding 0 the input bytes, binding 1 an output of `output_bytes`; returns the output.
+pub fn run_probe(
+    gpu: &precip_gpu_wgpu::GpuDevice,
+    program: precip_model::shaders::Program,
+    input: &[u8],
+    items: u32,
+    output_bytes: u64,
+) -> Vec<u8> {
+    use wgpu::util::DeviceExt;
+    let device = &gpu.device;
+    let module = precip_gpu_wgpu::pipelines::shader_module(device, program);
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(program.label()),
+        layout: None,
+        module: &module,
+        entry_point: Some(program.entry_points()[0]),
+        compilation_options: wgpu::PipelineCompilationOptions::default(),
+        cache: None,
+    });
+    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("probe input"),
+        contents: input,
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("probe output"),
+        size: output_bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: input.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: output.as_entire_binding(),
+            },
+        ],
+    });
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.dispatch_workgroups(items.div_ceil(64), 1, 1);
+    }
+    gpu.queue.submit([encoder.finish()]);
+    precip_gpu_wgpu::readback::read_buffer(gpu, &output, output_bytes).expect("read back")
+}
+
 /// Particles as bytes.
 pub fn bytes(particles: &[Particle]) -> Vec<u8> {
     bytemuck::cast_slice(particles).to_vec()

@@ -2,13 +2,10 @@
 //! and normals), read back through the `probe_drawing` test kernel.
 
 use glam::Vec3;
-use precip_gpu_wgpu::pipelines::shader_module;
-use precip_gpu_wgpu::readback::read_buffer;
 use precip_model::drawing::{raindrop_tetrahedron_sized, snow_sprite_corners_turned};
 use precip_model::gpu::ProbeDrawing;
 use precip_model::rng::{particle_key, random_unit};
 use precip_model::shaders::Program;
-use wgpu::util::DeviceExt;
 
 use crate::common;
 
@@ -45,51 +42,13 @@ fn wgsl_drawing_equals_rust_drawing() {
     let inputs = inputs();
     for (name, backend) in common::gpu_backends("wgsl_drawing_equals_rust_drawing") {
         let gpu = backend.device();
-        let device = &gpu.device;
-        let module = shader_module(device, Program::ProbeDrawing);
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("probe_drawing"),
-            layout: None,
-            module: &module,
-            entry_point: Some("probe_drawing"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
-        let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("inputs"),
-            contents: bytemuck::cast_slice(&inputs),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
-        let size = (inputs.len() * 12 * 16) as u64;
-        let output = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("vertices"),
-            size,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: None,
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: input.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: output.as_entire_binding(),
-                },
-            ],
-        });
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor::default());
-            pass.set_pipeline(&pipeline);
-            pass.set_bind_group(0, &bind_group, &[]);
-            pass.dispatch_workgroups((inputs.len() as u32).div_ceil(64), 1, 1);
-        }
-        gpu.queue.submit([encoder.finish()]);
-        let bytes = read_buffer(gpu, &output, size).expect("read back");
+        let bytes = common::run_probe(
+            gpu,
+            Program::ProbeDrawing,
+            bytemuck::cast_slice(&inputs),
+            inputs.len() as u32,
+            (inputs.len() * 12 * 16) as u64,
+        );
         let got: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
         for (i, q) in inputs.iter().enumerate() {
             let centre = Vec3::from(q.centre_m);

@@ -122,16 +122,15 @@ impl Backend for CpuBackend {
         weather.validate()?;
         let state = self.state_mut("set_weather")?;
         let mut timings = Vec::new();
-        if weather.wind.needs_rebake(&state.wind.field) {
-            let start = Instant::now();
-            state.wind = WindVolume::bake(&weather.wind, &state.setup.wind_volume)?;
+        let start = Instant::now();
+        let (wind, rebaked) = state.wind.for_field(&weather.wind)?;
+        if rebaked {
             timings.push(PassTiming {
                 pass: "wind_bake",
                 milliseconds: elapsed_ms(start),
             });
-        } else {
-            state.wind.set_mean_wind(weather.wind.mean_wind_mps);
         }
+        state.wind = wind;
         state.step_template = state
             .setup
             .step_params(weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
