@@ -222,6 +222,7 @@ impl WgpuBackend {
                 offscreen: None,
                 depth: None,
                 rendered: false,
+                shadow_bounds_m: state.setup.scene_bounds_m(),
             });
         }
         let Some(render) = state.render.as_mut() else {
@@ -244,7 +245,7 @@ impl WgpuBackend {
             cover_params: &setup.cover.params,
             ground: setup.ground.frame,
             cover: setup.cover.frame,
-            shadow_bounds_m: setup.scene_bounds_m(),
+            shadow_bounds_m: render.shadow_bounds_m,
             time_s: state.time_s as f32,
             particle_count: state.resources.particle_count,
             cull_groups: render.frame.cull_groups,

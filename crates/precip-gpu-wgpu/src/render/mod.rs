@@ -91,6 +91,8 @@ pub struct RenderState {
     pub depth: Option<DepthBuffer>,
     /// Whether `offscreen` holds a frame.
     pub rendered: bool,
+    /// The box the shadow map encloses (the scene's bounds, computed once), m.
+    pub shadow_bounds_m: (Vec3, Vec3),
 }
 
 /// Where a frame goes.
