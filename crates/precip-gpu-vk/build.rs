@@ -1,5 +1,8 @@
 //! Compiles precip-model's WGSL programs to SPIR-V with naga (DESIGN.md §4: WGSL is the
 //! single source). One `.spv` per program in OUT_DIR, all entry points in each.
+//!
+//! Clip space is WGSL's (y up); the renderer flips it with a negative viewport
+//! height (Vulkan 1.1), as wgpu does, so the shaders are written without a flip.
 
 use naga::back::spv;
 use naga::valid::{Capabilities, ValidationFlags, Validator};
@@ -11,6 +14,8 @@ fn main() {
         Program::StepParticles,
         Program::CoverUpdate,
         Program::ProbeRng,
+        Program::Render,
+        Program::CullParticles,
     ] {
         let source = program.source();
         let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| {

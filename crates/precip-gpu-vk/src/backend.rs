@@ -1,6 +1,14 @@
-//! [`VkBackend`]: the [`Backend`] on raw Vulkan — the simulation half (configure,
-//! weather, camera, step, read-back, timings) with the wgpu backend's kernels and
-//! recipe. Rendering is not there yet: `render`/`read_image` say so.
+//! [`VkBackend`]: the [`Backend`] on raw Vulkan — configure, weather, camera, step,
+//! render (see [`crate::render`]), read-back and timings, with the wgpu backend's
+//! kernels and recipe.
+//!
+//! ## Submissions
+//!
+//! Steps and frames are submitted without waiting; at most [`FRAMES_IN_FLIGHT`] are
+//! pending, and each has its own uniform blocks, so the host writes the next while
+//! the GPU runs the last. Objects replaced while work may still use them (a target
+//! of another size) are retired and freed when that work has finished
+//! ([`crate::retire`]).
 
 use glam::Vec3;
 use precip_model::cover::CoverGrid;
@@ -23,7 +31,13 @@ use crate::error::NAME;
 use crate::instance::Instance;
 use crate::programs::Programs;
 use crate::query::Timestamps;
-use crate::resources::{COVER_TEXEL_BYTES, FRAMES_IN_FLIGHT, Resources, download, upload_wind};
+use crate::render::{RenderState, Renderer};
+use crate::resources::{COVER_TEXEL_BYTES, FRAMES_IN_FLIGHT, Resources, download, upload_image};
+use crate::retire::Retired;
+
+mod draw;
+
+pub use draw::SwapchainFrame;
 
 const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
 
@@ -36,14 +50,34 @@ struct State {
     resources: Resources,
     step_template: StepParams,
     time_s: f64,
+    /// Drawing's resources, made on the first render.
+    render: Option<RenderState>,
+}
+
+impl State {
+    fn destroy(self, device: &Device) {
+        self.resources.destroy(device);
+        if let Some(r) = self.render {
+            r.destroy(device);
+        }
+    }
 }
 
 /// precip on Vulkan.
 #[derive(Debug)]
 pub struct VkBackend {
     state: Option<State>,
-    /// Submitted steps, oldest first (at most `FRAMES_IN_FLIGHT`).
-    in_flight: VecDeque<InFlight>,
+    /// Submitted steps and frames with their numbers, oldest first (at most
+    /// `FRAMES_IN_FLIGHT`).
+    in_flight: VecDeque<(u64, InFlight)>,
+    /// Submissions so far.
+    submitted: u64,
+    /// Submissions known to be finished.
+    completed: u64,
+    /// Objects waiting for submissions to finish.
+    retired: Retired,
+    /// Drawing's layouts and pipelines, made on the first render.
+    renderer: Option<Renderer>,
     /// Steps submitted since configure (picks the in-flight slot).
     steps_submitted: usize,
     timestamps: Option<Timestamps>,
@@ -65,6 +99,10 @@ impl VkBackend {
         Ok(Self {
             state: None,
             in_flight: VecDeque::new(),
+            submitted: 0,
+            completed: 0,
+            retired: Retired::default(),
+            renderer: None,
             steps_submitted: 0,
             timestamps,
             programs,
@@ -125,11 +163,19 @@ impl VkBackend {
     /// Waits for the oldest submissions until at most `pending` are in flight.
     fn wait_until(&mut self, pending: usize) -> Result<(), BackendError> {
         while self.in_flight.len() > pending {
-            if let Some(f) = self.in_flight.pop_front() {
+            if let Some((number, f)) = self.in_flight.pop_front() {
                 f.wait(&self.device)?;
+                self.completed = number + 1;
             }
         }
+        self.retired.release(&self.device, self.completed);
         Ok(())
+    }
+
+    /// Records a submission in flight.
+    fn track(&mut self, f: InFlight) {
+        self.in_flight.push_back((self.submitted, f));
+        self.submitted += 1;
     }
 
     fn state(&self, operation: &'static str) -> Result<&State, BackendError> {
@@ -143,8 +189,12 @@ impl Drop for VkBackend {
     fn drop(&mut self) {
         let _ = self.settle();
         let _ = self.device.wait_idle();
+        self.retired.release_all(&self.device);
         if let Some(state) = self.state.take() {
-            state.resources.destroy(&self.device);
+            state.destroy(&self.device);
+        }
+        if let Some(r) = self.renderer.take() {
+            r.destroy(&self.device);
         }
         if let Some(t) = self.timestamps.take() {
             t.destroy(&self.device);
@@ -159,7 +209,7 @@ impl Backend for VkBackend {
             name: NAME,
             device: format!("{} (Vulkan)", self.device.name_of_device()),
             max_particles: self.max_particles(),
-            renders: false,
+            renders: true,
         }
     }
 
@@ -185,8 +235,12 @@ impl Backend for VkBackend {
         let count = world + camera;
         self.settle()?;
         self.device.wait_idle()?;
+        self.retired.release_all(&self.device);
         if let Some(old) = self.state.take() {
-            old.resources.destroy(&self.device);
+            old.destroy(&self.device);
+        }
+        if let Some(s) = self.renderer.as_mut().and_then(|r| r.stamps.as_mut()) {
+            s.written = false;
         }
         let mut resources = Resources::new(
             &self.device,
@@ -237,6 +291,7 @@ impl Backend for VkBackend {
             resources,
             step_template,
             time_s: 0.0,
+            render: None,
         });
         Ok(())
     }
@@ -253,7 +308,7 @@ impl Backend for VkBackend {
         };
         let (wind, rebaked) = state.wind.for_field(&weather.wind)?;
         if rebaked {
-            upload_wind(device, &state.resources.wind, &wind)?;
+            upload_image(device, &state.resources.wind, wind.as_bytes())?;
         }
         state.resources.write_wind_params(&wind.gpu_params())?;
         state.wind = wind;
@@ -371,7 +426,7 @@ impl Backend for VkBackend {
                 }
             }
         })?;
-        self.in_flight.push_back(in_flight);
+        self.track(in_flight);
         self.steps_submitted += 1;
         if let Some(t) = self.timestamps.as_mut() {
             t.written = written;
@@ -383,11 +438,8 @@ impl Backend for VkBackend {
         Ok(())
     }
 
-    fn render(&mut self, _view: &View) -> Result<(), BackendError> {
-        Err(BackendError::NotSupported {
-            backend: NAME,
-            operation: "render (the Vulkan renderer is not written yet: use the wgpu backend)",
-        })
+    fn render(&mut self, view: &View) -> Result<(), BackendError> {
+        self.draw(view, None)
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {
@@ -417,20 +469,33 @@ impl Backend for VkBackend {
     }
 
     fn read_image(&mut self) -> Result<Image, BackendError> {
-        Err(BackendError::NotSupported {
-            backend: NAME,
-            operation: "read_image (the Vulkan renderer is not written yet)",
-        })
+        self.settle()?;
+        let state = self.state("read_image")?;
+        match state.render.as_ref() {
+            Some(RenderState {
+                offscreen: Some(target),
+                rendered: true,
+                ..
+            }) => target.read(&self.device),
+            _ => Err(BackendError::NothingRendered),
+        }
     }
 
     fn timings(&mut self) -> Result<Timings, BackendError> {
         self.settle()?;
-        match &self.timestamps {
-            Some(t) => t.read(&self.device),
-            None => Ok(Timings {
+        let mut timings = match &self.timestamps {
+            Some(t) => t.read(&self.device)?,
+            None => Timings {
                 source: TimingSource::Unavailable,
                 passes: Vec::new(),
-            }),
+            },
+        };
+        if let Some(stamps) = self.renderer.as_ref().and_then(|r| r.stamps.as_ref()) {
+            timings.passes.extend(stamps.read(&self.device)?);
+            if !timings.passes.is_empty() {
+                timings.source = TimingSource::GpuTimestamps;
+            }
         }
+        Ok(timings)
     }
 }

@@ -14,9 +14,27 @@ pub struct InFlight {
     commands: vk::CommandBuffer,
 }
 
+/// Semaphores a submission waits on (at a stage) and signals (a swapchain's).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Semaphores<'a> {
+    /// Waited before the stage.
+    pub wait: &'a [(vk::Semaphore, vk::PipelineStageFlags)],
+    /// Signalled when the work is done.
+    pub signal: &'a [vk::Semaphore],
+}
+
 /// Records with `record` and submits; returns what to wait for.
 pub fn submit(
     device: &Device,
+    record: impl FnOnce(vk::CommandBuffer),
+) -> Result<InFlight, BackendError> {
+    submit_synced(device, Semaphores::default(), record)
+}
+
+/// [`submit`], waiting on and signalling `semaphores`.
+pub fn submit_synced(
+    device: &Device,
+    semaphores: Semaphores<'_>,
     record: impl FnOnce(vk::CommandBuffer),
 ) -> Result<InFlight, BackendError> {
     let info = vk::CommandBufferAllocateInfo::default()
@@ -43,7 +61,12 @@ pub fn submit(
     }
     .map_err(|e| map_vk("creating a fence", e))?;
     let buffers = [commands];
-    let submit = vk::SubmitInfo::default().command_buffers(&buffers);
+    let (wait, stages): (Vec<_>, Vec<_>) = semaphores.wait.iter().copied().unzip();
+    let submit = vk::SubmitInfo::default()
+        .command_buffers(&buffers)
+        .wait_semaphores(&wait)
+        .wait_dst_stage_mask(&stages)
+        .signal_semaphores(semaphores.signal);
     // SAFETY: the queue belongs to this device; the command buffer is executable.
     unsafe { device.raw.queue_submit(device.queue, &[submit], fence) }
         .map_err(|e| map_vk("submitting work", e))?;
@@ -81,6 +104,30 @@ pub fn compute_barrier(device: &Device, commands: vk::CommandBuffer) {
             commands,
             vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER,
             vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER,
+            vk::DependencyFlags::empty(),
+            &[barrier],
+            &[],
+            &[],
+        );
+    }
+}
+
+/// A global memory barrier from `src` (stages, accesses) to `dst`.
+pub fn memory_barrier(
+    device: &Device,
+    commands: vk::CommandBuffer,
+    src: (vk::PipelineStageFlags, vk::AccessFlags),
+    dst: (vk::PipelineStageFlags, vk::AccessFlags),
+) {
+    let barrier = vk::MemoryBarrier::default()
+        .src_access_mask(src.1)
+        .dst_access_mask(dst.1);
+    // SAFETY: `commands` is recording, outside a render pass.
+    unsafe {
+        device.raw.cmd_pipeline_barrier(
+            commands,
+            src.0,
+            dst.0,
             vk::DependencyFlags::empty(),
             &[barrier],
             &[],

@@ -39,7 +39,9 @@ pub mod image;
 pub mod instance;
 pub mod programs;
 pub mod query;
+pub mod render;
 pub mod resources;
+pub mod retire;
 pub mod spirv;
 
 pub use backend::VkBackend;

@@ -60,7 +60,8 @@ fn pipeline_layout(
         .map_err(|e| map_vk("creating a pipeline layout", e))
 }
 
-fn module(device: &Device, program: Program) -> Result<vk::ShaderModule, BackendError> {
+/// A shader module of `program`'s SPIR-V.
+pub fn module(device: &Device, program: Program) -> Result<vk::ShaderModule, BackendError> {
     let code = words(program).ok_or_else(|| BackendError::Device {
         backend: NAME,
         message: format!("{program:?} was not compiled to SPIR-V"),
@@ -71,7 +72,8 @@ fn module(device: &Device, program: Program) -> Result<vk::ShaderModule, Backend
         .map_err(|e| map_vk("creating a shader module", e))
 }
 
-fn compute(
+/// A compute pipeline of `entry` in `module`.
+pub fn compute(
     device: &Device,
     layout: vk::PipelineLayout,
     module: vk::ShaderModule,

@@ -13,7 +13,7 @@ use crate::buffer::Buffer;
 use crate::commands::{compute_barrier, submit};
 use crate::device::Device;
 use crate::error::map_vk;
-use crate::image::{COLOUR, Volume};
+use crate::image::{COLOUR, Image};
 use crate::programs::Programs;
 
 /// Steps recorded ahead of the GPU: each has its own ring of uniform blocks and
@@ -33,11 +33,12 @@ pub struct Resources {
     pub cover_texel_count: u32,
     /// Two `u32` per cover texel.
     pub deposits: Buffer,
-    ground: Buffer,
+    /// Ground heights.
+    pub ground: Buffer,
     frames: Buffer,
     wind_params: Buffer,
     /// The wind volume.
-    pub wind: Volume,
+    pub wind: Image,
     /// One `StepParams` per sub-step at `uniform_stride`, [`FRAMES_IN_FLIGHT`] rings.
     pub step_uniforms: Buffer,
     /// One `CoverStepParams` per sub-step.
@@ -130,41 +131,42 @@ pub fn download(device: &Device, source: &Buffer, size: u64) -> Result<Vec<u8>, 
     result
 }
 
-/// Writes the wind volume's texels (waits).
-pub fn upload_wind(
-    device: &Device,
-    volume: &Volume,
-    wind: &WindVolume,
-) -> Result<(), BackendError> {
-    let bytes = wind.as_bytes();
+/// Fills a sampled image's texels (`bytes` tightly packed) and leaves it in
+/// `SHADER_READ_ONLY_OPTIMAL` for every shader stage (waits).
+pub fn upload_image(device: &Device, image: &Image, bytes: &[u8]) -> Result<(), BackendError> {
     let mut staging = Buffer::new(
         device,
-        "wind staging",
+        "image staging",
         bytes.len() as u64,
         vk::BufferUsageFlags::TRANSFER_SRC,
         MemoryLocation::CpuToGpu,
     )?;
     staging.write(0, bytes)?;
-    let e = volume.extent;
+    let e = image.extent;
     let result = submit(device, |cb| {
-        let to_transfer = vk::ImageMemoryBarrier::default()
-            .old_layout(vk::ImageLayout::UNDEFINED)
-            .new_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
-            .src_access_mask(vk::AccessFlags::empty())
-            .dst_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-            .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-            .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-            .image(volume.raw)
-            .subresource_range(COLOUR);
-        let to_shader = vk::ImageMemoryBarrier::default()
-            .old_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
-            .new_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)
-            .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-            .dst_access_mask(vk::AccessFlags::SHADER_READ)
-            .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-            .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-            .image(volume.raw)
-            .subresource_range(COLOUR);
+        let barrier = |old, new, src, dst| {
+            vk::ImageMemoryBarrier::default()
+                .old_layout(old)
+                .new_layout(new)
+                .src_access_mask(src)
+                .dst_access_mask(dst)
+                .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                .image(image.raw)
+                .subresource_range(COLOUR)
+        };
+        let to_transfer = barrier(
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            vk::AccessFlags::empty(),
+            vk::AccessFlags::TRANSFER_WRITE,
+        );
+        let to_shader = barrier(
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+            vk::AccessFlags::TRANSFER_WRITE,
+            vk::AccessFlags::SHADER_READ,
+        );
         let region = vk::BufferImageCopy::default()
             .image_subresource(vk::ImageSubresourceLayers {
                 aspect_mask: vk::ImageAspectFlags::COLOR,
@@ -179,11 +181,12 @@ pub fn upload_wind(
             });
         // SAFETY: `cb` is recording; the image and staging buffer are live; the
         // barriers move the whole image through the layouts the copy and the shaders
-        // need (the earlier contents are discarded: UNDEFINED).
+        // need (the earlier contents are discarded: UNDEFINED), after any earlier
+        // work that read it.
         unsafe {
             device.raw.cmd_pipeline_barrier(
                 cb,
-                vk::PipelineStageFlags::TOP_OF_PIPE | vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::PipelineStageFlags::ALL_COMMANDS,
                 vk::PipelineStageFlags::TRANSFER,
                 vk::DependencyFlags::empty(),
                 &[],
@@ -193,14 +196,16 @@ pub fn upload_wind(
             device.raw.cmd_copy_buffer_to_image(
                 cb,
                 staging.raw,
-                volume.raw,
+                image.raw,
                 vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                 &[region],
             );
             device.raw.cmd_pipeline_barrier(
                 cb,
                 vk::PipelineStageFlags::TRANSFER,
-                vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::PipelineStageFlags::COMPUTE_SHADER
+                    | vk::PipelineStageFlags::VERTEX_SHADER
+                    | vk::PipelineStageFlags::FRAGMENT_SHADER,
                 vk::DependencyFlags::empty(),
                 &[],
                 &[],
@@ -270,8 +275,8 @@ impl Resources {
         frames_buffer.write(0, bytemuck::bytes_of(frames))?;
         let mut wind_params = uniform(device, "wind params", size_of::<WindParams>() as u64)?;
         wind_params.write(0, bytemuck::bytes_of(&wind.gpu_params()))?;
-        let volume = Volume::new(device, wind.spec.texels)?;
-        upload_wind(device, &volume, wind)?;
+        let volume = Image::volume(device, wind.spec.texels)?;
+        upload_image(device, &volume, wind.as_bytes())?;
         let step_uniforms = uniform(device, "step uniforms", uniform_stride * count)?;
         let cover_uniforms = uniform(device, "cover uniforms", uniform_stride * count)?;
 

@@ -10,7 +10,9 @@ pub fn words(program: Program) -> Option<Vec<u32>> {
         Program::StepParticles => include_bytes!(concat!(env!("OUT_DIR"), "/StepParticles.spv")),
         Program::CoverUpdate => include_bytes!(concat!(env!("OUT_DIR"), "/CoverUpdate.spv")),
         Program::ProbeRng => include_bytes!(concat!(env!("OUT_DIR"), "/ProbeRng.spv")),
-        _ => return None,
+        Program::Render => include_bytes!(concat!(env!("OUT_DIR"), "/Render.spv")),
+        Program::CullParticles => include_bytes!(concat!(env!("OUT_DIR"), "/CullParticles.spv")),
+        Program::ProbeDrawing => return None,
     };
     Some(
         bytes
@@ -30,6 +32,8 @@ mod tests {
             Program::StepParticles,
             Program::CoverUpdate,
             Program::ProbeRng,
+            Program::Render,
+            Program::CullParticles,
         ] {
             let w = words(program).expect("compiled");
             assert_eq!(w[0], 0x0723_0203, "{program:?}");

@@ -1,0 +1,195 @@
+//! Drawing a frame on [`VkBackend`]: into the offscreen target (`render`) or a
+//! swapchain image (`crate::swapchain`), and the drawn counts.
+
+use ash::vk;
+
+use super::VkBackend;
+use crate::commands::{Semaphores, submit_synced};
+use crate::render::frame::{DRAWS_BYTES, FrameResources};
+use crate::render::scene::SceneGpu;
+use crate::render::target::{OFFSCREEN_FORMAT, OffscreenTarget};
+use crate::render::{FrameTarget, RenderState, Renderer, record_frame};
+use crate::resources::{FRAMES_IN_FLIGHT, download};
+use precip_model::render::{FrameInputs, RenderParams, validate_view};
+use precip_model::{BackendError, View};
+
+/// A swapchain image to draw into: its framebuffer (made for the camera pass of
+/// `format` ending in `PRESENT_SRC_KHR`) and the semaphores of acquire and present.
+#[derive(Debug, Clone, Copy)]
+pub struct SwapchainFrame {
+    /// The swapchain's format.
+    pub format: vk::Format,
+    /// The image's framebuffer (colour, depth).
+    pub framebuffer: vk::Framebuffer,
+    /// Signalled when the image is acquired.
+    pub acquired: vk::Semaphore,
+    /// Signalled when the frame is drawn (present waits on it).
+    pub drawn: vk::Semaphore,
+}
+
+impl VkBackend {
+    /// Makes the renderer on first use, and the camera pass of `format` ending in
+    /// `final_layout` with its draws; returns that pass.
+    pub(crate) fn prepare_renderer(
+        &mut self,
+        format: vk::Format,
+        final_layout: vk::ImageLayout,
+    ) -> Result<vk::RenderPass, BackendError> {
+        if self.renderer.is_none() {
+            self.renderer = Some(Renderer::new(&self.device)?);
+        }
+        let Some(renderer) = self.renderer.as_mut() else {
+            return Err(BackendError::NotConfigured {
+                operation: "render",
+            });
+        };
+        renderer.prepare(&self.device, format, final_layout)
+    }
+
+    /// How many snow sprites and rain tetrahedra the last frame drew (after culling):
+    /// reads the indirect draws back (tests and tools). `(0, 0)` before a frame.
+    pub fn drawn_counts(&mut self) -> Result<(u32, u32), BackendError> {
+        self.settle()?;
+        let state = self.state("drawn_counts")?;
+        let Some(render) = &state.render else {
+            return Ok((0, 0));
+        };
+        let bytes = download(&self.device, &render.frame.draws, DRAWS_BYTES)?;
+        let args: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
+        Ok((args[1], args[5]))
+    }
+
+    /// The frame for `view`: into `swapchain` when given, else into the offscreen
+    /// target (re-made, the old one retired, when the size changes).
+    pub(crate) fn draw(
+        &mut self,
+        view: &View,
+        swapchain: Option<SwapchainFrame>,
+    ) -> Result<(), BackendError> {
+        validate_view(view)?;
+        let max = self.device.properties.limits.max_image_dimension2_d;
+        if view.width_px > max || view.height_px > max {
+            return Err(BackendError::InvalidView(format!(
+                "{}×{} px exceeds this device's largest image ({max} px a side): render smaller",
+                view.width_px, view.height_px
+            )));
+        }
+        self.state("render")?;
+        // This frame's uniform block was last used FRAMES_IN_FLIGHT submissions ago.
+        self.wait_until(FRAMES_IN_FLIGHT - 1)?;
+        let (format, final_layout) = match swapchain {
+            Some(s) => (s.format, vk::ImageLayout::PRESENT_SRC_KHR),
+            None => (OFFSCREEN_FORMAT, vk::ImageLayout::TRANSFER_SRC_OPTIMAL),
+        };
+        let pass = self.prepare_renderer(format, final_layout)?;
+        let offscreen_pass =
+            self.prepare_renderer(OFFSCREEN_FORMAT, vk::ImageLayout::TRANSFER_SRC_OPTIMAL)?;
+        let device = &self.device;
+        let (Some(renderer), Some(state)) = (self.renderer.as_ref(), self.state.as_mut()) else {
+            return Err(BackendError::NotConfigured {
+                operation: "render",
+            });
+        };
+        if state.render.is_none() {
+            let settings = &state.setup.render;
+            let scene = match &state.setup.scene {
+                Some(scene) => Some(SceneGpu::upload(device, renderer, scene, settings)?),
+                None => None,
+            };
+            let frame = match FrameResources::new(
+                device,
+                renderer,
+                &state.resources,
+                settings.shadow_map_px,
+            ) {
+                Ok(f) => f,
+                Err(e) => {
+                    if let Some(s) = scene {
+                        s.destroy(device);
+                    }
+                    return Err(e);
+                }
+            };
+            state.render = Some(RenderState {
+                scene,
+                frame,
+                offscreen: None,
+                rendered: false,
+                shadow_bounds_m: state.setup.scene_bounds_m(),
+                frames_drawn: 0,
+            });
+        }
+        let Some(render) = state.render.as_mut() else {
+            return Err(BackendError::NotConfigured {
+                operation: "render",
+            });
+        };
+        let size = (view.width_px, view.height_px);
+        if swapchain.is_none() && render.offscreen.as_ref().is_none_or(|t| t.size() != size) {
+            let new = OffscreenTarget::new(device, offscreen_pass, size)?;
+            if let Some(old) = render.offscreen.replace(new) {
+                self.retired.retire(self.submitted, move |d| old.destroy(d));
+            }
+            render.rendered = false;
+        }
+        let framebuffer = match (swapchain, render.offscreen.as_ref()) {
+            (Some(s), _) => s.framebuffer,
+            (None, Some(t)) => t.framebuffer,
+            (None, None) => return Err(BackendError::NothingRendered),
+        };
+        let setup = &state.setup;
+        let params = RenderParams::new(&FrameInputs {
+            view,
+            weather: &state.weather,
+            settings: &setup.render,
+            cover_params: &setup.cover.params,
+            ground: setup.ground.frame,
+            cover: setup.cover.frame,
+            shadow_bounds_m: render.shadow_bounds_m,
+            time_s: state.time_s as f32,
+            particle_count: state.resources.particle_count,
+            cull_groups: precip_model::gpu::cull_groups(state.resources.particle_count),
+        });
+        let slot = render.frames_drawn % FRAMES_IN_FLIGHT as u64;
+        let offset = slot * render.frame.params_stride;
+        render
+            .frame
+            .params
+            .write(offset as usize, bytemuck::bytes_of(&params))?;
+        let target = FrameTarget {
+            pass,
+            framebuffer,
+            size,
+            sky: setup.render.sky_colour,
+        };
+        let particle_count = state.resources.particle_count;
+        let render_ref = &*render;
+        let waits =
+            swapchain.map(|s| [(s.acquired, vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT)]);
+        let signals = swapchain.map(|s| [s.drawn]);
+        let semaphores = Semaphores {
+            wait: waits.as_ref().map_or(&[], |w| w.as_slice()),
+            signal: signals.as_ref().map_or(&[], |s| s.as_slice()),
+        };
+        let in_flight = submit_synced(device, semaphores, |cb| {
+            record_frame(
+                device,
+                renderer,
+                render_ref,
+                cb,
+                target,
+                offset as u32,
+                particle_count,
+            );
+        })?;
+        render.frames_drawn += 1;
+        if swapchain.is_none() {
+            render.rendered = true;
+        }
+        self.track(in_flight);
+        if let Some(s) = self.renderer.as_mut().and_then(|r| r.stamps.as_mut()) {
+            s.written = true;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,156 @@
+//! Render passes: the shadow pass (depth only) and the camera's pass (colour and
+//! depth) per colour format and final layout — the offscreen target ends ready to
+//! copy, a swapchain image ready to present. Pipelines are made against one pass of
+//! their format; Vulkan's compatibility rules let them run in every pass of it.
+//!
+//! The subpass dependencies order each pass after the last frame's use of its
+//! attachments (the shadow map is sampled by the previous frame's fragments; the
+//! depth buffer is shared by frames in flight) and make the results visible to what
+//! reads them next.
+
+use ash::vk;
+use precip_model::BackendError;
+
+use crate::device::Device;
+use crate::error::map_vk;
+use crate::image::DEPTH_FORMAT;
+
+const FRAGMENT_TESTS: vk::PipelineStageFlags = vk::PipelineStageFlags::from_raw(
+    vk::PipelineStageFlags::EARLY_FRAGMENT_TESTS.as_raw()
+        | vk::PipelineStageFlags::LATE_FRAGMENT_TESTS.as_raw(),
+);
+
+fn create(
+    device: &Device,
+    name: &str,
+    attachments: &[vk::AttachmentDescription],
+    colour: &[vk::AttachmentReference],
+    depth: &vk::AttachmentReference,
+    dependencies: &[vk::SubpassDependency],
+) -> Result<vk::RenderPass, BackendError> {
+    let subpass = [vk::SubpassDescription::default()
+        .pipeline_bind_point(vk::PipelineBindPoint::GRAPHICS)
+        .color_attachments(colour)
+        .depth_stencil_attachment(depth)];
+    let info = vk::RenderPassCreateInfo::default()
+        .attachments(attachments)
+        .subpasses(&subpass)
+        .dependencies(dependencies);
+    // SAFETY: a valid device; the create info outlives the call.
+    let pass = unsafe { device.raw.create_render_pass(&info, None) }
+        .map_err(|e| map_vk("creating a render pass", e))?;
+    device.name(pass, name);
+    Ok(pass)
+}
+
+/// The sun's depth: cleared, stored, left for sampling.
+pub fn shadow(device: &Device) -> Result<vk::RenderPass, BackendError> {
+    let attachment = [vk::AttachmentDescription::default()
+        .format(DEPTH_FORMAT)
+        .samples(vk::SampleCountFlags::TYPE_1)
+        .load_op(vk::AttachmentLoadOp::CLEAR)
+        .store_op(vk::AttachmentStoreOp::STORE)
+        .stencil_load_op(vk::AttachmentLoadOp::DONT_CARE)
+        .stencil_store_op(vk::AttachmentStoreOp::DONT_CARE)
+        .initial_layout(vk::ImageLayout::UNDEFINED)
+        .final_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)];
+    let depth = vk::AttachmentReference {
+        attachment: 0,
+        layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+    };
+    let dependencies = [
+        vk::SubpassDependency::default()
+            .src_subpass(vk::SUBPASS_EXTERNAL)
+            .dst_subpass(0)
+            .src_stage_mask(vk::PipelineStageFlags::FRAGMENT_SHADER)
+            .dst_stage_mask(FRAGMENT_TESTS)
+            .src_access_mask(vk::AccessFlags::empty())
+            .dst_access_mask(
+                vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_READ
+                    | vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_WRITE,
+            ),
+        vk::SubpassDependency::default()
+            .src_subpass(0)
+            .dst_subpass(vk::SUBPASS_EXTERNAL)
+            .src_stage_mask(vk::PipelineStageFlags::LATE_FRAGMENT_TESTS)
+            .dst_stage_mask(vk::PipelineStageFlags::FRAGMENT_SHADER)
+            .src_access_mask(vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_WRITE)
+            .dst_access_mask(vk::AccessFlags::SHADER_READ),
+    ];
+    create(
+        device,
+        "precip shadow pass",
+        &attachment,
+        &[],
+        &depth,
+        &dependencies,
+    )
+}
+
+/// The camera's pass into `format`, the colour ending in `final_layout`
+/// (`TRANSFER_SRC_OPTIMAL` offscreen, `PRESENT_SRC_KHR` for a swapchain).
+pub fn camera(
+    device: &Device,
+    format: vk::Format,
+    final_layout: vk::ImageLayout,
+) -> Result<vk::RenderPass, BackendError> {
+    let attachments = [
+        vk::AttachmentDescription::default()
+            .format(format)
+            .samples(vk::SampleCountFlags::TYPE_1)
+            .load_op(vk::AttachmentLoadOp::CLEAR)
+            .store_op(vk::AttachmentStoreOp::STORE)
+            .stencil_load_op(vk::AttachmentLoadOp::DONT_CARE)
+            .stencil_store_op(vk::AttachmentStoreOp::DONT_CARE)
+            .initial_layout(vk::ImageLayout::UNDEFINED)
+            .final_layout(final_layout),
+        vk::AttachmentDescription::default()
+            .format(DEPTH_FORMAT)
+            .samples(vk::SampleCountFlags::TYPE_1)
+            .load_op(vk::AttachmentLoadOp::CLEAR)
+            .store_op(vk::AttachmentStoreOp::DONT_CARE)
+            .stencil_load_op(vk::AttachmentLoadOp::DONT_CARE)
+            .stencil_store_op(vk::AttachmentStoreOp::DONT_CARE)
+            .initial_layout(vk::ImageLayout::UNDEFINED)
+            .final_layout(vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL),
+    ];
+    let colour = [vk::AttachmentReference {
+        attachment: 0,
+        layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+    }];
+    let depth = vk::AttachmentReference {
+        attachment: 1,
+        layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+    };
+    let attachment_stages = vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT | FRAGMENT_TESTS;
+    let attachment_writes =
+        vk::AccessFlags::COLOR_ATTACHMENT_WRITE | vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_WRITE;
+    let dependencies = [
+        vk::SubpassDependency::default()
+            .src_subpass(vk::SUBPASS_EXTERNAL)
+            .dst_subpass(0)
+            .src_stage_mask(attachment_stages | vk::PipelineStageFlags::TRANSFER)
+            .dst_stage_mask(attachment_stages)
+            .src_access_mask(attachment_writes)
+            .dst_access_mask(
+                attachment_writes
+                    | vk::AccessFlags::COLOR_ATTACHMENT_READ
+                    | vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_READ,
+            ),
+        vk::SubpassDependency::default()
+            .src_subpass(0)
+            .dst_subpass(vk::SUBPASS_EXTERNAL)
+            .src_stage_mask(vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT)
+            .dst_stage_mask(vk::PipelineStageFlags::TRANSFER)
+            .src_access_mask(vk::AccessFlags::COLOR_ATTACHMENT_WRITE)
+            .dst_access_mask(vk::AccessFlags::TRANSFER_READ),
+    ];
+    create(
+        device,
+        "precip camera pass",
+        &attachments,
+        &colour,
+        &depth,
+        &dependencies,
+    )
+}

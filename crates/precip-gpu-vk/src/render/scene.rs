@@ -1,0 +1,311 @@
+//! The scene on the GPU: one vertex and one index buffer for all meshes (tessellated
+//! for the snow's displacement, as the wgpu backend does), and per mesh a material
+//! block, a base-colour texture and their descriptor set.
+
+use std::ops::Range;
+
+use ash::vk;
+use glam::UVec3;
+use gpu_allocator::MemoryLocation;
+use precip_model::gpu::{SceneVertex, render_bindings as rb};
+use precip_model::{BackendError, RenderSettings, Scene, TextureRgba8};
+
+use super::Renderer;
+use crate::buffer::Buffer;
+use crate::device::Device;
+use crate::error::map_vk;
+use crate::image::{Image, ImageSpec};
+use crate::resources::{upload, upload_image};
+
+/// One mesh's draw.
+#[derive(Debug)]
+pub struct MeshDraw {
+    /// Its indices in the shared index buffer.
+    pub indices: Range<u32>,
+    /// Set 2: its material.
+    pub material: vk::DescriptorSet,
+}
+
+/// The uploaded scene.
+#[derive(Debug)]
+pub struct SceneGpu {
+    /// `SceneVertex` of every mesh.
+    pub vertices: Buffer,
+    /// `u32` indices, each mesh's offset by its first vertex.
+    pub indices: Buffer,
+    /// The meshes.
+    pub meshes: Vec<MeshDraw>,
+    /// Triangles drawn (after tessellation).
+    pub triangles: u64,
+    materials: Vec<(Buffer, Image)>,
+    pool: vk::DescriptorPool,
+}
+
+fn too_big(what: &str) -> BackendError {
+    BackendError::Setup {
+        field: "scene",
+        problem: format!(
+            "its {what} exceed what one GPU buffer holds: raise render.tessellation_edge_m or lower render.max_scene_triangles"
+        ),
+    }
+}
+
+fn texture(device: &Device, texture: Option<&TextureRgba8>) -> Result<Image, BackendError> {
+    let white = TextureRgba8 {
+        width_px: 1,
+        height_px: 1,
+        rgba8: vec![255; 4],
+    };
+    let t = texture.unwrap_or(&white);
+    let max = device.properties.limits.max_image_dimension2_d;
+    if t.width_px > max || t.height_px > max {
+        return Err(BackendError::Setup {
+            field: "scene",
+            problem: format!(
+                "a base-colour texture is {}×{} px but this device takes at most {max} a side: downscale it",
+                t.width_px, t.height_px
+            ),
+        });
+    }
+    let image = Image::new(
+        device,
+        &ImageSpec {
+            name: "base colour",
+            extent: UVec3::new(t.width_px, t.height_px, 1),
+            format: vk::Format::R8G8B8A8_SRGB,
+            usage: vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
+        },
+    )?;
+    if let Err(e) = upload_image(device, &image, &t.rgba8) {
+        image.destroy(device);
+        return Err(e);
+    }
+    Ok(image)
+}
+
+impl SceneGpu {
+    /// Tessellates and uploads `scene` (prepared: complete attributes).
+    pub fn upload(
+        device: &Device,
+        renderer: &Renderer,
+        scene: &Scene,
+        settings: &RenderSettings,
+    ) -> Result<Self, BackendError> {
+        let scene = scene.tessellated(settings.tessellation_edge_m, settings.max_scene_triangles);
+        let mut vertices: Vec<SceneVertex> = Vec::new();
+        let mut indices: Vec<u32> = Vec::new();
+        let mut ranges = Vec::with_capacity(scene.meshes.len());
+        for mesh in &scene.meshes {
+            let base = u32::try_from(vertices.len()).map_err(|_| too_big("vertices"))?;
+            for (i, p) in mesh.positions_m.iter().enumerate() {
+                vertices.push(SceneVertex {
+                    position_m: p.to_array(),
+                    normal: mesh.normals[i].to_array(),
+                    uv: mesh.uvs[i].to_array(),
+                    eligibility: mesh.snow_eligibility[i],
+                });
+            }
+            let start = u32::try_from(indices.len()).map_err(|_| too_big("indices"))?;
+            indices.extend(mesh.indices.iter().map(|i| i + base));
+            let end = u32::try_from(indices.len()).map_err(|_| too_big("indices"))?;
+            ranges.push(start..end);
+        }
+        let mesh_count = u32::try_from(ranges.len().max(1)).map_err(|_| too_big("meshes"))?;
+        use vk::DescriptorType as T;
+        let sizes = [
+            vk::DescriptorPoolSize {
+                ty: T::UNIFORM_BUFFER,
+                descriptor_count: mesh_count,
+            },
+            vk::DescriptorPoolSize {
+                ty: T::SAMPLED_IMAGE,
+                descriptor_count: mesh_count,
+            },
+            vk::DescriptorPoolSize {
+                ty: T::SAMPLER,
+                descriptor_count: mesh_count,
+            },
+        ];
+        let pool_info = vk::DescriptorPoolCreateInfo::default()
+            .max_sets(mesh_count)
+            .pool_sizes(&sizes);
+        // SAFETY: a valid device and create info.
+        let pool = unsafe { device.raw.create_descriptor_pool(&pool_info, None) }
+            .map_err(|e| map_vk("creating the materials' descriptor pool", e))?;
+        let mut gpu = Self {
+            vertices: Buffer::new(
+                device,
+                "scene vertices",
+                16,
+                vk::BufferUsageFlags::VERTEX_BUFFER,
+                MemoryLocation::GpuOnly,
+            )?,
+            indices: Buffer::new(
+                device,
+                "scene indices",
+                16,
+                vk::BufferUsageFlags::INDEX_BUFFER,
+                MemoryLocation::GpuOnly,
+            )?,
+            meshes: Vec::with_capacity(ranges.len()),
+            triangles: indices.len() as u64 / 3,
+            materials: Vec::with_capacity(ranges.len()),
+            pool,
+        };
+        // From here on `gpu` owns what is made, so an error frees it all.
+        match gpu.fill(device, renderer, &scene, ranges, &vertices, &indices) {
+            Ok(()) => Ok(gpu),
+            Err(e) => {
+                gpu.destroy(device);
+                Err(e)
+            }
+        }
+    }
+
+    fn fill(
+        &mut self,
+        device: &Device,
+        renderer: &Renderer,
+        scene: &Scene,
+        ranges: Vec<Range<u32>>,
+        vertices: &[SceneVertex],
+        indices: &[u32],
+    ) -> Result<(), BackendError> {
+        let copy_usage = vk::BufferUsageFlags::TRANSFER_DST;
+        for (buffer, name, usage, bytes) in [
+            (
+                &mut self.vertices,
+                "scene vertices",
+                vk::BufferUsageFlags::VERTEX_BUFFER,
+                bytemuck::cast_slice::<SceneVertex, u8>(vertices),
+            ),
+            (
+                &mut self.indices,
+                "scene indices",
+                vk::BufferUsageFlags::INDEX_BUFFER,
+                bytemuck::cast_slice::<u32, u8>(indices),
+            ),
+        ] {
+            let new = Buffer::new(
+                device,
+                name,
+                bytes.len() as u64,
+                usage | copy_usage,
+                MemoryLocation::GpuOnly,
+            )?;
+            std::mem::replace(buffer, new).destroy(device);
+            upload(device, buffer, bytes)?;
+        }
+        for (mesh, range) in scene.meshes.iter().zip(ranges) {
+            let image = texture(device, mesh.material.base_colour_texture.as_ref())?;
+            let mut colour = match Buffer::new(
+                device,
+                "material",
+                16,
+                vk::BufferUsageFlags::UNIFORM_BUFFER,
+                MemoryLocation::CpuToGpu,
+            ) {
+                Ok(b) => b,
+                Err(e) => {
+                    image.destroy(device);
+                    return Err(e);
+                }
+            };
+            let written = colour.write(0, bytemuck::cast_slice(&mesh.material.base_colour));
+            let (colour_raw, view) = (colour.raw, image.view);
+            self.materials.push((colour, image));
+            written?;
+            let layouts = [renderer.layouts.material];
+            let alloc = vk::DescriptorSetAllocateInfo::default()
+                .descriptor_pool(self.pool)
+                .set_layouts(&layouts);
+            // SAFETY: the pool was sized for one set per mesh.
+            let set = unsafe { device.raw.allocate_descriptor_sets(&alloc) }
+                .map_err(|e| map_vk("allocating a material's descriptor set", e))?[0];
+            let buffer = [vk::DescriptorBufferInfo {
+                buffer: colour_raw,
+                offset: 0,
+                range: 16,
+            }];
+            let image = [vk::DescriptorImageInfo {
+                sampler: vk::Sampler::null(),
+                image_view: view,
+                image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+            }];
+            let sampler = [vk::DescriptorImageInfo {
+                sampler: renderer.samplers.material,
+                image_view: vk::ImageView::null(),
+                image_layout: vk::ImageLayout::UNDEFINED,
+            }];
+            let write = |b, ty| {
+                vk::WriteDescriptorSet::default()
+                    .dst_set(set)
+                    .dst_binding(b)
+                    .descriptor_type(ty)
+            };
+            let writes = [
+                write(rb::MATERIAL, vk::DescriptorType::UNIFORM_BUFFER).buffer_info(&buffer),
+                write(rb::BASE_COLOUR_TEXTURE, vk::DescriptorType::SAMPLED_IMAGE)
+                    .image_info(&image),
+                write(rb::MATERIAL_SAMPLER, vk::DescriptorType::SAMPLER).image_info(&sampler),
+            ];
+            // SAFETY: the buffer, view and sampler are live and of the bindings' types.
+            unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
+            self.meshes.push(MeshDraw {
+                indices: range,
+                material: set,
+            });
+        }
+        Ok(())
+    }
+
+    /// Records every mesh's draw; set 2 (materials) only when `with_materials`.
+    pub fn draw(
+        &self,
+        device: &Device,
+        cb: vk::CommandBuffer,
+        layout: vk::PipelineLayout,
+        with_materials: bool,
+    ) {
+        // SAFETY: `cb` is recording inside a render pass with a scene pipeline bound;
+        // the buffers and sets are live.
+        unsafe {
+            device
+                .raw
+                .cmd_bind_vertex_buffers(cb, 0, &[self.vertices.raw], &[0]);
+            device
+                .raw
+                .cmd_bind_index_buffer(cb, self.indices.raw, 0, vk::IndexType::UINT32);
+            for mesh in &self.meshes {
+                if with_materials {
+                    device.raw.cmd_bind_descriptor_sets(
+                        cb,
+                        vk::PipelineBindPoint::GRAPHICS,
+                        layout,
+                        2,
+                        &[mesh.material],
+                        &[],
+                    );
+                }
+                let count = mesh.indices.end - mesh.indices.start;
+                if count > 0 {
+                    device
+                        .raw
+                        .cmd_draw_indexed(cb, count, 1, mesh.indices.start, 0, 0);
+                }
+            }
+        }
+    }
+
+    /// Frees everything (no pending work may use it).
+    pub fn destroy(self, device: &Device) {
+        // SAFETY: no pending work uses the pool's sets; destroyed once.
+        unsafe { device.raw.destroy_descriptor_pool(self.pool, None) };
+        self.vertices.destroy(device);
+        self.indices.destroy(device);
+        for (b, i) in self.materials {
+            b.destroy(device);
+            i.destroy(device);
+        }
+    }
+}

@@ -1,0 +1,95 @@
+//! Timestamps around the passes of a frame, named as the wgpu backend names them:
+//! `shadow`, `cull_particles`, `scene`, `particles`.
+
+use ash::vk;
+use precip_model::{BackendError, PassTiming};
+
+use crate::device::Device;
+use crate::error::map_vk;
+
+/// The passes timed, in order.
+pub const PASSES: [&str; 4] = ["shadow", "cull_particles", "scene", "particles"];
+
+/// Queries: one before the first pass and one after each.
+pub const QUERIES: u32 = PASSES.len() as u32 + 1;
+
+/// The query pool of a frame's timestamps.
+#[derive(Debug)]
+pub struct RenderStamps {
+    /// The pool.
+    pub pool: vk::QueryPool,
+    /// Whether a submitted frame wrote them.
+    pub written: bool,
+}
+
+impl RenderStamps {
+    /// A pool, or `None` when the queue cannot time.
+    pub fn new(device: &Device) -> Result<Option<Self>, BackendError> {
+        if !device.timestamps {
+            return Ok(None);
+        }
+        let info = vk::QueryPoolCreateInfo::default()
+            .query_type(vk::QueryType::TIMESTAMP)
+            .query_count(QUERIES);
+        // SAFETY: a valid device and create info.
+        let pool = unsafe { device.raw.create_query_pool(&info, None) }
+            .map_err(|e| map_vk("creating a query pool", e))?;
+        device.name(pool, "precip render timestamps");
+        Ok(Some(Self {
+            pool,
+            written: false,
+        }))
+    }
+
+    /// Records the reset of the queries (outside a render pass).
+    pub fn reset(&self, device: &Device, cb: vk::CommandBuffer) {
+        // SAFETY: `cb` is recording, outside a render pass.
+        unsafe { device.raw.cmd_reset_query_pool(cb, self.pool, 0, QUERIES) };
+    }
+
+    /// Records timestamp `index` once all earlier work is done.
+    pub fn stamp(&self, device: &Device, cb: vk::CommandBuffer, index: u32) {
+        // SAFETY: `cb` is recording; `index` < QUERIES and was reset in this buffer.
+        unsafe {
+            device.raw.cmd_write_timestamp(
+                cb,
+                vk::PipelineStageFlags::BOTTOM_OF_PIPE,
+                self.pool,
+                index,
+            );
+        }
+    }
+
+    /// The last frame's time per pass (its submission must be finished).
+    pub fn read(&self, device: &Device) -> Result<Vec<PassTiming>, BackendError> {
+        if !self.written {
+            return Ok(Vec::new());
+        }
+        let mut ticks = [0u64; QUERIES as usize];
+        // SAFETY: every query was written by a finished submission.
+        unsafe {
+            device.raw.get_query_pool_results(
+                self.pool,
+                0,
+                &mut ticks,
+                vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+            )
+        }
+        .map_err(|e| map_vk("reading timestamps", e))?;
+        let period = f64::from(device.properties.limits.timestamp_period);
+        Ok(PASSES
+            .iter()
+            .zip(ticks.windows(2))
+            .map(|(pass, t)| PassTiming {
+                pass,
+                milliseconds: t[1].saturating_sub(t[0]) as f64 * period * 1e-6,
+            })
+            .collect())
+    }
+
+    /// Destroys the pool (the device must be idle).
+    pub fn destroy(&self, device: &Device) {
+        // SAFETY: the device is idle; destroyed once.
+        unsafe { device.raw.destroy_query_pool(self.pool, None) };
+    }
+}
