@@ -36,8 +36,10 @@ use crate::resources::{COVER_TEXEL_BYTES, FRAMES_IN_FLIGHT, Resources, download,
 use crate::retire::Retired;
 
 mod draw;
+mod present;
 
 pub use draw::SwapchainFrame;
+pub use present::Presented;
 
 const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
 
@@ -78,6 +80,8 @@ pub struct VkBackend {
     retired: Retired,
     /// Drawing's layouts and pipelines, made on the first render.
     renderer: Option<Renderer>,
+    /// The attached window.
+    window: Option<crate::swapchain::WindowSurface>,
     /// Steps submitted since configure (picks the in-flight slot).
     steps_submitted: usize,
     timestamps: Option<Timestamps>,
@@ -103,6 +107,7 @@ impl VkBackend {
             completed: 0,
             retired: Retired::default(),
             renderer: None,
+            window: None,
             steps_submitted: 0,
             timestamps,
             programs,
@@ -190,6 +195,9 @@ impl Drop for VkBackend {
         let _ = self.settle();
         let _ = self.device.wait_idle();
         self.retired.release_all(&self.device);
+        if let Some(window) = self.window.take() {
+            window.destroy(&self.device);
+        }
         if let Some(state) = self.state.take() {
             state.destroy(&self.device);
         }

@@ -28,6 +28,9 @@ pub struct Device {
     pub queue_family: u32,
     /// Whether the queue writes timestamps.
     pub timestamps: bool,
+    /// Whether VK_KHR_swapchain is enabled (precip's own device, when the driver has
+    /// it; an engine's device presents through the engine).
+    pub swapchain: bool,
     /// Memory.
     pub allocator: ManuallyDrop<Mutex<Allocator>>,
     /// Command buffers come from here.
@@ -125,6 +128,7 @@ impl Device {
             external.queue_family,
             timestamps,
             false,
+            false,
         )
     }
 
@@ -140,6 +144,7 @@ impl Device {
         queue: vk::Queue,
         queue_family: u32,
         timestamps: bool,
+        swapchain: bool,
         owned: bool,
     ) -> Result<Self, BackendError> {
         let allocator = Allocator::new(&AllocatorCreateDesc {
@@ -168,6 +173,7 @@ impl Device {
             queue,
             queue_family,
             timestamps,
+            swapchain,
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
             command_pool,
             owned,
@@ -230,7 +236,22 @@ impl Device {
         let queues = [vk::DeviceQueueCreateInfo::default()
             .queue_family_index(queue_family)
             .queue_priorities(&priorities)];
-        let info = vk::DeviceCreateInfo::default().queue_create_infos(&queues);
+        // Swapchains only where windows can be presented to (VK_KHR_surface).
+        // SAFETY: enumeration on a physical device of this instance.
+        let swapchain = instance.surface
+            && unsafe { instance.raw.enumerate_device_extension_properties(physical) }.is_ok_and(
+                |all| {
+                    all.iter().any(|e| {
+                        e.extension_name_as_c_str()
+                            .is_ok_and(|n| n == ash::khr::swapchain::NAME)
+                    })
+                },
+            );
+        let extensions = [ash::khr::swapchain::NAME.as_ptr()];
+        let mut info = vk::DeviceCreateInfo::default().queue_create_infos(&queues);
+        if swapchain {
+            info = info.enabled_extension_names(&extensions);
+        }
         // SAFETY: the create info outlives the call; `physical` is from this instance.
         let raw = unsafe { instance.raw.create_device(physical, &info, None) }
             .map_err(|e| map_vk("creating the device", e))?;
@@ -244,6 +265,7 @@ impl Device {
             queue,
             queue_family,
             timestamps,
+            swapchain,
             true,
         )
     }

@@ -28,6 +28,8 @@ pub struct Instance {
     pub messages: Messages,
     /// Whether dropping this destroys the instance (false for the caller's).
     owned: bool,
+    /// Whether VK_KHR_surface is enabled (windows can be presented to).
+    pub surface: bool,
 }
 
 impl std::fmt::Debug for Instance {
@@ -72,6 +74,15 @@ impl Instance {
     /// Loads Vulkan and creates an instance; with `validation`, the Khronos validation
     /// layer and a messenger (an error naming the package when the layer is missing).
     pub fn new(validation: bool) -> Result<Self, BackendError> {
+        Self::with_extensions(validation, &[])
+    }
+
+    /// [`Instance::new`] with more instance extensions (a window system's surface
+    /// extensions, from `ash_window::enumerate_required_extensions`).
+    pub fn with_extensions(
+        validation: bool,
+        more: &[*const std::ffi::c_char],
+    ) -> Result<Self, BackendError> {
         // SAFETY: loading the system's Vulkan loader; nothing else runs in between.
         let entry = unsafe { ash::Entry::load() }.map_err(|e| no_driver(&e))?;
         let app = vk::ApplicationInfo::default()
@@ -79,7 +90,14 @@ impl Instance {
             .engine_name(c"precip")
             .api_version(vk::API_VERSION_1_1);
         let layers = [VALIDATION_LAYER.as_ptr()];
-        let extensions = [ash::ext::debug_utils::NAME.as_ptr()];
+        let mut extensions = more.to_vec();
+        // SAFETY: every pointer in `more` is a NUL-terminated extension name.
+        let surface = more
+            .iter()
+            .any(|&e| unsafe { CStr::from_ptr(e) } == ash::khr::surface::NAME);
+        if validation {
+            extensions.push(ash::ext::debug_utils::NAME.as_ptr());
+        }
         if validation {
             // SAFETY: plain enumeration on a loaded entry.
             let available = unsafe { entry.enumerate_instance_layer_properties() }
@@ -94,11 +112,11 @@ impl Instance {
                 ));
             }
         }
-        let mut info = vk::InstanceCreateInfo::default().application_info(&app);
+        let mut info = vk::InstanceCreateInfo::default()
+            .application_info(&app)
+            .enabled_extension_names(&extensions);
         if validation {
-            info = info
-                .enabled_layer_names(&layers)
-                .enabled_extension_names(&extensions);
+            info = info.enabled_layer_names(&layers);
         }
         // SAFETY: the create info and everything it points to outlive the call.
         let raw = unsafe { entry.create_instance(&info, None) }
@@ -111,6 +129,7 @@ impl Instance {
             _messages_box: None,
             messages: messages.clone(),
             owned: true,
+            surface,
         };
         if validation {
             let boxed = Box::new(messages);
@@ -147,6 +166,7 @@ impl Instance {
             _messages_box: None,
             messages: Messages::default(),
             owned: false,
+            surface: false,
         }
     }
 

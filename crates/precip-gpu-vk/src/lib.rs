@@ -11,19 +11,27 @@
 //! - [`instance`] — loader, validation layer, debug messenger (messages kept).
 //! - [`device`] — physical device choice, queue, allocator, command pool.
 //! - [`buffer`], [`image`] — memory through gpu-allocator.
-//! - [`commands`] — submission with a fence, one in flight; compute barriers.
+//! - [`commands`] — submissions behind fences (with semaphores for a swapchain);
+//!   barriers.
 //! - [`spirv`], [`programs`] — modules, set and pipeline layouts, compute pipelines.
 //! - [`resources`] — one configuration's buffers, wind volume, descriptor sets, uploads.
 //! - [`query`] — timestamps per kernel.
+//! - [`render`] — drawing: layouts, render passes, pipelines, samplers, the scene,
+//!   the frame's resources, offscreen targets, timestamps per pass, the frame's
+//!   command recording.
+//! - [`swapchain`] — a window's surface and swapchain (raw-window-handle, ash-window).
+//! - [`retire`] — deferred release of objects in-flight work may still use.
 //! - [`error`] — pure `vk::Result` → `BackendError` conversions.
 //! - [`backend`] — [`VkBackend`].
 //!
 //! ## State
 //!
-//! The simulation runs (configure, weather, camera, step, read-back, timings), on
-//! precip's own device or the caller's ([`VkBackend::on_external_device`]), with the
-//! validation layer clean in tests. Rendering and swapchains are still to come:
-//! `render` and `read_image` return `NotSupported`.
+//! Everything the wgpu backend does — simulation, rendering offscreen with
+//! read-back — plus presenting straight into a window's swapchain
+//! ([`VkBackend::for_display`], [`VkBackend::attach_window`], [`VkBackend::present`]),
+//! on precip's own device or the caller's ([`VkBackend::on_external_device`]; an
+//! engine's device renders offscreen, its engine presents). The validation layer is
+//! clean in every test, and the frames equal wgpu's bit for bit on lavapipe.
 
 #![expect(
     unsafe_code,
@@ -43,5 +51,6 @@ pub mod render;
 pub mod resources;
 pub mod retire;
 pub mod spirv;
+pub mod swapchain;
 
-pub use backend::VkBackend;
+pub use backend::{Presented, VkBackend};

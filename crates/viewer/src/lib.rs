@@ -1,9 +1,11 @@
 //! precip's viewer as a library: glTF scenes with snow masks ([`gltf_scene`]), the
 //! built-in demo ([`demo`], written with [`glb`]), weather presets ([`presets`]),
 //! the scene's simulation set-up ([`scene_setup`]), a fly camera ([`fly_camera`]),
-//! headless frames ([`headless`]) and the interactive window ([`window`]). The
+//! headless frames ([`headless`]) and the interactive window ([`window`]), on either
+//! GPU backend ([`backends`]). The
 //! `precip` binary is its command line.
 
+pub mod backends;
 pub mod demo;
 pub mod eligibility;
 pub mod error;
@@ -15,5 +17,6 @@ pub mod presets;
 pub mod scene_setup;
 pub mod window;
 
+pub use backends::BackendName;
 pub use error::LoadError;
 pub use gltf_scene::{LoadReport, LoadedScene, load_scene, load_scene_from_slice};

@@ -7,8 +7,8 @@ use std::process::ExitCode;
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
 use glam::Vec3;
-use precip_gpu_wgpu::WgpuBackend;
-use precip_model::{Backend, Camera, View};
+use precip_model::{Camera, View};
+use precip_viewer::backends::{BackendName, open_headless};
 use precip_viewer::demo::{DEMO_GLB, demo_glb};
 use precip_viewer::headless::run_headless;
 use precip_viewer::presets::{KindName, Preset};
@@ -51,9 +51,10 @@ enum Command {
 struct RunArgs {
     /// The scene (.gltf or .glb); the built-in demo when absent.
     scene: Option<PathBuf>,
-    /// The backend: wgpu (the Vulkan backend joins with its issue).
-    #[arg(long, default_value = "wgpu", value_parser = ["wgpu"])]
-    backend: String,
+    /// The GPU backend: wgpu, or vk (precip's own Vulkan backend; with
+    /// PRECIP_VK_VALIDATION=1 it runs under the Khronos validation layer).
+    #[arg(long, value_enum, default_value_t = BackendName::Wgpu)]
+    backend: BackendName,
     /// A weather preset: a TOML file or a shipped name (light-snow, blizzard,
     /// wet-snow, drizzle, downpour, sleet); the options below override it.
     #[arg(long)]
@@ -103,6 +104,9 @@ struct RunArgs {
     /// Headless: where the PNGs go.
     #[arg(long, default_value = "precip-frames")]
     out: PathBuf,
+    /// Window: close after this many frames and print the frame rate (demos, tests).
+    #[arg(long)]
+    quit_after: Option<u32>,
     /// Seconds of simulation per headless frame.
     #[arg(long, default_value_t = 1.0 / 30.0)]
     dt: f32,
@@ -233,17 +237,30 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     let setup = scene_setup(loaded.scene, &options)?;
     let frames = match args.frames {
         Some(n) => n,
-        None if display_available() => match run_window(setup.clone(), args.size) {
-            Ok(()) => return Ok(()),
-            Err(WindowError::NoDisplay(why)) => {
-                eprintln!(
-                    "no window ({why}): rendering {FALLBACK_FRAMES} frames headless into {} instead",
-                    args.out.display()
-                );
-                FALLBACK_FRAMES
+        None if display_available() => {
+            match run_window(setup.clone(), args.size, args.backend, args.quit_after) {
+                Ok(shown) => {
+                    if shown.frames > 0 {
+                        println!(
+                            "window: {} frames in {:.1} s, {:.1} ms per frame ({:?})",
+                            shown.frames,
+                            shown.seconds,
+                            shown.seconds * 1e3 / f64::from(shown.frames),
+                            args.backend
+                        );
+                    }
+                    return Ok(());
+                }
+                Err(WindowError::NoDisplay(why)) => {
+                    eprintln!(
+                        "no window ({why}): rendering {FALLBACK_FRAMES} frames headless into {} instead",
+                        args.out.display()
+                    );
+                    FALLBACK_FRAMES
+                }
+                Err(e) => return Err(e.into()),
             }
-            Err(e) => return Err(e.into()),
-        },
+        }
         None => {
             eprintln!(
                 "no display (DISPLAY and WAYLAND_DISPLAY are unset): rendering {FALLBACK_FRAMES} frames headless into {} instead",
@@ -252,7 +269,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             FALLBACK_FRAMES
         }
     };
-    let mut backend = WgpuBackend::new()?;
+    let (mut backend, validation) = open_headless(args.backend)?;
     eprintln!("{}", backend.info().device);
     backend.configure(&setup)?;
     let view = View {
@@ -261,7 +278,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         height_px: args.size.1,
     };
     let summary = run_headless(
-        &mut backend,
+        backend.as_mut(),
         &view,
         frames,
         args.dt.clamp(1e-3, 1.0),
@@ -278,6 +295,18 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         summary.cover_water_mm,
         summary.max_depth_mm
     );
+    drop(backend);
+    if let Some(log) = validation {
+        let messages = log.lock().map(|m| m.clone()).unwrap_or_default();
+        eprintln!("Vulkan validation layer: {} messages", messages.len());
+        for m in &messages {
+            eprintln!("  {m}");
+        }
+        anyhow::ensure!(
+            messages.is_empty(),
+            "the validation layer reported problems"
+        );
+    }
     Ok(())
 }
 

@@ -1,5 +1,7 @@
-//! The interactive window (winit 0.30 + a wgpu surface): a fly camera over the scene,
-//! keys to change the weather, and the frame time, particles and weather in the title.
+//! The interactive window (winit 0.30): a fly camera over the scene, keys to change
+//! the weather, and the frame time, particles and weather in the title. Frames go to
+//! the window through a wgpu surface or, with `--backend vk`, straight into a Vulkan
+//! swapchain ([`precip_gpu_vk::VkBackend::present`]).
 //!
 //! Keys: W/A/S/D and Q/E fly, arrows or the mouse (left button held) look, Shift flies
 //! faster; 1 dry snow, 2 wet snow, 3 rain, 4 sleet; +/− intensity ×1.5; [ ] wind speed
@@ -11,6 +13,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use glam::Vec3;
+use precip_gpu_vk::VkBackend;
 use precip_gpu_wgpu::WgpuBackend;
 use precip_model::{Backend, BackendError, PrecipitationKind, Setup, View, Weather};
 use winit::application::ApplicationHandler;
@@ -19,6 +22,7 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
+use crate::BackendName;
 use crate::fly_camera::FlyCamera;
 
 /// Why the window could not run.
@@ -46,11 +50,75 @@ pub fn display_available() -> bool {
     }
 }
 
-struct Running {
-    window: Arc<Window>,
+/// wgpu with the window's surface.
+struct WgpuWindow {
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
     backend: WgpuBackend,
+}
+
+/// The GPU side of the window.
+enum Presenter {
+    /// wgpu with its surface.
+    Wgpu(Box<WgpuWindow>),
+    /// Vulkan with its swapchain (inside the backend).
+    Vk(Box<VkBackend>),
+}
+
+impl Presenter {
+    fn backend(&mut self) -> &mut dyn Backend {
+        match self {
+            Self::Wgpu(w) => &mut w.backend,
+            Self::Vk(backend) => backend.as_mut(),
+        }
+    }
+
+    /// Follows the window's new size (the Vulkan swapchain follows the view's size by
+    /// itself).
+    fn resize(&mut self, (width, height): (u32, u32)) {
+        if let Self::Wgpu(w) = self {
+            w.config.width = width;
+            w.config.height = height;
+            w.surface.configure(&w.backend.device().device, &w.config);
+        }
+    }
+
+    /// Draws `view` into the window and presents it.
+    fn present(&mut self, view: &View) -> Result<(), WindowError> {
+        match self {
+            Self::Wgpu(w) => {
+                let WgpuWindow {
+                    surface,
+                    config,
+                    backend,
+                } = w.as_mut();
+                let frame = match surface.get_current_texture() {
+                    wgpu::CurrentSurfaceTexture::Success(f)
+                    | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
+                    wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                        surface.configure(&backend.device().device, config);
+                        return Ok(());
+                    }
+                    _ => return Ok(()),
+                };
+                let target = frame
+                    .texture
+                    .create_view(&wgpu::TextureViewDescriptor::default());
+                backend.render_to(view, &target)?;
+                backend.device().queue.present(frame);
+            }
+            Self::Vk(backend) => {
+                backend.present(view)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+struct Running {
+    window: Arc<Window>,
+    presenter: Presenter,
+    size: (u32, u32),
     fly: FlyCamera,
     lens: precip_model::Camera,
     weather: Weather,
@@ -61,13 +129,21 @@ struct Running {
     last_frame: Instant,
     frame_ms: f64,
     particles: u64,
+    frames: u32,
+    started: Instant,
 }
 
 struct App {
     setup: Setup,
     size: (u32, u32),
+    backend: BackendName,
+    quit_after: Option<u32>,
     running: Option<Running>,
     error: Option<WindowError>,
+    /// Frames shown and seconds open, when the window closed.
+    shown: Option<(u32, f64)>,
+    /// The Vulkan validation layer's log, when it runs.
+    validation: Option<crate::backends::ValidationLog>,
 }
 
 fn title(r: &Running) -> String {
@@ -95,30 +171,18 @@ impl App {
                 .create_window(attributes)
                 .map_err(|e| WindowError::NoDisplay(e.to_string()))?,
         );
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle(
-            Box::new(event_loop.owned_display_handle()),
-        ));
-        let surface = instance
-            .create_surface(window.clone())
-            .map_err(|e| WindowError::Surface(e.to_string()))?;
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            compatible_surface: Some(&surface),
-            ..Default::default()
-        }))
-        .map_err(|e| precip_gpu_wgpu::conv::no_adapter(&e))?;
-        let mut backend = WgpuBackend::on_adapter(&adapter)?;
         let size = window.inner_size();
-        let mut config = surface
-            .get_default_config(&adapter, size.width.max(1), size.height.max(1))
-            .ok_or_else(|| {
-                WindowError::Surface("the adapter cannot present to this window".into())
-            })?;
-        let caps = surface.get_capabilities(&adapter);
-        if let Some(srgb) = caps.formats.iter().find(|f| f.is_srgb()) {
-            config.format = *srgb;
-        }
-        surface.configure(&backend.device().device, &config);
-        backend.configure(&self.setup)?;
+        let size = (size.width.max(1), size.height.max(1));
+        let mut presenter = match self.backend {
+            BackendName::Wgpu => wgpu_presenter(event_loop, &window, size)?,
+            BackendName::Vk => {
+                let mut backend =
+                    VkBackend::for_display(crate::backends::vk_validation(), event_loop)?;
+                backend.attach_window(window.clone())?;
+                Presenter::Vk(Box::new(backend))
+            }
+        };
+        presenter.backend().configure(&self.setup)?;
         let particles =
             u64::from(self.setup.particle_counts().0) + u64::from(self.setup.particle_counts().1);
         Ok(Running {
@@ -127,17 +191,51 @@ impl App {
             weather: self.setup.weather,
             time_scale: self.setup.cover.time_scale,
             window,
-            surface,
-            config,
-            backend,
+            presenter,
+            size,
             keys: HashSet::new(),
             looking: false,
             last_cursor: None,
             last_frame: Instant::now(),
             frame_ms: 0.0,
             particles,
+            frames: 0,
+            started: Instant::now(),
         })
     }
+}
+
+/// A wgpu adapter that presents to `window`, its surface in an sRGB format.
+fn wgpu_presenter(
+    event_loop: &ActiveEventLoop,
+    window: &Arc<Window>,
+    (width, height): (u32, u32),
+) -> Result<Presenter, WindowError> {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle(
+        Box::new(event_loop.owned_display_handle()),
+    ));
+    let surface = instance
+        .create_surface(window.clone())
+        .map_err(|e| WindowError::Surface(e.to_string()))?;
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        compatible_surface: Some(&surface),
+        ..Default::default()
+    }))
+    .map_err(|e| precip_gpu_wgpu::conv::no_adapter(&e))?;
+    let backend = WgpuBackend::on_adapter(&adapter)?;
+    let mut config = surface
+        .get_default_config(&adapter, width, height)
+        .ok_or_else(|| WindowError::Surface("the adapter cannot present to this window".into()))?;
+    let caps = surface.get_capabilities(&adapter);
+    if let Some(srgb) = caps.formats.iter().find(|f| f.is_srgb()) {
+        config.format = *srgb;
+    }
+    surface.configure(&backend.device().device, &config);
+    Ok(Presenter::Wgpu(Box::new(WgpuWindow {
+        surface,
+        config,
+        backend,
+    })))
 }
 
 fn held(r: &Running, a: KeyCode, b: KeyCode) -> f32 {
@@ -220,26 +318,14 @@ impl Running {
         );
         let view = View {
             camera: self.fly.camera(&self.lens),
-            width_px: self.config.width,
-            height_px: self.config.height,
+            width_px: self.size.0,
+            height_px: self.size.1,
         };
-        self.backend.set_camera(&view.camera)?;
-        self.backend.step(dt)?;
-        let frame = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(f)
-            | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
-            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
-                self.surface
-                    .configure(&self.backend.device().device, &self.config);
-                return Ok(());
-            }
-            _ => return Ok(()),
-        };
-        let target = frame
-            .texture
-            .create_view(&wgpu::TextureViewDescriptor::default());
-        self.backend.render_to(&view, &target)?;
-        self.backend.device().queue.present(frame);
+        let backend = self.presenter.backend();
+        backend.set_camera(&view.camera)?;
+        backend.step(dt)?;
+        self.presenter.present(&view)?;
+        self.frames += 1;
         self.window.set_title(&title(self));
         Ok(())
     }
@@ -269,9 +355,8 @@ impl ApplicationHandler for App {
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => {
-                r.config.width = size.width.max(1);
-                r.config.height = size.height.max(1);
-                r.surface.configure(&r.backend.device().device, &r.config);
+                r.size = (size.width.max(1), size.height.max(1));
+                r.presenter.resize(r.size);
             }
             WindowEvent::KeyboardInput { event, .. } => {
                 let PhysicalKey::Code(key) = event.physical_key else {
@@ -288,7 +373,7 @@ impl ApplicationHandler for App {
                 if key == KeyCode::Escape {
                     event_loop.exit();
                 } else if let Some(w) = weather_key(key, &r.weather) {
-                    if r.backend.set_weather(&w).is_ok() {
+                    if r.presenter.backend().set_weather(&w).is_ok() {
                         r.weather = w;
                     }
                 } else if matches!(key, KeyCode::KeyT | KeyCode::KeyG) {
@@ -299,14 +384,14 @@ impl ApplicationHandler for App {
                     setup.camera = r.fly.camera(&setup.camera);
                     // The time scale is part of the configuration: re-configure keeps
                     // the weather and camera (the cover restarts).
-                    if r.backend.configure(&setup).is_ok() {
+                    if r.presenter.backend().configure(&setup).is_ok() {
                         r.time_scale = setup.cover.time_scale;
                     }
                 } else if key == KeyCode::KeyC {
                     let mut setup = self.setup.clone();
                     setup.render.view_cone_culling = !setup.render.view_cone_culling;
                     setup.weather = r.weather;
-                    if r.backend.configure(&setup).is_ok() {
+                    if r.presenter.backend().configure(&setup).is_ok() {
                         self.setup.render.view_cone_culling = setup.render.view_cone_culling;
                     }
                 }
@@ -333,6 +418,10 @@ impl ApplicationHandler for App {
                     self.error = Some(e);
                     event_loop.exit();
                 }
+                self.shown = Some((r.frames, r.started.elapsed().as_secs_f64()));
+                if self.quit_after.is_some_and(|n| r.frames >= n) {
+                    event_loop.exit();
+                }
             }
             _ => {}
         }
@@ -345,8 +434,26 @@ impl ApplicationHandler for App {
     }
 }
 
-/// Opens a window of `size` over `setup` and runs until it is closed.
-pub fn run_window(setup: Setup, size: (u32, u32)) -> Result<(), WindowError> {
+/// How the window ran.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WindowSummary {
+    /// Frames presented.
+    pub frames: u32,
+    /// Seconds the window was open (from the first frame's setup).
+    pub seconds: f64,
+    /// What the Vulkan validation layer said (with `PRECIP_VK_VALIDATION=1`), leak
+    /// reports at the device's destruction included.
+    pub validation_messages: Vec<String>,
+}
+
+/// Opens a window of `size` over `setup`, drawing with `backend`, and runs until it
+/// is closed (or, with `quit_after`, after that many frames).
+pub fn run_window(
+    setup: Setup,
+    size: (u32, u32),
+    backend: BackendName,
+    quit_after: Option<u32>,
+) -> Result<WindowSummary, WindowError> {
     if !display_available() {
         return Err(WindowError::NoDisplay(
             "neither DISPLAY nor WAYLAND_DISPLAY is set".into(),
@@ -356,14 +463,31 @@ pub fn run_window(setup: Setup, size: (u32, u32)) -> Result<(), WindowError> {
     let mut app = App {
         setup,
         size,
+        backend,
+        quit_after,
         running: None,
         error: None,
+        shown: None,
+        validation: None,
     };
     event_loop
         .run_app(&mut app)
         .map_err(|e| WindowError::NoDisplay(e.to_string()))?;
+    // Drop the GPU objects before the event loop's display goes.
+    app.running = None;
     match app.error {
         Some(e) => Err(e),
-        None => Ok(()),
+        None => {
+            let (frames, seconds) = app.shown.unwrap_or((0, 0.0));
+            let validation_messages = app
+                .validation
+                .and_then(|log| log.lock().map(|m| m.clone()).ok())
+                .unwrap_or_default();
+            Ok(WindowSummary {
+                frames,
+                seconds,
+                validation_messages,
+            })
+        }
     }
 }

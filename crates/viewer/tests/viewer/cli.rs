@@ -1,5 +1,5 @@
-//! The `precip` binary: inspect's exit status, the demo writer, and the headless
-//! fallback when there is no display.
+//! The `precip` binary: inspect's exit status, the demo writer, the headless
+//! fallback when there is no display, and the window on both backends (under Xvfb).
 
 use std::process::Command;
 
@@ -87,4 +87,147 @@ fn without_a_display_the_viewer_says_so_and_renders_frames_headless() {
         "{summary}"
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// An X server for a window test: Xvfb on a free display, killed on drop.
+struct Xvfb {
+    child: std::process::Child,
+    display: String,
+}
+
+impl Xvfb {
+    fn start() -> Option<Self> {
+        for n in 0..40 {
+            let number = 60 + (std::process::id() as usize + n) % 400;
+            if std::path::Path::new(&format!("/tmp/.X11-unix/X{number}")).exists() {
+                continue;
+            }
+            let display = format!(":{number}");
+            let child = Command::new("Xvfb")
+                .args([
+                    display.as_str(),
+                    "-screen",
+                    "0",
+                    "640x480x24",
+                    "-nolisten",
+                    "tcp",
+                ])
+                .stdout(std::process::Stdio::null())
+                .stderr(std::process::Stdio::null())
+                .spawn()
+                .ok()?;
+            let socket = format!("/tmp/.X11-unix/X{number}");
+            for _ in 0..100 {
+                if std::path::Path::new(&socket).exists() {
+                    return Some(Self { child, display });
+                }
+                std::thread::sleep(std::time::Duration::from_millis(50));
+            }
+            let mut child = child;
+            let _ = child.kill();
+            let _ = child.wait();
+        }
+        None
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+#[test]
+fn the_window_presents_frames_on_both_backends() {
+    if precip_gpu_wgpu::adapters().is_empty() {
+        assert!(
+            std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
+            "PRECIP_REQUIRE_GPU=1 but no wgpu adapter found"
+        );
+        eprintln!("SKIPPED window: no GPU adapter found");
+        return;
+    }
+    let Some(x) = Xvfb::start() else {
+        // CI installs xvfb (.ci/run); elsewhere the test says why it did nothing.
+        eprintln!("SKIPPED window: Xvfb is not installed (apt-get install xvfb)");
+        return;
+    };
+    for backend in ["wgpu", "vk"] {
+        let out = precip()
+            .env("DISPLAY", &x.display)
+            .env_remove("WAYLAND_DISPLAY")
+            .env("PRECIP_VK_VALIDATION", "1")
+            .args([
+                "--backend",
+                backend,
+                "--quit-after",
+                "6",
+                "--size",
+                "160x120",
+                "--particles",
+                "3000",
+            ])
+            .output()
+            .expect("runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{backend}: {err}");
+        assert!(
+            text.contains("window: 6 frames"),
+            "{backend}: {text}\n{err}"
+        );
+        assert!(!err.contains("validation layer"), "{backend}: {err}");
+    }
+}
+
+#[test]
+fn headless_frames_agree_across_backends() {
+    if precip_gpu_wgpu::adapters().is_empty() {
+        assert!(
+            std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
+            "PRECIP_REQUIRE_GPU=1 but no wgpu adapter found"
+        );
+        eprintln!("SKIPPED headless_frames_agree_across_backends: no GPU adapter found");
+        return;
+    }
+    let mut frames = Vec::new();
+    for backend in ["wgpu", "vk"] {
+        let dir = temp_dir(&format!("agree-{backend}"));
+        let out = precip()
+            .env("PRECIP_VK_VALIDATION", "1")
+            .args([
+                "--backend",
+                backend,
+                "--frames",
+                "3",
+                "--size",
+                "128x72",
+                "--particles",
+                "6000",
+                "--preset",
+                "blizzard",
+                "--out",
+            ])
+            .arg(&dir)
+            .output()
+            .expect("runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{backend}: {err}");
+        let last = image::open(dir.join("frame_0002.png"))
+            .expect("the last frame")
+            .to_rgba8();
+        frames.push(last);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    let close = frames[0]
+        .pixels()
+        .zip(frames[1].pixels())
+        .filter(|(a, b)| a.0.iter().zip(b.0).all(|(x, y)| x.abs_diff(y) <= 1))
+        .count();
+    let total = frames[0].pixels().len();
+    assert!(
+        close as f64 >= 0.999 * total as f64,
+        "{close} of {total} pixels within 1/255"
+    );
 }

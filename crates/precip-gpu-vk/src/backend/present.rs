@@ -1,0 +1,133 @@
+//! Presenting to a window on [`VkBackend`]: a backend whose instance has the window
+//! system's surface extensions ([`VkBackend::for_display`]), a window attached
+//! ([`VkBackend::attach_window`]), then a frame drawn straight into a swapchain image
+//! and presented ([`VkBackend::present`]).
+
+use std::sync::Arc;
+
+use ash::vk;
+use precip_model::{BackendError, View};
+use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
+
+use super::VkBackend;
+use super::draw::SwapchainFrame;
+use crate::device::Device;
+use crate::error::{NAME, map_vk};
+use crate::instance::Instance;
+use crate::resources::FRAMES_IN_FLIGHT;
+use crate::swapchain::WindowSurface;
+
+/// What [`VkBackend::present`] did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Presented {
+    /// A frame of this size (the swapchain's) went to the window.
+    Frame {
+        /// Width, px.
+        width_px: u32,
+        /// Height, px.
+        height_px: u32,
+    },
+    /// The surface was out of date twice in a row (a resize in progress): no frame.
+    Skipped,
+}
+
+impl VkBackend {
+    /// Opens its own instance, with the surface extensions windows of `display` need,
+    /// and a device with VK_KHR_swapchain.
+    pub fn for_display(
+        validation: bool,
+        display: &impl HasDisplayHandle,
+    ) -> Result<Self, BackendError> {
+        let raw = display
+            .display_handle()
+            .map_err(|e| BackendError::Device {
+                backend: NAME,
+                message: format!("the display has no usable handle: {e}"),
+            })?
+            .as_raw();
+        let extensions = ash_window::enumerate_required_extensions(raw)
+            .map_err(|e| map_vk("finding the display's surface extensions", e))?;
+        Self::on(Device::new(Instance::with_extensions(
+            validation, extensions,
+        )?)?)
+    }
+
+    /// Attaches `window` (kept alive by the backend until it is dropped or another
+    /// window is attached): [`VkBackend::present`] draws into it.
+    pub fn attach_window<W>(&mut self, window: Arc<W>) -> Result<(), BackendError>
+    where
+        W: HasWindowHandle + HasDisplayHandle + Send + Sync + 'static,
+    {
+        let surface = WindowSurface::new(&self.device, window)?;
+        if let Some(old) = self.window.replace(surface) {
+            self.settle()?;
+            self.device.wait_idle()?;
+            old.destroy(&self.device);
+        }
+        Ok(())
+    }
+
+    /// The attached window's swapchain format and present mode.
+    #[must_use]
+    pub fn window_format(&self) -> Option<(vk::Format, vk::PresentModeKHR)> {
+        self.window.as_ref().map(|w| (w.format, w.present_mode))
+    }
+
+    /// Draws a frame for `view`'s camera into the attached window and presents it.
+    /// The swapchain follows `view`'s size (re-created, the old one retired, when it
+    /// changes); the frame has the swapchain's size, which the surface may impose.
+    pub fn present(&mut self, view: &View) -> Result<Presented, BackendError> {
+        self.state("present")?;
+        let Some(format) = self.window.as_ref().map(|w| w.format) else {
+            return Err(BackendError::NotConfigured {
+                operation: "present (attach a window first)",
+            });
+        };
+        precip_model::render::validate_view(view)?;
+        // The acquire semaphore about to be reused was waited on by a frame that is
+        // not the latest submission, so this wait finishes it.
+        self.wait_until(FRAMES_IN_FLIGHT - 1)?;
+        let pass = self.prepare_renderer(format, vk::ImageLayout::PRESENT_SRC_KHR)?;
+        let wanted = (view.width_px, view.height_px);
+        for _attempt in 0..2 {
+            let Some(window) = self.window.as_mut() else {
+                break;
+            };
+            if window.stale || window.extent() != Some(wanted) {
+                window.rebuild(
+                    &self.device,
+                    pass,
+                    wanted,
+                    &mut self.retired,
+                    self.submitted,
+                )?;
+            }
+            let Some(frame) = window.acquire()? else {
+                continue;
+            };
+            let (width_px, height_px) = window.extent().unwrap_or(wanted);
+            let sized = View {
+                width_px,
+                height_px,
+                ..*view
+            };
+            self.draw(
+                &sized,
+                Some(SwapchainFrame {
+                    format,
+                    framebuffer: frame.framebuffer,
+                    acquired: frame.acquired,
+                    drawn: frame.drawn,
+                }),
+            )?;
+            if let Some(window) = self.window.as_mut() {
+                window.present(&self.device, &frame)?;
+            }
+            return Ok(Presented::Frame {
+                width_px,
+                height_px,
+            });
+        }
+        Ok(Presented::Skipped)
+    }
+}
