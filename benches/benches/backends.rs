@@ -1,12 +1,14 @@
 //! One step (20 ms, one sub-step) at 10⁴, 10⁵, 10⁶ particles on every backend present,
-//! timed to completion (a read of the timings waits for the GPU).
+//! and a full frame (step + render at 1280×720 over the built-in house) on every
+//! backend that renders; timed to completion (a read of the timings waits for the
+//! GPU).
 //!
 //! `cargo bench -p precip-benches --bench backends`
 
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use precip_benches::{COUNTS, DT_S, backends, scenario};
+use precip_benches::{COUNTS, DT_S, backends, frame, frame_scenario, scenario};
 
 fn step(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
@@ -31,5 +33,29 @@ fn step(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, step);
+fn full_frame(c: &mut Criterion) {
+    let mut group = c.benchmark_group("frame_1280x720");
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(6))
+        .warm_up_time(Duration::from_secs(1));
+    for (name, mut backend) in backends() {
+        if !backend.info().renders {
+            continue;
+        }
+        for count in COUNTS {
+            let (setup, view) = frame_scenario(count);
+            if backend.configure(&setup).is_err() {
+                continue;
+            }
+            group.throughput(Throughput::Elements(u64::from(count)));
+            group.bench_function(BenchmarkId::new(name, count), |b| {
+                b.iter(|| frame(backend.as_mut(), &view));
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, step, full_frame);
 criterion_main!(benches);

@@ -1,11 +1,15 @@
-//! What the benches and the report share: the scenario (wind over flat ground, a
-//! 128² cover grid) and the backends present on this machine.
+//! What the benches and the report share: the step scenario (wind over flat ground,
+//! a 128² cover grid), the frame scenario (the built-in house, 1280×720), the
+//! backends present on this machine, and the report's plot ([`plot`]).
+
+pub mod plot;
 
 use glam::Vec3;
 use precip_gpu_vk::VkBackend;
 use precip_gpu_wgpu::WgpuBackend;
+use precip_model::builtin::house_on_plane;
 use precip_model::wind::WindField;
-use precip_model::{Backend, CpuBackend, Setup};
+use precip_model::{Backend, CpuBackend, Setup, View};
 
 /// Particle counts measured.
 pub const COUNTS: [u32; 3] = [10_000, 100_000, 1_000_000];
@@ -23,6 +27,36 @@ pub fn scenario(count: u32) -> Setup {
         ..WindField::calm()
     };
     setup
+}
+
+/// The frame's size, px.
+pub const FRAME_SIZE: (u32, u32) = (1280, 720);
+
+/// The frame scenario at `count` particles: snow in a light wind over the built-in
+/// house (a 128² ground map), seen from its default camera at [`FRAME_SIZE`].
+#[must_use]
+pub fn frame_scenario(count: u32) -> (Setup, View) {
+    let (mut setup, _) =
+        Setup::over_scene(house_on_plane(), 128, 6.0, count).expect("the built-in house is valid");
+    setup.weather.wind = WindField {
+        mean_wind_mps: Vec3::new(3.0, 0.0, 1.0),
+        vertical_gust_mps: 0.3,
+        ..WindField::calm()
+    };
+    let view = View {
+        camera: setup.camera,
+        width_px: FRAME_SIZE.0,
+        height_px: FRAME_SIZE.1,
+    };
+    (setup, view)
+}
+
+/// One frame: a step, then the render; waits for the GPU (through the timings,
+/// which it returns).
+pub fn frame(backend: &mut dyn Backend, view: &View) -> precip_model::Timings {
+    backend.step(DT_S).expect("valid step");
+    backend.render(view).expect("renders");
+    backend.timings().expect("waits for the GPU")
 }
 
 /// Every backend this machine has, by name (a missing one is reported and left out).

@@ -1,12 +1,18 @@
 //! `cargo run --release -p precip-benches --bin report [out.json]`: every backend side
 //! by side — particles per second of a step, the step's bytes per second against the
-//! device's own buffer-copy bandwidth, GPU time per kernel, and vk ÷ wgpu step time;
-//! printed as a table and written as JSON.
+//! device's own buffer-copy bandwidth, GPU time per kernel and per render pass, a
+//! full frame (step + render at 1280×720) and vk ÷ wgpu for both; printed as a table,
+//! written as JSON and plotted as a PNG beside it.
 
+use std::path::Path;
 use std::time::Instant;
 
-use precip_benches::{COUNTS, DT_S, STEP_BYTES_PER_PARTICLE, backends, scenario};
+use precip_benches::plot::{Series, write_png};
+use precip_benches::{
+    COUNTS, DT_S, FRAME_SIZE, STEP_BYTES_PER_PARTICLE, backends, frame, frame_scenario, scenario,
+};
 use precip_gpu_wgpu::WgpuBackend;
+use precip_model::Timings;
 use serde_json::json;
 
 /// Buffer-copy bandwidth of the wgpu device (read + write bytes per second).
@@ -38,6 +44,102 @@ fn wgpu_copy_bandwidth() -> Option<f64> {
     Some(2.0 * size as f64 / best)
 }
 
+/// Adds `timings` / `n` to the running mean per pass `passes`.
+fn accumulate(passes: &mut Vec<(&'static str, f64)>, timings: Timings, n: u32) {
+    for p in timings.passes {
+        let ms = p.milliseconds / f64::from(n);
+        match passes.iter_mut().find(|(name, _)| *name == p.pass) {
+            Some(k) => k.1 += ms,
+            None => passes.push((p.pass, ms)),
+        }
+    }
+}
+
+fn passes_text(passes: &[(&str, f64)]) -> String {
+    passes
+        .iter()
+        .map(|(n, ms)| format!("{n} {ms:.2} ms"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Full frames on every backend that renders: wall-clock ms per frame and GPU ms
+/// per pass.
+fn measure_frames(rows: &mut Vec<serde_json::Value>) {
+    for (name, mut backend) in backends() {
+        if !backend.info().renders {
+            continue;
+        }
+        for count in COUNTS {
+            let (setup, view) = frame_scenario(count);
+            if let Err(e) = backend.configure(&setup) {
+                eprintln!("{name} frame at {count}: {e}");
+                continue;
+            }
+            frame(backend.as_mut(), &view);
+            let frames = if count >= 1_000_000 { 3 } else { 6 };
+            let mut passes = Vec::new();
+            let start = Instant::now();
+            for _ in 0..frames {
+                let t = frame(backend.as_mut(), &view);
+                accumulate(&mut passes, t, frames);
+            }
+            let ms = start.elapsed().as_secs_f64() * 1e3 / f64::from(frames);
+            println!(
+                "{name:>5} {count:>8}: {ms:>8.1} ms/frame ({}×{}); {}",
+                FRAME_SIZE.0,
+                FRAME_SIZE.1,
+                passes_text(&passes)
+            );
+            rows.push(json!({
+                "backend": name, "particles": count, "frame_ms": ms,
+                "width_px": FRAME_SIZE.0, "height_px": FRAME_SIZE.1,
+                "passes_ms": passes.iter().map(|(n, ms)| json!({"pass": n, "ms": ms})).collect::<Vec<_>>(),
+            }));
+        }
+    }
+}
+
+/// `vk ÷ wgpu` of `key` at each count, printed.
+fn ratios(rows: &[serde_json::Value], key: &str, what: &str) -> Vec<serde_json::Value> {
+    let mut out = Vec::new();
+    for count in COUNTS {
+        let value = |b: &str| {
+            rows.iter()
+                .find(|r| r["backend"] == b && r["particles"] == count)
+                .and_then(|r| r[key].as_f64())
+        };
+        if let (Some(vk), Some(wgpu)) = (value("vk"), value("wgpu")) {
+            println!("vk ÷ wgpu {what} at {count}: {:.2}", vk / wgpu);
+            out.push(json!({"particles": count, "vk_over_wgpu": vk / wgpu}));
+        }
+    }
+    out
+}
+
+/// One line per backend of `key` against particles.
+fn series(rows: &[serde_json::Value], key: &str, job: &str) -> Vec<Series> {
+    let mut out: Vec<Series> = Vec::new();
+    for r in rows {
+        let (Some(b), Some(n), Some(ms)) = (
+            r["backend"].as_str(),
+            r["particles"].as_f64(),
+            r[key].as_f64(),
+        ) else {
+            continue;
+        };
+        let label = format!("{b} {job}");
+        match out.iter_mut().find(|s| s.label == label) {
+            Some(s) => s.points.push((n, ms)),
+            None => out.push(Series {
+                label,
+                points: vec![(n, ms)],
+            }),
+        }
+    }
+    out
+}
+
 fn main() {
     let out = std::env::args()
         .nth(1)
@@ -61,12 +163,7 @@ fn main() {
             for _ in 0..steps {
                 backend.step(DT_S).expect("valid step");
                 if let Ok(t) = backend.timings() {
-                    for p in t.passes {
-                        match kernels.iter_mut().find(|(n, _)| *n == p.pass) {
-                            Some(k) => k.1 += p.milliseconds / f64::from(steps),
-                            None => kernels.push((p.pass, p.milliseconds / f64::from(steps))),
-                        }
-                    }
+                    accumulate(&mut kernels, t, steps);
                 }
             }
             let seconds = start.elapsed().as_secs_f64() / f64::from(steps);
@@ -83,14 +180,7 @@ fn main() {
                 if kernels.is_empty() {
                     String::new()
                 } else {
-                    format!(
-                        "; {}",
-                        kernels
-                            .iter()
-                            .map(|(n, ms)| format!("{n} {ms:.2} ms"))
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    )
+                    format!("; {}", passes_text(&kernels))
                 }
             );
             rows.push(json!({
@@ -100,17 +190,34 @@ fn main() {
             }));
         }
     }
-    for count in COUNTS {
-        let step = |b: &str| {
-            rows.iter()
-                .find(|r| r["backend"] == b && r["particles"] == count)
-                .and_then(|r| r["step_ms"].as_f64())
-        };
-        if let (Some(vk), Some(wgpu)) = (step("vk"), step("wgpu")) {
-            println!("vk ÷ wgpu step time at {count}: {:.2}", vk / wgpu);
-        }
+    let step_ratios = ratios(&rows, "step_ms", "step time");
+    let mut frame_rows = Vec::new();
+    measure_frames(&mut frame_rows);
+    let frame_ratios = ratios(&frame_rows, "frame_ms", "frame time");
+    let mut plotted = series(&rows, "step_ms", "step");
+    plotted.extend(series(&frame_rows, "frame_ms", "frame 1280×720"));
+    let device = backends()
+        .into_iter()
+        .find(|(n, _)| *n == "vk" || *n == "wgpu")
+        .map(|(_, b)| b.info().device)
+        .unwrap_or_default();
+    let report = json!({
+        "device": device,
+        "copy_bandwidth_bytes_per_second": bandwidth,
+        "rows": rows,
+        "frames": frame_rows,
+        "vk_over_wgpu_step": step_ratios,
+        "vk_over_wgpu_frame": frame_ratios,
+    });
+    let png = Path::new(&out).with_extension("png");
+    match write_png(
+        &png,
+        &format!("precip: ms per step and per frame — {device}"),
+        &plotted,
+    ) {
+        Ok(()) => println!("wrote {}", png.display()),
+        Err(e) => eprintln!("no plot: {e}"),
     }
-    let report = json!({ "copy_bandwidth_bytes_per_second": bandwidth, "rows": rows });
     match std::fs::write(
         &out,
         serde_json::to_string_pretty(&report).unwrap_or_default(),

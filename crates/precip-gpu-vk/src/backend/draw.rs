@@ -6,6 +6,7 @@ use ash::vk;
 use super::VkBackend;
 use crate::commands::{Semaphores, submit_synced};
 use crate::render::frame::{DRAWS_BYTES, FrameResources};
+use crate::render::passes::CameraPasses;
 use crate::render::scene::SceneGpu;
 use crate::render::target::{OFFSCREEN_FORMAT, OffscreenTarget};
 use crate::render::{FrameTarget, RenderState, Renderer, record_frame};
@@ -28,13 +29,13 @@ pub struct SwapchainFrame {
 }
 
 impl VkBackend {
-    /// Makes the renderer on first use, and the camera pass of `format` ending in
-    /// `final_layout` with its draws; returns that pass.
+    /// Makes the renderer on first use, and the camera passes of `format` ending in
+    /// `final_layout` with their draws; returns those passes.
     pub(crate) fn prepare_renderer(
         &mut self,
         format: vk::Format,
         final_layout: vk::ImageLayout,
-    ) -> Result<vk::RenderPass, BackendError> {
+    ) -> Result<CameraPasses, BackendError> {
         if self.renderer.is_none() {
             self.renderer = Some(Renderer::new(&self.device)?);
         }
@@ -81,7 +82,7 @@ impl VkBackend {
             Some(s) => (s.format, vk::ImageLayout::PRESENT_SRC_KHR),
             None => (OFFSCREEN_FORMAT, vk::ImageLayout::TRANSFER_SRC_OPTIMAL),
         };
-        let pass = self.prepare_renderer(format, final_layout)?;
+        let passes = self.prepare_renderer(format, final_layout)?;
         let offscreen_pass =
             self.prepare_renderer(OFFSCREEN_FORMAT, vk::ImageLayout::TRANSFER_SRC_OPTIMAL)?;
         let device = &self.device;
@@ -126,7 +127,7 @@ impl VkBackend {
         };
         let size = (view.width_px, view.height_px);
         if swapchain.is_none() && render.offscreen.as_ref().is_none_or(|t| t.size() != size) {
-            let new = OffscreenTarget::new(device, offscreen_pass, size)?;
+            let new = OffscreenTarget::new(device, offscreen_pass.scene, size)?;
             if let Some(old) = render.offscreen.replace(new) {
                 self.retired.retire(self.submitted, move |d| old.destroy(d));
             }
@@ -157,7 +158,7 @@ impl VkBackend {
             .params
             .write(offset as usize, bytemuck::bytes_of(&params))?;
         let target = FrameTarget {
-            pass,
+            passes,
             framebuffer,
             size,
             sky: setup.render.sky_colour,

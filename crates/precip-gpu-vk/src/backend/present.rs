@@ -87,7 +87,9 @@ impl VkBackend {
         // The acquire semaphore about to be reused was waited on by a frame that is
         // not the latest submission, so this wait finishes it.
         self.wait_until(FRAMES_IN_FLIGHT - 1)?;
-        let pass = self.prepare_renderer(format, vk::ImageLayout::PRESENT_SRC_KHR)?;
+        let pass = self
+            .prepare_renderer(format, vk::ImageLayout::PRESENT_SRC_KHR)?
+            .scene;
         let wanted = (view.width_px, view.height_px);
         for _attempt in 0..2 {
             let Some(window) = self.window.as_mut() else {

@@ -9,9 +9,11 @@
 //! 2. **shadow** — render pass with the shadow map, the displaced scene from the sun;
 //! 3. **cull_particles** — the three kernels, barriers between them, then a barrier
 //!    to the indirect draws and vertex pulling;
-//! 4. **scene** then **particles** — one render pass into the target (offscreen image
-//!    or swapchain image): every mesh, then snow and rain by `vkCmdDrawIndirect`;
-//! 5. a barrier: the next step's compute waits for this frame's shaders (it rewrites
+//! 4. **scene** — a render pass into the target (offscreen image or swapchain image)
+//!    that clears it and draws every mesh;
+//! 5. **particles** — a second pass that loads it and draws snow and rain by
+//!    `vkCmdDrawIndirect` (two passes, as wgpu's, so each has its timestamps);
+//! 6. a barrier: the next step's compute waits for this frame's shaders (it rewrites
 //!    what they read).
 //!
 //! Clip space is flipped with a negative viewport height, as wgpu-hal does, so the
@@ -42,6 +44,7 @@ use precip_model::shaders::Program;
 
 use self::frame::FrameResources;
 use self::layouts::RenderLayouts;
+use self::passes::CameraPasses;
 use self::pipelines::{CullPipelines, DrawPipelines, shadow_pipeline};
 use self::samplers::Samplers;
 use self::scene::SceneGpu;
@@ -56,12 +59,12 @@ use crate::resources::upload_image;
 /// Side of the generated flake opacity texture, px (as the wgpu backend's).
 pub const FLAKE_TEXTURE_PX: u32 = 64;
 
-/// A camera pass of one colour format and final layout.
+/// The camera passes of one colour format and final layout.
 #[derive(Debug)]
 struct CameraPass {
     format: vk::Format,
     final_layout: vk::ImageLayout,
-    pass: vk::RenderPass,
+    passes: CameraPasses,
 }
 
 /// Layouts, passes and pipelines of one device.
@@ -122,35 +125,36 @@ impl Renderer {
         })
     }
 
-    /// The camera pass into `format` ending in `final_layout`, and the draws for
+    /// The camera passes into `format` ending in `final_layout`, and the draws for
     /// that format; made on first use.
     pub fn prepare(
         &mut self,
         device: &Device,
         format: vk::Format,
         final_layout: vk::ImageLayout,
-    ) -> Result<vk::RenderPass, BackendError> {
-        let pass = match self
+    ) -> Result<CameraPasses, BackendError> {
+        let passes = match self
             .camera_passes
             .iter()
             .find(|c| c.format == format && c.final_layout == final_layout)
         {
-            Some(c) => c.pass,
+            Some(c) => c.passes,
             None => {
-                let pass = passes::camera(device, format, final_layout)?;
+                let passes = passes::camera(device, format, final_layout)?;
                 self.camera_passes.push(CameraPass {
                     format,
                     final_layout,
-                    pass,
+                    passes,
                 });
-                pass
+                passes
             }
         };
         if !self.draws.iter().any(|(f, _)| *f == format) {
-            let draws = DrawPipelines::new(device, self.render_module, &self.layouts, pass)?;
+            let draws =
+                DrawPipelines::new(device, self.render_module, &self.layouts, passes.scene)?;
             self.draws.push((format, draws));
         }
-        Ok(pass)
+        Ok(passes)
     }
 
     /// The draws for `format` ([`Renderer::prepare`] first).
@@ -176,7 +180,8 @@ impl Renderer {
             device.raw.destroy_pipeline(self.shadow, None);
             device.raw.destroy_render_pass(self.shadow_pass, None);
             for c in &self.camera_passes {
-                device.raw.destroy_render_pass(c.pass, None);
+                device.raw.destroy_render_pass(c.passes.scene, None);
+                device.raw.destroy_render_pass(c.passes.particles, None);
             }
             device.raw.destroy_shader_module(self.render_module, None);
             device.raw.destroy_shader_module(self.cull_module, None);
@@ -220,8 +225,8 @@ impl RenderState {
 /// Where a frame goes.
 #[derive(Debug, Clone, Copy)]
 pub struct FrameTarget {
-    /// The camera pass (its format's, ending in the target's layout).
-    pub pass: vk::RenderPass,
+    /// The camera passes (its format's, ending in the target's layout).
+    pub passes: CameraPasses,
     /// Colour and depth of the target.
     pub framebuffer: vk::Framebuffer,
     /// Width, height, px.
@@ -264,7 +269,7 @@ pub fn record_frame(
 ) {
     use vk::AccessFlags as A;
     use vk::PipelineStageFlags as S;
-    let Some(draws) = renderer.draws_for_pass(target.pass) else {
+    let Some(draws) = renderer.draws_for_pass(target.passes.scene) else {
         return;
     };
     let frame = &state.frame;
@@ -390,7 +395,12 @@ pub fn record_frame(
         },
         depth_clear,
     ];
-    begin(target.pass, target.framebuffer, target.size, &clears);
+    begin(
+        target.passes.scene,
+        target.framebuffer,
+        target.size,
+        &clears,
+    );
     if let Some(scene) = &state.scene {
         // SAFETY: inside the camera pass; the scene pipeline was made for a
         // compatible pass.
@@ -406,7 +416,15 @@ pub fn record_frame(
         );
         scene.draw(device, cb, layout, true);
     }
+    // SAFETY: ends the scene pass.
+    unsafe { device.raw.cmd_end_render_pass(cb) };
     stamp(3);
+    begin(
+        target.passes.particles,
+        target.framebuffer,
+        target.size,
+        &[],
+    );
     frame_set(
         vk::PipelineBindPoint::GRAPHICS,
         layout,
@@ -441,7 +459,11 @@ pub fn record_frame(
 impl Renderer {
     /// The draws whose format `pass` renders to.
     fn draws_for_pass(&self, pass: vk::RenderPass) -> Option<&DrawPipelines> {
-        let format = self.camera_passes.iter().find(|c| c.pass == pass)?.format;
+        let format = self
+            .camera_passes
+            .iter()
+            .find(|c| c.passes.scene == pass)?
+            .format;
         self.draws(format)
     }
 }

@@ -87,40 +87,86 @@ pub fn shadow(device: &Device) -> Result<vk::RenderPass, BackendError> {
     )
 }
 
-/// The camera's pass into `format`, the colour ending in `final_layout`
-/// (`TRANSFER_SRC_OPTIMAL` offscreen, `PRESENT_SRC_KHR` for a swapchain).
+/// The camera's two passes into one target: the scene's (clears) and the
+/// particles' (loads), as the wgpu backend's, so each has its own timestamps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CameraPasses {
+    /// Clears colour and depth; leaves them as attachments.
+    pub scene: vk::RenderPass,
+    /// Loads them; leaves the colour in the target's final layout.
+    pub particles: vk::RenderPass,
+}
+
+/// The camera's passes into `format`, the colour ending in `final_layout`
+/// (`TRANSFER_SRC_OPTIMAL` offscreen, `PRESENT_SRC_KHR` for a swapchain). One
+/// framebuffer serves both (they are compatible).
 pub fn camera(
     device: &Device,
     format: vk::Format,
     final_layout: vk::ImageLayout,
+) -> Result<CameraPasses, BackendError> {
+    let scene = camera_pass(device, format, None)?;
+    match camera_pass(device, format, Some(final_layout)) {
+        Ok(particles) => Ok(CameraPasses { scene, particles }),
+        Err(e) => {
+            // SAFETY: the pass is unused and destroyed once.
+            unsafe { device.raw.destroy_render_pass(scene, None) };
+            Err(e)
+        }
+    }
+}
+
+/// The scene's pass (`load_into: None`: clears) or the particles' (loads, ends in
+/// the given layout).
+fn camera_pass(
+    device: &Device,
+    format: vk::Format,
+    load_into: Option<vk::ImageLayout>,
 ) -> Result<vk::RenderPass, BackendError> {
+    use vk::ImageLayout as L;
+    let (load, initial, colour_final, depth_initial, depth_store) = match load_into {
+        None => (
+            vk::AttachmentLoadOp::CLEAR,
+            L::UNDEFINED,
+            L::COLOR_ATTACHMENT_OPTIMAL,
+            L::UNDEFINED,
+            vk::AttachmentStoreOp::STORE,
+        ),
+        Some(final_layout) => (
+            vk::AttachmentLoadOp::LOAD,
+            L::COLOR_ATTACHMENT_OPTIMAL,
+            final_layout,
+            L::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+            vk::AttachmentStoreOp::DONT_CARE,
+        ),
+    };
     let attachments = [
         vk::AttachmentDescription::default()
             .format(format)
             .samples(vk::SampleCountFlags::TYPE_1)
-            .load_op(vk::AttachmentLoadOp::CLEAR)
+            .load_op(load)
             .store_op(vk::AttachmentStoreOp::STORE)
             .stencil_load_op(vk::AttachmentLoadOp::DONT_CARE)
             .stencil_store_op(vk::AttachmentStoreOp::DONT_CARE)
-            .initial_layout(vk::ImageLayout::UNDEFINED)
-            .final_layout(final_layout),
+            .initial_layout(initial)
+            .final_layout(colour_final),
         vk::AttachmentDescription::default()
             .format(DEPTH_FORMAT)
             .samples(vk::SampleCountFlags::TYPE_1)
-            .load_op(vk::AttachmentLoadOp::CLEAR)
-            .store_op(vk::AttachmentStoreOp::DONT_CARE)
+            .load_op(load)
+            .store_op(depth_store)
             .stencil_load_op(vk::AttachmentLoadOp::DONT_CARE)
             .stencil_store_op(vk::AttachmentStoreOp::DONT_CARE)
-            .initial_layout(vk::ImageLayout::UNDEFINED)
-            .final_layout(vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL),
+            .initial_layout(depth_initial)
+            .final_layout(L::DEPTH_STENCIL_ATTACHMENT_OPTIMAL),
     ];
     let colour = [vk::AttachmentReference {
         attachment: 0,
-        layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+        layout: L::COLOR_ATTACHMENT_OPTIMAL,
     }];
     let depth = vk::AttachmentReference {
         attachment: 1,
-        layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+        layout: L::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
     };
     let attachment_stages = vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT | FRAGMENT_TESTS;
     let attachment_writes =
@@ -140,14 +186,23 @@ pub fn camera(
         vk::SubpassDependency::default()
             .src_subpass(0)
             .dst_subpass(vk::SUBPASS_EXTERNAL)
-            .src_stage_mask(vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT)
-            .dst_stage_mask(vk::PipelineStageFlags::TRANSFER)
-            .src_access_mask(vk::AccessFlags::COLOR_ATTACHMENT_WRITE)
-            .dst_access_mask(vk::AccessFlags::TRANSFER_READ),
+            .src_stage_mask(attachment_stages)
+            .dst_stage_mask(attachment_stages | vk::PipelineStageFlags::TRANSFER)
+            .src_access_mask(attachment_writes)
+            .dst_access_mask(
+                attachment_writes
+                    | vk::AccessFlags::COLOR_ATTACHMENT_READ
+                    | vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_READ
+                    | vk::AccessFlags::TRANSFER_READ,
+            ),
     ];
     create(
         device,
-        "precip camera pass",
+        if load_into.is_some() {
+            "precip particles pass"
+        } else {
+            "precip scene pass"
+        },
         &attachments,
         &colour,
         &depth,
