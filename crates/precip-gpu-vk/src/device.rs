@@ -106,13 +106,13 @@ impl Device {
             .queue_flags
             .contains(vk::QueueFlags::COMPUTE | vk::QueueFlags::GRAPHICS)
         {
-            return Err(BackendError::Device {
-                backend: NAME,
-                message: format!(
-                    "queue family {} cannot both compute and draw: give a family with COMPUTE and GRAPHICS",
+            return Err(crate::error::missing(
+                format!(
+                    "COMPUTE and GRAPHICS on queue family {}",
                     external.queue_family
                 ),
-            });
+                "give precip a queue family that both computes and draws",
+            ));
         }
         let timestamps = family.timestamp_valid_bits > 0
             && properties.limits.timestamp_compute_and_graphics == vk::TRUE;
@@ -216,9 +216,9 @@ impl Device {
             }
         }
         let Some((physical, queue_family, _)) = best else {
-            return Err(BackendError::Device {
+            return Err(BackendError::NoDriver {
                 backend: NAME,
-                message: "no Vulkan device with a compute and graphics queue: install a driver, e.g. `apt-get install mesa-vulkan-drivers`".into(),
+                detail: "no Vulkan device with a compute and graphics queue".into(),
             });
         };
         // SAFETY: `physical` comes from this instance.

@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex};
 use ash::vk;
 use precip_model::BackendError;
 
-use crate::error::{map_vk, no_driver};
+use crate::error::{map_vk, missing, no_driver};
 
 /// The validation layer's name.
 pub const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
@@ -106,11 +106,40 @@ impl Instance {
                 .iter()
                 .any(|l| l.layer_name_as_c_str().is_ok_and(|n| n == VALIDATION_LAYER));
             if !found {
-                return Err(map_vk(
-                    "enabling VK_LAYER_KHRONOS_validation",
-                    vk::Result::ERROR_LAYER_NOT_PRESENT,
+                return Err(missing(
+                    "VK_LAYER_KHRONOS_validation".into(),
+                    "install the Khronos validation layer: `apt-get install vulkan-validationlayers`",
                 ));
             }
+        }
+        let mut available: Vec<String> = Vec::new();
+        let sources: &[Option<&CStr>] = if validation {
+            &[None, Some(VALIDATION_LAYER)]
+        } else {
+            &[None]
+        };
+        for &layer in sources {
+            // SAFETY: plain enumeration on a loaded entry.
+            let listed = unsafe { entry.enumerate_instance_extension_properties(layer) }
+                .map_err(|e| map_vk("listing instance extensions", e))?;
+            available.extend(listed.iter().filter_map(|e| {
+                e.extension_name_as_c_str()
+                    .ok()
+                    .map(|n| n.to_string_lossy().into_owned())
+            }));
+        }
+        let absent: Vec<String> = extensions
+            .iter()
+            // SAFETY: every pointer is a NUL-terminated extension name (ash's
+            // constants or ash-window's).
+            .map(|&e| unsafe { CStr::from_ptr(e) }.to_string_lossy().into_owned())
+            .filter(|name| !available.contains(name))
+            .collect();
+        if !absent.is_empty() {
+            return Err(missing(
+                absent.join(", "),
+                "the Vulkan driver or loader lacks these instance extensions: update it",
+            ));
         }
         let mut info = vk::InstanceCreateInfo::default()
             .application_info(&app)

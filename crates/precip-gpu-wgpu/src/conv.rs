@@ -19,7 +19,10 @@ pub fn map_device_error(what: &str, error: &dyn std::fmt::Display) -> BackendErr
 pub fn map_scope_error(operation: &str, error: &wgpu::Error) -> BackendError {
     let advice = match error {
         wgpu::Error::OutOfMemory { .. } => {
-            "the device is out of memory: lower the particle budget or the grid sizes"
+            return BackendError::OutOfMemory {
+                backend: NAME,
+                operation: operation.to_owned(),
+            };
         }
         wgpu::Error::Validation { .. } => {
             "this is a bug in precip: please report it with this message"
@@ -35,10 +38,8 @@ pub fn map_scope_error(operation: &str, error: &wgpu::Error) -> BackendError {
 /// No adapter at all.
 #[must_use]
 pub fn no_adapter(detail: &dyn std::fmt::Display) -> BackendError {
-    BackendError::Device {
+    BackendError::NoDriver {
         backend: NAME,
-        message: format!(
-            "no GPU adapter found ({detail}): install a Vulkan driver, e.g. `apt-get install mesa-vulkan-drivers` on Debian or Ubuntu"
-        ),
+        detail: format!("no GPU adapter found: {detail}"),
     }
 }

@@ -108,7 +108,45 @@ pub enum BackendError {
         /// What was asked.
         operation: &'static str,
     },
-    /// A device-level failure reported by a GPU backend.
+    /// The device or host ran out of memory; nothing was changed.
+    #[error(
+        "{backend}: out of memory while {operation}: lower the particle budget, the grid sizes or the image size"
+    )]
+    OutOfMemory {
+        /// The backend's name.
+        backend: &'static str,
+        /// What was being done.
+        operation: String,
+    },
+    /// The device was lost (a driver reset or a hang); the backend is unusable.
+    #[error("{backend}: the device was lost while {operation}: create a new backend")]
+    DeviceLost {
+        /// The backend's name.
+        backend: &'static str,
+        /// What was being done.
+        operation: String,
+    },
+    /// A layer, extension or feature the backend needs is missing.
+    #[error("{backend}: {what} is missing: {advice}")]
+    MissingCapability {
+        /// The backend's name.
+        backend: &'static str,
+        /// What is missing, by name where known (e.g. `VK_KHR_swapchain`).
+        what: String,
+        /// What to do.
+        advice: String,
+    },
+    /// No GPU driver or loader.
+    #[error(
+        "{backend}: no GPU driver ({detail}): install one, e.g. `apt-get install mesa-vulkan-drivers` on Debian or Ubuntu"
+    )]
+    NoDriver {
+        /// The backend's name.
+        backend: &'static str,
+        /// What the system said.
+        detail: String,
+    },
+    /// Another device-level failure reported by a GPU backend.
     #[error("{backend}: {message}")]
     Device {
         /// The backend's name.
