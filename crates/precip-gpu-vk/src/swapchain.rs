@@ -69,6 +69,9 @@ pub struct WindowSurface {
     pub present_mode: vk::PresentModeKHR,
     /// Whether the next frame must re-create the swapchain first.
     pub stale: bool,
+    /// The size the swapchain was last made for (the surface may have imposed
+    /// another).
+    requested: Option<(u32, u32)>,
     /// Keeps the window alive as long as the surface.
     _window: Arc<dyn Any + Send + Sync>,
 }
@@ -230,6 +233,7 @@ impl WindowSurface {
             next_acquire: 0,
             present_mode,
             stale: true,
+            requested: None,
             _window: window,
         })
     }
@@ -238,6 +242,14 @@ impl WindowSurface {
     #[must_use]
     pub fn extent(&self) -> Option<(u32, u32)> {
         self.chain.as_ref().map(|c| c.extent)
+    }
+
+    /// Whether a frame of `wanted` px needs the swapchain re-created first: it is out
+    /// of date, or was made for another size (a surface that imposes its own size
+    /// is not re-created again for the same request).
+    #[must_use]
+    pub fn needs_rebuild(&self, wanted: (u32, u32)) -> bool {
+        self.stale || self.chain.is_none() || self.requested != Some(wanted)
     }
 
     /// (Re-)creates the swapchain of `wanted` px for the camera pass `pass`; the old
@@ -257,6 +269,7 @@ impl WindowSurface {
         }
         .map_err(|e| map_vk("asking the surface its size", e))?;
         let extent = pick_extent(&caps, wanted);
+        self.requested = Some(wanted);
         if extent.0 == 0 || extent.1 == 0 {
             return Err(BackendError::InvalidView(
                 "the window has no area (minimised): draw when it is shown".into(),

@@ -95,7 +95,7 @@ impl VkBackend {
             let Some(window) = self.window.as_mut() else {
                 break;
             };
-            if window.stale || window.extent() != Some(wanted) {
+            if window.needs_rebuild(wanted) {
                 window.rebuild(
                     &self.device,
                     pass,
