@@ -3,6 +3,8 @@
 
 use std::process::Command;
 
+use crate::xvfb::Xvfb;
+
 fn precip() -> Command {
     Command::new(env!("CARGO_BIN_EXE_precip"))
 }
@@ -87,55 +89,6 @@ fn without_a_display_the_viewer_says_so_and_renders_frames_headless() {
         "{summary}"
     );
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-/// An X server for a window test: Xvfb on a free display, killed on drop.
-struct Xvfb {
-    child: std::process::Child,
-    display: String,
-}
-
-impl Xvfb {
-    fn start() -> Option<Self> {
-        for n in 0..40 {
-            let number = 60 + (std::process::id() as usize + n) % 400;
-            if std::path::Path::new(&format!("/tmp/.X11-unix/X{number}")).exists() {
-                continue;
-            }
-            let display = format!(":{number}");
-            let child = Command::new("Xvfb")
-                .args([
-                    display.as_str(),
-                    "-screen",
-                    "0",
-                    "640x480x24",
-                    "-nolisten",
-                    "tcp",
-                ])
-                .stdout(std::process::Stdio::null())
-                .stderr(std::process::Stdio::null())
-                .spawn()
-                .ok()?;
-            let socket = format!("/tmp/.X11-unix/X{number}");
-            for _ in 0..100 {
-                if std::path::Path::new(&socket).exists() {
-                    return Some(Self { child, display });
-                }
-                std::thread::sleep(std::time::Duration::from_millis(50));
-            }
-            let mut child = child;
-            let _ = child.kill();
-            let _ = child.wait();
-        }
-        None
-    }
-}
-
-impl Drop for Xvfb {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
 }
 
 #[test]

@@ -1,7 +1,10 @@
-//! The viewer: scene files (fixtures written here, the demo), bad files, headless runs.
+//! The viewer: scene files (fixtures written here, the demo), bad files, headless runs,
+//! windows under Xvfb.
 
 mod bad_files;
 mod cli;
 mod fixtures;
 mod headless;
 mod loading;
+mod swapchain;
+mod xvfb;
