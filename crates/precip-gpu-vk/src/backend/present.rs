@@ -11,6 +11,7 @@ use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 
 use super::VkBackend;
 use super::draw::SwapchainFrame;
+use crate::commands::{Semaphores, submit_synced};
 use crate::device::Device;
 use crate::error::{NAME, map_vk};
 use crate::instance::Instance;
@@ -113,7 +114,7 @@ impl VkBackend {
                 height_px,
                 ..*view
             };
-            self.draw(
+            let drawn = self.draw(
                 &sized,
                 Some(SwapchainFrame {
                     format,
@@ -121,7 +122,24 @@ impl VkBackend {
                     acquired: frame.acquired,
                     drawn: frame.drawn,
                 }),
-            )?;
+            );
+            if let Err(e) = drawn {
+                // The image was acquired but not drawn: consume its acquire semaphore
+                // with an empty submission, so the ring can reuse it, and re-create
+                // the swapchain next time (the image is never presented).
+                let waits = [(frame.acquired, vk::PipelineStageFlags::ALL_COMMANDS)];
+                let semaphores = Semaphores {
+                    wait: &waits,
+                    signal: &[],
+                };
+                if let Ok(f) = submit_synced(&self.device, semaphores, |_| {}) {
+                    self.track(f);
+                }
+                if let Some(window) = self.window.as_mut() {
+                    window.stale = true;
+                }
+                return Err(e);
+            }
             if let Some(window) = self.window.as_mut() {
                 window.present(&self.device, &frame)?;
             }
