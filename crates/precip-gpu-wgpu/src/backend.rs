@@ -23,7 +23,7 @@ use crate::render::target::{ColourTarget, DepthBuffer, OFFSCREEN_FORMAT};
 use crate::render::{FrameTarget, RenderState, Renderer, encode_frame};
 use crate::resources::{Resources, upload_wind};
 use crate::timestamps::Timestamps;
-use precip_model::render::{FrameInputs, RenderParams, validate_view};
+use precip_model::render::validate_view;
 
 /// Bytes of one particle on the GPU.
 const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
@@ -238,18 +238,13 @@ impl WgpuBackend {
             render.depth = Some(DepthBuffer::new(&gpu, size.0, size.1));
         }
         let setup = &state.setup;
-        let params = RenderParams::new(&FrameInputs {
+        let params = setup.render_params(
             view,
-            weather: &state.weather,
-            settings: &setup.render,
-            cover_params: &setup.cover.params,
-            ground: setup.ground.frame,
-            cover: setup.cover.frame,
-            shadow_bounds_m: render.shadow_bounds_m,
-            time_s: state.time_s as f32,
-            particle_count: state.resources.particle_count,
-            cull_groups: render.frame.cull_groups,
-        });
+            &state.weather,
+            render.shadow_bounds_m,
+            state.time_s,
+            state.resources.particle_count,
+        );
         let stamps = self.render_stamps.as_ref();
         let draws = renderer.draws(format);
         let render_ref = &*render;

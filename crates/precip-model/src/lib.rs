@@ -33,6 +33,7 @@ pub mod drawing;
 pub mod emitter;
 pub mod error;
 pub mod gpu;
+pub mod gpu_scene;
 pub mod ground;
 pub mod particle;
 pub mod raindrop;

@@ -265,6 +265,34 @@ pub struct FrameInputs<'a> {
     pub cull_groups: u32,
 }
 
+impl crate::Setup {
+    /// The frame's uniform block for `view` under `weather` at `time_s`, the shadow map
+    /// enclosing `shadow_bounds_m`, for `particle_count` particles: what every GPU
+    /// backend draws a frame of this setup with.
+    #[must_use]
+    pub fn render_params(
+        &self,
+        view: &View,
+        weather: &Weather,
+        shadow_bounds_m: (Vec3, Vec3),
+        time_s: f64,
+        particle_count: u32,
+    ) -> RenderParams {
+        RenderParams::new(&FrameInputs {
+            view,
+            weather,
+            settings: &self.render,
+            cover_params: &self.cover.params,
+            ground: self.ground.frame,
+            cover: self.cover.frame,
+            shadow_bounds_m,
+            time_s: time_s as f32,
+            particle_count,
+            cull_groups: crate::gpu::cull_groups(particle_count),
+        })
+    }
+}
+
 impl RenderParams {
     /// The block for one frame.
     #[must_use]

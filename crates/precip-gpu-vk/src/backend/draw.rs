@@ -11,7 +11,7 @@ use crate::render::scene::SceneGpu;
 use crate::render::target::{OFFSCREEN_FORMAT, OffscreenTarget};
 use crate::render::{FrameTarget, RenderState, Renderer, record_frame};
 use crate::resources::{FRAMES_IN_FLIGHT, download};
-use precip_model::render::{FrameInputs, RenderParams, validate_view};
+use precip_model::render::validate_view;
 use precip_model::{BackendError, View};
 
 /// A swapchain image to draw into: its framebuffer (made for the camera pass of
@@ -139,18 +139,13 @@ impl VkBackend {
             (None, None) => return Err(BackendError::NothingRendered),
         };
         let setup = &state.setup;
-        let params = RenderParams::new(&FrameInputs {
+        let params = setup.render_params(
             view,
-            weather: &state.weather,
-            settings: &setup.render,
-            cover_params: &setup.cover.params,
-            ground: setup.ground.frame,
-            cover: setup.cover.frame,
-            shadow_bounds_m: render.shadow_bounds_m,
-            time_s: state.time_s as f32,
-            particle_count: state.resources.particle_count,
-            cull_groups: precip_model::gpu::cull_groups(state.resources.particle_count),
-        });
+            &state.weather,
+            render.shadow_bounds_m,
+            state.time_s,
+            state.resources.particle_count,
+        );
         let slot = render.frames_drawn % FRAMES_IN_FLIGHT as u64;
         let offset = slot * render.frame.params_stride;
         render

@@ -4,6 +4,7 @@
 use std::ops::Range;
 
 use precip_model::gpu::{SceneVertex, render_bindings as rb};
+use precip_model::gpu_scene::PackedScene;
 use precip_model::{BackendError, RenderSettings, Scene, TextureRgba8};
 use wgpu::util::DeviceExt;
 
@@ -81,25 +82,12 @@ impl SceneGpu {
         scene: &Scene,
         settings: &RenderSettings,
     ) -> Result<Self, BackendError> {
-        let scene = scene.tessellated(settings.tessellation_edge_m, settings.max_scene_triangles);
-        let mut vertices: Vec<SceneVertex> = Vec::new();
-        let mut indices: Vec<u32> = Vec::new();
-        let mut ranges = Vec::with_capacity(scene.meshes.len());
-        for mesh in &scene.meshes {
-            let base = u32::try_from(vertices.len()).map_err(|_| too_big("vertices"))?;
-            for (i, p) in mesh.positions_m.iter().enumerate() {
-                vertices.push(SceneVertex {
-                    position_m: p.to_array(),
-                    normal: mesh.normals[i].to_array(),
-                    uv: mesh.uvs[i].to_array(),
-                    eligibility: mesh.snow_eligibility[i],
-                });
-            }
-            let start = u32::try_from(indices.len()).map_err(|_| too_big("indices"))?;
-            indices.extend(mesh.indices.iter().map(|i| i + base));
-            let end = u32::try_from(indices.len()).map_err(|_| too_big("indices"))?;
-            ranges.push(start..end);
-        }
+        let PackedScene {
+            scene,
+            vertices,
+            indices,
+            ranges,
+        } = PackedScene::new(scene, settings)?;
         let max = gpu.device.limits().max_buffer_size;
         let vertex_bytes = (vertices.len() * size_of::<SceneVertex>()) as u64;
         if vertex_bytes > max {
