@@ -10,13 +10,8 @@ use precip_model::shaders::Program;
 
 fn main() {
     let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-    for program in [
-        Program::StepParticles,
-        Program::CoverUpdate,
-        Program::ProbeRng,
-        Program::Render,
-        Program::CullParticles,
-    ] {
+    let compiled: [Program; 5] = include!("src/compiled_programs.in");
+    for program in compiled {
         let source = program.source();
         let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| {
             panic!("{program:?}: {}", e.emit_to_string(&source));
@@ -35,4 +30,5 @@ fn main() {
         std::fs::write(out.join(format!("{program:?}.spv")), bytes).expect("write SPIR-V");
     }
     println!("cargo:rerun-if-changed=../precip-model/shaders");
+    println!("cargo:rerun-if-changed=src/compiled_programs.in");
 }

@@ -13,6 +13,7 @@
 //! - [`buffer`], [`image`] — memory through gpu-allocator.
 //! - [`commands`] — submissions behind fences (with semaphores for a swapchain);
 //!   barriers.
+//! - [`descriptors`] — pools sized for their sets, allocation, write infos.
 //! - [`spirv`], [`programs`] — modules, set and pipeline layouts, compute pipelines.
 //! - [`resources`] — one configuration's buffers, wind volume, descriptor sets, uploads.
 //! - [`query`] — timestamps per kernel.
@@ -41,6 +42,7 @@
 pub mod backend;
 pub mod buffer;
 pub mod commands;
+pub mod descriptors;
 pub mod device;
 pub mod error;
 pub mod image;

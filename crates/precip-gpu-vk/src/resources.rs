@@ -11,8 +11,8 @@ use precip_model::{BackendError, GroundMap, Particle};
 
 use crate::buffer::Buffer;
 use crate::commands::{compute_barrier, submit};
+use crate::descriptors::{self, buffer_info, image_info, write};
 use crate::device::Device;
-use crate::error::map_vk;
 use crate::image::{COLOUR, Image};
 use crate::programs::Programs;
 
@@ -281,45 +281,24 @@ impl Resources {
         let cover_uniforms = uniform(device, "cover uniforms", uniform_stride * count)?;
 
         use vk::DescriptorType as T;
-        let sizes = [
-            vk::DescriptorPoolSize {
-                ty: T::UNIFORM_BUFFER_DYNAMIC,
-                descriptor_count: 2,
-            },
-            vk::DescriptorPoolSize {
-                ty: T::UNIFORM_BUFFER,
-                descriptor_count: 2,
-            },
-            vk::DescriptorPoolSize {
-                ty: T::SAMPLED_IMAGE,
-                descriptor_count: 1,
-            },
-            vk::DescriptorPoolSize {
-                ty: T::STORAGE_BUFFER,
-                descriptor_count: 5,
-            },
-        ];
-        let pool_info = vk::DescriptorPoolCreateInfo::default()
-            .max_sets(2)
-            .pool_sizes(&sizes);
-        // SAFETY: a valid device and create info.
-        let pool = unsafe { device.raw.create_descriptor_pool(&pool_info, None) }
-            .map_err(|e| map_vk("creating a descriptor pool", e))?;
-        let layouts = [programs.step_set_layout, programs.cover_set_layout];
-        let alloc = vk::DescriptorSetAllocateInfo::default()
-            .descriptor_pool(pool)
-            .set_layouts(&layouts);
-        // SAFETY: the pool has room for both sets.
-        let sets = unsafe { device.raw.allocate_descriptor_sets(&alloc) }
-            .map_err(|e| map_vk("allocating descriptor sets", e))?;
+        let pool = descriptors::pool(
+            device,
+            "simulation",
+            &[
+                (T::UNIFORM_BUFFER_DYNAMIC, 2),
+                (T::UNIFORM_BUFFER, 2),
+                (T::SAMPLED_IMAGE, 1),
+                (T::STORAGE_BUFFER, 5),
+            ],
+            2,
+        )?;
+        let sets = descriptors::allocate(
+            device,
+            pool,
+            &[programs.step_set_layout, programs.cover_set_layout],
+        )?;
         let (step_set, cover_set) = (sets[0], sets[1]);
-        let info = |b: &Buffer, range: u64| {
-            [vk::DescriptorBufferInfo {
-                buffer: b.raw,
-                offset: 0,
-                range,
-            }]
-        };
+        let info = buffer_info;
         let whole = vk::WHOLE_SIZE;
         let step_params = info(&step_uniforms, size_of::<StepParams>() as u64);
         let frames_info = info(&frames_buffer, size_of::<Frames>() as u64);
@@ -329,17 +308,7 @@ impl Resources {
         let deposits_info = info(&deposits, whole);
         let cover_params = info(&cover_uniforms, size_of::<CoverStepParams>() as u64);
         let cover_info = info(&cover_buffer, whole);
-        let image = [vk::DescriptorImageInfo {
-            sampler: vk::Sampler::null(),
-            image_view: volume.view,
-            image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-        }];
-        let write = |set, b, ty| {
-            vk::WriteDescriptorSet::default()
-                .dst_set(set)
-                .dst_binding(b)
-                .descriptor_type(ty)
-        };
+        let image = image_info(volume.view);
         let writes = [
             write(
                 step_set,

@@ -83,8 +83,6 @@ impl VkBackend {
             None => (OFFSCREEN_FORMAT, vk::ImageLayout::TRANSFER_SRC_OPTIMAL),
         };
         let passes = self.prepare_renderer(format, final_layout)?;
-        let offscreen_pass =
-            self.prepare_renderer(OFFSCREEN_FORMAT, vk::ImageLayout::TRANSFER_SRC_OPTIMAL)?;
         let device = &self.device;
         let (Some(renderer), Some(state)) = (self.renderer.as_ref(), self.state.as_mut()) else {
             return Err(BackendError::NotConfigured {
@@ -127,7 +125,7 @@ impl VkBackend {
         };
         let size = (view.width_px, view.height_px);
         if swapchain.is_none() && render.offscreen.as_ref().is_none_or(|t| t.size() != size) {
-            let new = OffscreenTarget::new(device, offscreen_pass.scene, size)?;
+            let new = OffscreenTarget::new(device, passes.scene, size)?;
             if let Some(old) = render.offscreen.replace(new) {
                 self.retired.retire(self.submitted, move |d| old.destroy(d));
             }

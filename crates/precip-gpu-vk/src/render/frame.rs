@@ -11,6 +11,7 @@ use precip_model::render::RenderParams;
 
 use super::Renderer;
 use crate::buffer::Buffer;
+use crate::descriptors::{self, buffer_info, image_info, sampler_info, write};
 use crate::device::Device;
 use crate::error::map_vk;
 use crate::image::{DEPTH_FORMAT, Image, ImageSpec};
@@ -118,83 +119,39 @@ impl FrameResources {
         device.name(shadow_framebuffer, "precip shadow framebuffer");
 
         use vk::DescriptorType as T;
-        let sizes = [
-            vk::DescriptorPoolSize {
-                ty: T::UNIFORM_BUFFER_DYNAMIC,
-                descriptor_count: 2,
-            },
-            vk::DescriptorPoolSize {
-                ty: T::STORAGE_BUFFER,
-                descriptor_count: 8,
-            },
-            vk::DescriptorPoolSize {
-                ty: T::SAMPLED_IMAGE,
-                descriptor_count: 2,
-            },
-            vk::DescriptorPoolSize {
-                ty: T::SAMPLER,
-                descriptor_count: 2,
-            },
-        ];
-        let pool_info = vk::DescriptorPoolCreateInfo::default()
-            .max_sets(3)
-            .pool_sizes(&sizes);
-        // SAFETY: a valid device and create info.
-        let pool = unsafe { device.raw.create_descriptor_pool(&pool_info, None) }
-            .map_err(|e| map_vk("creating a descriptor pool", e))?;
-        let layouts = [
-            renderer.layouts.frame,
-            renderer.layouts.light,
-            renderer.layouts.cull,
-        ];
-        let alloc = vk::DescriptorSetAllocateInfo::default()
-            .descriptor_pool(pool)
-            .set_layouts(&layouts);
-        // SAFETY: the pool has room for the three sets.
-        let sets = unsafe { device.raw.allocate_descriptor_sets(&alloc) }
-            .map_err(|e| map_vk("allocating descriptor sets", e))?;
+        let pool = descriptors::pool(
+            device,
+            "frame",
+            &[
+                (T::UNIFORM_BUFFER_DYNAMIC, 2),
+                (T::STORAGE_BUFFER, 8),
+                (T::SAMPLED_IMAGE, 2),
+                (T::SAMPLER, 2),
+            ],
+            3,
+        )?;
+        let sets = descriptors::allocate(
+            device,
+            pool,
+            &[
+                renderer.layouts.frame,
+                renderer.layouts.light,
+                renderer.layouts.cull,
+            ],
+        )?;
         let (frame_set, light_set, cull_set) = (sets[0], sets[1], sets[2]);
-        let whole = |b: &Buffer| {
-            [vk::DescriptorBufferInfo {
-                buffer: b.raw,
-                offset: 0,
-                range: vk::WHOLE_SIZE,
-            }]
-        };
-        let params_info = [vk::DescriptorBufferInfo {
-            buffer: params.raw,
-            offset: 0,
-            range: size_of::<RenderParams>() as u64,
-        }];
+        let whole = |b: &Buffer| buffer_info(b, vk::WHOLE_SIZE);
+        let params_info = buffer_info(&params, size_of::<RenderParams>() as u64);
         let (cover, ground, particles) =
             (whole(&sim.cover), whole(&sim.ground), whole(&sim.particles));
         let (drawn_info, groups_info, draws_info) =
             (whole(&drawn), whole(&group_counts), whole(&draws));
-        let image = |view| {
-            [vk::DescriptorImageInfo {
-                sampler: vk::Sampler::null(),
-                image_view: view,
-                image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-            }]
-        };
-        let sampler = |sampler| {
-            [vk::DescriptorImageInfo {
-                sampler,
-                image_view: vk::ImageView::null(),
-                image_layout: vk::ImageLayout::UNDEFINED,
-            }]
-        };
-        let (shadow_image, flake_image) = (image(shadow_map.view), image(renderer.flake.view));
+        let (shadow_image, flake_image) =
+            (image_info(shadow_map.view), image_info(renderer.flake.view));
         let (shadow_sampler, flake_sampler) = (
-            sampler(renderer.samplers.shadow),
-            sampler(renderer.samplers.flake),
+            sampler_info(renderer.samplers.shadow),
+            sampler_info(renderer.samplers.flake),
         );
-        let write = |set, b, ty| {
-            vk::WriteDescriptorSet::default()
-                .dst_set(set)
-                .dst_binding(b)
-                .descriptor_type(ty)
-        };
         let writes = [
             write(frame_set, rb::PARAMS, T::UNIFORM_BUFFER_DYNAMIC).buffer_info(&params_info),
             write(frame_set, rb::COVER, T::STORAGE_BUFFER).buffer_info(&cover),

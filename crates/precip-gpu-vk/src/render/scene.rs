@@ -13,8 +13,8 @@ use precip_model::{BackendError, RenderSettings, Scene, TextureRgba8};
 
 use super::Renderer;
 use crate::buffer::Buffer;
+use crate::descriptors::{self, image_info, sampler_info, write};
 use crate::device::Device;
-use crate::error::map_vk;
 use crate::image::{Image, ImageSpec};
 use crate::resources::{upload, upload_image};
 
@@ -100,26 +100,16 @@ impl SceneGpu {
         } = PackedScene::new(scene, settings)?;
         let mesh_count = u32::try_from(ranges.len().max(1)).map_err(|_| too_big("meshes"))?;
         use vk::DescriptorType as T;
-        let sizes = [
-            vk::DescriptorPoolSize {
-                ty: T::UNIFORM_BUFFER,
-                descriptor_count: mesh_count,
-            },
-            vk::DescriptorPoolSize {
-                ty: T::SAMPLED_IMAGE,
-                descriptor_count: mesh_count,
-            },
-            vk::DescriptorPoolSize {
-                ty: T::SAMPLER,
-                descriptor_count: mesh_count,
-            },
-        ];
-        let pool_info = vk::DescriptorPoolCreateInfo::default()
-            .max_sets(mesh_count)
-            .pool_sizes(&sizes);
-        // SAFETY: a valid device and create info.
-        let pool = unsafe { device.raw.create_descriptor_pool(&pool_info, None) }
-            .map_err(|e| map_vk("creating the materials' descriptor pool", e))?;
+        let pool = descriptors::pool(
+            device,
+            "materials",
+            &[
+                (T::UNIFORM_BUFFER, mesh_count),
+                (T::SAMPLED_IMAGE, mesh_count),
+                (T::SAMPLER, mesh_count),
+            ],
+            mesh_count,
+        )?;
         let mut gpu = Self {
             vertices: Buffer::new(
                 device,
@@ -203,34 +193,15 @@ impl SceneGpu {
             let (colour_raw, view) = (colour.raw, image.view);
             self.materials.push((colour, image));
             written?;
-            let layouts = [renderer.layouts.material];
-            let alloc = vk::DescriptorSetAllocateInfo::default()
-                .descriptor_pool(self.pool)
-                .set_layouts(&layouts);
-            // SAFETY: the pool was sized for one set per mesh.
-            let set = unsafe { device.raw.allocate_descriptor_sets(&alloc) }
-                .map_err(|e| map_vk("allocating a material's descriptor set", e))?[0];
+            let set = descriptors::allocate(device, self.pool, &[renderer.layouts.material])?[0];
             let buffer = [vk::DescriptorBufferInfo {
                 buffer: colour_raw,
                 offset: 0,
                 range: 16,
             }];
-            let image = [vk::DescriptorImageInfo {
-                sampler: vk::Sampler::null(),
-                image_view: view,
-                image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-            }];
-            let sampler = [vk::DescriptorImageInfo {
-                sampler: renderer.samplers.material,
-                image_view: vk::ImageView::null(),
-                image_layout: vk::ImageLayout::UNDEFINED,
-            }];
-            let write = |b, ty| {
-                vk::WriteDescriptorSet::default()
-                    .dst_set(set)
-                    .dst_binding(b)
-                    .descriptor_type(ty)
-            };
+            let image = image_info(view);
+            let sampler = sampler_info(renderer.samplers.material);
+            let write = |b, ty| write(set, b, ty);
             let writes = [
                 write(rb::MATERIAL, vk::DescriptorType::UNIFORM_BUFFER).buffer_info(&buffer),
                 write(rb::BASE_COLOUR_TEXTURE, vk::DescriptorType::SAMPLED_IMAGE)

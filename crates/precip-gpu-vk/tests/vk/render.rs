@@ -11,7 +11,7 @@ use precip_model::wind::WindField;
 use precip_model::{Backend, BackendError, Camera, Image, PrecipitationKind, Setup, View};
 use proptest::prelude::*;
 
-use crate::{assert_clean, vk};
+use crate::{assert_clean, assert_log_clean, vk};
 
 /// Pixels whose channels all agree within 1/255, as a fraction, and the largest
 /// channel difference.
@@ -148,12 +148,7 @@ fn resizing_reconfiguring_and_dropping_leave_nothing_behind() {
         })
         .expect("renders");
         drop(vk);
-        let messages = log.lock().map(|m| m.clone()).unwrap_or_default();
-        assert!(
-            messages.is_empty(),
-            "round {round}:\n{}",
-            messages.join("\n")
-        );
+        assert_log_clean(&log, &format!("round {round}"));
     }
 }
 
