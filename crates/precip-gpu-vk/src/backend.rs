@@ -17,8 +17,8 @@ use precip_model::gpu::{DispatchOver, dispatch_size};
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
 use precip_model::{
-    Backend, BackendError, BackendInfo, Camera, Image, Particle, Setup, TimingSource, Timings,
-    View, Weather, substeps,
+    Backend, BackendError, BackendInfo, Camera, DeviceMemory, Image, Particle, Setup, TimingSource,
+    Timings, View, Weather, substeps,
 };
 
 use std::collections::VecDeque;
@@ -505,5 +505,14 @@ impl Backend for VkBackend {
             }
         }
         Ok(timings)
+    }
+
+    fn device_memory(&self) -> Option<DeviceMemory> {
+        let report = self.device.allocator.lock().ok()?.generate_report();
+        Some(DeviceMemory {
+            allocations: report.allocations.len() as u64,
+            allocated_bytes: report.total_allocated_bytes,
+            reserved_bytes: report.total_capacity_bytes,
+        })
     }
 }

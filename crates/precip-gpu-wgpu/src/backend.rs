@@ -8,8 +8,8 @@ use precip_model::gpu::{DispatchOver, INIT_PASS, dispatch_size};
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
 use precip_model::{
-    Backend, BackendError, BackendInfo, Camera, Image, Particle, Setup, TimingSource, Timings,
-    View, Weather, substeps,
+    Backend, BackendError, BackendInfo, Camera, DeviceMemory, Image, Particle, Setup, TimingSource,
+    Timings, View, Weather, substeps,
 };
 
 use crate::conv::{NAME, map_scope_error};
@@ -539,5 +539,16 @@ impl Backend for WgpuBackend {
             }
         }
         Ok(timings)
+    }
+
+    fn device_memory(&self) -> Option<DeviceMemory> {
+        self.gpu
+            .device
+            .generate_allocator_report()
+            .map(|r| DeviceMemory {
+                allocations: r.allocations.len() as u64,
+                allocated_bytes: r.total_allocated_bytes,
+                reserved_bytes: r.total_reserved_bytes,
+            })
     }
 }

@@ -8,7 +8,8 @@
 // The lists keep buffer order, so a frame draws (and blends) in the same order with
 // culling on or off: only what is outside the cone is missing.
 
-@group(0) @binding(0) var<uniform> params: RenderParams;
+// Read-only storage, as in render_scene.wgsl (why: there).
+@group(0) @binding(0) var<storage, read> params: RenderParams;
 @group(0) @binding(1) var<storage, read> particles: array<Particle>;
 @group(0) @binding(2) var<storage, read_write> group_counts: array<vec2<u32>>;
 @group(0) @binding(3) var<storage, read_write> drawn: array<u32>;

@@ -3,7 +3,11 @@
 // are listed in precip_model::gpu::render_bindings.
 
 // Group 0: the frame.
-@group(0) @binding(0) var<uniform> params: RenderParams;
+// RenderParams is read-only storage, not a uniform: Mesa's lavapipe up to 23.1 inlines
+// uniform-buffer values into shaders at every draw and never frees the compiled
+// variants (about 2 MB a frame here, freed only with the device); storage is never
+// inlined. Every GPU reads a 400-byte block the same either way.
+@group(0) @binding(0) var<storage, read> params: RenderParams;
 @group(0) @binding(1) var<storage, read> cover: array<CoverTexel>;
 @group(0) @binding(2) var<storage, read> ground_height: array<f32>;
 @group(0) @binding(3) var<storage, read> particles: array<Particle>;

@@ -62,6 +62,18 @@ pub struct PassTiming {
     pub milliseconds: f64,
 }
 
+/// The device memory a GPU backend holds now: its live allocations (buffers, images,
+/// their sub-allocations) as its allocator counts them. Soak tests bound its growth.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct DeviceMemory {
+    /// Live allocations.
+    pub allocations: u64,
+    /// Bytes they use.
+    pub allocated_bytes: u64,
+    /// Bytes of the memory blocks reserved for them.
+    pub reserved_bytes: u64,
+}
+
 /// Per-pass timings of the last `step`/`render`/`set_weather`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Timings {
@@ -98,4 +110,9 @@ pub trait Backend {
     fn read_image(&mut self) -> Result<Image, BackendError>;
     /// Timings of the last calls, per pass.
     fn timings(&mut self) -> Result<Timings, BackendError>;
+    /// The device memory held now, where the backend's allocator reports it (`None`
+    /// for the CPU reference, or a driver that does not say).
+    fn device_memory(&self) -> Option<DeviceMemory> {
+        None
+    }
 }

@@ -134,7 +134,7 @@ pub fn cull_groups(particle_count: u32) -> u32 {
 
 /// Bindings of [`Program::CullParticles`], group 0.
 pub mod cull_bindings {
-    /// `RenderParams`, uniform.
+    /// `RenderParams`, read-only storage (see `render_bindings::PARAMS`).
     pub const PARAMS: u32 = 0;
     /// Particles, read-only storage.
     pub const PARTICLES: u32 = 1;
@@ -148,7 +148,10 @@ pub mod cull_bindings {
 
 /// Bindings of [`Program::Render`].
 pub mod render_bindings {
-    /// Group 0 (the frame; vertex and fragment): `RenderParams`, uniform.
+    /// Group 0 (the frame; vertex and fragment): `RenderParams`, read-only storage —
+    /// not a uniform, because Mesa's lavapipe up to 23.1 recompiles a shader that
+    /// reads a uniform block at every draw and keeps every variant until the device
+    /// is destroyed (about 2 MB a frame); storage is never inlined.
     pub const PARAMS: u32 = 0;
     /// Group 0: cover texels, read-only storage.
     pub const COVER: u32 = 1;

@@ -51,7 +51,9 @@ pub mod top_down;
 pub mod visibility;
 pub mod weather;
 
-pub use backend::{Backend, BackendInfo, MAX_STEP_S, PassTiming, TimingSource, Timings, substeps};
+pub use backend::{
+    Backend, BackendInfo, DeviceMemory, MAX_STEP_S, PassTiming, TimingSource, Timings, substeps,
+};
 pub use camera::{Camera, Image, View};
 pub use cpu::CpuBackend;
 pub use emitter::{CameraVolume, WorldEmitter};

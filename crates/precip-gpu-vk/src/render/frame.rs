@@ -74,17 +74,14 @@ impl FrameResources {
     ) -> Result<Self, BackendError> {
         let count = sim.particle_count;
         let groups = cull_groups(count);
-        let align = device
-            .properties
-            .limits
-            .min_uniform_buffer_offset_alignment
-            .max(16);
+        let limits = &device.properties.limits;
+        let align = limits.min_storage_buffer_offset_alignment.max(16);
         let params_stride = (size_of::<RenderParams>() as u64).div_ceil(align) * align;
         let params = Buffer::new(
             device,
             "render params",
             params_stride * FRAMES_IN_FLIGHT as u64,
-            vk::BufferUsageFlags::UNIFORM_BUFFER,
+            vk::BufferUsageFlags::STORAGE_BUFFER,
             MemoryLocation::CpuToGpu,
         )?;
         let gpu_only = |name, size, usage| {
@@ -123,7 +120,7 @@ impl FrameResources {
             device,
             "frame",
             &[
-                (T::UNIFORM_BUFFER_DYNAMIC, 2),
+                (T::STORAGE_BUFFER_DYNAMIC, 2),
                 (T::STORAGE_BUFFER, 8),
                 (T::SAMPLED_IMAGE, 2),
                 (T::SAMPLER, 2),
@@ -153,7 +150,7 @@ impl FrameResources {
             sampler_info(renderer.samplers.flake),
         );
         let writes = [
-            write(frame_set, rb::PARAMS, T::UNIFORM_BUFFER_DYNAMIC).buffer_info(&params_info),
+            write(frame_set, rb::PARAMS, T::STORAGE_BUFFER_DYNAMIC).buffer_info(&params_info),
             write(frame_set, rb::COVER, T::STORAGE_BUFFER).buffer_info(&cover),
             write(frame_set, rb::GROUND_HEIGHT, T::STORAGE_BUFFER).buffer_info(&ground),
             write(frame_set, rb::PARTICLES, T::STORAGE_BUFFER).buffer_info(&particles),
@@ -162,7 +159,7 @@ impl FrameResources {
             write(light_set, rb::SHADOW_SAMPLER, T::SAMPLER).image_info(&shadow_sampler),
             write(light_set, rb::FLAKE_OPACITY, T::SAMPLED_IMAGE).image_info(&flake_image),
             write(light_set, rb::FLAKE_SAMPLER, T::SAMPLER).image_info(&flake_sampler),
-            write(cull_set, cb::PARAMS, T::UNIFORM_BUFFER_DYNAMIC).buffer_info(&params_info),
+            write(cull_set, cb::PARAMS, T::STORAGE_BUFFER_DYNAMIC).buffer_info(&params_info),
             write(cull_set, cb::PARTICLES, T::STORAGE_BUFFER).buffer_info(&particles),
             write(cull_set, cb::GROUP_COUNTS, T::STORAGE_BUFFER).buffer_info(&groups_info),
             write(cull_set, cb::DRAWN, T::STORAGE_BUFFER).buffer_info(&drawn_info),

@@ -2,8 +2,8 @@
 //! (bindings: `precip_model::gpu::{render_bindings, cull_bindings}`), the Vulkan
 //! twins of the wgpu backend's bind group layouts.
 //!
-//! `RenderParams` is a dynamic uniform: one block per frame in flight, so the host
-//! writes frame n + 1's while frame n draws.
+//! `RenderParams` is dynamic read-only storage (not a uniform: see render_scene.wgsl):
+//! one block per frame in flight, so the host writes frame n + 1's while frame n draws.
 
 use ash::vk;
 use precip_model::BackendError;
@@ -78,7 +78,7 @@ impl RenderLayouts {
             device,
             "precip render frame",
             &[
-                binding(rb::PARAMS, T::UNIFORM_BUFFER_DYNAMIC, draw),
+                binding(rb::PARAMS, T::STORAGE_BUFFER_DYNAMIC, draw),
                 binding(rb::COVER, T::STORAGE_BUFFER, draw),
                 binding(rb::GROUND_HEIGHT, T::STORAGE_BUFFER, draw),
                 binding(rb::PARTICLES, T::STORAGE_BUFFER, draw),
@@ -108,7 +108,7 @@ impl RenderLayouts {
             device,
             "precip cull",
             &[
-                binding(cb::PARAMS, T::UNIFORM_BUFFER_DYNAMIC, compute),
+                binding(cb::PARAMS, T::STORAGE_BUFFER_DYNAMIC, compute),
                 binding(cb::PARTICLES, T::STORAGE_BUFFER, compute),
                 binding(cb::GROUP_COUNTS, T::STORAGE_BUFFER, compute),
                 binding(cb::DRAWN, T::STORAGE_BUFFER, compute),

@@ -66,7 +66,7 @@ impl FrameResources {
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("precip render params"),
             size: size_of::<RenderParams>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let group_counts = storage(

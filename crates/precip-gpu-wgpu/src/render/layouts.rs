@@ -62,7 +62,12 @@ impl RenderLayouts {
     /// Creates the layouts.
     #[must_use]
     pub fn new(device: &wgpu::Device) -> Self {
-        let params = uniform(size_of::<RenderParams>());
+        // Read-only storage, not uniform: see render_scene.wgsl.
+        let params = wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: NonZeroU64::new(size_of::<RenderParams>() as u64),
+        };
         let frame = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("precip render frame"),
             entries: &[

@@ -1,0 +1,118 @@
+//! The backends under test, opened the same way for every suite in `tests/`: the CPU
+//! reference, wgpu on every adapter found, and precip's Vulkan backend under the
+//! Khronos validation layer (its messages are checked by [`Subject::check_clean`]).
+//!
+//! Without a GPU the GPU subjects are left out with a printed reason, unless
+//! `PRECIP_REQUIRE_GPU=1`, which makes that a failure (CI sets it).
+
+use precip_gpu_vk::VkBackend;
+use precip_gpu_wgpu::{WgpuBackend, adapters};
+use precip_model::{Backend, CpuBackend};
+
+/// One backend under test.
+pub struct Subject {
+    /// What it is: "cpu", "wgpu: llvmpipe (Vulkan)", "vk: llvmpipe".
+    pub name: String,
+    /// The backend.
+    pub backend: Box<dyn Backend>,
+    /// The Vulkan validation layer's log, for the vk backend.
+    validation: Option<precip_gpu_vk::instance::Messages>,
+}
+
+impl std::fmt::Debug for Subject {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Subject").field("name", &self.name).finish()
+    }
+}
+
+impl Subject {
+    /// Panics with the validation layer's messages, if any were reported.
+    pub fn check_clean(&self, when: &str) {
+        if let Some(log) = &self.validation {
+            let messages = log.lock().map(|m| m.clone()).unwrap_or_default();
+            assert!(
+                messages.is_empty(),
+                "{}: the validation layer reported, {when}:\n{}",
+                self.name,
+                messages.join("\n")
+            );
+        }
+    }
+
+    /// Whether it renders.
+    #[must_use]
+    pub fn renders(&self) -> bool {
+        self.backend.info().renders
+    }
+}
+
+fn require_gpu() -> bool {
+    std::env::var("PRECIP_REQUIRE_GPU").as_deref() == Ok("1")
+}
+
+fn missing(test: &str, what: &str) {
+    assert!(!require_gpu(), "{test}: PRECIP_REQUIRE_GPU=1 but {what}");
+    eprintln!("SKIPPED {test}: {what}");
+}
+
+/// The GPU backends: wgpu on every adapter, then vk (validation on).
+#[must_use]
+pub fn gpu_subjects(test: &str) -> Vec<Subject> {
+    let mut subjects = Vec::new();
+    let found = adapters();
+    if found.is_empty() {
+        missing(
+            test,
+            "no wgpu adapter found (install mesa-vulkan-drivers for lavapipe)",
+        );
+    }
+    for adapter in &found {
+        let info = adapter.get_info();
+        let name = format!("wgpu: {} ({:?})", info.name, info.backend);
+        match WgpuBackend::on_adapter(adapter) {
+            Ok(b) => subjects.push(Subject {
+                name,
+                backend: Box::new(b),
+                validation: None,
+            }),
+            Err(e) => missing(test, &format!("{name}: {e}")),
+        }
+    }
+    match VkBackend::new(true) {
+        Ok(b) => {
+            let validation = Some(b.validation_log());
+            subjects.push(Subject {
+                name: format!("vk: {}", b.device_name()),
+                backend: Box::new(b),
+                validation,
+            });
+        }
+        Err(e) => missing(test, &format!("vk: {e}")),
+    }
+    subjects
+}
+
+/// Every backend: the CPU reference first, then [`gpu_subjects`].
+#[must_use]
+pub fn all_subjects(test: &str) -> Vec<Subject> {
+    let mut subjects = vec![Subject {
+        name: "cpu".into(),
+        backend: Box::new(CpuBackend::new()),
+        validation: None,
+    }];
+    subjects.extend(gpu_subjects(test));
+    subjects
+}
+
+/// Resident memory of this process, KiB (`None` where /proc is not available).
+#[must_use]
+pub fn resident_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    status
+        .lines()
+        .find(|l| l.starts_with("VmRSS:"))?
+        .split_whitespace()
+        .nth(1)?
+        .parse()
+        .ok()
+}
