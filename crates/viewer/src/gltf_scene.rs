@@ -20,6 +20,7 @@ use precip_model::{Material, Mesh, Scene, SceneReport, TextureRgba8};
 
 use crate::eligibility::snow_extra;
 use crate::error::LoadError;
+use crate::node_graph::{find_cycle, walk_order};
 
 /// What loading skipped or changed.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -96,37 +97,70 @@ fn import(file: &Path, bytes: &[u8], base: &Path) -> Result<LoadedScene, LoadErr
             }
         }
     }
+    // gltf 1.4's `Image::source` unwraps a missing `uri` (an image that is `{}`) and a
+    // missing `mimeType` beside a `bufferView`: such images are found here, in the
+    // JSON, and never handed to it.
+    let image_problems: Vec<Option<&'static str>> = json
+        .images
+        .iter()
+        .map(
+            |image| match (&image.buffer_view, &image.uri, &image.mime_type) {
+                (None, None, _) => Some("has neither a uri nor a bufferView"),
+                (Some(_), _, None) => Some("has a bufferView but no mimeType"),
+                _ => None,
+            },
+        )
+        .collect();
     let document = gltf::Document::from_json(json).map_err(gltf_error)?;
     let buffers = gltf::import_buffers(&document, Some(base), blob).map_err(gltf_error)?;
     let mut warnings = Vec::new();
-    // The image importer indexes buffer views without checking them: check first.
-    let views_ok = document.images().all(|image| match image.source() {
-        gltf::image::Source::View { view, .. } => {
-            buffers.get(view.buffer().index()).is_some_and(|b| {
-                view.offset()
-                    .checked_add(view.length())
-                    .is_some_and(|end| end <= b.len())
-            })
-        }
-        gltf::image::Source::Uri { .. } => true,
-    });
-    let images = if document.images().next().is_none() {
-        Vec::new()
-    } else if !views_ok {
-        warnings.push("images: a buffer view reaches past its buffer; drawn untextured".to_owned());
-        Vec::new()
-    } else {
-        match gltf::import_images(&document, Some(base), &buffers) {
-            Ok(images) => images,
-            Err(e) => {
-                warnings.push(format!("images: {e}; drawn untextured"));
-                Vec::new()
-            }
-        }
-    };
+    let images = import_images(&document, base, &buffers, &image_problems, &mut warnings);
     let mut loaded = convert(file, &document, &buffers, &images)?;
     loaded.report.skipped.extend(warnings);
     Ok(loaded)
+}
+
+/// Each image decoded on its own (a broken one is `None`, with a warning, and its
+/// meshes are drawn untextured), after the checks the glTF reader would otherwise
+/// make with a panic: `problems` from the JSON, and buffer views inside their buffers.
+fn import_images(
+    document: &gltf::Document,
+    base: &Path,
+    buffers: &[gltf::buffer::Data],
+    problems: &[Option<&'static str>],
+    warnings: &mut Vec<String>,
+) -> Vec<Option<gltf::image::Data>> {
+    document
+        .images()
+        .map(|image| {
+            let i = image.index();
+            if let Some(problem) = problems.get(i).copied().flatten() {
+                warnings.push(format!("image {i} {problem}; drawn untextured"));
+                return None;
+            }
+            let source = image.source();
+            if let gltf::image::Source::View { view, .. } = &source {
+                let inside = buffers.get(view.buffer().index()).is_some_and(|b| {
+                    view.offset()
+                        .checked_add(view.length())
+                        .is_some_and(|end| end <= b.len())
+                });
+                if !inside {
+                    warnings.push(format!(
+                        "image {i}: its buffer view reaches past its buffer; drawn untextured"
+                    ));
+                    return None;
+                }
+            }
+            match gltf::image::Data::from_source(source, Some(base), buffers) {
+                Ok(data) => Some(data),
+                Err(e) => {
+                    warnings.push(format!("image {i}: {e}; drawn untextured"));
+                    None
+                }
+            }
+        })
+        .collect()
 }
 
 /// Runs `f`, turning a panic inside the glTF reader into an error.
@@ -260,7 +294,7 @@ fn rgba8(image: &gltf::image::Data) -> Option<TextureRgba8> {
 struct Converter<'a> {
     file: &'a Path,
     buffers: &'a [gltf::buffer::Data],
-    images: &'a [gltf::image::Data],
+    images: &'a [Option<gltf::image::Data>],
     report: LoadReport,
     meshes: Vec<Mesh>,
 }
@@ -273,12 +307,47 @@ impl Converter<'_> {
         }
     }
 
+    /// The meshes under the scene's `roots`, walked with an explicit stack (see
+    /// [`crate::node_graph`]): each node once, its transform and snow value from its
+    /// parent's.
+    fn nodes(&mut self, document: &gltf::Document, roots: &[usize]) -> Result<(), LoadError> {
+        let nodes: Vec<gltf::Node<'_>> = document.nodes().collect();
+        let children: Vec<Vec<usize>> = nodes
+            .iter()
+            .map(|n| n.children().map(|c| c.index()).collect())
+            .collect();
+        if let Some(cycle) = find_cycle(&children) {
+            let path: Vec<String> = cycle.iter().map(usize::to_string).collect();
+            return Err(self.invalid(format!(
+                "nodes {} form a cycle (a node is its own ancestor); glTF requires the node hierarchy to be trees",
+                path.join(" → ")
+            )));
+        }
+        let (order, again) = walk_order(&children, roots);
+        for node in again {
+            self.report.skipped.push(format!(
+                "node {node}: reached a second time (two parents, or a root listed twice); drawn once"
+            ));
+        }
+        let mut placed: Vec<(Mat4, Option<f32>)> = Vec::with_capacity(order.len());
+        for visit in order {
+            let (parent, inherited) = visit
+                .parent
+                .and_then(|p| placed.get(p).copied())
+                .unwrap_or((Mat4::IDENTITY, None));
+            let placement = self.node(&nodes[visit.node], parent, inherited)?;
+            placed.push(placement);
+        }
+        Ok(())
+    }
+
+    /// One node's meshes; returns its world transform and snow value for its children.
     fn node(
         &mut self,
         node: &gltf::Node<'_>,
         parent: Mat4,
         inherited_snow: Option<f32>,
-    ) -> Result<(), LoadError> {
+    ) -> Result<(Mat4, Option<f32>), LoadError> {
         let local = Mat4::from_cols_array_2d(&node.transform().matrix());
         let world = parent * local;
         let node_snow = snow_extra(node.extras())
@@ -299,10 +368,7 @@ impl Converter<'_> {
                 node.index()
             ));
         }
-        for child in node.children() {
-            self.node(&child, world, node_snow)?;
-        }
-        Ok(())
+        Ok((world, node_snow))
     }
 
     fn mesh(
@@ -386,7 +452,7 @@ impl Converter<'_> {
             let source = info.texture().source().index();
             match (
                 primitive.get(&gltf::Semantic::TexCoords(set)),
-                self.images.get(source),
+                self.images.get(source).and_then(Option::as_ref),
             ) {
                 (Some(a), Some(image)) => {
                     check_accessor(&a, buffers, &[(Dimensions::Vec2, UV_TYPES)])?;
@@ -502,7 +568,7 @@ fn convert(
     file: &Path,
     document: &gltf::Document,
     buffers: &[gltf::buffer::Data],
-    images: &[gltf::image::Data],
+    images: &[Option<gltf::image::Data>],
 ) -> Result<LoadedScene, LoadError> {
     let mut c = Converter {
         file,
@@ -524,9 +590,8 @@ fn convert(
         .or_else(|| document.scenes().next());
     match scene {
         Some(scene) => {
-            for node in scene.nodes() {
-                c.node(&node, Mat4::IDENTITY, None)?;
-            }
+            let roots: Vec<usize> = scene.nodes().map(|n| n.index()).collect();
+            c.nodes(document, &roots)?;
         }
         None => {
             // No scene: every mesh once, untransformed.

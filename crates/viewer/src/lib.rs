@@ -13,6 +13,7 @@ pub mod fly_camera;
 pub mod glb;
 pub mod gltf_scene;
 pub mod headless;
+pub mod node_graph;
 pub mod presets;
 pub mod scene_setup;
 pub mod window;

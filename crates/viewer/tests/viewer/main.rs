@@ -4,6 +4,7 @@
 mod bad_files;
 mod cli;
 mod fixtures;
+mod graphs;
 mod headless;
 mod loading;
 mod swapchain;
