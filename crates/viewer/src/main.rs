@@ -310,7 +310,28 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Keeps Mesa's device-select Vulkan layer from probing for a Wayland compositor when
+/// there can be none: without a valid `XDG_RUNTIME_DIR` its probe fails and libwayland
+/// prints `error: XDG_RUNTIME_DIR is invalid or not set in the environment.` (twice, on
+/// every headless run), which reads as precip's error. The layer only orders the
+/// devices by the session's default GPU; precip picks its device itself. A user's own
+/// `NODEVICE_SELECT` is left as it is.
+#[expect(
+    unsafe_code,
+    reason = "setting an environment variable, done first in main before any thread exists"
+)]
+fn quiet_wayland_probe_without_a_session() {
+    let runtime_dir_ok =
+        std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| std::path::Path::new(&d).is_dir());
+    if !runtime_dir_ok && std::env::var_os("NODEVICE_SELECT").is_none() {
+        // SAFETY: called first in `main`, before any other thread is started, so no
+        // thread reads the environment concurrently.
+        unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+    }
+}
+
 fn main() -> ExitCode {
+    quiet_wayland_probe_without_a_session();
     let cli = Cli::parse();
     let result = match &cli.command {
         Some(Command::Inspect { file }) => inspect(file),
