@@ -3,6 +3,13 @@
 //! texture, snow eligibility by DESIGN.md §6 (`_SNOW_MASK`, then `extras.snow` on the
 //! material, mesh or node (nearest ancestor first), then the slope).
 //!
+//! Quantized and compressed geometry loads as real pipelines write it:
+//! `KHR_mesh_quantization` (integer and normalized attributes), `EXT_meshopt_compression`
+//! (meshoptimizer, through the `meshopt` crate) and `KHR_draco_mesh_compression` (the
+//! pure-Rust `draco-core` decoder), with `KHR_texture_transform` applied to the UVs; the
+//! bytes are read by [`crate::gltf_data`]. A file that *requires* any other extension is
+//! refused with an error naming it.
+//!
 //! Content the viewer does not draw (points, lines, cameras, skins, animation,
 //! unknown extensions, float textures) is skipped and listed in the
 //! [`LoadReport`]; what cannot be shown (no triangles at all, broken buffers,
@@ -14,12 +21,15 @@
 use std::path::{Path, PathBuf};
 
 use glam::{Mat3, Mat4, Vec2, Vec3};
-use gltf::accessor::{DataType, Dimensions};
+use gltf::accessor::DataType;
 use gltf::mesh::Mode;
 use precip_model::{Material, Mesh, Scene, SceneReport, TextureRgba8};
 
 use crate::eligibility::snow_extra;
 use crate::error::LoadError;
+use crate::gltf_data::{
+    DracoPrimitive, Views, decode_draco, load_buffers, read_floats, read_indices,
+};
 use crate::node_graph::{find_cycle, walk_order};
 
 /// What loading skipped or changed.
@@ -111,13 +121,108 @@ fn import(file: &Path, bytes: &[u8], base: &Path) -> Result<LoadedScene, LoadErr
             },
         )
         .collect();
-    let document = gltf::Document::from_json(json).map_err(gltf_error)?;
-    let buffers = gltf::import_buffers(&document, Some(base), blob).map_err(gltf_error)?;
+    check_required_extensions(&json).map_err(|problem| LoadError::Invalid {
+        file: file.to_path_buf(),
+        problem,
+    })?;
+    validate(&json).map_err(|detail| LoadError::Gltf {
+        file: file.to_path_buf(),
+        detail,
+    })?;
+    let document = gltf::Document::from_json_without_validation(json);
+    let buffers = load_buffers(&document, base, blob).map_err(|detail| LoadError::Gltf {
+        file: file.to_path_buf(),
+        detail,
+    })?;
     let mut warnings = Vec::new();
     let images = import_images(&document, base, &buffers, &image_problems, &mut warnings);
     let mut loaded = convert(file, &document, &buffers, &images)?;
     loaded.report.skipped.extend(warnings);
     Ok(loaded)
+}
+
+/// Extensions a file may require: the compressions and quantization precip decodes,
+/// the texture transform it applies, and those the `gltf` crate reads itself.
+pub const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &[
+    "KHR_mesh_quantization",
+    "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression",
+    "KHR_texture_transform",
+    "KHR_materials_unlit",
+];
+
+/// A file that requires an extension precip cannot honour is refused, naming it.
+fn check_required_extensions(json: &gltf::json::Root) -> Result<(), String> {
+    let missing: Vec<&str> = json
+        .extensions_required
+        .iter()
+        .map(String::as_str)
+        .filter(|e| !SUPPORTED_REQUIRED_EXTENSIONS.contains(e))
+        .collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    Err(format!(
+        "the file requires {} {}, which precip does not support (it reads {}); export it without {}",
+        if missing.len() == 1 {
+            "extension"
+        } else {
+            "extensions"
+        },
+        missing.join(", "),
+        SUPPORTED_REQUIRED_EXTENSIONS.join(", "),
+        if missing.len() == 1 { "it" } else { "them" },
+    ))
+}
+
+/// gltf-json's validation (every index in range, required fields present), less what
+/// the extensions precip decodes make valid: accessors whose data is in a Draco
+/// stream have no `bufferView`, and the required extensions were checked above.
+fn validate(json: &gltf::json::Root) -> Result<(), String> {
+    use gltf::json::validation::{Error, Validate};
+    let draco_accessors: std::collections::HashSet<String> = json
+        .meshes
+        .iter()
+        .flat_map(|m| &m.primitives)
+        .filter(|p| {
+            p.extensions
+                .as_ref()
+                .is_some_and(|e| e.others.contains_key("KHR_draco_mesh_compression"))
+        })
+        .flat_map(|p| {
+            p.attributes
+                .values()
+                .map(|a| a.value())
+                .chain(p.indices.map(|i| i.value()))
+        })
+        .map(|a| format!("accessors[{a}].bufferView"))
+        .collect();
+    let mut problems = Vec::new();
+    json.validate(json, gltf::json::Path::new, &mut |path, error| {
+        let path = path().to_string();
+        let decoded_elsewhere = match error {
+            Error::Unsupported => path.starts_with("extensionsRequired"),
+            Error::Missing => draco_accessors.contains(&path),
+            _ => false,
+        };
+        if !decoded_elsewhere {
+            problems.push(format!("{path}: {error}"));
+        }
+    });
+    if problems.is_empty() {
+        return Ok(());
+    }
+    let more = problems.len().saturating_sub(4);
+    problems.truncate(4);
+    Err(format!(
+        "invalid glTF: {}{}",
+        problems.join("; "),
+        if more > 0 {
+            format!(" (and {more} more)")
+        } else {
+            String::new()
+        }
+    ))
 }
 
 /// Each image decoded on its own (a broken one is `None`, with a warning, and its
@@ -176,72 +281,37 @@ fn guarded(
     })
 }
 
-/// The bytes an accessor reads, checked: `Err` names the problem.
-fn check_accessor(
-    accessor: &gltf::Accessor<'_>,
-    buffers: &[gltf::buffer::Data],
-    want: &[(Dimensions, &[DataType])],
-) -> Result<(), String> {
-    let index = accessor.index();
-    if accessor.sparse().is_some() {
-        return Err(format!("accessor {index} is sparse (not supported)"));
-    }
-    let Some(view) = accessor.view() else {
-        return Err(format!("accessor {index} has no buffer view"));
-    };
-    if !want
-        .iter()
-        .any(|(d, types)| *d == accessor.dimensions() && types.contains(&accessor.data_type()))
-    {
-        return Err(format!(
-            "accessor {index} is {:?} of {:?}, which this attribute cannot be",
-            accessor.dimensions(),
-            accessor.data_type()
-        ));
-    }
-    let count = accessor.count();
-    if count == 0 {
-        return Err(format!("accessor {index} is empty"));
-    }
-    let buffer = buffers.get(view.buffer().index()).ok_or_else(|| {
-        format!(
-            "accessor {index}: buffer {} is missing",
-            view.buffer().index()
-        )
-    })?;
-    let view_end = view.offset().checked_add(view.length());
-    if view_end.is_none_or(|end| end > buffer.len()) {
-        return Err(format!(
-            "buffer view {} reaches past its buffer ({} bytes)",
-            view.index(),
-            buffer.len()
-        ));
-    }
-    let size = accessor.size();
-    let stride = view.stride().unwrap_or(size);
-    if stride < size {
-        return Err(format!(
-            "buffer view {} has a stride below its element size",
-            view.index()
-        ));
-    }
-    let end = (count - 1)
-        .checked_mul(stride)
-        .and_then(|x| x.checked_add(size))
-        .and_then(|x| x.checked_add(accessor.offset()));
-    if end.is_none_or(|end| end > view.length()) {
-        return Err(format!(
-            "accessor {index} ({count} elements) reaches past buffer view {} ({} bytes)",
-            view.index(),
-            view.length()
-        ));
-    }
-    Ok(())
-}
+/// Component types of each attribute: float, or the integer types
+/// `KHR_mesh_quantization` allows (normalized or not; glTF 2.0 §3.7.2.1 and the
+/// extension's table).
+const POSITION_TYPES: &[DataType] = &[
+    DataType::F32,
+    DataType::I8,
+    DataType::U8,
+    DataType::I16,
+    DataType::U16,
+];
+const NORMAL_TYPES: &[DataType] = &[DataType::F32, DataType::I8, DataType::I16];
+const UV_TYPES: &[DataType] = &[
+    DataType::F32,
+    DataType::I8,
+    DataType::U8,
+    DataType::I16,
+    DataType::U16,
+];
+const MASK_TYPES: &[DataType] = &[DataType::F32, DataType::U8, DataType::U16];
 
-const FLOAT: &[DataType] = &[DataType::F32];
-const UV_TYPES: &[DataType] = &[DataType::F32, DataType::U8, DataType::U16];
-const INDEX_TYPES: &[DataType] = &[DataType::U8, DataType::U16, DataType::U32];
+/// `uv` through `KHR_texture_transform`: offset · rotation · scale (the extension's
+/// matrix, rotation counter-clockwise in UV space).
+#[must_use]
+pub fn texture_transformed(uv: Vec2, offset: [f32; 2], rotation_rad: f32, scale: [f32; 2]) -> Vec2 {
+    let (sin, cos) = rotation_rad.sin_cos();
+    let s = uv * Vec2::from(scale);
+    Vec2::new(
+        offset[0] + cos * s.x + sin * s.y,
+        offset[1] - sin * s.x + cos * s.y,
+    )
+}
 
 /// RGBA8 from a decoded glTF image, or `None` for formats the viewer does not show.
 fn rgba8(image: &gltf::image::Data) -> Option<TextureRgba8> {
@@ -294,6 +364,7 @@ fn rgba8(image: &gltf::image::Data) -> Option<TextureRgba8> {
 struct Converter<'a> {
     file: &'a Path,
     buffers: &'a [gltf::buffer::Data],
+    views: &'a Views,
     images: &'a [Option<gltf::image::Data>],
     report: LoadReport,
     meshes: Vec<Mesh>,
@@ -413,55 +484,94 @@ impl Converter<'_> {
                 .push(format!("{name}: {mode:?} are not drawn"));
             return Ok(None);
         }
-        let buffers = self.buffers;
-        let get = |b: gltf::Buffer<'_>| buffers.get(b.index()).map(|d| &d.0[..]);
-        let Some(position) = primitive.get(&gltf::Semantic::Positions) else {
+        let (views, buffers) = (self.views, self.buffers);
+        let draco = primitive
+            .extension_value("KHR_draco_mesh_compression")
+            .map(|ext| decode_draco(ext, views, buffers))
+            .transpose()?;
+        // An attribute from the Draco stream when it carries it, else its accessor.
+        let attribute = |semantic: &gltf::Semantic| primitive.get(semantic);
+        fn read<const N: usize>(
+            draco: Option<&DracoPrimitive>,
+            key: &str,
+            accessor: Option<gltf::Accessor<'_>>,
+            views: &Views,
+            buffers: &[gltf::buffer::Data],
+            allowed: &[DataType],
+        ) -> Result<Option<Vec<[f32; N]>>, String> {
+            if let Some(values) = draco.and_then(|d| d.get::<N>(key)) {
+                return values.map(Some);
+            }
+            accessor
+                .map(|a| read_floats::<N>(&a, views, buffers, allowed))
+                .transpose()
+        }
+        let Some(position) = attribute(&gltf::Semantic::Positions) else {
             self.report
                 .skipped
                 .push(format!("{name}: no POSITION attribute"));
             return Ok(None);
         };
-        check_accessor(&position, buffers, &[(Dimensions::Vec3, FLOAT)])?;
-        let reader = primitive.reader(get);
-        let positions: Vec<Vec3> = reader
-            .read_positions()
-            .ok_or("positions unreadable")?
-            .map(Vec3::from)
-            .collect();
+        let positions: Vec<Vec3> = read::<3>(
+            draco.as_ref(),
+            "POSITION",
+            Some(position),
+            views,
+            buffers,
+            POSITION_TYPES,
+        )?
+        .unwrap_or_default()
+        .into_iter()
+        .map(Vec3::from)
+        .collect();
         let n = positions.len();
         if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
             return Err(format!("vertex {v} has a non-finite position"));
         }
-        let normals: Vec<Vec3> = match primitive.get(&gltf::Semantic::Normals) {
-            Some(a) => {
-                check_accessor(&a, buffers, &[(Dimensions::Vec3, FLOAT)])?;
-                reader
-                    .read_normals()
-                    .ok_or("normals unreadable")?
-                    .map(Vec3::from)
-                    .collect()
-            }
-            None => Vec::new(),
-        };
+        let normals: Vec<Vec3> = read::<3>(
+            draco.as_ref(),
+            "NORMAL",
+            attribute(&gltf::Semantic::Normals),
+            views,
+            buffers,
+            NORMAL_TYPES,
+        )?
+        .unwrap_or_default()
+        .into_iter()
+        .map(Vec3::from)
+        .collect();
+        if !normals.is_empty() && normals.len() != n {
+            return Err(format!("{} normals for {n} positions", normals.len()));
+        }
         let material = primitive.material();
         let pbr = material.pbr_metallic_roughness();
         let mut texture = None;
         let mut uvs = Vec::new();
         if let Some(info) = pbr.base_color_texture() {
-            let set = info.tex_coord();
+            let transform = info.texture_transform();
+            let set = transform
+                .as_ref()
+                .and_then(|t| t.tex_coord())
+                .unwrap_or(info.tex_coord());
             let source = info.texture().source().index();
-            match (
-                primitive.get(&gltf::Semantic::TexCoords(set)),
-                self.images.get(source).and_then(Option::as_ref),
-            ) {
-                (Some(a), Some(image)) => {
-                    check_accessor(&a, buffers, &[(Dimensions::Vec2, UV_TYPES)])?;
-                    uvs = reader
-                        .read_tex_coords(set)
-                        .ok_or("texture coordinates unreadable")?
-                        .into_f32()
-                        .map(Vec2::from)
-                        .collect();
+            let key = format!("TEXCOORD_{set}");
+            let coords = read::<2>(
+                draco.as_ref(),
+                &key,
+                attribute(&gltf::Semantic::TexCoords(set)),
+                views,
+                buffers,
+                UV_TYPES,
+            )?;
+            match (coords, self.images.get(source).and_then(Option::as_ref)) {
+                (Some(coords), Some(image)) if coords.len() == n => {
+                    uvs = coords.into_iter().map(Vec2::from).collect();
+                    if let Some(t) = transform {
+                        let (offset, rotation, scale) = (t.offset(), t.rotation(), t.scale());
+                        for uv in &mut uvs {
+                            *uv = texture_transformed(*uv, offset, rotation, scale);
+                        }
+                    }
                     texture = rgba8(image);
                     if texture.is_none() {
                         self.report.skipped.push(format!(
@@ -475,18 +585,24 @@ impl Converter<'_> {
             }
         }
         let mut snow_eligibility = Vec::new();
-        if let Some(a) = primitive.get(&gltf::Semantic::Extras("SNOW_MASK".into())) {
-            check_accessor(&a, buffers, &[(Dimensions::Scalar, FLOAT)])?;
-            let view = a.view().ok_or("_SNOW_MASK has no buffer view")?;
-            let data = &buffers[view.buffer().index()].0;
-            let stride = view.stride().unwrap_or(4);
-            let base = view.offset() + a.offset();
-            snow_eligibility = (0..a.count())
-                .map(|i| {
-                    let at = base + i * stride;
-                    f32::from_le_bytes([data[at], data[at + 1], data[at + 2], data[at + 3]])
-                })
-                .map(|x| {
+        let mask = attribute(&gltf::Semantic::Extras("SNOW_MASK".into()));
+        if let Some(values) = read::<1>(
+            draco.as_ref(),
+            "_SNOW_MASK",
+            mask,
+            views,
+            buffers,
+            MASK_TYPES,
+        )? {
+            if values.len() != n {
+                return Err(format!(
+                    "_SNOW_MASK has {} values for {n} vertices",
+                    values.len()
+                ));
+            }
+            snow_eligibility = values
+                .into_iter()
+                .map(|[x]| {
                     if x.is_finite() {
                         x.clamp(0.0, 1.0)
                     } else {
@@ -502,16 +618,10 @@ impl Converter<'_> {
                 self.report.snow_extras += 1;
             }
         }
-        let mut indices: Vec<u32> = match primitive.indices() {
-            Some(a) => {
-                check_accessor(&a, buffers, &[(Dimensions::Scalar, INDEX_TYPES)])?;
-                reader
-                    .read_indices()
-                    .ok_or("indices unreadable")?
-                    .into_u32()
-                    .collect()
-            }
-            None => (0..n as u32).collect(),
+        let mut indices: Vec<u32> = match (&draco, primitive.indices()) {
+            (Some(d), _) => d.indices.clone(),
+            (None, Some(a)) => read_indices(&a, views, buffers)?,
+            (None, None) => (0..n as u32).collect(),
         };
         if let Some(&i) = indices.iter().find(|&&i| i as usize >= n) {
             return Err(format!("index {i} is beyond its {n} vertices"));
@@ -570,17 +680,21 @@ fn convert(
     buffers: &[gltf::buffer::Data],
     images: &[Option<gltf::image::Data>],
 ) -> Result<LoadedScene, LoadError> {
+    let views = Views::new(document, buffers);
     let mut c = Converter {
         file,
         buffers,
+        views: &views,
         images,
         report: LoadReport::default(),
         meshes: Vec::new(),
     };
     for ext in document.extensions_used() {
-        c.report
-            .skipped
-            .push(format!("extension {ext} is not used"));
+        if !SUPPORTED_REQUIRED_EXTENSIONS.contains(&ext) {
+            c.report
+                .skipped
+                .push(format!("extension {ext} is not used"));
+        }
     }
     if document.animations().next().is_some() {
         c.report.skipped.push("animations are not played".into());

@@ -3,6 +3,7 @@
 
 mod bad_files;
 mod cli;
+mod compressed;
 mod fixtures;
 mod graphs;
 mod headless;
