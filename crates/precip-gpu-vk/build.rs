@@ -1,12 +1,26 @@
 //! Compiles precip-model's WGSL programs to SPIR-V with naga (DESIGN.md §4: WGSL is the
 //! single source). One `.spv` per program in OUT_DIR, all entry points in each.
 //!
+//! Bounds checks: those wgpu compiles in ([`BOUNDS_CHECKS`]).
+//!
 //! Clip space is WGSL's (y up); the renderer flips it with a negative viewport
 //! height (Vulkan 1.1), as wgpu does, so the shaders are written without a flip.
 
 use naga::back::spv;
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use precip_model::shaders::Program;
+
+/// The bounds checks wgpu compiles into the same WGSL on a Vulkan device without the
+/// robustness extensions (wgpu-hal's `vulkan/adapter.rs`): array indices clamped,
+/// buffer and image reads restricted to their resource. Decided here, not per device,
+/// because the SPIR-V is compiled once at build time; so an out-of-range index reads
+/// a valid element on every driver, as it does under wgpu.
+const BOUNDS_CHECKS: naga::proc::BoundsCheckPolicies = naga::proc::BoundsCheckPolicies {
+    index: naga::proc::BoundsCheckPolicy::Restrict,
+    buffer: naga::proc::BoundsCheckPolicy::Restrict,
+    image_load: naga::proc::BoundsCheckPolicy::Restrict,
+    binding_array: naga::proc::BoundsCheckPolicy::Unchecked,
+};
 
 fn main() {
     let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
@@ -22,6 +36,7 @@ fn main() {
         let options = spv::Options {
             lang_version: (1, 0),
             flags: spv::WriterFlags::empty(),
+            bounds_check_policies: BOUNDS_CHECKS,
             ..spv::Options::default()
         };
         let words = spv::write_vec(&module, &info, &options, None)

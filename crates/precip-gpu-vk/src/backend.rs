@@ -157,7 +157,7 @@ impl VkBackend {
     /// The most particles one configuration holds.
     #[must_use]
     pub fn max_particles(&self) -> u64 {
-        (self.device.max_storage_range() / PARTICLE_BYTES).min(u64::from(u32::MAX))
+        self.device.limits().max_particles()
     }
 
     /// Waits for every submission in flight.
@@ -222,21 +222,7 @@ impl Backend for VkBackend {
     }
 
     fn configure(&mut self, setup: &Setup) -> Result<(), BackendError> {
-        let limit = format!(
-            "maxStorageBufferRange = {} bytes on {}, {PARTICLE_BYTES} bytes a particle",
-            self.device.max_storage_range(),
-            self.device.name_of_device()
-        );
-        setup.validate(self.max_particles(), &limit)?;
-        let cover_bytes = setup.cover.frame.texel_count() as u64 * COVER_TEXEL_BYTES;
-        if cover_bytes > self.device.max_storage_range() {
-            return Err(BackendError::Setup {
-                field: "cover.frame",
-                problem: format!(
-                    "needs {cover_bytes} bytes, more than this device binds: use fewer texels"
-                ),
-            });
-        }
+        self.device.limits().check_setup(setup)?;
         let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume)?;
         let cover = setup.initial_cover()?;
         let (world, camera) = setup.particle_counts();

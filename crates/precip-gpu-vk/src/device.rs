@@ -35,6 +35,9 @@ pub struct Device {
     pub allocator: ManuallyDrop<Mutex<Allocator>>,
     /// Command buffers come from here.
     pub command_pool: vk::CommandPool,
+    /// The largest single allocation (Vulkan 1.1's maxMemoryAllocationSize), bytes:
+    /// the largest buffer precip makes.
+    pub max_allocation_bytes: u64,
     /// Whether dropping this destroys the device (false for the caller's).
     owned: bool,
     /// Sets object names (when the instance has VK_EXT_debug_utils).
@@ -165,6 +168,16 @@ impl Device {
         let names = instance
             .has_debug_utils()
             .then(|| ash::ext::debug_utils::Device::new(&instance.raw, &raw));
+        let mut maintenance3 = vk::PhysicalDeviceMaintenance3Properties::default();
+        let mut properties2 = vk::PhysicalDeviceProperties2::default().push_next(&mut maintenance3);
+        // SAFETY: `physical` belongs to this instance, which is Vulkan 1.1 or later (the
+        // negative viewport precip draws with needs 1.1 too); the chain outlives the call.
+        unsafe {
+            instance
+                .raw
+                .get_physical_device_properties2(physical, &mut properties2)
+        };
+        let max_allocation_bytes = maintenance3.max_memory_allocation_size;
         let device = Self {
             instance: ManuallyDrop::new(instance),
             physical,
@@ -176,6 +189,7 @@ impl Device {
             swapchain,
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
             command_pool,
+            max_allocation_bytes,
             owned,
             names,
         };
@@ -290,6 +304,17 @@ impl Device {
             .device_name_as_c_str()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default()
+    }
+
+    /// The device's limits in the terms every backend checks.
+    #[must_use]
+    pub fn limits(&self) -> precip_model::DeviceLimits {
+        precip_model::DeviceLimits {
+            device: self.name_of_device(),
+            max_storage_binding_bytes: self.max_storage_range(),
+            max_buffer_bytes: self.max_allocation_bytes,
+            max_texture_side_px: self.properties.limits.max_image_dimension2_d,
+        }
     }
 
     /// The largest storage buffer range, bytes.

@@ -23,7 +23,6 @@ use crate::render::target::{ColourTarget, DepthBuffer, OFFSCREEN_FORMAT};
 use crate::render::{FrameTarget, RenderState, Renderer, encode_frame};
 use crate::resources::{Resources, upload_wind};
 use crate::timestamps::Timestamps;
-use precip_model::render::validate_view;
 
 /// Bytes of one particle on the GPU.
 const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
@@ -104,31 +103,13 @@ impl WgpuBackend {
     /// The most particles one configuration holds on this device.
     #[must_use]
     pub fn max_particles(&self) -> u64 {
-        (self.gpu.max_storage_binding_bytes() / PARTICLE_BYTES).min(u64::from(u32::MAX))
+        self.gpu.limits().max_particles()
     }
 
     fn state_mut(&mut self, operation: &'static str) -> Result<&mut State, BackendError> {
         self.state
             .as_mut()
             .ok_or(BackendError::NotConfigured { operation })
-    }
-
-    /// Checks that the grids fit the device's storage bindings.
-    fn check_grid_sizes(&self, setup: &Setup) -> Result<(), BackendError> {
-        let max = self.gpu.max_storage_binding_bytes();
-        let cover_bytes = setup.cover.frame.texel_count() as u64 * size_of::<CoverTexel>() as u64;
-        let ground_bytes = setup.ground.frame.texel_count() as u64 * 4;
-        for (field, bytes) in [("cover.frame", cover_bytes), ("ground.frame", ground_bytes)] {
-            if bytes > max {
-                return Err(BackendError::Setup {
-                    field,
-                    problem: format!(
-                        "needs {bytes} bytes but this device binds at most {max} (max_storage_buffer_binding_size): use fewer texels"
-                    ),
-                });
-            }
-        }
-        Ok(())
     }
 }
 
@@ -181,14 +162,7 @@ impl WgpuBackend {
         view: &View,
         external: Option<(&wgpu::TextureView, wgpu::TextureFormat)>,
     ) -> Result<(), BackendError> {
-        validate_view(view)?;
-        let max = self.gpu.device.limits().max_texture_dimension_2d;
-        if view.width_px > max || view.height_px > max {
-            return Err(BackendError::InvalidView(format!(
-                "{}×{} px exceeds this device's largest texture ({max} px a side): render smaller",
-                view.width_px, view.height_px
-            )));
-        }
+        self.gpu.limits().check_view(view)?;
         let gpu = self.gpu.clone();
         let state = self.state.as_mut().ok_or(BackendError::NotConfigured {
             operation: "render",
@@ -246,17 +220,18 @@ impl WgpuBackend {
             state.resources.particle_count,
         );
         let stamps = self.render_stamps.as_ref();
-        let draws = renderer.draws(format);
         let render_ref = &*render;
+        let colour = match (external, render_ref.offscreen.as_ref()) {
+            (Some((view, _)), _) => view,
+            (None, Some(target)) => &target.view,
+            (None, None) => return Err(cannot_draw("the offscreen target is missing")),
+        };
+        let (Some(draws), Some(depth)) = (renderer.draws(format), render_ref.depth.as_ref()) else {
+            return Err(cannot_draw(&format!(
+                "no draw pipelines or depth buffer for the target format {format:?}"
+            )));
+        };
         scoped(&gpu, "render", || {
-            let (Some(draws), Some(depth)) = (draws, render_ref.depth.as_ref()) else {
-                return;
-            };
-            let colour = match (external, render_ref.offscreen.as_ref()) {
-                (Some((view, _)), _) => view,
-                (None, Some(target)) => &target.view,
-                (None, None) => return,
-            };
             gpu.queue
                 .write_buffer(&render_ref.frame.params, 0, bytemuck::bytes_of(&params));
             let mut encoder = gpu
@@ -304,13 +279,7 @@ impl Backend for WgpuBackend {
     }
 
     fn configure(&mut self, setup: &Setup) -> Result<(), BackendError> {
-        let limit = format!(
-            "max_storage_buffer_binding_size = {} bytes on {}, {PARTICLE_BYTES} bytes a particle",
-            self.gpu.max_storage_binding_bytes(),
-            self.gpu.info.name
-        );
-        setup.validate(self.max_particles(), &limit)?;
-        self.check_grid_sizes(setup)?;
+        self.gpu.limits().check_setup(setup)?;
         let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume)?;
         let cover = setup.initial_cover()?;
         let (world, camera) = setup.particle_counts();
@@ -550,5 +519,14 @@ impl Backend for WgpuBackend {
                 allocated_bytes: r.total_allocated_bytes,
                 reserved_bytes: r.total_reserved_bytes,
             })
+    }
+}
+
+/// A frame that cannot be drawn (a bug in precip): a typed error, never an `Ok` with
+/// nothing drawn.
+fn cannot_draw(why: &str) -> BackendError {
+    BackendError::Device {
+        backend: NAME,
+        message: format!("cannot draw the frame: {why} (a bug in precip: please report it)"),
     }
 }

@@ -94,6 +94,18 @@ impl GpuDevice {
         )
     }
 
+    /// The device's limits in the terms every backend checks.
+    #[must_use]
+    pub fn limits(&self) -> precip_model::DeviceLimits {
+        let limits = self.device.limits();
+        precip_model::DeviceLimits {
+            device: self.info.name.clone(),
+            max_storage_binding_bytes: self.max_storage_binding_bytes(),
+            max_buffer_bytes: limits.max_buffer_size,
+            max_texture_side_px: limits.max_texture_dimension_2d,
+        }
+    }
+
     /// The largest storage buffer one binding may hold, bytes.
     #[must_use]
     pub fn max_storage_binding_bytes(&self) -> u64 {

@@ -283,9 +283,32 @@ impl Mesh {
     }
 }
 
+/// A scene that [`Scene::prepare`] validated and completed: every mesh has finite
+/// positions, in-range indices, unit normals, texture coordinates and eligibility for
+/// every vertex. Only `prepare` makes one, so a [`crate::Setup`] cannot carry an
+/// unprepared scene to a backend; it reads as a [`Scene`] (`Deref`) and cannot be
+/// changed in place.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreparedScene(Scene);
+
+impl std::ops::Deref for PreparedScene {
+    type Target = Scene;
+    fn deref(&self) -> &Scene {
+        &self.0
+    }
+}
+
+impl PreparedScene {
+    /// The scene, to change and prepare again.
+    #[must_use]
+    pub fn into_scene(self) -> Scene {
+        self.0
+    }
+}
+
 impl Scene {
     /// Validates the scene and completes every mesh (see the module docs).
-    pub fn prepare(self) -> Result<(Self, SceneReport), SceneError> {
+    pub fn prepare(self) -> Result<(PreparedScene, SceneReport), SceneError> {
         let mut report = SceneReport::default();
         let mut meshes = Vec::with_capacity(self.meshes.len());
         for mesh in self.meshes {
@@ -296,7 +319,7 @@ impl Scene {
         if meshes.is_empty() {
             return Err(SceneError::Empty);
         }
-        Ok((Self { meshes }, report))
+        Ok((PreparedScene(Self { meshes }), report))
     }
 
     /// Axis-aligned bounds `(min, max)` of all vertices, m; `None` for no vertices.

@@ -15,7 +15,7 @@ use crate::error::BackendError;
 use crate::ground::GroundMap;
 use crate::raindrop::marshall_palmer_slope_per_mm;
 use crate::render::RenderSettings;
-use crate::scene::{Scene, SceneReport};
+use crate::scene::{PreparedScene, Scene, SceneReport};
 use crate::step::StepParams;
 use crate::weather::Weather;
 
@@ -93,7 +93,7 @@ pub struct Setup {
     /// The scene drawn under the precipitation, prepared ([`Scene::prepare`]); `None`
     /// draws the precipitation alone. Its top-down view should be `ground`
     /// ([`Setup::over_scene`] does both).
-    pub scene: Option<Arc<Scene>>,
+    pub scene: Option<Arc<PreparedScene>>,
     /// How frames look.
     pub render: RenderSettings,
 }
@@ -259,10 +259,6 @@ impl Setup {
         self.wind_volume.validate()?;
         self.camera.validate()?;
         self.render.validate()?;
-        if let Some(scene) = &self.scene {
-            // The same checks `prepare` makes (a prepared scene passes unchanged).
-            Scene::clone(scene).prepare()?;
-        }
         Ok(())
     }
 

@@ -122,6 +122,7 @@ mod tests {
         .prepare()
         .expect("valid")
         .0
+        .into_scene()
     }
 
     #[test]

@@ -23,7 +23,7 @@ use std::path::{Path, PathBuf};
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use gltf::accessor::DataType;
 use gltf::mesh::Mode;
-use precip_model::{Material, Mesh, Scene, SceneReport, TextureRgba8};
+use precip_model::{Material, Mesh, PreparedScene, Scene, SceneReport, TextureRgba8};
 
 use crate::eligibility::snow_extra;
 use crate::error::LoadError;
@@ -51,7 +51,7 @@ pub struct LoadReport {
 #[derive(Debug, Clone)]
 pub struct LoadedScene {
     /// The scene, prepared.
-    pub scene: Scene,
+    pub scene: PreparedScene,
     /// What was skipped.
     pub report: LoadReport,
 }

@@ -9,7 +9,7 @@ use glam::{UVec2, Vec2, Vec3};
 use precip_model::cover::GridFrame;
 use precip_model::{
     BackendError, Camera, CameraVolume, CameraVolumeSetup, CoverSetup, EmitterSetup, GroundMap,
-    Scene, Setup, Weather, WorldEmitter,
+    PreparedScene, Setup, Weather, WorldEmitter,
 };
 
 /// Fewest world-emitter particles per m² of scene for particles to feed the cover.
@@ -43,7 +43,7 @@ fn typical_fall_speed_mps(weather: &Weather) -> f32 {
 }
 
 /// The setup for `scene` (prepared) under `options`.
-pub fn scene_setup(scene: Scene, options: &SceneOptions) -> Result<Setup, BackendError> {
+pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup, BackendError> {
     let (lo, hi) = scene.bounds_m().ok_or(precip_model::SceneError::Empty)?;
     let centre = Vec2::new(0.5 * (lo.x + hi.x), 0.5 * (lo.z + hi.z));
     let side = (hi.x - lo.x).max(hi.z - lo.z).max(1.0) * 1.05;

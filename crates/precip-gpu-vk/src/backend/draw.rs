@@ -11,7 +11,6 @@ use crate::render::scene::SceneGpu;
 use crate::render::target::{OFFSCREEN_FORMAT, OffscreenTarget};
 use crate::render::{FrameTarget, RenderState, Renderer, record_frame};
 use crate::resources::{FRAMES_IN_FLIGHT, download};
-use precip_model::render::validate_view;
 use precip_model::{BackendError, View};
 
 /// A swapchain image to draw into: its framebuffer (made for the camera pass of
@@ -67,14 +66,7 @@ impl VkBackend {
         view: &View,
         swapchain: Option<SwapchainFrame>,
     ) -> Result<(), BackendError> {
-        validate_view(view)?;
-        let max = self.device.properties.limits.max_image_dimension2_d;
-        if view.width_px > max || view.height_px > max {
-            return Err(BackendError::InvalidView(format!(
-                "{}×{} px exceeds this device's largest image ({max} px a side): render smaller",
-                view.width_px, view.height_px
-            )));
-        }
+        self.device.limits().check_view(view)?;
         self.state("render")?;
         // This frame's uniform block was last used FRAMES_IN_FLIGHT submissions ago.
         self.wait_until(FRAMES_IN_FLIGHT - 1)?;
@@ -157,6 +149,9 @@ impl VkBackend {
             sky: setup.render.sky_colour,
         };
         let particle_count = state.resources.particle_count;
+        if renderer.draws_for_pass(passes.scene).is_none() {
+            return Err(cannot_draw(format));
+        }
         let render_ref = &*render;
         let waits =
             swapchain.map(|s| [(s.acquired, vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT)]);
@@ -185,5 +180,16 @@ impl VkBackend {
             s.written = true;
         }
         Ok(())
+    }
+}
+
+/// A frame that cannot be recorded: no pipelines for the target's format (a bug in
+/// precip, never an `Ok` with nothing drawn).
+fn cannot_draw(format: vk::Format) -> BackendError {
+    BackendError::Device {
+        backend: crate::error::NAME,
+        message: format!(
+            "no draw pipelines were made for the target format {format:?} (a bug in precip: please report it)"
+        ),
     }
 }

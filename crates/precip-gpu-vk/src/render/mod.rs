@@ -458,7 +458,7 @@ pub fn record_frame(
 
 impl Renderer {
     /// The draws whose format `pass` renders to.
-    fn draws_for_pass(&self, pass: vk::RenderPass) -> Option<&DrawPipelines> {
+    pub(crate) fn draws_for_pass(&self, pass: vk::RenderPass) -> Option<&DrawPipelines> {
         let format = self
             .camera_passes
             .iter()

@@ -58,16 +58,7 @@ fn texture(device: &Device, texture: Option<&TextureRgba8>) -> Result<Image, Bac
         rgba8: vec![255; 4],
     };
     let t = texture.unwrap_or(&white);
-    let max = device.properties.limits.max_image_dimension2_d;
-    if t.width_px > max || t.height_px > max {
-        return Err(BackendError::Setup {
-            field: "scene",
-            problem: format!(
-                "a base-colour texture is {}×{} px but this device takes at most {max} a side: downscale it",
-                t.width_px, t.height_px
-            ),
-        });
-    }
+    // Its size was checked against the device with the setup (DeviceLimits).
     let image = Image::new(
         device,
         &ImageSpec {
@@ -97,7 +88,11 @@ impl SceneGpu {
             vertices,
             indices,
             ranges,
-        } = PackedScene::new(scene, settings)?;
+        } = {
+            let packed = PackedScene::new(scene, settings)?;
+            device.limits().check_packed_scene(&packed)?;
+            packed
+        };
         let mesh_count = u32::try_from(ranges.len().max(1)).map_err(|_| too_big("meshes"))?;
         use vk::DescriptorType as T;
         let pool = descriptors::pool(

@@ -3,7 +3,7 @@
 
 use std::ops::Range;
 
-use precip_model::gpu::{SceneVertex, render_bindings as rb};
+use precip_model::gpu::render_bindings as rb;
 use precip_model::gpu_scene::PackedScene;
 use precip_model::{BackendError, RenderSettings, Scene, TextureRgba8};
 use wgpu::util::DeviceExt;
@@ -43,16 +43,7 @@ fn texture_of(
         rgba8: vec![255; 4],
     };
     let t = texture.unwrap_or(&white);
-    let max = gpu.device.limits().max_texture_dimension_2d;
-    if t.width_px > max || t.height_px > max {
-        return Err(BackendError::Setup {
-            field: "scene",
-            problem: format!(
-                "a base-colour texture is {}×{} px but this device takes at most {max} a side: downscale it",
-                t.width_px, t.height_px
-            ),
-        });
-    }
+    // Its size was checked against the device with the setup (DeviceLimits).
     Ok(gpu.device.create_texture_with_data(
         &gpu.queue,
         &wgpu::TextureDescriptor {
@@ -87,12 +78,11 @@ impl SceneGpu {
             vertices,
             indices,
             ranges,
-        } = PackedScene::new(scene, settings)?;
-        let max = gpu.device.limits().max_buffer_size;
-        let vertex_bytes = (vertices.len() * size_of::<SceneVertex>()) as u64;
-        if vertex_bytes > max {
-            return Err(too_big("vertex bytes"));
-        }
+        } = {
+            let packed = PackedScene::new(scene, settings)?;
+            gpu.limits().check_packed_scene(&packed)?;
+            packed
+        };
         let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("precip material"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -169,14 +159,5 @@ impl SceneGpu {
             }
             pass.draw_indexed(mesh.indices.clone(), 0, 0..1);
         }
-    }
-}
-
-fn too_big(what: &str) -> BackendError {
-    BackendError::Setup {
-        field: "scene",
-        problem: format!(
-            "its {what} exceed what one GPU buffer holds: lower render.tessellation_edge_m's density (raise it) or render.max_scene_triangles"
-        ),
     }
 }

@@ -101,7 +101,7 @@ fn bad_input_never_reaches_the_gpu_and_changes_nothing() {
                 limit,
             }) => {
                 assert!(
-                    requested > max && limit.contains("max_storage_buffer_binding_size"),
+                    requested > max && limit.contains("storage binding"),
                     "{name}: {limit}"
                 );
             }

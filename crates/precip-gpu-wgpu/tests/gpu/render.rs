@@ -494,18 +494,14 @@ fn bad_views_and_scenes_are_typed_errors() {
 
         // Scenes: empty, NaN vertex → typed errors at configure; degenerate triangles
         // are dropped and the rest renders.
-        let mut with_scene = setup.clone();
-        with_scene.scene = Some(std::sync::Arc::new(Scene::default()));
-        assert!(matches!(
-            gpu.configure(&with_scene),
-            Err(BackendError::Scene(SceneError::Empty))
-        ));
+        // A scene reaches a backend only prepared (the type says so): bad scenes are
+        // refused by `prepare` and `over_scene`, before any backend sees them.
+        assert!(matches!(Scene::default().prepare(), Err(SceneError::Empty)));
         let mut nan = black_walls(&[10.0]);
         nan.meshes[0].positions_m[2].y = f32::NAN;
-        with_scene.scene = Some(std::sync::Arc::new(nan.clone()));
         assert!(matches!(
-            gpu.configure(&with_scene),
-            Err(BackendError::Scene(SceneError::NonFinite { .. }))
+            nan.clone().prepare(),
+            Err(SceneError::NonFinite { .. })
         ));
         assert!(matches!(
             Setup::over_scene(nan, 16, 5.0, 10),

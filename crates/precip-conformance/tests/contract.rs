@@ -1,0 +1,308 @@
+//! The Backend contract, one suite run over every backend (the CPU reference, wgpu on
+//! every adapter, Vulkan under the validation layer): calls before configure, bad
+//! input refused with the same typed error and the backend unchanged and working
+//! afterwards, the device's limits, determinism, sub-step splitting, mass reaching the
+//! cover, and the shape of timings. A new backend passes this file or is not done.
+
+use std::mem::discriminant;
+
+use glam::Vec3;
+use precip_conformance::{Subject, all_subjects, gpu_subjects};
+use precip_model::cover::GridFrame;
+use precip_model::{Backend, BackendError, Camera, GroundMap, Particle, Setup, View, Weather};
+
+fn setup(seed: u32, count: u32) -> Setup {
+    let mut setup = Setup::over_flat_ground(40.0, 16, 15.0, count);
+    setup.seed = seed;
+    setup.cover.time_scale = 500.0;
+    setup
+}
+
+fn view(setup: &Setup) -> View {
+    View {
+        camera: setup.camera,
+        width_px: 32,
+        height_px: 24,
+    }
+}
+
+fn bytes(particles: &[Particle]) -> Vec<u8> {
+    bytemuck::cast_slice(particles).to_vec()
+}
+
+/// Asserts that `f` is refused by every subject with the same error variant.
+fn same_refusal<'a>(
+    subjects: impl IntoIterator<Item = &'a mut Subject>,
+    what: &str,
+    f: impl Fn(&mut dyn Backend) -> Result<(), BackendError>,
+) {
+    let mut first: Option<(String, BackendError)> = None;
+    for s in subjects {
+        let e = f(s.backend.as_mut())
+            .err()
+            .unwrap_or_else(|| panic!("{}: {what} was accepted", s.name));
+        match &first {
+            None => first = Some((s.name.clone(), e)),
+            Some((name, f)) => assert_eq!(
+                discriminant(f),
+                discriminant(&e),
+                "{what}: {name} said `{f}`, {} said `{e}`",
+                s.name
+            ),
+        }
+        s.check_clean(what);
+    }
+}
+
+#[test]
+fn calls_before_configure_are_refused_alike() {
+    let mut subjects = all_subjects("calls_before_configure_are_refused_alike");
+    let s = setup(1, 100);
+    same_refusal(subjects.iter_mut(), "step", |b| b.step(0.02));
+    same_refusal(subjects.iter_mut(), "set_weather", |b| {
+        b.set_weather(&Weather::default())
+    });
+    same_refusal(subjects.iter_mut(), "set_camera", |b| {
+        b.set_camera(&Camera::default())
+    });
+    same_refusal(subjects.iter_mut(), "read_particles", |b| {
+        b.read_particles().map(drop)
+    });
+    same_refusal(subjects.iter_mut(), "read_cover", |b| {
+        b.read_cover().map(drop)
+    });
+    same_refusal(subjects_that_render(&mut subjects), "render", |b| {
+        b.render(&view(&s))
+    });
+    same_refusal(subjects_that_render(&mut subjects), "read_image", |b| {
+        b.read_image().map(drop)
+    });
+}
+
+fn subjects_that_render(subjects: &mut [Subject]) -> impl Iterator<Item = &mut Subject> {
+    subjects.iter_mut().filter(|s| s.renders())
+}
+
+#[test]
+fn bad_input_is_refused_alike_and_leaves_the_backend_as_it_was() {
+    let mut subjects = all_subjects("bad_input_is_refused_alike");
+    let good = setup(7, 2_000);
+    for s in &mut subjects {
+        s.backend.configure(&good).expect("configure");
+        s.backend.step(0.05).expect("step");
+    }
+    let before: Vec<Vec<u8>> = subjects
+        .iter_mut()
+        .map(|s| bytes(&s.backend.read_particles().expect("particles")))
+        .collect();
+
+    let mut nan_weather = good.weather;
+    nan_weather.intensity_mm_per_h = f32::NAN;
+    same_refusal(subjects.iter_mut(), "NaN intensity", |b| {
+        b.set_weather(&nan_weather)
+    });
+    let mut hot_snow = good.weather;
+    hot_snow.air_temperature_c = 30.0;
+    same_refusal(subjects.iter_mut(), "snow at 30 °C", |b| {
+        b.set_weather(&hot_snow)
+    });
+    for dt in [0.0, -1.0, f32::NAN, f32::INFINITY, 2.0] {
+        same_refusal(subjects.iter_mut(), &format!("dt {dt}"), |b| b.step(dt));
+    }
+    let bad_camera = Camera {
+        position_m: Vec3::new(f32::NAN, 0.0, 0.0),
+        ..Camera::default()
+    };
+    same_refusal(subjects.iter_mut(), "NaN camera", |b| {
+        b.set_camera(&bad_camera)
+    });
+    same_refusal(subjects.iter_mut(), "zero particles", |b| {
+        b.configure(&setup(7, 0))
+    });
+    let mut bad_emitter = good.clone();
+    if let Some(e) = bad_emitter.world_emitter.as_mut() {
+        e.emitter.width_m = -3.0;
+    }
+    same_refusal(subjects.iter_mut(), "a negative emitter", |b| {
+        b.configure(&bad_emitter)
+    });
+    let mut bad_scale = good.clone();
+    bad_scale.cover.time_scale = f32::NAN;
+    same_refusal(subjects.iter_mut(), "NaN time scale", |b| {
+        b.configure(&bad_scale)
+    });
+    // More particles than each backend holds (its own maximum + 1).
+    for s in &mut subjects {
+        let max = s.backend.info().max_particles;
+        let too_many = setup(7, u32::try_from(max + 1).unwrap_or(u32::MAX));
+        if u64::from(too_many.particle_counts().0) > max {
+            let e = s
+                .backend
+                .configure(&too_many)
+                .expect_err("too many particles");
+            assert!(
+                matches!(e, BackendError::CapacityTooLarge { .. }),
+                "{}: {e}",
+                s.name
+            );
+        }
+    }
+    for (w, h) in [(0, 24), (32, 0), (100_000, 24), (u32::MAX, u32::MAX)] {
+        let bad = View {
+            width_px: w,
+            height_px: h,
+            ..view(&good)
+        };
+        same_refusal(
+            subjects_that_render(&mut subjects),
+            &format!("a {w}×{h} view"),
+            |b| b.render(&bad),
+        );
+    }
+    // Unchanged: the particles are as they were, and the backend still steps.
+    for (s, before) in subjects.iter_mut().zip(&before) {
+        let now = bytes(&s.backend.read_particles().expect("particles"));
+        assert!(
+            now == *before,
+            "{}: a refused call changed the particles",
+            s.name
+        );
+        s.backend.step(0.05).expect("still steps");
+        if s.renders() {
+            s.backend.render(&view(&good)).expect("still renders");
+            s.backend.read_image().expect("an image");
+        }
+        s.check_clean("after the refusals");
+    }
+}
+
+#[test]
+fn grids_larger_than_the_device_binds_are_refused_by_every_gpu_backend() {
+    for mut s in gpu_subjects("grids_larger_than_the_device_binds") {
+        let good = setup(3, 500);
+        s.backend.configure(&good).expect("configure");
+        // Just over one storage binding of ground heights (4 bytes a texel).
+        let device_bytes = s.backend.info().max_particles * size_of::<Particle>() as u64;
+        let side = ((device_bytes / 4) as f64).sqrt().ceil() as u32 + 1;
+        let mut big = good.clone();
+        big.ground = GroundMap::flat(
+            GridFrame::centred(
+                glam::Vec2::ZERO,
+                glam::Vec2::splat(40.0),
+                glam::UVec2::splat(side),
+            ),
+            0.0,
+            1.0,
+        );
+        let e = s
+            .backend
+            .configure(&big)
+            .expect_err("too large a ground map");
+        assert!(
+            matches!(
+                e,
+                BackendError::Setup {
+                    field: "ground.frame",
+                    ..
+                }
+            ),
+            "{}: {e}",
+            s.name
+        );
+        s.backend
+            .step(0.02)
+            .expect("the old configuration still steps");
+        s.check_clean("after a refused grid");
+    }
+}
+
+#[test]
+fn the_same_seed_gives_the_same_particles_and_another_seed_others() {
+    for mut s in all_subjects("determinism") {
+        let run = |b: &mut dyn Backend, seed: u32| {
+            b.configure(&setup(seed, 3_000)).expect("configure");
+            for _ in 0..6 {
+                b.step(0.04).expect("step");
+            }
+            bytes(&b.read_particles().expect("particles"))
+        };
+        let a = run(s.backend.as_mut(), 11);
+        let b = run(s.backend.as_mut(), 11);
+        let c = run(s.backend.as_mut(), 12);
+        assert!(a == b, "{}: the same seed differs", s.name);
+        assert!(a != c, "{}: another seed gives the same particles", s.name);
+        s.check_clean("determinism");
+    }
+}
+
+#[test]
+fn a_long_step_is_its_sub_steps() {
+    for mut s in all_subjects("sub-steps") {
+        let good = setup(5, 2_000);
+        s.backend.configure(&good).expect("configure");
+        s.backend.step(0.12).expect("one step of 3 sub-steps");
+        let whole = bytes(&s.backend.read_particles().expect("particles"));
+        s.backend.configure(&good).expect("configure");
+        for _ in 0..3 {
+            s.backend.step(0.04).expect("a sub-step");
+        }
+        let split = bytes(&s.backend.read_particles().expect("particles"));
+        assert!(whole == split, "{}: step(0.12) ≠ 3 × step(0.04)", s.name);
+        s.check_clean("sub-steps");
+    }
+}
+
+#[test]
+fn water_reaches_the_cover_at_the_weather_rate() {
+    for mut s in all_subjects("mass") {
+        let mut good = setup(9, 6_000);
+        good.cover.time_scale = 1.0;
+        s.backend.configure(&good).expect("configure");
+        // Settle (pre-warmed particles), then measure over 4 s.
+        for _ in 0..40 {
+            s.backend.step(0.1).expect("step");
+        }
+        let start = s.backend.read_cover().expect("cover").totals().deposited_kg;
+        for _ in 0..40 {
+            s.backend.step(0.1).expect("step");
+        }
+        let landed = s.backend.read_cover().expect("cover").totals().deposited_kg - start;
+        let area = good
+            .world_emitter
+            .map(|e| e.emitter.horizontal_area_m2())
+            .unwrap_or(0.0);
+        let expected = f64::from(good.weather.intensity_mm_per_h) / 3600.0 * f64::from(area) * 4.0;
+        let ratio = landed / expected;
+        assert!(
+            (0.8..1.2).contains(&ratio),
+            "{}: landed {landed} kg against {expected} kg",
+            s.name
+        );
+        s.check_clean("mass");
+    }
+}
+
+#[test]
+fn timings_name_the_same_passes_on_every_gpu_backend() {
+    let mut shapes: Vec<(String, Vec<&'static str>)> = Vec::new();
+    for mut s in gpu_subjects("timings") {
+        let good = setup(2, 1_000);
+        s.backend.configure(&good).expect("configure");
+        s.backend.step(0.1).expect("step");
+        s.backend.render(&view(&good)).expect("render");
+        let t = s.backend.timings().expect("timings");
+        assert!(
+            t.passes
+                .iter()
+                .all(|p| p.milliseconds.is_finite() && p.milliseconds >= 0.0)
+        );
+        shapes.push((s.name.clone(), t.passes.iter().map(|p| p.pass).collect()));
+    }
+    for pair in shapes.windows(2) {
+        assert_eq!(
+            pair[0].1, pair[1].1,
+            "{} and {} time different passes",
+            pair[0].0, pair[1].0
+        );
+    }
+}
