@@ -16,7 +16,7 @@ pub struct Subject {
     /// The backend.
     pub backend: Box<dyn Backend>,
     /// The Vulkan validation layer's log, for the vk backend.
-    validation: Option<precip_gpu_vk::instance::Messages>,
+    validation: Option<precip_gpu_vk::Messages>,
 }
 
 impl std::fmt::Debug for Subject {

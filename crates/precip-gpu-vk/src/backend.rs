@@ -137,14 +137,15 @@ impl VkBackend {
     /// The list the validation layer writes into; it outlives the backend, so leak
     /// reports at device destruction can be read after a drop.
     #[must_use]
-    pub fn validation_log(&self) -> crate::instance::Messages {
+    pub fn validation_log(&self) -> crate::Messages {
         self.device.instance.messages.clone()
     }
 
-    /// The device (its raw `ash::Device`, queue and allocator), for an engine that
-    /// records its own work beside precip's.
+    /// The device (its raw `ash::Device`, queue and allocator), for tests that misuse
+    /// it on purpose.
+    #[cfg(test)]
     #[must_use]
-    pub fn device(&self) -> &Device {
+    pub(crate) fn device(&self) -> &Device {
         &self.device
     }
 
@@ -500,5 +501,43 @@ impl Backend for VkBackend {
             allocated_bytes: report.total_allocated_bytes,
             reserved_bytes: report.total_capacity_bytes,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::VkBackend;
+
+    #[test]
+    fn the_messenger_reports_a_misuse() {
+        // A negative control: the validation-clean checks of the tests mean something
+        // only if a real validation error reaches the log.
+        let vk = match VkBackend::new(true) {
+            Ok(vk) => vk,
+            Err(e) => {
+                assert!(
+                    std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
+                    "PRECIP_REQUIRE_GPU=1 but {e}"
+                );
+                eprintln!("SKIPPED the_messenger_reports_a_misuse: {e}");
+                return;
+            }
+        };
+        let device = &vk.device().raw;
+        let info = ash::vk::BufferCreateInfo::default()
+            .size(0)
+            .usage(ash::vk::BufferUsageFlags::STORAGE_BUFFER);
+        // SAFETY: deliberately invalid (size 0) to provoke the validation layer;
+        // lavapipe still returns a handle or an error, and either is cleaned up here.
+        let made = unsafe { device.create_buffer(&info, None) };
+        if let Ok(buffer) = made {
+            // SAFETY: the buffer is unused and destroyed once.
+            unsafe { device.destroy_buffer(buffer, None) };
+        }
+        let messages = vk.validation_messages();
+        assert!(
+            messages.iter().any(|m| m.contains("size")),
+            "the layer should report a zero-size buffer: {messages:?}"
+        );
     }
 }

@@ -15,8 +15,6 @@ pub struct Buffer {
     /// The buffer.
     pub raw: vk::Buffer,
     allocation: Option<Allocation>,
-    /// Bytes.
-    pub size: u64,
 }
 
 impl Buffer {
@@ -69,7 +67,6 @@ impl Buffer {
         Ok(Self {
             raw,
             allocation: Some(allocation),
-            size,
         })
     }
 

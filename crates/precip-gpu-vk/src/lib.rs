@@ -25,6 +25,14 @@
 //! - [`error`] — pure `vk::Result` → `BackendError` conversions.
 //! - [`backend`] — [`VkBackend`].
 //!
+//! ## Public surface
+//!
+//! The modules are the crate's own: what a caller gets is [`VkBackend`] (the
+//! `Backend`, presentation into a window: [`Presented`], [`SwapchainFrame`]), the
+//! external-device handshake ([`ExternalDevice`], `VkBackend::on_external_device`),
+//! and [`Instance`] with its validation [`Messages`]. No raw handle of precip's own
+//! device leaves the crate.
+
 //! ## State
 //!
 //! Everything the wgpu backend does — simulation, rendering offscreen with
@@ -39,20 +47,22 @@
     reason = "raw Vulkan through ash is unsafe by nature; every block says why it is sound (// SAFETY:)"
 )]
 
-pub mod backend;
-pub mod buffer;
-pub mod commands;
-pub mod descriptors;
-pub mod device;
-pub mod error;
-pub mod image;
-pub mod instance;
-pub mod programs;
-pub mod query;
-pub mod render;
-pub mod resources;
-pub mod retire;
-pub mod spirv;
-pub mod swapchain;
+mod backend;
+mod buffer;
+mod commands;
+mod descriptors;
+mod device;
+mod error;
+mod image;
+mod instance;
+mod programs;
+mod query;
+mod render;
+mod resources;
+mod retire;
+mod spirv;
+mod swapchain;
 
-pub use backend::{Presented, VkBackend};
+pub use backend::{Presented, SwapchainFrame, VkBackend};
+pub use device::ExternalDevice;
+pub use instance::{Instance, Messages};

@@ -40,10 +40,4 @@ impl Retired {
     pub fn release_all(&mut self, device: &Device) {
         self.release(device, u64::MAX);
     }
-
-    /// How many objects wait.
-    #[must_use]
-    pub fn pending(&self) -> usize {
-        self.items.len()
-    }
 }

@@ -4,6 +4,7 @@
 use precip_model::shaders::Program;
 
 /// The programs the build script compiles.
+#[cfg(test)]
 pub const COMPILED: [Program; 5] = include!("compiled_programs.in");
 
 /// The SPIR-V words of `program`, or `None` for programs this backend does not run.

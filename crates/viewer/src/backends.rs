@@ -16,7 +16,7 @@ pub enum BackendName {
 
 /// What the Vulkan validation layer reported (shared with the backend; readable
 /// after it is dropped, leak reports included).
-pub type ValidationLog = precip_gpu_vk::instance::Messages;
+pub type ValidationLog = precip_gpu_vk::Messages;
 
 /// Opens `name` for headless frames. The Vulkan backend runs with the validation
 /// layer when `PRECIP_VK_VALIDATION=1`; its log comes back for the caller to print.

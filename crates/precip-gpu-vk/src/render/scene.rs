@@ -36,8 +36,6 @@ pub struct SceneGpu {
     pub indices: Buffer,
     /// The meshes.
     pub meshes: Vec<MeshDraw>,
-    /// Triangles drawn (after tessellation).
-    pub triangles: u64,
     materials: Vec<(Buffer, Image)>,
     pool: vk::DescriptorPool,
 }
@@ -121,7 +119,6 @@ impl SceneGpu {
                 MemoryLocation::GpuOnly,
             )?,
             meshes: Vec::with_capacity(ranges.len()),
-            triangles: indices.len() as u64 / 3,
             materials: Vec::with_capacity(ranges.len()),
             pool,
         };
