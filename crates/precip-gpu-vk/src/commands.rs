@@ -1,5 +1,5 @@
-//! Recording and submitting command buffers: one submission in flight at a time,
-//! waited for (and its command buffer freed) before the next one or a read-back.
+//! Recording and submitting command buffers, each behind a fence; the pairs of
+//! finished submissions are reused by the next ones, so steady frames allocate none.
 
 use ash::vk;
 use precip_model::BackendError;
@@ -31,12 +31,12 @@ pub fn submit(
     submit_synced(device, Semaphores::default(), record)
 }
 
-/// [`submit`], waiting on and signalling `semaphores`.
-pub fn submit_synced(
-    device: &Device,
-    semaphores: Semaphores<'_>,
-    record: impl FnOnce(vk::CommandBuffer),
-) -> Result<InFlight, BackendError> {
+/// A command buffer and an unsignalled fence: a finished submission's, or new ones
+/// while fewer exist than have ever been in flight at once.
+fn take_pair(device: &Device) -> Result<(vk::CommandBuffer, vk::Fence), BackendError> {
+    if let Some(pair) = device.recycled.lock().ok().and_then(|mut free| free.pop()) {
+        return Ok(pair);
+    }
     let info = vk::CommandBufferAllocateInfo::default()
         .command_pool(device.command_pool)
         .level(vk::CommandBufferLevel::PRIMARY)
@@ -44,48 +44,102 @@ pub fn submit_synced(
     // SAFETY: the pool belongs to this device and is used from this thread only.
     let commands = unsafe { device.raw.allocate_command_buffers(&info) }
         .map_err(|e| map_vk("allocating a command buffer", e))?[0];
-    let begin =
-        vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
-    // SAFETY: a fresh primary command buffer.
-    unsafe { device.raw.begin_command_buffer(commands, &begin) }
-        .map_err(|e| map_vk("beginning a command buffer", e))?;
-    record(commands);
-    // SAFETY: the buffer is recording.
-    unsafe { device.raw.end_command_buffer(commands) }
-        .map_err(|e| map_vk("ending a command buffer", e))?;
     // SAFETY: a valid device.
-    let fence = unsafe {
+    match unsafe {
         device
             .raw
             .create_fence(&vk::FenceCreateInfo::default(), None)
+    } {
+        Ok(fence) => Ok((commands, fence)),
+        Err(e) => {
+            // SAFETY: the buffer was just allocated and never submitted.
+            unsafe {
+                device
+                    .raw
+                    .free_command_buffers(device.command_pool, &[commands])
+            };
+            Err(map_vk("creating a fence", e))
+        }
     }
-    .map_err(|e| map_vk("creating a fence", e))?;
-    let buffers = [commands];
-    let (wait, stages): (Vec<_>, Vec<_>) = semaphores.wait.iter().copied().unzip();
-    let submit = vk::SubmitInfo::default()
-        .command_buffers(&buffers)
-        .wait_semaphores(&wait)
-        .wait_dst_stage_mask(&stages)
-        .signal_semaphores(semaphores.signal);
-    // SAFETY: the queue belongs to this device; the command buffer is executable.
-    unsafe { device.raw.queue_submit(device.queue, &[submit], fence) }
-        .map_err(|e| map_vk("submitting work", e))?;
-    Ok(InFlight { fence, commands })
+}
+
+/// Returns a pair no pending work uses (its fence unsignalled) for the next
+/// submission; the command buffer is reset on its next `begin`.
+fn give_back(device: &Device, pair: (vk::CommandBuffer, vk::Fence)) {
+    match device.recycled.lock() {
+        Ok(mut free) => free.push(pair),
+        // A poisoned list (a panic elsewhere): free the pair now instead.
+        // SAFETY: no pending work uses the pair.
+        Err(_) => unsafe {
+            device.raw.destroy_fence(pair.1, None);
+            device
+                .raw
+                .free_command_buffers(device.command_pool, &[pair.0]);
+        },
+    }
+}
+
+/// [`submit`], waiting on and signalling `semaphores`. Command buffers and fences are
+/// reused: a finished submission's pair serves the next one, so a frame allocates
+/// none. On any error the pair goes back unused; nothing leaks.
+pub fn submit_synced(
+    device: &Device,
+    semaphores: Semaphores<'_>,
+    record: impl FnOnce(vk::CommandBuffer),
+) -> Result<InFlight, BackendError> {
+    let (commands, fence) = take_pair(device)?;
+    let begin =
+        vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+    let recorded = (|| {
+        // SAFETY: the buffer is not pending (its last submission was waited for); its
+        // pool allows resetting single buffers, which `begin` does implicitly.
+        unsafe { device.raw.begin_command_buffer(commands, &begin) }
+            .map_err(|e| map_vk("beginning a command buffer", e))?;
+        record(commands);
+        // SAFETY: the buffer is recording.
+        unsafe { device.raw.end_command_buffer(commands) }
+            .map_err(|e| map_vk("ending a command buffer", e))?;
+        let buffers = [commands];
+        let (wait, stages): (Vec<_>, Vec<_>) = semaphores.wait.iter().copied().unzip();
+        let submit = vk::SubmitInfo::default()
+            .command_buffers(&buffers)
+            .wait_semaphores(&wait)
+            .wait_dst_stage_mask(&stages)
+            .signal_semaphores(semaphores.signal);
+        // SAFETY: the queue belongs to this device; the command buffer is executable;
+        // the fence is unsignalled.
+        unsafe { device.raw.queue_submit(device.queue, &[submit], fence) }
+            .map_err(|e| map_vk("submitting work", e))
+    })();
+    match recorded {
+        Ok(()) => Ok(InFlight { fence, commands }),
+        Err(e) => {
+            give_back(device, (commands, fence));
+            Err(e)
+        }
+    }
 }
 
 impl InFlight {
-    /// Waits for the work, then frees its fence and command buffer.
+    /// Waits for the work, then hands its command buffer and fence to the next
+    /// submission.
     pub fn wait(self, device: &Device) -> Result<(), BackendError> {
-        // SAFETY: the fence and buffer belong to this device; after the wait the GPU no
-        // longer uses them.
+        // SAFETY: the fence belongs to this device.
+        let waited = unsafe { device.raw.wait_for_fences(&[self.fence], true, u64::MAX) }
+            .map_err(|e| map_vk("waiting for the GPU", e));
+        // SAFETY: after a successful wait the GPU no longer uses the pair; after a
+        // failed one (a lost device) nothing will run again, so it is freed.
         unsafe {
-            let waited = device.raw.wait_for_fences(&[self.fence], true, u64::MAX);
-            device.raw.destroy_fence(self.fence, None);
-            device
-                .raw
-                .free_command_buffers(device.command_pool, &[self.commands]);
-            waited.map_err(|e| map_vk("waiting for the GPU", e))
+            if waited.is_ok() && device.raw.reset_fences(&[self.fence]).is_ok() {
+                give_back(device, (self.commands, self.fence));
+            } else {
+                device.raw.destroy_fence(self.fence, None);
+                device
+                    .raw
+                    .free_command_buffers(device.command_pool, &[self.commands]);
+            }
         }
+        waited
     }
 }
 

@@ -35,6 +35,9 @@ pub struct Device {
     pub allocator: ManuallyDrop<Mutex<Allocator>>,
     /// Command buffers come from here.
     pub command_pool: vk::CommandPool,
+    /// Command buffers and unsignalled fences of finished submissions, for the next
+    /// ones (`crate::commands`).
+    pub recycled: Mutex<Vec<(vk::CommandBuffer, vk::Fence)>>,
     /// The largest single allocation (Vulkan 1.1's maxMemoryAllocationSize), bytes:
     /// the largest buffer precip makes.
     pub max_allocation_bytes: u64,
@@ -150,21 +153,40 @@ impl Device {
         swapchain: bool,
         owned: bool,
     ) -> Result<Self, BackendError> {
-        let allocator = Allocator::new(&AllocatorCreateDesc {
+        // On failure the device is destroyed here when it is precip's own (before the
+        // instance, which drops on return), so partial construction leaks nothing.
+        let abandon = |raw: &ash::Device| {
+            if owned {
+                // SAFETY: nothing was created on the device yet but what was dropped.
+                unsafe { raw.destroy_device(None) };
+            }
+        };
+        let allocator = match Allocator::new(&AllocatorCreateDesc {
             instance: instance.raw.clone(),
             device: raw.clone(),
             physical_device: physical,
             debug_settings: gpu_allocator::AllocatorDebugSettings::default(),
             buffer_device_address: false,
             allocation_sizes: gpu_allocator::AllocationSizes::default(),
-        })
-        .map_err(|e| map_allocation("creating the allocator", &e))?;
+        }) {
+            Ok(a) => a,
+            Err(e) => {
+                abandon(&raw);
+                return Err(map_allocation("creating the allocator", &e));
+            }
+        };
         let pool_info = vk::CommandPoolCreateInfo::default()
             .queue_family_index(queue_family)
             .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
         // SAFETY: a valid device and create info.
-        let command_pool = unsafe { raw.create_command_pool(&pool_info, None) }
-            .map_err(|e| map_vk("creating a command pool", e))?;
+        let command_pool = match unsafe { raw.create_command_pool(&pool_info, None) } {
+            Ok(pool) => pool,
+            Err(e) => {
+                drop(allocator);
+                abandon(&raw);
+                return Err(map_vk("creating a command pool", e));
+            }
+        };
         let names = instance
             .has_debug_utils()
             .then(|| ash::ext::debug_utils::Device::new(&instance.raw, &raw));
@@ -189,6 +211,7 @@ impl Device {
             swapchain,
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
             command_pool,
+            recycled: Mutex::new(Vec::new()),
             max_allocation_bytes,
             owned,
             names,
@@ -337,6 +360,11 @@ impl Drop for Device {
         // only when they are precip's own.
         unsafe {
             let _ = self.raw.device_wait_idle();
+            if let Ok(free) = self.recycled.get_mut() {
+                for (_, fence) in free.drain(..) {
+                    self.raw.destroy_fence(fence, None);
+                }
+            }
             self.raw.destroy_command_pool(self.command_pool, None);
             ManuallyDrop::drop(&mut self.allocator);
             if self.owned {

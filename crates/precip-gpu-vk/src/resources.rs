@@ -58,16 +58,6 @@ const STORAGE: vk::BufferUsageFlags = vk::BufferUsageFlags::from_raw(
         | vk::BufferUsageFlags::TRANSFER_DST.as_raw(),
 );
 
-fn uniform(device: &Device, name: &str, size: u64) -> Result<Buffer, BackendError> {
-    Buffer::new(
-        device,
-        name,
-        size,
-        vk::BufferUsageFlags::UNIFORM_BUFFER,
-        MemoryLocation::CpuToGpu,
-    )
-}
-
 /// Copies `bytes` into `target` through a staging buffer (waits).
 pub fn upload(device: &Device, target: &Buffer, bytes: &[u8]) -> Result<(), BackendError> {
     if bytes.is_empty() {
@@ -220,7 +210,7 @@ pub fn upload_image(device: &Device, image: &Image, bytes: &[u8]) -> Result<(), 
 
 impl Resources {
     /// Allocates, uploads and binds everything but the particles (the init kernel
-    /// fills them).
+    /// fills them). On any failure everything made so far is freed.
     pub fn new(
         device: &Device,
         programs: &Programs,
@@ -237,51 +227,108 @@ impl Resources {
             .max(16);
         let block = size_of::<StepParams>().max(size_of::<CoverStepParams>()) as u64;
         let uniform_stride = block.div_ceil(align) * align;
-        let count = u64::from(MAX_SUBSTEPS) * FRAMES_IN_FLIGHT as u64;
-        let particles = Buffer::new(
-            device,
-            "particles",
-            u64::from(particle_count) * size_of::<Particle>() as u64,
-            STORAGE,
-            MemoryLocation::GpuOnly,
-        )?;
+        let blocks = u64::from(MAX_SUBSTEPS) * FRAMES_IN_FLIGHT as u64;
         let cover_bytes: &[u8] = bytemuck::cast_slice(&cover.texels);
-        let cover_buffer = Buffer::new(
-            device,
-            "cover",
-            cover_bytes.len() as u64,
-            STORAGE,
-            MemoryLocation::GpuOnly,
-        )?;
-        upload(device, &cover_buffer, cover_bytes)?;
-        let deposits = Buffer::new(
-            device,
-            "deposits",
-            cover.texels.len() as u64 * 8,
-            STORAGE,
-            MemoryLocation::GpuOnly,
-        )?;
-        upload(device, &deposits, &vec![0u8; cover.texels.len() * 8])?;
         let ground_bytes: &[u8] = bytemuck::cast_slice(&ground.height_m);
-        let ground_buffer = Buffer::new(
-            device,
-            "ground",
-            ground_bytes.len() as u64,
-            STORAGE,
-            MemoryLocation::GpuOnly,
-        )?;
-        upload(device, &ground_buffer, ground_bytes)?;
-        let mut frames_buffer = uniform(device, "frames", size_of::<Frames>() as u64)?;
-        frames_buffer.write(0, bytemuck::bytes_of(frames))?;
-        let mut wind_params = uniform(device, "wind params", size_of::<WindParams>() as u64)?;
-        wind_params.write(0, bytemuck::bytes_of(&wind.gpu_params()))?;
-        let volume = Image::volume(device, wind.spec.texels)?;
-        upload_image(device, &volume, wind.as_bytes())?;
-        let step_uniforms = uniform(device, "step uniforms", uniform_stride * count)?;
-        let cover_uniforms = uniform(device, "cover uniforms", uniform_stride * count)?;
-
+        let uniform_usage = vk::BufferUsageFlags::UNIFORM_BUFFER;
+        let specs = [
+            (
+                "particles",
+                u64::from(particle_count) * size_of::<Particle>() as u64,
+                STORAGE,
+                MemoryLocation::GpuOnly,
+            ),
+            (
+                "cover",
+                cover_bytes.len() as u64,
+                STORAGE,
+                MemoryLocation::GpuOnly,
+            ),
+            (
+                "deposits",
+                cover.texels.len() as u64 * 8,
+                STORAGE,
+                MemoryLocation::GpuOnly,
+            ),
+            (
+                "ground",
+                ground_bytes.len() as u64,
+                STORAGE,
+                MemoryLocation::GpuOnly,
+            ),
+            (
+                "frames",
+                size_of::<Frames>() as u64,
+                uniform_usage,
+                MemoryLocation::CpuToGpu,
+            ),
+            (
+                "wind params",
+                size_of::<WindParams>() as u64,
+                uniform_usage,
+                MemoryLocation::CpuToGpu,
+            ),
+            (
+                "step uniforms",
+                uniform_stride * blocks,
+                uniform_usage,
+                MemoryLocation::CpuToGpu,
+            ),
+            (
+                "cover uniforms",
+                uniform_stride * blocks,
+                uniform_usage,
+                MemoryLocation::CpuToGpu,
+            ),
+        ];
+        let mut made: Vec<Buffer> = Vec::with_capacity(specs.len());
+        let free = |made: Vec<Buffer>| made.into_iter().for_each(|b| b.destroy(device));
+        for (name, size, usage, location) in specs {
+            match Buffer::new(device, name, size, usage, location) {
+                Ok(b) => made.push(b),
+                Err(e) => {
+                    free(made);
+                    return Err(e);
+                }
+            }
+        }
+        let [
+            particles,
+            cover_buffer,
+            deposits,
+            ground_buffer,
+            frames_buffer,
+            wind_params,
+            step_uniforms,
+            cover_uniforms,
+        ] = match <[Buffer; 8]>::try_from(made) {
+            Ok(all) => all,
+            Err(made) => {
+                free(made);
+                return Err(BackendError::Device {
+                        backend: crate::error::NAME,
+                        message: "a buffer of the configuration is missing (a bug in precip: please report it)".into(),
+                    });
+            }
+        };
+        let volume = match Image::volume(device, wind.spec.texels) {
+            Ok(v) => v,
+            Err(e) => {
+                free(vec![
+                    particles,
+                    cover_buffer,
+                    deposits,
+                    ground_buffer,
+                    frames_buffer,
+                    wind_params,
+                    step_uniforms,
+                    cover_uniforms,
+                ]);
+                return Err(e);
+            }
+        };
         use vk::DescriptorType as T;
-        let pool = descriptors::pool(
+        let pool = match descriptors::pool(
             device,
             "simulation",
             &[
@@ -291,24 +338,88 @@ impl Resources {
                 (T::STORAGE_BUFFER, 5),
             ],
             2,
+        ) {
+            Ok(p) => p,
+            Err(e) => {
+                free(vec![
+                    particles,
+                    cover_buffer,
+                    deposits,
+                    ground_buffer,
+                    frames_buffer,
+                    wind_params,
+                    step_uniforms,
+                    cover_uniforms,
+                ]);
+                volume.destroy(device);
+                return Err(e);
+            }
+        };
+        let mut resources = Self {
+            particles,
+            particle_count,
+            cover: cover_buffer,
+            cover_texel_count: cover.texels.len() as u32,
+            deposits,
+            ground: ground_buffer,
+            frames: frames_buffer,
+            wind_params,
+            wind: volume,
+            step_uniforms,
+            cover_uniforms,
+            uniform_stride,
+            pool,
+            step_set: vk::DescriptorSet::null(),
+            cover_set: vk::DescriptorSet::null(),
+        };
+        match resources.fill(device, programs, cover_bytes, ground_bytes, frames, wind) {
+            Ok(()) => Ok(resources),
+            Err(e) => {
+                resources.destroy(device);
+                Err(e)
+            }
+        }
+    }
+
+    /// Uploads the initial data and writes the descriptor sets.
+    fn fill(
+        &mut self,
+        device: &Device,
+        programs: &Programs,
+        cover_bytes: &[u8],
+        ground_bytes: &[u8],
+        frames: &Frames,
+        wind: &WindVolume,
+    ) -> Result<(), BackendError> {
+        upload(device, &self.cover, cover_bytes)?;
+        upload(
+            device,
+            &self.deposits,
+            &vec![0u8; cover_bytes.len() / size_of::<CoverTexel>() * 8],
         )?;
+        upload(device, &self.ground, ground_bytes)?;
+        self.frames.write(0, bytemuck::bytes_of(frames))?;
+        self.wind_params
+            .write(0, bytemuck::bytes_of(&wind.gpu_params()))?;
+        upload_image(device, &self.wind, wind.as_bytes())?;
         let sets = descriptors::allocate(
             device,
-            pool,
+            self.pool,
             &[programs.step_set_layout, programs.cover_set_layout],
         )?;
         let (step_set, cover_set) = (sets[0], sets[1]);
+        use vk::DescriptorType as T;
         let info = buffer_info;
         let whole = vk::WHOLE_SIZE;
-        let step_params = info(&step_uniforms, size_of::<StepParams>() as u64);
-        let frames_info = info(&frames_buffer, size_of::<Frames>() as u64);
-        let wind_info = info(&wind_params, size_of::<WindParams>() as u64);
-        let ground_info = info(&ground_buffer, whole);
-        let particles_info = info(&particles, whole);
-        let deposits_info = info(&deposits, whole);
-        let cover_params = info(&cover_uniforms, size_of::<CoverStepParams>() as u64);
-        let cover_info = info(&cover_buffer, whole);
-        let image = image_info(volume.view);
+        let step_params = info(&self.step_uniforms, size_of::<StepParams>() as u64);
+        let frames_info = info(&self.frames, size_of::<Frames>() as u64);
+        let wind_info = info(&self.wind_params, size_of::<WindParams>() as u64);
+        let ground_info = info(&self.ground, whole);
+        let particles_info = info(&self.particles, whole);
+        let deposits_info = info(&self.deposits, whole);
+        let cover_params = info(&self.cover_uniforms, size_of::<CoverStepParams>() as u64);
+        let cover_info = info(&self.cover, whole);
+        let image = image_info(self.wind.view);
         let writes = [
             write(
                 step_set,
@@ -336,23 +447,9 @@ impl Resources {
         ];
         // SAFETY: every write names a live buffer or view of the right type and usage.
         unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
-        Ok(Self {
-            particles,
-            particle_count,
-            cover: cover_buffer,
-            cover_texel_count: cover.texels.len() as u32,
-            deposits,
-            ground: ground_buffer,
-            frames: frames_buffer,
-            wind_params,
-            wind: volume,
-            step_uniforms,
-            cover_uniforms,
-            uniform_stride,
-            pool,
-            step_set,
-            cover_set,
-        })
+        self.step_set = step_set;
+        self.cover_set = cover_set;
+        Ok(())
     }
 
     /// Byte offset of in-flight slot `slot`'s ring of uniform blocks.
