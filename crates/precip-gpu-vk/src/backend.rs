@@ -208,7 +208,9 @@ impl Drop for VkBackend {
         if let Some(t) = self.timestamps.take() {
             t.destroy(&self.device);
         }
-        self.programs.destroy(&self.device);
+        // SAFETY: every submission was waited for and the device is idle (above); the
+        // backend is being dropped, so this runs once.
+        unsafe { self.programs.destroy(&self.device) };
     }
 }
 
@@ -271,7 +273,8 @@ impl Backend for VkBackend {
                 );
                 device.raw.cmd_dispatch(cb, x, y, 1);
             }
-            compute_barrier(device, cb);
+            // SAFETY: `cb` is recording, outside a render pass (inside `submit`).
+            unsafe { compute_barrier(device, cb) };
         })?
         .wait(device)?;
         if let Some(t) = self.timestamps.as_mut() {
@@ -416,7 +419,8 @@ impl Backend for VkBackend {
                         );
                         device.raw.cmd_dispatch(cb, x, y, 1);
                     }
-                    compute_barrier(device, cb);
+                    // SAFETY: `cb` is recording, outside a render pass (inside `submit`).
+                    unsafe { compute_barrier(device, cb) };
                     stamp(&mut written);
                 }
             }

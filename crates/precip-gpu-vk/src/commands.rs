@@ -144,7 +144,11 @@ impl InFlight {
 }
 
 /// A barrier making compute writes visible to the next compute and transfer reads.
-pub fn compute_barrier(device: &Device, commands: vk::CommandBuffer) {
+///
+/// # Safety
+/// `commands` is a command buffer of `device` in the recording state, outside a
+/// render pass.
+pub unsafe fn compute_barrier(device: &Device, commands: vk::CommandBuffer) {
     let barrier = vk::MemoryBarrier::default()
         .src_access_mask(vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE)
         .dst_access_mask(
@@ -152,7 +156,7 @@ pub fn compute_barrier(device: &Device, commands: vk::CommandBuffer) {
                 | vk::AccessFlags::SHADER_WRITE
                 | vk::AccessFlags::TRANSFER_READ,
         );
-    // SAFETY: `commands` is recording.
+    // SAFETY: the caller guarantees `commands` is recording outside a render pass.
     unsafe {
         device.raw.cmd_pipeline_barrier(
             commands,
@@ -167,7 +171,11 @@ pub fn compute_barrier(device: &Device, commands: vk::CommandBuffer) {
 }
 
 /// A global memory barrier from `src` (stages, accesses) to `dst`.
-pub fn memory_barrier(
+///
+/// # Safety
+/// `commands` is a command buffer of `device` in the recording state, outside a
+/// render pass.
+pub unsafe fn memory_barrier(
     device: &Device,
     commands: vk::CommandBuffer,
     src: (vk::PipelineStageFlags, vk::AccessFlags),
@@ -176,7 +184,7 @@ pub fn memory_barrier(
     let barrier = vk::MemoryBarrier::default()
         .src_access_mask(src.1)
         .dst_access_mask(dst.1);
-    // SAFETY: `commands` is recording, outside a render pass.
+    // SAFETY: the caller guarantees `commands` is recording outside a render pass.
     unsafe {
         device.raw.cmd_pipeline_barrier(
             commands,

@@ -147,10 +147,14 @@ impl Programs {
         })
     }
 
-    /// Destroys everything (the device must be idle).
-    pub fn destroy(&mut self, device: &Device) {
-        // SAFETY: the device is idle; each object is destroyed once (the lists are
-        // drained).
+    /// Destroys everything.
+    ///
+    /// # Safety
+    /// - No pending work uses the pipelines, layouts or modules (the device is idle).
+    /// - It is called once: the pipelines and layouts are not usable afterwards.
+    pub unsafe fn destroy(&mut self, device: &Device) {
+        // SAFETY: the caller guarantees the device is idle and this runs once; each
+        // object is destroyed once (the lists are drained).
         unsafe {
             device.raw.destroy_pipeline(self.init, None);
             for (_, p) in self.substep.drain(..) {

@@ -81,7 +81,7 @@ impl Timestamps {
     }
 
     /// Destroys the pool (the device must be idle).
-    pub fn destroy(&self, device: &Device) {
+    pub fn destroy(self, device: &Device) {
         // SAFETY: the device is idle; destroyed once (by the backend's Drop).
         unsafe { device.raw.destroy_query_pool(self.pool, None) };
     }

@@ -83,7 +83,8 @@ pub fn upload(device: &Device, target: &Buffer, bytes: &[u8]) -> Result<(), Back
                 .raw
                 .cmd_copy_buffer(cb, staging.raw, target.raw, &[region])
         };
-        compute_barrier(device, cb);
+        // SAFETY: `cb` is recording, outside a render pass (inside `submit`).
+        unsafe { compute_barrier(device, cb) };
     })
     .and_then(|f| f.wait(device));
     staging.destroy(device);

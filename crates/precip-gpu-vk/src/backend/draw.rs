@@ -161,15 +161,20 @@ impl VkBackend {
             signal: signals.as_ref().map_or(&[], |s| s.as_slice()),
         };
         let in_flight = submit_synced(device, semaphores, |cb| {
-            record_frame(
-                device,
-                renderer,
-                render_ref,
-                cb,
-                target,
-                offset as u32,
-                particle_count,
-            );
+            // SAFETY: `cb` is recording (submit_synced); the renderer, the render
+            // state and the framebuffer are live and retired only after this
+            // submission finishes; the offset is this slot's aligned block.
+            unsafe {
+                record_frame(
+                    device,
+                    renderer,
+                    render_ref,
+                    cb,
+                    target,
+                    offset as u32,
+                    particle_count,
+                );
+            }
         })?;
         render.frames_drawn += 1;
         if swapchain.is_none() {

@@ -126,7 +126,7 @@ impl RenderLayouts {
     }
 
     /// Destroys the layouts (the device must be idle).
-    pub fn destroy(&self, device: &Device) {
+    pub fn destroy(self, device: &Device) {
         // SAFETY: the device is idle; each is destroyed once (by the renderer's
         // destroy).
         unsafe {

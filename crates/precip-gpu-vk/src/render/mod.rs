@@ -168,11 +168,11 @@ impl Renderer {
 
     /// Destroys everything (the device must be idle).
     pub fn destroy(self, device: &Device) {
-        for (_, d) in &self.draws {
+        for (_, d) in self.draws {
             d.destroy(device);
         }
         self.cull.destroy(device);
-        if let Some(s) = &self.stamps {
+        if let Some(s) = self.stamps {
             s.destroy(device);
         }
         // SAFETY: the device is idle; each object is destroyed once.
@@ -258,7 +258,14 @@ fn viewport(device: &Device, cb: vk::CommandBuffer, (width, height): (u32, u32))
 
 /// Records one frame (see the module docs) into `cb`; `params_offset` is the
 /// frame's `RenderParams` block.
-pub fn record_frame(
+///
+/// # Safety
+/// - `cb` is a command buffer of `device` in the recording state, outside a render
+///   pass.
+/// - `renderer`, `state` and `target`'s framebuffer are live objects of `device`, and
+///   stay so until the submission of `cb` has finished.
+/// - `params_offset` is aligned and leaves a whole `RenderParams` in the buffer.
+pub unsafe fn record_frame(
     device: &Device,
     renderer: &Renderer,
     state: &RenderState,
@@ -277,24 +284,30 @@ pub fn record_frame(
     let stamps = renderer.stamps.as_ref();
     let stamp = |i| {
         if let Some(s) = stamps {
-            s.stamp(device, cb, i);
+            // SAFETY: `cb` is recording (the caller's guarantee); `i` < QUERIES, reset
+            // at the start of this frame's recording below.
+            unsafe { s.stamp(device, cb, i) };
         }
     };
     if let Some(s) = stamps {
-        s.reset(device, cb);
+        // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
+        unsafe { s.reset(device, cb) };
     }
-    memory_barrier(
-        device,
-        cb,
-        (
-            S::COMPUTE_SHADER | S::TRANSFER,
-            A::SHADER_WRITE | A::TRANSFER_WRITE,
-        ),
-        (
-            S::VERTEX_SHADER | S::FRAGMENT_SHADER | S::COMPUTE_SHADER,
-            A::SHADER_READ | A::SHADER_WRITE,
-        ),
-    );
+    // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
+    unsafe {
+        memory_barrier(
+            device,
+            cb,
+            (
+                S::COMPUTE_SHADER | S::TRANSFER,
+                A::SHADER_WRITE | A::TRANSFER_WRITE,
+            ),
+            (
+                S::VERTEX_SHADER | S::FRAGMENT_SHADER | S::COMPUTE_SHADER,
+                A::SHADER_READ | A::SHADER_WRITE,
+            ),
+        );
+    }
     stamp(0);
     let shadow_px = frame.shadow_map.size();
     let depth_clear = vk::ClearValue {
@@ -374,17 +387,21 @@ pub fn record_frame(
                 .cmd_bind_pipeline(cb, vk::PipelineBindPoint::COMPUTE, *pipeline);
             device.raw.cmd_dispatch(cb, x, y, 1);
         }
-        compute_barrier(device, cb);
+        // SAFETY: `cb` is recording, outside a render pass (between the dispatches).
+        unsafe { compute_barrier(device, cb) };
     }
-    memory_barrier(
-        device,
-        cb,
-        (S::COMPUTE_SHADER, A::SHADER_WRITE),
-        (
-            S::DRAW_INDIRECT | S::VERTEX_SHADER | S::FRAGMENT_SHADER,
-            A::INDIRECT_COMMAND_READ | A::SHADER_READ,
-        ),
-    );
+    // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
+    unsafe {
+        memory_barrier(
+            device,
+            cb,
+            (S::COMPUTE_SHADER, A::SHADER_WRITE),
+            (
+                S::DRAW_INDIRECT | S::VERTEX_SHADER | S::FRAGMENT_SHADER,
+                A::INDIRECT_COMMAND_READ | A::SHADER_READ,
+            ),
+        );
+    }
     stamp(2);
     let sky = target.sky;
     let clears = [
@@ -445,15 +462,18 @@ pub fn record_frame(
         device.raw.cmd_end_render_pass(cb);
     }
     stamp(4);
-    memory_barrier(
-        device,
-        cb,
-        (
-            S::DRAW_INDIRECT | S::VERTEX_SHADER | S::FRAGMENT_SHADER,
-            A::empty(),
-        ),
-        (S::COMPUTE_SHADER | S::TRANSFER, A::empty()),
-    );
+    // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
+    unsafe {
+        memory_barrier(
+            device,
+            cb,
+            (
+                S::DRAW_INDIRECT | S::VERTEX_SHADER | S::FRAGMENT_SHADER,
+                A::empty(),
+            ),
+            (S::COMPUTE_SHADER | S::TRANSFER, A::empty()),
+        );
+    }
 }
 
 impl Renderer {

@@ -252,7 +252,7 @@ impl DrawPipelines {
     }
 
     /// Destroys the pipelines (the device must be idle).
-    pub fn destroy(&self, device: &Device) {
+    pub fn destroy(self, device: &Device) {
         // SAFETY: the device is idle; destroyed once (by the renderer's destroy).
         unsafe {
             for p in [self.scene, self.snow, self.rain] {
@@ -279,7 +279,7 @@ impl CullPipelines {
     }
 
     /// Destroys the pipelines (the device must be idle).
-    pub fn destroy(&self, device: &Device) {
+    pub fn destroy(self, device: &Device) {
         // SAFETY: the device is idle; destroyed once.
         unsafe {
             for (_, p) in &self.kernels {

@@ -60,7 +60,7 @@ impl Samplers {
     }
 
     /// Destroys them (the device must be idle).
-    pub fn destroy(&self, device: &Device) {
+    pub fn destroy(self, device: &Device) {
         // SAFETY: the device is idle; destroyed once.
         unsafe {
             for s in [self.shadow, self.flake, self.material] {

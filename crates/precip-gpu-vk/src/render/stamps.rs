@@ -41,15 +41,23 @@ impl RenderStamps {
         }))
     }
 
-    /// Records the reset of the queries (outside a render pass).
-    pub fn reset(&self, device: &Device, cb: vk::CommandBuffer) {
-        // SAFETY: `cb` is recording, outside a render pass.
+    /// Records the reset of the queries.
+    ///
+    /// # Safety
+    /// `cb` is a command buffer of `device` in the recording state, outside a render
+    /// pass.
+    pub unsafe fn reset(&self, device: &Device, cb: vk::CommandBuffer) {
+        // SAFETY: the caller guarantees `cb` is recording outside a render pass.
         unsafe { device.raw.cmd_reset_query_pool(cb, self.pool, 0, QUERIES) };
     }
 
     /// Records timestamp `index` once all earlier work is done.
-    pub fn stamp(&self, device: &Device, cb: vk::CommandBuffer, index: u32) {
-        // SAFETY: `cb` is recording; `index` < QUERIES and was reset in this buffer.
+    ///
+    /// # Safety
+    /// - `cb` is a command buffer of `device` in the recording state.
+    /// - `index` < [`QUERIES`], reset earlier in `cb` ([`RenderStamps::reset`]).
+    pub unsafe fn stamp(&self, device: &Device, cb: vk::CommandBuffer, index: u32) {
+        // SAFETY: the caller guarantees both.
         unsafe {
             device.raw.cmd_write_timestamp(
                 cb,
@@ -88,7 +96,7 @@ impl RenderStamps {
     }
 
     /// Destroys the pool (the device must be idle).
-    pub fn destroy(&self, device: &Device) {
+    pub fn destroy(self, device: &Device) {
         // SAFETY: the device is idle; destroyed once.
         unsafe { device.raw.destroy_query_pool(self.pool, None) };
     }
