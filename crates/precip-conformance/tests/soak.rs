@@ -15,9 +15,10 @@ use precip_model::{Backend, DeviceMemory, PrecipitationKind, Setup, View};
 const WARM_UP_FRAMES: u32 = 150;
 /// Frames measured.
 const FRAMES: u32 = 1_500;
-/// The most resident memory a frame may add, KiB: 0.5 % of what a leak of Mesa's
-/// lavapipe once added here (~2 000 KiB a frame); allocator noise measured 0.01–1.3
-/// (at 60 frames a second this bound is still under 30 MB an hour).
+/// The most resident memory a frame may add, KiB: 0.4 % of what a leak of Mesa's
+/// lavapipe once added here (~2 000 KiB a frame); allocator noise measured 0.01–1.3.
+/// A slower leak below this bound is left to the hand-run `rss-soak.sh` over
+/// thousands of frames.
 const MAX_KIB_PER_FRAME: f64 = 8.0;
 /// Re-configure cycles before and during the measurement.
 const WARM_UP_CYCLES: u32 = 8;
