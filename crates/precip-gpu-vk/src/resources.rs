@@ -293,38 +293,10 @@ impl Resources {
                 }
             }
         }
-        let [
-            particles,
-            cover_buffer,
-            deposits,
-            ground_buffer,
-            frames_buffer,
-            wind_params,
-            step_uniforms,
-            cover_uniforms,
-        ] = match <[Buffer; 8]>::try_from(made) {
-            Ok(all) => all,
-            Err(made) => {
-                free(made);
-                return Err(BackendError::Device {
-                        backend: crate::error::NAME,
-                        message: "a buffer of the configuration is missing (a bug in precip: please report it)".into(),
-                    });
-            }
-        };
         let volume = match Image::volume(device, wind.spec.texels) {
             Ok(v) => v,
             Err(e) => {
-                free(vec![
-                    particles,
-                    cover_buffer,
-                    deposits,
-                    ground_buffer,
-                    frames_buffer,
-                    wind_params,
-                    step_uniforms,
-                    cover_uniforms,
-                ]);
+                free(made);
                 return Err(e);
             }
         };
@@ -342,18 +314,31 @@ impl Resources {
         ) {
             Ok(p) => p,
             Err(e) => {
-                free(vec![
-                    particles,
-                    cover_buffer,
-                    deposits,
-                    ground_buffer,
-                    frames_buffer,
-                    wind_params,
-                    step_uniforms,
-                    cover_uniforms,
-                ]);
+                free(made);
                 volume.destroy(device);
                 return Err(e);
+            }
+        };
+        let [
+            particles,
+            cover_buffer,
+            deposits,
+            ground_buffer,
+            frames_buffer,
+            wind_params,
+            step_uniforms,
+            cover_uniforms,
+        ] = match <[Buffer; 8]>::try_from(made) {
+            Ok(all) => all,
+            Err(made) => {
+                free(made);
+                volume.destroy(device);
+                // SAFETY: the pool was just made and holds no set in use.
+                unsafe { device.raw.destroy_descriptor_pool(pool, None) };
+                return Err(BackendError::Device {
+                    backend: crate::error::NAME,
+                    message: "a buffer of the configuration is missing (a bug in precip: please report it)".into(),
+                });
             }
         };
         let mut resources = Self {
