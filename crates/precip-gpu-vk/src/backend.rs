@@ -17,8 +17,8 @@ use precip_model::gpu::{DispatchOver, dispatch_size};
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
 use precip_model::{
-    Backend, BackendError, BackendInfo, Camera, DeviceMemory, Image, Particle, Setup, TimingSource,
-    Timings, View, Weather, substeps,
+    Backend, BackendError, BackendInfo, Camera, DeviceMemory, DrawnCounts, Image, Particle, Setup,
+    TimingSource, Timings, View, Weather, substeps,
 };
 
 use std::collections::VecDeque;
@@ -496,6 +496,10 @@ impl Backend for VkBackend {
             }
         }
         Ok(timings)
+    }
+
+    fn drawn(&mut self) -> Result<Option<DrawnCounts>, BackendError> {
+        self.drawn_counts().map(Some)
     }
 
     fn device_memory(&self) -> Option<DeviceMemory> {

@@ -93,6 +93,8 @@ pub struct Acquired {
     pub index: u32,
     /// Its framebuffer.
     pub framebuffer: vk::Framebuffer,
+    /// The framebuffer's depth view (the splat kernel reads it).
+    pub depth: vk::ImageView,
     /// Signalled when it is ready to draw into.
     pub acquired: vk::Semaphore,
     /// To signal when it is drawn (present waits on it).
@@ -396,6 +398,7 @@ impl WindowSurface {
                 Ok(Some(Acquired {
                     index,
                     framebuffer: chain.framebuffers[i],
+                    depth: chain.depth.view,
                     acquired: semaphore,
                     drawn: chain.drawn[i],
                 }))

@@ -4,12 +4,12 @@
 use glam::Vec3;
 use precip_model::cover::{CoverGrid, CoverTexel};
 use precip_model::drag::MAX_SUBSTEP_S;
-use precip_model::gpu::{DispatchOver, INIT_PASS, dispatch_size};
+use precip_model::gpu::{DispatchOver, FrameDraws, INIT_PASS, dispatch_size};
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
 use precip_model::{
-    Backend, BackendError, BackendInfo, Camera, DeviceMemory, Image, Particle, Setup, TimingSource,
-    Timings, View, Weather, substeps,
+    Backend, BackendError, BackendInfo, Camera, DeviceMemory, DrawnCounts, Image, Particle, Setup,
+    TimingSource, Timings, View, Weather, substeps,
 };
 
 use crate::conv::{NAME, map_scope_error};
@@ -141,21 +141,6 @@ impl WgpuBackend {
         self.draw(view, Some((target, texture.format())))
     }
 
-    /// How many snow sprites and rain tetrahedra the last frame drew (after culling):
-    /// reads the indirect draws back (tests and tools, not the frame loop). `(0, 0)`
-    /// before the first frame.
-    pub fn drawn_counts(&mut self) -> Result<(u32, u32), BackendError> {
-        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
-            operation: "drawn_counts",
-        })?;
-        let Some(render) = &state.render else {
-            return Ok((0, 0));
-        };
-        let bytes = read_buffer(&self.gpu, &render.frame.draws, 32)?;
-        let args: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
-        Ok((args[1], args[5]))
-    }
-
     /// The frame: into `external` when given, else into the offscreen target.
     fn draw(
         &mut self,
@@ -209,7 +194,7 @@ impl WgpuBackend {
             render.offscreen = Some(ColourTarget::new(&gpu, size.0, size.1));
         }
         if render.depth.as_ref().is_none_or(|d| d.size != size) {
-            render.depth = Some(DepthBuffer::new(&gpu, size.0, size.1));
+            render.depth = Some(DepthBuffer::new(&gpu, &renderer.layouts, size.0, size.1));
         }
         let setup = &state.setup;
         let params = setup.render_params(
@@ -246,7 +231,7 @@ impl WgpuBackend {
                 render_ref,
                 FrameTarget {
                     colour,
-                    depth: &depth.view,
+                    depth,
                     sky: setup.render.sky_colour,
                 },
                 stamps,
@@ -508,6 +493,18 @@ impl Backend for WgpuBackend {
             }
         }
         Ok(timings)
+    }
+
+    fn drawn(&mut self) -> Result<Option<DrawnCounts>, BackendError> {
+        let state = self
+            .state
+            .as_ref()
+            .ok_or(BackendError::NotConfigured { operation: "drawn" })?;
+        let Some(render) = &state.render else {
+            return Ok(Some(DrawnCounts::default()));
+        };
+        let bytes = read_buffer(&self.gpu, &render.frame.draws, FrameDraws::BYTES)?;
+        Ok(Some(FrameDraws::counts(&bytes)))
     }
 
     fn device_memory(&self) -> Option<DeviceMemory> {

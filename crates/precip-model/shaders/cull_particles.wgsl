@@ -1,35 +1,24 @@
 // cull_particles.wgsl: view-cone culling and stable compaction of the particles into
 // the lists the draws read (MODEL.md §5), in three kernels over 64-particle groups:
-//   cull_count  — each group counts its drawn sprites and streaks;
+//   cull_count  — each group counts its drawn sprites, streaks and splats;
 //   cull_scan   — one workgroup turns the counts into each group's offsets and writes
-//                 the two indirect draws' instance counts;
+//                 the two indirect draws' instance counts and the splat count;
 //   cull_write  — each drawn particle writes its index at its group's offset plus its
 //                 rank within the group.
 // The lists keep buffer order, so a frame draws (and blends) in the same order with
-// culling on or off: only what is outside the cone is missing.
+// culling on or off: only what is outside the cone is missing. Sub-pixel particles
+// are in neither list: the splat kernel draws them (`drawn_as`, particle_lists.wgsl).
 
 // Read-only storage, as in render_scene.wgsl (why: there).
 @group(0) @binding(0) var<storage, read> params: RenderParams;
 @group(0) @binding(1) var<storage, read> particles: array<Particle>;
-@group(0) @binding(2) var<storage, read_write> group_counts: array<vec2<u32>>;
+// (sprites, streaks, splats, 0) per group; the scan turns them into offsets.
+@group(0) @binding(2) var<storage, read_write> group_counts: array<vec4<u32>>;
 @group(0) @binding(3) var<storage, read_write> drawn: array<u32>;
-@group(0) @binding(4) var<storage, read_write> draws: array<DrawArgs, 2>;
+@group(0) @binding(4) var<storage, read_write> draws: FrameDraws;
 
 var<workgroup> group_kinds: array<u32, 64>;
-var<workgroup> partial: array<vec2<u32>, 64>;
-
-// How particle `i` is drawn this frame.
-fn drawn_as(i: u32) -> u32 {
-    if (i >= params.counts.x) {
-        return DRAWN_NOT;
-    }
-    let p = particles[i];
-    if (params.counts.y != 0u && !in_view_cone(p.position_m, params.camera_m_cone_cos.xyz, params.view_dir_pixel_angle.xyz, params.camera_m_cone_cos.w)) {
-        return DRAWN_NOT;
-    }
-    let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-    return select(DRAWN_SNOW, DRAWN_RAIN, kind == KIND_RAIN);
-}
+var<workgroup> partial: array<vec4<u32>, 64>;
 
 @compute @workgroup_size(64)
 fn cull_count(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -37,10 +26,10 @@ fn cull_count(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) 
     group_kinds[lid] = drawn_as(g * 64u + lid);
     workgroupBarrier();
     if (lid == 0u) {
-        var c = vec2<u32>(0u);
+        var c = vec4<u32>(0u);
         for (var k = 0u; k < 64u; k++) {
             let kind = group_kinds[k];
-            c += vec2<u32>(u32(kind == DRAWN_SNOW), u32(kind == DRAWN_RAIN));
+            c += vec4<u32>(u32(kind == DRAWN_SNOW), u32(kind == DRAWN_RAIN), u32(kind == DRAWN_SPLAT), 0u);
         }
         group_counts[g] = c;
     }
@@ -52,21 +41,24 @@ fn cull_scan(@builtin(local_invocation_index) lid: u32) {
     let per = (groups + 63u) / 64u;
     let start = min(lid * per, groups);
     let end = min(start + per, groups);
-    var sum = vec2<u32>(0u);
+    var sum = vec4<u32>(0u);
     for (var k = start; k < end; k++) {
         sum += group_counts[k];
     }
     partial[lid] = sum;
     workgroupBarrier();
     if (lid == 0u) {
-        var total = vec2<u32>(0u);
+        var total = vec4<u32>(0u);
         for (var k = 0u; k < 64u; k++) {
             let s = partial[k];
             partial[k] = total;
             total += s;
         }
-        draws[0] = DrawArgs(SNOW_SPRITE_VERTICES, total.x, 0u, 0u);
-        draws[1] = DrawArgs(RAIN_TETRAHEDRON_VERTICES, total.y, 0u, 0u);
+        draws = FrameDraws(
+            DrawArgs(SNOW_SPRITE_VERTICES, total.x, 0u, 0u),
+            DrawArgs(RAIN_TETRAHEDRON_VERTICES, total.y, 0u, 0u),
+            total.z, 0u, 0u, 0u,
+        );
     }
     workgroupBarrier();
     var run = partial[lid];
@@ -84,7 +76,7 @@ fn cull_write(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) 
     let kind = drawn_as(i);
     group_kinds[lid] = kind;
     workgroupBarrier();
-    if (kind == DRAWN_NOT) {
+    if (kind != DRAWN_SNOW && kind != DRAWN_RAIN) {
         return;
     }
     var rank = 0u;

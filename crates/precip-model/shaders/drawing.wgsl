@@ -55,6 +55,23 @@ fn snow_sprite_sizing(diameter_m: f32, distance_m: f32, pixel_angle_rad: f32, si
     return vec2<f32>(min_side, max(ratio * ratio, sizing.z));
 }
 
+// sub_pixel: whether a particle `length_m` long is drawn below `min_px` pixels.
+fn sub_pixel(length_m: f32, distance_m: f32, pixel_angle_rad: f32, min_px: f32) -> bool {
+    return length_m < min_px * pixel_angle_rad * distance_m;
+}
+
+// splat_ink: (opacity·px²) of a snow sprite (is_rain false: side × side × opacity ×
+// the flake texture's mean) or a rain tetrahedron (h × a / 2 × opacity) of the given
+// sizes, seen from `distance_m`.
+fn splat_ink(is_rain: bool, size: vec3<f32>, distance_m: f32, pixel_angle_rad: f32, flake_mean_opacity: f32) -> f32 {
+    let px = 1.0 / max(pixel_angle_rad * distance_m, 1.0e-12);
+    if (is_rain) {
+        return 0.5 * size.x * px * size.y * px * size.z;
+    }
+    let side_px = size.x * px;
+    return side_px * side_px * size.y * flake_mean_opacity;
+}
+
 // raindrop_sizing: (h_m, a_m, opacity factor). sizing.w = rain streak s.
 fn raindrop_sizing(speed_mps: f32, distance_m: f32, pixel_angle_rad: f32, sizing: vec4<f32>) -> vec3<f32> {
     let h = sizing.w * speed_mps;

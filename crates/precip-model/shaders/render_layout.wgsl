@@ -16,15 +16,15 @@ struct RenderParams {
     sizing: vec4<f32>,
     // rain opacity, displacement on, full-cover depth mm, mask edge
     cover_look: vec4<f32>,
-    // wet darkening, albedo decay per day, exposure tolerance m, unused
+    // wet darkening, albedo decay per day, exposure tolerance m, flake mean opacity
     cover_look2: vec4<f32>,
     ground: GridFrame,
     cover: GridFrame,
-    // particle count, culling on, cull workgroups, unused
+    // particle count, culling on, cull workgroups, splat target width px (0: no splat)
     counts: vec4<u32>,
 }
 
-// drawIndirect's arguments.
+// drawIndirect's arguments (Rust: precip_model::gpu::DrawArgs).
 struct DrawArgs {
     vertex_count: u32,
     instance_count: u32,
@@ -32,11 +32,22 @@ struct DrawArgs {
     first_instance: u32,
 }
 
+// What the cull writes each frame (Rust: precip_model::gpu::FrameDraws).
+struct FrameDraws {
+    snow: DrawArgs,
+    rain: DrawArgs,
+    splatted: u32,
+    reserved0: u32,
+    reserved1: u32,
+    reserved2: u32,
+}
+
 // Vertices per snow sprite (a strip) and per rain tetrahedron (a list).
 const SNOW_SPRITE_VERTICES: u32 = 4u;
 const RAIN_TETRAHEDRON_VERTICES: u32 = 12u;
 
-// What a particle is drawn as: nothing, a sprite or a tetrahedron.
+// What a particle is drawn as: nothing, a sprite, a tetrahedron, or a splat.
 const DRAWN_NOT: u32 = 0u;
 const DRAWN_SNOW: u32 = 1u;
 const DRAWN_RAIN: u32 = 2u;
+const DRAWN_SPLAT: u32 = 3u;

@@ -11,6 +11,27 @@ struct ParticleVarying {
     @location(3) world_m: vec3<f32>,
 }
 
+// The light a snowflake sends toward the camera, fogged: a thin translucent plate,
+// lit from whichever side the sun is on (sprites and splats alike).
+fn snow_colour(p: Particle, distance_m: f32) -> vec3<f32> {
+    let to_sun = params.to_sun_extinction.xyz;
+    let n = normalize_or_zero(params.camera_m_cone_cos.xyz - p.position_m);
+    let facing = select(-n, n, dot(n, to_sun) >= 0.0);
+    let lit = shadow_lit(p.position_m);
+    let light = blinn_phong(params.light, params.shadow, facing, to_sun, n, lit);
+    let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
+    let white = select(0.95, 0.85, kind == KIND_WET_SNOW);
+    let fog = fog_transmittance(distance_m, params.to_sun_extinction.w);
+    return mix(params.sky_colour_time.xyz, vec3<f32>(white * light), fog);
+}
+
+// The light of a drop's face of normal `n` toward `to_viewer`, fogged by `fog`.
+fn rain_colour(n: vec3<f32>, to_viewer: vec3<f32>, lit: f32, fog: f32) -> vec3<f32> {
+    let light = blinn_phong(params.light, params.shadow, n, params.to_sun_extinction.xyz, to_viewer, lit);
+    let water = vec3<f32>(0.75, 0.8, 0.85) * light;
+    return mix(params.sky_colour_time.xyz, water, fog);
+}
+
 @vertex
 fn vs_snow(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance: u32) -> ParticleVarying {
     let p = particles[drawn[instance]];
@@ -19,20 +40,11 @@ fn vs_snow(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance
     let size = snow_sprite_sizing(p.diameter_m, distance_m, params.view_dir_pixel_angle.w, params.sizing);
     let turn = flake_spin_tumble(p.rotation0_rad, p.rotation_rad);
     let world = snow_sprite_corner(p.position_m, camera, size.x, turn.x, turn.y, corner);
-    let to_sun = params.to_sun_extinction.xyz;
-    // A thin translucent plate: lit from whichever side the sun is on.
-    var n = normalize_or_zero(camera - p.position_m);
-    let facing = select(-n, n, dot(n, to_sun) >= 0.0);
-    let lit = shadow_lit(p.position_m);
-    let light = blinn_phong(params.light, params.shadow, facing, to_sun, n, lit);
-    let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-    let white = select(0.95, 0.85, kind == KIND_WET_SNOW);
-    let fog = fog_transmittance(distance_m, params.to_sun_extinction.w);
     var out: ParticleVarying;
     out.clip = params.view_proj * vec4<f32>(world, 1.0);
     out.uv = snow_sprite_uv(corner);
-    out.shade = vec4<f32>(mix(params.sky_colour_time.xyz, vec3<f32>(white * light), fog), size.y);
-    out.normal = n;
+    out.shade = vec4<f32>(snow_colour(p, distance_m), size.y);
+    out.normal = normalize_or_zero(camera - p.position_m);
     out.world_m = world;
     return out;
 }
@@ -71,7 +83,5 @@ fn fs_rain(in: ParticleVarying) -> @location(0) vec4<f32> {
     if (dot(n, to_viewer) < 0.0) {
         n = -n;
     }
-    let light = blinn_phong(params.light, params.shadow, n, params.to_sun_extinction.xyz, to_viewer, in.shade.x);
-    let water = vec3<f32>(0.75, 0.8, 0.85) * light;
-    return vec4<f32>(mix(params.sky_colour_time.xyz, water, in.shade.y), in.shade.w);
+    return vec4<f32>(rain_colour(n, to_viewer, in.shade.x, in.shade.y), in.shade.w);
 }

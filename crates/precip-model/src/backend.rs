@@ -83,6 +83,25 @@ pub struct Timings {
     pub passes: Vec<PassTiming>,
 }
 
+/// What the last frame drew, after culling.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct DrawnCounts {
+    /// Snow sprites rasterised.
+    pub sprites: u32,
+    /// Rain tetrahedra rasterised.
+    pub streaks: u32,
+    /// Sub-pixel particles splatted.
+    pub splats: u32,
+}
+
+impl DrawnCounts {
+    /// Every particle drawn, however.
+    #[must_use]
+    pub const fn total(&self) -> u64 {
+        self.sprites as u64 + self.streaks as u64 + self.splats as u64
+    }
+}
+
 /// A precipitation backend.
 ///
 /// Every method validates its input before it changes anything: an `Err` leaves the
@@ -110,6 +129,12 @@ pub trait Backend {
     fn read_image(&mut self) -> Result<Image, BackendError>;
     /// Timings of the last calls, per pass.
     fn timings(&mut self) -> Result<Timings, BackendError>;
+    /// What the last frame drew (a read back from the device: tests, tools, and the
+    /// viewer's sampled statistics); `None` for a backend that does not draw, zeros
+    /// before the first frame.
+    fn drawn(&mut self) -> Result<Option<DrawnCounts>, BackendError> {
+        Ok(None)
+    }
     /// The device memory held now, where the backend's allocator reports it (`None`
     /// for the CPU reference, or a driver that does not say).
     fn device_memory(&self) -> Option<DeviceMemory> {

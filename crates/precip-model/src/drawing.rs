@@ -1,9 +1,17 @@
 //! Drawing formulas of seeds 000/001 (MODEL.md §5), CPU forms: the snow sprite, the
 //! raindrop tetrahedron, view-cone culling, the seed's Blinn–Phong lighting and fog.
 //!
-//! These are the Rust halves the renderer's WGSL will mirror (the rendering issue);
-//! tests pin them to hand-computed cases so the vertex shaders can be checked against
-//! them.
+//! These are the Rust halves of the renderer's WGSL (drawing.wgsl); tests pin them to
+//! hand-computed cases so the shaders can be checked against them.
+//!
+//! ## Sub-pixel particles
+//!
+//! A particle whose sprite (flake side × snow scale) or streak (length `k·s·|v|`) is
+//! shorter than `min_px` pixels ([`sub_pixel`]) is not rasterised: the splat kernel
+//! adds its ink — the opacity × px² its enlarged sprite or streak would have covered,
+//! [`splat_ink`] — to the pixels around its centre. At the hand-over the sprite is
+//! exactly `min_px` wide at full opacity, so its ink and the splat's are equal: a
+//! particle crossing the threshold does not pop.
 
 use glam::Vec3;
 
@@ -129,6 +137,70 @@ pub fn raindrop_sizing(
     } else {
         (h, min_a, (a / min_a).max(sizing.min_opacity))
     }
+}
+
+/// Whether a particle `length_m` long at `distance_m` is drawn below `min_px` pixels
+/// (and so is splatted, not rasterised).
+///
+/// WGSL twin: `sub_pixel` in drawing.wgsl.
+#[must_use]
+pub fn sub_pixel(length_m: f32, distance_m: f32, pixel_angle_rad: f32, min_px: f32) -> bool {
+    length_m < min_px * pixel_angle_rad * distance_m
+}
+
+/// What a splatted particle looks like: a sprite of `(side_m, opacity)` from
+/// [`snow_sprite_sizing`], or a streak of `(h_m, a_m, opacity)` from
+/// [`raindrop_sizing`] (its opacity already times the rain's).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SplatShape {
+    /// A snow sprite.
+    Sprite {
+        /// Side, m.
+        side_m: f32,
+        /// Opacity.
+        opacity: f32,
+    },
+    /// A rain tetrahedron.
+    Streak {
+        /// Height, m.
+        h_m: f32,
+        /// Base, m.
+        a_m: f32,
+        /// Opacity.
+        opacity: f32,
+    },
+}
+
+/// The ink (opacity × px²) of a sprite or streak seen from `distance_m`: a sprite
+/// covers side² px at its opacity times the flake texture's mean; a tetrahedron's
+/// silhouette about h·a/2.
+///
+/// WGSL twin: `splat_ink` in drawing.wgsl.
+#[must_use]
+pub fn splat_ink(shape: SplatShape, distance_m: f32, pixel_angle_rad: f32) -> f32 {
+    let px = 1.0 / (pixel_angle_rad * distance_m).max(1.0e-12);
+    match shape {
+        SplatShape::Sprite { side_m, opacity } => {
+            let side_px = side_m * px;
+            side_px * side_px * opacity * flake_mean_opacity()
+        }
+        SplatShape::Streak { h_m, a_m, opacity } => 0.5 * h_m * px * a_m * px * opacity,
+    }
+}
+
+/// Side of the flake opacity texture both GPU backends make, px.
+pub const FLAKE_TEXTURE_PX: u32 = 64;
+
+/// Mean opacity of the flake texture ([`snowflake_opacity`] at
+/// [`FLAKE_TEXTURE_PX`]): what a sprite's area is worth in ink.
+#[must_use]
+pub fn flake_mean_opacity() -> f32 {
+    static MEAN: std::sync::OnceLock<f32> = std::sync::OnceLock::new();
+    *MEAN.get_or_init(|| {
+        let texture = snowflake_opacity(FLAKE_TEXTURE_PX);
+        let sum: u64 = texture.iter().map(|&v| u64::from(v)).sum();
+        sum as f32 / (255.0 * texture.len() as f32)
+    })
 }
 
 /// A grey-scale opacity texture of a six-armed dendritic flake, `side_px²` bytes
@@ -446,6 +518,49 @@ mod tests {
         assert!((h - 0.2).abs() < 1e-6 && (a - 0.02).abs() < 1e-6 && (o - 1.0).abs() < 1e-6);
         let (_, a, o) = raindrop_sizing(8.0, 2.0, pixel, &sizing);
         assert!((a - 0.03).abs() < 1e-6 && (o - 2.0 / 3.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_particle_crossing_the_splat_threshold_keeps_its_ink() {
+        let sizing = SpriteSizing::default();
+        let pixel = 1.0e-3;
+        let diameter = 0.004;
+        let side = diameter * sizing.snow_scale;
+        // The distance where the sprite is exactly min_px wide.
+        let hand_over = side / (sizing.min_px * pixel);
+        let ink_at = |d: f32| {
+            let (side_m, opacity) = snow_sprite_sizing(diameter, d, pixel, &sizing);
+            splat_ink(SplatShape::Sprite { side_m, opacity }, d, pixel)
+        };
+        assert!(!sub_pixel(side, hand_over * 0.999, pixel, sizing.min_px));
+        assert!(sub_pixel(side, hand_over * 1.001, pixel, sizing.min_px));
+        // Just before: the sprite, min_px² × mean texture; just after: the same.
+        let before = ink_at(hand_over * 0.999);
+        let after = ink_at(hand_over * 1.001);
+        let expected = sizing.min_px * sizing.min_px * flake_mean_opacity();
+        assert!(
+            (before - expected).abs() < 0.01 * expected,
+            "{before} {expected}"
+        );
+        assert!((after - before).abs() < 0.01 * before, "{after} {before}");
+        // Farther, the ink falls as 1/d² (the flake's own area) until the floor.
+        let far = ink_at(hand_over * 2.0);
+        assert!((far - 0.25 * expected).abs() < 0.01 * expected, "{far}");
+        // Rain: a streak of min_px length (h) at its hand-over, base min_px.
+        let (h, a, o) = raindrop_sizing(8.0, 200.0, pixel, &sizing);
+        let ink = splat_ink(
+            SplatShape::Streak {
+                h_m: h,
+                a_m: a,
+                opacity: o,
+            },
+            200.0,
+            pixel,
+        );
+        assert!(
+            (ink - 0.5 * (h / 0.2) * (a / 0.2) * o).abs() < 1e-4,
+            "{ink}"
+        );
     }
 
     #[test]

@@ -27,6 +27,63 @@ pub struct Frames {
 }
 const _: () = assert!(size_of::<Frames>() == 64);
 
+/// `drawIndirect`'s arguments.
+///
+/// WGSL twin: `DrawArgs` in `shaders/render_layout.wgsl` (16 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct DrawArgs {
+    /// Vertices per instance.
+    pub vertex_count: u32,
+    /// Instances: drawn particles.
+    pub instance_count: u32,
+    /// First vertex.
+    pub first_vertex: u32,
+    /// First instance.
+    pub first_instance: u32,
+}
+const _: () = assert!(size_of::<DrawArgs>() == 16);
+
+/// What the cull kernels write each frame: the two indirect draws and how many
+/// particles the splat draws.
+///
+/// WGSL twin: `FrameDraws` in `shaders/render_layout.wgsl` (48 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct FrameDraws {
+    /// Snow sprites (4-vertex strips), at [`FrameDraws::SNOW_OFFSET`].
+    pub snow: DrawArgs,
+    /// Rain tetrahedra (12-vertex lists), at [`FrameDraws::RAIN_OFFSET`].
+    pub rain: DrawArgs,
+    /// Particles splatted (sub-pixel, in the view cone).
+    pub splatted: u32,
+    /// Unused.
+    pub reserved: [u32; 3],
+}
+const _: () = assert!(size_of::<FrameDraws>() == 48);
+
+impl FrameDraws {
+    /// Byte offset of the snow draw in the buffer.
+    pub const SNOW_OFFSET: u64 = 0;
+    /// Byte offset of the rain draw.
+    pub const RAIN_OFFSET: u64 = 16;
+    /// Bytes of the buffer.
+    pub const BYTES: u64 = size_of::<Self>() as u64;
+
+    /// The counts, from the buffer's bytes (fewer bytes read as zeros).
+    #[must_use]
+    pub fn counts(bytes: &[u8]) -> crate::DrawnCounts {
+        let mut draws = Self::zeroed();
+        let n = bytes.len().min(size_of::<Self>());
+        bytemuck::bytes_of_mut(&mut draws)[..n].copy_from_slice(&bytes[..n]);
+        crate::DrawnCounts {
+            sprites: draws.snow.instance_count,
+            streaks: draws.rain.instance_count,
+            splats: draws.splatted,
+        }
+    }
+}
+
 /// Workgroups `(x, y)` covering `count` invocations in a 2D dispatch (WGSL:
 /// `linear_index`), so counts beyond 65535 × 64 fit.
 #[must_use]
@@ -122,7 +179,36 @@ pub mod render_passes {
     pub const SNOW: (&str, Option<&str>) = ("vs_snow", Some("fs_snow"));
     /// Rain tetrahedra: triangle list of 12 vertices per drawn particle, indirect draw 1.
     pub const RAIN: (&str, Option<&str>) = ("vs_rain", Some("fs_rain"));
+    /// The splat sums blended over the frame: one triangle of 3 vertices covering the
+    /// target, no depth test (the splat kernel tested each particle), alpha blending;
+    /// first in the particles' pass.
+    pub const SPLAT_RESOLVE: (&str, Option<&str>) = ("vs_splat_resolve", Some("fs_splat_resolve"));
 }
+
+/// The splat of sub-pixel particles: after the scene's pass (it reads the scene's
+/// depth) and the cull kernels, before the particles' pass, whose first draw
+/// ([`render_passes::SPLAT_RESOLVE`]) blends the sums over the frame.
+pub const SPLAT_PASS: KernelPass = KernelPass {
+    program: Program::Render,
+    entry_point: "splat_particles",
+    over: DispatchOver::Particles,
+};
+
+/// The timed passes of a frame, in the order both GPU backends record them; each
+/// backend brackets every one with a timestamp before and after (`PassTiming` names).
+pub const TIMED_RENDER_PASSES: [&str; 5] = [
+    "shadow",
+    "scene",
+    "cull_particles",
+    "splat_particles",
+    "particles",
+];
+
+/// Bytes of the cull kernels' per-workgroup counts (`vec4<u32>` each).
+pub const GROUP_COUNT_BYTES: u64 = 16;
+
+/// Bytes of the splat sums per pixel of the target (4 × u32: Σa·r, Σa·g, Σa·b, Σa).
+pub const SPLAT_BYTES_PER_PIXEL: u64 = 16;
 
 /// Workgroups of the culling kernels for `particle_count` particles: every
 /// workgroup of the 2D dispatch, padding included (`RenderParams.counts.z`).
@@ -138,11 +224,12 @@ pub mod cull_bindings {
     pub const PARAMS: u32 = 0;
     /// Particles, read-only storage.
     pub const PARTICLES: u32 = 1;
-    /// Per-workgroup counts, then offsets: `array<vec2<u32>>`, one per cull workgroup.
+    /// Per-workgroup counts (sprites, streaks, splats, 0), then offsets:
+    /// `array<vec4<u32>>`, one per cull workgroup.
     pub const GROUP_COUNTS: u32 = 2;
     /// The drawn lists: `array<u32>` of 2 × particle count.
     pub const DRAWN: u32 = 3;
-    /// The two indirect draws (snow, rain), `array<DrawArgs, 2>`, 32 bytes.
+    /// The two indirect draws and the splat count, [`super::FrameDraws`].
     pub const DRAWS: u32 = 4;
 }
 
@@ -177,6 +264,14 @@ pub mod render_bindings {
     pub const MATERIAL_SAMPLER: u32 = 2;
     /// The shadow map's format.
     pub const SHADOW_FORMAT_NAME: &str = "Depth32Float";
+    /// Group 2 of the splat kernel (its own group, numbered apart from the material's
+    /// bindings): the camera's depth buffer, `texture_depth_2d`, read with
+    /// `textureLoad`.
+    pub const SPLAT_SCENE_DEPTH: u32 = 3;
+    /// Group 2 of the splat kernel and of the resolve draw (fragment): the splat sums,
+    /// `array<atomic<u32>>`, read-write storage of
+    /// [`super::SPLAT_BYTES_PER_PIXEL`] per pixel of the target.
+    pub const SPLAT_SUMS: u32 = 4;
 }
 
 /// Vertex layout of the scene: position (3 × f32), normal (3 × f32), uv (2 × f32),
@@ -269,11 +364,18 @@ mod tests {
         for kernel in CULL_PASSES {
             assert!(kernel.program.entry_points().contains(&kernel.entry_point));
         }
+        assert!(
+            SPLAT_PASS
+                .program
+                .entry_points()
+                .contains(&SPLAT_PASS.entry_point)
+        );
         for (vs, fs) in [
             render_passes::SHADOW,
             render_passes::SCENE,
             render_passes::SNOW,
             render_passes::RAIN,
+            render_passes::SPLAT_RESOLVE,
         ] {
             assert!(Program::Render.entry_points().contains(&vs));
             assert!(fs.is_none_or(|f| Program::Render.entry_points().contains(&f)));

@@ -53,7 +53,8 @@ pub mod visibility;
 pub mod weather;
 
 pub use backend::{
-    Backend, BackendInfo, DeviceMemory, MAX_STEP_S, PassTiming, TimingSource, Timings, substeps,
+    Backend, BackendInfo, DeviceMemory, DrawnCounts, MAX_STEP_S, PassTiming, TimingSource, Timings,
+    substeps,
 };
 pub use camera::{Camera, Image, View};
 pub use cpu::CpuBackend;

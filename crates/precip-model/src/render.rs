@@ -37,6 +37,10 @@ pub struct RenderSettings {
     pub clear_air_extinction_per_m: f32,
     /// Sprite and streak sizes.
     pub sizing: SpriteSizing,
+    /// Draw particles smaller than `sizing.min_px` by a compute splat (same light,
+    /// order-independent) instead of enlarged sprites and streaks; off draws every
+    /// particle as geometry (the reference the splat is tested against).
+    pub splat_sub_pixel: bool,
     /// Opacity of a rain streak, `[0, 1]`.
     pub rain_opacity: f32,
     /// Raise upward surfaces by the snow depth.
@@ -66,6 +70,7 @@ impl Default for RenderSettings {
             sky_colour: Vec3::new(0.62, 0.66, 0.72),
             clear_air_extinction_per_m: 3.912 / 30_000.0,
             sizing: SpriteSizing::default(),
+            splat_sub_pixel: true,
             rain_opacity: 0.35,
             snow_displacement: true,
             shadow_map_px: 2048,
@@ -186,13 +191,15 @@ pub struct RenderParams {
     pub sizing: Vec4,
     /// Rain opacity, displacement on (1/0), full-cover depth mm, mask edge.
     pub cover_look: Vec4,
-    /// Wet darkening R_d, albedo decay per day, exposure tolerance m, unused.
+    /// Wet darkening R_d, albedo decay per day, exposure tolerance m, the flake
+    /// texture's mean opacity.
     pub cover_look2: Vec4,
     /// The ground map's grid.
     pub ground: GridFrame,
     /// The cover grid.
     pub cover: GridFrame,
-    /// Particle count, culling on (1/0), cull workgroups, unused.
+    /// Particle count, culling on (1/0), cull workgroups, the splat target's width in
+    /// px (0: splat off).
     pub counts: UVec4,
 }
 const _: () = assert!(size_of::<RenderParams>() == 352);
@@ -338,7 +345,7 @@ impl RenderParams {
                 f.cover_params.wet_darkening,
                 f.cover_params.albedo_decay_per_day,
                 0.05 + 0.5 * ground_cell.max_element().min(1.0e3),
-                0.0,
+                crate::drawing::flake_mean_opacity(),
             ),
             ground: f.ground,
             cover: f.cover,
@@ -346,7 +353,11 @@ impl RenderParams {
                 f.particle_count,
                 u32::from(s.view_cone_culling),
                 f.cull_groups,
-                0,
+                if s.splat_sub_pixel {
+                    f.view.width_px
+                } else {
+                    0
+                },
             ),
         }
     }

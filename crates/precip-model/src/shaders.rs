@@ -55,6 +55,10 @@ pub const SHADING: ShaderFile = shader_file!("shading.wgsl");
 pub const RENDER_SCENE: ShaderFile = shader_file!("render_scene.wgsl");
 /// Snow sprites and rain tetrahedra.
 pub const RENDER_PARTICLES: ShaderFile = shader_file!("render_particles.wgsl");
+/// How each particle is drawn this frame (`drawn_as`), for the cull and splat kernels.
+pub const PARTICLE_LISTS: ShaderFile = shader_file!("particle_lists.wgsl");
+/// Sub-pixel particles: kernel `splat_particles` and its resolve draw.
+pub const RENDER_SPLAT: ShaderFile = shader_file!("render_splat.wgsl");
 /// Kernels `cull_count`, `cull_scan`, `cull_write`.
 pub const CULL_PARTICLES: ShaderFile = shader_file!("cull_particles.wgsl");
 /// Test kernel `probe_drawing`.
@@ -69,7 +73,8 @@ pub enum Program {
     CoverUpdate,
     /// A test probe of the RNG.
     ProbeRng,
-    /// The scene and precipitation draws (vertex and fragment entry points).
+    /// The scene and precipitation draws (vertex and fragment entry points), and the
+    /// splat of sub-pixel particles (a compute kernel and its resolve draw).
     Render,
     /// View-cone culling and compaction of the particles.
     CullParticles,
@@ -111,9 +116,17 @@ impl Program {
                 DRAWING,
                 SHADING,
                 RENDER_SCENE,
+                PARTICLE_LISTS,
                 RENDER_PARTICLES,
+                RENDER_SPLAT,
             ],
-            Self::CullParticles => &[LAYOUT, RENDER_LAYOUT, DRAWING, CULL_PARTICLES],
+            Self::CullParticles => &[
+                LAYOUT,
+                RENDER_LAYOUT,
+                DRAWING,
+                PARTICLE_LISTS,
+                CULL_PARTICLES,
+            ],
             Self::ProbeDrawing => &[DRAWING, PROBE_DRAWING],
         }
     }
@@ -133,6 +146,9 @@ impl Program {
                 "fs_snow",
                 "vs_rain",
                 "fs_rain",
+                "splat_particles",
+                "vs_splat_resolve",
+                "fs_splat_resolve",
             ],
             Self::CullParticles => &["cull_count", "cull_scan", "cull_write"],
             Self::ProbeDrawing => &["probe_drawing"],

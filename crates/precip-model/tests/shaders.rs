@@ -8,7 +8,7 @@ use std::mem::{offset_of, size_of};
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use precip_model::Particle;
 use precip_model::cover::{CoverStepParams, CoverTexel, GridFrame};
-use precip_model::gpu::{Frames, ProbeDrawing};
+use precip_model::gpu::{DrawArgs, FrameDraws, Frames, ProbeDrawing};
 use precip_model::render::RenderParams;
 use precip_model::shaders::Program;
 use precip_model::step::StepParams;
@@ -53,6 +53,7 @@ fn wgsl_layouts() -> HashMap<String, (u32, HashMap<String, u32>)> {
         Program::StepParticles,
         Program::CoverUpdate,
         Program::Render,
+        Program::CullParticles,
         Program::ProbeDrawing,
     ] {
         let module = parse(program);
@@ -181,6 +182,17 @@ fn rust_and_wgsl_layouts_match() {
             ground,
             cover,
             counts
+        }),
+        rust_layout!(DrawArgs {
+            vertex_count,
+            instance_count,
+            first_vertex,
+            first_instance
+        }),
+        rust_layout!(FrameDraws {
+            snow,
+            rain,
+            splatted
         }),
         rust_layout!(ProbeDrawing {
             centre_m,

@@ -5,13 +5,14 @@ use ash::vk;
 
 use super::VkBackend;
 use crate::commands::{Semaphores, submit_synced};
-use crate::render::frame::{DRAWS_BYTES, FrameResources};
+use crate::render::frame::{FrameResources, SplatSums};
 use crate::render::passes::CameraPasses;
 use crate::render::scene::SceneGpu;
 use crate::render::target::{OFFSCREEN_FORMAT, OffscreenTarget};
 use crate::render::{FrameTarget, RenderState, Renderer, record_frame};
 use crate::resources::{FRAMES_IN_FLIGHT, download};
-use precip_model::{BackendError, View};
+use precip_model::gpu::FrameDraws;
+use precip_model::{BackendError, DrawnCounts, View};
 
 /// A swapchain image to draw into: its framebuffer (made for the camera pass of
 /// `format` ending in `PRESENT_SRC_KHR`) and the semaphores of acquire and present.
@@ -21,6 +22,8 @@ pub struct SwapchainFrame {
     pub format: vk::Format,
     /// The image's framebuffer (colour, depth).
     pub framebuffer: vk::Framebuffer,
+    /// The framebuffer's depth view.
+    pub depth: vk::ImageView,
     /// Signalled when the image is acquired.
     pub acquired: vk::Semaphore,
     /// Signalled when the frame is drawn (present waits on it).
@@ -46,17 +49,15 @@ impl VkBackend {
         renderer.prepare(&self.device, format, final_layout)
     }
 
-    /// How many snow sprites and rain tetrahedra the last frame drew (after culling):
-    /// reads the indirect draws back (tests and tools). `(0, 0)` before a frame.
-    pub fn drawn_counts(&mut self) -> Result<(u32, u32), BackendError> {
+    /// What the last frame drew: reads the cull's counts back (`Backend::drawn`).
+    pub(crate) fn drawn_counts(&mut self) -> Result<DrawnCounts, BackendError> {
         self.settle()?;
-        let state = self.state("drawn_counts")?;
+        let state = self.state("drawn")?;
         let Some(render) = &state.render else {
-            return Ok((0, 0));
+            return Ok(DrawnCounts::default());
         };
-        let bytes = download(&self.device, &render.frame.draws, DRAWS_BYTES)?;
-        let args: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
-        Ok((args[1], args[5]))
+        let bytes = download(&self.device, &render.frame.draws, FrameDraws::BYTES)?;
+        Ok(FrameDraws::counts(&bytes))
     }
 
     /// The frame for `view`: into `swapchain` when given, else into the offscreen
@@ -108,6 +109,7 @@ impl VkBackend {
                 rendered: false,
                 shadow_bounds_m: state.setup.scene_bounds_m(),
                 frames_drawn: 0,
+                splat_sums: None,
             });
         }
         let Some(render) = state.render.as_mut() else {
@@ -123,11 +125,23 @@ impl VkBackend {
             }
             render.rendered = false;
         }
-        let framebuffer = match (swapchain, render.offscreen.as_ref()) {
-            (Some(s), _) => s.framebuffer,
-            (None, Some(t)) => t.framebuffer,
+        let (framebuffer, depth) = match (swapchain, render.offscreen.as_ref()) {
+            (Some(s), _) => (s.framebuffer, s.depth),
+            (None, Some(t)) => (t.framebuffer, t.depth.view),
             (None, None) => return Err(BackendError::NothingRendered),
         };
+        if render.splat_sums.as_ref().is_none_or(|s| s.size != size) {
+            let new = SplatSums::new(device, size)?;
+            if let Some(old) = render.splat_sums.replace(new) {
+                self.retired
+                    .retire(self.submitted, move |d| old.buffer.destroy(d));
+            }
+        }
+        let Some(sums) = render.splat_sums.as_mut() else {
+            return Err(BackendError::NothingRendered);
+        };
+        let zero_splat_sums = (!sums.zeroed).then_some(sums.buffer.raw);
+        sums.zeroed = true;
         let setup = &state.setup;
         let params = setup.render_params(
             view,
@@ -138,6 +152,15 @@ impl VkBackend {
         );
         let slot = render.frames_drawn % FRAMES_IN_FLIGHT as u64;
         let offset = slot * render.frame.params_stride;
+        if let Some(sums) = &render.splat_sums {
+            // SAFETY: the slot's last frame finished (waited for above); the depth
+            // view is the live target's.
+            unsafe {
+                render
+                    .frame
+                    .write_splat_sets(device, slot as usize, depth, &sums.buffer);
+            }
+        }
         render
             .frame
             .params
@@ -147,6 +170,11 @@ impl VkBackend {
             framebuffer,
             size,
             sky: setup.render.sky_colour,
+            splat_sets: (
+                render.frame.splat_sets[slot as usize],
+                render.frame.resolve_sets[slot as usize],
+            ),
+            zero_splat_sums,
         };
         let particle_count = state.resources.particle_count;
         if renderer.draws_for_pass(passes.scene).is_none() {

@@ -119,6 +119,7 @@ impl VkBackend {
                 Some(SwapchainFrame {
                     format,
                     framebuffer: frame.framebuffer,
+                    depth: frame.depth,
                     acquired: frame.acquired,
                     drawn: frame.drawn,
                 }),

@@ -6,7 +6,10 @@ use ash::vk;
 use glam::UVec3;
 use gpu_allocator::MemoryLocation;
 use precip_model::BackendError;
-use precip_model::gpu::{cull_bindings as cb, cull_groups, render_bindings as rb};
+use precip_model::gpu::{
+    FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL, cull_bindings as cb, cull_groups,
+    render_bindings as rb,
+};
 use precip_model::render::RenderParams;
 
 use super::Renderer;
@@ -17,9 +20,6 @@ use crate::error::map_vk;
 use crate::image::{DEPTH_FORMAT, Image, ImageSpec};
 use crate::resources::{FRAMES_IN_FLIGHT, Resources};
 
-/// Bytes of the two indirect draws (snow, rain).
-pub const DRAWS_BYTES: u64 = 32;
-
 /// What drawing adds to a configuration.
 #[derive(Debug)]
 pub struct FrameResources {
@@ -29,7 +29,7 @@ pub struct FrameResources {
     pub params_stride: u64,
     group_counts: Buffer,
     drawn: Buffer,
-    /// The two `DrawArgs` (snow, rain).
+    /// [`FrameDraws`]: the two indirect draws and the splat count.
     pub draws: Buffer,
     /// The sun's depth.
     pub shadow_map: Image,
@@ -42,6 +42,41 @@ pub struct FrameResources {
     pub light_set: vk::DescriptorSet,
     /// Set 0 of the cull kernels.
     pub cull_set: vk::DescriptorSet,
+    /// Set 2 of the splat kernel, one per frame in flight (written by
+    /// [`FrameResources::write_splat_sets`] with the frame's target).
+    pub splat_sets: [vk::DescriptorSet; FRAMES_IN_FLIGHT],
+    /// Set 2 of the resolve draw, one per frame in flight.
+    pub resolve_sets: [vk::DescriptorSet; FRAMES_IN_FLIGHT],
+}
+
+/// The splat's sums for one target size ([`SPLAT_BYTES_PER_PIXEL`] per pixel).
+#[derive(Debug)]
+pub struct SplatSums {
+    /// The buffer.
+    pub buffer: Buffer,
+    /// The target's width, height, px.
+    pub size: (u32, u32),
+    /// Whether it was zeroed on the device (the first frame that uses it fills it;
+    /// after that the resolve zeroes what it reads).
+    pub zeroed: bool,
+}
+
+impl SplatSums {
+    /// Sums for a `size` target (filled with zeros by the first frame).
+    pub fn new(device: &Device, size: (u32, u32)) -> Result<Self, BackendError> {
+        let bytes = u64::from(size.0) * u64::from(size.1) * SPLAT_BYTES_PER_PIXEL;
+        Ok(Self {
+            buffer: Buffer::new(
+                device,
+                "splat sums",
+                bytes,
+                STORAGE | vk::BufferUsageFlags::TRANSFER_DST,
+                MemoryLocation::GpuOnly,
+            )?,
+            size,
+            zeroed: false,
+        })
+    }
 }
 
 const STORAGE: vk::BufferUsageFlags = vk::BufferUsageFlags::STORAGE_BUFFER;
@@ -89,13 +124,13 @@ impl FrameResources {
         };
         let group_counts = gpu_only(
             "cull groups",
-            u64::from(groups) * 8,
+            u64::from(groups) * GROUP_COUNT_BYTES,
             vk::BufferUsageFlags::empty(),
         )?;
         let drawn = gpu_only("drawn", u64::from(count) * 8, vk::BufferUsageFlags::empty())?;
         let draws = gpu_only(
             "draws",
-            DRAWS_BYTES,
+            FrameDraws::BYTES,
             vk::BufferUsageFlags::INDIRECT_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC,
         )?;
         let shadow_map = Image::new(
@@ -121,22 +156,25 @@ impl FrameResources {
             "frame",
             &[
                 (T::STORAGE_BUFFER_DYNAMIC, 2),
-                (T::STORAGE_BUFFER, 8),
-                (T::SAMPLED_IMAGE, 2),
+                (T::STORAGE_BUFFER, 8 + 2 * FRAMES_IN_FLIGHT as u32),
+                (T::SAMPLED_IMAGE, 2 + FRAMES_IN_FLIGHT as u32),
                 (T::SAMPLER, 2),
             ],
-            3,
+            3 + 2 * FRAMES_IN_FLIGHT as u32,
         )?;
-        let sets = descriptors::allocate(
-            device,
-            pool,
-            &[
-                renderer.layouts.frame,
-                renderer.layouts.light,
-                renderer.layouts.cull,
-            ],
-        )?;
+        let mut layouts = vec![
+            renderer.layouts.frame,
+            renderer.layouts.light,
+            renderer.layouts.cull,
+        ];
+        layouts.extend([renderer.layouts.splat; FRAMES_IN_FLIGHT]);
+        layouts.extend([renderer.layouts.splat_resolve; FRAMES_IN_FLIGHT]);
+        let sets = descriptors::allocate(device, pool, &layouts)?;
         let (frame_set, light_set, cull_set) = (sets[0], sets[1], sets[2]);
+        let splat_sets: [vk::DescriptorSet; FRAMES_IN_FLIGHT] =
+            std::array::from_fn(|i| sets[3 + i]);
+        let resolve_sets: [vk::DescriptorSet; FRAMES_IN_FLIGHT] =
+            std::array::from_fn(|i| sets[3 + FRAMES_IN_FLIGHT + i]);
         let whole = |b: &Buffer| buffer_info(b, vk::WHOLE_SIZE);
         let params_info = buffer_info(&params, size_of::<RenderParams>() as u64);
         let (cover, ground, particles) =
@@ -180,7 +218,45 @@ impl FrameResources {
             frame_set,
             light_set,
             cull_set,
+            splat_sets,
+            resolve_sets,
         })
+    }
+
+    /// Points frame slot `slot`'s splat and resolve sets at `depth` (the target's
+    /// depth view, read-only) and `sums`.
+    ///
+    /// # Safety
+    /// No pending work uses the slot's sets (its last frame has finished); `depth`
+    /// is a live depth view of `device`.
+    pub unsafe fn write_splat_sets(
+        &self,
+        device: &Device,
+        slot: usize,
+        depth: vk::ImageView,
+        sums: &Buffer,
+    ) {
+        use vk::DescriptorType as T;
+        let depth_info = [vk::DescriptorImageInfo {
+            sampler: vk::Sampler::null(),
+            image_view: depth,
+            image_layout: vk::ImageLayout::DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+        }];
+        let sums_info = buffer_info(sums, vk::WHOLE_SIZE);
+        let writes = [
+            write(
+                self.splat_sets[slot],
+                rb::SPLAT_SCENE_DEPTH,
+                T::SAMPLED_IMAGE,
+            )
+            .image_info(&depth_info),
+            write(self.splat_sets[slot], rb::SPLAT_SUMS, T::STORAGE_BUFFER).buffer_info(&sums_info),
+            write(self.resolve_sets[slot], rb::SPLAT_SUMS, T::STORAGE_BUFFER)
+                .buffer_info(&sums_info),
+        ];
+        // SAFETY: the view and buffer are live, of the bindings' types and usages;
+        // the sets are not in use by pending work (the caller's guarantee).
+        unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
     }
 
     /// Frees everything (no pending work may use it).

@@ -23,11 +23,19 @@ pub struct RenderLayouts {
     pub material: vk::DescriptorSetLayout,
     /// Set 0 of the cull kernels.
     pub cull: vk::DescriptorSetLayout,
+    /// Set 2 of the splat kernel: the camera's depth and the splat sums.
+    pub splat: vk::DescriptorSetLayout,
+    /// Set 2 of the splat's resolve draw: the splat sums.
+    pub splat_resolve: vk::DescriptorSetLayout,
     /// Every draw's pipeline layout (sets 0–2; the shadow and particle draws use a
     /// prefix of them).
     pub draw_layout: vk::PipelineLayout,
     /// The cull kernels' pipeline layout.
     pub cull_layout: vk::PipelineLayout,
+    /// The splat kernel's (sets 0, 1 and the splat set).
+    pub splat_layout: vk::PipelineLayout,
+    /// The resolve draw's (sets 0, 1 and the resolve set).
+    pub resolve_layout: vk::PipelineLayout,
 }
 
 fn binding(
@@ -72,8 +80,10 @@ impl RenderLayouts {
     /// Creates the layouts.
     pub fn new(device: &Device) -> Result<Self, BackendError> {
         use vk::DescriptorType as T;
-        let draw = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT;
         let compute = vk::ShaderStageFlags::COMPUTE;
+        // Sets 0 and 1 serve the draws and the splat kernel.
+        let draw = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT | compute;
+        let material_stages = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT;
         let frame = set_layout(
             device,
             "precip render frame",
@@ -99,9 +109,9 @@ impl RenderLayouts {
             device,
             "precip render material",
             &[
-                binding(rb::MATERIAL, T::UNIFORM_BUFFER, draw),
-                binding(rb::BASE_COLOUR_TEXTURE, T::SAMPLED_IMAGE, draw),
-                binding(rb::MATERIAL_SAMPLER, T::SAMPLER, draw),
+                binding(rb::MATERIAL, T::UNIFORM_BUFFER, material_stages),
+                binding(rb::BASE_COLOUR_TEXTURE, T::SAMPLED_IMAGE, material_stages),
+                binding(rb::MATERIAL_SAMPLER, T::SAMPLER, material_stages),
             ],
         )?;
         let cull = set_layout(
@@ -115,13 +125,38 @@ impl RenderLayouts {
                 binding(cb::DRAWS, T::STORAGE_BUFFER, compute),
             ],
         )?;
+        let splat = set_layout(
+            device,
+            "precip splat",
+            &[
+                binding(rb::SPLAT_SCENE_DEPTH, T::SAMPLED_IMAGE, compute),
+                binding(rb::SPLAT_SUMS, T::STORAGE_BUFFER, compute),
+            ],
+        )?;
+        let splat_resolve = set_layout(
+            device,
+            "precip splat resolve",
+            &[binding(
+                rb::SPLAT_SUMS,
+                T::STORAGE_BUFFER,
+                vk::ShaderStageFlags::FRAGMENT,
+            )],
+        )?;
         Ok(Self {
             draw_layout: pipeline_layout(device, "precip draws", &[frame, light, material])?,
             cull_layout: pipeline_layout(device, "precip cull", &[cull])?,
+            splat_layout: pipeline_layout(device, "precip splat", &[frame, light, splat])?,
+            resolve_layout: pipeline_layout(
+                device,
+                "precip splat resolve",
+                &[frame, light, splat_resolve],
+            )?,
             frame,
             light,
             material,
             cull,
+            splat,
+            splat_resolve,
         })
     }
 
@@ -132,7 +167,18 @@ impl RenderLayouts {
         unsafe {
             device.raw.destroy_pipeline_layout(self.draw_layout, None);
             device.raw.destroy_pipeline_layout(self.cull_layout, None);
-            for set in [self.frame, self.light, self.material, self.cull] {
+            device.raw.destroy_pipeline_layout(self.splat_layout, None);
+            device
+                .raw
+                .destroy_pipeline_layout(self.resolve_layout, None);
+            for set in [
+                self.frame,
+                self.light,
+                self.material,
+                self.cull,
+                self.splat,
+                self.splat_resolve,
+            ] {
                 device.raw.destroy_descriptor_set_layout(set, None);
             }
         }

@@ -4,17 +4,19 @@
 //!
 //! ## A frame, in one command buffer
 //!
-//! 1. a barrier: the step's compute writes (particles, cover) become visible to the
-//!    vertex and fragment shaders and the cull kernels;
+//! 1. a barrier: the step's compute writes (particles, cover) and a new splat-sums
+//!    buffer's zero fill become visible to the shaders and kernels of the frame;
 //! 2. **shadow** — render pass with the shadow map, the displaced scene from the sun;
-//! 3. **cull_particles** — the three kernels, barriers between them, then a barrier
-//!    to the indirect draws and vertex pulling;
-//! 4. **scene** — a render pass into the target (offscreen image or swapchain image)
-//!    that clears it and draws every mesh;
-//! 5. **particles** — a second pass that loads it and draws snow and rain by
-//!    `vkCmdDrawIndirect` (two passes, as wgpu's, so each has its timestamps);
-//! 6. a barrier: the next step's compute waits for this frame's shaders (it rewrites
-//!    what they read).
+//! 3. **scene** — a render pass into the target (offscreen image or swapchain image)
+//!    that clears it and draws every mesh, leaving the depth read-only;
+//! 4. **cull_particles** — the three kernels, barriers between them;
+//! 5. **splat_particles** — the splat kernel (reads the depth, adds to the sums),
+//!    then a barrier to the indirect draws, vertex pulling and the resolve;
+//! 6. **particles** — a second pass that loads the target, blends the splat sums
+//!    (zeroing them) and draws snow and rain by `vkCmdDrawIndirect` (passes as
+//!    wgpu's, so each has its timestamps);
+//! 7. a barrier: the next frame's compute waits for this frame's shaders (it
+//!    rewrites what they read; the resolve's zeroing lands first).
 //!
 //! Clip space is flipped with a negative viewport height, as wgpu-hal does, so the
 //! WGSL runs unchanged and the images agree. Timestamps bracket each pass.
@@ -38,8 +40,8 @@ pub mod target;
 use ash::vk;
 use glam::{UVec3, Vec3};
 use precip_model::BackendError;
-use precip_model::drawing::snowflake_opacity;
-use precip_model::gpu::{DispatchOver, dispatch_size};
+use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
+use precip_model::gpu::{DispatchOver, FrameDraws, dispatch_size};
 use precip_model::shaders::Program;
 
 use self::frame::FrameResources;
@@ -55,9 +57,6 @@ use crate::device::Device;
 use crate::image::{Image, ImageSpec};
 use crate::programs::module;
 use crate::resources::upload_image;
-
-/// Side of the generated flake opacity texture, px (as the wgpu backend's).
-pub const FLAKE_TEXTURE_PX: u32 = 64;
 
 /// The camera passes of one colour format and final layout.
 #[derive(Debug)]
@@ -109,7 +108,7 @@ impl Renderer {
         let cull_module = module(device, Program::CullParticles)?;
         let shadow_pass = passes::shadow(device)?;
         let shadow = shadow_pipeline(device, render_module, &layouts, shadow_pass)?;
-        let cull = CullPipelines::new(device, cull_module, &layouts)?;
+        let cull = CullPipelines::new(device, cull_module, render_module, &layouts)?;
         Ok(Self {
             stamps: RenderStamps::new(device)?,
             layouts,
@@ -207,6 +206,8 @@ pub struct RenderState {
     pub shadow_bounds_m: (Vec3, Vec3),
     /// Frames drawn since configure (picks the uniform block).
     pub frames_drawn: u64,
+    /// The splat's sums, for the last frame's size.
+    pub splat_sums: Option<frame::SplatSums>,
 }
 
 impl RenderState {
@@ -218,6 +219,9 @@ impl RenderState {
         self.frame.destroy(device);
         if let Some(t) = self.offscreen {
             t.destroy(device);
+        }
+        if let Some(s) = self.splat_sums {
+            s.buffer.destroy(device);
         }
     }
 }
@@ -233,6 +237,10 @@ pub struct FrameTarget {
     pub size: (u32, u32),
     /// The sky's colour (linear), the clear colour.
     pub sky: Vec3,
+    /// This frame's splat and resolve sets (set 2 of each).
+    pub splat_sets: (vk::DescriptorSet, vk::DescriptorSet),
+    /// The splat sums to fill with zeros first (new sums), if any.
+    pub zero_splat_sums: Option<vk::Buffer>,
 }
 
 /// The viewport of `size`, y flipped (WGSL's clip space, as wgpu-hal).
@@ -293,6 +301,11 @@ pub unsafe fn record_frame(
         // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
         unsafe { s.reset(device, cb) };
     }
+    if let Some(sums) = target.zero_splat_sums {
+        // SAFETY: `cb` is recording outside a render pass; the buffer is live and was
+        // made with TRANSFER_DST; the barrier below orders the fill before the splat.
+        unsafe { device.raw.cmd_fill_buffer(cb, sums, 0, vk::WHOLE_SIZE, 0) };
+    }
     // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
     unsafe {
         memory_barrier(
@@ -337,18 +350,30 @@ pub unsafe fn record_frame(
         };
         viewport(device, cb, size);
     };
-    let frame_set = |bind_point, pipeline_layout, sets: &[vk::DescriptorSet]| {
-        // SAFETY: `cb` is recording; the sets match the layout; set 0 takes the
-        // frame's dynamic uniform offset, which is aligned and in the buffer.
+    let bind_sets = |bind_point, pipeline_layout, first: u32, sets: &[vk::DescriptorSet]| {
+        // Set 0 takes the frame's dynamic offset.
+        let offsets: &[u32] = if first == 0 { &[params_offset] } else { &[] };
+        // SAFETY: `cb` is recording; the sets match the layout from `first`; set 0's
+        // dynamic offset is aligned and in the buffer.
         unsafe {
             device.raw.cmd_bind_descriptor_sets(
                 cb,
                 bind_point,
                 pipeline_layout,
-                0,
+                first,
                 sets,
-                &[params_offset],
+                offsets,
             );
+        }
+    };
+    let dispatch = |pipeline, (x, y): (u32, u32)| {
+        // SAFETY: `cb` is recording outside a render pass; the pipeline's sets are
+        // bound.
+        unsafe {
+            device
+                .raw
+                .cmd_bind_pipeline(cb, vk::PipelineBindPoint::COMPUTE, pipeline);
+            device.raw.cmd_dispatch(cb, x, y, 1);
         }
     };
     begin(
@@ -364,45 +389,17 @@ pub unsafe fn record_frame(
                 .raw
                 .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, renderer.shadow)
         };
-        frame_set(vk::PipelineBindPoint::GRAPHICS, layout, &[frame.frame_set]);
+        bind_sets(
+            vk::PipelineBindPoint::GRAPHICS,
+            layout,
+            0,
+            &[frame.frame_set],
+        );
         scene.draw(device, cb, layout, false);
     }
     // SAFETY: ends the pass begun above.
     unsafe { device.raw.cmd_end_render_pass(cb) };
     stamp(1);
-    frame_set(
-        vk::PipelineBindPoint::COMPUTE,
-        renderer.layouts.cull_layout,
-        &[frame.cull_set],
-    );
-    for (kernel, pipeline) in &renderer.cull.kernels {
-        let (x, y) = match kernel.over {
-            DispatchOver::OneWorkgroup => (1, 1),
-            _ => dispatch_size(particle_count),
-        };
-        // SAFETY: `cb` is recording outside a render pass; the cull set is bound.
-        unsafe {
-            device
-                .raw
-                .cmd_bind_pipeline(cb, vk::PipelineBindPoint::COMPUTE, *pipeline);
-            device.raw.cmd_dispatch(cb, x, y, 1);
-        }
-        // SAFETY: `cb` is recording, outside a render pass (between the dispatches).
-        unsafe { compute_barrier(device, cb) };
-    }
-    // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
-    unsafe {
-        memory_barrier(
-            device,
-            cb,
-            (S::COMPUTE_SHADER, A::SHADER_WRITE),
-            (
-                S::DRAW_INDIRECT | S::VERTEX_SHADER | S::FRAGMENT_SHADER,
-                A::INDIRECT_COMMAND_READ | A::SHADER_READ,
-            ),
-        );
-    }
-    stamp(2);
     let sky = target.sky;
     let clears = [
         vk::ClearValue {
@@ -426,42 +423,103 @@ pub unsafe fn record_frame(
                 .raw
                 .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, draws.scene)
         };
-        frame_set(
+        bind_sets(
             vk::PipelineBindPoint::GRAPHICS,
             layout,
+            0,
             &[frame.frame_set, frame.light_set],
         );
         scene.draw(device, cb, layout, true);
     }
-    // SAFETY: ends the scene pass.
+    // SAFETY: ends the scene pass (its dependency makes the depth visible to the
+    // splat kernel, read-only).
     unsafe { device.raw.cmd_end_render_pass(cb) };
+    stamp(2);
+    let particle_groups = dispatch_size(particle_count);
+    bind_sets(
+        vk::PipelineBindPoint::COMPUTE,
+        renderer.layouts.cull_layout,
+        0,
+        &[frame.cull_set],
+    );
+    for (kernel, pipeline) in &renderer.cull.kernels {
+        let groups = match kernel.over {
+            DispatchOver::OneWorkgroup => (1, 1),
+            _ => particle_groups,
+        };
+        dispatch(*pipeline, groups);
+        // SAFETY: `cb` is recording, outside a render pass (between the dispatches).
+        unsafe { compute_barrier(device, cb) };
+    }
     stamp(3);
+    bind_sets(
+        vk::PipelineBindPoint::COMPUTE,
+        renderer.layouts.splat_layout,
+        0,
+        &[frame.frame_set, frame.light_set, target.splat_sets.0],
+    );
+    dispatch(renderer.cull.splat, particle_groups);
+    // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
+    unsafe {
+        memory_barrier(
+            device,
+            cb,
+            (S::COMPUTE_SHADER, A::SHADER_WRITE),
+            (
+                S::DRAW_INDIRECT | S::VERTEX_SHADER | S::FRAGMENT_SHADER,
+                A::INDIRECT_COMMAND_READ | A::SHADER_READ | A::SHADER_WRITE,
+            ),
+        );
+    }
+    stamp(4);
     begin(
         target.passes.particles,
         target.framebuffer,
         target.size,
         &[],
     );
-    frame_set(
+    bind_sets(
         vk::PipelineBindPoint::GRAPHICS,
         layout,
+        0,
         &[frame.frame_set, frame.light_set],
+    );
+    // SAFETY: inside the camera pass; the resolve pipeline was made for a compatible
+    // pass; its layout shares sets 0 and 1 with the draws' (compatible), set 2 is
+    // bound here.
+    unsafe {
+        device
+            .raw
+            .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, draws.splat_resolve);
+    }
+    bind_sets(
+        vk::PipelineBindPoint::GRAPHICS,
+        renderer.layouts.resolve_layout,
+        2,
+        &[target.splat_sets.1],
     );
     // SAFETY: inside the camera pass; the particle pipelines were made for a
     // compatible pass; the draws buffer holds two 16-byte `DrawArgs`, made visible to
     // indirect reads by the barrier above.
     unsafe {
+        device.raw.cmd_draw(cb, 3, 1, 0, 0);
         device
             .raw
             .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, draws.snow);
-        device.raw.cmd_draw_indirect(cb, frame.draws.raw, 0, 1, 16);
+        device
+            .raw
+            .cmd_draw_indirect(cb, frame.draws.raw, FrameDraws::SNOW_OFFSET, 1, 16);
         device
             .raw
             .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, draws.rain);
-        device.raw.cmd_draw_indirect(cb, frame.draws.raw, 16, 1, 16);
+        device
+            .raw
+            .cmd_draw_indirect(cb, frame.draws.raw, FrameDraws::RAIN_OFFSET, 1, 16);
         device.raw.cmd_end_render_pass(cb);
     }
-    stamp(4);
+    stamp(5);
+    // The next frame's step and splat rewrite what these shaders read, and the
+    // resolve's zeroing writes must land before the next splat adds.
     // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
     unsafe {
         memory_barrier(
@@ -469,9 +527,12 @@ pub unsafe fn record_frame(
             cb,
             (
                 S::DRAW_INDIRECT | S::VERTEX_SHADER | S::FRAGMENT_SHADER,
-                A::empty(),
+                A::SHADER_WRITE,
             ),
-            (S::COMPUTE_SHADER | S::TRANSFER, A::empty()),
+            (
+                S::COMPUTE_SHADER | S::TRANSFER,
+                A::SHADER_READ | A::SHADER_WRITE | A::TRANSFER_WRITE,
+            ),
         );
     }
 }

@@ -124,19 +124,23 @@ fn camera_pass(
     load_into: Option<vk::ImageLayout>,
 ) -> Result<vk::RenderPass, BackendError> {
     use vk::ImageLayout as L;
-    let (load, initial, colour_final, depth_initial, depth_store) = match load_into {
+    // The scene's pass leaves the depth read-only: the splat kernel samples it between
+    // the passes, and the particles' pass tests against it without writing.
+    let (load, initial, colour_final, depth_initial, depth_layout, depth_store) = match load_into {
         None => (
             vk::AttachmentLoadOp::CLEAR,
             L::UNDEFINED,
             L::COLOR_ATTACHMENT_OPTIMAL,
             L::UNDEFINED,
+            L::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
             vk::AttachmentStoreOp::STORE,
         ),
         Some(final_layout) => (
             vk::AttachmentLoadOp::LOAD,
             L::COLOR_ATTACHMENT_OPTIMAL,
             final_layout,
-            L::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+            L::DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+            L::DEPTH_STENCIL_READ_ONLY_OPTIMAL,
             vk::AttachmentStoreOp::DONT_CARE,
         ),
     };
@@ -158,7 +162,7 @@ fn camera_pass(
             .stencil_load_op(vk::AttachmentLoadOp::DONT_CARE)
             .stencil_store_op(vk::AttachmentStoreOp::DONT_CARE)
             .initial_layout(depth_initial)
-            .final_layout(L::DEPTH_STENCIL_ATTACHMENT_OPTIMAL),
+            .final_layout(L::DEPTH_STENCIL_READ_ONLY_OPTIMAL),
     ];
     let colour = [vk::AttachmentReference {
         attachment: 0,
@@ -166,16 +170,21 @@ fn camera_pass(
     }];
     let depth = vk::AttachmentReference {
         attachment: 1,
-        layout: L::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+        layout: depth_layout,
     };
     let attachment_stages = vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT | FRAGMENT_TESTS;
     let attachment_writes =
         vk::AccessFlags::COLOR_ATTACHMENT_WRITE | vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_WRITE;
     let dependencies = [
+        // Before: the last frame's attachments, copies and splat (it read the depth).
         vk::SubpassDependency::default()
             .src_subpass(vk::SUBPASS_EXTERNAL)
             .dst_subpass(0)
-            .src_stage_mask(attachment_stages | vk::PipelineStageFlags::TRANSFER)
+            .src_stage_mask(
+                attachment_stages
+                    | vk::PipelineStageFlags::TRANSFER
+                    | vk::PipelineStageFlags::COMPUTE_SHADER,
+            )
             .dst_stage_mask(attachment_stages)
             .src_access_mask(attachment_writes)
             .dst_access_mask(
@@ -187,13 +196,18 @@ fn camera_pass(
             .src_subpass(0)
             .dst_subpass(vk::SUBPASS_EXTERNAL)
             .src_stage_mask(attachment_stages)
-            .dst_stage_mask(attachment_stages | vk::PipelineStageFlags::TRANSFER)
+            .dst_stage_mask(
+                attachment_stages
+                    | vk::PipelineStageFlags::TRANSFER
+                    | vk::PipelineStageFlags::COMPUTE_SHADER,
+            )
             .src_access_mask(attachment_writes)
             .dst_access_mask(
                 attachment_writes
                     | vk::AccessFlags::COLOR_ATTACHMENT_READ
                     | vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_READ
-                    | vk::AccessFlags::TRANSFER_READ,
+                    | vk::AccessFlags::TRANSFER_READ
+                    | vk::AccessFlags::SHADER_READ,
             ),
     ];
     create(

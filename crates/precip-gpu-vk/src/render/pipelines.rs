@@ -6,7 +6,7 @@ use std::ffi::CString;
 
 use ash::vk;
 use precip_model::BackendError;
-use precip_model::gpu::{CULL_PASSES, KernelPass, SceneVertex, render_passes};
+use precip_model::gpu::{CULL_PASSES, KernelPass, SPLAT_PASS, SceneVertex, render_passes};
 
 use super::layouts::RenderLayouts;
 use crate::device::Device;
@@ -22,13 +22,17 @@ pub struct DrawPipelines {
     pub snow: vk::Pipeline,
     /// Rain tetrahedra.
     pub rain: vk::Pipeline,
+    /// The splat sums blended over the frame.
+    pub splat_resolve: vk::Pipeline,
 }
 
-/// The cull kernels, in the recipe's order.
+/// The cull kernels, in the recipe's order, and the splat kernel.
 #[derive(Debug)]
 pub struct CullPipelines {
     /// `(kernel, pipeline)` of [`CULL_PASSES`].
     pub kernels: Vec<(KernelPass, vk::Pipeline)>,
+    /// [`SPLAT_PASS`].
+    pub splat: vk::Pipeline,
 }
 
 /// How a draw differs from the others.
@@ -248,14 +252,31 @@ impl DrawPipelines {
                 vk::PrimitiveTopology::TRIANGLE_LIST,
             ),
         )?;
-        Ok(Self { scene, snow, rain })
+        // At depth 0 it passes the less-equal test everywhere: no depth test.
+        let splat_resolve = draw_pipeline(
+            device,
+            module,
+            layouts.resolve_layout,
+            pass,
+            &particles(
+                "precip splat resolve",
+                render_passes::SPLAT_RESOLVE,
+                vk::PrimitiveTopology::TRIANGLE_LIST,
+            ),
+        )?;
+        Ok(Self {
+            scene,
+            snow,
+            rain,
+            splat_resolve,
+        })
     }
 
     /// Destroys the pipelines (the device must be idle).
     pub fn destroy(self, device: &Device) {
         // SAFETY: the device is idle; destroyed once (by the renderer's destroy).
         unsafe {
-            for p in [self.scene, self.snow, self.rain] {
+            for p in [self.scene, self.snow, self.rain, self.splat_resolve] {
                 device.raw.destroy_pipeline(p, None);
             }
         }
@@ -263,10 +284,12 @@ impl DrawPipelines {
 }
 
 impl CullPipelines {
-    /// The cull kernels of `module` (the `CullParticles` program).
+    /// The cull kernels of `module` (the `CullParticles` program) and the splat
+    /// kernel of `render_module` (the `Render` program).
     pub fn new(
         device: &Device,
         module: vk::ShaderModule,
+        render_module: vk::ShaderModule,
         layouts: &RenderLayouts,
     ) -> Result<Self, BackendError> {
         let mut kernels = Vec::with_capacity(CULL_PASSES.len());
@@ -275,7 +298,24 @@ impl CullPipelines {
             device.name(pipeline, kernel.entry_point);
             kernels.push((kernel, pipeline));
         }
-        Ok(Self { kernels })
+        let splat = match compute(
+            device,
+            layouts.splat_layout,
+            render_module,
+            SPLAT_PASS.entry_point,
+        ) {
+            Ok(p) => p,
+            Err(e) => {
+                Self {
+                    kernels,
+                    splat: vk::Pipeline::null(),
+                }
+                .destroy(device);
+                return Err(e);
+            }
+        };
+        device.name(splat, SPLAT_PASS.entry_point);
+        Ok(Self { kernels, splat })
     }
 
     /// Destroys the pipelines (the device must be idle).
@@ -285,6 +325,7 @@ impl CullPipelines {
             for (_, p) in &self.kernels {
                 device.raw.destroy_pipeline(*p, None);
             }
+            device.raw.destroy_pipeline(self.splat, None);
         }
     }
 }

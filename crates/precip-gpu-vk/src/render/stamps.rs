@@ -1,5 +1,5 @@
-//! Timestamps around the passes of a frame, named as the wgpu backend names them:
-//! `shadow`, `cull_particles`, `scene`, `particles`.
+//! Timestamps around the passes of a frame, named and ordered as the wgpu backend's
+//! (`precip_model::gpu::TIMED_RENDER_PASSES`).
 
 use ash::vk;
 use precip_model::{BackendError, PassTiming};
@@ -8,7 +8,7 @@ use crate::device::Device;
 use crate::error::map_vk;
 
 /// The passes timed, in order.
-pub const PASSES: [&str; 4] = ["shadow", "cull_particles", "scene", "particles"];
+pub const PASSES: [&str; 5] = precip_model::gpu::TIMED_RENDER_PASSES;
 
 /// Queries: one before the first pass and one after each.
 pub const QUERIES: u32 = PASSES.len() as u32 + 1;

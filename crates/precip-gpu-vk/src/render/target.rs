@@ -25,7 +25,8 @@ pub fn depth_buffer(device: &Device, (width, height): (u32, u32)) -> Result<Imag
             name: "depth",
             extent: UVec3::new(width, height, 1),
             format: DEPTH_FORMAT,
-            usage: vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT,
+            // Sampled: the splat kernel tests against it.
+            usage: vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
         },
     )
 }

@@ -105,9 +105,9 @@ proptest! {
         let b = frame(&mut wgpu, &setup, steps, &view);
         let (close, worst) = agreement(&a, &b);
         let distinct = a.rgba8.chunks_exact(4).collect::<std::collections::HashSet<_>>().len();
-        eprintln!("vk vs wgpu: {:.5} within 1/255, worst {worst}/255, {distinct} distinct colours, drawn {:?}", close, vk.drawn_counts().ok());
+        eprintln!("vk vs wgpu: {:.5} within 1/255, worst {worst}/255, {distinct} distinct colours, drawn {:?}", close, vk.drawn().ok());
         prop_assert!(close >= 0.999, "{:.4} % of pixels within 1/255 (worst {worst}/255)", close * 100.0);
-        prop_assert_eq!(vk.drawn_counts().expect("counts"), wgpu.drawn_counts().expect("counts"));
+        prop_assert_eq!(vk.drawn().expect("counts"), wgpu.drawn().expect("counts"));
         assert_clean(&vk, "while drawing");
     }
 }
@@ -205,13 +205,10 @@ fn timings_name_every_pass_of_a_frame() {
         eprintln!("no timestamps on this device");
         return;
     }
-    for pass in [
-        "step_particles",
-        "shadow",
-        "cull_particles",
-        "scene",
-        "particles",
-    ] {
+    for pass in ["step_particles"]
+        .into_iter()
+        .chain(precip_model::gpu::TIMED_RENDER_PASSES)
+    {
         let t = timings
             .passes
             .iter()

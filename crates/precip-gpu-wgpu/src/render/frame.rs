@@ -1,8 +1,10 @@
 //! The per-configuration resources of drawing: the frame's uniform block, the cull
 //! lists and indirect draws, the shadow map, the flake texture and the bind groups.
 
-use precip_model::drawing::snowflake_opacity;
-use precip_model::gpu::{cull_bindings as cb, cull_groups, render_bindings as rb};
+use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
+use precip_model::gpu::{
+    FrameDraws, GROUP_COUNT_BYTES, cull_bindings as cb, cull_groups, render_bindings as rb,
+};
 use precip_model::render::RenderParams;
 
 use super::layouts::RenderLayouts;
@@ -10,18 +12,12 @@ use super::pipelines::DEPTH_FORMAT;
 use crate::device::GpuDevice;
 use crate::resources::Resources;
 
-/// Side of the generated flake opacity texture, px.
-pub const FLAKE_TEXTURE_PX: u32 = 64;
-
-/// Bytes of the two indirect draws.
-const DRAWS_BYTES: u64 = 32;
-
 /// What drawing adds to a configuration.
 #[derive(Debug)]
 pub struct FrameResources {
     /// `RenderParams`.
     pub params: wgpu::Buffer,
-    /// The two `DrawArgs` (snow, rain).
+    /// [`FrameDraws`]: the two indirect draws and the splat count.
     pub draws: wgpu::Buffer,
     /// Workgroups of the cull kernels.
     pub cull_groups: u32,
@@ -72,7 +68,7 @@ impl FrameResources {
         let group_counts = storage(
             gpu,
             "precip cull groups",
-            u64::from(groups) * 8,
+            u64::from(groups) * GROUP_COUNT_BYTES,
             wgpu::BufferUsages::empty(),
         );
         let drawn = storage(
@@ -84,7 +80,7 @@ impl FrameResources {
         let draws = storage(
             gpu,
             "precip draws",
-            DRAWS_BYTES,
+            FrameDraws::BYTES,
             wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
         );
         let shadow = device.create_texture(&wgpu::TextureDescriptor {

@@ -17,9 +17,15 @@ pub struct RenderLayouts {
     pub material: wgpu::BindGroupLayout,
     /// Group 0 of the cull kernels.
     pub cull: wgpu::BindGroupLayout,
+    /// Group 2 of the splat kernel: the camera's depth and the splat sums.
+    pub splat: wgpu::BindGroupLayout,
+    /// Group 2 of the splat's resolve draw: the splat sums.
+    pub splat_resolve: wgpu::BindGroupLayout,
 }
 
-const DRAW: wgpu::ShaderStages = wgpu::ShaderStages::VERTEX_FRAGMENT;
+/// Groups 0 and 1 serve the draws and the splat kernel.
+const DRAW: wgpu::ShaderStages =
+    wgpu::ShaderStages::VERTEX_FRAGMENT.union(wgpu::ShaderStages::COMPUTE);
 
 fn entry(
     binding: u32,
@@ -106,15 +112,19 @@ impl RenderLayouts {
         let material = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("precip render material"),
             entries: &[
-                entry(rb::MATERIAL, DRAW, uniform(16)),
+                entry(
+                    rb::MATERIAL,
+                    wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    uniform(16),
+                ),
                 entry(
                     rb::BASE_COLOUR_TEXTURE,
-                    DRAW,
+                    wgpu::ShaderStages::VERTEX_FRAGMENT,
                     texture(wgpu::TextureSampleType::Float { filterable: true }),
                 ),
                 entry(
                     rb::MATERIAL_SAMPLER,
-                    DRAW,
+                    wgpu::ShaderStages::VERTEX_FRAGMENT,
                     wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                 ),
             ],
@@ -130,11 +140,32 @@ impl RenderLayouts {
                 entry(cull_bindings::DRAWS, compute, storage(false)),
             ],
         });
+        let splat = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("precip splat"),
+            entries: &[
+                entry(
+                    rb::SPLAT_SCENE_DEPTH,
+                    compute,
+                    texture(wgpu::TextureSampleType::Depth),
+                ),
+                entry(rb::SPLAT_SUMS, compute, storage(false)),
+            ],
+        });
+        let splat_resolve = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("precip splat resolve"),
+            entries: &[entry(
+                rb::SPLAT_SUMS,
+                wgpu::ShaderStages::FRAGMENT,
+                storage(false),
+            )],
+        });
         Self {
             frame,
             light,
             material,
             cull,
+            splat,
+            splat_resolve,
         }
     }
 }

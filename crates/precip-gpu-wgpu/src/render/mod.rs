@@ -4,17 +4,22 @@
 //! ## A frame
 //!
 //! 1. **shadow** — the scene's displaced geometry from the sun into a depth map.
-//! 2. **cull_particles** — three compute kernels (`precip_model::gpu::CULL_PASSES`)
+//! 2. **scene** — every mesh, displaced by the snow depth and shaded with the cover
+//!    (coverage by the threshold masks, wet darkening, exposure to the sky from the
+//!    ground map, slope and eligibility), Blinn–Phong with the shadow map, fog.
+//! 3. **cull_particles** — three compute kernels (`precip_model::gpu::CULL_PASSES`)
 //!    test each particle against the view cone, compact the drawn ones into a snow
 //!    list and a rain list in buffer order, and write two indirect draws' instance
 //!    counts. Culled particles cost no vertex or raster work; with culling off the
-//!    same lists hold every particle, so the images match.
-//! 3. **scene** — every mesh, displaced by the snow depth and shaded with the cover
-//!    (coverage by the threshold masks, wet darkening, exposure to the sky from the
-//!    ground map, slope and eligibility), Blinn–Phong with the shadow map, fog.
-//! 4. **particles** — snow sprites (4-vertex strips) and rain tetrahedra (12-vertex
-//!    lists) by indirect draws, pulled from the particle buffer in the vertex shader,
-//!    blended over the scene with its depth.
+//!    same lists hold every particle, so the images match. Sub-pixel particles are in
+//!    neither list.
+//! 4. **splat_particles** — one kernel (`precip_model::gpu::SPLAT_PASS`) adds each
+//!    sub-pixel particle's light to the splat sums at its pixel, tested against the
+//!    scene's depth (render_splat.wgsl).
+//! 5. **particles** — the splat sums blended over the scene (and zeroed), then snow
+//!    sprites (4-vertex strips) and rain tetrahedra (12-vertex lists) by indirect
+//!    draws, pulled from the particle buffer in the vertex shader, blended over the
+//!    scene with its depth.
 //!
 //! Nothing per particle crosses to the CPU. Pipelines are made per colour format on
 //! first use (the offscreen `Rgba8UnormSrgb` target, or a window surface's format
@@ -37,8 +42,8 @@ use self::pipelines::{CullPipelines, DrawPipelines};
 use self::scene::SceneGpu;
 use self::stamps::RenderStamps;
 use self::target::{ColourTarget, DepthBuffer};
-use precip_model::gpu::DispatchOver;
 use precip_model::gpu::dispatch_size;
+use precip_model::gpu::{DispatchOver, FrameDraws};
 
 /// Layouts and pipelines of one device.
 #[derive(Debug)]
@@ -100,20 +105,37 @@ pub struct RenderState {
 pub struct FrameTarget<'a> {
     /// The colour view.
     pub colour: &'a wgpu::TextureView,
-    /// A depth view of the same size.
-    pub depth: &'a wgpu::TextureView,
+    /// A depth buffer of the same size, with its splat sums.
+    pub depth: &'a DepthBuffer,
     /// The sky's colour (linear), the clear colour.
     pub sky: Vec3,
 }
 
-fn timestamp_writes(
+/// Writes of timed pass `pass` (its index in `TIMED_RENDER_PASSES`): queries `2·pass`
+/// before, `2·pass + 1` after.
+fn pass_writes(stamps: Option<&RenderStamps>, pass: u32) -> Option<(&wgpu::QuerySet, u32)> {
+    stamps.map(|s| (&s.set, 2 * pass))
+}
+
+fn render_stamps(
     stamps: Option<&RenderStamps>,
     pass: u32,
 ) -> Option<wgpu::RenderPassTimestampWrites<'_>> {
-    stamps.map(|s| wgpu::RenderPassTimestampWrites {
-        query_set: &s.set,
-        beginning_of_pass_write_index: Some(2 * pass),
-        end_of_pass_write_index: Some(2 * pass + 1),
+    pass_writes(stamps, pass).map(|(query_set, i)| wgpu::RenderPassTimestampWrites {
+        query_set,
+        beginning_of_pass_write_index: Some(i),
+        end_of_pass_write_index: Some(i + 1),
+    })
+}
+
+fn compute_stamps(
+    stamps: Option<&RenderStamps>,
+    pass: u32,
+) -> Option<wgpu::ComputePassTimestampWrites<'_>> {
+    pass_writes(stamps, pass).map(|(query_set, i)| wgpu::ComputePassTimestampWrites {
+        query_set,
+        beginning_of_pass_write_index: Some(i),
+        end_of_pass_write_index: Some(i + 1),
     })
 }
 
@@ -140,7 +162,7 @@ pub fn encode_frame(
                 }),
                 stencil_ops: None,
             }),
-            timestamp_writes: timestamp_writes(stamps, 0),
+            timestamp_writes: render_stamps(stamps, 0),
             occlusion_query_set: None,
             multiview_mask: None,
         });
@@ -148,25 +170,6 @@ pub fn encode_frame(
             pass.set_pipeline(&draws.shadow);
             pass.set_bind_group(0, &frame.frame_group, &[]);
             scene.draw(&mut pass, false);
-        }
-    }
-    {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("precip cull_particles"),
-            timestamp_writes: stamps.map(|s| wgpu::ComputePassTimestampWrites {
-                query_set: &s.set,
-                beginning_of_pass_write_index: Some(2),
-                end_of_pass_write_index: Some(3),
-            }),
-        });
-        pass.set_bind_group(0, &frame.cull_group, &[]);
-        for (kernel, pipeline) in &cull.kernels {
-            pass.set_pipeline(pipeline);
-            let (x, y) = match kernel.over {
-                DispatchOver::OneWorkgroup => (1, 1),
-                _ => dispatch_size(particle_count),
-            };
-            pass.dispatch_workgroups(x, y, 1);
         }
     }
     let sky = target.sky;
@@ -188,14 +191,14 @@ pub fn encode_frame(
                 },
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: target.depth,
+                view: &target.depth.view,
                 depth_ops: Some(wgpu::Operations {
                     load: wgpu::LoadOp::Clear(1.0),
                     store: wgpu::StoreOp::Store,
                 }),
                 stencil_ops: None,
             }),
-            timestamp_writes: timestamp_writes(stamps, 2),
+            timestamp_writes: render_stamps(stamps, 1),
             occlusion_query_set: None,
             multiview_mask: None,
         });
@@ -205,6 +208,33 @@ pub fn encode_frame(
             pass.set_bind_group(1, &frame.light_group, &[]);
             scene.draw(&mut pass, true);
         }
+    }
+    let particle_groups = dispatch_size(particle_count);
+    {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("precip cull_particles"),
+            timestamp_writes: compute_stamps(stamps, 2),
+        });
+        pass.set_bind_group(0, &frame.cull_group, &[]);
+        for (kernel, pipeline) in &cull.kernels {
+            pass.set_pipeline(pipeline);
+            let (x, y) = match kernel.over {
+                DispatchOver::OneWorkgroup => (1, 1),
+                _ => particle_groups,
+            };
+            pass.dispatch_workgroups(x, y, 1);
+        }
+    }
+    {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("precip splat_particles"),
+            timestamp_writes: compute_stamps(stamps, 3),
+        });
+        pass.set_pipeline(&cull.splat);
+        pass.set_bind_group(0, &frame.frame_group, &[]);
+        pass.set_bind_group(1, &frame.light_group, &[]);
+        pass.set_bind_group(2, &target.depth.splat_group, &[]);
+        pass.dispatch_workgroups(particle_groups.0, particle_groups.1, 1);
     }
     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some("precip particles"),
@@ -218,21 +248,24 @@ pub fn encode_frame(
             },
         })],
         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-            view: target.depth,
+            view: &target.depth.view,
             depth_ops: Some(wgpu::Operations {
                 load: wgpu::LoadOp::Load,
                 store: wgpu::StoreOp::Discard,
             }),
             stencil_ops: None,
         }),
-        timestamp_writes: timestamp_writes(stamps, 3),
+        timestamp_writes: render_stamps(stamps, 4),
         occlusion_query_set: None,
         multiview_mask: None,
     });
     pass.set_bind_group(0, &frame.frame_group, &[]);
     pass.set_bind_group(1, &frame.light_group, &[]);
+    pass.set_pipeline(&draws.splat_resolve);
+    pass.set_bind_group(2, &target.depth.resolve_group, &[]);
+    pass.draw(0..3, 0..1);
     pass.set_pipeline(&draws.snow);
-    pass.draw_indirect(&frame.draws, 0);
+    pass.draw_indirect(&frame.draws, FrameDraws::SNOW_OFFSET);
     pass.set_pipeline(&draws.rain);
-    pass.draw_indirect(&frame.draws, 16);
+    pass.draw_indirect(&frame.draws, FrameDraws::RAIN_OFFSET);
 }

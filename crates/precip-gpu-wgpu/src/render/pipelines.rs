@@ -1,7 +1,7 @@
 //! The render pipelines (per colour format, so the viewer's surface format and the
 //! offscreen sRGB target both work) and the cull kernels' pipelines.
 
-use precip_model::gpu::{CULL_PASSES, SceneVertex, render_passes};
+use precip_model::gpu::{CULL_PASSES, SPLAT_PASS, SceneVertex, render_passes};
 use precip_model::shaders::Program;
 
 use super::layouts::RenderLayouts;
@@ -21,13 +21,17 @@ pub struct DrawPipelines {
     pub snow: wgpu::RenderPipeline,
     /// Rain tetrahedra.
     pub rain: wgpu::RenderPipeline,
+    /// The splat sums blended over the frame.
+    pub splat_resolve: wgpu::RenderPipeline,
 }
 
-/// The cull kernels, in the recipe's order.
+/// The cull kernels, in the recipe's order, and the splat kernel.
 #[derive(Debug)]
 pub struct CullPipelines {
     /// `(kernel, pipeline)` of [`CULL_PASSES`].
     pub kernels: Vec<(precip_model::gpu::KernelPass, wgpu::ComputePipeline)>,
+    /// [`SPLAT_PASS`].
+    pub splat: wgpu::ComputePipeline,
 }
 
 const SCENE_ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
@@ -128,6 +132,11 @@ impl DrawPipelines {
             "precip particles",
             &[&layouts.frame, &layouts.light],
         );
+        let resolve_layout = pipeline_layout(
+            device,
+            "precip splat resolve",
+            &[&layouts.frame, &layouts.light, &layouts.splat_resolve],
+        );
         let vertex = [Some(scene_vertex_layout())];
         let opaque = Some(wgpu::ColorTargetState {
             format,
@@ -198,6 +207,21 @@ impl DrawPipelines {
                     topology: wgpu::PrimitiveTopology::TriangleList,
                     depth_write: false,
                     bias: no_bias,
+                    colour: blended.clone(),
+                },
+            ),
+            // At depth 0 it passes the less-equal test everywhere: no depth test.
+            splat_resolve: draw_pipeline(
+                device,
+                &module,
+                &Draw {
+                    label: "precip splat resolve",
+                    layout: &resolve_layout,
+                    entry_points: render_passes::SPLAT_RESOLVE,
+                    buffers: &[],
+                    topology: wgpu::PrimitiveTopology::TriangleList,
+                    depth_write: false,
+                    bias: no_bias,
                     colour: blended,
                 },
             ),
@@ -227,6 +251,20 @@ impl CullPipelines {
                 )
             })
             .collect();
-        Self { kernels }
+        let render = shader_module(device, Program::Render);
+        let splat_layout = pipeline_layout(
+            device,
+            "precip splat",
+            &[&layouts.frame, &layouts.light, &layouts.splat],
+        );
+        let splat = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(SPLAT_PASS.entry_point),
+            layout: Some(&splat_layout),
+            module: &render,
+            entry_point: Some(SPLAT_PASS.entry_point),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+        Self { kernels, splat }
     }
 }

@@ -1,8 +1,11 @@
-//! Offscreen targets: an sRGB colour texture and a depth buffer of the view's size,
-//! and reading the colour back as an [`Image`].
+//! Offscreen targets: an sRGB colour texture and a depth buffer of the view's size
+//! (with the splat's sums of that size), and reading the colour back as an [`Image`].
 
 use precip_model::{BackendError, Image};
 
+use precip_model::gpu::{SPLAT_BYTES_PER_PIXEL, render_bindings as rb};
+
+use super::layouts::RenderLayouts;
 use super::pipelines::DEPTH_FORMAT;
 use crate::device::GpuDevice;
 use crate::readback::read_buffer;
@@ -34,29 +37,66 @@ fn texture_2d(
     })
 }
 
-/// A depth buffer of a size.
+/// The camera's depth buffer of a size, and the splat's sums of that size with the
+/// bind groups that read them (the splat kernel tests against this depth).
 #[derive(Debug)]
 pub struct DepthBuffer {
     /// Width, height, px.
     pub size: (u32, u32),
     /// Its view.
     pub view: wgpu::TextureView,
+    /// Group 2 of the splat kernel: this depth and the sums.
+    pub splat_group: wgpu::BindGroup,
+    /// Group 2 of the resolve draw: the sums.
+    pub resolve_group: wgpu::BindGroup,
 }
 
 impl DepthBuffer {
-    /// A depth buffer of `width × height`.
+    /// A depth buffer of `width × height` and zeroed splat sums.
     #[must_use]
-    pub fn new(gpu: &GpuDevice, width: u32, height: u32) -> Self {
+    pub fn new(gpu: &GpuDevice, layouts: &RenderLayouts, width: u32, height: u32) -> Self {
         let texture = texture_2d(
             gpu,
             "precip depth",
             (width, height),
             DEPTH_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
         );
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        // Zeroed at creation; the resolve zeroes what it reads.
+        let sums = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("precip splat sums"),
+            size: u64::from(width) * u64::from(height) * SPLAT_BYTES_PER_PIXEL,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let splat_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("precip splat"),
+            layout: &layouts.splat,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: rb::SPLAT_SCENE_DEPTH,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: rb::SPLAT_SUMS,
+                    resource: sums.as_entire_binding(),
+                },
+            ],
+        });
+        let resolve_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("precip splat resolve"),
+            layout: &layouts.splat_resolve,
+            entries: &[wgpu::BindGroupEntry {
+                binding: rb::SPLAT_SUMS,
+                resource: sums.as_entire_binding(),
+            }],
+        });
         Self {
             size: (width, height),
-            view: texture.create_view(&wgpu::TextureViewDescriptor::default()),
+            view,
+            splat_group,
+            resolve_group,
         }
     }
 }

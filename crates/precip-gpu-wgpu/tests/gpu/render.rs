@@ -127,22 +127,18 @@ fn culling_on_and_off_give_the_same_image_and_culling_draws_fewer() {
             common::run(&mut gpu, &setup, 3, 0.05);
             gpu.render(&view).expect("renders");
             images.push(gpu.read_image().expect("an image"));
-            drawn.push(gpu.drawn_counts().expect("counts"));
+            drawn.push(gpu.drawn().expect("counts").expect("a drawing backend"));
         }
         keep(&images[0], "culling_on");
         let difference = max_difference(&images[0], &images[1]);
         assert!(difference <= 1, "{name}: images differ by {difference}/255");
-        assert_eq!(
-            drawn[1].0 + drawn[1].1,
-            8_000,
-            "{name}: off draws every particle"
-        );
+        assert_eq!(drawn[1].total(), 8_000, "{name}: off draws every particle");
         assert!(
-            drawn[0].0 + drawn[0].1 < 4_000,
+            drawn[0].total() < 4_000,
             "{name}: culling kept {:?} of 8000",
             drawn[0]
         );
-        assert!(drawn[0].0 > 0, "{name}: some particles are in view");
+        assert!(drawn[0].total() > 0, "{name}: some particles are in view");
     }
 }
 
@@ -532,7 +528,7 @@ fn timings_name_every_pass_of_a_frame() {
             eprintln!("{name}: no timestamps on this adapter");
             continue;
         }
-        for pass in ["shadow", "cull_particles", "scene", "particles"] {
+        for pass in precip_model::gpu::TIMED_RENDER_PASSES {
             let t = timings
                 .passes
                 .iter()
@@ -590,5 +586,95 @@ fn the_house_casts_a_shadow_away_from_the_sun() {
                 at(lit)
             );
         }
+    }
+}
+
+/// Linear light of a pixel (mean of R, G, B), in 1/255.
+fn light(image: &precip_model::Image, x: u32, y: u32) -> f32 {
+    let [r, g, b] = crate::images::rgb(image, x, y);
+    (linear(r) + linear(g) + linear(b)) / 3.0 * 255.0
+}
+
+/// Mean linear light of `image` over `block × block` tiles, row-major, in 1/255.
+fn block_means(image: &precip_model::Image, block: u32) -> Vec<f32> {
+    let (w, h) = (image.width_px / block, image.height_px / block);
+    let mut out = Vec::with_capacity((w * h) as usize);
+    for by in 0..h {
+        for bx in 0..w {
+            let mut sum = 0.0;
+            for y in by * block..(by + 1) * block {
+                for x in bx * block..(bx + 1) * block {
+                    sum += light(image, x, y);
+                }
+            }
+            out.push(sum / (block * block) as f32);
+        }
+    }
+    out
+}
+
+/// Far snow, most of it below the sprite's minimum size, drawn by the splat and
+/// drawn all as sprites: the splat takes the far particles (the counts say so) and
+/// lays the same light on the image — the mean linear light above the sky agrees
+/// within 10 %, and 16×16-pixel tiles within 2/255 of each other on average — while
+/// near particles are sprites in both.
+#[test]
+fn splatted_far_snow_matches_the_all_sprite_frame() {
+    let mut setup = Setup::over_flat_ground(400.0, 64, 40.0, 60_000);
+    setup.world_emitter = setup.world_emitter.map(|mut e| {
+        e.emitter = WorldEmitter::horizontal(Vec3::new(0.0, 40.0, 0.0), 160.0, 160.0, 40.0);
+        e
+    });
+    dark_sky(&mut setup);
+    setup.render.sizing.min_opacity = 0.0;
+    // Large flakes, so the camera, inside the snow, has sprites near it.
+    setup.render.sizing.snow_scale = 30.0;
+    let camera = Camera {
+        position_m: Vec3::new(0.0, 20.0, 60.0),
+        forward: Vec3::new(0.0, -0.05, -1.0),
+        ..Camera::default()
+    };
+    setup.camera = camera;
+    let view = view(camera, 256, 160);
+    for (name, mut gpu) in common::gpu_backends("splatted_far_snow_matches_the_all_sprite_frame") {
+        let mut images = Vec::new();
+        let mut drawn = Vec::new();
+        for splat in [false, true] {
+            setup.render.splat_sub_pixel = splat;
+            common::run(&mut gpu, &setup, 3, 0.05);
+            gpu.render(&view).expect("renders");
+            images.push(gpu.read_image().expect("an image"));
+            drawn.push(gpu.drawn().expect("counts").expect("a drawing backend"));
+        }
+        keep(&images[0], "far_snow_sprites");
+        keep(&images[1], "far_snow_splatted");
+        let (sprites, hybrid) = (drawn[0], drawn[1]);
+        assert_eq!(sprites.splats, 0, "{name}: splat off splats nothing");
+        assert_eq!(
+            sprites.total(),
+            hybrid.total(),
+            "{name}: the same particles are drawn either way"
+        );
+        assert!(
+            hybrid.splats > 4 * hybrid.sprites && hybrid.sprites > 0,
+            "{name}: far snow is splatted, near snow is sprites: {hybrid:?}"
+        );
+        let sky = light(&images[0], 0, 0);
+        let above_sky = |image| {
+            let tiles = block_means(image, 16);
+            tiles.iter().sum::<f32>() / tiles.len() as f32 - sky
+        };
+        let (a, b) = (above_sky(&images[0]), above_sky(&images[1]));
+        eprintln!("{name}: light above the sky: sprites {a:.3}, hybrid {b:.3}; {hybrid:?}");
+        assert!(a > 0.5, "{name}: the snow shows ({a})");
+        assert!((b - a).abs() <= 0.1 * a, "{name}: sprites {a}, hybrid {b}");
+        let (ta, tb) = (block_means(&images[0], 16), block_means(&images[1], 16));
+        let tile_difference =
+            ta.iter().zip(&tb).map(|(x, y)| (x - y).abs()).sum::<f32>() / ta.len() as f32;
+        eprintln!("{name}: mean tile difference {tile_difference:.3}/255");
+        assert!(
+            tile_difference <= 2.0,
+            "{name}: tiles differ by {tile_difference}/255 on average"
+        );
     }
 }
