@@ -2,6 +2,7 @@
 //! a 128² cover grid), the frame scenario (the built-in house, 1280×720), the
 //! backends present on this machine, and the report's plot ([`plot`]).
 
+pub mod peer;
 pub mod plot;
 
 use glam::Vec3;
@@ -13,6 +14,9 @@ use precip_model::{Backend, CpuBackend, Setup, View};
 
 /// Particle counts measured.
 pub const COUNTS: [u32; 3] = [10_000, 100_000, 1_000_000];
+
+/// Particle counts of the full frames: [`COUNTS`] and 10⁷ where the device holds it.
+pub const FRAME_COUNTS: [u32; 4] = [10_000, 100_000, 1_000_000, 10_000_000];
 
 /// One step's length, s (one sub-step).
 pub const DT_S: f32 = 0.02;

@@ -1,15 +1,22 @@
 //! `cargo run --release -p precip-benches --bin report [out.json]`: every backend side
 //! by side — particles per second of a step, the step's bytes per second against the
-//! device's own buffer-copy bandwidth, GPU time per kernel and per render pass, a
-//! full frame (step + render at 1280×720) and vk ÷ wgpu for both; printed as a table,
-//! written as JSON and plotted as a PNG beside it.
+//! device's own buffer-copy bandwidth (and `step_over_copy_64b`: step particles/s at
+//! 10⁶ over copy bytes/s ÷ 128, the rate of a kernel that only copies a 64-byte
+//! particle), GPU time per kernel and per render pass, a full frame (step + render at
+//! 1280×720) from 10⁴ to 10⁷ particles and vk ÷ wgpu for both, and the peer in the
+//! same run ([`precip_benches::peer`]: `osgprecipitation --snow 0.5` and precip's
+//! viewer in windows of the same size over the demo scene); printed as a table,
+//! written as JSON and plotted as a PNG beside it. Build the viewer first
+//! (`cargo build --release`) for its window run.
 
 use std::path::Path;
 use std::time::Instant;
 
+use precip_benches::peer::{Display, osgprecipitation_fps, viewer_run, write_obj};
 use precip_benches::plot::{Series, write_png};
 use precip_benches::{
-    COUNTS, DT_S, FRAME_SIZE, STEP_BYTES_PER_PARTICLE, backends, frame, frame_scenario, scenario,
+    COUNTS, DT_S, FRAME_COUNTS, FRAME_SIZE, STEP_BYTES_PER_PARTICLE, backends, frame,
+    frame_scenario, scenario,
 };
 use precip_gpu_wgpu::WgpuBackend;
 use precip_model::Timings;
@@ -70,14 +77,25 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>) {
         if !backend.info().renders {
             continue;
         }
-        for count in COUNTS {
+        for count in FRAME_COUNTS {
+            if u64::from(count) > backend.info().max_particles {
+                eprintln!(
+                    "{name} frame at {count}: more than the device holds ({})",
+                    backend.info().max_particles
+                );
+                continue;
+            }
             let (setup, view) = frame_scenario(count);
             if let Err(e) = backend.configure(&setup) {
                 eprintln!("{name} frame at {count}: {e}");
                 continue;
             }
             frame(backend.as_mut(), &view);
-            let frames = if count >= 1_000_000 { 3 } else { 6 };
+            let frames = match count {
+                10_000_000.. => 2,
+                1_000_000.. => 3,
+                _ => 6,
+            };
             let mut passes = Vec::new();
             let start = Instant::now();
             for _ in 0..frames {
@@ -100,10 +118,91 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>) {
     }
 }
 
+/// `step_over_copy_64b` of each GPU backend: step particles/s at 10⁶ divided by
+/// (copy bytes/s ÷ 128), printed.
+fn step_over_copy(rows: &[serde_json::Value], bandwidth: Option<f64>) -> serde_json::Value {
+    let mut out = serde_json::Map::new();
+    let Some(bw) = bandwidth else {
+        return serde_json::Value::Object(out);
+    };
+    for r in rows {
+        if r["particles"] != 1_000_000 || r["backend"] == "cpu" {
+            continue;
+        }
+        if let (Some(name), Some(rate)) =
+            (r["backend"].as_str(), r["particles_per_second"].as_f64())
+        {
+            let ratio = rate / (bw / 128.0);
+            println!("step_over_copy_64b {name}: {ratio:.3}");
+            out.insert(name.to_string(), json!(ratio));
+        }
+    }
+    serde_json::Value::Object(out)
+}
+
+/// osgprecipitation and precip's viewer in windows of [`FRAME_SIZE`] over the demo.
+fn measure_peer() -> serde_json::Value {
+    let display = match Display::open(FRAME_SIZE) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("peer not measured: {e}");
+            return json!({"error": e.to_string()});
+        }
+    };
+    let demo = precip_viewer::gltf_scene::load_scene_from_slice(
+        &precip_viewer::demo::demo_glb(),
+        "the built-in demo",
+    );
+    let obj = std::env::temp_dir().join(format!("precip-demo-{}.obj", std::process::id()));
+    let osg = demo
+        .map_err(|e| e.to_string())
+        .and_then(|d| write_obj(&d.scene, &obj).map_err(|e| e.to_string()))
+        .and_then(|()| {
+            osgprecipitation_fps(&display, &obj, FRAME_SIZE, 14).map_err(|e| e.to_string())
+        });
+    let _ = std::fs::remove_file(&obj);
+    let ours = viewer_run(&display, FRAME_SIZE, 40).map_err(|e| e.to_string());
+    match &osg {
+        Ok(fps) => println!(
+            "osgprecipitation --snow 0.5 over the demo, {}×{}: {fps:.1} fps",
+            FRAME_SIZE.0, FRAME_SIZE.1
+        ),
+        Err(e) => eprintln!("osgprecipitation not measured: {e}"),
+    }
+    match &ours {
+        Ok(run) => println!(
+            "precip viewer (wgpu, defaults), {}×{}: {:.1} fps ({:.1} ms), {:.0} particles drawn",
+            FRAME_SIZE.0,
+            FRAME_SIZE.1,
+            1e3 / run.frame_ms,
+            run.frame_ms,
+            run.particles_drawn
+        ),
+        Err(e) => eprintln!("precip viewer not measured: {e}"),
+    }
+    let ratio = match (&osg, &ours) {
+        (Ok(fps), Ok(run)) => {
+            let r = 1e3 / run.frame_ms / fps;
+            println!("precip ÷ osgprecipitation frame rate: {r:.2}");
+            Some(r)
+        }
+        _ => None,
+    };
+    json!({
+        "width_px": FRAME_SIZE.0, "height_px": FRAME_SIZE.1,
+        "osgprecipitation_fps": osg.as_ref().ok(),
+        "osgprecipitation_error": osg.as_ref().err(),
+        "precip_viewer_frame_ms": ours.as_ref().ok().map(|r| r.frame_ms),
+        "precip_viewer_particles_drawn": ours.as_ref().ok().map(|r| r.particles_drawn),
+        "precip_viewer_error": ours.as_ref().err(),
+        "precip_over_osgprecipitation_fps": ratio,
+    })
+}
+
 /// `vk ÷ wgpu` of `key` at each count, printed.
 fn ratios(rows: &[serde_json::Value], key: &str, what: &str) -> Vec<serde_json::Value> {
     let mut out = Vec::new();
-    for count in COUNTS {
+    for count in FRAME_COUNTS {
         let value = |b: &str| {
             rows.iter()
                 .find(|r| r["backend"] == b && r["particles"] == count)
@@ -191,9 +290,11 @@ fn main() {
         }
     }
     let step_ratios = ratios(&rows, "step_ms", "step time");
+    let step_over_copy_64b = step_over_copy(&rows, bandwidth);
     let mut frame_rows = Vec::new();
     measure_frames(&mut frame_rows);
     let frame_ratios = ratios(&frame_rows, "frame_ms", "frame time");
+    let peer = measure_peer();
     let mut plotted = series(&rows, "step_ms", "step");
     plotted.extend(series(&frame_rows, "frame_ms", "frame 1280×720"));
     let device = backends()
@@ -208,6 +309,8 @@ fn main() {
         "frames": frame_rows,
         "vk_over_wgpu_step": step_ratios,
         "vk_over_wgpu_frame": frame_ratios,
+        "step_over_copy_64b": step_over_copy_64b,
+        "peer": peer,
     });
     let png = Path::new(&out).with_extension("png");
     match write_png(

@@ -15,6 +15,9 @@
 // Group 2 of the splat kernel: the scene's depth (read) and the sums.
 @group(2) @binding(3) var scene_depth: texture_depth_2d;
 @group(2) @binding(4) var<storage, read_write> splat_sums: array<atomic<u32>>;
+// Group 2 of the resolve: the same sums, read and zeroed by one fragment per pixel
+// (no atomics: nothing else touches them during the draw).
+@group(2) @binding(5) var<storage, read_write> resolved_sums: array<u32>;
 
 // Fixed-point units per unit of opacity (2^14: a pixel saturates long before 2^18
 // opaque particles overflow it).
@@ -97,14 +100,14 @@ fn fs_splat_resolve(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f3
         return vec4<f32>(0.0);
     }
     let o = 4u * (u32(pixel.y) * width + u32(pixel.x));
-    let sums = vec4<f32>(
-        f32(atomicExchange(&splat_sums[o], 0u)),
-        f32(atomicExchange(&splat_sums[o + 1u], 0u)),
-        f32(atomicExchange(&splat_sums[o + 2u], 0u)),
-        f32(atomicExchange(&splat_sums[o + 3u], 0u)),
-    ) / SPLAT_UNITS;
-    if (!(sums.w > 0.0)) {
+    let w = resolved_sums[o + 3u];
+    if (w == 0u) {
         return vec4<f32>(0.0);
     }
+    let sums = vec4<f32>(f32(resolved_sums[o]), f32(resolved_sums[o + 1u]), f32(resolved_sums[o + 2u]), f32(w)) / SPLAT_UNITS;
+    resolved_sums[o] = 0u;
+    resolved_sums[o + 1u] = 0u;
+    resolved_sums[o + 2u] = 0u;
+    resolved_sums[o + 3u] = 0u;
     return vec4<f32>(sums.rgb / sums.w, 1.0 - exp(-sums.w));
 }

@@ -268,10 +268,12 @@ pub mod render_bindings {
     /// bindings): the camera's depth buffer, `texture_depth_2d`, read with
     /// `textureLoad`.
     pub const SPLAT_SCENE_DEPTH: u32 = 3;
-    /// Group 2 of the splat kernel and of the resolve draw (fragment): the splat sums,
-    /// `array<atomic<u32>>`, read-write storage of
-    /// [`super::SPLAT_BYTES_PER_PIXEL`] per pixel of the target.
+    /// Group 2 of the splat kernel: the splat sums, `array<atomic<u32>>`, read-write
+    /// storage of [`super::SPLAT_BYTES_PER_PIXEL`] per pixel of the target.
     pub const SPLAT_SUMS: u32 = 4;
+    /// Group 2 of the resolve draw (fragment): the same sums as plain `array<u32>`
+    /// (one fragment per pixel reads and zeroes its own: no atomics needed).
+    pub const RESOLVED_SUMS: u32 = 5;
 }
 
 /// Vertex layout of the scene: position (3 × f32), normal (3 × f32), uv (2 × f32),

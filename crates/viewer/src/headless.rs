@@ -1,10 +1,12 @@
 //! Headless frames: step, render, write `frame_NNNN.png`, with a progress bar, and a
-//! summary (frame times, particles, cover water).
+//! summary (frame times, particles simulated and drawn, cover water).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use precip_model::{Backend, View};
+
+use crate::frame_stats::FrameStats;
 
 /// How a headless run went.
 #[derive(Debug, Clone, PartialEq)]
@@ -15,6 +17,9 @@ pub struct Summary {
     pub mean_frame_ms: f64,
     /// 95th percentile, ms.
     pub p95_frame_ms: f64,
+    /// Render-loop statistics: frame time after the warm-up (step + render +
+    /// read-back + PNG) and particles drawn.
+    pub stats: FrameStats,
     /// Particles simulated.
     pub particles: u64,
     /// Water on the scene in the cover (snow water equivalent + held water), mean mm.
@@ -68,6 +73,7 @@ pub fn run_headless(
         .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     let mut times = Vec::with_capacity(frames as usize);
+    let mut stats = FrameStats::default();
     let mut files = Vec::with_capacity(frames as usize);
     for frame in 0..frames {
         let start = Instant::now();
@@ -88,7 +94,9 @@ pub fn run_headless(
             detail: e.to_string(),
         })?;
         files.push(file);
-        times.push(start.elapsed().as_secs_f64() * 1e3);
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        stats.record(ms, backend)?;
+        times.push(ms);
         bar.inc(1);
     }
     bar.finish_and_clear();
@@ -112,6 +120,7 @@ pub fn run_headless(
         frames,
         mean_frame_ms: times.iter().sum::<f64>() / times.len().max(1) as f64,
         p95_frame_ms: p95,
+        stats,
         particles,
         cover_water_mm: water,
         max_depth_mm,

@@ -10,6 +10,7 @@ pub mod demo;
 pub mod eligibility;
 pub mod error;
 pub mod fly_camera;
+pub mod frame_stats;
 pub mod glb;
 pub mod gltf_data;
 pub mod gltf_scene;

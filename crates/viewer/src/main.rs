@@ -242,11 +242,13 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
                 Ok(shown) => {
                     if shown.frames > 0 {
                         println!(
-                            "window: {} frames in {:.1} s, {:.1} ms per frame ({:?})",
+                            "window: {} frames in {:.1} s; {} ({:?}, {}×{})",
                             shown.frames,
                             shown.seconds,
-                            shown.seconds * 1e3 / f64::from(shown.frames),
-                            args.backend
+                            shown.stats.describe(),
+                            args.backend,
+                            args.size.0,
+                            args.size.1,
                         );
                     }
                     return Ok(());
@@ -286,11 +288,12 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         true,
     )?;
     println!(
-        "{} frames in {}: mean {:.1} ms, p95 {:.1} ms per frame; {} particles; cover water {:.2} mm on average, deepest snow {:.0} mm",
+        "{} frames in {}: mean {:.1} ms, p95 {:.1} ms per frame (PNG included; {}); {} particles; cover water {:.2} mm on average, deepest snow {:.0} mm",
         summary.frames,
         args.out.display(),
         summary.mean_frame_ms,
         summary.p95_frame_ms,
+        summary.stats.describe(),
         summary.particles,
         summary.cover_water_mm,
         summary.max_depth_mm

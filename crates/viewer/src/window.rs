@@ -24,6 +24,7 @@ use winit::window::{Window, WindowId};
 
 use crate::BackendName;
 use crate::fly_camera::FlyCamera;
+use crate::frame_stats::FrameStats;
 
 /// Why the window could not run.
 #[derive(Debug, thiserror::Error)]
@@ -131,6 +132,7 @@ struct Running {
     particles: u64,
     frames: u32,
     started: Instant,
+    stats: FrameStats,
 }
 
 struct App {
@@ -140,8 +142,8 @@ struct App {
     quit_after: Option<u32>,
     running: Option<Running>,
     error: Option<WindowError>,
-    /// Frames shown and seconds open, when the window closed.
-    shown: Option<(u32, f64)>,
+    /// Frames shown, seconds open and their statistics, when the window closed.
+    shown: Option<(u32, f64, FrameStats)>,
     /// The Vulkan validation layer's log, when it runs.
     validation: Option<crate::backends::ValidationLog>,
 }
@@ -201,6 +203,7 @@ impl App {
             particles,
             frames: 0,
             started: Instant::now(),
+            stats: FrameStats::default(),
         })
     }
 }
@@ -325,6 +328,9 @@ impl Running {
         backend.set_camera(&view.camera)?;
         backend.step(dt)?;
         self.presenter.present(&view)?;
+        // The time since the last frame began: what a user waits per frame.
+        self.stats
+            .record(f64::from(dt) * 1e3, self.presenter.backend())?;
         self.frames += 1;
         self.window.set_title(&title(self));
         Ok(())
@@ -418,7 +424,7 @@ impl ApplicationHandler for App {
                     self.error = Some(e);
                     event_loop.exit();
                 }
-                self.shown = Some((r.frames, r.started.elapsed().as_secs_f64()));
+                self.shown = Some((r.frames, r.started.elapsed().as_secs_f64(), r.stats.clone()));
                 if self.quit_after.is_some_and(|n| r.frames >= n) {
                     event_loop.exit();
                 }
@@ -441,6 +447,8 @@ pub struct WindowSummary {
     pub frames: u32,
     /// Seconds the window was open (from the first frame's setup).
     pub seconds: f64,
+    /// Frame times and particles drawn.
+    pub stats: FrameStats,
     /// What the Vulkan validation layer said (with `PRECIP_VK_VALIDATION=1`), leak
     /// reports at the device's destruction included.
     pub validation_messages: Vec<String>,
@@ -478,7 +486,7 @@ pub fn run_window(
     match app.error {
         Some(e) => Err(e),
         None => {
-            let (frames, seconds) = app.shown.unwrap_or((0, 0.0));
+            let (frames, seconds, stats) = app.shown.unwrap_or_default();
             let validation_messages = app
                 .validation
                 .and_then(|log| log.lock().map(|m| m.clone()).ok())
@@ -486,6 +494,7 @@ pub fn run_window(
             Ok(WindowSummary {
                 frames,
                 seconds,
+                stats,
                 validation_messages,
             })
         }

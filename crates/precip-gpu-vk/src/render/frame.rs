@@ -251,8 +251,12 @@ impl FrameResources {
             )
             .image_info(&depth_info),
             write(self.splat_sets[slot], rb::SPLAT_SUMS, T::STORAGE_BUFFER).buffer_info(&sums_info),
-            write(self.resolve_sets[slot], rb::SPLAT_SUMS, T::STORAGE_BUFFER)
-                .buffer_info(&sums_info),
+            write(
+                self.resolve_sets[slot],
+                rb::RESOLVED_SUMS,
+                T::STORAGE_BUFFER,
+            )
+            .buffer_info(&sums_info),
         ];
         // SAFETY: the view and buffer are live, of the bindings' types and usages;
         // the sets are not in use by pending work (the caller's guarantee).

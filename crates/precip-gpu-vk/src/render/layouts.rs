@@ -137,7 +137,7 @@ impl RenderLayouts {
             device,
             "precip splat resolve",
             &[binding(
-                rb::SPLAT_SUMS,
+                rb::RESOLVED_SUMS,
                 T::STORAGE_BUFFER,
                 vk::ShaderStageFlags::FRAGMENT,
             )],

@@ -154,7 +154,7 @@ impl RenderLayouts {
         let splat_resolve = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("precip splat resolve"),
             entries: &[entry(
-                rb::SPLAT_SUMS,
+                rb::RESOLVED_SUMS,
                 wgpu::ShaderStages::FRAGMENT,
                 storage(false),
             )],

@@ -88,7 +88,7 @@ impl DepthBuffer {
             label: Some("precip splat resolve"),
             layout: &layouts.splat_resolve,
             entries: &[wgpu::BindGroupEntry {
-                binding: rb::SPLAT_SUMS,
+                binding: rb::RESOLVED_SUMS,
                 resource: sums.as_entire_binding(),
             }],
         });

@@ -1,0 +1,86 @@
+//! What a run reports: the mean frame time after a warm-up, and the mean number of
+//! particles drawn (sprites, streaks and splats, after culling), read back from the
+//! backend every few frames so the read-back's stall does not set the frame rate.
+
+use precip_model::{Backend, BackendError};
+
+/// Frames not timed at the start (pipelines are made and caches filled there).
+pub const WARM_UP_FRAMES: u32 = 3;
+
+/// Every how many frames the drawn counts are read back.
+pub const DRAWN_EVERY: u32 = 8;
+
+/// Frame times and drawn counts of a run.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FrameStats {
+    frames: u32,
+    timed_ms: f64,
+    timed: u32,
+    drawn_sum: u64,
+    drawn_samples: u32,
+}
+
+impl FrameStats {
+    /// Records a frame that took `frame_ms`; on every [`DRAWN_EVERY`]-th frame (the
+    /// first included) reads what `backend` drew.
+    pub fn record(&mut self, frame_ms: f64, backend: &mut dyn Backend) -> Result<(), BackendError> {
+        if self.frames >= WARM_UP_FRAMES {
+            self.timed_ms += frame_ms;
+            self.timed += 1;
+        }
+        if self.frames.is_multiple_of(DRAWN_EVERY)
+            && let Some(drawn) = backend.drawn()?
+        {
+            self.drawn_sum += drawn.total();
+            self.drawn_samples += 1;
+        }
+        self.frames += 1;
+        Ok(())
+    }
+
+    /// Mean time of the frames after the warm-up (of all frames when there were no
+    /// more), ms; `None` before any was timed.
+    #[must_use]
+    pub fn mean_frame_ms(&self) -> Option<f64> {
+        (self.timed > 0).then(|| self.timed_ms / f64::from(self.timed))
+    }
+
+    /// Mean particles drawn over the sampled frames; `None` when none was sampled
+    /// (or the backend does not draw).
+    #[must_use]
+    pub fn mean_drawn(&self) -> Option<f64> {
+        (self.drawn_samples > 0).then(|| self.drawn_sum as f64 / f64::from(self.drawn_samples))
+    }
+
+    /// `mean 12.3 ms per frame, 104 512 particles drawn` (what is known of it).
+    #[must_use]
+    pub fn describe(&self) -> String {
+        let time = self.mean_frame_ms().map_or_else(
+            || "no frame timed".to_string(),
+            |ms| format!("mean frame time {ms:.1} ms"),
+        );
+        match self.mean_drawn() {
+            Some(n) => format!("{time}, {n:.0} particles drawn"),
+            None => time,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use precip_model::CpuBackend;
+
+    #[test]
+    fn warm_up_frames_are_not_timed_and_a_non_drawing_backend_says_nothing() {
+        let mut cpu = CpuBackend::new();
+        let mut stats = FrameStats::default();
+        assert_eq!(stats.mean_frame_ms(), None);
+        for ms in [500.0, 400.0, 300.0, 10.0, 20.0] {
+            stats.record(ms, &mut cpu).expect("records");
+        }
+        assert_eq!(stats.mean_frame_ms(), Some(15.0));
+        assert_eq!(stats.mean_drawn(), None);
+        assert_eq!(stats.describe(), "mean frame time 15.0 ms");
+    }
+}
