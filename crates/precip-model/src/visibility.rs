@@ -5,14 +5,28 @@
 //! Koschmieder's `V = 3.912/σ` (2 % contrast). Snow uses Gunn–Marshall in melted
 //! diameter `d` and the seed's `ρ = C/D` to get the flake's real diameter
 //! (`D² = ρ_w·d³/C`); rain uses Marshall–Palmer.
+//!
+//! ## What is simulated one by one
+//!
+//! The particles simulated are the ones seen individually: flakes at least as large
+//! as the smallest the seed's size law draws (half the mean diameter at the air's
+//! temperature), drops in the drawn range `[0.3, 6]` mm. Their number per m³ is the
+//! spectrum's tail above that size, `(N0/Λ)·(e^(−Λ·d_min) − e^(−Λ·d_max))`
+//! ([`Weather::simulated_number_density_per_m3`]): 2 mm/h of dry snow at −5 °C holds
+//! about 79 such flakes per m³ (of 1 137 in all); the rest are in the fog's extinction,
+//! which sums the whole spectrum. A camera volume holds that density up to its budget
+//! ([`Weather::simulated_particle_count`]).
 
 use crate::raindrop::{
-    MARSHALL_PALMER_N0, marshall_palmer_slope_per_mm, rain_number_density_per_m3,
+    MARSHALL_PALMER_N0, RAIN_DIAMETER_MAX_MM, RAIN_DIAMETER_MIN_MM, marshall_palmer_slope_per_mm,
+    rain_number_density_per_m3,
 };
 use crate::snowfall::{
     gunn_marshall_intercept, gunn_marshall_slope_per_mm, snow_number_density_per_m3,
 };
-use crate::snowflake::{WATER_DENSITY_KG_M3, snow_density_constant_kg_m2};
+use crate::snowflake::{
+    WATER_DENSITY_KG_M3, mean_snowflake_diameter_m, snow_density_constant_kg_m2,
+};
 use crate::weather::Weather;
 
 /// Visibility reported for clear air, m.
@@ -43,6 +57,25 @@ pub fn rain_extinction_per_m(rain_rate_mm_per_h: f32) -> f32 {
     }
     std::f32::consts::PI * 1.0e-6 * MARSHALL_PALMER_N0
         / marshall_palmer_slope_per_mm(rain_rate_mm_per_h).powi(3)
+}
+
+/// Melted diameter of a flake of real diameter `diameter_m`, mm: `d = (C·D²/ρ_w)^⅓`
+/// (the seed's `ρ = C/D`).
+#[must_use]
+pub fn melted_diameter_mm(diameter_m: f32, wet: bool) -> f32 {
+    (snow_density_constant_kg_m2(wet) * diameter_m * diameter_m / WATER_DENSITY_KG_M3).cbrt()
+        * 1.0e3
+}
+
+/// Particles per m³ of an exponential spectrum `N0·e^(−Λd)` between `from` and `to`
+/// (mm): `(N0/Λ)·(e^(−Λ·from) − e^(−Λ·to))`.
+#[must_use]
+pub fn exponential_tail_per_m3(n0: f32, slope_per_mm: f32, from_mm: f32, to_mm: f32) -> f32 {
+    if slope_per_mm > 0.0 && to_mm > from_mm {
+        n0 / slope_per_mm * ((-slope_per_mm * from_mm).exp() - (-slope_per_mm * to_mm).exp())
+    } else {
+        0.0
+    }
 }
 
 /// Koschmieder visibility `3.912/σ`, m, capped at [`CLEAR_AIR_VISIBILITY_M`].
@@ -76,15 +109,47 @@ impl Weather {
             + rain_number_density_per_m3(self.rain_rate_mm_per_h())
     }
 
-    /// How many particles a volume of `volume_m3` holds in reality.
+    /// Flakes and drops per m³ of the sizes simulated one by one (module docs): the
+    /// Gunn–Marshall tail above the melted diameter of the smallest flake the seed's
+    /// law draws, and Marshall–Palmer between the drawn drop sizes.
+    #[must_use]
+    pub fn simulated_number_density_per_m3(&self) -> f32 {
+        let snow_rate = self.snow_rate_mm_per_h();
+        let snow = if snow_rate > 0.0 {
+            let smallest_m = 0.5 * mean_snowflake_diameter_m(self.air_temperature_c);
+            exponential_tail_per_m3(
+                gunn_marshall_intercept(snow_rate),
+                gunn_marshall_slope_per_mm(snow_rate),
+                melted_diameter_mm(smallest_m, self.snow_is_wet()),
+                f32::INFINITY,
+            )
+        } else {
+            0.0
+        };
+        let rain_rate = self.rain_rate_mm_per_h();
+        let rain = if rain_rate > 0.0 {
+            exponential_tail_per_m3(
+                MARSHALL_PALMER_N0,
+                marshall_palmer_slope_per_mm(rain_rate),
+                RAIN_DIAMETER_MIN_MM,
+                RAIN_DIAMETER_MAX_MM,
+            )
+        } else {
+            0.0
+        };
+        snow + rain
+    }
+
+    /// How many particles a volume of `volume_m3` holds in reality, of the sizes
+    /// simulated one by one.
     #[must_use]
     pub fn physical_particle_count(&self, volume_m3: f32) -> f64 {
-        f64::from(self.number_density_per_m3()) * f64::from(volume_m3.max(0.0))
+        f64::from(self.simulated_number_density_per_m3()) * f64::from(volume_m3.max(0.0))
     }
 
     /// The simulated count for a volume under a budget, and the fraction of the
-    /// physical count it is (1 when the budget covers reality). A renderer scales
-    /// sprite opacity by this fraction's inverse, within limits, to keep the look.
+    /// physical count ([`Weather::physical_particle_count`]) it is (1 when the budget
+    /// covers reality).
     #[must_use]
     pub fn simulated_particle_count(&self, volume_m3: f32, budget: u32) -> (u32, f32) {
         let physical = self.physical_particle_count(volume_m3);
@@ -135,6 +200,43 @@ mod tests {
             ..light
         };
         assert!((none.visibility_m() - CLEAR_AIR_VISIBILITY_M).abs() < 1.0);
+    }
+
+    #[test]
+    fn the_flakes_seen_one_by_one_are_the_spectrum_above_the_smallest_drawn() {
+        // 2 mm/h at −5 °C: the seed's mean flake is 8.5 mm, the smallest drawn 4.27 mm,
+        // a melted 1.458 mm; Gunn–Marshall holds 1 137 flakes per m³, 79.1 above that.
+        let w = Weather {
+            intensity_mm_per_h: 2.0,
+            air_temperature_c: -5.0,
+            ..Weather::default()
+        };
+        let smallest = 0.5 * mean_snowflake_diameter_m(-5.0);
+        assert!((smallest - 0.00427).abs() < 2e-5, "{smallest}");
+        let d = melted_diameter_mm(smallest, false);
+        assert!((d - 1.458).abs() < 0.002, "{d}");
+        assert!((w.number_density_per_m3() - 1137.2).abs() < 1.0);
+        let n = w.simulated_number_density_per_m3();
+        assert!((n - 79.1).abs() < 0.5, "{n}");
+        // Above a melted 2 mm: about 30 per m³ (the figure).
+        let above_2mm = exponential_tail_per_m3(
+            gunn_marshall_intercept(2.0),
+            gunn_marshall_slope_per_mm(2.0),
+            2.0,
+            f32::INFINITY,
+        );
+        assert!((above_2mm - 29.2).abs() < 0.5, "{above_2mm}");
+        // Rain at 5 mm/h: Marshall–Palmer's 2 736 per m³ less the drops under 0.3 mm.
+        let rain = Weather {
+            kind: PrecipitationKind::Rain,
+            intensity_mm_per_h: 5.0,
+            air_temperature_c: 10.0,
+            ..Weather::default()
+        };
+        let slope = marshall_palmer_slope_per_mm(5.0);
+        let expected = 8000.0 / slope * ((-slope * 0.3f32).exp() - (-slope * 6.0f32).exp());
+        assert!((rain.simulated_number_density_per_m3() - expected).abs() < 1.0);
+        assert!((rain.number_density_per_m3() - 2736.0).abs() < 2.0);
     }
 
     #[test]

@@ -78,7 +78,7 @@ struct RunArgs {
     #[arg(long)]
     gust: Option<f32>,
     /// Particles in all.
-    #[arg(long, default_value_t = 150_000)]
+    #[arg(long, default_value_t = 300_000)]
     particles: u32,
     /// Seed of every random draw.
     #[arg(long, default_value_t = 1)]

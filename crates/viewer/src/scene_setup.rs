@@ -4,6 +4,12 @@
 //! the scene (shifted upwind by the drift of a fall) when the scene is small enough
 //! for the particle budget, so the cover there is fed by landing particles, and by the
 //! weather's rate elsewhere.
+//!
+//! The camera volume holds the weather's physical number of particles of the sizes
+//! seen one by one (`Weather::simulated_number_density_per_m3`: about 79 flakes per m³
+//! in 2 mm/h of snow at −5 °C) up to [`CAMERA_SHARE`] of the budget; the world
+//! emitter takes the rest when that is dense enough to feed the cover, else the
+//! camera volume takes the whole budget.
 
 use glam::{UVec2, Vec2, Vec3};
 use precip_model::cover::GridFrame;
@@ -14,11 +20,13 @@ use precip_model::{
 
 /// Fewest world-emitter particles per m² of scene for particles to feed the cover.
 pub const MIN_WORLD_DENSITY_PER_M2: f32 = 2.0;
-/// Share of the budget the world emitter takes when it runs.
-pub const WORLD_SHARE: f32 = 0.75;
+/// Most of the budget the camera volume takes when a world emitter runs.
+pub const CAMERA_SHARE: f32 = 0.5;
 
-/// Half size of the box of particles around the camera, m.
-pub const CAMERA_VOLUME_HALF_EXTENT_M: Vec3 = Vec3::new(15.0, 12.0, 15.0);
+/// Half size of the box of particles around the camera, m: where a flake's sprite is
+/// more than a pixel or two at 720 lines (beyond it the world emitter's particles,
+/// splatted, and the fog carry the distance).
+pub const CAMERA_VOLUME_HALF_EXTENT_M: Vec3 = Vec3::new(8.0, 6.0, 8.0);
 
 /// What the user chose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,7 +68,14 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
 
     let budget = options.particle_budget.max(1);
     let area = side * side;
-    let world_particles = (budget as f32 * WORLD_SHARE) as u32;
+    // The camera volume first: the weather's physical density of flakes seen one by
+    // one, up to its share; the world emitter the rest, when that feeds the cover.
+    let box_m3 = 8.0 * CAMERA_VOLUME_HALF_EXTENT_M.element_product();
+    let camera_share = (budget as f32 * CAMERA_SHARE) as u32;
+    let (camera_physical, _) = options
+        .weather
+        .simulated_particle_count(box_m3, camera_share);
+    let world_particles = budget - camera_physical;
     let world = (world_particles as f32 / area >= MIN_WORLD_DENSITY_PER_M2).then(|| {
         let clearance = 10.0;
         let top = hi.y + clearance;
@@ -82,6 +97,8 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
             particle_count: world_particles,
         }
     });
+    // Without an emitter the camera volume keeps the whole budget: it is all there is
+    // to draw.
     let camera_particles = budget - world.map_or(0, |w| w.particle_count);
     let camera = options.camera.unwrap_or_else(|| {
         let look_at = Vec3::new(centre.x, lo.y + 0.2 * (hi.y - lo.y), centre.y);
@@ -151,11 +168,25 @@ mod tests {
         let (world, camera) = setup.particle_counts();
         assert_eq!(world + camera, 100_000);
         assert!(world > 0 && camera > 0);
+        // 1 mm/h at the default −5 °C: ~38 flakes per m³ in 3 072 m³, more than the
+        // camera volume's half of the budget.
+        assert_eq!(camera, 50_000);
+        let mut light = options(100_000);
+        light.weather.intensity_mm_per_h = 0.05;
+        let setup =
+            scene_setup(house_on_plane().prepare().expect("valid").0, &light).expect("valid");
+        let (world, camera) = setup.particle_counts();
+        let expected = light.weather.simulated_number_density_per_m3() * 3_072.0;
+        assert!(
+            (camera as f32 - expected).abs() <= 1.0,
+            "a light snow's physical {expected} flakes, not the budget: {camera}"
+        );
+        assert_eq!(world + camera, 100_000, "the rest feeds the cover");
         let setup = scene_setup(scene, &options(1_000)).expect("valid");
         assert_eq!(
             setup.particle_counts(),
             (0, 1_000),
-            "40 m needs 3.2k particles"
+            "40 m needs 3.2k particles: no emitter, the camera volume takes the budget"
         );
         assert_eq!(setup.ground.frame.texels.x, 84, "42 m at 0.5 m");
     }

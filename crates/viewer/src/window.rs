@@ -297,12 +297,12 @@ fn weather_key(key: KeyCode, w: &Weather) -> Option<Weather> {
 impl Running {
     fn frame(&mut self) -> Result<(), WindowError> {
         let now = Instant::now();
-        let dt = now
-            .duration_since(self.last_frame)
-            .as_secs_f32()
-            .clamp(1e-4, 0.1);
+        // The time since the last frame began: what a user waits per frame (the
+        // simulation steps at most 0.1 s of it).
+        let elapsed_ms = now.duration_since(self.last_frame).as_secs_f64() * 1e3;
+        let dt = (elapsed_ms * 1e-3).clamp(1e-4, 0.1) as f32;
         self.last_frame = now;
-        self.frame_ms = 0.9 * self.frame_ms + 0.1 * f64::from(dt) * 1e3;
+        self.frame_ms = 0.9 * self.frame_ms + 0.1 * elapsed_ms;
         let fast = if self.keys.contains(&KeyCode::ShiftLeft) {
             5.0
         } else {
@@ -328,9 +328,7 @@ impl Running {
         backend.set_camera(&view.camera)?;
         backend.step(dt)?;
         self.presenter.present(&view)?;
-        // The time since the last frame began: what a user waits per frame.
-        self.stats
-            .record(f64::from(dt) * 1e3, self.presenter.backend())?;
+        self.stats.record(elapsed_ms, self.presenter.backend())?;
         self.frames += 1;
         self.window.set_title(&title(self));
         Ok(())
