@@ -209,6 +209,42 @@ pub fn upload_image(device: &Device, image: &Image, bytes: &[u8]) -> Result<(), 
     result
 }
 
+/// Moves `images` (colour, just made) to `GENERAL`, where shaders both write them as
+/// storage images and sample them; waits.
+pub fn to_general(device: &Device, images: &[&Image]) -> Result<(), BackendError> {
+    let barriers: Vec<vk::ImageMemoryBarrier<'_>> = images
+        .iter()
+        .map(|image| {
+            vk::ImageMemoryBarrier::default()
+                .old_layout(vk::ImageLayout::UNDEFINED)
+                .new_layout(vk::ImageLayout::GENERAL)
+                .src_access_mask(vk::AccessFlags::empty())
+                .dst_access_mask(vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE)
+                .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                .image(image.raw)
+                .subresource_range(COLOUR)
+        })
+        .collect();
+    submit(device, |cb| {
+        // SAFETY: `cb` is recording; the images are live and unused (just made).
+        unsafe {
+            device.raw.cmd_pipeline_barrier(
+                cb,
+                vk::PipelineStageFlags::TOP_OF_PIPE,
+                vk::PipelineStageFlags::COMPUTE_SHADER
+                    | vk::PipelineStageFlags::VERTEX_SHADER
+                    | vk::PipelineStageFlags::FRAGMENT_SHADER,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &barriers,
+            );
+        }
+    })
+    .and_then(|f| f.wait(device))
+}
+
 impl Resources {
     /// Allocates, uploads and binds everything but the particles (the init kernel
     /// fills them). On any failure everything made so far is freed.

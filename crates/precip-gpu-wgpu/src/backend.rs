@@ -19,7 +19,7 @@ use crate::readback::read_buffer;
 use crate::render::frame::FrameResources;
 use crate::render::scene::SceneGpu;
 use crate::render::stamps::RenderStamps;
-use crate::render::target::{ColourTarget, DepthBuffer, OFFSCREEN_FORMAT};
+use crate::render::target::{ColourTarget, DepthBuffer, OFFSCREEN_FORMAT, read_texture};
 use crate::render::{FrameTarget, RenderState, Renderer, encode_frame};
 use crate::resources::{Resources, upload_wind};
 use crate::timestamps::Timestamps;
@@ -141,6 +141,35 @@ impl WgpuBackend {
         self.draw(view, Some((target, texture.format())))
     }
 
+    /// The cover's two filtered textures as the last frame wrote them (tests and
+    /// tools): per texel `[depth mm, SWE mm, peak SWE mm, wetness, accumulation mask,
+    /// melt mask, age days, 0]`, rows of the cover grid in order; `None` before a
+    /// frame.
+    pub fn read_cover_textures(&mut self) -> Result<Option<Vec<[f32; 8]>>, BackendError> {
+        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
+            operation: "read_cover_textures",
+        })?;
+        let Some(render) = &state.render else {
+            return Ok(None);
+        };
+        let halves = |t| -> Result<Vec<f32>, BackendError> {
+            let image = read_texture(&self.gpu, t)?;
+            Ok(image
+                .rgba8
+                .chunks_exact(2)
+                .map(|h| f16_to_f32(u16::from_le_bytes([h[0], h[1]])))
+                .collect())
+        };
+        let [a, b] = &render.frame.cover_textures;
+        let (a, b) = (halves(a)?, halves(b)?);
+        Ok(Some(
+            a.chunks_exact(4)
+                .zip(b.chunks_exact(4))
+                .map(|(a, b)| [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]])
+                .collect(),
+        ))
+    }
+
     /// The frame: into `external` when given, else into the offscreen target.
     fn draw(
         &mut self,
@@ -168,12 +197,7 @@ impl WgpuBackend {
                 None => None,
             };
             let frame = scoped(&gpu, "preparing to render", || {
-                FrameResources::new(
-                    &gpu,
-                    &renderer.layouts,
-                    &state.resources,
-                    settings.shadow_map_px,
-                )
+                FrameResources::new(&gpu, &renderer.layouts, &state.resources, &state.setup)
             })?;
             state.render = Some(RenderState {
                 scene,
@@ -525,5 +549,32 @@ fn cannot_draw(why: &str) -> BackendError {
     BackendError::Device {
         backend: NAME,
         message: format!("cannot draw the frame: {why} (a bug in precip: please report it)"),
+    }
+}
+
+/// An IEEE half (binary16) as `f32`.
+fn f16_to_f32(bits: u16) -> f32 {
+    let sign = if bits & 0x8000 == 0 { 1.0 } else { -1.0 };
+    let exponent = i32::from((bits >> 10) & 0x1f);
+    let mantissa = f32::from(bits & 0x3ff);
+    sign * match exponent {
+        0 => mantissa * 2f32.powi(-24),
+        31 if mantissa == 0.0 => f32::INFINITY,
+        31 => f32::NAN,
+        e => (1.0 + mantissa / 1024.0) * 2f32.powi(e - 15),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::f16_to_f32;
+
+    #[test]
+    fn halves_decode() {
+        assert!((f16_to_f32(0x3c00) - 1.0).abs() < f32::EPSILON);
+        assert!((f16_to_f32(0xc000) + 2.0).abs() < f32::EPSILON);
+        assert!((f16_to_f32(0x7bff) - 65504.0).abs() < f32::EPSILON);
+        assert!((f16_to_f32(0x0001) - 2f32.powi(-24)).abs() < f32::EPSILON);
+        assert!(f16_to_f32(0x7c00).is_infinite() && f16_to_f32(0x7e00).is_nan());
     }
 }

@@ -8,11 +8,16 @@
 // variants (about 2 MB a frame here, freed only with the device); storage is never
 // inlined. Every GPU reads a 400-byte block the same either way.
 @group(0) @binding(0) var<storage, read> params: RenderParams;
-@group(0) @binding(1) var<storage, read> cover: array<CoverTexel>;
 @group(0) @binding(2) var<storage, read> ground_height: array<f32>;
 @group(0) @binding(3) var<storage, read> particles: array<Particle>;
 // Drawn particles: sprites at [0, N), streaks at [N, 2N) (N = particle count).
 @group(0) @binding(4) var<storage, read> drawn: array<u32>;
+// The cover as two filtered textures (cover_texture.wgsl writes them from the cover
+// texels each frame): A = (depth mm, SWE mm, peak SWE mm, wetness),
+// B = (accumulation mask, melt mask, age days, 0); linear, clamped to the edge.
+@group(0) @binding(5) var cover_a: texture_2d<f32>;
+@group(0) @binding(6) var cover_b: texture_2d<f32>;
+@group(0) @binding(7) var cover_sampler: sampler;
 // Group 1: light and the flake's opacity.
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(1) var shadow_sampler: sampler_comparison;
@@ -61,33 +66,24 @@ fn upward(normal: vec3<f32>) -> f32 {
     return smoothstep(0.2, 0.6, normal.y);
 }
 
-fn mix_texel(a: CoverTexel, b: CoverTexel, t: f32) -> CoverTexel {
-    var m = a;
-    m.swe_mm = mix(a.swe_mm, b.swe_mm, t);
-    m.liquid_mm = mix(a.liquid_mm, b.liquid_mm, t);
-    m.depth_mm = mix(a.depth_mm, b.depth_mm, t);
-    m.age_days = mix(a.age_days, b.age_days, t);
-    m.peak_swe_mm = mix(a.peak_swe_mm, b.peak_swe_mm, t);
-    m.wetness = mix(a.wetness, b.wetness, t);
-    m.accumulation_mask = mix(a.accumulation_mask, b.accumulation_mask, t);
-    m.melt_mask = mix(a.melt_mask, b.melt_mask, t);
-    return m;
-}
-
 // The cover at (x, z), interpolated between texel centres (clamped at the grid's
-// edges): the particles' landings are discrete, so a surface reads a smoothed pack,
-// and the threshold masks give patches with smooth borders finer than the grid.
+// edges) by the texture unit: the particles' landings are discrete, so a surface
+// reads a smoothed pack, and the threshold masks give patches with smooth borders
+// finer than the grid. Each field is interpolated on its own, as texels were mixed
+// before (the fields the surface does not read are zero).
 fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
-    let n = vec2<i32>(params.cover.texels);
-    let t = (xz_m - params.cover.origin_m) / params.cover.size_m * vec2<f32>(params.cover.texels) - 0.5;
-    let f = clamp(t - floor(t), vec2<f32>(0.0), vec2<f32>(1.0));
-    let i0 = clamp(vec2<i32>(floor(t)), vec2<i32>(0), n - 1);
-    let i1 = clamp(i0 + 1, vec2<i32>(0), n - 1);
-    let a = cover[u32(i0.x + n.x * i0.y)];
-    let b = cover[u32(i1.x + n.x * i0.y)];
-    let c = cover[u32(i0.x + n.x * i1.y)];
-    let d = cover[u32(i1.x + n.x * i1.y)];
-    return mix_texel(mix_texel(a, b, f.x), mix_texel(c, d, f.x), f.y);
+    let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
+    let a = textureSampleLevel(cover_a, cover_sampler, uv, 0.0);
+    let b = textureSampleLevel(cover_b, cover_sampler, uv, 0.0);
+    var t: CoverTexel;
+    t.depth_mm = a.x;
+    t.swe_mm = a.y;
+    t.peak_swe_mm = a.z;
+    t.wetness = a.w;
+    t.accumulation_mask = b.x;
+    t.melt_mask = b.y;
+    t.age_days = b.z;
+    return t;
 }
 
 struct SceneVertex {

@@ -185,6 +185,18 @@ pub mod render_passes {
     pub const SPLAT_RESOLVE: (&str, Option<&str>) = ("vs_splat_resolve", Some("fs_splat_resolve"));
 }
 
+/// The cover texels into the two filtered textures the surfaces read
+/// ([`render_bindings::COVER_A`], [`render_bindings::COVER_B`]): first in a frame.
+pub const COVER_TEXTURE_PASS: KernelPass = KernelPass {
+    program: Program::Render,
+    entry_point: "cover_texture",
+    over: DispatchOver::CoverTexels,
+};
+
+/// The format of the cover textures (filterable everywhere, a storage format in
+/// WebGPU and Vulkan).
+pub const COVER_TEXTURE_FORMAT_NAME: &str = "Rgba16Float";
+
 /// The splat of sub-pixel particles: after the scene's pass (it reads the scene's
 /// depth) and the cull kernels, before the particles' pass, whose first draw
 /// ([`render_passes::SPLAT_RESOLVE`]) blends the sums over the frame.
@@ -196,7 +208,8 @@ pub const SPLAT_PASS: KernelPass = KernelPass {
 
 /// The timed passes of a frame, in the order both GPU backends record them; each
 /// backend brackets every one with a timestamp before and after (`PassTiming` names).
-pub const TIMED_RENDER_PASSES: [&str; 5] = [
+pub const TIMED_RENDER_PASSES: [&str; 6] = [
+    "cover_texture",
     "shadow",
     "scene",
     "cull_particles",
@@ -240,7 +253,8 @@ pub mod render_bindings {
     /// reads a uniform block at every draw and keeps every variant until the device
     /// is destroyed (about 2 MB a frame); storage is never inlined.
     pub const PARAMS: u32 = 0;
-    /// Group 0: cover texels, read-only storage.
+    /// Group 0 of the `cover_texture` kernel only (its own group): cover texels,
+    /// read-only storage.
     pub const COVER: u32 = 1;
     /// Group 0: ground heights, read-only storage.
     pub const GROUND_HEIGHT: u32 = 2;
@@ -248,6 +262,19 @@ pub mod render_bindings {
     pub const PARTICLES: u32 = 3;
     /// Group 0: the drawn lists, read-only storage.
     pub const DRAWN: u32 = 4;
+    /// Group 0: the cover's first texture (depth mm, SWE mm, peak SWE mm, wetness),
+    /// `texture_2d<f32>`, [`super::COVER_TEXTURE_FORMAT_NAME`].
+    pub const COVER_A: u32 = 5;
+    /// Group 0: the second (accumulation mask, melt mask, age days, 0).
+    pub const COVER_B: u32 = 6;
+    /// Group 0: their sampler (linear, clamped to the edge).
+    pub const COVER_SAMPLER: u32 = 7;
+    /// Group 0 of the `cover_texture` kernel: [`COVER_A`] as a write-only storage
+    /// texture.
+    pub const COVER_A_OUT: u32 = 8;
+    /// Group 0 of the `cover_texture` kernel: [`COVER_B`] as a write-only storage
+    /// texture.
+    pub const COVER_B_OUT: u32 = 9;
     /// Group 1 (light): the shadow map, `texture_depth_2d`.
     pub const SHADOW_MAP: u32 = 0;
     /// Group 1: its comparison sampler (less-equal, linear).
@@ -366,12 +393,9 @@ mod tests {
         for kernel in CULL_PASSES {
             assert!(kernel.program.entry_points().contains(&kernel.entry_point));
         }
-        assert!(
-            SPLAT_PASS
-                .program
-                .entry_points()
-                .contains(&SPLAT_PASS.entry_point)
-        );
+        for kernel in [SPLAT_PASS, COVER_TEXTURE_PASS] {
+            assert!(kernel.program.entry_points().contains(&kernel.entry_point));
+        }
         for (vs, fs) in [
             render_passes::SHADOW,
             render_passes::SCENE,

@@ -55,6 +55,8 @@ pub const SHADING: ShaderFile = shader_file!("shading.wgsl");
 pub const RENDER_SCENE: ShaderFile = shader_file!("render_scene.wgsl");
 /// Snow sprites and rain tetrahedra.
 pub const RENDER_PARTICLES: ShaderFile = shader_file!("render_particles.wgsl");
+/// Kernel `cover_texture`: the cover texels into the surfaces' filtered textures.
+pub const COVER_TEXTURE: ShaderFile = shader_file!("cover_texture.wgsl");
 /// How each particle is drawn this frame (`drawn_as`), for the cull and splat kernels.
 pub const PARTICLE_LISTS: ShaderFile = shader_file!("particle_lists.wgsl");
 /// Sub-pixel particles: kernel `splat_particles` and its resolve draw.
@@ -119,6 +121,7 @@ impl Program {
                 PARTICLE_LISTS,
                 RENDER_PARTICLES,
                 RENDER_SPLAT,
+                COVER_TEXTURE,
             ],
             Self::CullParticles => &[
                 LAYOUT,
@@ -149,6 +152,7 @@ impl Program {
                 "splat_particles",
                 "vs_splat_resolve",
                 "fs_splat_resolve",
+                "cover_texture",
             ],
             Self::CullParticles => &["cull_count", "cull_scan", "cull_write"],
             Self::ProbeDrawing => &["probe_drawing"],

@@ -88,12 +88,8 @@ impl VkBackend {
                 Some(scene) => Some(SceneGpu::upload(device, renderer, scene, settings)?),
                 None => None,
             };
-            let frame = match FrameResources::new(
-                device,
-                renderer,
-                &state.resources,
-                settings.shadow_map_px,
-            ) {
+            let frame = match FrameResources::new(device, renderer, &state.resources, &state.setup)
+            {
                 Ok(f) => f,
                 Err(e) => {
                     if let Some(s) = scene {

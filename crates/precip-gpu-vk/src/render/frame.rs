@@ -5,12 +5,12 @@
 use ash::vk;
 use glam::UVec3;
 use gpu_allocator::MemoryLocation;
-use precip_model::BackendError;
 use precip_model::gpu::{
     FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL, cull_bindings as cb, cull_groups,
     render_bindings as rb,
 };
 use precip_model::render::RenderParams;
+use precip_model::{BackendError, Setup};
 
 use super::Renderer;
 use crate::buffer::Buffer;
@@ -18,7 +18,10 @@ use crate::descriptors::{self, buffer_info, image_info, sampler_info, write};
 use crate::device::Device;
 use crate::error::map_vk;
 use crate::image::{DEPTH_FORMAT, Image, ImageSpec};
-use crate::resources::{FRAMES_IN_FLIGHT, Resources};
+
+/// The cover textures' format (`precip_model::gpu::COVER_TEXTURE_FORMAT_NAME`).
+pub const COVER_TEXTURE_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
+use crate::resources::{FRAMES_IN_FLIGHT, Resources, to_general};
 
 /// What drawing adds to a configuration.
 #[derive(Debug)]
@@ -33,6 +36,13 @@ pub struct FrameResources {
     pub draws: Buffer,
     /// The sun's depth.
     pub shadow_map: Image,
+    /// The cover's two filtered textures (`GENERAL`: written by `cover_texture`,
+    /// sampled by the draws).
+    cover_images: [Image; 2],
+    /// Set 0 of the `cover_texture` kernel.
+    pub cover_texture_set: vk::DescriptorSet,
+    /// Cover texels (the kernel's dispatch).
+    pub cover_texels: u32,
     /// Its framebuffer (the shadow pass).
     pub shadow_framebuffer: vk::Framebuffer,
     pool: vk::DescriptorPool,
@@ -105,8 +115,9 @@ impl FrameResources {
         device: &Device,
         renderer: &Renderer,
         sim: &Resources,
-        shadow_map_px: u32,
+        setup: &Setup,
     ) -> Result<Self, BackendError> {
+        let shadow_map_px = setup.render.shadow_map_px;
         let count = sim.particle_count;
         let groups = cull_groups(count);
         let limits = &device.properties.limits;
@@ -149,6 +160,20 @@ impl FrameResources {
             shadow_map.size(),
         )?;
         device.name(shadow_framebuffer, "precip shadow framebuffer");
+        let texels = setup.cover.frame.texels;
+        let cover_image = |name| {
+            Image::new(
+                device,
+                &ImageSpec {
+                    name,
+                    extent: UVec3::new(texels.x, texels.y, 1),
+                    format: COVER_TEXTURE_FORMAT,
+                    usage: vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::SAMPLED,
+                },
+            )
+        };
+        let cover_images = [cover_image("cover a")?, cover_image("cover b")?];
+        to_general(device, &[&cover_images[0], &cover_images[1]])?;
 
         use vk::DescriptorType as T;
         let pool = descriptors::pool(
@@ -157,24 +182,36 @@ impl FrameResources {
             &[
                 (T::STORAGE_BUFFER_DYNAMIC, 2),
                 (T::STORAGE_BUFFER, 8 + 2 * FRAMES_IN_FLIGHT as u32),
-                (T::SAMPLED_IMAGE, 2 + FRAMES_IN_FLIGHT as u32),
-                (T::SAMPLER, 2),
+                (T::SAMPLED_IMAGE, 4 + FRAMES_IN_FLIGHT as u32),
+                (T::SAMPLER, 3),
+                (T::STORAGE_IMAGE, 2),
             ],
-            3 + 2 * FRAMES_IN_FLIGHT as u32,
+            4 + 2 * FRAMES_IN_FLIGHT as u32,
         )?;
         let mut layouts = vec![
             renderer.layouts.frame,
             renderer.layouts.light,
             renderer.layouts.cull,
+            renderer.layouts.cover_texture,
         ];
         layouts.extend([renderer.layouts.splat; FRAMES_IN_FLIGHT]);
         layouts.extend([renderer.layouts.splat_resolve; FRAMES_IN_FLIGHT]);
         let sets = descriptors::allocate(device, pool, &layouts)?;
-        let (frame_set, light_set, cull_set) = (sets[0], sets[1], sets[2]);
+        let (frame_set, light_set, cull_set, cover_texture_set) =
+            (sets[0], sets[1], sets[2], sets[3]);
         let splat_sets: [vk::DescriptorSet; FRAMES_IN_FLIGHT] =
-            std::array::from_fn(|i| sets[3 + i]);
+            std::array::from_fn(|i| sets[4 + i]);
         let resolve_sets: [vk::DescriptorSet; FRAMES_IN_FLIGHT] =
-            std::array::from_fn(|i| sets[3 + FRAMES_IN_FLIGHT + i]);
+            std::array::from_fn(|i| sets[4 + FRAMES_IN_FLIGHT + i]);
+        let general = |view| {
+            [vk::DescriptorImageInfo {
+                sampler: vk::Sampler::null(),
+                image_view: view,
+                image_layout: vk::ImageLayout::GENERAL,
+            }]
+        };
+        let (cover_a, cover_b) = (general(cover_images[0].view), general(cover_images[1].view));
+        let cover_sampler = sampler_info(renderer.samplers.flake);
         let whole = |b: &Buffer| buffer_info(b, vk::WHOLE_SIZE);
         let params_info = buffer_info(&params, size_of::<RenderParams>() as u64);
         let (cover, ground, particles) =
@@ -189,7 +226,12 @@ impl FrameResources {
         );
         let writes = [
             write(frame_set, rb::PARAMS, T::STORAGE_BUFFER_DYNAMIC).buffer_info(&params_info),
-            write(frame_set, rb::COVER, T::STORAGE_BUFFER).buffer_info(&cover),
+            write(frame_set, rb::COVER_A, T::SAMPLED_IMAGE).image_info(&cover_a),
+            write(frame_set, rb::COVER_B, T::SAMPLED_IMAGE).image_info(&cover_b),
+            write(frame_set, rb::COVER_SAMPLER, T::SAMPLER).image_info(&cover_sampler),
+            write(cover_texture_set, rb::COVER, T::STORAGE_BUFFER).buffer_info(&cover),
+            write(cover_texture_set, rb::COVER_A_OUT, T::STORAGE_IMAGE).image_info(&cover_a),
+            write(cover_texture_set, rb::COVER_B_OUT, T::STORAGE_IMAGE).image_info(&cover_b),
             write(frame_set, rb::GROUND_HEIGHT, T::STORAGE_BUFFER).buffer_info(&ground),
             write(frame_set, rb::PARTICLES, T::STORAGE_BUFFER).buffer_info(&particles),
             write(frame_set, rb::DRAWN, T::STORAGE_BUFFER).buffer_info(&drawn_info),
@@ -214,6 +256,9 @@ impl FrameResources {
             draws,
             shadow_map,
             shadow_framebuffer,
+            cover_images,
+            cover_texture_set,
+            cover_texels: texels.x * texels.y,
             pool,
             frame_set,
             light_set,
@@ -273,6 +318,9 @@ impl FrameResources {
                 .destroy_framebuffer(self.shadow_framebuffer, None);
         }
         self.shadow_map.destroy(device);
+        for image in self.cover_images {
+            image.destroy(device);
+        }
         for b in [self.params, self.group_counts, self.drawn, self.draws] {
             b.destroy(device);
         }

@@ -27,6 +27,8 @@ pub struct RenderLayouts {
     pub splat: vk::DescriptorSetLayout,
     /// Set 2 of the splat's resolve draw: the splat sums.
     pub splat_resolve: vk::DescriptorSetLayout,
+    /// Set 0 of the `cover_texture` kernel: the texels and the two storage images.
+    pub cover_texture: vk::DescriptorSetLayout,
     /// Every draw's pipeline layout (sets 0–2; the shadow and particle draws use a
     /// prefix of them).
     pub draw_layout: vk::PipelineLayout,
@@ -36,6 +38,8 @@ pub struct RenderLayouts {
     pub splat_layout: vk::PipelineLayout,
     /// The resolve draw's (sets 0, 1 and the resolve set).
     pub resolve_layout: vk::PipelineLayout,
+    /// The `cover_texture` kernel's.
+    pub cover_texture_layout: vk::PipelineLayout,
 }
 
 fn binding(
@@ -89,10 +93,12 @@ impl RenderLayouts {
             "precip render frame",
             &[
                 binding(rb::PARAMS, T::STORAGE_BUFFER_DYNAMIC, draw),
-                binding(rb::COVER, T::STORAGE_BUFFER, draw),
                 binding(rb::GROUND_HEIGHT, T::STORAGE_BUFFER, draw),
                 binding(rb::PARTICLES, T::STORAGE_BUFFER, draw),
                 binding(rb::DRAWN, T::STORAGE_BUFFER, draw),
+                binding(rb::COVER_A, T::SAMPLED_IMAGE, draw),
+                binding(rb::COVER_B, T::SAMPLED_IMAGE, draw),
+                binding(rb::COVER_SAMPLER, T::SAMPLER, draw),
             ],
         )?;
         let light = set_layout(
@@ -142,7 +148,21 @@ impl RenderLayouts {
                 vk::ShaderStageFlags::FRAGMENT,
             )],
         )?;
+        let cover_texture = set_layout(
+            device,
+            "precip cover texture",
+            &[
+                binding(rb::COVER, T::STORAGE_BUFFER, compute),
+                binding(rb::COVER_A_OUT, T::STORAGE_IMAGE, compute),
+                binding(rb::COVER_B_OUT, T::STORAGE_IMAGE, compute),
+            ],
+        )?;
         Ok(Self {
+            cover_texture_layout: pipeline_layout(
+                device,
+                "precip cover texture",
+                &[cover_texture],
+            )?,
             draw_layout: pipeline_layout(device, "precip draws", &[frame, light, material])?,
             cull_layout: pipeline_layout(device, "precip cull", &[cull])?,
             splat_layout: pipeline_layout(device, "precip splat", &[frame, light, splat])?,
@@ -157,6 +177,7 @@ impl RenderLayouts {
             cull,
             splat,
             splat_resolve,
+            cover_texture,
         })
     }
 
@@ -171,6 +192,9 @@ impl RenderLayouts {
             device
                 .raw
                 .destroy_pipeline_layout(self.resolve_layout, None);
+            device
+                .raw
+                .destroy_pipeline_layout(self.cover_texture_layout, None);
             for set in [
                 self.frame,
                 self.light,
@@ -178,6 +202,7 @@ impl RenderLayouts {
                 self.cull,
                 self.splat,
                 self.splat_resolve,
+                self.cover_texture,
             ] {
                 device.raw.destroy_descriptor_set_layout(set, None);
             }

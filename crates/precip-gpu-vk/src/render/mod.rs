@@ -6,6 +6,8 @@
 //!
 //! 1. a barrier: the step's compute writes (particles, cover) and a new splat-sums
 //!    buffer's zero fill become visible to the shaders and kernels of the frame;
+//!    Then **cover_texture**: the cover texels into the two filtered images the
+//!    surfaces sample (kept in `GENERAL`), and a barrier to the shaders;
 //! 2. **shadow** — render pass with the shadow map, the displaced scene from the sun;
 //! 3. **scene** — a render pass into the target (offscreen image or swapchain image)
 //!    that clears it and draws every mesh, leaving the depth read-only;
@@ -350,22 +352,24 @@ pub unsafe fn record_frame(
         };
         viewport(device, cb, size);
     };
-    let bind_sets = |bind_point, pipeline_layout, first: u32, sets: &[vk::DescriptorSet]| {
-        // Set 0 takes the frame's dynamic offset.
-        let offsets: &[u32] = if first == 0 { &[params_offset] } else { &[] };
-        // SAFETY: `cb` is recording; the sets match the layout from `first`; set 0's
-        // dynamic offset is aligned and in the buffer.
-        unsafe {
-            device.raw.cmd_bind_descriptor_sets(
-                cb,
-                bind_point,
-                pipeline_layout,
-                first,
-                sets,
-                offsets,
-            );
-        }
-    };
+    // The frame's and the cull's set 0 take the frame's dynamic offset (`dynamic`).
+    let dynamic = [params_offset];
+    let bind_sets =
+        |bind_point, pipeline_layout, first: u32, sets: &[vk::DescriptorSet], offsets: &[u32]| {
+            // SAFETY: `cb` is recording; the sets match the layout from `first`; the
+            // offsets are those of their dynamic descriptors (the frame's block: aligned
+            // and in the buffer).
+            unsafe {
+                device.raw.cmd_bind_descriptor_sets(
+                    cb,
+                    bind_point,
+                    pipeline_layout,
+                    first,
+                    sets,
+                    offsets,
+                );
+            }
+        };
     let dispatch = |pipeline, (x, y): (u32, u32)| {
         // SAFETY: `cb` is recording outside a render pass; the pipeline's sets are
         // bound.
@@ -376,6 +380,30 @@ pub unsafe fn record_frame(
             device.raw.cmd_dispatch(cb, x, y, 1);
         }
     };
+    bind_sets(
+        vk::PipelineBindPoint::COMPUTE,
+        renderer.layouts.cover_texture_layout,
+        0,
+        &[frame.cover_texture_set],
+        &[],
+    );
+    dispatch(
+        renderer.cull.cover_texture,
+        dispatch_size(frame.cover_texels),
+    );
+    // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
+    unsafe {
+        memory_barrier(
+            device,
+            cb,
+            (S::COMPUTE_SHADER, A::SHADER_WRITE),
+            (
+                S::VERTEX_SHADER | S::FRAGMENT_SHADER | S::COMPUTE_SHADER,
+                A::SHADER_READ,
+            ),
+        );
+    }
+    stamp(1);
     begin(
         renderer.shadow_pass,
         frame.shadow_framebuffer,
@@ -394,12 +422,13 @@ pub unsafe fn record_frame(
             layout,
             0,
             &[frame.frame_set],
+            &dynamic,
         );
         scene.draw(device, cb, layout, false);
     }
     // SAFETY: ends the pass begun above.
     unsafe { device.raw.cmd_end_render_pass(cb) };
-    stamp(1);
+    stamp(2);
     let sky = target.sky;
     let clears = [
         vk::ClearValue {
@@ -428,19 +457,21 @@ pub unsafe fn record_frame(
             layout,
             0,
             &[frame.frame_set, frame.light_set],
+            &dynamic,
         );
         scene.draw(device, cb, layout, true);
     }
     // SAFETY: ends the scene pass (its dependency makes the depth visible to the
     // splat kernel, read-only).
     unsafe { device.raw.cmd_end_render_pass(cb) };
-    stamp(2);
+    stamp(3);
     let particle_groups = dispatch_size(particle_count);
     bind_sets(
         vk::PipelineBindPoint::COMPUTE,
         renderer.layouts.cull_layout,
         0,
         &[frame.cull_set],
+        &dynamic,
     );
     for (kernel, pipeline) in &renderer.cull.kernels {
         let groups = match kernel.over {
@@ -451,12 +482,13 @@ pub unsafe fn record_frame(
         // SAFETY: `cb` is recording, outside a render pass (between the dispatches).
         unsafe { compute_barrier(device, cb) };
     }
-    stamp(3);
+    stamp(4);
     bind_sets(
         vk::PipelineBindPoint::COMPUTE,
         renderer.layouts.splat_layout,
         0,
         &[frame.frame_set, frame.light_set, target.splat_sets.0],
+        &dynamic,
     );
     dispatch(renderer.cull.splat, particle_groups);
     // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
@@ -471,7 +503,7 @@ pub unsafe fn record_frame(
             ),
         );
     }
-    stamp(4);
+    stamp(5);
     begin(
         target.passes.particles,
         target.framebuffer,
@@ -483,6 +515,7 @@ pub unsafe fn record_frame(
         layout,
         0,
         &[frame.frame_set, frame.light_set],
+        &dynamic,
     );
     // SAFETY: inside the camera pass; the resolve pipeline was made for a compatible
     // pass; its layout shares sets 0 and 1 with the draws' (compatible), set 2 is
@@ -497,6 +530,7 @@ pub unsafe fn record_frame(
         renderer.layouts.resolve_layout,
         2,
         &[target.splat_sets.1],
+        &[],
     );
     // SAFETY: inside the camera pass; the particle pipelines were made for a
     // compatible pass; the draws buffer holds two 16-byte `DrawArgs`, made visible to
@@ -517,7 +551,7 @@ pub unsafe fn record_frame(
             .cmd_draw_indirect(cb, frame.draws.raw, FrameDraws::RAIN_OFFSET, 1, 16);
         device.raw.cmd_end_render_pass(cb);
     }
-    stamp(5);
+    stamp(6);
     // The next frame's step and splat rewrite what these shaders read, and the
     // resolve's zeroing writes must land before the next splat adds.
     // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).

@@ -6,7 +6,9 @@ use std::ffi::CString;
 
 use ash::vk;
 use precip_model::BackendError;
-use precip_model::gpu::{CULL_PASSES, KernelPass, SPLAT_PASS, SceneVertex, render_passes};
+use precip_model::gpu::{
+    COVER_TEXTURE_PASS, CULL_PASSES, KernelPass, SPLAT_PASS, SceneVertex, render_passes,
+};
 
 use super::layouts::RenderLayouts;
 use crate::device::Device;
@@ -33,6 +35,8 @@ pub struct CullPipelines {
     pub kernels: Vec<(KernelPass, vk::Pipeline)>,
     /// [`SPLAT_PASS`].
     pub splat: vk::Pipeline,
+    /// [`COVER_TEXTURE_PASS`].
+    pub cover_texture: vk::Pipeline,
 }
 
 /// How a draw differs from the others.
@@ -298,24 +302,30 @@ impl CullPipelines {
             device.name(pipeline, kernel.entry_point);
             kernels.push((kernel, pipeline));
         }
-        let splat = match compute(
-            device,
-            layouts.splat_layout,
-            render_module,
-            SPLAT_PASS.entry_point,
-        ) {
-            Ok(p) => p,
-            Err(e) => {
-                Self {
-                    kernels,
-                    splat: vk::Pipeline::null(),
-                }
-                .destroy(device);
-                return Err(e);
-            }
+        let mut made = Self {
+            kernels,
+            splat: vk::Pipeline::null(),
+            cover_texture: vk::Pipeline::null(),
         };
-        device.name(splat, SPLAT_PASS.entry_point);
-        Ok(Self { kernels, splat })
+        for (kernel, layout) in [
+            (SPLAT_PASS, layouts.splat_layout),
+            (COVER_TEXTURE_PASS, layouts.cover_texture_layout),
+        ] {
+            let pipeline = match compute(device, layout, render_module, kernel.entry_point) {
+                Ok(p) => p,
+                Err(e) => {
+                    made.destroy(device);
+                    return Err(e);
+                }
+            };
+            device.name(pipeline, kernel.entry_point);
+            if kernel == SPLAT_PASS {
+                made.splat = pipeline;
+            } else {
+                made.cover_texture = pipeline;
+            }
+        }
+        Ok(made)
     }
 
     /// Destroys the pipelines (the device must be idle).
@@ -326,6 +336,7 @@ impl CullPipelines {
                 device.raw.destroy_pipeline(*p, None);
             }
             device.raw.destroy_pipeline(self.splat, None);
+            device.raw.destroy_pipeline(self.cover_texture, None);
         }
     }
 }

@@ -8,7 +8,8 @@ use crate::device::Device;
 use crate::error::map_vk;
 
 /// The passes timed, in order.
-pub const PASSES: [&str; 5] = precip_model::gpu::TIMED_RENDER_PASSES;
+pub const PASSES: [&str; precip_model::gpu::TIMED_RENDER_PASSES.len()] =
+    precip_model::gpu::TIMED_RENDER_PASSES;
 
 /// Queries: one before the first pass and one after each.
 pub const QUERIES: u32 = PASSES.len() as u32 + 1;

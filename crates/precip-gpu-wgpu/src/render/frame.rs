@@ -1,5 +1,6 @@
 //! The per-configuration resources of drawing: the frame's uniform block, the cull
-//! lists and indirect draws, the shadow map, the flake texture and the bind groups.
+//! lists and indirect draws, the shadow map, the flake texture, the cover's two
+//! filtered textures and the bind groups.
 
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 use precip_model::gpu::{
@@ -7,7 +8,9 @@ use precip_model::gpu::{
 };
 use precip_model::render::RenderParams;
 
-use super::layouts::RenderLayouts;
+use precip_model::Setup;
+
+use super::layouts::{COVER_TEXTURE_FORMAT, RenderLayouts};
 use super::pipelines::DEPTH_FORMAT;
 use crate::device::GpuDevice;
 use crate::resources::Resources;
@@ -29,6 +32,12 @@ pub struct FrameResources {
     pub light_group: wgpu::BindGroup,
     /// Group 0 of the cull kernels.
     pub cull_group: wgpu::BindGroup,
+    /// Group 0 of the `cover_texture` kernel.
+    pub cover_texture_group: wgpu::BindGroup,
+    /// Cover texels (the `cover_texture` kernel's dispatch).
+    pub cover_texels: u32,
+    /// The cover's two filtered textures (A, B).
+    pub cover_textures: [wgpu::Texture; 2],
 }
 
 fn storage(gpu: &GpuDevice, label: &str, size: u64, usage: wgpu::BufferUsages) -> wgpu::Buffer {
@@ -50,12 +59,8 @@ fn bind(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
 impl FrameResources {
     /// Allocates drawing's resources beside the simulation's `sim`.
     #[must_use]
-    pub fn new(
-        gpu: &GpuDevice,
-        layouts: &RenderLayouts,
-        sim: &Resources,
-        shadow_map_px: u32,
-    ) -> Self {
+    pub fn new(gpu: &GpuDevice, layouts: &RenderLayouts, sim: &Resources, setup: &Setup) -> Self {
+        let shadow_map_px = setup.render.shadow_map_px;
         let device = &gpu.device;
         let count = sim.particle_count;
         let groups = cull_groups(count);
@@ -132,15 +137,65 @@ impl FrameResources {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
+        let texels = setup.cover.frame.texels;
+        let cover_texture = |label| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: texels.x,
+                    height: texels.y,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: COVER_TEXTURE_FORMAT,
+                usage: wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        };
+        let cover_textures = [
+            cover_texture("precip cover a"),
+            cover_texture("precip cover b"),
+        ];
+        let [cover_a, cover_b] = cover_textures
+            .each_ref()
+            .map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
+        let cover_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("precip cover"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let view = |binding, view| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(view),
+        };
         let frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("precip render frame"),
             layout: &layouts.frame,
             entries: &[
                 bind(rb::PARAMS, &params),
-                bind(rb::COVER, &sim.cover),
                 bind(rb::GROUND_HEIGHT, &sim.ground),
                 bind(rb::PARTICLES, &sim.particles),
                 bind(rb::DRAWN, &drawn),
+                view(rb::COVER_A, &cover_a),
+                view(rb::COVER_B, &cover_b),
+                wgpu::BindGroupEntry {
+                    binding: rb::COVER_SAMPLER,
+                    resource: wgpu::BindingResource::Sampler(&cover_sampler),
+                },
+            ],
+        });
+        let cover_texture_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("precip cover texture"),
+            layout: &layouts.cover_texture,
+            entries: &[
+                bind(rb::COVER, &sim.cover),
+                view(rb::COVER_A_OUT, &cover_a),
+                view(rb::COVER_B_OUT, &cover_b),
             ],
         });
         let light_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -184,6 +239,9 @@ impl FrameResources {
             frame_group,
             light_group,
             cull_group,
+            cover_texture_group,
+            cover_texels: texels.x * texels.y,
+            cover_textures,
         }
     }
 }

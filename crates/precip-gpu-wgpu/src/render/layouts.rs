@@ -21,7 +21,12 @@ pub struct RenderLayouts {
     pub splat: wgpu::BindGroupLayout,
     /// Group 2 of the splat's resolve draw: the splat sums.
     pub splat_resolve: wgpu::BindGroupLayout,
+    /// Group 0 of the `cover_texture` kernel: the texels and the two storage views.
+    pub cover_texture: wgpu::BindGroupLayout,
 }
+
+/// The cover textures' format (`precip_model::gpu::COVER_TEXTURE_FORMAT_NAME`).
+pub const COVER_TEXTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// Groups 0 and 1 serve the draws and the splat kernel.
 const DRAW: wgpu::ShaderStages =
@@ -78,10 +83,24 @@ impl RenderLayouts {
             label: Some("precip render frame"),
             entries: &[
                 entry(rb::PARAMS, DRAW, params),
-                entry(rb::COVER, DRAW, storage(true)),
                 entry(rb::GROUND_HEIGHT, DRAW, storage(true)),
                 entry(rb::PARTICLES, DRAW, storage(true)),
                 entry(rb::DRAWN, DRAW, storage(true)),
+                entry(
+                    rb::COVER_A,
+                    DRAW,
+                    texture(wgpu::TextureSampleType::Float { filterable: true }),
+                ),
+                entry(
+                    rb::COVER_B,
+                    DRAW,
+                    texture(wgpu::TextureSampleType::Float { filterable: true }),
+                ),
+                entry(
+                    rb::COVER_SAMPLER,
+                    DRAW,
+                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                ),
             ],
         });
         let light = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -159,6 +178,19 @@ impl RenderLayouts {
                 storage(false),
             )],
         });
+        let written = wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format: COVER_TEXTURE_FORMAT,
+            view_dimension: wgpu::TextureViewDimension::D2,
+        };
+        let cover_texture = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("precip cover texture"),
+            entries: &[
+                entry(rb::COVER, compute, storage(true)),
+                entry(rb::COVER_A_OUT, compute, written),
+                entry(rb::COVER_B_OUT, compute, written),
+            ],
+        });
         Self {
             frame,
             light,
@@ -166,6 +198,7 @@ impl RenderLayouts {
             cull,
             splat,
             splat_resolve,
+            cover_texture,
         }
     }
 }

@@ -3,6 +3,8 @@
 //!
 //! ## A frame
 //!
+//! 0. **cover_texture** — the cover texels into two filtered textures
+//!    (`precip_model::gpu::COVER_TEXTURE_PASS`) that the surfaces sample.
 //! 1. **shadow** — the scene's displaced geometry from the sun into a depth map.
 //! 2. **scene** — every mesh, displaced by the snow depth and shaded with the cover
 //!    (coverage by the threshold masks, wet darkening, exposure to the sky from the
@@ -151,6 +153,16 @@ pub fn encode_frame(
 ) {
     let frame = &state.frame;
     {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("precip cover_texture"),
+            timestamp_writes: compute_stamps(stamps, 0),
+        });
+        pass.set_pipeline(&cull.cover_texture);
+        pass.set_bind_group(0, &frame.cover_texture_group, &[]);
+        let (x, y) = dispatch_size(frame.cover_texels);
+        pass.dispatch_workgroups(x, y, 1);
+    }
+    {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("precip shadow"),
             color_attachments: &[],
@@ -162,7 +174,7 @@ pub fn encode_frame(
                 }),
                 stencil_ops: None,
             }),
-            timestamp_writes: render_stamps(stamps, 0),
+            timestamp_writes: render_stamps(stamps, 1),
             occlusion_query_set: None,
             multiview_mask: None,
         });
@@ -198,7 +210,7 @@ pub fn encode_frame(
                 }),
                 stencil_ops: None,
             }),
-            timestamp_writes: render_stamps(stamps, 1),
+            timestamp_writes: render_stamps(stamps, 2),
             occlusion_query_set: None,
             multiview_mask: None,
         });
@@ -213,7 +225,7 @@ pub fn encode_frame(
     {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("precip cull_particles"),
-            timestamp_writes: compute_stamps(stamps, 2),
+            timestamp_writes: compute_stamps(stamps, 3),
         });
         pass.set_bind_group(0, &frame.cull_group, &[]);
         for (kernel, pipeline) in &cull.kernels {
@@ -228,7 +240,7 @@ pub fn encode_frame(
     {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("precip splat_particles"),
-            timestamp_writes: compute_stamps(stamps, 3),
+            timestamp_writes: compute_stamps(stamps, 4),
         });
         pass.set_pipeline(&cull.splat);
         pass.set_bind_group(0, &frame.frame_group, &[]);
@@ -255,7 +267,7 @@ pub fn encode_frame(
             }),
             stencil_ops: None,
         }),
-        timestamp_writes: render_stamps(stamps, 4),
+        timestamp_writes: render_stamps(stamps, 5),
         occlusion_query_set: None,
         multiview_mask: None,
     });

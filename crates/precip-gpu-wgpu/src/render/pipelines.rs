@@ -1,7 +1,7 @@
 //! The render pipelines (per colour format, so the viewer's surface format and the
 //! offscreen sRGB target both work) and the cull kernels' pipelines.
 
-use precip_model::gpu::{CULL_PASSES, SPLAT_PASS, SceneVertex, render_passes};
+use precip_model::gpu::{COVER_TEXTURE_PASS, CULL_PASSES, SPLAT_PASS, SceneVertex, render_passes};
 use precip_model::shaders::Program;
 
 use super::layouts::RenderLayouts;
@@ -32,6 +32,8 @@ pub struct CullPipelines {
     pub kernels: Vec<(precip_model::gpu::KernelPass, wgpu::ComputePipeline)>,
     /// [`SPLAT_PASS`].
     pub splat: wgpu::ComputePipeline,
+    /// [`COVER_TEXTURE_PASS`].
+    pub cover_texture: wgpu::ComputePipeline,
 }
 
 const SCENE_ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
@@ -265,6 +267,20 @@ impl CullPipelines {
             compilation_options: wgpu::PipelineCompilationOptions::default(),
             cache: None,
         });
-        Self { kernels, splat }
+        let cover_layout =
+            pipeline_layout(device, "precip cover texture", &[&layouts.cover_texture]);
+        let cover_texture = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(COVER_TEXTURE_PASS.entry_point),
+            layout: Some(&cover_layout),
+            module: &render,
+            entry_point: Some(COVER_TEXTURE_PASS.entry_point),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+        Self {
+            kernels,
+            splat,
+            cover_texture,
+        }
     }
 }

@@ -137,11 +137,12 @@ impl ColourTarget {
     }
 }
 
-/// Copies a 4-byte-per-pixel 2D texture (made with `COPY_SRC`) back, rows top to
-/// bottom, bytes in the texture's own channel order (tests and tools).
+/// Copies a 2D texture (made with `COPY_SRC`) back, rows top to bottom, bytes in the
+/// texture's own layout (tests and tools); an [`Image`]'s `rgba8` holds the bytes
+/// (4 a pixel for RGBA8, 8 for RGBA16F).
 pub fn read_texture(gpu: &GpuDevice, texture: &wgpu::Texture) -> Result<Image, BackendError> {
     let (width, height) = (texture.width(), texture.height());
-    let row = width * 4;
+    let row = width * texture.format().block_copy_size(None).unwrap_or(4);
     let padded =
         row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
     let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {

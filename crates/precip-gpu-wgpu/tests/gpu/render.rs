@@ -678,3 +678,53 @@ fn splatted_far_snow_matches_the_all_sprite_frame() {
         );
     }
 }
+
+/// The surfaces read the cover from two RGBA16F textures the frame writes from the
+/// cover texels: after a day of snow they hold every texel's depth, SWE, peak SWE,
+/// wetness, masks and age to half precision (relative 2⁻¹⁰, plus 10⁻³ absolute).
+#[test]
+fn the_cover_textures_match_the_cover_texels() {
+    let (setup, _) = snowed_house();
+    let view = view(setup.camera, 64, 48);
+    for (name, gpu) in common::gpu_backends("the_cover_textures_match_the_cover_texels") {
+        let mut gpu = gpu;
+        assert!(
+            gpu.read_cover_textures().is_err(),
+            "{name}: nothing before configure"
+        );
+        common::run(&mut gpu, &setup, 10, 0.1);
+        assert_eq!(
+            gpu.read_cover_textures().expect("reads"),
+            None,
+            "{name}: no frame yet"
+        );
+        gpu.render(&view).expect("renders");
+        let textures = gpu
+            .read_cover_textures()
+            .expect("reads")
+            .expect("a frame wrote them");
+        let cover = gpu.read_cover().expect("the cover");
+        assert_eq!(textures.len(), cover.texels.len(), "{name}");
+        let mut snowy = 0;
+        for (i, (t, c)) in textures.iter().zip(&cover.texels).enumerate() {
+            let expected = [
+                c.depth_mm,
+                c.swe_mm,
+                c.peak_swe_mm,
+                c.wetness,
+                c.accumulation_mask,
+                c.melt_mask,
+                c.age_days,
+                0.0,
+            ];
+            for (k, (got, want)) in t.iter().zip(expected).enumerate() {
+                assert!(
+                    (got - want).abs() <= want.abs() / 1024.0 + 1.0e-3,
+                    "{name}: texel {i} field {k}: texture {got}, cover {want}"
+                );
+            }
+            snowy += usize::from(c.depth_mm > 1.0);
+        }
+        assert!(snowy > 100, "{name}: {snowy} texels have snow");
+    }
+}
