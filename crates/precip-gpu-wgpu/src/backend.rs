@@ -23,6 +23,7 @@ use crate::render::target::{ColourTarget, DepthBuffer, OFFSCREEN_FORMAT, read_te
 use crate::render::{FrameTarget, RenderState, Renderer, encode_frame};
 use crate::resources::{Resources, upload_wind};
 use crate::timestamps::Timestamps;
+use precip_model::shadow_cache::ShadowCache;
 
 /// Bytes of one particle on the GPU.
 const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
@@ -206,6 +207,7 @@ impl WgpuBackend {
                 depth: None,
                 rendered: false,
                 shadow_bounds_m: state.setup.scene_bounds_m(),
+                shadow_cache: ShadowCache::default(),
             });
         }
         let Some(render) = state.render.as_mut() else {
@@ -228,6 +230,13 @@ impl WgpuBackend {
             state.time_s,
             state.resources.particle_count,
         );
+        let draw_shadow =
+            render
+                .shadow_cache
+                .for_frame(setup, &state.weather, &params, state.time_s);
+        if let Some(s) = self.render_stamps.as_mut() {
+            s.shadow_drawn = draw_shadow;
+        }
         let stamps = self.render_stamps.as_ref();
         let render_ref = &*render;
         let colour = match (external, render_ref.offscreen.as_ref()) {
@@ -257,6 +266,7 @@ impl WgpuBackend {
                     colour,
                     depth,
                     sky: setup.render.sky_colour,
+                    draw_shadow,
                 },
                 stamps,
                 state.resources.particle_count,

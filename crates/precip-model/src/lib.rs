@@ -44,6 +44,7 @@ pub mod rotation;
 pub mod scene;
 pub mod setup;
 pub mod shaders;
+pub mod shadow_cache;
 pub mod snowfall;
 pub mod snowflake;
 pub mod step;

@@ -106,6 +106,7 @@ impl VkBackend {
                 shadow_bounds_m: state.setup.scene_bounds_m(),
                 frames_drawn: 0,
                 splat_sums: None,
+                shadow_cache: precip_model::shadow_cache::ShadowCache::default(),
             });
         }
         let Some(render) = state.render.as_mut() else {
@@ -146,6 +147,10 @@ impl VkBackend {
             state.time_s,
             state.resources.particle_count,
         );
+        let draw_shadow =
+            render
+                .shadow_cache
+                .for_frame(setup, &state.weather, &params, state.time_s);
         let slot = render.frames_drawn % FRAMES_IN_FLIGHT as u64;
         let offset = slot * render.frame.params_stride;
         if let Some(sums) = &render.splat_sums {
@@ -171,6 +176,7 @@ impl VkBackend {
                 render.frame.resolve_sets[slot as usize],
             ),
             zero_splat_sums,
+            draw_shadow,
         };
         let particle_count = state.resources.particle_count;
         if renderer.draws_for_pass(passes.scene).is_none() {
@@ -207,6 +213,7 @@ impl VkBackend {
         self.track(in_flight);
         if let Some(s) = self.renderer.as_mut().and_then(|r| r.stamps.as_mut()) {
             s.written = true;
+            s.shadow_drawn = draw_shadow;
         }
         Ok(())
     }

@@ -208,6 +208,8 @@ pub struct RenderState {
     pub shadow_bounds_m: (Vec3, Vec3),
     /// Frames drawn since configure (picks the uniform block).
     pub frames_drawn: u64,
+    /// Whether a frame redraws the shadow map.
+    pub shadow_cache: precip_model::shadow_cache::ShadowCache,
     /// The splat's sums, for the last frame's size.
     pub splat_sums: Option<frame::SplatSums>,
 }
@@ -243,6 +245,8 @@ pub struct FrameTarget {
     pub splat_sets: (vk::DescriptorSet, vk::DescriptorSet),
     /// The splat sums to fill with zeros first (new sums), if any.
     pub zero_splat_sums: Option<vk::Buffer>,
+    /// Draw the shadow map (else the last one stands: `ShadowCache`).
+    pub draw_shadow: bool,
 }
 
 /// The viewport of `size`, y flipped (WGSL's clip space, as wgpu-hal).
@@ -404,30 +408,32 @@ pub unsafe fn record_frame(
         );
     }
     stamp(1);
-    begin(
-        renderer.shadow_pass,
-        frame.shadow_framebuffer,
-        shadow_px,
-        &[depth_clear],
-    );
-    if let Some(scene) = &state.scene {
-        // SAFETY: inside the shadow pass; the shadow pipeline was made for it.
-        unsafe {
-            device
-                .raw
-                .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, renderer.shadow)
-        };
-        bind_sets(
-            vk::PipelineBindPoint::GRAPHICS,
-            layout,
-            0,
-            &[frame.frame_set],
-            &dynamic,
+    if target.draw_shadow {
+        begin(
+            renderer.shadow_pass,
+            frame.shadow_framebuffer,
+            shadow_px,
+            &[depth_clear],
         );
-        scene.draw(device, cb, layout, false);
+        if let Some(scene) = &state.scene {
+            // SAFETY: inside the shadow pass; the shadow pipeline was made for it.
+            unsafe {
+                device
+                    .raw
+                    .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, renderer.shadow)
+            };
+            bind_sets(
+                vk::PipelineBindPoint::GRAPHICS,
+                layout,
+                0,
+                &[frame.frame_set],
+                &dynamic,
+            );
+            scene.draw(device, cb, layout, false);
+        }
+        // SAFETY: ends the pass begun above.
+        unsafe { device.raw.cmd_end_render_pass(cb) };
     }
-    // SAFETY: ends the pass begun above.
-    unsafe { device.raw.cmd_end_render_pass(cb) };
     stamp(2);
     let sky = target.sky;
     let clears = [

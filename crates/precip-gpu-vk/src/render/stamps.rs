@@ -21,6 +21,8 @@ pub struct RenderStamps {
     pub pool: vk::QueryPool,
     /// Whether a submitted frame wrote them.
     pub written: bool,
+    /// Whether the last frame drew the shadow map (else the pass is not reported).
+    pub shadow_drawn: bool,
 }
 
 impl RenderStamps {
@@ -39,6 +41,7 @@ impl RenderStamps {
         Ok(Some(Self {
             pool,
             written: false,
+            shadow_drawn: true,
         }))
     }
 
@@ -89,6 +92,7 @@ impl RenderStamps {
         Ok(PASSES
             .iter()
             .zip(ticks.windows(2))
+            .filter(|(pass, _)| self.shadow_drawn || **pass != "shadow")
             .map(|(pass, t)| PassTiming {
                 pass,
                 milliseconds: t[1].saturating_sub(t[0]) as f64 * period * 1e-6,

@@ -46,6 +46,7 @@ use self::stamps::RenderStamps;
 use self::target::{ColourTarget, DepthBuffer};
 use precip_model::gpu::dispatch_size;
 use precip_model::gpu::{DispatchOver, FrameDraws};
+use precip_model::shadow_cache::ShadowCache;
 
 /// Layouts and pipelines of one device.
 #[derive(Debug)]
@@ -100,6 +101,8 @@ pub struct RenderState {
     pub rendered: bool,
     /// The box the shadow map encloses (the scene's bounds, computed once), m.
     pub shadow_bounds_m: (Vec3, Vec3),
+    /// Whether a frame redraws the shadow map.
+    pub shadow_cache: ShadowCache,
 }
 
 /// Where a frame goes.
@@ -111,6 +114,8 @@ pub struct FrameTarget<'a> {
     pub depth: &'a DepthBuffer,
     /// The sky's colour (linear), the clear colour.
     pub sky: Vec3,
+    /// Draw the shadow map (else the last one stands: `ShadowCache`).
+    pub draw_shadow: bool,
 }
 
 /// Writes of timed pass `pass` (its index in `TIMED_RENDER_PASSES`): queries `2·pass`
@@ -162,7 +167,7 @@ pub fn encode_frame(
         let (x, y) = dispatch_size(frame.cover_texels);
         pass.dispatch_workgroups(x, y, 1);
     }
-    {
+    if target.draw_shadow {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("precip shadow"),
             color_attachments: &[],

@@ -19,6 +19,9 @@ pub struct RenderStamps {
     pub resolve: wgpu::Buffer,
     /// Whether a frame wrote them.
     pub written: bool,
+    /// Whether the last frame drew the shadow map (else its queries are stale and
+    /// the pass is not reported).
+    pub shadow_drawn: bool,
     period_ns: f32,
 }
 
@@ -47,6 +50,7 @@ impl RenderStamps {
                 mapped_at_creation: false,
             }),
             written: false,
+            shadow_drawn: true,
             period_ns: gpu.queue.get_timestamp_period(),
         })
     }
@@ -74,6 +78,7 @@ impl RenderStamps {
         Ok(RENDER_PASSES
             .iter()
             .enumerate()
+            .filter(|(_, pass)| self.shadow_drawn || **pass != "shadow")
             .map(|(i, pass)| PassTiming {
                 pass,
                 milliseconds: ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64

@@ -728,3 +728,73 @@ fn the_cover_textures_match_the_cover_texels() {
         assert!(snowy > 100, "{name}: {snowy} texels have snow");
     }
 }
+
+/// The shadow map is drawn on the first frame and again only when the sun, the
+/// displacement or the snow moved enough (`ShadowCache`): frames in real time under
+/// light snow, with the camera moving, reuse it and look the same as a frame that
+/// redraws it; a heavy snowfall at a day per second redraws it every frame.
+#[test]
+fn the_shadow_map_is_not_redrawn_when_nothing_changed() {
+    let (mut setup, _) = snowed_house();
+    setup.cover.time_scale = 1.0;
+    let view = view(setup.camera, 96, 72);
+    let shadow_timed = |gpu: &mut WgpuBackend| {
+        gpu.timings()
+            .expect("timings")
+            .passes
+            .iter()
+            .any(|p| p.pass == "shadow")
+    };
+    for (name, mut gpu) in
+        common::gpu_backends("the_shadow_map_is_not_redrawn_when_nothing_changed")
+    {
+        common::run(&mut gpu, &setup, 2, 0.05);
+        gpu.render(&view).expect("renders");
+        if gpu.timings().expect("timings").source == precip_model::TimingSource::Unavailable {
+            eprintln!("{name}: no timestamps: the cache is not observable here");
+            continue;
+        }
+        assert!(shadow_timed(&mut gpu), "{name}: the first frame draws it");
+        let mut moved = view;
+        let mut cameras = Vec::new();
+        for _ in 0..5 {
+            moved.camera.position_m.x += 0.01;
+            cameras.push(moved.camera);
+            gpu.set_camera(&moved.camera).expect("valid");
+            gpu.step(0.05).expect("valid");
+            gpu.render(&moved).expect("renders");
+            assert!(
+                !shadow_timed(&mut gpu),
+                "{name}: 5 cm/h moves nothing in 0.05 s"
+            );
+        }
+        gpu.render(&moved).expect("renders");
+        let reused = gpu.read_image().expect("an image");
+        // The same state re-made (deterministic), its first frame drawing the map.
+        common::run(&mut gpu, &setup, 2, 0.05);
+        for camera in &cameras {
+            gpu.set_camera(camera).expect("valid");
+            gpu.step(0.05).expect("valid");
+        }
+        gpu.render(&moved).expect("renders");
+        assert!(
+            shadow_timed(&mut gpu),
+            "{name}: a new configuration draws it"
+        );
+        let redrawn = gpu.read_image().expect("an image");
+        let difference = max_difference(&reused, &redrawn);
+        assert!(
+            difference <= 1,
+            "{name}: the reused map differs by {difference}/255"
+        );
+        // A day per second of heavy snow moves the surface every frame.
+        setup.cover.time_scale = 86_400.0;
+        setup.weather.intensity_mm_per_h = 20.0;
+        gpu.configure(&setup).expect("valid");
+        for frame in 0..3 {
+            gpu.step(0.05).expect("valid");
+            gpu.render(&view).expect("renders");
+            assert!(shadow_timed(&mut gpu), "{name}: frame {frame} redraws it");
+        }
+    }
+}
