@@ -1,4 +1,6 @@
-//! `cargo run --release -p precip-benches --bin report [out.json]`: every backend side
+//! `cargo run --release -p precip-benches --bin report [out.json [before.json]]`
+//! (`before.json`: an earlier report, or `docs/performance-before.json`, whose frames
+//! are plotted beside today's): every backend side
 //! by side — particles per second of a step, the step's bytes per second against the
 //! device's own buffer-copy bandwidth (and `step_over_copy_64b`: step particles/s at
 //! 10⁶ over copy bytes/s ÷ 128, the rate of a kernel that only copies a 64-byte
@@ -297,6 +299,19 @@ fn main() {
     let peer = measure_peer();
     let mut plotted = series(&rows, "step_ms", "step");
     plotted.extend(series(&frame_rows, "frame_ms", "frame 1280×720"));
+    // An earlier report's (or docs/performance-before.json's) frames, for comparison.
+    if let Some(before) = std::env::args().nth(2) {
+        match std::fs::read_to_string(&before)
+            .map_err(|e| e.to_string())
+            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).map_err(|e| e.to_string()))
+        {
+            Ok(v) => {
+                let rows = v["frames"].as_array().cloned().unwrap_or_default();
+                plotted.extend(series(&rows, "frame_ms", "frame before"));
+            }
+            Err(e) => eprintln!("{before}: {e}"),
+        }
+    }
     let device = backends()
         .into_iter()
         .find(|(n, _)| *n == "vk" || *n == "wgpu")
