@@ -48,6 +48,7 @@
 )]
 
 mod backend;
+mod bind_groups;
 mod buffer;
 mod commands;
 mod descriptors;

@@ -6,9 +6,11 @@ use std::ffi::CString;
 
 use ash::vk;
 use precip_model::BackendError;
-use precip_model::gpu::{INIT_PASS, KernelPass, SUBSTEP_PASSES, cover_bindings, step_bindings};
+use precip_model::bind_groups;
+use precip_model::gpu::{INIT_PASS, KernelPass, SUBSTEP_PASSES};
 use precip_model::shaders::Program;
 
+use crate::bind_groups::set_layout;
 use crate::device::Device;
 use crate::error::{NAME, map_vk};
 use crate::spirv::words;
@@ -29,24 +31,6 @@ pub struct Programs {
     pub init: vk::Pipeline,
     /// The kernels of one sub-step, in the recipe's order.
     pub substep: Vec<(KernelPass, vk::Pipeline)>,
-}
-
-fn binding(b: u32, ty: vk::DescriptorType) -> vk::DescriptorSetLayoutBinding<'static> {
-    vk::DescriptorSetLayoutBinding::default()
-        .binding(b)
-        .descriptor_type(ty)
-        .descriptor_count(1)
-        .stage_flags(vk::ShaderStageFlags::COMPUTE)
-}
-
-fn set_layout(
-    device: &Device,
-    bindings: &[vk::DescriptorSetLayoutBinding<'_>],
-) -> Result<vk::DescriptorSetLayout, BackendError> {
-    let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(bindings);
-    // SAFETY: a valid device and create info.
-    unsafe { device.raw.create_descriptor_set_layout(&info, None) }
-        .map_err(|e| map_vk("creating a descriptor set layout", e))
 }
 
 fn pipeline_layout(
@@ -103,27 +87,8 @@ pub fn compute(
 impl Programs {
     /// Compiles every kernel of the recipe.
     pub fn new(device: &Device) -> Result<Self, BackendError> {
-        use vk::DescriptorType as T;
-        let step_set_layout = set_layout(
-            device,
-            &[
-                binding(step_bindings::STEP_PARAMS, T::UNIFORM_BUFFER_DYNAMIC),
-                binding(step_bindings::FRAMES, T::UNIFORM_BUFFER),
-                binding(step_bindings::WIND, T::UNIFORM_BUFFER),
-                binding(step_bindings::WIND_VOLUME, T::SAMPLED_IMAGE),
-                binding(step_bindings::GROUND_HEIGHT, T::STORAGE_BUFFER),
-                binding(step_bindings::PARTICLES, T::STORAGE_BUFFER),
-                binding(step_bindings::DEPOSITS, T::STORAGE_BUFFER),
-            ],
-        )?;
-        let cover_set_layout = set_layout(
-            device,
-            &[
-                binding(cover_bindings::COVER_PARAMS, T::UNIFORM_BUFFER_DYNAMIC),
-                binding(cover_bindings::COVER, T::STORAGE_BUFFER),
-                binding(cover_bindings::DEPOSITS, T::STORAGE_BUFFER),
-            ],
-        )?;
+        let step_set_layout = set_layout(device, &bind_groups::STEP)?;
+        let cover_set_layout = set_layout(device, &bind_groups::COVER_UPDATE)?;
         let step_layout = pipeline_layout(device, step_set_layout)?;
         let cover_layout = pipeline_layout(device, cover_set_layout)?;
         let step_module = module(device, Program::StepParticles)?;

@@ -8,7 +8,8 @@
 //! reference runs the same functions in Rust, so the two can be compared.
 //!
 //! - [`device`] — finding adapters and opening a device (or adopting the caller's).
-//! - [`pipelines`] — shader modules, bind group layouts and compute pipelines.
+//! - [`bind_groups`] — bind group layouts from `precip_model::bind_groups`' tables.
+//! - [`pipelines`] — shader modules and compute pipelines.
 //! - [`resources`] — the buffers and the wind texture of one configuration.
 //! - [`timestamps`] — GPU timestamp queries per kernel, where the adapter has them.
 //! - [`readback`] — copying a buffer back (tests and tools; never the frame loop).
@@ -24,6 +25,7 @@
 //! back while stepping.
 
 pub mod backend;
+pub mod bind_groups;
 pub mod conv;
 pub mod device;
 pub mod pipelines;

@@ -1,11 +1,10 @@
 //! Shader modules, bind group layouts and compute pipelines of the frame recipe.
 
-use std::num::NonZeroU64;
-
-use precip_model::cover::CoverStepParams;
-use precip_model::gpu::{INIT_PASS, KernelPass, SUBSTEP_PASSES, cover_bindings, step_bindings};
+use precip_model::bind_groups;
+use precip_model::gpu::{INIT_PASS, KernelPass, SUBSTEP_PASSES};
 use precip_model::shaders::Program;
-use precip_model::step::StepParams;
+
+use crate::bind_groups::bind_group_layout;
 
 /// The compiled programs of one device.
 #[derive(Debug)]
@@ -18,32 +17,6 @@ pub struct Pipelines {
     pub init: wgpu::ComputePipeline,
     /// The kernels of one sub-step, in the recipe's order.
     pub substep: Vec<(KernelPass, wgpu::ComputePipeline)>,
-}
-
-fn uniform(binding: u32, size: usize, dynamic: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: dynamic,
-            min_binding_size: NonZeroU64::new(size as u64),
-        },
-        count: None,
-    }
-}
-
-fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
 }
 
 /// A WGSL program as a shader module.
@@ -80,47 +53,8 @@ impl Pipelines {
     /// Compiles every kernel of the recipe.
     #[must_use]
     pub fn new(device: &wgpu::Device) -> Self {
-        let step_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("precip step_particles"),
-            entries: &[
-                uniform(step_bindings::STEP_PARAMS, size_of::<StepParams>(), true),
-                uniform(
-                    step_bindings::FRAMES,
-                    size_of::<precip_model::gpu::Frames>(),
-                    false,
-                ),
-                uniform(
-                    step_bindings::WIND,
-                    size_of::<precip_model::wind::WindParams>(),
-                    false,
-                ),
-                wgpu::BindGroupLayoutEntry {
-                    binding: step_bindings::WIND_VOLUME,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D3,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                storage(step_bindings::GROUND_HEIGHT, true),
-                storage(step_bindings::PARTICLES, false),
-                storage(step_bindings::DEPOSITS, false),
-            ],
-        });
-        let cover_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("precip cover_update"),
-            entries: &[
-                uniform(
-                    cover_bindings::COVER_PARAMS,
-                    size_of::<CoverStepParams>(),
-                    true,
-                ),
-                storage(cover_bindings::COVER, false),
-                storage(cover_bindings::DEPOSITS, false),
-            ],
-        });
+        let step_layout = bind_group_layout(device, &bind_groups::STEP);
+        let cover_layout = bind_group_layout(device, &bind_groups::COVER_UPDATE);
         let step_module = shader_module(device, Program::StepParticles);
         let cover_module = shader_module(device, Program::CoverUpdate);
         let substep = SUBSTEP_PASSES

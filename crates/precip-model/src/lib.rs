@@ -24,6 +24,7 @@
 //! `precip-wind` and the snow cover in `precip-cover`.
 
 pub mod backend;
+pub mod bind_groups;
 pub mod birth;
 pub mod builtin;
 pub mod camera;

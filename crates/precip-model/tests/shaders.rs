@@ -7,6 +7,7 @@ use std::mem::{offset_of, size_of};
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use precip_model::Particle;
+use precip_model::bind_groups::{BindingKind, Stages, TextureSample, groups_of};
 use precip_model::cover::{CoverStepParams, CoverTexel, GridFrame};
 use precip_model::gpu::{DrawArgs, FrameDraws, Frames, ProbeDrawing};
 use precip_model::render::RenderParams;
@@ -222,4 +223,115 @@ fn rust_and_wgsl_layouts_match() {
         }
         assert!(offsets.len() >= 2, "{name}");
     }
+}
+
+/// Whether `kind` can hold the WGSL global `var` of `module`.
+fn kind_matches(module: &naga::Module, var: &naga::GlobalVariable, kind: BindingKind) -> bool {
+    use naga::{AddressSpace, ImageClass, ImageDimension, StorageAccess, TypeInner};
+    match (var.space, kind) {
+        (AddressSpace::Uniform, BindingKind::Uniform { .. }) => true,
+        (AddressSpace::Storage { access }, BindingKind::Storage { read_only, .. }) => {
+            read_only != access.contains(StorageAccess::STORE)
+        }
+        (AddressSpace::Handle, kind) => match (&module.types[var.ty].inner, kind) {
+            (TypeInner::Sampler { comparison }, BindingKind::Sampler { comparison: c }) => {
+                *comparison == c
+            }
+            (TypeInner::Image { dim, class, .. }, BindingKind::Texture { sample, volume }) => {
+                (*dim == ImageDimension::D3) == volume
+                    && matches!(
+                        (class, sample),
+                        (ImageClass::Sampled { .. }, TextureSample::Float { .. })
+                            | (ImageClass::Depth { .. }, TextureSample::Depth)
+                    )
+            }
+            (
+                TypeInner::Image {
+                    dim: ImageDimension::D2,
+                    class: ImageClass::Storage { format, .. },
+                    ..
+                },
+                BindingKind::StorageTextureRgba16Float,
+            ) => *format == naga::StorageFormat::Rgba16Float,
+            _ => false,
+        },
+        _ => false,
+    }
+}
+
+fn stage_sees(stages: Stages, stage: naga::ShaderStage) -> bool {
+    use naga::ShaderStage as S;
+    match stages {
+        Stages::Compute => stage == S::Compute,
+        Stages::Draw => matches!(stage, S::Vertex | S::Fragment),
+        Stages::Fragment => stage == S::Fragment,
+        Stages::DrawAndCompute => matches!(stage, S::Vertex | S::Fragment | S::Compute),
+    }
+}
+
+/// The binding tables both backends build their layouts from
+/// (`precip_model::bind_groups`) against naga's reflection of the WGSL: every resource
+/// an entry point uses is in its group's table, of the same kind, visible to its stage.
+#[test]
+fn the_binding_tables_match_the_wgsl() {
+    let mut checked = 0;
+    for program in [
+        Program::StepParticles,
+        Program::CoverUpdate,
+        Program::CullParticles,
+        Program::Render,
+    ] {
+        let module = parse(program);
+        let info = Validator::new(ValidationFlags::all(), Capabilities::default())
+            .validate(&module)
+            .expect("valid");
+        for (index, ep) in module.entry_points.iter().enumerate() {
+            let groups = groups_of(program, &ep.name)
+                .unwrap_or_else(|| panic!("{program:?} {} has no groups", ep.name));
+            let uses = info.get_entry_point(index);
+            let mut used = 0;
+            for (handle, var) in module.global_variables.iter() {
+                let Some(rb) = &var.binding else {
+                    continue;
+                };
+                if uses[handle].is_empty() {
+                    continue;
+                }
+                used += 1;
+                let name = var.name.as_deref().unwrap_or("?");
+                let group = groups.get(rb.group as usize).unwrap_or_else(|| {
+                    panic!(
+                        "{} uses {name} in group {}, which it is not given",
+                        ep.name, rb.group
+                    )
+                });
+                let entry = group
+                    .bindings
+                    .iter()
+                    .find(|b| b.binding == rb.binding)
+                    .unwrap_or_else(|| {
+                        panic!(
+                            "{}: {name} (binding {}) is not in {}",
+                            ep.name, rb.binding, group.name
+                        )
+                    });
+                assert!(
+                    kind_matches(&module, var, entry.kind),
+                    "{}: {name} does not match {:?} in {}",
+                    ep.name,
+                    entry.kind,
+                    group.name
+                );
+                assert!(
+                    stage_sees(entry.stages, ep.stage),
+                    "{}: {name} is not visible to {:?} in {}",
+                    ep.name,
+                    ep.stage,
+                    group.name
+                );
+            }
+            checked += used;
+        }
+    }
+    assert!(checked > 40, "only {checked} resources checked");
 }

@@ -1,14 +1,15 @@
-//! Descriptor set layouts and pipeline layouts of the render and cull programs
-//! (bindings: `precip_model::gpu::{render_bindings, cull_bindings}`), the Vulkan
-//! twins of the wgpu backend's bind group layouts.
+//! Descriptor set layouts (from `precip_model::bind_groups`' tables, as the wgpu
+//! backend's bind group layouts) and pipeline layouts of the render, cull, splat and
+//! cover-texture kernels.
 //!
 //! `RenderParams` is dynamic read-only storage (not a uniform: see render_scene.wgsl):
 //! one block per frame in flight, so the host writes frame n + 1's while frame n draws.
 
 use ash::vk;
 use precip_model::BackendError;
-use precip_model::gpu::{cull_bindings as cb, render_bindings as rb};
+use precip_model::bind_groups as bg;
 
+use crate::bind_groups::set_layout;
 use crate::device::Device;
 use crate::error::map_vk;
 
@@ -42,31 +43,6 @@ pub struct RenderLayouts {
     pub cover_texture_layout: vk::PipelineLayout,
 }
 
-fn binding(
-    b: u32,
-    ty: vk::DescriptorType,
-    stages: vk::ShaderStageFlags,
-) -> vk::DescriptorSetLayoutBinding<'static> {
-    vk::DescriptorSetLayoutBinding::default()
-        .binding(b)
-        .descriptor_type(ty)
-        .descriptor_count(1)
-        .stage_flags(stages)
-}
-
-fn set_layout(
-    device: &Device,
-    name: &str,
-    bindings: &[vk::DescriptorSetLayoutBinding<'_>],
-) -> Result<vk::DescriptorSetLayout, BackendError> {
-    let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(bindings);
-    // SAFETY: a valid device and create info.
-    let layout = unsafe { device.raw.create_descriptor_set_layout(&info, None) }
-        .map_err(|e| map_vk("creating a descriptor set layout", e))?;
-    device.name(layout, name);
-    Ok(layout)
-}
-
 fn pipeline_layout(
     device: &Device,
     name: &str,
@@ -83,80 +59,13 @@ fn pipeline_layout(
 impl RenderLayouts {
     /// Creates the layouts.
     pub fn new(device: &Device) -> Result<Self, BackendError> {
-        use vk::DescriptorType as T;
-        let compute = vk::ShaderStageFlags::COMPUTE;
-        // Sets 0 and 1 serve the draws and the splat kernel.
-        let draw = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT | compute;
-        let material_stages = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT;
-        let frame = set_layout(
-            device,
-            "precip render frame",
-            &[
-                binding(rb::PARAMS, T::STORAGE_BUFFER_DYNAMIC, draw),
-                binding(rb::GROUND_HEIGHT, T::STORAGE_BUFFER, draw),
-                binding(rb::PARTICLES, T::STORAGE_BUFFER, draw),
-                binding(rb::DRAWN, T::STORAGE_BUFFER, draw),
-                binding(rb::COVER_A, T::SAMPLED_IMAGE, draw),
-                binding(rb::COVER_B, T::SAMPLED_IMAGE, draw),
-                binding(rb::COVER_SAMPLER, T::SAMPLER, draw),
-            ],
-        )?;
-        let light = set_layout(
-            device,
-            "precip render light",
-            &[
-                binding(rb::SHADOW_MAP, T::SAMPLED_IMAGE, draw),
-                binding(rb::SHADOW_SAMPLER, T::SAMPLER, draw),
-                binding(rb::FLAKE_OPACITY, T::SAMPLED_IMAGE, draw),
-                binding(rb::FLAKE_SAMPLER, T::SAMPLER, draw),
-            ],
-        )?;
-        let material = set_layout(
-            device,
-            "precip render material",
-            &[
-                binding(rb::MATERIAL, T::UNIFORM_BUFFER, material_stages),
-                binding(rb::BASE_COLOUR_TEXTURE, T::SAMPLED_IMAGE, material_stages),
-                binding(rb::MATERIAL_SAMPLER, T::SAMPLER, material_stages),
-            ],
-        )?;
-        let cull = set_layout(
-            device,
-            "precip cull",
-            &[
-                binding(cb::PARAMS, T::STORAGE_BUFFER_DYNAMIC, compute),
-                binding(cb::PARTICLES, T::STORAGE_BUFFER, compute),
-                binding(cb::GROUP_COUNTS, T::STORAGE_BUFFER, compute),
-                binding(cb::DRAWN, T::STORAGE_BUFFER, compute),
-                binding(cb::DRAWS, T::STORAGE_BUFFER, compute),
-            ],
-        )?;
-        let splat = set_layout(
-            device,
-            "precip splat",
-            &[
-                binding(rb::SPLAT_SCENE_DEPTH, T::SAMPLED_IMAGE, compute),
-                binding(rb::SPLAT_SUMS, T::STORAGE_BUFFER, compute),
-            ],
-        )?;
-        let splat_resolve = set_layout(
-            device,
-            "precip splat resolve",
-            &[binding(
-                rb::RESOLVED_SUMS,
-                T::STORAGE_BUFFER,
-                vk::ShaderStageFlags::FRAGMENT,
-            )],
-        )?;
-        let cover_texture = set_layout(
-            device,
-            "precip cover texture",
-            &[
-                binding(rb::COVER, T::STORAGE_BUFFER, compute),
-                binding(rb::COVER_A_OUT, T::STORAGE_IMAGE, compute),
-                binding(rb::COVER_B_OUT, T::STORAGE_IMAGE, compute),
-            ],
-        )?;
+        let frame = set_layout(device, &bg::RENDER_FRAME)?;
+        let light = set_layout(device, &bg::RENDER_LIGHT)?;
+        let material = set_layout(device, &bg::RENDER_MATERIAL)?;
+        let cull = set_layout(device, &bg::CULL)?;
+        let splat = set_layout(device, &bg::SPLAT)?;
+        let splat_resolve = set_layout(device, &bg::SPLAT_RESOLVE)?;
+        let cover_texture = set_layout(device, &bg::COVER_TEXTURE)?;
         Ok(Self {
             cover_texture_layout: pipeline_layout(
                 device,

@@ -10,8 +10,9 @@ use precip_model::render::RenderParams;
 
 use precip_model::Setup;
 
-use super::layouts::{COVER_TEXTURE_FORMAT, RenderLayouts};
+use super::layouts::RenderLayouts;
 use super::pipelines::DEPTH_FORMAT;
+use crate::bind_groups::COVER_TEXTURE_FORMAT;
 use crate::device::GpuDevice;
 use crate::resources::Resources;
 

@@ -1,10 +1,9 @@
-//! Bind group layouts of the render and cull programs (bindings:
-//! `precip_model::gpu::{render_bindings, cull_bindings}`).
+//! Bind group layouts of the render, cull, splat and cover-texture kernels, made from
+//! `precip_model::bind_groups`' tables.
 
-use std::num::NonZeroU64;
+use precip_model::bind_groups as bg;
 
-use precip_model::gpu::{cull_bindings, render_bindings as rb};
-use precip_model::render::RenderParams;
+use crate::bind_groups::bind_group_layout;
 
 /// The layouts, made once per device.
 #[derive(Debug)]
@@ -25,180 +24,19 @@ pub struct RenderLayouts {
     pub cover_texture: wgpu::BindGroupLayout,
 }
 
-/// The cover textures' format (`precip_model::gpu::COVER_TEXTURE_FORMAT_NAME`).
-pub const COVER_TEXTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-
-/// Groups 0 and 1 serve the draws and the splat kernel.
-const DRAW: wgpu::ShaderStages =
-    wgpu::ShaderStages::VERTEX_FRAGMENT.union(wgpu::ShaderStages::COMPUTE);
-
-fn entry(
-    binding: u32,
-    visibility: wgpu::ShaderStages,
-    ty: wgpu::BindingType,
-) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty,
-        count: None,
-    }
-}
-
-fn uniform(size: usize) -> wgpu::BindingType {
-    wgpu::BindingType::Buffer {
-        ty: wgpu::BufferBindingType::Uniform,
-        has_dynamic_offset: false,
-        min_binding_size: NonZeroU64::new(size as u64),
-    }
-}
-
-fn storage(read_only: bool) -> wgpu::BindingType {
-    wgpu::BindingType::Buffer {
-        ty: wgpu::BufferBindingType::Storage { read_only },
-        has_dynamic_offset: false,
-        min_binding_size: None,
-    }
-}
-
-fn texture(sample_type: wgpu::TextureSampleType) -> wgpu::BindingType {
-    wgpu::BindingType::Texture {
-        sample_type,
-        view_dimension: wgpu::TextureViewDimension::D2,
-        multisampled: false,
-    }
-}
-
 impl RenderLayouts {
     /// Creates the layouts.
     #[must_use]
     pub fn new(device: &wgpu::Device) -> Self {
-        // Read-only storage, not uniform: see render_scene.wgsl.
-        let params = wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: false,
-            min_binding_size: NonZeroU64::new(size_of::<RenderParams>() as u64),
-        };
-        let frame = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("precip render frame"),
-            entries: &[
-                entry(rb::PARAMS, DRAW, params),
-                entry(rb::GROUND_HEIGHT, DRAW, storage(true)),
-                entry(rb::PARTICLES, DRAW, storage(true)),
-                entry(rb::DRAWN, DRAW, storage(true)),
-                entry(
-                    rb::COVER_A,
-                    DRAW,
-                    texture(wgpu::TextureSampleType::Float { filterable: true }),
-                ),
-                entry(
-                    rb::COVER_B,
-                    DRAW,
-                    texture(wgpu::TextureSampleType::Float { filterable: true }),
-                ),
-                entry(
-                    rb::COVER_SAMPLER,
-                    DRAW,
-                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                ),
-            ],
-        });
-        let light = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("precip render light"),
-            entries: &[
-                entry(
-                    rb::SHADOW_MAP,
-                    DRAW,
-                    texture(wgpu::TextureSampleType::Depth),
-                ),
-                entry(
-                    rb::SHADOW_SAMPLER,
-                    DRAW,
-                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                ),
-                entry(
-                    rb::FLAKE_OPACITY,
-                    DRAW,
-                    texture(wgpu::TextureSampleType::Float { filterable: true }),
-                ),
-                entry(
-                    rb::FLAKE_SAMPLER,
-                    DRAW,
-                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                ),
-            ],
-        });
-        let material = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("precip render material"),
-            entries: &[
-                entry(
-                    rb::MATERIAL,
-                    wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    uniform(16),
-                ),
-                entry(
-                    rb::BASE_COLOUR_TEXTURE,
-                    wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    texture(wgpu::TextureSampleType::Float { filterable: true }),
-                ),
-                entry(
-                    rb::MATERIAL_SAMPLER,
-                    wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                ),
-            ],
-        });
-        let compute = wgpu::ShaderStages::COMPUTE;
-        let cull = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("precip cull"),
-            entries: &[
-                entry(cull_bindings::PARAMS, compute, params),
-                entry(cull_bindings::PARTICLES, compute, storage(true)),
-                entry(cull_bindings::GROUP_COUNTS, compute, storage(false)),
-                entry(cull_bindings::DRAWN, compute, storage(false)),
-                entry(cull_bindings::DRAWS, compute, storage(false)),
-            ],
-        });
-        let splat = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("precip splat"),
-            entries: &[
-                entry(
-                    rb::SPLAT_SCENE_DEPTH,
-                    compute,
-                    texture(wgpu::TextureSampleType::Depth),
-                ),
-                entry(rb::SPLAT_SUMS, compute, storage(false)),
-            ],
-        });
-        let splat_resolve = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("precip splat resolve"),
-            entries: &[entry(
-                rb::RESOLVED_SUMS,
-                wgpu::ShaderStages::FRAGMENT,
-                storage(false),
-            )],
-        });
-        let written = wgpu::BindingType::StorageTexture {
-            access: wgpu::StorageTextureAccess::WriteOnly,
-            format: COVER_TEXTURE_FORMAT,
-            view_dimension: wgpu::TextureViewDimension::D2,
-        };
-        let cover_texture = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("precip cover texture"),
-            entries: &[
-                entry(rb::COVER, compute, storage(true)),
-                entry(rb::COVER_A_OUT, compute, written),
-                entry(rb::COVER_B_OUT, compute, written),
-            ],
-        });
+        let layout = |g| bind_group_layout(device, g);
         Self {
-            frame,
-            light,
-            material,
-            cull,
-            splat,
-            splat_resolve,
-            cover_texture,
+            frame: layout(&bg::RENDER_FRAME),
+            light: layout(&bg::RENDER_LIGHT),
+            material: layout(&bg::RENDER_MATERIAL),
+            cull: layout(&bg::CULL),
+            splat: layout(&bg::SPLAT),
+            splat_resolve: layout(&bg::SPLAT_RESOLVE),
+            cover_texture: layout(&bg::COVER_TEXTURE),
         }
     }
 }

@@ -185,7 +185,7 @@ pub fn encode_frame(
         });
         if let Some(scene) = &state.scene {
             pass.set_pipeline(&draws.shadow);
-            pass.set_bind_group(0, &frame.frame_group, &[]);
+            pass.set_bind_group(0, &frame.frame_group, &[0]);
             scene.draw(&mut pass, false);
         }
     }
@@ -221,7 +221,7 @@ pub fn encode_frame(
         });
         if let Some(scene) = &state.scene {
             pass.set_pipeline(&draws.scene);
-            pass.set_bind_group(0, &frame.frame_group, &[]);
+            pass.set_bind_group(0, &frame.frame_group, &[0]);
             pass.set_bind_group(1, &frame.light_group, &[]);
             scene.draw(&mut pass, true);
         }
@@ -232,7 +232,7 @@ pub fn encode_frame(
             label: Some("precip cull_particles"),
             timestamp_writes: compute_stamps(stamps, 3),
         });
-        pass.set_bind_group(0, &frame.cull_group, &[]);
+        pass.set_bind_group(0, &frame.cull_group, &[0]);
         for (kernel, pipeline) in &cull.kernels {
             pass.set_pipeline(pipeline);
             let (x, y) = match kernel.over {
@@ -248,7 +248,7 @@ pub fn encode_frame(
             timestamp_writes: compute_stamps(stamps, 4),
         });
         pass.set_pipeline(&cull.splat);
-        pass.set_bind_group(0, &frame.frame_group, &[]);
+        pass.set_bind_group(0, &frame.frame_group, &[0]);
         pass.set_bind_group(1, &frame.light_group, &[]);
         pass.set_bind_group(2, &target.depth.splat_group, &[]);
         pass.dispatch_workgroups(particle_groups.0, particle_groups.1, 1);
@@ -276,7 +276,7 @@ pub fn encode_frame(
         occlusion_query_set: None,
         multiview_mask: None,
     });
-    pass.set_bind_group(0, &frame.frame_group, &[]);
+    pass.set_bind_group(0, &frame.frame_group, &[0]);
     pass.set_bind_group(1, &frame.light_group, &[]);
     pass.set_pipeline(&draws.splat_resolve);
     pass.set_bind_group(2, &target.depth.resolve_group, &[]);
