@@ -72,6 +72,15 @@ fn splat_ink(is_rain: bool, size: vec3<f32>, distance_m: f32, pixel_angle_rad: f
     return side_px * side_px * size.y * flake_mean_opacity;
 }
 
+// NEAR_FADE_START_M, NEAR_FADE_END_M
+const NEAR_FADE_START_M: f32 = 0.5;
+const NEAR_FADE_END_M: f32 = 1.5;
+
+// near_fade: opacity factor of a particle `distance_m` from the camera.
+fn near_fade(distance_m: f32) -> f32 {
+    return smoothstep(NEAR_FADE_START_M, NEAR_FADE_END_M, distance_m);
+}
+
 // raindrop_sizing: (h_m, a_m, opacity factor). sizing.w = rain streak s.
 fn raindrop_sizing(speed_mps: f32, distance_m: f32, pixel_angle_rad: f32, sizing: vec4<f32>) -> vec3<f32> {
     let h = sizing.w * speed_mps;

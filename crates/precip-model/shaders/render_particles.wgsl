@@ -43,7 +43,7 @@ fn vs_snow(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance
     var out: ParticleVarying;
     out.clip = params.view_proj * vec4<f32>(world, 1.0);
     out.uv = snow_sprite_uv(corner);
-    out.shade = vec4<f32>(snow_colour(p, distance_m), size.y);
+    out.shade = vec4<f32>(snow_colour(p, distance_m), size.y * near_fade(distance_m));
     out.normal = normalize_or_zero(camera - p.position_m);
     out.world_m = world;
     return out;
@@ -69,7 +69,7 @@ fn vs_rain(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
         shadow_lit(p.position_m),
         fog_transmittance(distance_m, params.to_sun_extinction.w),
         0.0,
-        params.cover_look.x * size.z,
+        params.cover_look.x * size.z * near_fade(distance_m),
     );
     out.normal = v.normal;
     out.world_m = v.position_m;

@@ -139,6 +139,21 @@ pub fn raindrop_sizing(
     }
 }
 
+/// Particles nearer the camera than this are not drawn, m (a flake or drop at the
+/// lens would fill the view as a blur a real camera does not focus).
+pub const NEAR_FADE_START_M: f32 = 0.5;
+/// From here on particles are drawn at full opacity, m.
+pub const NEAR_FADE_END_M: f32 = 1.5;
+
+/// Opacity factor of a sprite or streak `distance_m` from the camera: 0 before
+/// [`NEAR_FADE_START_M`], 1 after [`NEAR_FADE_END_M`], smooth between.
+///
+/// WGSL twin: `near_fade` in drawing.wgsl.
+#[must_use]
+pub fn near_fade(distance_m: f32) -> f32 {
+    smoothstep(NEAR_FADE_START_M, NEAR_FADE_END_M, distance_m)
+}
+
 /// Whether a particle `length_m` long at `distance_m` is drawn below `min_px` pixels
 /// (and so is splatted, not rasterised).
 ///
@@ -518,6 +533,14 @@ mod tests {
         assert!((h - 0.2).abs() < 1e-6 && (a - 0.02).abs() < 1e-6 && (o - 1.0).abs() < 1e-6);
         let (_, a, o) = raindrop_sizing(8.0, 2.0, pixel, &sizing);
         assert!((a - 0.03).abs() < 1e-6 && (o - 2.0 / 3.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn particles_at_the_lens_fade_out() {
+        assert!(near_fade(0.0).abs() < 1e-6 && near_fade(NEAR_FADE_START_M).abs() < 1e-6);
+        assert!((near_fade(1.0) - 0.5).abs() < 1e-6);
+        assert!((near_fade(NEAR_FADE_END_M) - 1.0).abs() < 1e-6);
+        assert!((near_fade(30.0) - 1.0).abs() < 1e-6);
     }
 
     #[test]
