@@ -1,10 +1,11 @@
 // cull_particles.wgsl: view-cone culling and stable compaction of the particles into
 // the lists the draws read (MODEL.md §5), in three kernels over 64-particle groups:
-//   cull_count  — each group counts its drawn sprites, streaks and splats;
+//   cull_count  — classifies each particle (drawn_kinds) and each group counts its
+//                 drawn sprites, streaks and splats;
 //   cull_scan   — one workgroup turns the counts into each group's offsets and writes
 //                 the two indirect draws' instance counts and the splat count;
 //   cull_write  — each drawn particle writes its index at its group's offset plus its
-//                 rank within the group.
+//                 rank within the group (reading its class, not classifying again).
 // The lists keep buffer order, so a frame draws (and blends) in the same order with
 // culling on or off: only what is outside the cone is missing. Sub-pixel particles
 // are in neither list: the splat kernel draws them (`drawn_as`, particle_lists.wgsl).
@@ -16,6 +17,9 @@
 @group(0) @binding(2) var<storage, read_write> group_counts: array<vec4<u32>>;
 @group(0) @binding(3) var<storage, read_write> drawn: array<u32>;
 @group(0) @binding(4) var<storage, read_write> draws: FrameDraws;
+// How each particle is drawn this frame (DRAWN_*), written by cull_count so the later
+// kernels read one word per particle instead of classifying it again.
+@group(0) @binding(5) var<storage, read_write> drawn_kinds: array<u32>;
 
 var<workgroup> group_kinds: array<u32, 64>;
 var<workgroup> partial: array<vec4<u32>, 64>;
@@ -23,7 +27,12 @@ var<workgroup> partial: array<vec4<u32>, 64>;
 @compute @workgroup_size(64)
 fn cull_count(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let g = wid.x + wid.y * groups.x;
-    group_kinds[lid] = drawn_as(g * 64u + lid);
+    let i = g * 64u + lid;
+    let kind = drawn_as(i);
+    group_kinds[lid] = kind;
+    if (i < params.counts.x) {
+        drawn_kinds[i] = kind;
+    }
     workgroupBarrier();
     if (lid == 0u) {
         var c = vec4<u32>(0u);
@@ -73,7 +82,10 @@ fn cull_scan(@builtin(local_invocation_index) lid: u32) {
 fn cull_write(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let g = wid.x + wid.y * groups.x;
     let i = g * 64u + lid;
-    let kind = drawn_as(i);
+    var kind = DRAWN_NOT;
+    if (i < params.counts.x) {
+        kind = drawn_kinds[i];
+    }
     group_kinds[lid] = kind;
     workgroupBarrier();
     if (kind != DRAWN_SNOW && kind != DRAWN_RAIN) {

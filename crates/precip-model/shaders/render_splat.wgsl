@@ -12,6 +12,8 @@
 // 1 / SPLAT_UNITS, where a is the opacity a particle adds to the pixel. Coverage is
 // 1 − exp(−Σ a) (the product of (1 − a) for small a), the colour Σ a·c / Σ a.
 
+// Group 0: each particle's class this frame (the cull kernels' drawn_kinds).
+@group(0) @binding(10) var<storage, read> drawn_kinds: array<u32>;
 // Group 2 of the splat kernel: the scene's depth (read) and the sums.
 @group(2) @binding(3) var scene_depth: texture_depth_2d;
 @group(2) @binding(4) var<storage, read_write> splat_sums: array<atomic<u32>>;
@@ -43,7 +45,7 @@ fn splat_look(p: Particle, distance_m: f32) -> vec4<f32> {
 @compute @workgroup_size(64)
 fn splat_particles(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = (wid.x + wid.y * groups.x) * 64u + lid;
-    if (drawn_as(i) != DRAWN_SPLAT) {
+    if (i >= params.counts.x || drawn_kinds[i] != DRAWN_SPLAT) {
         return;
     }
     let p = particles[i];

@@ -194,6 +194,7 @@ pub const CULL: GroupLayout = GroupLayout {
         binding(cb::GROUP_COUNTS, storage(false), Stages::Compute),
         binding(cb::DRAWN, storage(false), Stages::Compute),
         binding(cb::DRAWS, storage(false), Stages::Compute),
+        binding(cb::DRAWN_KINDS, storage(false), Stages::Compute),
     ],
 };
 
@@ -208,6 +209,7 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
         binding(rb::COVER_A, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::COVER_B, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::COVER_SAMPLER, FILTERING, Stages::DrawAndCompute),
+        binding(rb::DRAWN_KINDS, storage(true), Stages::DrawAndCompute),
     ],
 };
 

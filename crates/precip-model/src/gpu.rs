@@ -244,6 +244,10 @@ pub mod cull_bindings {
     pub const DRAWN: u32 = 3;
     /// The two indirect draws and the splat count, [`super::FrameDraws`].
     pub const DRAWS: u32 = 4;
+    /// How each particle is drawn this frame (`DRAWN_*`), `array<u32>` of the particle
+    /// count, written by `cull_count` (also group 0 binding
+    /// [`super::render_bindings::DRAWN_KINDS`] of the splat kernel).
+    pub const DRAWN_KINDS: u32 = 5;
 }
 
 /// Bindings of [`Program::Render`].
@@ -269,6 +273,9 @@ pub mod render_bindings {
     pub const COVER_B: u32 = 6;
     /// Group 0: their sampler (linear, clamped to the edge).
     pub const COVER_SAMPLER: u32 = 7;
+    /// Group 0: each particle's class this frame (the cull's
+    /// [`super::cull_bindings::DRAWN_KINDS`]), read-only storage.
+    pub const DRAWN_KINDS: u32 = 10;
     /// Group 0 of the `cover_texture` kernel: [`COVER_A`] as a write-only storage
     /// texture.
     pub const COVER_A_OUT: u32 = 8;

@@ -32,6 +32,8 @@ pub struct FrameResources {
     pub params_stride: u64,
     group_counts: Buffer,
     drawn: Buffer,
+    /// Each particle's class this frame (`cull_count` writes it).
+    drawn_kinds: Buffer,
     /// [`FrameDraws`]: the two indirect draws and the splat count.
     pub draws: Buffer,
     /// The sun's depth.
@@ -139,6 +141,11 @@ impl FrameResources {
             vk::BufferUsageFlags::empty(),
         )?;
         let drawn = gpu_only("drawn", u64::from(count) * 8, vk::BufferUsageFlags::empty())?;
+        let drawn_kinds = gpu_only(
+            "drawn kinds",
+            u64::from(count) * 4,
+            vk::BufferUsageFlags::empty(),
+        )?;
         let draws = gpu_only(
             "draws",
             FrameDraws::BYTES,
@@ -181,7 +188,7 @@ impl FrameResources {
             "frame",
             &[
                 (T::STORAGE_BUFFER_DYNAMIC, 2),
-                (T::STORAGE_BUFFER, 8 + 2 * FRAMES_IN_FLIGHT as u32),
+                (T::STORAGE_BUFFER, 10 + 2 * FRAMES_IN_FLIGHT as u32),
                 (T::SAMPLED_IMAGE, 4 + FRAMES_IN_FLIGHT as u32),
                 (T::SAMPLER, 3),
                 (T::STORAGE_IMAGE, 2),
@@ -216,8 +223,12 @@ impl FrameResources {
         let params_info = buffer_info(&params, size_of::<RenderParams>() as u64);
         let (cover, ground, particles) =
             (whole(&sim.cover), whole(&sim.ground), whole(&sim.particles));
-        let (drawn_info, groups_info, draws_info) =
-            (whole(&drawn), whole(&group_counts), whole(&draws));
+        let (drawn_info, groups_info, draws_info, kinds_info) = (
+            whole(&drawn),
+            whole(&group_counts),
+            whole(&draws),
+            whole(&drawn_kinds),
+        );
         let (shadow_image, flake_image) =
             (image_info(shadow_map.view), image_info(renderer.flake.view));
         let (shadow_sampler, flake_sampler) = (
@@ -235,6 +246,7 @@ impl FrameResources {
             write(frame_set, rb::GROUND_HEIGHT, T::STORAGE_BUFFER).buffer_info(&ground),
             write(frame_set, rb::PARTICLES, T::STORAGE_BUFFER).buffer_info(&particles),
             write(frame_set, rb::DRAWN, T::STORAGE_BUFFER).buffer_info(&drawn_info),
+            write(frame_set, rb::DRAWN_KINDS, T::STORAGE_BUFFER).buffer_info(&kinds_info),
             write(light_set, rb::SHADOW_MAP, T::SAMPLED_IMAGE).image_info(&shadow_image),
             write(light_set, rb::SHADOW_SAMPLER, T::SAMPLER).image_info(&shadow_sampler),
             write(light_set, rb::FLAKE_OPACITY, T::SAMPLED_IMAGE).image_info(&flake_image),
@@ -244,6 +256,7 @@ impl FrameResources {
             write(cull_set, cb::GROUP_COUNTS, T::STORAGE_BUFFER).buffer_info(&groups_info),
             write(cull_set, cb::DRAWN, T::STORAGE_BUFFER).buffer_info(&drawn_info),
             write(cull_set, cb::DRAWS, T::STORAGE_BUFFER).buffer_info(&draws_info),
+            write(cull_set, cb::DRAWN_KINDS, T::STORAGE_BUFFER).buffer_info(&kinds_info),
         ];
         // SAFETY: every write names a live buffer, view or sampler of the binding's
         // type and usage.
@@ -253,6 +266,7 @@ impl FrameResources {
             params_stride,
             group_counts,
             drawn,
+            drawn_kinds,
             draws,
             shadow_map,
             shadow_framebuffer,
@@ -321,7 +335,13 @@ impl FrameResources {
         for image in self.cover_images {
             image.destroy(device);
         }
-        for b in [self.params, self.group_counts, self.drawn, self.draws] {
+        for b in [
+            self.params,
+            self.group_counts,
+            self.drawn,
+            self.drawn_kinds,
+            self.draws,
+        ] {
             b.destroy(device);
         }
     }

@@ -83,6 +83,12 @@ impl FrameResources {
             u64::from(count) * 8,
             wgpu::BufferUsages::empty(),
         );
+        let drawn_kinds = storage(
+            gpu,
+            "precip drawn kinds",
+            u64::from(count) * 4,
+            wgpu::BufferUsages::empty(),
+        );
         let draws = storage(
             gpu,
             "precip draws",
@@ -182,6 +188,7 @@ impl FrameResources {
                 bind(rb::GROUND_HEIGHT, &sim.ground),
                 bind(rb::PARTICLES, &sim.particles),
                 bind(rb::DRAWN, &drawn),
+                bind(rb::DRAWN_KINDS, &drawn_kinds),
                 view(rb::COVER_A, &cover_a),
                 view(rb::COVER_B, &cover_b),
                 wgpu::BindGroupEntry {
@@ -230,6 +237,7 @@ impl FrameResources {
                 bind(cb::GROUP_COUNTS, &group_counts),
                 bind(cb::DRAWN, &drawn),
                 bind(cb::DRAWS, &draws),
+                bind(cb::DRAWN_KINDS, &drawn_kinds),
             ],
         });
         Self {
