@@ -14,6 +14,7 @@ pub const DRAWN_EVERY: u32 = 8;
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct FrameStats {
     frames: u32,
+    all_ms: f64,
     timed_ms: f64,
     timed: u32,
     drawn_sum: u64,
@@ -24,6 +25,7 @@ impl FrameStats {
     /// Records a frame that took `frame_ms`; on every [`DRAWN_EVERY`]-th frame (the
     /// first included) reads what `backend` drew.
     pub fn record(&mut self, frame_ms: f64, backend: &mut dyn Backend) -> Result<(), BackendError> {
+        self.all_ms += frame_ms;
         if self.frames >= WARM_UP_FRAMES {
             self.timed_ms += frame_ms;
             self.timed += 1;
@@ -42,7 +44,11 @@ impl FrameStats {
     /// more), ms; `None` before any was timed.
     #[must_use]
     pub fn mean_frame_ms(&self) -> Option<f64> {
-        (self.timed > 0).then(|| self.timed_ms / f64::from(self.timed))
+        if self.timed > 0 {
+            Some(self.timed_ms / f64::from(self.timed))
+        } else {
+            (self.frames > 0).then(|| self.all_ms / f64::from(self.frames))
+        }
     }
 
     /// Mean particles drawn over the sampled frames; `None` when none was sampled
@@ -76,6 +82,13 @@ mod tests {
         let mut cpu = CpuBackend::new();
         let mut stats = FrameStats::default();
         assert_eq!(stats.mean_frame_ms(), None);
+        stats.record(600.0, &mut cpu).expect("records");
+        assert_eq!(
+            stats.mean_frame_ms(),
+            Some(600.0),
+            "all frames when none is past the warm-up"
+        );
+        let mut stats = FrameStats::default();
         for ms in [500.0, 400.0, 300.0, 10.0, 20.0] {
             stats.record(ms, &mut cpu).expect("records");
         }
