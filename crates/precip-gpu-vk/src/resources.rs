@@ -122,6 +122,24 @@ pub fn download(device: &Device, source: &Buffer, size: u64) -> Result<Vec<u8>, 
     result
 }
 
+/// A barrier moving all of colour `image` from layout `old` (after accesses `src`)
+/// to `new` (before accesses `dst`).
+fn layout_barrier(
+    image: &Image,
+    (old, src): (vk::ImageLayout, vk::AccessFlags),
+    (new, dst): (vk::ImageLayout, vk::AccessFlags),
+) -> vk::ImageMemoryBarrier<'static> {
+    vk::ImageMemoryBarrier::default()
+        .old_layout(old)
+        .new_layout(new)
+        .src_access_mask(src)
+        .dst_access_mask(dst)
+        .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .image(image.raw)
+        .subresource_range(COLOUR)
+}
+
 /// Fills a sampled image's texels (`bytes` tightly packed) and leaves it in
 /// `SHADER_READ_ONLY_OPTIMAL` for every shader stage (waits).
 pub fn upload_image(device: &Device, image: &Image, bytes: &[u8]) -> Result<(), BackendError> {
@@ -135,17 +153,7 @@ pub fn upload_image(device: &Device, image: &Image, bytes: &[u8]) -> Result<(), 
     staging.write(0, bytes)?;
     let e = image.extent;
     let result = submit(device, |cb| {
-        let barrier = |old, new, src, dst| {
-            vk::ImageMemoryBarrier::default()
-                .old_layout(old)
-                .new_layout(new)
-                .src_access_mask(src)
-                .dst_access_mask(dst)
-                .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-                .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-                .image(image.raw)
-                .subresource_range(COLOUR)
-        };
+        let barrier = |old, new, src, dst| layout_barrier(image, (old, src), (new, dst));
         let to_transfer = barrier(
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::TRANSFER_DST_OPTIMAL,
@@ -215,15 +223,14 @@ pub fn to_general(device: &Device, images: &[&Image]) -> Result<(), BackendError
     let barriers: Vec<vk::ImageMemoryBarrier<'_>> = images
         .iter()
         .map(|image| {
-            vk::ImageMemoryBarrier::default()
-                .old_layout(vk::ImageLayout::UNDEFINED)
-                .new_layout(vk::ImageLayout::GENERAL)
-                .src_access_mask(vk::AccessFlags::empty())
-                .dst_access_mask(vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE)
-                .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-                .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-                .image(image.raw)
-                .subresource_range(COLOUR)
+            layout_barrier(
+                image,
+                (vk::ImageLayout::UNDEFINED, vk::AccessFlags::empty()),
+                (
+                    vk::ImageLayout::GENERAL,
+                    vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
+                ),
+            )
         })
         .collect();
     submit(device, |cb| {
