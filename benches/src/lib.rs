@@ -78,6 +78,10 @@ pub fn backends() -> Vec<(&'static str, Box<dyn Backend>)> {
     out
 }
 
-/// Bytes a step moves per particle: `step_particles` and `birth_particles` each read
-/// and write the 80-byte particle.
-pub const STEP_BYTES_PER_PARTICLE: u64 = 4 * 80;
+/// Bytes a step moves per particle ([`precip_model::gpu::step_bytes_per_particle`]:
+/// `step_particles` reads and writes the 64-byte particle; the birth kernel touches
+/// only the few re-born).
+#[must_use]
+pub fn step_bytes_per_particle() -> u64 {
+    precip_model::gpu::step_bytes_per_particle()
+}

@@ -17,8 +17,8 @@ use std::time::Instant;
 use precip_benches::peer::{Display, osgprecipitation_fps, viewer_run, write_obj};
 use precip_benches::plot::{Series, write_png};
 use precip_benches::{
-    COUNTS, DT_S, FRAME_COUNTS, FRAME_SIZE, STEP_BYTES_PER_PARTICLE, backends, frame,
-    frame_scenario, scenario,
+    COUNTS, DT_S, FRAME_COUNTS, FRAME_SIZE, backends, frame, frame_scenario, scenario,
+    step_bytes_per_particle,
 };
 use precip_gpu_wgpu::WgpuBackend;
 use precip_model::Timings;
@@ -269,7 +269,7 @@ fn main() {
             }
             let seconds = start.elapsed().as_secs_f64() / f64::from(steps);
             let per_second = f64::from(count) / seconds;
-            let bytes_per_second = (STEP_BYTES_PER_PARTICLE * u64::from(count)) as f64 / seconds;
+            let bytes_per_second = (step_bytes_per_particle() * u64::from(count)) as f64 / seconds;
             let ratio = bandwidth
                 .filter(|_| name != "cpu")
                 .map(|bw| bytes_per_second / bw);

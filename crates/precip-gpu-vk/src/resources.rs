@@ -4,7 +4,7 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 use precip_model::backend::MAX_SUBSTEPS;
 use precip_model::cover::{CoverGrid, CoverStepParams, CoverTexel};
-use precip_model::gpu::{Frames, cover_bindings, step_bindings};
+use precip_model::gpu::{Frames, cover_bindings, pending_births_bytes, step_bindings};
 use precip_model::step::StepParams;
 use precip_model::wind::{WindParams, WindVolume};
 use precip_model::{BackendError, GroundMap, Particle};
@@ -33,6 +33,9 @@ pub struct Resources {
     pub cover_texel_count: u32,
     /// Two `u32` per cover texel.
     pub deposits: Buffer,
+    /// The particles to re-birth this sub-step and the birth kernel's indirect
+    /// dispatch (`PendingBirthsHeader`).
+    pub pending_births: Buffer,
     /// Ground heights.
     pub ground: Buffer,
     frames: Buffer,
@@ -295,6 +298,12 @@ impl Resources {
                 MemoryLocation::GpuOnly,
             ),
             (
+                "pending births",
+                pending_births_bytes(particle_count),
+                vk::BufferUsageFlags::STORAGE_BUFFER,
+                MemoryLocation::GpuOnly,
+            ),
+            (
                 "ground",
                 ground_bytes.len() as u64,
                 STORAGE,
@@ -351,7 +360,7 @@ impl Resources {
                 (T::UNIFORM_BUFFER_DYNAMIC, 2),
                 (T::UNIFORM_BUFFER, 2),
                 (T::SAMPLED_IMAGE, 1),
-                (T::STORAGE_BUFFER, 5),
+                (T::STORAGE_BUFFER, 6),
             ],
             2,
         ) {
@@ -366,12 +375,13 @@ impl Resources {
             particles,
             cover_buffer,
             deposits,
+            pending_births,
             ground_buffer,
             frames_buffer,
             wind_params,
             step_uniforms,
             cover_uniforms,
-        ] = match <[Buffer; 8]>::try_from(made) {
+        ] = match <[Buffer; 9]>::try_from(made) {
             Ok(all) => all,
             Err(made) => {
                 free(made);
@@ -390,6 +400,7 @@ impl Resources {
             cover: cover_buffer,
             cover_texel_count: cover.texels.len() as u32,
             deposits,
+            pending_births,
             ground: ground_buffer,
             frames: frames_buffer,
             wind_params,
@@ -446,6 +457,7 @@ impl Resources {
         let ground_info = info(&self.ground, whole);
         let particles_info = info(&self.particles, whole);
         let deposits_info = info(&self.deposits, whole);
+        let births_info = info(&self.pending_births, whole);
         let cover_params = info(&self.cover_uniforms, size_of::<CoverStepParams>() as u64);
         let cover_info = info(&self.cover, whole);
         let image = image_info(self.wind.view);
@@ -464,6 +476,8 @@ impl Resources {
             write(step_set, step_bindings::PARTICLES, T::STORAGE_BUFFER)
                 .buffer_info(&particles_info),
             write(step_set, step_bindings::DEPOSITS, T::STORAGE_BUFFER).buffer_info(&deposits_info),
+            write(step_set, step_bindings::PENDING_BIRTHS, T::STORAGE_BUFFER)
+                .buffer_info(&births_info),
             write(
                 cover_set,
                 cover_bindings::COVER_PARAMS,
@@ -500,6 +514,7 @@ impl Resources {
             self.particles,
             self.cover,
             self.deposits,
+            self.pending_births,
             self.ground,
             self.frames,
             self.wind_params,

@@ -4,7 +4,7 @@
 use glam::Vec3;
 use precip_model::cover::{CoverGrid, CoverTexel};
 use precip_model::drag::MAX_SUBSTEP_S;
-use precip_model::gpu::{DispatchOver, FrameDraws, INIT_PASS, dispatch_size};
+use precip_model::gpu::{DispatchOver, FrameDraws, INIT_PASS, birth_invocations, dispatch_size};
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
 use precip_model::{
@@ -433,6 +433,7 @@ impl Backend for WgpuBackend {
                 for k in 0..count {
                     let offset = (u64::from(k) * stride) as u32;
                     for (kernel, pipeline) in &pipelines.substep {
+                        pass.set_pipeline(pipeline);
                         let (bind_group, items) = match kernel.over {
                             DispatchOver::Particles => {
                                 (&resources.step_bind_group, resources.particle_count)
@@ -441,8 +442,11 @@ impl Backend for WgpuBackend {
                                 (&resources.cover_bind_group, resources.cover_texel_count)
                             }
                             DispatchOver::OneWorkgroup => (&resources.step_bind_group, 1),
+                            DispatchOver::PendingBirths => (
+                                &resources.step_bind_group,
+                                birth_invocations(resources.particle_count),
+                            ),
                         };
-                        pass.set_pipeline(pipeline);
                         pass.set_bind_group(0, bind_group, &[offset]);
                         let (x, y) = dispatch_size(items);
                         pass.dispatch_workgroups(x, y, 1);

@@ -2,7 +2,7 @@
 
 use precip_model::backend::MAX_SUBSTEPS;
 use precip_model::cover::{CoverGrid, CoverStepParams, CoverTexel};
-use precip_model::gpu::{Frames, cover_bindings, step_bindings};
+use precip_model::gpu::{Frames, cover_bindings, pending_births_bytes, step_bindings};
 use precip_model::step::StepParams;
 use precip_model::wind::{WindParams, WindVolume};
 use precip_model::{GroundMap, Particle};
@@ -24,6 +24,9 @@ pub struct Resources {
     pub cover_texel_count: u32,
     /// Landed water, two `u32` per cover texel.
     pub deposits: wgpu::Buffer,
+    /// The particles to re-birth this sub-step and the birth kernel's indirect
+    /// dispatch (`PendingBirthsHeader`).
+    pub pending_births: wgpu::Buffer,
     /// Ground heights, `array<f32>`.
     pub ground: wgpu::Buffer,
     /// The wind volume, 3D `Rgba32Float`.
@@ -125,6 +128,12 @@ impl Resources {
             bytemuck::cast_slice::<CoverTexel, u8>(&cover.texels),
         );
         let deposits = storage_buffer(gpu, "precip deposits", &vec![0u8; cover.texels.len() * 8]);
+        let pending_births = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("precip pending births"),
+            size: pending_births_bytes(particle_count),
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
         let ground_buffer = storage_buffer(
             gpu,
             "precip ground heights",
@@ -207,6 +216,10 @@ impl Resources {
                     binding: step_bindings::DEPOSITS,
                     resource: deposits.as_entire_binding(),
                 },
+                wgpu::BindGroupEntry {
+                    binding: step_bindings::PENDING_BIRTHS,
+                    resource: pending_births.as_entire_binding(),
+                },
             ],
         });
         let cover_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -233,6 +246,7 @@ impl Resources {
             cover: cover_buffer,
             cover_texel_count: cover.texels.len() as u32,
             deposits,
+            pending_births,
             ground: ground_buffer,
             wind_texture,
             wind_params,

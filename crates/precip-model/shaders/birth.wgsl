@@ -28,17 +28,17 @@ fn draw_species(key: u32) -> Species {
 }
 
 struct Rotation {
-    r0: vec3<f32>,
+    r0: u32,
     magnitude: vec3<f32>,
     increasing_bits: u32,
 }
 
 fn draw_rotation(key: u32, amplitude_rad: f32) -> Rotation {
-    let r0 = vec3<f32>(
+    let r0 = pack_rotation0(vec3<f32>(
         random_unit(key, DRAW_ROTATION0_X),
         random_unit(key, DRAW_ROTATION0_X + 1u),
         random_unit(key, DRAW_ROTATION0_X + 2u),
-    ) * 6.2831855;
+    ));
     let r = centred3(key, DRAW_ROTATION_X) * (4.0 * amplitude_rad);
     let bits = select(0u, 1u, r.x >= 0.0) | select(0u, 2u, r.y >= 0.0) | select(0u, 4u, r.z >= 0.0);
     return Rotation(r0, abs(r), bits);
@@ -55,14 +55,12 @@ fn newborn(position_m: vec3<f32>, velocity_mps: vec3<f32>, species: Species, rot
     p.age_s = 0.0;
     p.velocity_mps = velocity_mps;
     p.terminal_speed_mps = species.terminal_speed_mps;
-    p.rotation0_rad = rotation.r0;
-    p.diameter_m = species.diameter_m;
     p.rotation_rad = rotation.magnitude;
+    p.flags = pack_flags(species.kind, camera_volume, rotation.increasing_bits);
+    p.diameter_m = species.diameter_m;
     p.water_kg = 0.0;
     p.generation = generation;
-    p.flags = pack_flags(species.kind, camera_volume, rotation.increasing_bits);
-    p.reserved0 = 0u;
-    p.reserved1 = 0u;
+    p.rotation0 = rotation.r0;
     return p;
 }
 

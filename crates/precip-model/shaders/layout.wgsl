@@ -2,19 +2,31 @@
 // Rust twins: precip_model::particle::Particle, precip_model::step::StepParams,
 // precip_cover::GridFrame, precip_model::gpu::Frames, precip_wind::WindParams.
 
+// 64 bytes; the step reads and writes the first 48 and the water.
 struct Particle {
     position_m: vec3<f32>,
     age_s: f32,
     velocity_mps: vec3<f32>,
     terminal_speed_mps: f32,
-    rotation0_rad: vec3<f32>,
-    diameter_m: f32,
     rotation_rad: vec3<f32>,
+    flags: u32,
+    diameter_m: f32,
     water_kg: f32,
     generation: u32,
-    flags: u32,
-    reserved0: u32,
-    reserved1: u32,
+    // r0, 10 bits an axis (Rust: precip_model::particle::rotation0).
+    rotation0: u32,
+}
+
+// Rust: precip_model::particle::rotation0::pack.
+fn pack_rotation0(units: vec3<f32>) -> u32 {
+    let steps = min(vec3<u32>(units * 1024.0), vec3<u32>(1023u));
+    return steps.x | (steps.y << 10u) | (steps.z << 20u);
+}
+
+// Rust: precip_model::particle::rotation0::unpack_rad.
+fn rotation0_rad(packed: u32) -> vec3<f32> {
+    let steps = vec3<u32>(packed, packed >> 10u, packed >> 20u) & vec3<u32>(1023u);
+    return vec3<f32>(steps) * (6.2831855 / 1024.0);
 }
 
 // Particle.flags (Rust: precip_model::particle::flags).
@@ -22,8 +34,9 @@ const FLAG_ROTATION_INCREASING_X: u32 = 1u;
 const FLAG_KIND_SHIFT: u32 = 4u;
 const FLAG_KIND_MASK: u32 = 3u;
 const FLAG_CAMERA_VOLUME: u32 = 256u;
-// Set by step_particles, cleared by birth_particles within the same sub-step.
-const FLAG_PENDING_BIRTH: u32 = 512u;
+// Set by step_particles on a particle that landed on the cover grid (its position is
+// then the landing point), read by birth_particles within the same sub-step.
+const FLAG_LANDED: u32 = 512u;
 const KIND_DRY_SNOW: u32 = 0u;
 const KIND_WET_SNOW: u32 = 1u;
 const KIND_RAIN: u32 = 2u;
@@ -51,6 +64,12 @@ struct StepParams {
     rain_slope_per_mm: f32,
     deposit_scale_mm_per_kg: f32,
     ground_floor_m: f32,
+}
+
+// The particles to re-birth this sub-step (Rust: precip_model::gpu::pending_births_bytes).
+struct PendingBirths {
+    count: atomic<u32>,
+    indices: array<u32>,
 }
 
 struct GridFrame {

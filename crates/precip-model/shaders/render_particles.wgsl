@@ -38,7 +38,7 @@ fn vs_snow(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance
     let camera = params.camera_m_cone_cos.xyz;
     let distance_m = distance(p.position_m, camera);
     let size = snow_sprite_sizing(p.diameter_m, distance_m, params.view_dir_pixel_angle.w, params.sizing);
-    let turn = flake_spin_tumble(p.rotation0_rad, p.rotation_rad);
+    let turn = flake_spin_tumble(rotation0_rad(p.rotation0), p.rotation_rad);
     let world = snow_sprite_corner(p.position_m, camera, size.x, turn.x, turn.y, corner);
     var out: ParticleVarying;
     out.clip = params.view_proj * vec4<f32>(world, 1.0);

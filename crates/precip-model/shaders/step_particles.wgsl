@@ -1,13 +1,17 @@
 // step_particles.wgsl: the particle kernels. Rust twin: precip_model::step::step_particle
 // and precip_model::birth::initial_particle.
 //
-// The Rust step re-births inline; here step_particles only marks a particle
-// FLAG_PENDING_BIRTH (keeping the position the camera volume needs) and
-// birth_particles, dispatched right after it, re-births the marked ones with the same
-// inputs. Same result; but the large birth code lives in its own kernel, so the step
-// kernel that every particle runs stays small (on lavapipe the inlined birth code made
-// every invocation slower, taken or not). Program: layout, rng, physics, wind,
-// ground, deposit, birth, this file (precip_model::shaders::Program::StepParticles).
+// The Rust step deposits and re-births inline; here step_particles only appends the
+// particle to the pending births (keeping the position the camera volume needs; a
+// particle that landed on the cover grid is moved to its landing point and marked
+// FLAG_LANDED), and birth_particles, dispatched right after it indirectly over that
+// list alone, deposits the landed ones' water and re-births them with the same
+// inputs. Same result (the deposits are integer sums, so their order does not
+// matter); but the deposit's atomics and the large birth code run only for the few
+// particles re-born, not under a mask for every particle (lavapipe executes both
+// sides of a divergent branch). reset_births empties the list before each step.
+// Program: layout, rng, physics, wind, ground, deposit, birth, this file
+// (precip_model::shaders::Program::StepParticles).
 
 @group(0) @binding(0) var<uniform> step_params: StepParams;
 @group(0) @binding(1) var<uniform> frames: Frames;
@@ -16,6 +20,15 @@
 @group(0) @binding(4) var<storage, read> ground_height: array<f32>;
 @group(0) @binding(5) var<storage, read_write> particles: array<Particle>;
 @group(0) @binding(6) var<storage, read_write> deposits: array<atomic<u32>>;
+@group(0) @binding(7) var<storage, read_write> pending: PendingBirths;
+
+// Within this kernel only, never stored: the particle's life ends this step.
+const STEP_ENDS: u32 = 1024u;
+
+// Appends particle `index` to the pending births.
+fn queue_birth(index: u32) {
+    pending.indices[atomicAdd(&pending.count, 1u)] = index;
+}
 
 fn wrap_centred(x: f32, h: f32) -> f32 {
     return x - 2.0 * h * floor((x + h) / (2.0 * h));
@@ -36,7 +49,7 @@ fn step_in_camera_volume(index: u32, generation: u32, moved: Particle) -> Partic
     let grounded = ground.x > 0.0 && position.y <= ground.y;
     next.position_m = position;
     if (local.y < -half.y || grounded) {
-        next.flags |= FLAG_PENDING_BIRTH;
+        next.flags |= STEP_ENDS;
     }
     return next;
 }
@@ -74,22 +87,19 @@ fn step_particle(index: u32, particle: Particle) -> Particle {
     let ground = ground_height_at(xz);
     let landed = ground.x > 0.0 && position.y <= ground.y;
     if (landed) {
-        let kind = (next.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-        let channel = select(DEPOSIT_SNOW, DEPOSIT_RAIN, kind == KIND_RAIN);
-        let water_mm = next.water_kg * step_params.deposit_scale_mm_per_kg;
         // Already below this surface before the step: it came in from the side (a
-        // wall, an eave) and deposits where it was, at the wall's foot.
+        // wall, an eave) and deposits where it was, at the wall's foot. Water landing
+        // off the cover grid fell outside the scene: not kept.
         let from_side = particle.position_m.y < ground.y;
         let at = select(xz, particle.position_m.xz, from_side);
-        // Water landing off the cover grid fell outside the scene: not kept.
-        let texel = grid_texel_index(frames.cover, at);
-        if (texel >= 0) {
-            atomicAdd(&deposits[2u * u32(texel) + channel], deposit_units(water_mm));
+        if (grid_texel_index(frames.cover, at) >= 0) {
+            next.position_m = vec3<f32>(at.x, ground.y, at.y);
+            next.flags |= FLAG_LANDED;
         }
     }
     let left_scene = ground.x == 0.0 && position.y < step_params.ground_floor_m;
     if (landed || left_scene || next.age_s >= step_params.emitter_life_time_s) {
-        next.flags |= FLAG_PENDING_BIRTH;
+        next.flags |= STEP_ENDS;
     }
     return next;
 }
@@ -100,7 +110,21 @@ fn step_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     if (i >= step_params.particle_count) {
         return;
     }
-    particles[i] = step_particle(i, particles[i]);
+    var next = step_particle(i, particles[i]);
+    let ends = (next.flags & STEP_ENDS) != 0u;
+    next.flags &= ~STEP_ENDS;
+    particles[i] = next;
+    if (ends) {
+        queue_birth(i);
+    }
+}
+
+// Empties the pending births before a step (one workgroup).
+@compute @workgroup_size(64)
+fn reset_births(@builtin(local_invocation_index) lane: u32) {
+    if (lane == 0u) {
+        atomicStore(&pending.count, 0u);
+    }
 }
 
 // Re-birth of the particles step_particles marked (Rust: the birth calls inside
@@ -117,15 +141,31 @@ fn birth_particle(index: u32, particle: Particle) -> Particle {
     return birth_on_emitter(index, generation);
 }
 
+// Deposits a landed particle's water where it landed (Rust: the deposit in
+// step_particle).
+fn deposit_landed(particle: Particle) {
+    let kind = (particle.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
+    let channel = select(DEPOSIT_SNOW, DEPOSIT_RAIN, kind == KIND_RAIN);
+    let water_mm = particle.water_kg * step_params.deposit_scale_mm_per_kg;
+    let texel = grid_texel_index(frames.cover, particle.position_m.xz);
+    if (texel >= 0) {
+        atomicAdd(&deposits[2u * u32(texel) + channel], deposit_units(water_mm));
+    }
+}
+
+// Over the pending births only: each invocation walks the list with the dispatch's
+// stride (precip_model::gpu::BIRTHS_PER_INVOCATION).
 @compute @workgroup_size(64)
 fn birth_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = linear_index(id, groups);
-    if (i >= step_params.particle_count) {
-        return;
-    }
-    // Only the flags are read for the particles that stay (most of them).
-    if ((particles[i].flags & FLAG_PENDING_BIRTH) != 0u) {
-        particles[i] = birth_particle(i, particles[i]);
+    let lanes = groups.x * groups.y * 64u;
+    let count = atomicLoad(&pending.count);
+    for (var k = linear_index(id, groups); k < count; k += lanes) {
+        let i = pending.indices[k];
+        let particle = particles[i];
+        if ((particle.flags & FLAG_LANDED) != 0u) {
+            deposit_landed(particle);
+        }
+        particles[i] = birth_particle(i, particle);
     }
 }
 

@@ -168,6 +168,7 @@ pub const STEP: GroupLayout = GroupLayout {
         binding(sb::GROUND_HEIGHT, storage(true), Stages::Compute),
         binding(sb::PARTICLES, storage(false), Stages::Compute),
         binding(sb::DEPOSITS, storage(false), Stages::Compute),
+        binding(sb::PENDING_BIRTHS, storage(false), Stages::Compute),
     ],
 };
 

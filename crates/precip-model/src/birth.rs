@@ -4,7 +4,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::ground::GroundMap;
-use crate::particle::{Particle, ParticleKind, ParticleSource, pack_flags};
+use crate::particle::{Particle, ParticleKind, ParticleSource, pack_flags, rotation0};
 use crate::raindrop::{draw_raindrop_diameter_mm, raindrop_terminal_speed_mps};
 use crate::rng::{draw, particle_key, random_unit};
 use crate::snowflake::{snow_terminal_speed_mps, snowflake_diameter_m};
@@ -49,15 +49,15 @@ pub fn draw_species(key: u32, params: &StepParams) -> (ParticleKind, f32, f32) {
     }
 }
 
-/// Rotation at birth: `r0 = 2π·(f, f, f)`, `r = 4·k_rot·V_rand` kept as magnitude
-/// `|r|` plus direction (increasing where the drawn `r ≥ 0`).
+/// Rotation at birth: `r0 = 2π·(f, f, f)` (packed, [`rotation0`]), `r = 4·k_rot·V_rand`
+/// kept as magnitude `|r|` plus direction (increasing where the drawn `r ≥ 0`).
 #[must_use]
-pub fn draw_rotation(key: u32, amplitude_rad: f32) -> (Vec3, Vec3, [bool; 3]) {
-    let r0 = Vec3::new(
+pub fn draw_rotation(key: u32, amplitude_rad: f32) -> (u32, Vec3, [bool; 3]) {
+    let r0 = rotation0::pack(Vec3::new(
         random_unit(key, draw::ROTATION0_X),
         random_unit(key, draw::ROTATION0_X + 1),
         random_unit(key, draw::ROTATION0_X + 2),
-    ) * std::f32::consts::TAU;
+    ));
     let r = centred3(key, draw::ROTATION_X) * (4.0 * amplitude_rad);
     (r0, r.abs(), [r.x >= 0.0, r.y >= 0.0, r.z >= 0.0])
 }
@@ -69,7 +69,7 @@ fn newborn(
     position_m: Vec3,
     velocity_mps: Vec3,
     (kind, diameter, speed): (ParticleKind, f32, f32),
-    (r0, r, increasing): (Vec3, Vec3, [bool; 3]),
+    (r0, r, increasing): (u32, Vec3, [bool; 3]),
     generation: u32,
     source: ParticleSource,
 ) -> Particle {
@@ -78,13 +78,12 @@ fn newborn(
         age_s: 0.0,
         velocity_mps,
         terminal_speed_mps: speed,
-        rotation0_rad: r0,
-        diameter_m: diameter,
         rotation_rad: r,
+        flags: pack_flags(kind, source, increasing),
+        diameter_m: diameter,
         water_kg: 0.0,
         generation,
-        flags: pack_flags(kind, source, increasing),
-        reserved: [0; 2],
+        rotation0: r0,
     }
 }
 

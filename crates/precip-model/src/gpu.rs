@@ -106,6 +106,37 @@ pub enum DispatchOver {
     CoverTexels,
     /// A single workgroup.
     OneWorkgroup,
+    /// The pending births: one invocation per [`BIRTHS_PER_INVOCATION`] particles,
+    /// each walking the list of particles to re-birth (binding
+    /// [`step_bindings::PENDING_BIRTHS`]) with the dispatch's stride.
+    PendingBirths,
+}
+
+/// Particles per invocation of the birth kernel (see [`DispatchOver::PendingBirths`]).
+///
+/// The step appends each particle to re-birth to a list (a count, then one `u32`
+/// index each); `reset_births` empties it before each step; the birth kernel runs
+/// over `⌈particles / 16⌉` invocations that walk the list, so it costs what the few
+/// particles re-born cost, not a pass over all of them: on lavapipe, which executes
+/// both sides of a divergent branch under a mask, the full-size birth kernel cost
+/// 27–41 ms at 10⁶ particles for a few thousand births. A fixed dispatch rather than
+/// an indirect one, because WebGPU forbids a buffer as indirect arguments and as
+/// writable storage in one dispatch (the list would need a copy every sub-step).
+pub const BIRTHS_PER_INVOCATION: u32 = 16;
+
+/// Bytes of the pending births for `particle_count` particles: the count, then an
+/// index per particle (each is re-born at most once a sub-step).
+///
+/// WGSL twin: `PendingBirths` in `shaders/layout.wgsl`.
+#[must_use]
+pub fn pending_births_bytes(particle_count: u32) -> u64 {
+    4 + 4 * u64::from(particle_count.max(1))
+}
+
+/// Invocations of the birth kernel for `particle_count` particles.
+#[must_use]
+pub fn birth_invocations(particle_count: u32) -> u32 {
+    particle_count.div_ceil(BIRTHS_PER_INVOCATION).max(1)
 }
 
 /// One kernel of the frame.
@@ -126,11 +157,17 @@ pub const INIT_PASS: KernelPass = KernelPass {
     over: DispatchOver::Particles,
 };
 
-/// One sub-step, in order: the particles move and deposit (marking those to re-birth),
-/// the marked ones are re-born, then the cover takes the deposits (or the rate),
-/// melts and ages. Sub-steps repeat this with their own uniform blocks (dynamic
-/// offsets).
-pub const SUBSTEP_PASSES: [KernelPass; 3] = [
+/// One sub-step, in order: the pending births are emptied, the particles move
+/// (listing those to re-birth, a landed one at its landing point), the listed ones
+/// deposit their water and are re-born, then the cover takes the deposits (or the
+/// rate), melts and ages. Sub-steps repeat this with their own uniform blocks
+/// (dynamic offsets).
+pub const SUBSTEP_PASSES: [KernelPass; 4] = [
+    KernelPass {
+        program: Program::StepParticles,
+        entry_point: "reset_births",
+        over: DispatchOver::OneWorkgroup,
+    },
     KernelPass {
         program: Program::StepParticles,
         entry_point: "step_particles",
@@ -139,7 +176,7 @@ pub const SUBSTEP_PASSES: [KernelPass; 3] = [
     KernelPass {
         program: Program::StepParticles,
         entry_point: "birth_particles",
-        over: DispatchOver::Particles,
+        over: DispatchOver::PendingBirths,
     },
     KernelPass {
         program: Program::CoverUpdate,
@@ -147,6 +184,119 @@ pub const SUBSTEP_PASSES: [KernelPass; 3] = [
         over: DispatchOver::CoverTexels,
     },
 ];
+
+/// What a kernel's bytes are counted per.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BytesPer {
+    /// Every particle of the dispatch.
+    Particle,
+    /// Every particle re-born (a few per sub-step).
+    Birth,
+    /// Every particle drawn that way (a sprite or streak, or a splat).
+    Drawn,
+}
+
+/// Bytes of particle state and per-particle lists a kernel reads and writes, counted
+/// from its WGSL: a whole [`crate::Particle`] is 64 bytes, a word 4 (the wind volume,
+/// ground map, cover and uniform blocks, small and cached, are not counted). The
+/// report turns them into bytes per second with the kernels' measured times.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct KernelBytes {
+    /// The entry point.
+    pub entry_point: &'static str,
+    /// Counted per.
+    pub per: BytesPer,
+    /// Bytes read.
+    pub read: u32,
+    /// Bytes written.
+    pub written: u32,
+}
+
+const PARTICLE_BYTES: u32 = size_of::<crate::Particle>() as u32;
+
+/// The bytes each particle kernel and draw moves ([`KernelBytes`]).
+pub const KERNEL_BYTES: [KernelBytes; 9] = [
+    // The particle, read and written whole (52 of its 64 bytes change).
+    KernelBytes {
+        entry_point: "step_particles",
+        per: BytesPer::Particle,
+        read: PARTICLE_BYTES,
+        written: PARTICLE_BYTES,
+    },
+    // The step's append (a word), the index read back, the particle read (flags,
+    // water, position) and written new.
+    KernelBytes {
+        entry_point: "birth_particles",
+        per: BytesPer::Birth,
+        read: 4 + PARTICLE_BYTES,
+        written: 4 + PARTICLE_BYTES,
+    },
+    // Position, velocity, flags and diameter span the particle's four rows; its class
+    // is written as one word (`drawn_kinds`).
+    KernelBytes {
+        entry_point: "cull_count",
+        per: BytesPer::Particle,
+        read: PARTICLE_BYTES,
+        written: 4,
+    },
+    // The class word; the index of each particle drawn.
+    KernelBytes {
+        entry_point: "cull_write",
+        per: BytesPer::Particle,
+        read: 4,
+        written: 0,
+    },
+    KernelBytes {
+        entry_point: "cull_write",
+        per: BytesPer::Drawn,
+        read: 0,
+        written: 4,
+    },
+    // The class word of every particle; a splatted one reads the particle and adds
+    // its ink to four pixels' sums (4 words each, read and written by the atomics).
+    KernelBytes {
+        entry_point: "splat_particles",
+        per: BytesPer::Particle,
+        read: 4,
+        written: 0,
+    },
+    KernelBytes {
+        entry_point: "splat_particles",
+        per: BytesPer::Drawn,
+        read: PARTICLE_BYTES + 4 * 16,
+        written: 4 * 16,
+    },
+    // The index and the particle, once an instance (its 4 or 12 vertices hit the
+    // cache for the rest).
+    KernelBytes {
+        entry_point: "vs_snow",
+        per: BytesPer::Drawn,
+        read: 4 + PARTICLE_BYTES,
+        written: 0,
+    },
+    KernelBytes {
+        entry_point: "vs_rain",
+        per: BytesPer::Drawn,
+        read: 4 + PARTICLE_BYTES,
+        written: 0,
+    },
+];
+
+/// Bytes read plus written per particle by the kernels of one sub-step over all
+/// particles (re-births, a few per sub-step, not counted).
+#[must_use]
+pub fn step_bytes_per_particle() -> u64 {
+    KERNEL_BYTES
+        .iter()
+        .filter(|k| k.per == BytesPer::Particle)
+        .filter(|k| {
+            SUBSTEP_PASSES
+                .iter()
+                .any(|p| p.entry_point == k.entry_point)
+        })
+        .map(|k| u64::from(k.read + k.written))
+        .sum()
+}
 
 /// The culling kernels of a frame, in order; `cull_scan` runs as one workgroup,
 /// the others over the particles' workgroups (the same count `dispatch_size` gives).
@@ -367,6 +517,9 @@ pub mod step_bindings {
     pub const PARTICLES: u32 = 5;
     /// Deposits, `array<atomic<u32>>`, read-write storage.
     pub const DEPOSITS: u32 = 6;
+    /// The pending births (a count, then `array<u32>` of particle indices:
+    /// [`super::pending_births_bytes`]), read-write storage.
+    pub const PENDING_BIRTHS: u32 = 7;
 }
 
 /// Bindings of [`Program::CoverUpdate`], group 0.
@@ -382,6 +535,22 @@ pub mod cover_bindings {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_step_moves_the_particle_once_each_way() {
+        assert_eq!(step_bytes_per_particle(), 128);
+        for k in KERNEL_BYTES {
+            assert!(
+                SUBSTEP_PASSES
+                    .iter()
+                    .chain(&CULL_PASSES)
+                    .chain([&SPLAT_PASS])
+                    .any(|p| p.entry_point == k.entry_point)
+                    || [render_passes::SNOW.0, render_passes::RAIN.0].contains(&k.entry_point),
+                "{k:?} names no kernel or draw of the frame"
+            );
+        }
+    }
 
     #[test]
     fn every_kernel_of_the_recipe_is_an_entry_point_of_its_program() {

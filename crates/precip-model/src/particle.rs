@@ -43,14 +43,24 @@ pub mod flags {
     /// Bit 8: the particle belongs to the camera volume.
     pub const CAMERA_VOLUME: u32 = 1 << 8;
     /// Bit 9: GPU only, between the `step_particles` and `birth_particles` kernels of
-    /// one sub-step; never set in a particle read back.
-    pub const PENDING_BIRTH: u32 = 1 << 9;
+    /// one sub-step: the particle landed on the cover grid and its position is where
+    /// its water goes; never set in a particle read back.
+    pub const LANDED: u32 = 1 << 9;
 }
 
-/// One particle: the seeds' state `(t, P, v, r0, r)` plus what the physics needs.
+/// One particle: the seeds' state `(t, P, v, r0, r)` plus what the physics needs, in
+/// 64 bytes.
 ///
-/// WGSL twin: `Particle` in `shaders/layout.wgsl` (80 bytes: four `vec3<f32>`+scalar
-/// rows and four `u32`).
+/// The step kernel reads and writes the first 48 bytes and the water (52 of 64); the
+/// diameter, generation and initial rotation are for the drawing and the re-birth.
+/// A split into hot and cold arrays would not move fewer bytes: with `vec3` rows of
+/// 16 bytes the step's 52 bytes pad to 64 anyway, and every drawing kernel reads both
+/// halves. What made room is the initial rotation `r0`, packed into one word (10 bits
+/// an axis: 0.35° steps, drawn from the same random numbers on both sides, so the CPU
+/// and the GPU store the same word), and the two reserved words, gone.
+///
+/// WGSL twin: `Particle` in `shaders/layout.wgsl` (64 bytes: three `vec3<f32>`+scalar
+/// rows and four scalars).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default, Pod, Zeroable)]
 pub struct Particle {
@@ -62,22 +72,52 @@ pub struct Particle {
     pub velocity_mps: Vec3,
     /// Terminal fall speed V_pmax in still air, m/s.
     pub terminal_speed_mps: f32,
-    /// Initial rotation angles r0 about X, Y, Z, rad.
-    pub rotation0_rad: Vec3,
-    /// Diameter: the flake's, or the drop's, m.
-    pub diameter_m: f32,
     /// Rotation offsets |r| in `[0, 2·k_rot]`, rad; their directions are in `flags`.
     pub rotation_rad: Vec3,
+    /// Kind, volume and rotation directions ([`flags`]).
+    pub flags: u32,
+    /// Diameter: the flake's, or the drop's, m.
+    pub diameter_m: f32,
     /// Water this particle stands for, kg (= mm over 1 m²), gathered since birth.
     pub water_kg: f32,
     /// How many times this slot has been re-born (keys the random numbers).
     pub generation: u32,
-    /// Kind, volume and rotation directions ([`flags`]).
-    pub flags: u32,
-    /// Unused (`0`).
-    pub reserved: [u32; 2],
+    /// Initial rotation angles r0 about X, Y, Z ([`rotation0`]: 10 bits each).
+    pub rotation0: u32,
 }
-const _: () = assert!(size_of::<Particle>() == 80);
+const _: () = assert!(size_of::<Particle>() == 64);
+
+/// The initial rotation `r0 = 2π·(f, f, f)` (seed 001) in one word: axis `a` in bits
+/// `10a … 10a + 9` as `⌊1024·f⌋`, so angles in steps of 2π/1024.
+///
+/// WGSL twins: `pack_rotation0`, `rotation0_rad` in `shaders/layout.wgsl`.
+pub mod rotation0 {
+    use glam::Vec3;
+
+    /// Steps per turn.
+    pub const STEPS: u32 = 1024;
+    /// Bits an axis.
+    pub const BITS: u32 = 10;
+
+    /// Packs three uniform numbers in `[0, 1)`.
+    #[must_use]
+    pub fn pack(units: Vec3) -> u32 {
+        let step = |u: f32| ((u * STEPS as f32) as u32).min(STEPS - 1);
+        step(units.x) | (step(units.y) << BITS) | (step(units.z) << (2 * BITS))
+    }
+
+    /// The angles, rad.
+    #[must_use]
+    pub fn unpack_rad(packed: u32) -> Vec3 {
+        let mask = STEPS - 1;
+        let turn = std::f32::consts::TAU / STEPS as f32;
+        Vec3::new(
+            (packed & mask) as f32,
+            ((packed >> BITS) & mask) as f32,
+            ((packed >> (2 * BITS)) & mask) as f32,
+        ) * turn
+    }
+}
 
 impl Particle {
     /// The particle's kind.
@@ -106,10 +146,16 @@ impl Particle {
         self.flags & (flags::ROTATION_INCREASING_X << axis) != 0
     }
 
+    /// Initial rotation angles r0 about X, Y, Z, rad.
+    #[must_use]
+    pub fn rotation0_rad(&self) -> Vec3 {
+        rotation0::unpack_rad(self.rotation0)
+    }
+
     /// Drawing angles `α = r0 + (|r| − k_rot)` about X, Y, Z (seed 001), rad.
     #[must_use]
     pub fn drawing_angles_rad(&self, rotation_amplitude_rad: f32) -> Vec3 {
-        self.rotation0_rad + (self.rotation_rad - Vec3::splat(rotation_amplitude_rad))
+        self.rotation0_rad() + (self.rotation_rad - Vec3::splat(rotation_amplitude_rad))
     }
 }
 
@@ -142,12 +188,26 @@ mod tests {
         assert_eq!(std::mem::offset_of!(Particle, age_s), 12);
         assert_eq!(std::mem::offset_of!(Particle, velocity_mps), 16);
         assert_eq!(std::mem::offset_of!(Particle, terminal_speed_mps), 28);
-        assert_eq!(std::mem::offset_of!(Particle, rotation0_rad), 32);
-        assert_eq!(std::mem::offset_of!(Particle, diameter_m), 44);
-        assert_eq!(std::mem::offset_of!(Particle, rotation_rad), 48);
-        assert_eq!(std::mem::offset_of!(Particle, water_kg), 60);
-        assert_eq!(std::mem::offset_of!(Particle, generation), 64);
-        assert_eq!(std::mem::offset_of!(Particle, flags), 68);
+        assert_eq!(std::mem::offset_of!(Particle, rotation_rad), 32);
+        assert_eq!(std::mem::offset_of!(Particle, flags), 44);
+        assert_eq!(std::mem::offset_of!(Particle, diameter_m), 48);
+        assert_eq!(std::mem::offset_of!(Particle, water_kg), 52);
+        assert_eq!(std::mem::offset_of!(Particle, generation), 56);
+        assert_eq!(std::mem::offset_of!(Particle, rotation0), 60);
+    }
+
+    #[test]
+    fn rotation0_packs_each_axis_to_a_1024th_of_a_turn() {
+        let units = Vec3::new(0.0, 0.5, 0.999_999_9);
+        let packed = rotation0::pack(units);
+        assert_eq!(packed & 1023, 0);
+        assert_eq!((packed >> 10) & 1023, 512);
+        assert_eq!(packed >> 20, 1023);
+        let rad = rotation0::unpack_rad(packed);
+        let turn = std::f32::consts::TAU;
+        assert!((rad - units * turn).abs().max_element() <= turn / 1024.0);
+        assert!(rad.x.abs() < f32::EPSILON);
+        assert!((rad.y - std::f32::consts::PI).abs() < 1e-6);
     }
 
     #[test]

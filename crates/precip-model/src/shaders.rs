@@ -138,7 +138,12 @@ impl Program {
     #[must_use]
     pub const fn entry_points(self) -> &'static [&'static str] {
         match self {
-            Self::StepParticles => &["step_particles", "birth_particles", "init_particles"],
+            Self::StepParticles => &[
+                "reset_births",
+                "step_particles",
+                "birth_particles",
+                "init_particles",
+            ],
             Self::CoverUpdate => &["cover_update"],
             Self::ProbeRng => &["probe_rng"],
             Self::Render => &[

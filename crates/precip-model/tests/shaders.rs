@@ -86,12 +86,12 @@ fn rust_and_wgsl_layouts_match() {
             age_s,
             velocity_mps,
             terminal_speed_mps,
-            rotation0_rad,
-            diameter_m,
             rotation_rad,
+            flags,
+            diameter_m,
             water_kg,
             generation,
-            flags
+            rotation0
         }),
         rust_layout!(StepParams {
             emitter_model,
