@@ -193,7 +193,13 @@ impl WgpuBackend {
             let settings = &state.setup.render;
             let scene = match &state.setup.scene {
                 Some(scene) => Some(scoped(&gpu, "uploading the scene", || {
-                    SceneGpu::upload(&gpu, &renderer.layouts, scene, settings)
+                    SceneGpu::upload(
+                        &gpu,
+                        &renderer.layouts,
+                        scene,
+                        settings,
+                        &state.setup.ground,
+                    )
                 })??),
                 None => None,
             };

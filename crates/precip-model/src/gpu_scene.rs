@@ -7,6 +7,7 @@ use std::ops::Range;
 
 use crate::error::BackendError;
 use crate::gpu::SceneVertex;
+use crate::ground::GroundMap;
 use crate::render::RenderSettings;
 use crate::scene::Scene;
 
@@ -33,10 +34,18 @@ fn too_big(what: &str) -> BackendError {
 }
 
 impl PackedScene {
-    /// Tessellates `scene` (prepared: complete attributes) as `settings` say and packs
-    /// it.
-    pub fn new(scene: &Scene, settings: &RenderSettings) -> Result<Self, BackendError> {
-        let scene = scene.tessellated(settings.tessellation_edge_m, settings.max_scene_triangles);
+    /// Tessellates `scene` (prepared: complete attributes) where the snow over
+    /// `ground` raises it, as `settings` say, and packs it.
+    pub fn new(
+        scene: &Scene,
+        settings: &RenderSettings,
+        ground: &GroundMap,
+    ) -> Result<Self, BackendError> {
+        let scene = scene.tessellated(
+            settings.tessellation_edge_m,
+            settings.max_scene_triangles,
+            ground,
+        );
         let mut vertices: Vec<SceneVertex> = Vec::new();
         let mut indices: Vec<u32> = Vec::new();
         let mut ranges = Vec::with_capacity(scene.meshes.len());
@@ -78,7 +87,8 @@ mod tests {
     #[test]
     fn every_mesh_indexes_its_own_vertices() {
         let scene = house_on_plane().prepare().expect("valid").0;
-        let packed = PackedScene::new(&scene, &RenderSettings::default()).expect("packs");
+        let ground = crate::setup::Setup::over_flat_ground(60.0, 64, 10.0, 1).ground;
+        let packed = PackedScene::new(&scene, &RenderSettings::default(), &ground).expect("packs");
         assert_eq!(packed.ranges.len(), packed.scene.meshes.len());
         let mut first = 0u32;
         for (mesh, range) in packed.scene.meshes.iter().zip(&packed.ranges) {

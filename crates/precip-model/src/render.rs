@@ -212,9 +212,11 @@ pub fn view_projection(camera: &Camera, aspect: f32) -> Mat4 {
     proj * view
 }
 
-/// An orthographic view along the sunlight enclosing the box `(lo, hi)`.
+/// The sun's view of the box `(lo, hi)`: world → light space, looking along the
+/// sunlight from `2·radius` sunward of the box's centre, and that radius (the box's
+/// bounding sphere, at least 1 m). Depths `0 … 4·radius` hold the whole box.
 #[must_use]
-pub fn sun_view_projection(to_sun: Vec3, lo: Vec3, hi: Vec3) -> Mat4 {
+pub fn sun_view(to_sun: Vec3, lo: Vec3, hi: Vec3) -> (Mat4, f32) {
     let sun = to_sun.normalize();
     let centre = 0.5 * (lo + hi);
     let radius = (0.5 * (hi - lo).length()).max(1.0);
@@ -223,7 +225,13 @@ pub fn sun_view_projection(to_sun: Vec3, lo: Vec3, hi: Vec3) -> Mat4 {
     } else {
         Vec3::Z
     };
-    let view = look_to_mat4(centre + sun * 2.0 * radius, -sun, up);
+    (look_to_mat4(centre + sun * 2.0 * radius, -sun, up), radius)
+}
+
+/// An orthographic view along the sunlight enclosing the box `(lo, hi)`.
+#[must_use]
+pub fn sun_view_projection(to_sun: Vec3, lo: Vec3, hi: Vec3) -> Mat4 {
+    let (view, radius) = sun_view(to_sun, lo, hi);
     let proj = directx::orthographic(-radius, radius, -radius, radius, 0.0, 4.0 * radius);
     proj * view
 }
@@ -262,7 +270,8 @@ pub struct FrameInputs<'a> {
     pub ground: GridFrame,
     /// Cover grid.
     pub cover: GridFrame,
-    /// Bounds the shadow map must enclose `(lo, hi)`, m.
+    /// The scene's bounds `(lo, hi)`, m: the shadow map keeps every caster in them
+    /// and spreads its texels over the part in view ([`crate::shadow_fit`]).
     pub shadow_bounds_m: (Vec3, Vec3),
     /// Simulated time, s.
     pub time_s: f32,
@@ -312,15 +321,19 @@ impl RenderParams {
         let s = f.settings;
         let l = &s.lighting;
         let ground_cell = f.ground.cell_m();
+        let extinction_per_m = s.clear_air_extinction_per_m + f.weather.extinction_per_m();
         Self {
             view_proj: view_projection(camera, aspect),
-            sun_view_proj: sun_view_projection(s.to_sun, f.shadow_bounds_m.0, f.shadow_bounds_m.1),
+            sun_view_proj: crate::shadow_fit::fitted_sun_view_projection(
+                s.to_sun,
+                f.shadow_bounds_m,
+                camera,
+                aspect,
+                crate::shadow_fit::shadow_distance_m(camera, extinction_per_m),
+            ),
             camera_m_cone_cos: camera.position_m.extend(cone_cos),
             view_dir_pixel_angle: camera.forward.normalize().extend(pixel_angle),
-            to_sun_extinction: s
-                .to_sun
-                .normalize()
-                .extend(s.clear_air_extinction_per_m + f.weather.extinction_per_m()),
+            to_sun_extinction: s.to_sun.normalize().extend(extinction_per_m),
             sky_colour_time: s.sky_colour.extend(f.time_s),
             light: Vec4::new(l.ambient, l.diffuse, l.specular, l.shininess),
             shadow: Vec4::new(
@@ -344,7 +357,7 @@ impl RenderParams {
             cover_look2: Vec4::new(
                 f.cover_params.wet_darkening,
                 f.cover_params.albedo_decay_per_day,
-                0.05 + 0.5 * ground_cell.max_element().min(1.0e3),
+                crate::displacement::exposure_tolerance_m(ground_cell),
                 crate::drawing::flake_mean_opacity(),
             ),
             ground: f.ground,

@@ -85,7 +85,13 @@ impl VkBackend {
         if state.render.is_none() {
             let settings = &state.setup.render;
             let scene = match &state.setup.scene {
-                Some(scene) => Some(SceneGpu::upload(device, renderer, scene, settings)?),
+                Some(scene) => Some(SceneGpu::upload(
+                    device,
+                    renderer,
+                    scene,
+                    settings,
+                    &state.setup.ground,
+                )?),
                 None => None,
             };
             let frame = match FrameResources::new(device, renderer, &state.resources, &state.setup)

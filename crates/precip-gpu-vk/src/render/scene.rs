@@ -7,6 +7,7 @@ use std::ops::Range;
 use ash::vk;
 use glam::UVec3;
 use gpu_allocator::MemoryLocation;
+use precip_model::GroundMap;
 use precip_model::gpu::{SceneVertex, render_bindings as rb};
 use precip_model::gpu_scene::PackedScene;
 use precip_model::{BackendError, RenderSettings, Scene, TextureRgba8};
@@ -80,6 +81,7 @@ impl SceneGpu {
         renderer: &Renderer,
         scene: &Scene,
         settings: &RenderSettings,
+        ground: &GroundMap,
     ) -> Result<Self, BackendError> {
         let PackedScene {
             scene,
@@ -87,7 +89,7 @@ impl SceneGpu {
             indices,
             ranges,
         } = {
-            let packed = PackedScene::new(scene, settings)?;
+            let packed = PackedScene::new(scene, settings, ground)?;
             device.limits().check_packed_scene(&packed)?;
             packed
         };

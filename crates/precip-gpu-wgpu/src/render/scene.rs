@@ -3,6 +3,7 @@
 
 use std::ops::Range;
 
+use precip_model::GroundMap;
 use precip_model::gpu::render_bindings as rb;
 use precip_model::gpu_scene::PackedScene;
 use precip_model::{BackendError, RenderSettings, Scene, TextureRgba8};
@@ -72,6 +73,7 @@ impl SceneGpu {
         layouts: &RenderLayouts,
         scene: &Scene,
         settings: &RenderSettings,
+        ground: &GroundMap,
     ) -> Result<Self, BackendError> {
         let PackedScene {
             scene,
@@ -79,7 +81,7 @@ impl SceneGpu {
             indices,
             ranges,
         } = {
-            let packed = PackedScene::new(scene, settings)?;
+            let packed = PackedScene::new(scene, settings, ground)?;
             gpu.limits().check_packed_scene(&packed)?;
             packed
         };
