@@ -266,7 +266,7 @@ impl WgpuBackend {
             encode_frame(
                 &mut encoder,
                 draws,
-                &renderer.cull,
+                &renderer.kernels,
                 render_ref,
                 FrameTarget {
                     colour,

@@ -95,6 +95,31 @@ pub struct GroupLayout {
     pub bindings: &'static [Binding],
 }
 
+impl GroupLayout {
+    /// Whether a binding takes a dynamic offset (the frame's `RenderParams` block, a
+    /// sub-step's uniform block).
+    #[must_use]
+    pub fn has_dynamic_binding(&self) -> bool {
+        self.bindings.iter().any(|b| {
+            matches!(
+                b.kind,
+                BindingKind::Uniform { dynamic: true, .. }
+                    | BindingKind::Storage { dynamic: true, .. }
+            )
+        })
+    }
+}
+
+/// The value paired with `group`'s table in `pairs` (tables match by name): how a
+/// backend maps a table to its layout or bind group.
+#[must_use]
+pub fn lookup<T, const N: usize>(group: &GroupLayout, pairs: [(&GroupLayout, T); N]) -> Option<T> {
+    pairs
+        .into_iter()
+        .find(|(table, _)| table.name == group.name)
+        .map(|(_, value)| value)
+}
+
 const fn binding(binding: u32, kind: BindingKind, stages: Stages) -> Binding {
     Binding {
         binding,
@@ -316,6 +341,20 @@ mod tests {
                     numbers.sort_unstable();
                     numbers.dedup();
                     assert_eq!(numbers.len(), g.bindings.len(), "{}", g.name);
+                    // The backends bind one dynamic offset a group (the block's).
+                    let dynamic = g
+                        .bindings
+                        .iter()
+                        .filter(|b| {
+                            matches!(
+                                b.kind,
+                                BindingKind::Uniform { dynamic: true, .. }
+                                    | BindingKind::Storage { dynamic: true, .. }
+                            )
+                        })
+                        .count();
+                    assert!(dynamic <= 1, "{}: {dynamic} dynamic bindings", g.name);
+                    assert_eq!(g.has_dynamic_binding(), dynamic == 1);
                 }
             }
         }

@@ -356,16 +356,9 @@ pub const SPLAT_PASS: KernelPass = KernelPass {
     over: DispatchOver::Particles,
 };
 
-/// The timed passes of a frame, in the order both GPU backends record them; each
-/// backend brackets every one with a timestamp before and after (`PassTiming` names).
-pub const TIMED_RENDER_PASSES: [&str; 6] = [
-    "cover_texture",
-    "shadow",
-    "scene",
-    "cull_particles",
-    "splat_particles",
-    "particles",
-];
+/// The passes of a frame as data, and their timed names
+/// ([`crate::frame_recipe`]).
+pub use crate::frame_recipe::{FRAME_PASSES, TIMED_RENDER_PASSES};
 
 /// Bytes of the cull kernels' per-workgroup counts (`vec4<u32>` each).
 pub const GROUP_COUNT_BYTES: u64 = 16;

@@ -34,6 +34,7 @@ pub mod drag;
 pub mod drawing;
 pub mod emitter;
 pub mod error;
+pub mod frame_recipe;
 pub mod gpu;
 pub mod gpu_scene;
 pub mod ground;

@@ -1,13 +1,16 @@
 //! Descriptor set layouts (from `precip_model::bind_groups`' tables, as the wgpu
-//! backend's bind group layouts) and pipeline layouts of the render, cull, splat and
-//! cover-texture kernels.
+//! backend's bind group layouts) and one pipeline layout per entry point of the
+//! frame recipe, made of its groups (`precip_model::bind_groups::groups_of`): the
+//! same set layouts in the same order, so sets bound for one stay valid for the next.
 //!
 //! `RenderParams` is dynamic read-only storage (not a uniform: see render_scene.wgsl):
 //! one block per frame in flight, so the host writes frame n + 1's while frame n draws.
 
 use ash::vk;
 use precip_model::BackendError;
-use precip_model::bind_groups as bg;
+use precip_model::bind_groups::{self as bg, GroupLayout, groups_of};
+use precip_model::frame_recipe;
+use precip_model::shaders::Program;
 
 use crate::bind_groups::set_layout;
 use crate::device::Device;
@@ -30,17 +33,8 @@ pub struct RenderLayouts {
     pub splat_resolve: vk::DescriptorSetLayout,
     /// Set 0 of the `cover_texture` kernel: the texels and the two storage images.
     pub cover_texture: vk::DescriptorSetLayout,
-    /// Every draw's pipeline layout (sets 0–2; the shadow and particle draws use a
-    /// prefix of them).
-    pub draw_layout: vk::PipelineLayout,
-    /// The cull kernels' pipeline layout.
-    pub cull_layout: vk::PipelineLayout,
-    /// The splat kernel's (sets 0, 1 and the splat set).
-    pub splat_layout: vk::PipelineLayout,
-    /// The resolve draw's (sets 0, 1 and the resolve set).
-    pub resolve_layout: vk::PipelineLayout,
-    /// The `cover_texture` kernel's.
-    pub cover_texture_layout: vk::PipelineLayout,
+    /// The pipeline layout of each kernel and draw (by its first entry point).
+    pipeline_layouts: Vec<(&'static str, vk::PipelineLayout)>,
 }
 
 fn pipeline_layout(
@@ -59,51 +53,83 @@ fn pipeline_layout(
 impl RenderLayouts {
     /// Creates the layouts.
     pub fn new(device: &Device) -> Result<Self, BackendError> {
-        let frame = set_layout(device, &bg::RENDER_FRAME)?;
-        let light = set_layout(device, &bg::RENDER_LIGHT)?;
-        let material = set_layout(device, &bg::RENDER_MATERIAL)?;
-        let cull = set_layout(device, &bg::CULL)?;
-        let splat = set_layout(device, &bg::SPLAT)?;
-        let splat_resolve = set_layout(device, &bg::SPLAT_RESOLVE)?;
-        let cover_texture = set_layout(device, &bg::COVER_TEXTURE)?;
-        Ok(Self {
-            cover_texture_layout: pipeline_layout(
-                device,
-                "precip cover texture",
-                &[cover_texture],
-            )?,
-            draw_layout: pipeline_layout(device, "precip draws", &[frame, light, material])?,
-            cull_layout: pipeline_layout(device, "precip cull", &[cull])?,
-            splat_layout: pipeline_layout(device, "precip splat", &[frame, light, splat])?,
-            resolve_layout: pipeline_layout(
-                device,
-                "precip splat resolve",
-                &[frame, light, splat_resolve],
-            )?,
-            frame,
-            light,
-            material,
-            cull,
-            splat,
-            splat_resolve,
-            cover_texture,
-        })
+        let mut made = Self {
+            frame: vk::DescriptorSetLayout::null(),
+            light: vk::DescriptorSetLayout::null(),
+            material: vk::DescriptorSetLayout::null(),
+            cull: vk::DescriptorSetLayout::null(),
+            splat: vk::DescriptorSetLayout::null(),
+            splat_resolve: vk::DescriptorSetLayout::null(),
+            cover_texture: vk::DescriptorSetLayout::null(),
+            pipeline_layouts: Vec::new(),
+        };
+        match made.fill(device) {
+            Ok(()) => Ok(made),
+            Err(e) => {
+                made.destroy(device);
+                Err(e)
+            }
+        }
+    }
+
+    fn fill(&mut self, device: &Device) -> Result<(), BackendError> {
+        self.frame = set_layout(device, &bg::RENDER_FRAME)?;
+        self.light = set_layout(device, &bg::RENDER_LIGHT)?;
+        self.material = set_layout(device, &bg::RENDER_MATERIAL)?;
+        self.cull = set_layout(device, &bg::CULL)?;
+        self.splat = set_layout(device, &bg::SPLAT)?;
+        self.splat_resolve = set_layout(device, &bg::SPLAT_RESOLVE)?;
+        self.cover_texture = set_layout(device, &bg::COVER_TEXTURE)?;
+        let entries = frame_recipe::kernels()
+            .map(|k| (k.program, k.entry_point))
+            .chain(frame_recipe::draws().map(|(_, d)| (Program::Render, d.entry_points.0)));
+        for (program, entry) in entries {
+            let sets: Vec<vk::DescriptorSetLayout> = groups_of(program, entry)
+                .unwrap_or(&[])
+                .iter()
+                .filter_map(|g| self.set_layout_of(g))
+                .collect();
+            let layout = pipeline_layout(device, entry, &sets)?;
+            self.pipeline_layouts.push((entry, layout));
+        }
+        Ok(())
+    }
+
+    /// The set layout made from table `group`, if it is one of the frame's.
+    #[must_use]
+    pub fn set_layout_of(&self, group: &GroupLayout) -> Option<vk::DescriptorSetLayout> {
+        bg::lookup(
+            group,
+            [
+                (&bg::RENDER_FRAME, self.frame),
+                (&bg::RENDER_LIGHT, self.light),
+                (&bg::RENDER_MATERIAL, self.material),
+                (&bg::CULL, self.cull),
+                (&bg::SPLAT, self.splat),
+                (&bg::SPLAT_RESOLVE, self.splat_resolve),
+                (&bg::COVER_TEXTURE, self.cover_texture),
+            ],
+        )
+    }
+
+    /// The pipeline layout of the kernel or draw whose (vertex) entry point is
+    /// `entry_point`.
+    #[must_use]
+    pub fn pipeline_layout(&self, entry_point: &str) -> Option<vk::PipelineLayout> {
+        self.pipeline_layouts
+            .iter()
+            .find(|(e, _)| *e == entry_point)
+            .map(|(_, l)| *l)
     }
 
     /// Destroys the layouts (the device must be idle).
     pub fn destroy(self, device: &Device) {
         // SAFETY: the device is idle; each is destroyed once (by the renderer's
-        // destroy).
+        // destroy); null handles are ignored by Vulkan.
         unsafe {
-            device.raw.destroy_pipeline_layout(self.draw_layout, None);
-            device.raw.destroy_pipeline_layout(self.cull_layout, None);
-            device.raw.destroy_pipeline_layout(self.splat_layout, None);
-            device
-                .raw
-                .destroy_pipeline_layout(self.resolve_layout, None);
-            device
-                .raw
-                .destroy_pipeline_layout(self.cover_texture_layout, None);
+            for (_, layout) in self.pipeline_layouts {
+                device.raw.destroy_pipeline_layout(layout, None);
+            }
             for set in [
                 self.frame,
                 self.light,

@@ -1,33 +1,32 @@
 //! Drawing on Vulkan: the same frame as the wgpu backend's (`precip_gpu_wgpu::render`),
-//! from the same WGSL and the same recipe (`precip_model::gpu::{render_passes,
-//! CULL_PASSES, render_bindings, cull_bindings, SceneVertex}`).
+//! from the same WGSL and the same data: [`record_frame`] executes
+//! `precip_model::gpu::FRAME_PASSES` (`precip_model::frame_recipe`) as wgpu's
+//! `encode_frame` does, binding each entry point's groups from
+//! `precip_model::bind_groups::groups_of`.
 //!
 //! ## A frame, in one command buffer
 //!
 //! 1. a barrier: the step's compute writes (particles, cover) and a new splat-sums
 //!    buffer's zero fill become visible to the shaders and kernels of the frame;
-//!    Then **cover_texture**: the cover texels into the two filtered images the
-//!    surfaces sample (kept in `GENERAL`), and a barrier to the shaders;
-//! 2. **shadow** — render pass with the shadow map, the displaced scene from the sun;
-//! 3. **scene** — a render pass into the target (offscreen image or swapchain image)
-//!    that clears it and draws every mesh, leaving the depth read-only;
-//! 4. **cull_particles** — the three kernels, barriers between them;
-//! 5. **splat_particles** — the splat kernel (reads the depth, adds to the sums),
-//!    then a barrier to the indirect draws, vertex pulling and the resolve;
-//! 6. **particles** — a second pass that loads the target, blends the splat sums
-//!    (zeroing them) and draws snow and rain by `vkCmdDrawIndirect` (passes as
-//!    wgpu's, so each has its timestamps);
-//! 7. a barrier: the next frame's compute waits for this frame's shaders (it
+//! 2. each pass of the recipe between its two timestamps (`TOP_OF_PIPE` before,
+//!    `BOTTOM_OF_PIPE` after; a shadow pass the cache skips writes both at once and
+//!    is not reported): **cover_texture**, **shadow**, **scene**,
+//!    **cull_particles**, **splat_particles**, **particles**. A kernel is followed
+//!    by a barrier from its writes to every later kernel, draw and indirect read; a
+//!    render pass maps to its pass object by its attachments (the shadow pass; the
+//!    camera's clearing `scene` pass, leaving the depth read-only for the splat;
+//!    the camera's loading `particles` pass), whose subpass dependencies order it;
+//! 3. a barrier: the next frame's compute waits for this frame's shaders (it
 //!    rewrites what they read; the resolve's zeroing lands first).
 //!
 //! Clip space is flipped with a negative viewport height, as wgpu-hal does, so the
-//! WGSL runs unchanged and the images agree. Timestamps bracket each pass.
+//! WGSL runs unchanged and the images agree.
 //!
 //! ## Objects
 //!
 //! [`Renderer`] (once per device): set and pipeline layouts, samplers, the flake
-//! texture, the shadow pass and pipeline, the cull kernels, and per colour format
-//! the camera passes and draw pipelines. [`RenderState`] (per configuration): the
+//! texture, the shadow pass, the frame's kernels, and per colour format the camera
+//! passes and draw pipelines. [`RenderState`] (per configuration): the
 //! scene, [`frame::FrameResources`], the offscreen target.
 
 pub mod frame;
@@ -42,19 +41,21 @@ pub mod target;
 use ash::vk;
 use glam::{UVec3, Vec3};
 use precip_model::BackendError;
+use precip_model::bind_groups::{self as bg, GroupLayout, groups_of};
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
-use precip_model::gpu::{DispatchOver, FrameDraws, dispatch_size};
+use precip_model::frame_recipe::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
+use precip_model::gpu::{DispatchOver, FRAME_PASSES, dispatch_size};
 use precip_model::shaders::Program;
 
 use self::frame::FrameResources;
 use self::layouts::RenderLayouts;
 use self::passes::CameraPasses;
-use self::pipelines::{CullPipelines, DrawPipelines, shadow_pipeline};
+use self::pipelines::{DrawPipelines, KernelPipelines};
 use self::samplers::Samplers;
 use self::scene::SceneGpu;
 use self::stamps::RenderStamps;
 use self::target::OffscreenTarget;
-use crate::commands::{compute_barrier, memory_barrier};
+use crate::commands::memory_barrier;
 use crate::device::Device;
 use crate::image::{Image, ImageSpec};
 use crate::programs::module;
@@ -79,10 +80,8 @@ pub struct Renderer {
     pub flake: Image,
     /// The sun's depth pass.
     pub shadow_pass: vk::RenderPass,
-    /// Its pipeline.
-    pub shadow: vk::Pipeline,
-    /// The cull kernels.
-    pub cull: CullPipelines,
+    /// The frame's kernels.
+    pub kernels: KernelPipelines,
     /// Frame timestamps, when the queue has them.
     pub stamps: Option<RenderStamps>,
     render_module: vk::ShaderModule,
@@ -109,16 +108,22 @@ impl Renderer {
         let render_module = module(device, Program::Render)?;
         let cull_module = module(device, Program::CullParticles)?;
         let shadow_pass = passes::shadow(device)?;
-        let shadow = shadow_pipeline(device, render_module, &layouts, shadow_pass)?;
-        let cull = CullPipelines::new(device, cull_module, render_module, &layouts)?;
+        let kernels = KernelPipelines::new(
+            device,
+            |program| match program {
+                Program::Render => Some(render_module),
+                Program::CullParticles => Some(cull_module),
+                _ => None,
+            },
+            &layouts,
+        )?;
         Ok(Self {
             stamps: RenderStamps::new(device)?,
             layouts,
             samplers,
             flake,
             shadow_pass,
-            shadow,
-            cull,
+            kernels,
             render_module,
             cull_module,
             camera_passes: Vec::new(),
@@ -151,8 +156,13 @@ impl Renderer {
             }
         };
         if !self.draws.iter().any(|(f, _)| *f == format) {
-            let draws =
-                DrawPipelines::new(device, self.render_module, &self.layouts, passes.scene)?;
+            let draws = DrawPipelines::new(
+                device,
+                self.render_module,
+                &self.layouts,
+                passes.scene,
+                self.shadow_pass,
+            )?;
             self.draws.push((format, draws));
         }
         Ok(passes)
@@ -172,13 +182,12 @@ impl Renderer {
         for (_, d) in self.draws {
             d.destroy(device);
         }
-        self.cull.destroy(device);
+        self.kernels.destroy(device);
         if let Some(s) = self.stamps {
             s.destroy(device);
         }
         // SAFETY: the device is idle; each object is destroyed once.
         unsafe {
-            device.raw.destroy_pipeline(self.shadow, None);
             device.raw.destroy_render_pass(self.shadow_pass, None);
             for c in &self.camera_passes {
                 device.raw.destroy_render_pass(c.passes.scene, None);
@@ -270,8 +279,29 @@ fn viewport(device: &Device, cb: vk::CommandBuffer, (width, height): (u32, u32))
     }
 }
 
-/// Records one frame (see the module docs) into `cb`; `params_offset` is the
-/// frame's `RenderParams` block.
+/// The descriptor set made for table `group` (a mesh's material set is bound by the
+/// scene's draw, per mesh).
+fn set_of(
+    frame: &FrameResources,
+    target: &FrameTarget,
+    group: &GroupLayout,
+) -> Option<vk::DescriptorSet> {
+    bg::lookup(
+        group,
+        [
+            (&bg::RENDER_FRAME, frame.frame_set),
+            (&bg::RENDER_LIGHT, frame.light_set),
+            (&bg::CULL, frame.cull_set),
+            (&bg::COVER_TEXTURE, frame.cover_texture_set),
+            (&bg::SPLAT, target.splat_sets.0),
+            (&bg::SPLAT_RESOLVE, target.splat_sets.1),
+        ],
+    )
+}
+
+/// Records one frame into `cb`: [`FRAME_PASSES`] in order (see the module docs),
+/// each bracketed by its timestamps; `params_offset` is the frame's `RenderParams`
+/// block.
 ///
 /// # Safety
 /// - `cb` is a command buffer of `device` in the recording state, outside a render
@@ -294,13 +324,12 @@ pub unsafe fn record_frame(
         return;
     };
     let frame = &state.frame;
-    let layout = renderer.layouts.draw_layout;
     let stamps = renderer.stamps.as_ref();
-    let stamp = |i| {
+    let stamp = |i, stage| {
         if let Some(s) = stamps {
             // SAFETY: `cb` is recording (the caller's guarantee); `i` < QUERIES, reset
             // at the start of this frame's recording below.
-            unsafe { s.stamp(device, cb, i) };
+            unsafe { s.stamp(device, cb, i, stage) };
         }
     };
     if let Some(s) = stamps {
@@ -312,6 +341,7 @@ pub unsafe fn record_frame(
         // made with TRANSFER_DST; the barrier below orders the fill before the splat.
         unsafe { device.raw.cmd_fill_buffer(cb, sums, 0, vk::WHOLE_SIZE, 0) };
     }
+    // The step's compute writes (particles, cover) and the fill, to this frame.
     // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
     unsafe {
         memory_barrier(
@@ -327,237 +357,185 @@ pub unsafe fn record_frame(
             ),
         );
     }
-    stamp(0);
-    let shadow_px = frame.shadow_map.size();
     let depth_clear = vk::ClearValue {
         depth_stencil: vk::ClearDepthStencilValue {
             depth: 1.0,
             stencil: 0,
         },
     };
-    let begin = |pass, framebuffer, size: (u32, u32), clears: &[vk::ClearValue]| {
-        let info = vk::RenderPassBeginInfo::default()
-            .render_pass(pass)
-            .framebuffer(framebuffer)
-            .render_area(vk::Rect2D {
-                offset: vk::Offset2D { x: 0, y: 0 },
-                extent: vk::Extent2D {
-                    width: size.0,
-                    height: size.1,
-                },
-            })
-            .clear_values(clears);
-        // SAFETY: `cb` is recording outside a render pass; the framebuffer was made
-        // for a pass compatible with `pass`, of `size`.
-        unsafe {
-            device
-                .raw
-                .cmd_begin_render_pass(cb, &info, vk::SubpassContents::INLINE)
-        };
-        viewport(device, cb, size);
+    let sky = target.sky;
+    let sky_clear = vk::ClearValue {
+        color: vk::ClearColorValue {
+            float32: [sky.x, sky.y, sky.z, 1.0],
+        },
     };
-    // The frame's and the cull's set 0 take the frame's dynamic offset (`dynamic`).
-    let dynamic = [params_offset];
-    let bind_sets =
-        |bind_point, pipeline_layout, first: u32, sets: &[vk::DescriptorSet], offsets: &[u32]| {
-            // SAFETY: `cb` is recording; the sets match the layout from `first`; the
-            // offsets are those of their dynamic descriptors (the frame's block: aligned
-            // and in the buffer).
+    // Binds the sets of `program`'s `entry`, each at its index, the frame's block at
+    // its dynamic offset.
+    let bind_sets = |bind_point, program, entry: &str, layout| {
+        for (index, group) in groups_of(program, entry).unwrap_or(&[]).iter().enumerate() {
+            let Some(set) = set_of(frame, &target, group) else {
+                continue;
+            };
+            let offsets: &[u32] = if group.has_dynamic_binding() {
+                &[params_offset]
+            } else {
+                &[]
+            };
+            // SAFETY: `cb` is recording; the set's layout is the layout's set `index`
+            // (both from the same table); the offset is that of the frame's block
+            // (aligned and in the buffer).
             unsafe {
                 device.raw.cmd_bind_descriptor_sets(
                     cb,
                     bind_point,
-                    pipeline_layout,
-                    first,
-                    sets,
+                    layout,
+                    index as u32,
+                    &[set],
                     offsets,
                 );
             }
-        };
-    let dispatch = |pipeline, (x, y): (u32, u32)| {
-        // SAFETY: `cb` is recording outside a render pass; the pipeline's sets are
-        // bound.
-        unsafe {
-            device
-                .raw
-                .cmd_bind_pipeline(cb, vk::PipelineBindPoint::COMPUTE, pipeline);
-            device.raw.cmd_dispatch(cb, x, y, 1);
         }
     };
-    bind_sets(
-        vk::PipelineBindPoint::COMPUTE,
-        renderer.layouts.cover_texture_layout,
-        0,
-        &[frame.cover_texture_set],
-        &[],
-    );
-    dispatch(
-        renderer.cull.cover_texture,
-        dispatch_size(frame.cover_texels),
-    );
-    // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
-    unsafe {
-        memory_barrier(
-            device,
-            cb,
-            (S::COMPUTE_SHADER, A::SHADER_WRITE),
-            (
-                S::VERTEX_SHADER | S::FRAGMENT_SHADER | S::COMPUTE_SHADER,
-                A::SHADER_READ,
-            ),
-        );
-    }
-    stamp(1);
-    if target.draw_shadow {
-        begin(
-            renderer.shadow_pass,
-            frame.shadow_framebuffer,
-            shadow_px,
-            &[depth_clear],
-        );
-        if let Some(scene) = &state.scene {
-            // SAFETY: inside the shadow pass; the shadow pipeline was made for it.
-            unsafe {
-                device
-                    .raw
-                    .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, renderer.shadow)
-            };
-            bind_sets(
-                vk::PipelineBindPoint::GRAPHICS,
-                layout,
-                0,
-                &[frame.frame_set],
-                &dynamic,
-            );
-            scene.draw(device, cb, layout, false);
+    for (index, pass) in FRAME_PASSES.iter().enumerate() {
+        let (start, end) = (2 * index as u32, 2 * index as u32 + 1);
+        if pass.when == PassWhen::ShadowRedrawn && !target.draw_shadow {
+            // Written, so the pool's results are available; not reported.
+            stamp(start, S::TOP_OF_PIPE);
+            stamp(end, S::BOTTOM_OF_PIPE);
+            continue;
         }
-        // SAFETY: ends the pass begun above.
-        unsafe { device.raw.cmd_end_render_pass(cb) };
+        stamp(start, S::TOP_OF_PIPE);
+        match &pass.work {
+            PassWork::Kernels(list) => {
+                for kernel in *list {
+                    let entry = kernel.entry_point;
+                    let (Some(pipeline), Some(layout)) = (
+                        renderer.kernels.get(entry),
+                        renderer.layouts.pipeline_layout(entry),
+                    ) else {
+                        continue;
+                    };
+                    bind_sets(
+                        vk::PipelineBindPoint::COMPUTE,
+                        kernel.program,
+                        entry,
+                        layout,
+                    );
+                    let (x, y) = match kernel.over {
+                        DispatchOver::OneWorkgroup => (1, 1),
+                        DispatchOver::CoverTexels => dispatch_size(frame.cover_texels),
+                        DispatchOver::Particles | DispatchOver::PendingBirths => {
+                            dispatch_size(particle_count)
+                        }
+                    };
+                    // SAFETY: `cb` is recording outside a render pass; the
+                    // pipeline's sets are bound. Then its writes, to every later
+                    // kernel, draw and indirect read of the frame.
+                    unsafe {
+                        device
+                            .raw
+                            .cmd_bind_pipeline(cb, vk::PipelineBindPoint::COMPUTE, pipeline);
+                        device.raw.cmd_dispatch(cb, x, y, 1);
+                        memory_barrier(
+                            device,
+                            cb,
+                            (S::COMPUTE_SHADER, A::SHADER_WRITE),
+                            (
+                                S::COMPUTE_SHADER
+                                    | S::DRAW_INDIRECT
+                                    | S::VERTEX_SHADER
+                                    | S::FRAGMENT_SHADER,
+                                A::SHADER_READ | A::SHADER_WRITE | A::INDIRECT_COMMAND_READ,
+                            ),
+                        );
+                    }
+                }
+            }
+            PassWork::Render(recipe) => {
+                // The passes' attachments load and store as the recipe says
+                // (`passes.rs` makes them so); each kind maps to its pass object.
+                let (render_pass, framebuffer, size, clears): (_, _, _, &[vk::ClearValue]) =
+                    match (recipe.depth, recipe.colour) {
+                        (DepthTarget::ShadowMap, _) => (
+                            renderer.shadow_pass,
+                            frame.shadow_framebuffer,
+                            frame.shadow_map.size(),
+                            &[depth_clear],
+                        ),
+                        (DepthTarget::Camera, Some(AttachmentLoad::Clear)) => (
+                            target.passes.scene,
+                            target.framebuffer,
+                            target.size,
+                            &[sky_clear, depth_clear],
+                        ),
+                        (DepthTarget::Camera, _) => (
+                            target.passes.particles,
+                            target.framebuffer,
+                            target.size,
+                            &[],
+                        ),
+                    };
+                let info = vk::RenderPassBeginInfo::default()
+                    .render_pass(render_pass)
+                    .framebuffer(framebuffer)
+                    .render_area(vk::Rect2D {
+                        offset: vk::Offset2D { x: 0, y: 0 },
+                        extent: vk::Extent2D {
+                            width: size.0,
+                            height: size.1,
+                        },
+                    })
+                    .clear_values(clears);
+                // SAFETY: `cb` is recording outside a render pass; the framebuffer
+                // was made for a pass compatible with `render_pass`, of `size`.
+                unsafe {
+                    device
+                        .raw
+                        .cmd_begin_render_pass(cb, &info, vk::SubpassContents::INLINE)
+                };
+                viewport(device, cb, size);
+                for draw in recipe.draws {
+                    let vs = draw.entry_points.0;
+                    let (Some(pipeline), Some(layout)) =
+                        (draws.get(vs), renderer.layouts.pipeline_layout(vs))
+                    else {
+                        continue;
+                    };
+                    // SAFETY: inside the pass; the pipeline was made for a
+                    // compatible pass.
+                    unsafe {
+                        device
+                            .raw
+                            .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, pipeline)
+                    };
+                    bind_sets(vk::PipelineBindPoint::GRAPHICS, Program::Render, vs, layout);
+                    match draw.of {
+                        DrawOf::SceneMeshes { materials } => {
+                            if let Some(scene) = &state.scene {
+                                scene.draw(device, cb, layout, materials);
+                            }
+                        }
+                        // SAFETY: inside the pass with the pipeline and its sets bound.
+                        DrawOf::FullScreenTriangle => unsafe {
+                            device.raw.cmd_draw(cb, 3, 1, 0, 0)
+                        },
+                        // SAFETY: as above; the draws buffer holds the frame's
+                        // `FrameDraws`, made visible to indirect reads by the cull's
+                        // barrier.
+                        DrawOf::Indirect { offset } => unsafe {
+                            device
+                                .raw
+                                .cmd_draw_indirect(cb, frame.draws.raw, offset, 1, 16)
+                        },
+                    }
+                }
+                // SAFETY: ends the pass begun above (its dependencies make the
+                // attachments visible to what reads them next).
+                unsafe { device.raw.cmd_end_render_pass(cb) };
+            }
+        }
+        stamp(end, S::BOTTOM_OF_PIPE);
     }
-    stamp(2);
-    let sky = target.sky;
-    let clears = [
-        vk::ClearValue {
-            color: vk::ClearColorValue {
-                float32: [sky.x, sky.y, sky.z, 1.0],
-            },
-        },
-        depth_clear,
-    ];
-    begin(
-        target.passes.scene,
-        target.framebuffer,
-        target.size,
-        &clears,
-    );
-    if let Some(scene) = &state.scene {
-        // SAFETY: inside the camera pass; the scene pipeline was made for a
-        // compatible pass.
-        unsafe {
-            device
-                .raw
-                .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, draws.scene)
-        };
-        bind_sets(
-            vk::PipelineBindPoint::GRAPHICS,
-            layout,
-            0,
-            &[frame.frame_set, frame.light_set],
-            &dynamic,
-        );
-        scene.draw(device, cb, layout, true);
-    }
-    // SAFETY: ends the scene pass (its dependency makes the depth visible to the
-    // splat kernel, read-only).
-    unsafe { device.raw.cmd_end_render_pass(cb) };
-    stamp(3);
-    let particle_groups = dispatch_size(particle_count);
-    bind_sets(
-        vk::PipelineBindPoint::COMPUTE,
-        renderer.layouts.cull_layout,
-        0,
-        &[frame.cull_set],
-        &dynamic,
-    );
-    for (kernel, pipeline) in &renderer.cull.kernels {
-        let groups = match kernel.over {
-            DispatchOver::OneWorkgroup => (1, 1),
-            _ => particle_groups,
-        };
-        dispatch(*pipeline, groups);
-        // SAFETY: `cb` is recording, outside a render pass (between the dispatches).
-        unsafe { compute_barrier(device, cb) };
-    }
-    stamp(4);
-    bind_sets(
-        vk::PipelineBindPoint::COMPUTE,
-        renderer.layouts.splat_layout,
-        0,
-        &[frame.frame_set, frame.light_set, target.splat_sets.0],
-        &dynamic,
-    );
-    dispatch(renderer.cull.splat, particle_groups);
-    // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).
-    unsafe {
-        memory_barrier(
-            device,
-            cb,
-            (S::COMPUTE_SHADER, A::SHADER_WRITE),
-            (
-                S::DRAW_INDIRECT | S::VERTEX_SHADER | S::FRAGMENT_SHADER,
-                A::INDIRECT_COMMAND_READ | A::SHADER_READ | A::SHADER_WRITE,
-            ),
-        );
-    }
-    stamp(5);
-    begin(
-        target.passes.particles,
-        target.framebuffer,
-        target.size,
-        &[],
-    );
-    bind_sets(
-        vk::PipelineBindPoint::GRAPHICS,
-        layout,
-        0,
-        &[frame.frame_set, frame.light_set],
-        &dynamic,
-    );
-    // SAFETY: inside the camera pass; the resolve pipeline was made for a compatible
-    // pass; its layout shares sets 0 and 1 with the draws' (compatible), set 2 is
-    // bound here.
-    unsafe {
-        device
-            .raw
-            .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, draws.splat_resolve);
-    }
-    bind_sets(
-        vk::PipelineBindPoint::GRAPHICS,
-        renderer.layouts.resolve_layout,
-        2,
-        &[target.splat_sets.1],
-        &[],
-    );
-    // SAFETY: inside the camera pass; the particle pipelines were made for a
-    // compatible pass; the draws buffer holds two 16-byte `DrawArgs`, made visible to
-    // indirect reads by the barrier above.
-    unsafe {
-        device.raw.cmd_draw(cb, 3, 1, 0, 0);
-        device
-            .raw
-            .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, draws.snow);
-        device
-            .raw
-            .cmd_draw_indirect(cb, frame.draws.raw, FrameDraws::SNOW_OFFSET, 1, 16);
-        device
-            .raw
-            .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, draws.rain);
-        device
-            .raw
-            .cmd_draw_indirect(cb, frame.draws.raw, FrameDraws::RAIN_OFFSET, 1, 16);
-        device.raw.cmd_end_render_pass(cb);
-    }
-    stamp(6);
     // The next frame's step and splat rewrite what these shaders read, and the
     // resolve's zeroing writes must land before the next splat adds.
     // SAFETY: `cb` is recording, outside a render pass (the caller's guarantee).

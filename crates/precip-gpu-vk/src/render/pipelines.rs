@@ -1,54 +1,34 @@
-//! The draw pipelines (per colour format, like the wgpu backend's) and the cull
-//! kernels, from `precip_model::gpu::{render_passes, CULL_PASSES}` — the same entry
-//! points, topologies, depth tests, bias and blending as wgpu, so the images agree.
+//! The frame's pipelines, made from the recipe (`precip_model::frame_recipe`): one
+//! graphics pipeline per [`Draw`] (per colour format, like the wgpu backend's; a draw
+//! of the depth-only shadow pass against the shadow pass) and one compute pipeline
+//! per kernel, each with its entry point's pipeline layout
+//! ([`RenderLayouts::pipeline_layout`]) — the same entry points, topologies, depth
+//! tests, bias and blending as wgpu, so the images agree. wgpu twin:
+//! `precip_gpu_wgpu::render::pipelines`.
 
 use std::ffi::CString;
 
 use ash::vk;
 use precip_model::BackendError;
-use precip_model::gpu::{
-    COVER_TEXTURE_PASS, CULL_PASSES, KernelPass, SPLAT_PASS, SceneVertex, render_passes,
-};
+use precip_model::frame_recipe::{self, Blend, DepthTarget, Draw, PassWork, Topology};
+use precip_model::gpu::SceneVertex;
+use precip_model::shaders::Program;
 
 use super::layouts::RenderLayouts;
 use crate::device::Device;
 use crate::error::{NAME, map_vk};
 use crate::programs::compute;
 
-/// The draws of a frame for one colour format (the shadow draw is shared).
+/// The draws of a frame for one colour format, by vertex entry point.
 #[derive(Debug)]
 pub struct DrawPipelines {
-    /// The scene with its cover.
-    pub scene: vk::Pipeline,
-    /// Snow sprites.
-    pub snow: vk::Pipeline,
-    /// Rain tetrahedra.
-    pub rain: vk::Pipeline,
-    /// The splat sums blended over the frame.
-    pub splat_resolve: vk::Pipeline,
+    by_vertex_entry: Vec<(&'static str, vk::Pipeline)>,
 }
 
-/// The cull kernels, in the recipe's order, and the splat kernel.
+/// The frame's compute kernels, by entry point.
 #[derive(Debug)]
-pub struct CullPipelines {
-    /// `(kernel, pipeline)` of [`CULL_PASSES`].
-    pub kernels: Vec<(KernelPass, vk::Pipeline)>,
-    /// [`SPLAT_PASS`].
-    pub splat: vk::Pipeline,
-    /// [`COVER_TEXTURE_PASS`].
-    pub cover_texture: vk::Pipeline,
-}
-
-/// How a draw differs from the others.
-struct Draw<'a> {
-    name: &'a str,
-    entry_points: (&'a str, Option<&'a str>),
-    scene_vertices: bool,
-    topology: vk::PrimitiveTopology,
-    depth_write: bool,
-    /// Constant and slope-scaled depth bias (the shadow draw's, as wgpu's 2 and 2.0).
-    bias: Option<(f32, f32)>,
-    blend: Option<bool>,
+pub struct KernelPipelines {
+    by_entry: Vec<(&'static str, vk::Pipeline)>,
 }
 
 fn entry(name: &str) -> Result<CString, BackendError> {
@@ -79,7 +59,7 @@ fn draw_pipeline(
     module: vk::ShaderModule,
     layout: vk::PipelineLayout,
     pass: vk::RenderPass,
-    d: &Draw<'_>,
+    d: &Draw,
 ) -> Result<vk::Pipeline, BackendError> {
     let vs = entry(d.entry_points.0)?;
     let fs = d.entry_points.1.map(entry).transpose()?;
@@ -110,16 +90,21 @@ fn draw_pipeline(
     } else {
         vk::PipelineVertexInputStateCreateInfo::default()
     };
-    let assembly = vk::PipelineInputAssemblyStateCreateInfo::default().topology(d.topology);
+    let assembly = vk::PipelineInputAssemblyStateCreateInfo::default().topology(match d.topology {
+        Topology::TriangleList => vk::PrimitiveTopology::TRIANGLE_LIST,
+        Topology::TriangleStrip => vk::PrimitiveTopology::TRIANGLE_STRIP,
+    });
     let viewport = vk::PipelineViewportStateCreateInfo::default()
         .viewport_count(1)
         .scissor_count(1);
-    let (constant, slope) = d.bias.unwrap_or((0.0, 0.0));
+    let (constant, slope) = d
+        .depth_bias
+        .map_or((0.0, 0.0), |(constant, slope)| (constant as f32, slope));
     let raster = vk::PipelineRasterizationStateCreateInfo::default()
         .polygon_mode(vk::PolygonMode::FILL)
         .cull_mode(vk::CullModeFlags::NONE)
         .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
-        .depth_bias_enable(d.bias.is_some())
+        .depth_bias_enable(d.depth_bias.is_some())
         .depth_bias_constant_factor(constant)
         .depth_bias_slope_factor(slope)
         .line_width(1.0);
@@ -132,7 +117,7 @@ fn draw_pipeline(
         .max_depth_bounds(1.0);
     // wgpu's BlendState::ALPHA_BLENDING: colour src·α + dst·(1 − α), alpha "over".
     let attachment = match d.blend {
-        Some(true) => vec![
+        Blend::Alpha => vec![
             vk::PipelineColorBlendAttachmentState::default()
                 .blend_enable(true)
                 .src_color_blend_factor(vk::BlendFactor::SRC_ALPHA)
@@ -143,11 +128,11 @@ fn draw_pipeline(
                 .alpha_blend_op(vk::BlendOp::ADD)
                 .color_write_mask(vk::ColorComponentFlags::RGBA),
         ],
-        Some(false) => vec![
+        Blend::Opaque => vec![
             vk::PipelineColorBlendAttachmentState::default()
                 .color_write_mask(vk::ColorComponentFlags::RGBA),
         ],
-        None => Vec::new(),
+        Blend::None => Vec::new(),
     };
     let blend = vk::PipelineColorBlendStateCreateInfo::default().attachments(&attachment);
     let dynamic = [vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
@@ -172,171 +157,122 @@ fn draw_pipeline(
             .raw
             .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
     }
-    .map_err(|(_, e)| map_vk(&format!("creating the {} pipeline", d.name), e))?[0];
-    device.name(pipeline, d.name);
+    .map_err(|(_, e)| map_vk(&format!("creating the {} pipeline", d.entry_points.0), e))?[0];
+    device.name(pipeline, d.entry_points.0);
     Ok(pipeline)
 }
 
-/// The shadow draw (depth only, biased like wgpu's: constant 2, slope 2.0).
-pub fn shadow_pipeline(
-    device: &Device,
-    module: vk::ShaderModule,
-    layouts: &RenderLayouts,
-    shadow_pass: vk::RenderPass,
-) -> Result<vk::Pipeline, BackendError> {
-    draw_pipeline(
-        device,
-        module,
-        layouts.draw_layout,
-        shadow_pass,
-        &Draw {
-            name: "precip shadow",
-            entry_points: render_passes::SHADOW,
-            scene_vertices: true,
-            topology: vk::PrimitiveTopology::TRIANGLE_LIST,
-            depth_write: true,
-            bias: Some((2.0, 2.0)),
-            blend: None,
-        },
-    )
-}
-
 impl DrawPipelines {
-    /// The draws for a camera pass `pass` (its colour format).
+    /// Every draw of the frame recipe: those of the camera's passes against
+    /// `camera_pass` (its colour format), the shadow pass's against `shadow_pass`.
     pub fn new(
         device: &Device,
         module: vk::ShaderModule,
         layouts: &RenderLayouts,
-        pass: vk::RenderPass,
+        camera_pass: vk::RenderPass,
+        shadow_pass: vk::RenderPass,
     ) -> Result<Self, BackendError> {
-        let layout = layouts.draw_layout;
-        let scene = draw_pipeline(
-            device,
-            module,
-            layout,
-            pass,
-            &Draw {
-                name: "precip scene",
-                entry_points: render_passes::SCENE,
-                scene_vertices: true,
-                topology: vk::PrimitiveTopology::TRIANGLE_LIST,
-                depth_write: true,
-                bias: None,
-                blend: Some(false),
-            },
-        )?;
-        let particles = |name, entry_points, topology| Draw {
-            name,
-            entry_points,
-            scene_vertices: false,
-            topology,
-            depth_write: false,
-            bias: None,
-            blend: Some(true),
+        let mut made = Self {
+            by_vertex_entry: Vec::new(),
         };
-        let snow = draw_pipeline(
-            device,
-            module,
-            layout,
-            pass,
-            &particles(
-                "precip snow",
-                render_passes::SNOW,
-                vk::PrimitiveTopology::TRIANGLE_STRIP,
-            ),
-        )?;
-        let rain = draw_pipeline(
-            device,
-            module,
-            layout,
-            pass,
-            &particles(
-                "precip rain",
-                render_passes::RAIN,
-                vk::PrimitiveTopology::TRIANGLE_LIST,
-            ),
-        )?;
-        // At depth 0 it passes the less-equal test everywhere: no depth test.
-        let splat_resolve = draw_pipeline(
-            device,
-            module,
-            layouts.resolve_layout,
-            pass,
-            &particles(
-                "precip splat resolve",
-                render_passes::SPLAT_RESOLVE,
-                vk::PrimitiveTopology::TRIANGLE_LIST,
-            ),
-        )?;
-        Ok(Self {
-            scene,
-            snow,
-            rain,
-            splat_resolve,
-        })
+        for (pass, draw) in frame_recipe::draws() {
+            let render_pass = match pass.work {
+                PassWork::Render(r) if r.depth == DepthTarget::ShadowMap => shadow_pass,
+                _ => camera_pass,
+            };
+            let vs = draw.entry_points.0;
+            let made_one = layouts
+                .pipeline_layout(vs)
+                .ok_or_else(|| BackendError::Device {
+                    backend: NAME,
+                    message: format!(
+                        "no pipeline layout for {vs} (a bug in precip: please report it)"
+                    ),
+                })
+                .and_then(|layout| draw_pipeline(device, module, layout, render_pass, draw));
+            match made_one {
+                Ok(p) => made.by_vertex_entry.push((vs, p)),
+                Err(e) => {
+                    made.destroy(device);
+                    return Err(e);
+                }
+            }
+        }
+        Ok(made)
+    }
+
+    /// The pipeline of the draw whose vertex entry point is `vertex_entry`.
+    #[must_use]
+    pub fn get(&self, vertex_entry: &str) -> Option<vk::Pipeline> {
+        self.by_vertex_entry
+            .iter()
+            .find(|(e, _)| *e == vertex_entry)
+            .map(|(_, p)| *p)
     }
 
     /// Destroys the pipelines (the device must be idle).
     pub fn destroy(self, device: &Device) {
         // SAFETY: the device is idle; destroyed once (by the renderer's destroy).
         unsafe {
-            for p in [self.scene, self.snow, self.rain, self.splat_resolve] {
+            for (_, p) in self.by_vertex_entry {
                 device.raw.destroy_pipeline(p, None);
             }
         }
     }
 }
 
-impl CullPipelines {
-    /// The cull kernels of `module` (the `CullParticles` program) and the splat
-    /// kernel of `render_module` (the `Render` program).
+impl KernelPipelines {
+    /// Every kernel of the frame recipe, from the module of its program
+    /// (`module_of`).
     pub fn new(
         device: &Device,
-        module: vk::ShaderModule,
-        render_module: vk::ShaderModule,
+        module_of: impl Fn(Program) -> Option<vk::ShaderModule>,
         layouts: &RenderLayouts,
     ) -> Result<Self, BackendError> {
-        let mut kernels = Vec::with_capacity(CULL_PASSES.len());
-        for kernel in CULL_PASSES {
-            let pipeline = compute(device, layouts.cull_layout, module, kernel.entry_point)?;
-            device.name(pipeline, kernel.entry_point);
-            kernels.push((kernel, pipeline));
-        }
         let mut made = Self {
-            kernels,
-            splat: vk::Pipeline::null(),
-            cover_texture: vk::Pipeline::null(),
+            by_entry: Vec::new(),
         };
-        for (kernel, layout) in [
-            (SPLAT_PASS, layouts.splat_layout),
-            (COVER_TEXTURE_PASS, layouts.cover_texture_layout),
-        ] {
-            let pipeline = match compute(device, layout, render_module, kernel.entry_point) {
-                Ok(p) => p,
+        for kernel in frame_recipe::kernels() {
+            let entry = kernel.entry_point;
+            let made_one = match (module_of(kernel.program), layouts.pipeline_layout(entry)) {
+                (Some(module), Some(layout)) => compute(device, layout, module, entry),
+                _ => Err(BackendError::Device {
+                    backend: NAME,
+                    message: format!(
+                        "no module or layout for {entry} (a bug in precip: please report it)"
+                    ),
+                }),
+            };
+            match made_one {
+                Ok(p) => {
+                    device.name(p, entry);
+                    made.by_entry.push((entry, p));
+                }
                 Err(e) => {
                     made.destroy(device);
                     return Err(e);
                 }
-            };
-            device.name(pipeline, kernel.entry_point);
-            if kernel == SPLAT_PASS {
-                made.splat = pipeline;
-            } else {
-                made.cover_texture = pipeline;
             }
         }
         Ok(made)
+    }
+
+    /// The pipeline of kernel `entry_point`.
+    #[must_use]
+    pub fn get(&self, entry_point: &str) -> Option<vk::Pipeline> {
+        self.by_entry
+            .iter()
+            .find(|(e, _)| *e == entry_point)
+            .map(|(_, p)| *p)
     }
 
     /// Destroys the pipelines (the device must be idle).
     pub fn destroy(self, device: &Device) {
         // SAFETY: the device is idle; destroyed once.
         unsafe {
-            for (_, p) in &self.kernels {
-                device.raw.destroy_pipeline(*p, None);
+            for (_, p) in self.by_entry {
+                device.raw.destroy_pipeline(p, None);
             }
-            device.raw.destroy_pipeline(self.splat, None);
-            device.raw.destroy_pipeline(self.cover_texture, None);
         }
     }
 }

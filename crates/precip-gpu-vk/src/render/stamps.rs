@@ -11,8 +11,9 @@ use crate::error::map_vk;
 pub const PASSES: [&str; precip_model::gpu::TIMED_RENDER_PASSES.len()] =
     precip_model::gpu::TIMED_RENDER_PASSES;
 
-/// Queries: one before the first pass and one after each.
-pub const QUERIES: u32 = PASSES.len() as u32 + 1;
+/// Queries: two a pass, at its start (`2·i`) and its end (`2·i + 1`), as wgpu's
+/// pass timestamps.
+pub const QUERIES: u32 = 2 * PASSES.len() as u32;
 
 /// The query pool of a frame's timestamps.
 #[derive(Debug)]
@@ -55,20 +56,22 @@ impl RenderStamps {
         unsafe { device.raw.cmd_reset_query_pool(cb, self.pool, 0, QUERIES) };
     }
 
-    /// Records timestamp `index` once all earlier work is done.
+    /// Records timestamp `index` when earlier work reaches `stage` (`TOP_OF_PIPE` at
+    /// a pass's start, `BOTTOM_OF_PIPE` at its end).
     ///
     /// # Safety
     /// - `cb` is a command buffer of `device` in the recording state.
     /// - `index` < [`QUERIES`], reset earlier in `cb` ([`RenderStamps::reset`]).
-    pub unsafe fn stamp(&self, device: &Device, cb: vk::CommandBuffer, index: u32) {
+    pub unsafe fn stamp(
+        &self,
+        device: &Device,
+        cb: vk::CommandBuffer,
+        index: u32,
+        stage: vk::PipelineStageFlags,
+    ) {
         // SAFETY: the caller guarantees both.
         unsafe {
-            device.raw.cmd_write_timestamp(
-                cb,
-                vk::PipelineStageFlags::BOTTOM_OF_PIPE,
-                self.pool,
-                index,
-            );
+            device.raw.cmd_write_timestamp(cb, stage, self.pool, index);
         }
     }
 
@@ -91,7 +94,7 @@ impl RenderStamps {
         let period = f64::from(device.properties.limits.timestamp_period);
         Ok(PASSES
             .iter()
-            .zip(ticks.windows(2))
+            .zip(ticks.chunks_exact(2))
             .filter(|(pass, _)| self.shadow_drawn || **pass != "shadow")
             .map(|(pass, t)| PassTiming {
                 pass,

@@ -39,4 +39,21 @@ impl RenderLayouts {
             cover_texture: layout(&bg::COVER_TEXTURE),
         }
     }
+
+    /// The layout made from table `group`, if it is one of the frame's.
+    #[must_use]
+    pub fn of(&self, group: &bg::GroupLayout) -> Option<&wgpu::BindGroupLayout> {
+        bg::lookup(
+            group,
+            [
+                (&bg::RENDER_FRAME, &self.frame),
+                (&bg::RENDER_LIGHT, &self.light),
+                (&bg::RENDER_MATERIAL, &self.material),
+                (&bg::CULL, &self.cull),
+                (&bg::SPLAT, &self.splat),
+                (&bg::SPLAT_RESOLVE, &self.splat_resolve),
+                (&bg::COVER_TEXTURE, &self.cover_texture),
+            ],
+        )
+    }
 }

@@ -3,6 +3,12 @@
 //!
 //! ## A frame
 //!
+//! [`encode_frame`] executes `precip_model::gpu::FRAME_PASSES`
+//! (`precip_model::frame_recipe`): each pass a compute pass or a render pass with its
+//! two timestamps, each kernel and draw with the pipeline made from its recipe entry
+//! and the groups of its entry point (`precip_model::bind_groups::groups_of`).
+//! Vulkan twin: `precip_gpu_vk::render::record_frame`.
+//!
 //! 0. **cover_texture** — the cover texels into two filtered textures
 //!    (`precip_model::gpu::COVER_TEXTURE_PASS`) that the surfaces sample.
 //! 1. **shadow** — the scene's displaced geometry from the sun into a depth map.
@@ -40,12 +46,14 @@ use glam::Vec3;
 
 use self::frame::FrameResources;
 use self::layouts::RenderLayouts;
-use self::pipelines::{CullPipelines, DrawPipelines};
+use self::pipelines::{DrawPipelines, KernelPipelines};
 use self::scene::SceneGpu;
 use self::stamps::RenderStamps;
 use self::target::{ColourTarget, DepthBuffer};
-use precip_model::gpu::dispatch_size;
-use precip_model::gpu::{DispatchOver, FrameDraws};
+use precip_model::bind_groups::{self as bg, GroupLayout, groups_of};
+use precip_model::frame_recipe::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
+use precip_model::gpu::{DispatchOver, FRAME_PASSES, dispatch_size};
+use precip_model::shaders::Program;
 use precip_model::shadow_cache::ShadowCache;
 
 /// Layouts and pipelines of one device.
@@ -53,8 +61,8 @@ use precip_model::shadow_cache::ShadowCache;
 pub struct Renderer {
     /// Bind group layouts.
     pub layouts: RenderLayouts,
-    /// The cull kernels.
-    pub cull: CullPipelines,
+    /// The frame's kernels.
+    pub kernels: KernelPipelines,
     draws: HashMap<wgpu::TextureFormat, DrawPipelines>,
 }
 
@@ -63,10 +71,10 @@ impl Renderer {
     #[must_use]
     pub fn new(device: &wgpu::Device) -> Self {
         let layouts = RenderLayouts::new(device);
-        let cull = CullPipelines::new(device, &layouts);
+        let kernels = KernelPipelines::new(device, &layouts);
         Self {
             layouts,
-            cull,
+            kernels,
             draws: HashMap::new(),
         }
     }
@@ -146,143 +154,161 @@ fn compute_stamps(
     })
 }
 
-/// Records one frame (see the module docs) into `encoder`.
+/// The bind group made for table `group` (a mesh's material group is bound by the
+/// scene's draw, per mesh).
+fn bind_group_of<'a>(
+    frame: &'a FrameResources,
+    depth: &'a DepthBuffer,
+    group: &GroupLayout,
+) -> Option<&'a wgpu::BindGroup> {
+    bg::lookup(
+        group,
+        [
+            (&bg::RENDER_FRAME, &frame.frame_group),
+            (&bg::RENDER_LIGHT, &frame.light_group),
+            (&bg::CULL, &frame.cull_group),
+            (&bg::COVER_TEXTURE, &frame.cover_texture_group),
+            (&bg::SPLAT, &depth.splat_group),
+            (&bg::SPLAT_RESOLVE, &depth.resolve_group),
+        ],
+    )
+}
+
+/// The dynamic offsets of `group`: the frame's block, at 0 (one dynamic binding at
+/// most: the frame's `RenderParams`).
+fn dynamic_offsets(group: &GroupLayout) -> &'static [u32] {
+    if group.has_dynamic_binding() {
+        &[0]
+    } else {
+        &[]
+    }
+}
+
+/// Binds every group of `program`'s `entry_point` that the frame holds.
+macro_rules! bind_groups {
+    ($pass:expr, $frame:expr, $depth:expr, $program:expr, $entry:expr) => {
+        for (index, group) in groups_of($program, $entry)
+            .unwrap_or(&[])
+            .iter()
+            .enumerate()
+        {
+            if let Some(bind_group) = bind_group_of($frame, $depth, group) {
+                $pass.set_bind_group(index as u32, bind_group, dynamic_offsets(group));
+            }
+        }
+    };
+}
+
+fn load_op<V>(load: AttachmentLoad, clear: V) -> wgpu::LoadOp<V> {
+    match load {
+        AttachmentLoad::Clear => wgpu::LoadOp::Clear(clear),
+        AttachmentLoad::Load => wgpu::LoadOp::Load,
+    }
+}
+
+/// Records one frame into `encoder`: [`FRAME_PASSES`] in order (see the module
+/// docs), each bracketed by its timestamps.
 pub fn encode_frame(
     encoder: &mut wgpu::CommandEncoder,
     draws: &DrawPipelines,
-    cull: &CullPipelines,
+    kernels: &KernelPipelines,
     state: &RenderState,
     target: FrameTarget<'_>,
     stamps: Option<&RenderStamps>,
     particle_count: u32,
 ) {
     let frame = &state.frame;
-    {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("precip cover_texture"),
-            timestamp_writes: compute_stamps(stamps, 0),
-        });
-        pass.set_pipeline(&cull.cover_texture);
-        pass.set_bind_group(0, &frame.cover_texture_group, &[]);
-        let (x, y) = dispatch_size(frame.cover_texels);
-        pass.dispatch_workgroups(x, y, 1);
-    }
-    if target.draw_shadow {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("precip shadow"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &frame.shadow_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: render_stamps(stamps, 1),
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        if let Some(scene) = &state.scene {
-            pass.set_pipeline(&draws.shadow);
-            pass.set_bind_group(0, &frame.frame_group, &[0]);
-            scene.draw(&mut pass, false);
+    let depth = target.depth;
+    for (index, pass) in FRAME_PASSES.iter().enumerate() {
+        if pass.when == PassWhen::ShadowRedrawn && !target.draw_shadow {
+            continue;
         }
-    }
-    let sky = target.sky;
-    {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("precip scene"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target.colour,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color {
-                        r: f64::from(sky.x),
-                        g: f64::from(sky.y),
-                        b: f64::from(sky.z),
-                        a: 1.0,
+        let index = index as u32;
+        match &pass.work {
+            PassWork::Kernels(list) => {
+                let mut compute = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(pass.name),
+                    timestamp_writes: compute_stamps(stamps, index),
+                });
+                for kernel in *list {
+                    let Some(pipeline) = kernels.get(kernel.entry_point) else {
+                        continue;
+                    };
+                    compute.set_pipeline(pipeline);
+                    bind_groups!(compute, frame, depth, kernel.program, kernel.entry_point);
+                    let (x, y) = match kernel.over {
+                        DispatchOver::OneWorkgroup => (1, 1),
+                        DispatchOver::CoverTexels => dispatch_size(frame.cover_texels),
+                        DispatchOver::Particles | DispatchOver::PendingBirths => {
+                            dispatch_size(particle_count)
+                        }
+                    };
+                    compute.dispatch_workgroups(x, y, 1);
+                }
+            }
+            PassWork::Render(recipe) => {
+                let sky = target.sky;
+                let sky = wgpu::Color {
+                    r: f64::from(sky.x),
+                    g: f64::from(sky.y),
+                    b: f64::from(sky.z),
+                    a: 1.0,
+                };
+                let colour = recipe.colour.map(|load| {
+                    Some(wgpu::RenderPassColorAttachment {
+                        view: target.colour,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: load_op(load, sky),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })
+                });
+                let depth_view = match recipe.depth {
+                    DepthTarget::ShadowMap => &frame.shadow_view,
+                    DepthTarget::Camera => &depth.view,
+                };
+                let mut render = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some(pass.name),
+                    color_attachments: match &colour {
+                        Some(c) => std::slice::from_ref(c),
+                        None => &[],
+                    },
+                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                        view: depth_view,
+                        depth_ops: Some(wgpu::Operations {
+                            load: load_op(recipe.depth_load, 1.0),
+                            store: if recipe.depth_stored {
+                                wgpu::StoreOp::Store
+                            } else {
+                                wgpu::StoreOp::Discard
+                            },
+                        }),
+                        stencil_ops: None,
                     }),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &target.depth.view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: render_stamps(stamps, 2),
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        if let Some(scene) = &state.scene {
-            pass.set_pipeline(&draws.scene);
-            pass.set_bind_group(0, &frame.frame_group, &[0]);
-            pass.set_bind_group(1, &frame.light_group, &[]);
-            scene.draw(&mut pass, true);
+                    timestamp_writes: render_stamps(stamps, index),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                for draw in recipe.draws {
+                    let vs = draw.entry_points.0;
+                    let Some(pipeline) = draws.get(vs) else {
+                        continue;
+                    };
+                    render.set_pipeline(pipeline);
+                    bind_groups!(render, frame, depth, Program::Render, vs);
+                    match draw.of {
+                        DrawOf::SceneMeshes { materials } => {
+                            if let Some(scene) = &state.scene {
+                                scene.draw(&mut render, materials);
+                            }
+                        }
+                        DrawOf::FullScreenTriangle => render.draw(0..3, 0..1),
+                        DrawOf::Indirect { offset } => render.draw_indirect(&frame.draws, offset),
+                    }
+                }
+            }
         }
     }
-    let particle_groups = dispatch_size(particle_count);
-    {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("precip cull_particles"),
-            timestamp_writes: compute_stamps(stamps, 3),
-        });
-        pass.set_bind_group(0, &frame.cull_group, &[0]);
-        for (kernel, pipeline) in &cull.kernels {
-            pass.set_pipeline(pipeline);
-            let (x, y) = match kernel.over {
-                DispatchOver::OneWorkgroup => (1, 1),
-                _ => particle_groups,
-            };
-            pass.dispatch_workgroups(x, y, 1);
-        }
-    }
-    {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("precip splat_particles"),
-            timestamp_writes: compute_stamps(stamps, 4),
-        });
-        pass.set_pipeline(&cull.splat);
-        pass.set_bind_group(0, &frame.frame_group, &[0]);
-        pass.set_bind_group(1, &frame.light_group, &[]);
-        pass.set_bind_group(2, &target.depth.splat_group, &[]);
-        pass.dispatch_workgroups(particle_groups.0, particle_groups.1, 1);
-    }
-    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("precip particles"),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view: target.colour,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Load,
-                store: wgpu::StoreOp::Store,
-            },
-        })],
-        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-            view: &target.depth.view,
-            depth_ops: Some(wgpu::Operations {
-                load: wgpu::LoadOp::Load,
-                store: wgpu::StoreOp::Discard,
-            }),
-            stencil_ops: None,
-        }),
-        timestamp_writes: render_stamps(stamps, 5),
-        occlusion_query_set: None,
-        multiview_mask: None,
-    });
-    pass.set_bind_group(0, &frame.frame_group, &[0]);
-    pass.set_bind_group(1, &frame.light_group, &[]);
-    pass.set_pipeline(&draws.splat_resolve);
-    pass.set_bind_group(2, &target.depth.resolve_group, &[]);
-    pass.draw(0..3, 0..1);
-    pass.set_pipeline(&draws.snow);
-    pass.draw_indirect(&frame.draws, FrameDraws::SNOW_OFFSET);
-    pass.set_pipeline(&draws.rain);
-    pass.draw_indirect(&frame.draws, FrameDraws::RAIN_OFFSET);
 }

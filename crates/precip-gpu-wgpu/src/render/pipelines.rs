@@ -1,7 +1,12 @@
-//! The render pipelines (per colour format, so the viewer's surface format and the
-//! offscreen sRGB target both work) and the cull kernels' pipelines.
+//! The frame's pipelines, made from the recipe (`precip_model::frame_recipe`): one
+//! render pipeline per [`Draw`] (per colour format, so the viewer's surface format
+//! and the offscreen sRGB target both work) and one compute pipeline per kernel,
+//! each with the pipeline layout of its entry point's groups
+//! (`precip_model::bind_groups::groups_of`). Vulkan twin: `precip_gpu_vk::render::pipelines`.
 
-use precip_model::gpu::{COVER_TEXTURE_PASS, CULL_PASSES, SPLAT_PASS, SceneVertex, render_passes};
+use precip_model::bind_groups::{GroupLayout, groups_of};
+use precip_model::frame_recipe::{self, Blend, Draw, Topology};
+use precip_model::gpu::SceneVertex;
 use precip_model::shaders::Program;
 
 use super::layouts::RenderLayouts;
@@ -10,30 +15,16 @@ use crate::pipelines::shader_module;
 /// The depth format of the shadow map and of the camera's depth buffer.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
-/// The draws of a frame for one colour format.
+/// The draws of a frame for one colour format, by vertex entry point.
 #[derive(Debug)]
 pub struct DrawPipelines {
-    /// Sun's depth.
-    pub shadow: wgpu::RenderPipeline,
-    /// The scene with its cover.
-    pub scene: wgpu::RenderPipeline,
-    /// Snow sprites.
-    pub snow: wgpu::RenderPipeline,
-    /// Rain tetrahedra.
-    pub rain: wgpu::RenderPipeline,
-    /// The splat sums blended over the frame.
-    pub splat_resolve: wgpu::RenderPipeline,
+    by_vertex_entry: Vec<(&'static str, wgpu::RenderPipeline)>,
 }
 
-/// The cull kernels, in the recipe's order, and the splat kernel.
+/// The frame's compute kernels, by entry point.
 #[derive(Debug)]
-pub struct CullPipelines {
-    /// `(kernel, pipeline)` of [`CULL_PASSES`].
-    pub kernels: Vec<(precip_model::gpu::KernelPass, wgpu::ComputePipeline)>,
-    /// [`SPLAT_PASS`].
-    pub splat: wgpu::ComputePipeline,
-    /// [`COVER_TEXTURE_PASS`].
-    pub cover_texture: wgpu::ComputePipeline,
+pub struct KernelPipelines {
+    by_entry: Vec<(&'static str, wgpu::ComputePipeline)>,
 }
 
 const SCENE_ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
@@ -51,34 +42,77 @@ fn scene_vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     }
 }
 
-struct Draw<'a> {
-    label: &'a str,
-    layout: &'a wgpu::PipelineLayout,
-    entry_points: (&'a str, Option<&'a str>),
-    buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
-    topology: wgpu::PrimitiveTopology,
-    depth_write: bool,
-    bias: wgpu::DepthBiasState,
-    colour: Option<wgpu::ColorTargetState>,
+/// The pipeline layout of `groups`.
+fn pipeline_layout(
+    device: &wgpu::Device,
+    layouts: &RenderLayouts,
+    label: &str,
+    groups: &[GroupLayout],
+) -> wgpu::PipelineLayout {
+    let groups: Vec<Option<&wgpu::BindGroupLayout>> =
+        groups.iter().map(|g| layouts.of(g)).collect();
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &groups,
+        immediate_size: 0,
+    })
 }
 
 fn draw_pipeline(
     device: &wgpu::Device,
+    layouts: &RenderLayouts,
     module: &wgpu::ShaderModule,
-    d: &Draw<'_>,
+    d: &Draw,
+    format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
-    let targets = [d.colour.clone()];
+    let (vs, fs) = d.entry_points;
+    let layout = pipeline_layout(
+        device,
+        layouts,
+        vs,
+        groups_of(Program::Render, vs).unwrap_or(&[]),
+    );
+    let targets = [match d.blend {
+        Blend::None => None,
+        Blend::Opaque => Some(wgpu::ColorTargetState {
+            format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        }),
+        Blend::Alpha => Some(wgpu::ColorTargetState {
+            format,
+            blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+            write_mask: wgpu::ColorWrites::ALL,
+        }),
+    }];
+    let scene_vertices = [Some(scene_vertex_layout())];
+    let bias = d
+        .depth_bias
+        .map_or_else(wgpu::DepthBiasState::default, |(constant, slope)| {
+            wgpu::DepthBiasState {
+                constant,
+                slope_scale: slope,
+                clamp: 0.0,
+            }
+        });
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(d.label),
-        layout: Some(d.layout),
+        label: Some(vs),
+        layout: Some(&layout),
         vertex: wgpu::VertexState {
             module,
-            entry_point: Some(d.entry_points.0),
+            entry_point: Some(vs),
             compilation_options: wgpu::PipelineCompilationOptions::default(),
-            buffers: d.buffers,
+            buffers: if d.scene_vertices {
+                &scene_vertices
+            } else {
+                &[]
+            },
         },
         primitive: wgpu::PrimitiveState {
-            topology: d.topology,
+            topology: match d.topology {
+                Topology::TriangleList => wgpu::PrimitiveTopology::TriangleList,
+                Topology::TriangleStrip => wgpu::PrimitiveTopology::TriangleStrip,
+            },
             cull_mode: None,
             ..Default::default()
         },
@@ -87,10 +121,10 @@ fn draw_pipeline(
             depth_write_enabled: Some(d.depth_write),
             depth_compare: Some(wgpu::CompareFunction::LessEqual),
             stencil: wgpu::StencilState::default(),
-            bias: d.bias,
+            bias,
         }),
         multisample: wgpu::MultisampleState::default(),
-        fragment: d.entry_points.1.map(|fs| wgpu::FragmentState {
+        fragment: fs.map(|fs| wgpu::FragmentState {
             module,
             entry_point: Some(fs),
             compilation_options: wgpu::PipelineCompilationOptions::default(),
@@ -101,21 +135,8 @@ fn draw_pipeline(
     })
 }
 
-fn pipeline_layout(
-    device: &wgpu::Device,
-    label: &str,
-    groups: &[&wgpu::BindGroupLayout],
-) -> wgpu::PipelineLayout {
-    let groups: Vec<Option<&wgpu::BindGroupLayout>> = groups.iter().map(|g| Some(*g)).collect();
-    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &groups,
-        immediate_size: 0,
-    })
-}
-
 impl DrawPipelines {
-    /// The draws for colour targets of `format`.
+    /// Every draw of the frame recipe, for colour targets of `format`.
     #[must_use]
     pub fn new(
         device: &wgpu::Device,
@@ -123,164 +144,68 @@ impl DrawPipelines {
         format: wgpu::TextureFormat,
     ) -> Self {
         let module = shader_module(device, Program::Render);
-        let shadow_layout = pipeline_layout(device, "precip shadow", &[&layouts.frame]);
-        let scene_layout = pipeline_layout(
-            device,
-            "precip scene",
-            &[&layouts.frame, &layouts.light, &layouts.material],
-        );
-        let particle_layout = pipeline_layout(
-            device,
-            "precip particles",
-            &[&layouts.frame, &layouts.light],
-        );
-        let resolve_layout = pipeline_layout(
-            device,
-            "precip splat resolve",
-            &[&layouts.frame, &layouts.light, &layouts.splat_resolve],
-        );
-        let vertex = [Some(scene_vertex_layout())];
-        let opaque = Some(wgpu::ColorTargetState {
-            format,
-            blend: None,
-            write_mask: wgpu::ColorWrites::ALL,
-        });
-        let blended = Some(wgpu::ColorTargetState {
-            format,
-            blend: Some(wgpu::BlendState::ALPHA_BLENDING),
-            write_mask: wgpu::ColorWrites::ALL,
-        });
-        let no_bias = wgpu::DepthBiasState::default();
         Self {
-            shadow: draw_pipeline(
-                device,
-                &module,
-                &Draw {
-                    label: "precip shadow",
-                    layout: &shadow_layout,
-                    entry_points: render_passes::SHADOW,
-                    buffers: &vertex,
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    depth_write: true,
-                    bias: wgpu::DepthBiasState {
-                        constant: 2,
-                        slope_scale: 2.0,
-                        clamp: 0.0,
-                    },
-                    colour: None,
-                },
-            ),
-            scene: draw_pipeline(
-                device,
-                &module,
-                &Draw {
-                    label: "precip scene",
-                    layout: &scene_layout,
-                    entry_points: render_passes::SCENE,
-                    buffers: &vertex,
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    depth_write: true,
-                    bias: no_bias,
-                    colour: opaque,
-                },
-            ),
-            snow: draw_pipeline(
-                device,
-                &module,
-                &Draw {
-                    label: "precip snow",
-                    layout: &particle_layout,
-                    entry_points: render_passes::SNOW,
-                    buffers: &[],
-                    topology: wgpu::PrimitiveTopology::TriangleStrip,
-                    depth_write: false,
-                    bias: no_bias,
-                    colour: blended.clone(),
-                },
-            ),
-            rain: draw_pipeline(
-                device,
-                &module,
-                &Draw {
-                    label: "precip rain",
-                    layout: &particle_layout,
-                    entry_points: render_passes::RAIN,
-                    buffers: &[],
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    depth_write: false,
-                    bias: no_bias,
-                    colour: blended.clone(),
-                },
-            ),
-            // At depth 0 it passes the less-equal test everywhere: no depth test.
-            splat_resolve: draw_pipeline(
-                device,
-                &module,
-                &Draw {
-                    label: "precip splat resolve",
-                    layout: &resolve_layout,
-                    entry_points: render_passes::SPLAT_RESOLVE,
-                    buffers: &[],
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    depth_write: false,
-                    bias: no_bias,
-                    colour: blended,
-                },
-            ),
+            by_vertex_entry: frame_recipe::draws()
+                .map(|(_, d)| {
+                    (
+                        d.entry_points.0,
+                        draw_pipeline(device, layouts, &module, d, format),
+                    )
+                })
+                .collect(),
         }
+    }
+
+    /// The pipeline of the draw whose vertex entry point is `vertex_entry`.
+    #[must_use]
+    pub fn get(&self, vertex_entry: &str) -> Option<&wgpu::RenderPipeline> {
+        self.by_vertex_entry
+            .iter()
+            .find(|(e, _)| *e == vertex_entry)
+            .map(|(_, p)| p)
     }
 }
 
-impl CullPipelines {
-    /// The cull kernels.
+impl KernelPipelines {
+    /// Every kernel of the frame recipe.
     #[must_use]
     pub fn new(device: &wgpu::Device, layouts: &RenderLayouts) -> Self {
-        let module = shader_module(device, Program::CullParticles);
-        let layout = pipeline_layout(device, "precip cull", &[&layouts.cull]);
-        let kernels = CULL_PASSES
-            .iter()
-            .map(|kernel| {
-                (
-                    *kernel,
-                    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                        label: Some(kernel.entry_point),
-                        layout: Some(&layout),
-                        module: &module,
-                        entry_point: Some(kernel.entry_point),
-                        compilation_options: wgpu::PipelineCompilationOptions::default(),
-                        cache: None,
-                    }),
-                )
-            })
-            .collect();
-        let render = shader_module(device, Program::Render);
-        let splat_layout = pipeline_layout(
-            device,
-            "precip splat",
-            &[&layouts.frame, &layouts.light, &layouts.splat],
-        );
-        let splat = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(SPLAT_PASS.entry_point),
-            layout: Some(&splat_layout),
-            module: &render,
-            entry_point: Some(SPLAT_PASS.entry_point),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
-        let cover_layout =
-            pipeline_layout(device, "precip cover texture", &[&layouts.cover_texture]);
-        let cover_texture = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(COVER_TEXTURE_PASS.entry_point),
-            layout: Some(&cover_layout),
-            module: &render,
-            entry_point: Some(COVER_TEXTURE_PASS.entry_point),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
-        Self {
-            kernels,
-            splat,
-            cover_texture,
+        let mut modules: Vec<(Program, wgpu::ShaderModule)> = Vec::new();
+        let mut by_entry = Vec::new();
+        for kernel in frame_recipe::kernels() {
+            if !modules.iter().any(|(p, _)| *p == kernel.program) {
+                modules.push((kernel.program, shader_module(device, kernel.program)));
+            }
+            let Some((_, module)) = modules.iter().find(|(p, _)| *p == kernel.program) else {
+                continue;
+            };
+            let layout = pipeline_layout(
+                device,
+                layouts,
+                kernel.entry_point,
+                groups_of(kernel.program, kernel.entry_point).unwrap_or(&[]),
+            );
+            by_entry.push((
+                kernel.entry_point,
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(kernel.entry_point),
+                    layout: Some(&layout),
+                    module,
+                    entry_point: Some(kernel.entry_point),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    cache: None,
+                }),
+            ));
         }
+        Self { by_entry }
+    }
+
+    /// The pipeline of kernel `entry_point`.
+    #[must_use]
+    pub fn get(&self, entry_point: &str) -> Option<&wgpu::ComputePipeline> {
+        self.by_entry
+            .iter()
+            .find(|(e, _)| *e == entry_point)
+            .map(|(_, p)| p)
     }
 }
