@@ -96,6 +96,34 @@ fn birth_in_camera_volume(index: u32, generation: u32, position_m: vec3<f32>) ->
     );
 }
 
+// Rust: precip_model::birth::STATIONARY_TRIES.
+const STATIONARY_TRIES: u32 = 16u;
+
+// Rust: slowest_terminal_speed_mps.
+fn slowest_terminal_speed_mps() -> f32 {
+    let snow = snow_terminal_speed_mps(step_params.snow_is_wet != 0u, 0.0);
+    let rain = raindrop_terminal_speed_mps(RAIN_DIAMETER_MIN_MM);
+    if (step_params.snow_fraction >= 1.0) {
+        return snow;
+    } else if (step_params.snow_fraction <= 0.0) {
+        return rain;
+    }
+    return min(snow, rain);
+}
+
+// Rust: stationary_generation (the volume starts as it will stay: species ∝ 1/v).
+fn stationary_generation(index: u32) -> u32 {
+    let slowest = slowest_terminal_speed_mps();
+    for (var generation = 0u; generation < STATIONARY_TRIES; generation++) {
+        let key = particle_key(step_params.seed, index, generation);
+        let species = draw_species(key);
+        if (random_unit(key, DRAW_STATIONARY) * species.terminal_speed_mps < slowest) {
+            return generation;
+        }
+    }
+    return STATIONARY_TRIES - 1u;
+}
+
 fn initial_particle(index: u32) -> Particle {
     let key = particle_key(step_params.seed, index, 0u);
     if (index < step_params.world_count) {
@@ -115,5 +143,6 @@ fn initial_particle(index: u32) -> Particle {
         centred(key, DRAW_VOLUME_X + 1u),
         centred(key, DRAW_VOLUME_X + 2u),
     ) * (2.0 * step_params.camera_half_extent_m);
-    return birth_in_camera_volume(index, 0u, step_params.camera_centre_m + offset);
+    let generation = stationary_generation(index);
+    return birth_in_camera_volume(index, generation, step_params.camera_centre_m + offset);
 }

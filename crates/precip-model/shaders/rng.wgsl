@@ -30,3 +30,4 @@ const DRAW_SNOW_SPEED: u32 = 13u;
 const DRAW_RAIN_DIAMETER: u32 = 14u;
 const DRAW_VOLUME_X: u32 = 100u;
 const DRAW_PREWARM: u32 = 103u;
+const DRAW_STATIONARY: u32 = 104u;

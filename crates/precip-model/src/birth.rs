@@ -5,7 +5,9 @@ use glam::{Vec2, Vec3};
 
 use crate::ground::GroundMap;
 use crate::particle::{Particle, ParticleKind, ParticleSource, pack_flags, rotation0};
-use crate::raindrop::{draw_raindrop_diameter_mm, raindrop_terminal_speed_mps};
+use crate::raindrop::{
+    RAIN_DIAMETER_MIN_MM, draw_raindrop_diameter_mm, raindrop_terminal_speed_mps,
+};
 use crate::rng::{draw, particle_key, random_unit};
 use crate::snowflake::{snow_terminal_speed_mps, snowflake_diameter_m};
 use crate::step::StepParams;
@@ -87,6 +89,48 @@ fn newborn(
     }
 }
 
+/// Tries of [`stationary_generation`] before the last is kept.
+pub const STATIONARY_TRIES: u32 = 16;
+
+/// The slowest terminal speed this weather's particles are born with, m/s (the
+/// slower of the snow's range floor and the smallest drop's speed, by the kinds that
+/// fall).
+#[must_use]
+pub fn slowest_terminal_speed_mps(params: &StepParams) -> f32 {
+    let snow = snow_terminal_speed_mps(params.snow_is_wet != 0, 0.0);
+    let rain = raindrop_terminal_speed_mps(RAIN_DIAMETER_MIN_MM);
+    if params.snow_fraction >= 1.0 {
+        snow
+    } else if params.snow_fraction <= 0.0 {
+        rain
+    } else {
+        snow.min(rain)
+    }
+}
+
+/// The generation a camera-volume particle starts in, so the volume starts as it
+/// will stay: births draw species as they fall through a plane (the flux), but the
+/// air holds each in proportion to the time it takes to cross, `∝ 1/v` (a length-
+/// biased renewal process). Generation `g` is kept with probability `v_slowest / v_g`
+/// (`u·v_g < v_slowest`), the first kept of [`STATIONARY_TRIES`], else the last.
+/// Started with the births' mix instead, the volume fills top-down with a denser
+/// band of newborns for the `height / v_slowest` seconds the mix takes to settle
+/// (`⟨v⟩·⟨1/v⟩` ≈ 1.10 times denser for dry snow).
+///
+/// WGSL twin: `stationary_generation` in `shaders/birth.wgsl`.
+#[must_use]
+pub fn stationary_generation(index: u32, params: &StepParams) -> u32 {
+    let slowest = slowest_terminal_speed_mps(params);
+    for generation in 0..STATIONARY_TRIES {
+        let key = particle_key(params.seed, index, generation);
+        let (_, _, speed) = draw_species(key, params);
+        if random_unit(key, draw::STATIONARY) * speed < slowest {
+            return generation;
+        }
+    }
+    STATIONARY_TRIES - 1
+}
+
 /// A particle born on the world emitter (MODEL.md §1):
 /// `P = M_model·(W(f − ½), H(f − ½), 0, 1)`, `v = v0 + 2·k_v·V_rand`.
 #[must_use]
@@ -159,6 +203,7 @@ pub fn initial_particle(index: u32, params: &StepParams, ground: &GroundMap) -> 
             centred(key, draw::VOLUME_X + 1),
             centred(key, draw::VOLUME_X + 2),
         ) * (2.0 * params.camera_half_extent_m);
-        birth_in_camera_volume(index, 0, params, params.camera_centre_m + offset)
+        let generation = stationary_generation(index, params);
+        birth_in_camera_volume(index, generation, params, params.camera_centre_m + offset)
     }
 }

@@ -57,12 +57,16 @@ pub mod draw {
     pub const VOLUME_X: u32 = 100;
     /// Pre-warm: how far along its fall a particle starts.
     pub const PREWARM: u32 = 103;
+    /// Whether a camera-volume particle starts in this generation
+    /// ([`crate::birth::stationary_generation`]).
+    pub const STATIONARY: u32 = 104;
 }
 
 // Draw numbers never overlap: each decision has its own stream.
 const _: () = {
     let last_rain = draw::RAIN_DIAMETER + 2 * crate::raindrop::RAIN_DIAMETER_TRIES - 1;
     assert!(last_rain < draw::VOLUME_X && draw::VOLUME_X + 2 < draw::PREWARM);
+    assert!(draw::PREWARM < draw::STATIONARY);
     assert!(draw::SNOW_SPEED < draw::RAIN_DIAMETER && draw::ROTATION_X + 2 < draw::KIND);
 };
 

@@ -111,13 +111,62 @@ pub fn framebuffer(
         .map_err(|e| map_vk("creating a framebuffer", e))
 }
 
+/// A resource made above not found below: a bug.
+fn missing(what: &str) -> BackendError {
+    BackendError::Device {
+        backend: crate::error::NAME,
+        message: format!("a {what} of the frame is missing (a bug in precip: please report it)"),
+    }
+}
+
+/// What [`FrameResources::new`] has made so far, freed when a later step fails.
+#[derive(Default)]
+struct Made {
+    buffers: Vec<Buffer>,
+    images: Vec<Image>,
+    framebuffer: Option<vk::Framebuffer>,
+    pool: Option<vk::DescriptorPool>,
+}
+
+impl Made {
+    fn destroy(self, device: &Device) {
+        // SAFETY: nothing uses these yet (construction failed); each is destroyed once.
+        unsafe {
+            if let Some(pool) = self.pool {
+                device.raw.destroy_descriptor_pool(pool, None);
+            }
+            if let Some(framebuffer) = self.framebuffer {
+                device.raw.destroy_framebuffer(framebuffer, None);
+            }
+        }
+        self.images.into_iter().for_each(|i| i.destroy(device));
+        self.buffers.into_iter().for_each(|b| b.destroy(device));
+    }
+}
+
 impl FrameResources {
-    /// Allocates drawing's resources beside the simulation's `sim`.
+    /// Allocates drawing's resources beside the simulation's `sim`; on an error,
+    /// frees what it made.
     pub fn new(
         device: &Device,
         renderer: &Renderer,
         sim: &Resources,
         setup: &Setup,
+    ) -> Result<Self, BackendError> {
+        let mut made = Made::default();
+        let result = Self::make(device, renderer, sim, setup, &mut made);
+        made.destroy(device);
+        result
+    }
+
+    /// Makes everything, each object kept in `made` until the last step moves them
+    /// into the result (so `made` ends empty on success).
+    fn make(
+        device: &Device,
+        renderer: &Renderer,
+        sim: &Resources,
+        setup: &Setup,
+        made: &mut Made,
     ) -> Result<Self, BackendError> {
         let shadow_map_px = setup.render.shadow_map_px;
         let count = sim.particle_count;
@@ -125,33 +174,46 @@ impl FrameResources {
         let limits = &device.properties.limits;
         let align = limits.min_storage_buffer_offset_alignment.max(16);
         let params_stride = (size_of::<RenderParams>() as u64).div_ceil(align) * align;
-        let params = Buffer::new(
-            device,
-            "render params",
-            params_stride * FRAMES_IN_FLIGHT as u64,
-            vk::BufferUsageFlags::STORAGE_BUFFER,
-            MemoryLocation::CpuToGpu,
-        )?;
-        let gpu_only = |name, size, usage| {
-            Buffer::new(device, name, size, STORAGE | usage, MemoryLocation::GpuOnly)
-        };
-        let group_counts = gpu_only(
-            "cull groups",
-            u64::from(groups) * GROUP_COUNT_BYTES,
-            vk::BufferUsageFlags::empty(),
-        )?;
-        let drawn = gpu_only("drawn", u64::from(count) * 8, vk::BufferUsageFlags::empty())?;
-        let drawn_kinds = gpu_only(
-            "drawn kinds",
-            u64::from(count) * 4,
-            vk::BufferUsageFlags::empty(),
-        )?;
-        let draws = gpu_only(
-            "draws",
-            FrameDraws::BYTES,
-            vk::BufferUsageFlags::INDIRECT_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC,
-        )?;
-        let shadow_map = Image::new(
+        // params, group counts, drawn, drawn kinds, draws.
+        let buffers = [
+            (
+                "render params",
+                params_stride * FRAMES_IN_FLIGHT as u64,
+                vk::BufferUsageFlags::STORAGE_BUFFER,
+                MemoryLocation::CpuToGpu,
+            ),
+            (
+                "cull groups",
+                u64::from(groups) * GROUP_COUNT_BYTES,
+                STORAGE,
+                MemoryLocation::GpuOnly,
+            ),
+            (
+                "drawn",
+                u64::from(count) * 8,
+                STORAGE,
+                MemoryLocation::GpuOnly,
+            ),
+            (
+                "drawn kinds",
+                u64::from(count) * 4,
+                STORAGE,
+                MemoryLocation::GpuOnly,
+            ),
+            (
+                "draws",
+                FrameDraws::BYTES,
+                STORAGE
+                    | vk::BufferUsageFlags::INDIRECT_BUFFER
+                    | vk::BufferUsageFlags::TRANSFER_SRC,
+                MemoryLocation::GpuOnly,
+            ),
+        ];
+        for (name, size, usage, location) in buffers {
+            made.buffers
+                .push(Buffer::new(device, name, size, usage, location)?);
+        }
+        made.images.push(Image::new(
             device,
             &ImageSpec {
                 name: "shadow map",
@@ -159,17 +221,16 @@ impl FrameResources {
                 format: DEPTH_FORMAT,
                 usage: vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
             },
-        )?;
-        let shadow_framebuffer = framebuffer(
-            device,
-            renderer.shadow_pass,
-            &[shadow_map.view],
-            shadow_map.size(),
-        )?;
+        )?);
+        let shadow_view = made.images[0].view;
+        let shadow_size = made.images[0].size();
+        let shadow_framebuffer =
+            framebuffer(device, renderer.shadow_pass, &[shadow_view], shadow_size)?;
+        made.framebuffer = Some(shadow_framebuffer);
         device.name(shadow_framebuffer, "precip shadow framebuffer");
         let texels = setup.cover.frame.texels;
-        let cover_image = |name| {
-            Image::new(
+        for name in ["cover a", "cover b"] {
+            made.images.push(Image::new(
                 device,
                 &ImageSpec {
                     name,
@@ -177,10 +238,9 @@ impl FrameResources {
                     format: COVER_TEXTURE_FORMAT,
                     usage: vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::SAMPLED,
                 },
-            )
-        };
-        let cover_images = [cover_image("cover a")?, cover_image("cover b")?];
-        to_general(device, &[&cover_images[0], &cover_images[1]])?;
+            )?);
+        }
+        to_general(device, &[&made.images[1], &made.images[2]])?;
 
         use vk::DescriptorType as T;
         let pool = descriptors::pool(
@@ -195,6 +255,7 @@ impl FrameResources {
             ],
             4 + 2 * FRAMES_IN_FLIGHT as u32,
         )?;
+        made.pool = Some(pool);
         let mut layouts = vec![
             renderer.layouts.frame,
             renderer.layouts.light,
@@ -217,20 +278,22 @@ impl FrameResources {
                 image_layout: vk::ImageLayout::GENERAL,
             }]
         };
-        let (cover_a, cover_b) = (general(cover_images[0].view), general(cover_images[1].view));
+        let (cover_a, cover_b) = (general(made.images[1].view), general(made.images[2].view));
         let cover_sampler = sampler_info(renderer.samplers.flake);
         let whole = |b: &Buffer| buffer_info(b, vk::WHOLE_SIZE);
-        let params_info = buffer_info(&params, size_of::<RenderParams>() as u64);
+        let [params, group_counts, drawn, drawn_kinds, draws] =
+            [0, 1, 2, 3, 4].map(|i| &made.buffers[i]);
+        let params_info = buffer_info(params, size_of::<RenderParams>() as u64);
         let (cover, ground, particles) =
             (whole(&sim.cover), whole(&sim.ground), whole(&sim.particles));
         let (drawn_info, groups_info, draws_info, kinds_info) = (
-            whole(&drawn),
-            whole(&group_counts),
-            whole(&draws),
-            whole(&drawn_kinds),
+            whole(drawn),
+            whole(group_counts),
+            whole(draws),
+            whole(drawn_kinds),
         );
         let (shadow_image, flake_image) =
-            (image_info(shadow_map.view), image_info(renderer.flake.view));
+            (image_info(shadow_view), image_info(renderer.flake.view));
         let (shadow_sampler, flake_sampler) = (
             sampler_info(renderer.samplers.shadow),
             sampler_info(renderer.samplers.flake),
@@ -261,6 +324,24 @@ impl FrameResources {
         // SAFETY: every write names a live buffer, view or sampler of the binding's
         // type and usage.
         unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
+        let mut buffers = std::mem::take(&mut made.buffers).into_iter();
+        let mut images = std::mem::take(&mut made.images).into_iter();
+        made.framebuffer = None;
+        made.pool = None;
+        let (Some(params), Some(group_counts), Some(drawn), Some(drawn_kinds), Some(draws)) = (
+            buffers.next(),
+            buffers.next(),
+            buffers.next(),
+            buffers.next(),
+            buffers.next(),
+        ) else {
+            return Err(missing("buffer"));
+        };
+        let (Some(shadow_map), Some(cover_a), Some(cover_b)) =
+            (images.next(), images.next(), images.next())
+        else {
+            return Err(missing("image"));
+        };
         Ok(Self {
             params,
             params_stride,
@@ -270,7 +351,7 @@ impl FrameResources {
             draws,
             shadow_map,
             shadow_framebuffer,
-            cover_images,
+            cover_images: [cover_a, cover_b],
             cover_texture_set,
             cover_texels: texels.x * texels.y,
             pool,

@@ -167,6 +167,76 @@ fn the_camera_volume_follows_the_camera_and_never_empties() {
     );
 }
 
+/// Pearson's χ² of `counts` against equal expected counts.
+fn chi_square(counts: &[u32]) -> f64 {
+    let total: u32 = counts.iter().sum();
+    let expected = f64::from(total) / counts.len() as f64;
+    counts
+        .iter()
+        .map(|&c| (f64::from(c) - expected).powi(2) / expected)
+        .sum()
+}
+
+/// The camera volume holds the weather's number density of flakes seen one by one
+/// (`Weather::simulated_particle_count`) and keeps it even through the box while the
+/// flakes fall, wrap and are re-born under a gusting wind with the camera moving:
+/// the counts in its eight octants and in ten height slabs are those of a uniform
+/// (Poisson) field within sampling error (χ² under its 0.1 % critical value).
+#[test]
+fn the_camera_volume_keeps_the_weather_s_density_evenly() {
+    let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(100.0), UVec2::splat(10));
+    let mut setup = Setup::over_flat_ground(100.0, 10, 30.0, 0);
+    setup.world_emitter = None;
+    setup.ground = GroundMap::flat(frame, -1000.0, 1.0);
+    setup.weather = Weather {
+        intensity_mm_per_h: 2.0,
+        wind: WindField {
+            mean_wind_mps: Vec3::new(4.0, 0.0, 1.0),
+            ..WindField::default()
+        },
+        ..Weather::default()
+    };
+    let half = Vec3::new(4.0, 3.0, 4.0);
+    let box_m3 = 8.0 * half.element_product();
+    let (count, fraction) = setup.weather.simulated_particle_count(box_m3, 1_000_000);
+    assert!((fraction - 1.0).abs() < 1e-6, "the budget covers reality");
+    let density = setup.weather.simulated_number_density_per_m3();
+    assert!(
+        (count as f32 / box_m3 - density).abs() <= 1.0 / box_m3,
+        "{count} particles in {box_m3} m³ for {density} per m³"
+    );
+    setup.camera_volume = Some(CameraVolumeSetup {
+        volume: CameraVolume {
+            half_extent_m: half,
+            ..CameraVolume::default()
+        },
+        particle_count: count,
+    });
+    let mut backend = common::configured(&setup);
+    let mut camera = Camera::default();
+    for _ in 0..40 {
+        camera.position_m += Vec3::new(0.05, 0.0, -0.03);
+        backend.set_camera(&camera).expect("valid");
+        backend.step(0.05).expect("valid");
+    }
+    let particles = backend.read_particles().expect("configured");
+    let mut octants = [0u32; 8];
+    let mut slabs = [0u32; 10];
+    for p in &particles {
+        let local = p.position_m - camera.position_m;
+        let octant = usize::from(local.x >= 0.0)
+            | usize::from(local.y >= 0.0) << 1
+            | usize::from(local.z >= 0.0) << 2;
+        octants[octant] += 1;
+        let slab = (((local.y + half.y) / (2.0 * half.y)) * 10.0).floor();
+        slabs[(slab.max(0.0) as usize).min(9)] += 1;
+    }
+    // χ² critical values at p = 0.001: 24.32 (7 degrees of freedom), 27.88 (9).
+    let (x8, x10) = (chi_square(&octants), chi_square(&slabs));
+    assert!(x8 < 24.32, "octants {octants:?}: χ² {x8}");
+    assert!(x10 < 27.88, "height slabs {slabs:?}: χ² {x10}");
+}
+
 #[test]
 fn a_warm_spell_melts_the_cover_and_wets_the_ground() {
     // Only a camera volume: the cover is fed by the weather's rate.
