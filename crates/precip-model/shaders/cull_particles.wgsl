@@ -12,6 +12,11 @@
 
 // Read-only storage, as in render_scene.wgsl (why: there).
 @group(0) @binding(0) var<storage, read> params: RenderParams;
+
+// The frame's counts, for branches (particle_lists.wgsl).
+fn frame_counts() -> vec4<u32> {
+    return params.counts;
+}
 @group(0) @binding(1) var<storage, read> particles: array<Particle>;
 // (sprites, streaks, splats, 0) per group; the scan turns them into offsets.
 @group(0) @binding(2) var<storage, read_write> group_counts: array<vec4<u32>>;

@@ -3,11 +3,19 @@
 // are listed in precip_model::gpu::render_bindings.
 
 // Group 0: the frame.
-// RenderParams is read-only storage, not a uniform: Mesa's lavapipe up to 23.1 inlines
-// uniform-buffer values into shaders at every draw and never frees the compiled
-// variants (about 2 MB a frame here, freed only with the device); storage is never
-// inlined. Every GPU reads a 400-byte block the same either way.
-@group(0) @binding(0) var<storage, read> params: RenderParams;
+// RenderParams is a uniform block, and the same block is bound again as read-only
+// storage (`switches`) for every branch that tests nothing but the block: Mesa's
+// lavapipe up to 23.1 inlines the uniforms such a branch tests, recompiling at every
+// draw and never freeing the variants (1.8 MB a frame here); storage is never
+// inlined (precip_model::gpu::render_bindings::PARAMS_SWITCHES).
+@group(0) @binding(0) var<uniform> params: RenderParams;
+@group(0) @binding(11) var<storage, read> switches: RenderParams;
+
+// The frame's counts, for branches (particle_lists.wgsl; the cull program reads its
+// storage block).
+fn frame_counts() -> vec4<u32> {
+    return switches.counts;
+}
 @group(0) @binding(2) var<storage, read> ground_height: array<f32>;
 @group(0) @binding(3) var<storage, read> particles: array<Particle>;
 // Drawn particles: sprites at [0, N), streaks at [N, 2N) (N = particle count).
@@ -106,7 +114,7 @@ struct SceneVarying {
 // The vertex raised by the snow on it (upward, eligible, exposed surfaces).
 fn displaced(v: SceneVertex) -> vec3<f32> {
     var p = v.position_m;
-    if (params.cover_look.y < 0.5) {
+    if (switches.cover_look.y < 0.5) {
         return p;
     }
     let n = normalize(v.normal);

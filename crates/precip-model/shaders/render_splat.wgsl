@@ -97,7 +97,7 @@ fn vs_splat_resolve(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f3
 
 @fragment
 fn fs_splat_resolve(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
-    let width = params.counts.w;
+    let width = frame_counts().w;
     if (width == 0u) {
         return vec4<f32>(0.0);
     }

@@ -96,17 +96,26 @@ pub struct GroupLayout {
 }
 
 impl GroupLayout {
-    /// Whether a binding takes a dynamic offset (the frame's `RenderParams` block, a
-    /// sub-step's uniform block).
+    /// How many bindings take a dynamic offset (each the frame's `RenderParams`
+    /// block, or a sub-step's uniform block).
+    #[must_use]
+    pub fn dynamic_bindings(&self) -> usize {
+        self.bindings
+            .iter()
+            .filter(|b| {
+                matches!(
+                    b.kind,
+                    BindingKind::Uniform { dynamic: true, .. }
+                        | BindingKind::Storage { dynamic: true, .. }
+                )
+            })
+            .count()
+    }
+
+    /// Whether a binding takes a dynamic offset.
     #[must_use]
     pub fn has_dynamic_binding(&self) -> bool {
-        self.bindings.iter().any(|b| {
-            matches!(
-                b.kind,
-                BindingKind::Uniform { dynamic: true, .. }
-                    | BindingKind::Storage { dynamic: true, .. }
-            )
-        })
+        self.dynamic_bindings() > 0
     }
 }
 
@@ -143,8 +152,9 @@ const fn storage(read_only: bool) -> BindingKind {
     }
 }
 
-/// `RenderParams`: read-only storage (not a uniform: see render_scene.wgsl), one
-/// block per frame in flight at a dynamic offset.
+/// `RenderParams` as read-only storage (the cull's block, the frame's switches: see
+/// `render_bindings::PARAMS_SWITCHES`), one block per frame in flight at a dynamic
+/// offset.
 const RENDER_PARAMS: BindingKind = BindingKind::Storage {
     read_only: true,
     min_bytes: size_of::<RenderParams>() as u64,
@@ -228,7 +238,12 @@ pub const CULL: GroupLayout = GroupLayout {
 pub const RENDER_FRAME: GroupLayout = GroupLayout {
     name: "precip render frame",
     bindings: &[
-        binding(rb::PARAMS, RENDER_PARAMS, Stages::DrawAndCompute),
+        binding(
+            rb::PARAMS,
+            uniform(size_of::<RenderParams>(), true),
+            Stages::DrawAndCompute,
+        ),
+        binding(rb::PARAMS_SWITCHES, RENDER_PARAMS, Stages::DrawAndCompute),
         binding(rb::GROUND_HEIGHT, storage(true), Stages::DrawAndCompute),
         binding(rb::PARTICLES, storage(true), Stages::DrawAndCompute),
         binding(rb::DRAWN, storage(true), Stages::DrawAndCompute),
@@ -341,7 +356,8 @@ mod tests {
                     numbers.sort_unstable();
                     numbers.dedup();
                     assert_eq!(numbers.len(), g.bindings.len(), "{}", g.name);
-                    // The backends bind one dynamic offset a group (the block's).
+                    // Every dynamic binding of a group is the frame's or the
+                    // sub-step's block: the backends give each the block's offset.
                     let dynamic = g
                         .bindings
                         .iter()
@@ -353,8 +369,9 @@ mod tests {
                             )
                         })
                         .count();
-                    assert!(dynamic <= 1, "{}: {dynamic} dynamic bindings", g.name);
-                    assert_eq!(g.has_dynamic_binding(), dynamic == 1);
+                    assert!(dynamic <= 2, "{}: {dynamic} dynamic bindings", g.name);
+                    assert_eq!(g.has_dynamic_binding(), dynamic > 0);
+                    assert_eq!(g.dynamic_bindings(), dynamic);
                 }
             }
         }

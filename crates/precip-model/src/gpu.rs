@@ -395,11 +395,17 @@ pub mod cull_bindings {
 
 /// Bindings of [`Program::Render`].
 pub mod render_bindings {
-    /// Group 0 (the frame; vertex and fragment): `RenderParams`, read-only storage —
-    /// not a uniform, because Mesa's lavapipe up to 23.1 recompiles a shader that
-    /// reads a uniform block at every draw and keeps every variant until the device
-    /// is destroyed (about 2 MB a frame); storage is never inlined.
+    /// Group 0 (the frame; vertex, fragment and the splat kernel): `RenderParams`, a
+    /// uniform block at a dynamic offset.
     pub const PARAMS: u32 = 0;
+    /// Group 0: the same `RenderParams` block as read-only storage, read only by the
+    /// branches that depend on nothing but the block (the displacement switch, the
+    /// counts: culling on, splat width). Mesa's lavapipe up to 23.1 "inlines" the
+    /// uniforms such a branch tests: it recompiles the shader at every draw and keeps
+    /// every variant until the device is destroyed (1.8 MB a frame measured); storage
+    /// is never inlined. Reading all of the block from storage instead cost lavapipe
+    /// 3× in the scene pass (125 → 38 ms at 1280×720).
+    pub const PARAMS_SWITCHES: u32 = 11;
     /// Group 0 of the `cover_texture` kernel only (its own group): cover texels,
     /// read-only storage.
     pub const COVER: u32 = 1;

@@ -172,14 +172,18 @@ impl FrameResources {
         let count = sim.particle_count;
         let groups = cull_groups(count);
         let limits = &device.properties.limits;
-        let align = limits.min_storage_buffer_offset_alignment.max(16);
+        // The block is bound as a uniform and as storage: both alignments (powers of two).
+        let align = limits
+            .min_storage_buffer_offset_alignment
+            .max(limits.min_uniform_buffer_offset_alignment)
+            .max(16);
         let params_stride = (size_of::<RenderParams>() as u64).div_ceil(align) * align;
         // params, group counts, drawn, drawn kinds, draws.
         let buffers = [
             (
                 "render params",
                 params_stride * FRAMES_IN_FLIGHT as u64,
-                vk::BufferUsageFlags::STORAGE_BUFFER,
+                vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_BUFFER,
                 MemoryLocation::CpuToGpu,
             ),
             (
@@ -247,6 +251,7 @@ impl FrameResources {
             device,
             "frame",
             &[
+                (T::UNIFORM_BUFFER_DYNAMIC, 1),
                 (T::STORAGE_BUFFER_DYNAMIC, 2),
                 (T::STORAGE_BUFFER, 10 + 2 * FRAMES_IN_FLIGHT as u32),
                 (T::SAMPLED_IMAGE, 4 + FRAMES_IN_FLIGHT as u32),
@@ -299,7 +304,9 @@ impl FrameResources {
             sampler_info(renderer.samplers.flake),
         );
         let writes = [
-            write(frame_set, rb::PARAMS, T::STORAGE_BUFFER_DYNAMIC).buffer_info(&params_info),
+            write(frame_set, rb::PARAMS, T::UNIFORM_BUFFER_DYNAMIC).buffer_info(&params_info),
+            write(frame_set, rb::PARAMS_SWITCHES, T::STORAGE_BUFFER_DYNAMIC)
+                .buffer_info(&params_info),
             write(frame_set, rb::COVER_A, T::SAMPLED_IMAGE).image_info(&cover_a),
             write(frame_set, rb::COVER_B, T::SAMPLED_IMAGE).image_info(&cover_b),
             write(frame_set, rb::COVER_SAMPLER, T::SAMPLER).image_info(&cover_sampler),

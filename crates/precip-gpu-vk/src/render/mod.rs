@@ -376,11 +376,9 @@ pub unsafe fn record_frame(
             let Some(set) = set_of(frame, &target, group) else {
                 continue;
             };
-            let offsets: &[u32] = if group.has_dynamic_binding() {
-                &[params_offset]
-            } else {
-                &[]
-            };
+            // Each dynamic binding is the frame's block.
+            let block = [params_offset; 2];
+            let offsets = &block[..group.dynamic_bindings().min(2)];
             // SAFETY: `cb` is recording; the set's layout is the layout's set `index`
             // (both from the same table); the offset is that of the frame's block
             // (aligned and in the buffer).

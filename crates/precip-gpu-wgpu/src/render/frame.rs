@@ -68,7 +68,9 @@ impl FrameResources {
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("precip render params"),
             size: size_of::<RenderParams>() as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::UNIFORM
+                | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let group_counts = storage(
@@ -185,6 +187,7 @@ impl FrameResources {
             layout: &layouts.frame,
             entries: &[
                 bind(rb::PARAMS, &params),
+                bind(rb::PARAMS_SWITCHES, &params),
                 bind(rb::GROUND_HEIGHT, &sim.ground),
                 bind(rb::PARTICLES, &sim.particles),
                 bind(rb::DRAWN, &drawn),

@@ -174,14 +174,10 @@ fn bind_group_of<'a>(
     )
 }
 
-/// The dynamic offsets of `group`: the frame's block, at 0 (one dynamic binding at
-/// most: the frame's `RenderParams`).
+/// The dynamic offsets of `group`: the frame's block, at 0, for each dynamic binding
+/// (each is the frame's `RenderParams`).
 fn dynamic_offsets(group: &GroupLayout) -> &'static [u32] {
-    if group.has_dynamic_binding() {
-        &[0]
-    } else {
-        &[]
-    }
+    &[0, 0][..group.dynamic_bindings().min(2)]
 }
 
 /// Binds every group of `program`'s `entry_point` that the frame holds.
