@@ -13,7 +13,7 @@
 use glam::Vec3;
 use precip_model::cover::CoverGrid;
 use precip_model::drag::MAX_SUBSTEP_S;
-use precip_model::gpu::{DispatchOver, birth_invocations, dispatch_size};
+use precip_model::gpu::{DispatchOver, dispatch_size, list_invocations};
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
 use precip_model::{
@@ -401,10 +401,10 @@ impl Backend for VkBackend {
                             (programs.cover_layout, r.cover_set, r.cover_texel_count)
                         }
                         DispatchOver::OneWorkgroup => (programs.step_layout, r.step_set, 1),
-                        DispatchOver::PendingBirths => (
+                        DispatchOver::ParticleList => (
                             programs.step_layout,
                             r.step_set,
-                            birth_invocations(r.particle_count),
+                            list_invocations(r.particle_count),
                         ),
                     };
                     let (x, y) = dispatch_size(items);

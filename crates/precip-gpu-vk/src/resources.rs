@@ -34,7 +34,7 @@ pub struct Resources {
     /// Two `u32` per cover texel.
     pub deposits: Buffer,
     /// The particles to re-birth this sub-step and the birth kernel's indirect
-    /// dispatch (`PendingBirthsHeader`).
+    /// dispatch (`precip_model::gpu::pending_births_bytes`).
     pub pending_births: Buffer,
     /// Ground heights.
     pub ground: Buffer,

@@ -4,7 +4,7 @@
 use glam::Vec3;
 use precip_model::cover::{CoverGrid, CoverTexel};
 use precip_model::drag::MAX_SUBSTEP_S;
-use precip_model::gpu::{DispatchOver, FrameDraws, INIT_PASS, birth_invocations, dispatch_size};
+use precip_model::gpu::{DispatchOver, FrameDraws, INIT_PASS, dispatch_size, list_invocations};
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
 use precip_model::{
@@ -226,7 +226,12 @@ impl WgpuBackend {
             render.offscreen = Some(ColourTarget::new(&gpu, size.0, size.1));
         }
         if render.depth.as_ref().is_none_or(|d| d.size != size) {
-            render.depth = Some(DepthBuffer::new(&gpu, &renderer.layouts, size.0, size.1));
+            render.depth = Some(DepthBuffer::new(
+                &gpu,
+                &renderer.layouts,
+                size,
+                &render.frame.draws,
+            ));
         }
         let setup = &state.setup;
         let params = setup.render_params(
@@ -448,9 +453,9 @@ impl Backend for WgpuBackend {
                                 (&resources.cover_bind_group, resources.cover_texel_count)
                             }
                             DispatchOver::OneWorkgroup => (&resources.step_bind_group, 1),
-                            DispatchOver::PendingBirths => (
+                            DispatchOver::ParticleList => (
                                 &resources.step_bind_group,
-                                birth_invocations(resources.particle_count),
+                                list_invocations(resources.particle_count),
                             ),
                         };
                         pass.set_bind_group(0, bind_group, &[offset]);

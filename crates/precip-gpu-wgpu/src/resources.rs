@@ -25,7 +25,7 @@ pub struct Resources {
     /// Landed water, two `u32` per cover texel.
     pub deposits: wgpu::Buffer,
     /// The particles to re-birth this sub-step and the birth kernel's indirect
-    /// dispatch (`PendingBirthsHeader`).
+    /// dispatch (`precip_model::gpu::pending_births_bytes`).
     pub pending_births: wgpu::Buffer,
     /// Ground heights, `array<f32>`.
     pub ground: wgpu::Buffer,

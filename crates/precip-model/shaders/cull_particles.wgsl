@@ -22,9 +22,13 @@ fn frame_counts() -> vec4<u32> {
 @group(0) @binding(2) var<storage, read_write> group_counts: array<vec4<u32>>;
 @group(0) @binding(3) var<storage, read_write> drawn: array<u32>;
 @group(0) @binding(4) var<storage, read_write> draws: FrameDraws;
-// How each particle is drawn this frame (DRAWN_*), written by cull_count so the later
-// kernels read one word per particle instead of classifying it again.
+// How each particle is drawn this frame: its class (DRAWN_*) in bits 0–7 and its rank
+// among its workgroup's particles of that class from bit 8, written by cull_count so
+// cull_write reads one word per particle and places it with no barrier.
 @group(0) @binding(5) var<storage, read_write> drawn_kinds: array<u32>;
+
+const RANK_SHIFT: u32 = 8u;
+const CLASS_MASK: u32 = 255u;
 
 var<workgroup> group_kinds: array<u32, 64>;
 var<workgroup> partial: array<vec4<u32>, 64>;
@@ -33,16 +37,19 @@ var<workgroup> partial: array<vec4<u32>, 64>;
 fn cull_count(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let g = wid.x + wid.y * groups.x;
     let i = g * 64u + lid;
-    let kind = drawn_as(i);
-    group_kinds[lid] = kind;
-    if (i < params.counts.x) {
-        drawn_kinds[i] = kind;
-    }
+    group_kinds[lid] = drawn_as(i);
     workgroupBarrier();
     if (lid == 0u) {
+        // The first lane counts the group's classes in order: each particle's rank
+        // among its class is the count before it.
         var c = vec4<u32>(0u);
         for (var k = 0u; k < 64u; k++) {
             let kind = group_kinds[k];
+            let rank = select(select(select(0u, c.z, kind == DRAWN_SPLAT), c.y, kind == DRAWN_RAIN), c.x, kind == DRAWN_SNOW);
+            let j = g * 64u + k;
+            if (j < params.counts.x) {
+                drawn_kinds[j] = kind | (rank << RANK_SHIFT);
+            }
             c += vec4<u32>(u32(kind == DRAWN_SNOW), u32(kind == DRAWN_RAIN), u32(kind == DRAWN_SPLAT), 0u);
         }
         group_counts[g] = c;
@@ -87,23 +94,19 @@ fn cull_scan(@builtin(local_invocation_index) lid: u32) {
 fn cull_write(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let g = wid.x + wid.y * groups.x;
     let i = g * 64u + lid;
-    var kind = DRAWN_NOT;
-    if (i < params.counts.x) {
-        kind = drawn_kinds[i];
-    }
-    group_kinds[lid] = kind;
-    workgroupBarrier();
-    if (kind != DRAWN_SNOW && kind != DRAWN_RAIN) {
+    let n = params.counts.x;
+    if (i >= n) {
         return;
     }
-    var rank = 0u;
-    for (var k = 0u; k < lid; k++) {
-        rank += u32(group_kinds[k] == kind);
-    }
+    let word = drawn_kinds[i];
+    let kind = word & CLASS_MASK;
+    let rank = word >> RANK_SHIFT;
     let offset = group_counts[g];
     if (kind == DRAWN_SNOW) {
         drawn[offset.x + rank] = i;
-    } else {
-        drawn[params.counts.x + offset.y + rank] = i;
+    } else if (kind == DRAWN_RAIN) {
+        drawn[n + offset.y + rank] = i;
+    } else if (kind == DRAWN_SPLAT) {
+        drawn[2u * n + offset.z + rank] = i;
     }
 }

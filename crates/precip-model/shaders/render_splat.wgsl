@@ -12,11 +12,11 @@
 // 1 / SPLAT_UNITS, where a is the opacity a particle adds to the pixel. Coverage is
 // 1 − exp(−Σ a) (the product of (1 − a) for small a), the colour Σ a·c / Σ a.
 
-// Group 0: each particle's class this frame (the cull kernels' drawn_kinds).
-@group(0) @binding(10) var<storage, read> drawn_kinds: array<u32>;
-// Group 2 of the splat kernel: the scene's depth (read) and the sums.
+// Group 2 of the splat kernel: the scene's depth (read), the sums, and the frame's
+// draws (the splat list's count; the list is `drawn` from 2N).
 @group(2) @binding(3) var scene_depth: texture_depth_2d;
 @group(2) @binding(4) var<storage, read_write> splat_sums: array<atomic<u32>>;
+@group(2) @binding(6) var<storage, read> splat_draws: FrameDraws;
 // Group 2 of the resolve: the same sums, read and zeroed by one fragment per pixel
 // (no atomics: nothing else touches them during the draw).
 @group(2) @binding(5) var<storage, read_write> resolved_sums: array<u32>;
@@ -42,12 +42,21 @@ fn splat_look(p: Particle, distance_m: f32) -> vec4<f32> {
     return vec4<f32>(snow_colour(p, distance_m), ink);
 }
 
+// Over the splat list (the cull's, `drawn` from 2N): each invocation walks it with
+// the dispatch's stride (precip_model::gpu::DispatchOver::ParticleList), so the
+// kernel's lanes are all splatting particles.
 @compute @workgroup_size(64)
-fn splat_particles(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = (wid.x + wid.y * groups.x) * 64u + lid;
-    if (i >= params.counts.x || drawn_kinds[i] != DRAWN_SPLAT) {
-        return;
+fn splat_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let lanes = groups.x * groups.y * 64u;
+    let list = 2u * params.counts.x;
+    let count = splat_draws.splatted;
+    for (var k = linear_index(id, groups); k < count; k += lanes) {
+        splat_particle(drawn[list + k]);
     }
+}
+
+// Adds particle `i`'s ink at its pixels.
+fn splat_particle(i: u32) {
     let p = particles[i];
     let clip = params.view_proj * vec4<f32>(p.position_m, 1.0);
     if (!(clip.w > 0.0)) {

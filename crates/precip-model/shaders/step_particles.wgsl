@@ -154,7 +154,7 @@ fn deposit_landed(particle: Particle) {
 }
 
 // Over the pending births only: each invocation walks the list with the dispatch's
-// stride (precip_model::gpu::BIRTHS_PER_INVOCATION).
+// stride (precip_model::gpu::LIST_ENTRIES_PER_INVOCATION).
 @compute @workgroup_size(64)
 fn birth_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let lanes = groups.x * groups.y * 64u;

@@ -250,7 +250,6 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
         binding(rb::COVER_A, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::COVER_B, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::COVER_SAMPLER, FILTERING, Stages::DrawAndCompute),
-        binding(rb::DRAWN_KINDS, storage(true), Stages::DrawAndCompute),
     ],
 };
 
@@ -285,6 +284,7 @@ pub const SPLAT: GroupLayout = GroupLayout {
     bindings: &[
         binding(rb::SPLAT_SCENE_DEPTH, DEPTH_2D, Stages::Compute),
         binding(rb::SPLAT_SUMS, storage(false), Stages::Compute),
+        binding(rb::SPLAT_DRAWS, storage(true), Stages::Compute),
     ],
 };
 

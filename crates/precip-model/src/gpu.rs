@@ -106,23 +106,25 @@ pub enum DispatchOver {
     CoverTexels,
     /// A single workgroup.
     OneWorkgroup,
-    /// The pending births: one invocation per [`BIRTHS_PER_INVOCATION`] particles,
-    /// each walking the list of particles to re-birth (binding
-    /// [`step_bindings::PENDING_BIRTHS`]) with the dispatch's stride.
-    PendingBirths,
+    /// A list of particles: one invocation per [`LIST_ENTRIES_PER_INVOCATION`]
+    /// particles, each walking the list (the pending births, binding
+    /// [`step_bindings::PENDING_BIRTHS`]; the splat list, [`render_bindings::DRAWN`])
+    /// with the dispatch's stride, to the list's count.
+    ParticleList,
 }
 
-/// Particles per invocation of the birth kernel (see [`DispatchOver::PendingBirths`]).
+/// Particles per invocation of a kernel over a list (see [`DispatchOver::ParticleList`]).
 ///
 /// The step appends each particle to re-birth to a list (a count, then one `u32`
-/// index each); `reset_births` empties it before each step; the birth kernel runs
-/// over `⌈particles / 16⌉` invocations that walk the list, so it costs what the few
-/// particles re-born cost, not a pass over all of them: on lavapipe, which executes
-/// both sides of a divergent branch under a mask, the full-size birth kernel cost
-/// 27–41 ms at 10⁶ particles for a few thousand births. A fixed dispatch rather than
-/// an indirect one, because WebGPU forbids a buffer as indirect arguments and as
+/// index each; `reset_births` empties it before each step), and the cull lists the
+/// particles to splat; the birth and splat kernels run over `⌈particles / 16⌉`
+/// invocations that walk their list, so they cost what the particles listed cost,
+/// densely: on lavapipe, which executes both sides of a divergent branch under a
+/// mask (a loop ends when no lane is left), the full-size birth kernel cost 27–41 ms
+/// at 10⁶ particles for a few thousand births. A fixed dispatch rather than an
+/// indirect one, because WebGPU forbids a buffer as indirect arguments and as
 /// writable storage in one dispatch (the list would need a copy every sub-step).
-pub const BIRTHS_PER_INVOCATION: u32 = 16;
+pub const LIST_ENTRIES_PER_INVOCATION: u32 = 16;
 
 /// Bytes of the pending births for `particle_count` particles: the count, then an
 /// index per particle (each is re-born at most once a sub-step).
@@ -133,10 +135,10 @@ pub fn pending_births_bytes(particle_count: u32) -> u64 {
     4 + 4 * u64::from(particle_count.max(1))
 }
 
-/// Invocations of the birth kernel for `particle_count` particles.
+/// Invocations of a kernel over a list of at most `particle_count` particles.
 #[must_use]
-pub fn birth_invocations(particle_count: u32) -> u32 {
-    particle_count.div_ceil(BIRTHS_PER_INVOCATION).max(1)
+pub fn list_invocations(particle_count: u32) -> u32 {
+    particle_count.div_ceil(LIST_ENTRIES_PER_INVOCATION).max(1)
 }
 
 /// One kernel of the frame.
@@ -176,7 +178,7 @@ pub const SUBSTEP_PASSES: [KernelPass; 4] = [
     KernelPass {
         program: Program::StepParticles,
         entry_point: "birth_particles",
-        over: DispatchOver::PendingBirths,
+        over: DispatchOver::ParticleList,
     },
     KernelPass {
         program: Program::CoverUpdate,
@@ -215,7 +217,7 @@ pub struct KernelBytes {
 const PARTICLE_BYTES: u32 = size_of::<crate::Particle>() as u32;
 
 /// The bytes each particle kernel and draw moves ([`KernelBytes`]).
-pub const KERNEL_BYTES: [KernelBytes; 9] = [
+pub const KERNEL_BYTES: [KernelBytes; 8] = [
     // The particle, read and written whole (52 of its 64 bytes change).
     KernelBytes {
         entry_point: "step_particles",
@@ -232,14 +234,14 @@ pub const KERNEL_BYTES: [KernelBytes; 9] = [
         written: 4 + PARTICLE_BYTES,
     },
     // Position, velocity, flags and diameter span the particle's four rows; its class
-    // is written as one word (`drawn_kinds`).
+    // and rank are written as one word (`drawn_kinds`).
     KernelBytes {
         entry_point: "cull_count",
         per: BytesPer::Particle,
         read: PARTICLE_BYTES,
         written: 4,
     },
-    // The class word; the index of each particle drawn.
+    // The class word; the index of each particle drawn or splatted.
     KernelBytes {
         entry_point: "cull_write",
         per: BytesPer::Particle,
@@ -252,18 +254,12 @@ pub const KERNEL_BYTES: [KernelBytes; 9] = [
         read: 0,
         written: 4,
     },
-    // The class word of every particle; a splatted one reads the particle and adds
-    // its ink to four pixels' sums (4 words each, read and written by the atomics).
-    KernelBytes {
-        entry_point: "splat_particles",
-        per: BytesPer::Particle,
-        read: 4,
-        written: 0,
-    },
+    // The splat list's entry, the particle, and four pixels' sums (4 words each,
+    // read and written by the atomics).
     KernelBytes {
         entry_point: "splat_particles",
         per: BytesPer::Drawn,
-        read: PARTICLE_BYTES + 4 * 16,
+        read: 4 + PARTICLE_BYTES + 4 * 16,
         written: 4 * 16,
     },
     // The index and the particle, once an instance (its 4 or 12 vertices hit the
@@ -353,7 +349,7 @@ pub const COVER_TEXTURE_FORMAT_NAME: &str = "Rgba16Float";
 pub const SPLAT_PASS: KernelPass = KernelPass {
     program: Program::Render,
     entry_point: "splat_particles",
-    over: DispatchOver::Particles,
+    over: DispatchOver::ParticleList,
 };
 
 /// The passes of a frame as data, and their timed names
@@ -383,15 +379,21 @@ pub mod cull_bindings {
     /// Per-workgroup counts (sprites, streaks, splats, 0), then offsets:
     /// `array<vec4<u32>>`, one per cull workgroup.
     pub const GROUP_COUNTS: u32 = 2;
-    /// The drawn lists: `array<u32>` of 2 × particle count.
+    /// The drawn lists: `array<u32>` of 3 × particle count (N): sprites from 0,
+    /// streaks from N, splats from 2N ([`DRAWN_LIST_BYTES_PER_PARTICLE`]).
     pub const DRAWN: u32 = 3;
     /// The two indirect draws and the splat count, [`super::FrameDraws`].
     pub const DRAWS: u32 = 4;
-    /// How each particle is drawn this frame (`DRAWN_*`), `array<u32>` of the particle
-    /// count, written by `cull_count` (also group 0 binding
-    /// [`super::render_bindings::DRAWN_KINDS`] of the splat kernel).
+    /// How each particle is drawn this frame, `array<u32>` of the particle count,
+    /// written by `cull_count`: the class (`DRAWN_*`) in bits 0–7, the particle's
+    /// rank among its workgroup's particles of that class from bit 8 (counted by
+    /// the workgroup's first lane), so `cull_write` places it with no barrier.
     pub const DRAWN_KINDS: u32 = 5;
 }
+
+/// Bytes of the drawn lists per particle: three `u32` lists (sprites, streaks,
+/// splats), each as long as the particles.
+pub const DRAWN_LIST_BYTES_PER_PARTICLE: u64 = 12;
 
 /// Bindings of [`Program::Render`].
 pub mod render_bindings {
@@ -413,7 +415,7 @@ pub mod render_bindings {
     pub const GROUND_HEIGHT: u32 = 2;
     /// Group 0: particles, read-only storage.
     pub const PARTICLES: u32 = 3;
-    /// Group 0: the drawn lists, read-only storage.
+    /// Group 0: the drawn lists, read-only storage (see [`super::cull_bindings::DRAWN`]).
     pub const DRAWN: u32 = 4;
     /// Group 0: the cover's first texture (depth mm, SWE mm, peak SWE mm, wetness),
     /// `texture_2d<f32>`, [`super::COVER_TEXTURE_FORMAT_NAME`].
@@ -422,9 +424,6 @@ pub mod render_bindings {
     pub const COVER_B: u32 = 6;
     /// Group 0: their sampler (linear, clamped to the edge).
     pub const COVER_SAMPLER: u32 = 7;
-    /// Group 0: each particle's class this frame (the cull's
-    /// [`super::cull_bindings::DRAWN_KINDS`]), read-only storage.
-    pub const DRAWN_KINDS: u32 = 10;
     /// Group 0 of the `cover_texture` kernel: [`COVER_A`] as a write-only storage
     /// texture.
     pub const COVER_A_OUT: u32 = 8;
@@ -457,6 +456,9 @@ pub mod render_bindings {
     /// Group 2 of the resolve draw (fragment): the same sums as plain `array<u32>`
     /// (one fragment per pixel reads and zeroes its own: no atomics needed).
     pub const RESOLVED_SUMS: u32 = 5;
+    /// Group 2 of the splat kernel: the frame's [`super::FrameDraws`] (the splat
+    /// list's count), read-only storage.
+    pub const SPLAT_DRAWS: u32 = 6;
 }
 
 /// Vertex layout of the scene: position (3 × f32), normal (3 × f32), uv (2 × f32),

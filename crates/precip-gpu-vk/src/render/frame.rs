@@ -6,8 +6,8 @@ use ash::vk;
 use glam::UVec3;
 use gpu_allocator::MemoryLocation;
 use precip_model::gpu::{
-    FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL, cull_bindings as cb, cull_groups,
-    render_bindings as rb,
+    DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
+    cull_bindings as cb, cull_groups, render_bindings as rb,
 };
 use precip_model::render::RenderParams;
 use precip_model::{BackendError, Setup};
@@ -194,7 +194,7 @@ impl FrameResources {
             ),
             (
                 "drawn",
-                u64::from(count) * 8,
+                u64::from(count) * DRAWN_LIST_BYTES_PER_PARTICLE,
                 STORAGE,
                 MemoryLocation::GpuOnly,
             ),
@@ -316,7 +316,6 @@ impl FrameResources {
             write(frame_set, rb::GROUND_HEIGHT, T::STORAGE_BUFFER).buffer_info(&ground),
             write(frame_set, rb::PARTICLES, T::STORAGE_BUFFER).buffer_info(&particles),
             write(frame_set, rb::DRAWN, T::STORAGE_BUFFER).buffer_info(&drawn_info),
-            write(frame_set, rb::DRAWN_KINDS, T::STORAGE_BUFFER).buffer_info(&kinds_info),
             write(light_set, rb::SHADOW_MAP, T::SAMPLED_IMAGE).image_info(&shadow_image),
             write(light_set, rb::SHADOW_SAMPLER, T::SAMPLER).image_info(&shadow_sampler),
             write(light_set, rb::FLAKE_OPACITY, T::SAMPLED_IMAGE).image_info(&flake_image),
@@ -390,6 +389,7 @@ impl FrameResources {
             image_layout: vk::ImageLayout::DEPTH_STENCIL_READ_ONLY_OPTIMAL,
         }];
         let sums_info = buffer_info(sums, vk::WHOLE_SIZE);
+        let draws_info = buffer_info(&self.draws, vk::WHOLE_SIZE);
         let writes = [
             write(
                 self.splat_sets[slot],
@@ -398,6 +398,8 @@ impl FrameResources {
             )
             .image_info(&depth_info),
             write(self.splat_sets[slot], rb::SPLAT_SUMS, T::STORAGE_BUFFER).buffer_info(&sums_info),
+            write(self.splat_sets[slot], rb::SPLAT_DRAWS, T::STORAGE_BUFFER)
+                .buffer_info(&draws_info),
             write(
                 self.resolve_sets[slot],
                 rb::RESOLVED_SUMS,

@@ -4,7 +4,8 @@
 
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 use precip_model::gpu::{
-    FrameDraws, GROUP_COUNT_BYTES, cull_bindings as cb, cull_groups, render_bindings as rb,
+    DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, cull_bindings as cb, cull_groups,
+    render_bindings as rb,
 };
 use precip_model::render::RenderParams;
 
@@ -82,7 +83,7 @@ impl FrameResources {
         let drawn = storage(
             gpu,
             "precip drawn",
-            u64::from(count) * 8,
+            u64::from(count) * DRAWN_LIST_BYTES_PER_PARTICLE,
             wgpu::BufferUsages::empty(),
         );
         let drawn_kinds = storage(
@@ -191,7 +192,6 @@ impl FrameResources {
                 bind(rb::GROUND_HEIGHT, &sim.ground),
                 bind(rb::PARTICLES, &sim.particles),
                 bind(rb::DRAWN, &drawn),
-                bind(rb::DRAWN_KINDS, &drawn_kinds),
                 view(rb::COVER_A, &cover_a),
                 view(rb::COVER_B, &cover_b),
                 wgpu::BindGroupEntry {

@@ -52,7 +52,7 @@ use self::stamps::RenderStamps;
 use self::target::{ColourTarget, DepthBuffer};
 use precip_model::bind_groups::{self as bg, GroupLayout, groups_of};
 use precip_model::frame_recipe::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
-use precip_model::gpu::{DispatchOver, FRAME_PASSES, dispatch_size};
+use precip_model::gpu::{DispatchOver, FRAME_PASSES, dispatch_size, list_invocations};
 use precip_model::shaders::Program;
 use precip_model::shadow_cache::ShadowCache;
 
@@ -235,8 +235,9 @@ pub fn encode_frame(
                     let (x, y) = match kernel.over {
                         DispatchOver::OneWorkgroup => (1, 1),
                         DispatchOver::CoverTexels => dispatch_size(frame.cover_texels),
-                        DispatchOver::Particles | DispatchOver::PendingBirths => {
-                            dispatch_size(particle_count)
+                        DispatchOver::Particles => dispatch_size(particle_count),
+                        DispatchOver::ParticleList => {
+                            dispatch_size(list_invocations(particle_count))
                         }
                     };
                     compute.dispatch_workgroups(x, y, 1);

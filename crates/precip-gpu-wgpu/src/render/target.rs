@@ -52,9 +52,15 @@ pub struct DepthBuffer {
 }
 
 impl DepthBuffer {
-    /// A depth buffer of `width × height` and zeroed splat sums.
+    /// A depth buffer of `width × height` and zeroed splat sums; the splat reads the
+    /// splat list's count from `draws` (the frame's `FrameDraws`).
     #[must_use]
-    pub fn new(gpu: &GpuDevice, layouts: &RenderLayouts, width: u32, height: u32) -> Self {
+    pub fn new(
+        gpu: &GpuDevice,
+        layouts: &RenderLayouts,
+        (width, height): (u32, u32),
+        draws: &wgpu::Buffer,
+    ) -> Self {
         let texture = texture_2d(
             gpu,
             "precip depth",
@@ -81,6 +87,10 @@ impl DepthBuffer {
                 wgpu::BindGroupEntry {
                     binding: rb::SPLAT_SUMS,
                     resource: sums.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: rb::SPLAT_DRAWS,
+                    resource: draws.as_entire_binding(),
                 },
             ],
         });
