@@ -4,6 +4,7 @@
 
 pub mod peer;
 pub mod plot;
+pub mod traffic;
 
 use glam::Vec3;
 use precip_gpu_vk::VkBackend;

@@ -4,7 +4,8 @@
 //! by side — particles per second of a step, the step's bytes per second against the
 //! device's own buffer-copy bandwidth (and `step_over_copy_64b`: step particles/s at
 //! 10⁶ over copy bytes/s ÷ 128, the rate of a kernel that only copies a 64-byte
-//! particle), GPU time per kernel and per render pass, a full frame (step + render at
+//! particle), GPU time per kernel and per render pass and the bytes each moves
+//! ([`precip_benches::traffic`]), a full frame (step + render at
 //! 1280×720) from 10⁴ to 10⁷ particles and vk ÷ wgpu for both, and the peer in the
 //! same run ([`precip_benches::peer`]: `osgprecipitation --snow 0.5` and precip's
 //! viewer in windows of the same size over the demo scene); printed as a table,
@@ -16,6 +17,7 @@ use std::time::Instant;
 
 use precip_benches::peer::{Display, osgprecipitation_fps, viewer_run, write_obj};
 use precip_benches::plot::{Series, write_png};
+use precip_benches::traffic::pass_traffic;
 use precip_benches::{
     COUNTS, DT_S, FRAME_COUNTS, FRAME_SIZE, backends, frame, frame_scenario, scenario,
     step_bytes_per_particle,
@@ -105,16 +107,26 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>) {
                 accumulate(&mut passes, t, frames);
             }
             let ms = start.elapsed().as_secs_f64() * 1e3 / f64::from(frames);
+            let drawn = backend.drawn().ok().flatten().unwrap_or_default();
             println!(
-                "{name:>5} {count:>8}: {ms:>8.1} ms/frame ({}×{}); {}",
+                "{name:>5} {count:>8}: {ms:>8.1} ms/frame ({}×{}); {}; drawn {} sprites, {} streaks, {} splats",
                 FRAME_SIZE.0,
                 FRAME_SIZE.1,
-                passes_text(&passes)
+                passes_text(&passes),
+                drawn.sprites,
+                drawn.streaks,
+                drawn.splats,
             );
+            let traffic = pass_traffic(count, drawn, &passes);
+            if count == 1_000_000 {
+                println!("{name:>5} {count:>8}: bytes a particle and GB/s per pass: {traffic}");
+            }
             rows.push(json!({
                 "backend": name, "particles": count, "frame_ms": ms,
                 "width_px": FRAME_SIZE.0, "height_px": FRAME_SIZE.1,
                 "passes_ms": passes.iter().map(|(n, ms)| json!({"pass": n, "ms": ms})).collect::<Vec<_>>(),
+                "drawn": json!({"sprites": drawn.sprites, "streaks": drawn.streaks, "splats": drawn.splats}),
+                "traffic": traffic,
             }));
         }
     }
