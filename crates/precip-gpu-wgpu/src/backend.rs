@@ -250,6 +250,13 @@ impl WgpuBackend {
         }
         let stamps = self.render_stamps.as_ref();
         let render_ref = &*render;
+        let detail = (
+            view.camera.position_m,
+            render_ref
+                .scene
+                .as_ref()
+                .map_or(0.0, |s| s.lod.detail_distance_m(view)),
+        );
         let colour = match (external, render_ref.offscreen.as_ref()) {
             (Some((view, _)), _) => view,
             (None, Some(target)) => &target.view,
@@ -278,6 +285,7 @@ impl WgpuBackend {
                     depth,
                     sky: setup.render.sky_colour,
                     draw_shadow,
+                    detail,
                 },
                 stamps,
                 state.resources.particle_count,

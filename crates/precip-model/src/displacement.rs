@@ -59,6 +59,18 @@ pub fn raised(ground: &GroundMap, position_m: Vec3, normal: Vec3, eligibility: f
         )
 }
 
+/// The fewest pixels a tessellated edge spans where the fine triangles are drawn.
+pub const DETAIL_MIN_PX: f32 = 4.0;
+
+/// How far from the camera the displacement's fine triangles are drawn, m: where an
+/// edge of `edge_m` spans [`DETAIL_MIN_PX`] pixels of `pixel_angle_rad` (beyond, the
+/// snow's relief within a triangle is under a few pixels and the coarse triangles,
+/// raised at their corners, show it).
+#[must_use]
+pub fn detail_distance_m(edge_m: f32, pixel_angle_rad: f32) -> f32 {
+    edge_m / (DETAIL_MIN_PX * pixel_angle_rad.max(1.0e-6))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -88,6 +100,17 @@ mod tests {
         assert!(
             raised(&roofed, Vec3::new(50.0, 0.0, 0.0), Vec3::Y, 1.0),
             "off the map"
+        );
+    }
+
+    #[test]
+    fn detail_reaches_where_an_edge_spans_four_pixels() {
+        // 60° over 720 px: 1.6 mrad a pixel at the centre; a 0.5 m edge spans 4 px at 78 m.
+        let pixel = 2.0 * (30f32.to_radians()).tan() / 720.0;
+        assert!(
+            (detail_distance_m(0.5, pixel) - 77.9).abs() < 0.5,
+            "{}",
+            detail_distance_m(0.5, pixel)
         );
     }
 

@@ -96,7 +96,34 @@ fn triangle_count(scene: &Scene, split: &[Vec<bool>], max_edge_m: f32) -> u64 {
         .sum()
 }
 
-fn tessellate_mesh(mesh: &Mesh, split: &[bool], max_edge_m: f32) -> Mesh {
+/// One triangle of the input after tessellation.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Piece {
+    /// Its triangles' indices in the tessellated mesh's `indices`.
+    pub fine: std::ops::Range<usize>,
+    /// Its three corners (the input triangle, same winding) as indices of the
+    /// tessellated mesh's vertices: the piece drawn coarse.
+    pub coarse: [u32; 3],
+    /// Whether it was split (else `fine` is `coarse`).
+    pub split: bool,
+}
+
+/// A scene after [`Scene::tessellated`], with each input triangle's [`Piece`] per
+/// mesh (the level of detail of `crate::gpu_scene` chooses between a piece's fine
+/// and coarse triangles).
+#[derive(Debug, Clone)]
+pub struct Tessellation {
+    /// The tessellated scene (fine).
+    pub scene: Scene,
+    /// Per mesh, per input triangle.
+    pub pieces: Vec<Vec<Piece>>,
+    /// The edge limit the split used (grown from the one asked for until the budget
+    /// held), m.
+    pub edge_m: f32,
+}
+
+fn tessellate_mesh(mesh: &Mesh, split: &[bool], max_edge_m: f32) -> (Mesh, Vec<Piece>) {
+    let mut pieces = Vec::with_capacity(split.len());
     let mut out = Mesh {
         name: mesh.name.clone(),
         material: mesh.material.clone(),
@@ -129,6 +156,7 @@ fn tessellate_mesh(mesh: &Mesh, split: &[bool], max_edge_m: f32) -> Mesh {
             }
         }
         let at = |i: u32, j: u32| base + row_start[j as usize] + i;
+        let first = out.indices.len();
         for j in 0..k {
             for i in 0..(k - j) {
                 out.indices
@@ -139,8 +167,13 @@ fn tessellate_mesh(mesh: &Mesh, split: &[bool], max_edge_m: f32) -> Mesh {
                 }
             }
         }
+        pieces.push(Piece {
+            fine: first..out.indices.len(),
+            coarse: [at(0, 0), at(k, 0), at(0, k)],
+            split: k > 1,
+        });
     }
-    out
+    (out, pieces)
 }
 
 impl Scene {
@@ -149,7 +182,12 @@ impl Scene {
     /// (the edge limit grows until it fits; the triangles kept whole count once); see
     /// the module docs. `max_edge_m` must be positive.
     #[must_use]
-    pub fn tessellated(&self, max_edge_m: f32, max_triangles: u64, ground: &GroundMap) -> Self {
+    pub fn tessellated(
+        &self,
+        max_edge_m: f32,
+        max_triangles: u64,
+        ground: &GroundMap,
+    ) -> Tessellation {
         let mut edge = if max_edge_m.is_finite() && max_edge_m > 0.0 {
             max_edge_m
         } else {
@@ -159,13 +197,16 @@ impl Scene {
         while triangle_count(self, &split, edge) > max_triangles.max(1) && edge < 1.0e9 {
             edge *= 1.5;
         }
-        Self {
-            meshes: self
-                .meshes
-                .iter()
-                .zip(&split)
-                .map(|(m, s)| tessellate_mesh(m, s, edge))
-                .collect(),
+        let (meshes, pieces) = self
+            .meshes
+            .iter()
+            .zip(&split)
+            .map(|(m, s)| tessellate_mesh(m, s, edge))
+            .unzip();
+        Tessellation {
+            scene: Self { meshes },
+            pieces,
+            edge_m: edge,
         }
     }
 }
@@ -212,7 +253,7 @@ mod tests {
     #[test]
     fn splits_keep_area_and_attributes() {
         let scene = plane(10.0);
-        let fine = scene.tessellated(1.0, 1_000_000, &open_ground());
+        let fine = scene.tessellated(1.0, 1_000_000, &open_ground()).scene;
         let area = |s: &Scene| -> f32 {
             s.meshes
                 .iter()
@@ -253,7 +294,7 @@ mod tests {
     #[test]
     fn the_budget_caps_the_triangles() {
         let scene = plane(1000.0);
-        let capped = scene.tessellated(0.1, 5_000, &open_ground());
+        let capped = scene.tessellated(0.1, 5_000, &open_ground()).scene;
         assert!(capped.meshes[0].indices.len() / 3 <= 5_000);
         assert!(capped.meshes[0].indices.len() / 3 >= 2);
     }
@@ -261,7 +302,7 @@ mod tests {
     #[test]
     fn only_what_the_snow_raises_is_split() {
         let flat = plane(10.0);
-        let open = flat.tessellated(1.0, 1_000_000, &open_ground());
+        let open = flat.tessellated(1.0, 1_000_000, &open_ground()).scene;
         assert_eq!(open.meshes[0].indices.len() / 3, 2 * 225);
         // The same plane 3 m under a roof (the ground map's top is the roof).
         let roofed = GroundMap::flat(
@@ -269,13 +310,15 @@ mod tests {
             3.0,
             1.0,
         );
-        let sheltered = flat.tessellated(1.0, 1_000_000, &roofed);
+        let sheltered = flat.tessellated(1.0, 1_000_000, &roofed).scene;
         assert_eq!(sheltered.meshes[0].indices.len() / 3, 2, "kept whole");
         // Ineligible: kept whole.
         let mut bare = flat.clone();
         bare.meshes[0].snow_eligibility.fill(0.0);
         assert_eq!(
-            bare.tessellated(1.0, 1_000_000, &open_ground()).meshes[0]
+            bare.tessellated(1.0, 1_000_000, &open_ground())
+                .scene
+                .meshes[0]
                 .indices
                 .len()
                 / 3,
@@ -289,7 +332,9 @@ mod tests {
             *n = Vec3::Z;
         }
         assert_eq!(
-            wall.tessellated(1.0, 1_000_000, &open_ground()).meshes[0]
+            wall.tessellated(1.0, 1_000_000, &open_ground())
+                .scene
+                .meshes[0]
                 .indices
                 .len()
                 / 3,
@@ -311,7 +356,7 @@ mod tests {
             &scene,
             precip_cover::GridFrame::centred(centre, size, glam::UVec2::splat(128)),
         );
-        let split = scene.tessellated(0.5, u64::MAX, &ground);
+        let split = scene.tessellated(0.5, u64::MAX, &ground).scene;
         let triangles = |s: &Scene, name: &str| {
             s.meshes
                 .iter()

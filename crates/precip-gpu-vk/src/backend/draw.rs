@@ -183,6 +183,13 @@ impl VkBackend {
             ),
             zero_splat_sums,
             draw_shadow,
+            detail: (
+                view.camera.position_m,
+                render
+                    .scene
+                    .as_ref()
+                    .map_or(0.0, |s| s.lod.detail_distance_m(view)),
+            ),
         };
         let particle_count = state.resources.particle_count;
         if renderer.draws_for_pass(passes.scene).is_none() {

@@ -256,6 +256,9 @@ pub struct FrameTarget {
     pub zero_splat_sums: Option<vk::Buffer>,
     /// Draw the shadow map (else the last one stands: `ShadowCache`).
     pub draw_shadow: bool,
+    /// The camera's position and how far the displacement's fine triangles are
+    /// drawn (`SceneLod`), m.
+    pub detail: (Vec3, f32),
 }
 
 /// The viewport of `size`, y flipped (WGSL's clip space, as wgpu-hal).
@@ -511,7 +514,7 @@ pub unsafe fn record_frame(
                     match draw.of {
                         DrawOf::SceneMeshes { materials } => {
                             if let Some(scene) = &state.scene {
-                                scene.draw(device, cb, layout, materials);
+                                scene.draw(device, cb, layout, materials, target.detail);
                             }
                         }
                         // SAFETY: inside the pass with the pipeline and its sets bound.

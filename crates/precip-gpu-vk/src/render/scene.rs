@@ -5,11 +5,11 @@
 use std::ops::Range;
 
 use ash::vk;
-use glam::UVec3;
+use glam::{UVec3, Vec3};
 use gpu_allocator::MemoryLocation;
 use precip_model::GroundMap;
 use precip_model::gpu::{SceneVertex, render_bindings as rb};
-use precip_model::gpu_scene::PackedScene;
+use precip_model::gpu_scene::{PackedScene, SceneLod};
 use precip_model::{BackendError, RenderSettings, Scene, TextureRgba8};
 
 use super::Renderer;
@@ -22,8 +22,6 @@ use crate::resources::{upload, upload_image};
 /// One mesh's draw.
 #[derive(Debug)]
 pub struct MeshDraw {
-    /// Its indices in the shared index buffer.
-    pub indices: Range<u32>,
     /// Set 2: its material.
     pub material: vk::DescriptorSet,
 }
@@ -37,6 +35,8 @@ pub struct SceneGpu {
     pub indices: Buffer,
     /// The meshes.
     pub meshes: Vec<MeshDraw>,
+    /// What to draw of each mesh by distance.
+    pub lod: SceneLod,
     materials: Vec<(Buffer, Image)>,
     pool: vk::DescriptorPool,
 }
@@ -88,6 +88,7 @@ impl SceneGpu {
             vertices,
             indices,
             ranges,
+            lod,
         } = {
             let packed = PackedScene::new(scene, settings, ground)?;
             device.limits().check_packed_scene(&packed)?;
@@ -122,6 +123,7 @@ impl SceneGpu {
             )?,
             meshes: Vec::with_capacity(ranges.len()),
             materials: Vec::with_capacity(ranges.len()),
+            lod,
             pool,
         };
         // From here on `gpu` owns what is made, so an error frees it all.
@@ -168,7 +170,7 @@ impl SceneGpu {
             std::mem::replace(buffer, new).destroy(device);
             upload(device, buffer, bytes)?;
         }
-        for (mesh, range) in scene.meshes.iter().zip(ranges) {
+        for mesh in scene.meshes.iter().take(ranges.len()) {
             let image = texture(device, mesh.material.base_colour_texture.as_ref())?;
             let mut colour = match Buffer::new(
                 device,
@@ -204,21 +206,21 @@ impl SceneGpu {
             ];
             // SAFETY: the buffer, view and sampler are live and of the bindings' types.
             unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
-            self.meshes.push(MeshDraw {
-                indices: range,
-                material: set,
-            });
+            self.meshes.push(MeshDraw { material: set });
         }
         Ok(())
     }
 
-    /// Records every mesh's draw; set 2 (materials) only when `with_materials`.
+    /// Records every mesh's draw, fine near `camera_m` and coarse beyond
+    /// `detail_distance_m` (`SceneLod::ranges`); set 2 (materials) only when
+    /// `with_materials`.
     pub fn draw(
         &self,
         device: &Device,
         cb: vk::CommandBuffer,
         layout: vk::PipelineLayout,
         with_materials: bool,
+        (camera_m, detail_distance_m): (Vec3, f32),
     ) {
         // SAFETY: `cb` is recording inside a render pass with a scene pipeline bound;
         // the buffers and sets are live.
@@ -229,7 +231,7 @@ impl SceneGpu {
             device
                 .raw
                 .cmd_bind_index_buffer(cb, self.indices.raw, 0, vk::IndexType::UINT32);
-            for mesh in &self.meshes {
+            for (m, mesh) in self.meshes.iter().enumerate() {
                 if with_materials {
                     device.raw.cmd_bind_descriptor_sets(
                         cb,
@@ -240,11 +242,10 @@ impl SceneGpu {
                         &[],
                     );
                 }
-                let count = mesh.indices.end - mesh.indices.start;
-                if count > 0 {
+                for range in self.lod.ranges(m, camera_m, detail_distance_m) {
                     device
                         .raw
-                        .cmd_draw_indexed(cb, count, 1, mesh.indices.start, 0, 0);
+                        .cmd_draw_indexed(cb, range.end - range.start, 1, range.start, 0, 0);
                 }
             }
         }

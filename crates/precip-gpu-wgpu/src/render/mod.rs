@@ -124,6 +124,9 @@ pub struct FrameTarget<'a> {
     pub sky: Vec3,
     /// Draw the shadow map (else the last one stands: `ShadowCache`).
     pub draw_shadow: bool,
+    /// The camera's position and how far the displacement's fine triangles are
+    /// drawn (`SceneLod`), m.
+    pub detail: (Vec3, f32),
 }
 
 /// Writes of timed pass `pass` (its index in `TIMED_RENDER_PASSES`): queries `2·pass`
@@ -298,7 +301,8 @@ pub fn encode_frame(
                     match draw.of {
                         DrawOf::SceneMeshes { materials } => {
                             if let Some(scene) = &state.scene {
-                                scene.draw(&mut render, materials);
+                                let (camera_m, distance_m) = target.detail;
+                                scene.draw(&mut render, materials, camera_m, distance_m);
                             }
                         }
                         DrawOf::FullScreenTriangle => render.draw(0..3, 0..1),

@@ -1,11 +1,11 @@
 //! The scene on the GPU: one vertex and one index buffer for all meshes (tessellated
 //! for the snow's displacement), and a material bind group per mesh.
 
-use std::ops::Range;
 
+use glam::Vec3;
 use precip_model::GroundMap;
 use precip_model::gpu::render_bindings as rb;
-use precip_model::gpu_scene::PackedScene;
+use precip_model::gpu_scene::{PackedScene, SceneLod};
 use precip_model::{BackendError, RenderSettings, Scene, TextureRgba8};
 use wgpu::util::DeviceExt;
 
@@ -15,8 +15,6 @@ use crate::device::GpuDevice;
 /// One mesh's draw.
 #[derive(Debug)]
 pub struct MeshDraw {
-    /// Its indices in the shared index buffer.
-    pub indices: Range<u32>,
     /// Group 2: its material.
     pub material: wgpu::BindGroup,
 }
@@ -32,6 +30,8 @@ pub struct SceneGpu {
     pub meshes: Vec<MeshDraw>,
     /// Triangles drawn (after tessellation).
     pub triangles: u64,
+    /// What to draw of each mesh by distance.
+    pub lod: SceneLod,
 }
 
 fn texture_of(
@@ -80,6 +80,7 @@ impl SceneGpu {
             vertices,
             indices,
             ranges,
+            lod,
         } = {
             let packed = PackedScene::new(scene, settings, ground)?;
             gpu.limits().check_packed_scene(&packed)?;
@@ -94,7 +95,7 @@ impl SceneGpu {
             ..Default::default()
         });
         let mut meshes = Vec::with_capacity(ranges.len());
-        for (mesh, range) in scene.meshes.iter().zip(ranges) {
+        for mesh in scene.meshes.iter().take(ranges.len()) {
             let texture = texture_of(gpu, mesh.material.base_colour_texture.as_ref())?;
             let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
             let colour = gpu
@@ -122,10 +123,7 @@ impl SceneGpu {
                     },
                 ],
             });
-            meshes.push(MeshDraw {
-                indices: range,
-                material,
-            });
+            meshes.push(MeshDraw { material });
         }
         let init = |label, contents: &[u8], usage| {
             gpu.device
@@ -148,18 +146,29 @@ impl SceneGpu {
             ),
             triangles: indices.len() as u64 / 3,
             meshes,
+            lod,
         })
     }
 
-    /// Draws every mesh; group 2 (materials) only when `with_materials`.
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, with_materials: bool) {
+    /// Draws every mesh, fine near `camera_m` and coarse beyond
+    /// `detail_distance_m` (`SceneLod::ranges`); group 2 (materials) only when
+    /// `with_materials`.
+    pub fn draw(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        with_materials: bool,
+        camera_m: Vec3,
+        detail_distance_m: f32,
+    ) {
         pass.set_vertex_buffer(0, self.vertices.slice(..));
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-        for mesh in &self.meshes {
+        for (m, mesh) in self.meshes.iter().enumerate() {
             if with_materials {
                 pass.set_bind_group(2, &mesh.material, &[]);
             }
-            pass.draw_indexed(mesh.indices.clone(), 0, 0..1);
+            for range in self.lod.ranges(m, camera_m, detail_distance_m) {
+                pass.draw_indexed(range, 0, 0..1);
+            }
         }
     }
 }
