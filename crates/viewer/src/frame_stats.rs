@@ -1,5 +1,6 @@
-//! What a run reports: the mean frame time after a warm-up, and the mean number of
-//! particles drawn (sprites, streaks and splats, after culling), read back from the
+//! What a run reports: the mean frame time after a warm-up, the mean number of
+//! particles drawn (sprites, streaks and splats, after culling) and the mean GPU time
+//! of each kernel and pass (where the device has timestamps), read back from the
 //! backend every few frames so the read-back's stall does not set the frame rate.
 
 use precip_model::{Backend, BackendError};
@@ -19,6 +20,8 @@ pub struct FrameStats {
     timed: u32,
     drawn_sum: u64,
     drawn_samples: u32,
+    /// Per pass: total GPU ms and samples.
+    passes: Vec<(&'static str, f64, u32)>,
 }
 
 impl FrameStats {
@@ -30,11 +33,22 @@ impl FrameStats {
             self.timed_ms += frame_ms;
             self.timed += 1;
         }
-        if self.frames.is_multiple_of(DRAWN_EVERY)
-            && let Some(drawn) = backend.drawn()?
-        {
-            self.drawn_sum += drawn.total();
-            self.drawn_samples += 1;
+        if self.frames.is_multiple_of(DRAWN_EVERY) {
+            if let Some(drawn) = backend.drawn()? {
+                self.drawn_sum += drawn.total();
+                self.drawn_samples += 1;
+            }
+            if self.frames >= WARM_UP_FRAMES {
+                for p in backend.timings()?.passes {
+                    match self.passes.iter_mut().find(|(name, _, _)| *name == p.pass) {
+                        Some(entry) => {
+                            entry.1 += p.milliseconds;
+                            entry.2 += 1;
+                        }
+                        None => self.passes.push((p.pass, p.milliseconds, 1)),
+                    }
+                }
+            }
         }
         self.frames += 1;
         Ok(())
@@ -58,7 +72,17 @@ impl FrameStats {
         (self.drawn_samples > 0).then(|| self.drawn_sum as f64 / f64::from(self.drawn_samples))
     }
 
-    /// `mean 12.3 ms per frame, 104 512 particles drawn` (what is known of it).
+    /// Mean GPU ms of each kernel and pass over the sampled frames after the
+    /// warm-up, in the order first seen; empty without timestamps.
+    #[must_use]
+    pub fn mean_pass_ms(&self) -> Vec<(&'static str, f64)> {
+        self.passes
+            .iter()
+            .map(|(name, ms, n)| (*name, ms / f64::from((*n).max(1))))
+            .collect()
+    }
+
+    /// `mean frame time 12.3 ms, 104512 particles drawn` (what is known of it).
     #[must_use]
     pub fn describe(&self) -> String {
         let time = self.mean_frame_ms().map_or_else(
@@ -69,6 +93,19 @@ impl FrameStats {
             Some(n) => format!("{time}, {n:.0} particles drawn"),
             None => time,
         }
+    }
+
+    /// `GPU ms: step_particles 27.1, scene 38.0, …`, or `None` without timestamps.
+    #[must_use]
+    pub fn describe_passes(&self) -> Option<String> {
+        let passes = self.mean_pass_ms();
+        (!passes.is_empty()).then(|| {
+            let list: Vec<String> = passes
+                .iter()
+                .map(|(name, ms)| format!("{name} {ms:.1}"))
+                .collect();
+            format!("GPU ms: {}", list.join(", "))
+        })
     }
 }
 
@@ -95,5 +132,25 @@ mod tests {
         assert_eq!(stats.mean_frame_ms(), Some(15.0));
         assert_eq!(stats.mean_drawn(), None);
         assert_eq!(stats.describe(), "mean frame time 15.0 ms");
+    }
+
+    #[test]
+    fn pass_times_are_the_mean_of_the_sampled_frames_after_the_warm_up() {
+        let mut cpu = CpuBackend::new();
+        cpu.configure(&precip_model::Setup::over_flat_ground(16.0, 8, 10.0, 500))
+            .expect("valid");
+        let mut stats = FrameStats::default();
+        assert_eq!(stats.describe_passes(), None);
+        for _ in 0..=DRAWN_EVERY {
+            cpu.step(0.02).expect("valid");
+            stats.record(10.0, &mut cpu).expect("records");
+        }
+        // Frame 0 is in the warm-up; frame 8 is sampled.
+        let passes = stats.mean_pass_ms();
+        assert!(
+            passes.iter().any(|(name, ms)| *name == "step_particles" && *ms >= 0.0),
+            "{passes:?}"
+        );
+        assert!(stats.describe_passes().is_some_and(|d| d.starts_with("GPU ms: ")));
     }
 }

@@ -250,6 +250,9 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
                             args.size.0,
                             args.size.1,
                         );
+                        if let Some(passes) = shown.stats.describe_passes() {
+                            println!("window: {passes}");
+                        }
                     }
                     return Ok(());
                 }
@@ -298,6 +301,9 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         summary.cover_water_mm,
         summary.max_depth_mm
     );
+    if let Some(passes) = summary.stats.describe_passes() {
+        println!("{passes}");
+    }
     drop(backend);
     if let Some(log) = validation {
         let messages = log.lock().map(|m| m.clone()).unwrap_or_default();
