@@ -148,9 +148,15 @@ mod tests {
         // Frame 0 is in the warm-up; frame 8 is sampled.
         let passes = stats.mean_pass_ms();
         assert!(
-            passes.iter().any(|(name, ms)| *name == "step_particles" && *ms >= 0.0),
+            passes
+                .iter()
+                .any(|(name, ms)| *name == "step_particles" && *ms >= 0.0),
             "{passes:?}"
         );
-        assert!(stats.describe_passes().is_some_and(|d| d.starts_with("GPU ms: ")));
+        assert!(
+            stats
+                .describe_passes()
+                .is_some_and(|d| d.starts_with("GPU ms: "))
+        );
     }
 }

@@ -1,7 +1,6 @@
 //! The scene on the GPU: one vertex and one index buffer for all meshes (tessellated
 //! for the snow's displacement), and a material bind group per mesh.
 
-
 use glam::Vec3;
 use precip_model::GroundMap;
 use precip_model::gpu::render_bindings as rb;
