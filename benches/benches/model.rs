@@ -38,20 +38,13 @@ fn cover_update(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(3));
     let setup = scenario(1_000);
     let mut grid = setup.initial_cover().expect("valid");
-    let w = setup.weather;
-    let dt_days = 0.02 * setup.cover.time_scale / precip_model::setup::SECONDS_PER_DAY;
+    let block = setup.cover_step_params(&setup.weather, 0.02);
+    let air = block.air();
     group.throughput(Throughput::Elements(grid.texels.len() as u64));
     let mut deposits = precip_model::cover::DepositBuffer::new(grid.texels.len());
     group.bench_function(BenchmarkId::new("cpu", grid.texels.len()), |b| {
         b.iter(|| {
-            grid.step(
-                &mut deposits,
-                w.snow_rate_mm_per_h() * 24.0,
-                w.rain_rate_mm_per_h() * 24.0,
-                w.air_temperature_c,
-                dt_days,
-                &setup.cover.params,
-            );
+            grid.step(&mut deposits, air, block.dt_days, &setup.cover.params);
         });
     });
     group.finish();

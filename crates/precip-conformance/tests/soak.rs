@@ -57,8 +57,11 @@ struct Sample {
 }
 
 /// Resident memory and device allocations once the queue is idle (a read-back waits
-/// for it, and finished work's staging memory is released).
+/// for it, and finished work's staging memory is released). Twice: wgpu frees a
+/// dropped buffer at the first poll after the work that used it ends, so the first
+/// read-back's own staging buffer (and a frame's) is gone only after the second.
 fn sample(backend: &mut dyn Backend) -> Sample {
+    backend.read_cover().expect("cover");
     backend.read_cover().expect("cover");
     Sample {
         resident_kib: resident_kib().unwrap_or(0),

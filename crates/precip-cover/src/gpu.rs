@@ -2,11 +2,28 @@
 
 use bytemuck::{Pod, Zeroable};
 
+use crate::frame::GridFrame;
 use crate::params::CoverParams;
+use crate::water::WATER_FLOW_ITERATIONS;
+
+/// The air over the cover during one step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CoverAir {
+    /// Snow rate on texels fed by the weather, mm/day of water.
+    pub snow_rate_mm_per_day: f32,
+    /// Rain rate on texels fed by the weather, mm/day.
+    pub rain_rate_mm_per_day: f32,
+    /// Air temperature, °C.
+    pub air_temperature_c: f32,
+    /// Relative humidity, `[0, 1]`.
+    pub relative_humidity: f32,
+    /// Mean wind speed near the ground, m/s.
+    pub wind_speed_mps: f32,
+}
 
 /// Everything one cover step needs besides the texels.
 ///
-/// WGSL twin: `CoverStepParams` in `shaders/cover.wgsl` (80 bytes).
+/// WGSL twin: `CoverStepParams` in `shaders/cover.wgsl` (96 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct CoverStepParams {
@@ -34,8 +51,6 @@ pub struct CoverStepParams {
     pub wet_darkening: f32,
     /// [`CoverParams::wetting_mm`].
     pub wetting_mm: f32,
-    /// [`CoverParams::drying_time_days`].
-    pub drying_time_days: f32,
     /// [`CoverParams::mask_edge`].
     pub mask_edge: f32,
     /// Snow rate on texels fed by the weather, mm/day of water.
@@ -44,26 +59,31 @@ pub struct CoverStepParams {
     pub rain_rate_mm_per_day: f32,
     /// Air temperature, °C.
     pub air_temperature_c: f32,
+    /// Relative humidity, `[0, 1]`.
+    pub relative_humidity: f32,
+    /// Mean wind speed near the ground, m/s.
+    pub wind_speed_mps: f32,
     /// Step, days of cover time.
     pub dt_days: f32,
+    /// One flow iteration, s of cover time (the step over
+    /// [`WATER_FLOW_ITERATIONS`]).
+    pub flow_iteration_s: f32,
+    /// Texel size along x, m.
+    pub cell_x_m: f32,
+    /// Texel size along z, m.
+    pub cell_z_m: f32,
     /// Texels in the grid.
     pub texel_count: u32,
-    /// Unused (`0`).
-    pub reserved: u32,
+    /// Texels along x.
+    pub texels_x: u32,
 }
-const _: () = assert!(size_of::<CoverStepParams>() == 80);
+const _: () = assert!(size_of::<CoverStepParams>() == 96);
 
 impl CoverStepParams {
-    /// The block for one step.
+    /// The block for one step of `dt_days` over the grid `frame`.
     #[must_use]
-    pub fn new(
-        params: &CoverParams,
-        snow_rate_mm_per_day: f32,
-        rain_rate_mm_per_day: f32,
-        air_temperature_c: f32,
-        dt_days: f32,
-        texel_count: u32,
-    ) -> Self {
+    pub fn new(params: &CoverParams, air: CoverAir, dt_days: f32, frame: &GridFrame) -> Self {
+        let cell = frame.cell_m();
         Self {
             melt_threshold_c: params.melt_threshold_c,
             melt_proportionality_mm_per_c_day: params.melt_proportionality_mm_per_c_day,
@@ -77,14 +97,30 @@ impl CoverStepParams {
             compaction_time_days: params.compaction_time_days,
             wet_darkening: params.wet_darkening,
             wetting_mm: params.wetting_mm,
-            drying_time_days: params.drying_time_days,
             mask_edge: params.mask_edge,
-            snow_rate_mm_per_day,
-            rain_rate_mm_per_day,
-            air_temperature_c,
+            snow_rate_mm_per_day: air.snow_rate_mm_per_day,
+            rain_rate_mm_per_day: air.rain_rate_mm_per_day,
+            air_temperature_c: air.air_temperature_c,
+            relative_humidity: air.relative_humidity,
+            wind_speed_mps: air.wind_speed_mps,
             dt_days,
-            texel_count,
-            reserved: 0,
+            flow_iteration_s: dt_days * 86_400.0 / WATER_FLOW_ITERATIONS as f32,
+            cell_x_m: cell.x,
+            cell_z_m: cell.y,
+            texel_count: frame.texel_count() as u32,
+            texels_x: frame.texels.x,
+        }
+    }
+
+    /// The air of the block.
+    #[must_use]
+    pub fn air(&self) -> CoverAir {
+        CoverAir {
+            snow_rate_mm_per_day: self.snow_rate_mm_per_day,
+            rain_rate_mm_per_day: self.rain_rate_mm_per_day,
+            air_temperature_c: self.air_temperature_c,
+            relative_humidity: self.relative_humidity,
+            wind_speed_mps: self.wind_speed_mps,
         }
     }
 }

@@ -1,4 +1,6 @@
-//! Snow that accumulates and melts on a scene (MODEL.md §4, seed 003).
+//! Snow that accumulates and melts on a scene (MODEL.md §4, seed 003), and the
+//! water on its surfaces: films, puddles, infiltration, evaporation and overland
+//! flow ([`water`], [`Surface`]).
 //!
 //! ## Design
 //!
@@ -32,13 +34,15 @@ mod melt;
 mod params;
 mod shading;
 mod snowpack;
+mod surface;
 mod texel;
 mod update;
+pub mod water;
 
 pub use deposit::{DEPOSIT_UNITS_PER_MM, DepositBuffer, deposit_units};
 pub use error::CoverError;
 pub use frame::GridFrame;
-pub use gpu::CoverStepParams;
+pub use gpu::{CoverAir, CoverStepParams};
 pub use grid::{CoverGrid, CoverTotals};
 pub use masks::{ThresholdMasks, generate_threshold_masks};
 pub use melt::{degree_day_melt_mm, melt_factor, snow_albedo, vegetation_transmission};
@@ -47,5 +51,7 @@ pub use shading::{
     CoverShading, accumulated_fraction, melted_fraction, shade_texel, shade_with_masks,
 };
 pub use snowpack::{compacted_density, new_snow_density};
+pub use surface::{Surface, SurfaceWater};
 pub use texel::{CoverFeed, CoverTexel};
 pub use update::{CoverInput, update_texel};
+pub use water::{WATER_FLOW_ITERATIONS, evaporation_mm_per_day, saturation_vapour_pressure_hpa};

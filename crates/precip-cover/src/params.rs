@@ -33,10 +33,9 @@ pub struct CoverParams {
     pub compaction_time_days: f32,
     /// R_d: how much wet ground darkens, `[0, 1]`.
     pub wet_darkening: f32,
-    /// Water that wets a surface fully, mm.
+    /// Standing or held water that wets a surface fully, mm (a film wets it fully at
+    /// the surface's own capacity, [`crate::SurfaceWater::film_capacity_mm`]).
     pub wetting_mm: f32,
-    /// Time constant of drying, days.
-    pub drying_time_days: f32,
     /// Width of the soft edge of mask patches, in mask units `(0, 1]`.
     pub mask_edge: f32,
 }
@@ -56,7 +55,6 @@ impl Default for CoverParams {
             compaction_time_days: 4.0,
             wet_darkening: 0.4,
             wetting_mm: 1.0,
-            drying_time_days: 0.25,
             mask_edge: 0.05,
         }
     }
@@ -142,13 +140,6 @@ impl CoverParams {
             0.001,
             1.0e3,
             "[0.001, 1000] mm",
-        )?;
-        check_range(
-            "drying_time_days",
-            self.drying_time_days,
-            0.001,
-            1.0e3,
-            "[0.001, 1000] days",
         )?;
         check_range("mask_edge", self.mask_edge, 0.001, 1.0, "(0, 1]")
     }

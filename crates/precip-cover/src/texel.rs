@@ -25,10 +25,12 @@ impl CoverFeed {
     }
 }
 
-/// State of the snow cover in one texel. Water amounts are mm of water (kg/m²).
+/// State of the snow cover and the surface water in one texel. Water amounts are mm
+/// of water (kg/m²).
 ///
-/// Books: `deposited_mm = swe_mm + liquid_mm + runoff_mm` at all times.
-/// WGSL twin: `CoverTexel` in `shaders/cover.wgsl` (48 bytes, 12 scalars).
+/// Books, at all times: `deposited_mm + net_inflow_mm = swe_mm + liquid_mm + film_mm
+/// + standing_mm + infiltrated_mm + evaporated_mm + runoff_mm`.
+/// WGSL twin: `CoverTexel` in `shaders/cover.wgsl` (96 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default, Pod, Zeroable)]
 pub struct CoverTexel {
@@ -42,10 +44,10 @@ pub struct CoverTexel {
     pub age_days: f32,
     /// The largest SWE since the pack began, mm: `M_S = 1 − swe/peak`.
     pub peak_swe_mm: f32,
-    /// Surface wetness in `[0, 1]` (drives wet darkening).
+    /// Surface wetness in `[0, 1]` (drives wet darkening): the film over its capacity
+    /// plus standing and held water over [`crate::CoverParams::wetting_mm`].
     pub wetness: f32,
-    /// Water that left the texel: melt drained, rain on bare ground, snow that fell
-    /// where none may lie; cumulative, mm.
+    /// Water that left: over the grid's edge, or into a water body; cumulative, mm.
     pub runoff_mm: f32,
     /// All water received, cumulative, mm.
     pub deposited_mm: f32,
@@ -57,13 +59,55 @@ pub struct CoverTexel {
     pub melt_mask: f32,
     /// [`CoverFeed`] as `u32`.
     pub feed: u32,
+    /// Water held by the surface's texture, not flowing, mm (up to the surface's
+    /// film capacity).
+    pub film_mm: f32,
+    /// Standing water above the film, mm: it flows, and where it gathers it is a
+    /// puddle.
+    pub standing_mm: f32,
+    /// Water that soaked into the ground, cumulative, mm.
+    pub infiltrated_mm: f32,
+    /// Water that evaporated, cumulative, mm.
+    pub evaporated_mm: f32,
+    /// Water that flowed in from neighbours minus what flowed out to them,
+    /// cumulative, mm (sums to zero over the grid up to rounding).
+    pub net_inflow_mm: f32,
+    /// Height of the surface at the texel's centre, m (from the ground map).
+    pub ground_m: f32,
+    /// [`crate::Surface`] as `u32`.
+    pub surface: u32,
+    /// Unused (`0`).
+    pub reserved: u32,
+    /// Standing water sent to the −x, +x, −z, +z neighbours in the last flow
+    /// iteration, mm (scratch of the flow's two passes).
+    pub outflow_mm: [f32; 4],
 }
-const _: () = assert!(size_of::<CoverTexel>() == 48);
+const _: () = assert!(size_of::<CoverTexel>() == 96);
 
 impl CoverTexel {
-    /// Water stored in the texel (frozen + liquid), mm.
+    /// Water stored in the snow pack (frozen + liquid), mm.
     #[must_use]
     pub fn stored_mm(&self) -> f32 {
         self.swe_mm + self.liquid_mm
+    }
+
+    /// Water on the surface (film + standing), mm.
+    #[must_use]
+    pub fn surface_water_mm(&self) -> f32 {
+        self.film_mm + self.standing_mm
+    }
+
+    /// `deposited + net inflow − (every column)`: zero up to rounding, mm.
+    #[must_use]
+    pub fn imbalance_mm(&self) -> f64 {
+        let f = f64::from;
+        f(self.deposited_mm) + f(self.net_inflow_mm)
+            - (f(self.swe_mm)
+                + f(self.liquid_mm)
+                + f(self.film_mm)
+                + f(self.standing_mm)
+                + f(self.infiltrated_mm)
+                + f(self.evaporated_mm)
+                + f(self.runoff_mm))
     }
 }

@@ -1,16 +1,21 @@
-//! [`update_texel`]: the cover kernel, CPU form (WGSL twin: `cover_update` in
+//! [`update_texel`]: the cover kernel, CPU form (WGSL twin: `update_texel` in
 //! `shaders/cover.wgsl`).
 
 use crate::melt::degree_day_melt_mm;
 use crate::params::CoverParams;
 use crate::snowpack::{compacted_density, new_snow_density};
+use crate::surface::Surface;
 use crate::texel::CoverTexel;
+use crate::water::evaporation_mm_per_day;
 
 /// Density of liquid water, kg/m³: converts mm of water to mm of snow.
 const WATER_DENSITY_KG_M3: f32 = 1000.0;
 
-/// Below this SWE (mm) a texel counts as bare and its remains run off.
+/// Below this SWE (mm) a texel counts as bare and its remains melt onto the surface.
 const BARE_SWE_MM: f32 = 1.0e-6;
+
+/// Hours per day.
+const HOURS_PER_DAY: f32 = 24.0;
 
 /// What reaches one texel over one cover step.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -21,22 +26,32 @@ pub struct CoverInput {
     pub rain_mm: f32,
     /// Air temperature, °C.
     pub air_temperature_c: f32,
+    /// Relative humidity of the air, `[0, 1]` (evaporation).
+    pub relative_humidity: f32,
+    /// Mean wind speed near the ground, m/s (evaporation).
+    pub wind_speed_mps: f32,
     /// Length of the step, days of cover time.
     pub dt_days: f32,
 }
 
 /// Advances one texel by one step: input, melt or refreeze, drainage, settling,
-/// wetness, ageing. Every amount of water moves between the books' columns, so
-/// `deposited = swe + liquid + runoff` holds after the step if it held before.
+/// ageing; then the surface's water: what reaches it (rain on bare ground, melt
+/// drained from the pack, snow where none may lie) fills the film, the rest stands;
+/// standing water, then the film, infiltrates and evaporates. Every amount of water
+/// moves between the books' columns, so [`CoverTexel::imbalance_mm`] stays zero.
+/// Overland flow is a separate pass ([`crate::water`]).
 #[must_use]
 pub fn update_texel(texel: CoverTexel, input: CoverInput, params: &CoverParams) -> CoverTexel {
     let mut t = texel;
+    let surface = Surface::from_raw(t.surface);
+    let water = surface.water();
     let eligibility = t.eligibility.clamp(0.0, 1.0);
     t.deposited_mm += input.snow_mm + input.rain_mm;
 
-    // Snow: the eligible share settles, the rest runs off (walls, heated roads).
+    // Snow: the eligible share settles, the rest melts on contact (heated paving,
+    // water) and reaches the surface.
     let snow_kept = input.snow_mm * eligibility;
-    t.runoff_mm += input.snow_mm - snow_kept;
+    let mut to_surface_mm = input.snow_mm - snow_kept;
     if snow_kept > 0.0 {
         let swe_total = t.swe_mm + snow_kept;
         t.age_days *= t.swe_mm / swe_total;
@@ -44,12 +59,11 @@ pub fn update_texel(texel: CoverTexel, input: CoverInput, params: &CoverParams) 
         t.swe_mm = swe_total;
     }
 
-    // Rain: held by a pack, runs off bare ground.
-    let mut wetting_mm = input.rain_mm;
+    // Rain: held by a pack, else on the surface.
     if t.swe_mm > 0.0 {
         t.liquid_mm += input.rain_mm;
     } else {
-        t.runoff_mm += input.rain_mm;
+        to_surface_mm += input.rain_mm;
     }
 
     // Melt with heat, refreeze without (seed 003: melt stops when the heat runs out).
@@ -61,7 +75,6 @@ pub fn update_texel(texel: CoverTexel, input: CoverInput, params: &CoverParams) 
         }
         t.swe_mm -= melt;
         t.liquid_mm += melt;
-        wetting_mm += melt;
     } else {
         let cold = (params.melt_threshold_c - input.air_temperature_c).max(0.0);
         let refreeze = t
@@ -71,10 +84,11 @@ pub fn update_texel(texel: CoverTexel, input: CoverInput, params: &CoverParams) 
         t.swe_mm += refreeze;
     }
 
-    // Drainage: the pack holds a fraction of its SWE as liquid.
+    // Drainage: the pack holds a fraction of its SWE as liquid; the rest drains to
+    // the surface beneath.
     let capacity = params.water_holding_fraction * t.swe_mm;
     if t.liquid_mm > capacity {
-        t.runoff_mm += t.liquid_mm - capacity;
+        to_surface_mm += t.liquid_mm - capacity;
         t.liquid_mm = capacity;
     }
 
@@ -91,19 +105,60 @@ pub fn update_texel(texel: CoverTexel, input: CoverInput, params: &CoverParams) 
     }
 
     t.peak_swe_mm = t.peak_swe_mm.max(t.swe_mm);
-    t.wetness = (t.wetness + wetting_mm / params.wetting_mm).clamp(0.0, 1.0)
-        * (-input.dt_days / params.drying_time_days).exp();
     t.age_days += input.dt_days;
 
     if t.swe_mm <= BARE_SWE_MM {
-        t.runoff_mm += t.swe_mm + t.liquid_mm;
+        to_surface_mm += t.swe_mm + t.liquid_mm;
         t.swe_mm = 0.0;
         t.liquid_mm = 0.0;
         t.depth_mm = 0.0;
         t.age_days = 0.0;
         t.peak_swe_mm = 0.0;
     }
+
+    // The surface's water.
+    if surface == Surface::Water {
+        t.runoff_mm += to_surface_mm;
+    } else {
+        t.film_mm += to_surface_mm;
+        let excess = (t.film_mm - water.film_capacity_mm).max(0.0);
+        t.film_mm -= excess;
+        t.standing_mm += excess;
+        let soak = (water.infiltration_mm_per_h * HOURS_PER_DAY * input.dt_days)
+            .min(t.standing_mm + t.film_mm);
+        let from_standing = soak.min(t.standing_mm);
+        let from_film = (soak - from_standing).clamp(0.0, t.film_mm);
+        t.standing_mm -= from_standing;
+        t.film_mm -= from_film;
+        t.infiltrated_mm += from_standing + from_film;
+        // A snow pack shields the surface from the air.
+        if t.swe_mm <= 0.0 {
+            let dry = (evaporation_mm_per_day(
+                input.air_temperature_c,
+                input.relative_humidity,
+                input.wind_speed_mps,
+            ) * input.dt_days)
+                .min(t.standing_mm + t.film_mm);
+            let from_standing = dry.min(t.standing_mm);
+            let from_film = (dry - from_standing).clamp(0.0, t.film_mm);
+            t.standing_mm -= from_standing;
+            t.film_mm -= from_film;
+            t.evaporated_mm += from_standing + from_film;
+        }
+    }
+    t.wetness = surface_wetness(&t, water.film_capacity_mm, params.wetting_mm);
     t
+}
+
+/// Wetness in `[0, 1]`: the film over its capacity, plus standing water and the
+/// pack's liquid over `wetting_mm`.
+fn surface_wetness(t: &CoverTexel, film_capacity_mm: f32, wetting_mm: f32) -> f32 {
+    let film = if film_capacity_mm > 0.0 {
+        t.film_mm / film_capacity_mm
+    } else {
+        0.0
+    };
+    (film + (t.standing_mm + t.liquid_mm) / wetting_mm).clamp(0.0, 1.0)
 }
 
 #[cfg(test)]
@@ -122,8 +177,7 @@ mod tests {
     }
 
     fn books_balance(t: &CoverTexel) -> bool {
-        let stored = f64::from(t.swe_mm) + f64::from(t.liquid_mm) + f64::from(t.runoff_mm);
-        (stored - f64::from(t.deposited_mm)).abs() <= 1e-4 * f64::from(t.deposited_mm).max(1.0)
+        t.imbalance_mm().abs() <= 1e-4 * f64::from(t.deposited_mm).max(1.0)
     }
 
     #[test]
@@ -138,6 +192,7 @@ mod tests {
                     rain_mm: 0.0,
                     air_temperature_c: -5.0,
                     dt_days: 0.01,
+                    ..CoverInput::default()
                 },
                 &CoverParams::default(),
             );
@@ -168,12 +223,15 @@ mod tests {
                     rain_mm: 0.0,
                     air_temperature_c: -10.0,
                     dt_days: 0.1,
+                    ..CoverInput::default()
                 },
                 &CoverParams::default(),
             );
             assert!(t.swe_mm.abs() < f32::MIN_POSITIVE && t.depth_mm.abs() < f32::MIN_POSITIVE);
         }
-        assert!((t.runoff_mm - 250.0).abs() < 1e-3);
+        let melted_on_contact = t.surface_water_mm() + t.infiltrated_mm + t.evaporated_mm;
+        assert!((melted_on_contact - 250.0).abs() < 1e-3, "{t:?}");
+        assert!(books_balance(&t));
     }
 
     #[test]
@@ -201,6 +259,7 @@ mod tests {
                     rain_mm: 0.0,
                     air_temperature_c: 3.0,
                     dt_days: dt,
+                    ..CoverInput::default()
                 },
                 &params,
             );
@@ -256,18 +315,91 @@ mod tests {
     }
 
     #[test]
-    fn rain_wets_and_runs_off_bare_ground() {
+    fn rain_wets_bare_ground_and_what_the_film_cannot_hold_stands() {
+        let asphalt = CoverTexel {
+            surface: Surface::Asphalt as u32,
+            ..eligible()
+        };
         let t = update_texel(
-            eligible(),
+            asphalt,
             CoverInput {
                 rain_mm: 2.0,
                 air_temperature_c: 8.0,
+                relative_humidity: 1.0,
                 dt_days: 0.001,
                 ..CoverInput::default()
             },
             &CoverParams::default(),
         );
-        assert!(t.wetness > 0.9 && (t.runoff_mm - 2.0).abs() < 1e-6);
+        assert!(t.wetness > 0.99, "{t:?}");
+        assert!(
+            (t.film_mm - 0.5).abs() < 1e-6,
+            "the film holds 0.5 mm on asphalt"
+        );
+        assert!((t.standing_mm - 1.5).abs() < 1e-6, "the rest stands");
+        assert!(t.runoff_mm.abs() < f32::MIN_POSITIVE && books_balance(&t));
+    }
+
+    #[test]
+    fn soil_soaks_up_at_its_conductivity_and_a_wet_film_dries_in_its_time() {
+        let soil = CoverTexel {
+            standing_mm: 10.0,
+            film_mm: 1.0,
+            deposited_mm: 11.0,
+            ..eligible()
+        };
+        let params = CoverParams::default();
+        // One hour, saturated air: 3.4 mm soak in (Rawls et al. 1983, loam).
+        let t = update_texel(
+            soil,
+            CoverInput {
+                air_temperature_c: 10.0,
+                relative_humidity: 1.0,
+                dt_days: 1.0 / 24.0,
+                ..CoverInput::default()
+            },
+            &params,
+        );
+        assert!(
+            (t.infiltrated_mm - 3.4).abs() < 1e-4,
+            "{}",
+            t.infiltrated_mm
+        );
+        assert!(t.evaporated_mm.abs() < f32::MIN_POSITIVE && books_balance(&t));
+        // A wet asphalt film at 18 °C, 70 %, 2 m/s dries in film / E = 0.5 / 3.35 days.
+        let mut film = CoverTexel {
+            surface: Surface::Asphalt as u32,
+            film_mm: 0.5,
+            deposited_mm: 0.5,
+            ..eligible()
+        };
+        let e = evaporation_mm_per_day(18.0, 0.7, 2.0);
+        let expected_days = 0.5 / e;
+        let dt = 0.001;
+        let mut days = 0.0;
+        while film.film_mm > 0.0 && days < 1.0 {
+            film = update_texel(
+                film,
+                CoverInput {
+                    air_temperature_c: 18.0,
+                    relative_humidity: 0.7,
+                    wind_speed_mps: 2.0,
+                    dt_days: dt,
+                    ..CoverInput::default()
+                },
+                &params,
+            );
+            days += dt;
+        }
+        println!(
+            "0.5 mm on asphalt dried in {:.2} h (E = {e:.2} mm/day)",
+            days * 24.0
+        );
+        assert!(
+            (days - expected_days).abs() <= dt + 1e-4,
+            "{days} vs {expected_days}"
+        );
+        assert!(film.wetness.abs() < f32::MIN_POSITIVE && books_balance(&film));
     }
 
     proptest! {
@@ -275,14 +407,17 @@ mod tests {
         fn water_is_conserved_and_never_negative(
             steps in proptest::collection::vec((0.0f32..5.0, 0.0f32..3.0, -20.0f32..15.0, 0.0f32..0.5), 1..80),
             eligibility in 0.0f32..=1.0,
+            surface in 0u32..5,
+            humidity in 0.0f32..=1.0,
         ) {
             let params = CoverParams::default();
-            let mut t = CoverTexel { eligibility, ..eligible() };
+            let mut t = CoverTexel { eligibility, surface, ..eligible() };
             let mut given = 0.0f64;
             for (snow, rain, temp, dt) in steps {
                 given += f64::from(snow) + f64::from(rain);
-                t = update_texel(t, CoverInput { snow_mm: snow, rain_mm: rain, air_temperature_c: temp, dt_days: dt }, &params);
+                t = update_texel(t, CoverInput { snow_mm: snow, rain_mm: rain, air_temperature_c: temp, relative_humidity: humidity, wind_speed_mps: 3.0, dt_days: dt }, &params);
                 prop_assert!(t.swe_mm >= 0.0 && t.liquid_mm >= 0.0 && t.depth_mm >= 0.0 && t.runoff_mm >= 0.0);
+                prop_assert!(t.film_mm >= 0.0 && t.standing_mm >= 0.0 && t.infiltrated_mm >= 0.0 && t.evaporated_mm >= 0.0);
                 prop_assert!((0.0..=1.0).contains(&t.wetness));
                 prop_assert!(books_balance(&t), "{t:?}");
                 prop_assert!((f64::from(t.deposited_mm) - given).abs() <= 1e-4 * given.max(1.0));

@@ -2,14 +2,14 @@
 
 use ash::vk;
 use precip_model::backend::MAX_SUBSTEPS;
-use precip_model::gpu::SUBSTEP_PASSES;
-use precip_model::{BackendError, PassTiming, TimingSource, Timings};
+use precip_model::gpu::{SUBSTEP_KERNELS, substep_timings};
+use precip_model::{BackendError, TimingSource, Timings};
 
 use crate::device::Device;
 use crate::error::map_vk;
 
 /// Queries: one at the start, one after each kernel of each sub-step.
-pub const QUERY_COUNT: u32 = 1 + SUBSTEP_PASSES.len() as u32 * MAX_SUBSTEPS;
+pub const QUERY_COUNT: u32 = 1 + SUBSTEP_KERNELS as u32 * MAX_SUBSTEPS;
 
 /// The query pool: [`QUERY_COUNT`] queries per in-flight slot.
 #[derive(Debug)]
@@ -43,14 +43,7 @@ impl Timestamps {
 
     /// Time per kernel of the last step (the step must be finished).
     pub fn read(&self, device: &Device) -> Result<Timings, BackendError> {
-        let kernels = SUBSTEP_PASSES.len();
-        let mut passes: Vec<PassTiming> = SUBSTEP_PASSES
-            .iter()
-            .map(|k| PassTiming {
-                pass: k.entry_point,
-                milliseconds: 0.0,
-            })
-            .collect();
+        let kernels = SUBSTEP_KERNELS;
         if (self.written as usize) < 1 + kernels {
             return Ok(Timings {
                 source: TimingSource::GpuTimestamps,
@@ -70,10 +63,11 @@ impl Timestamps {
         }
         .map_err(|e| map_vk("reading timestamps", e))?;
         let period = f64::from(device.properties.limits.timestamp_period);
-        for (i, pair) in ticks.windows(2).enumerate() {
-            passes[i % kernels].milliseconds +=
-                pair[1].saturating_sub(pair[0]) as f64 * period * 1e-6;
-        }
+        let passes = substep_timings(
+            ticks
+                .windows(2)
+                .map(|pair| pair[1].saturating_sub(pair[0]) as f64 * period * 1e-6),
+        );
         Ok(Timings {
             source: TimingSource::GpuTimestamps,
             passes,

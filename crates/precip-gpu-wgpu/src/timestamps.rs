@@ -6,14 +6,14 @@
 //! its entry point.
 
 use precip_model::backend::MAX_SUBSTEPS;
-use precip_model::gpu::SUBSTEP_PASSES;
-use precip_model::{BackendError, PassTiming, TimingSource, Timings};
+use precip_model::gpu::{SUBSTEP_KERNELS, substep_timings};
+use precip_model::{BackendError, TimingSource, Timings};
 
 use crate::device::GpuDevice;
 use crate::readback::read_buffer;
 
 /// Kernels of one sub-step.
-const KERNELS: usize = SUBSTEP_PASSES.len();
+const KERNELS: usize = SUBSTEP_KERNELS;
 
 /// Queries: one at the start, one after each kernel of each sub-step.
 pub const QUERY_COUNT: u32 = 1 + KERNELS as u32 * MAX_SUBSTEPS;
@@ -74,18 +74,12 @@ impl Timestamps {
             .chunks_exact(8)
             .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
             .collect();
-        let mut passes: Vec<PassTiming> = SUBSTEP_PASSES
-            .iter()
-            .map(|k| PassTiming {
-                pass: k.entry_point,
-                milliseconds: 0.0,
-            })
-            .collect();
-        for (i, pair) in ticks.windows(2).enumerate() {
-            let elapsed =
-                pair[1].saturating_sub(pair[0]) as f64 * f64::from(self.period_ns) * 1.0e-6;
-            passes[i % KERNELS].milliseconds += elapsed;
-        }
+        let period_ns = f64::from(self.period_ns);
+        let passes = substep_timings(
+            ticks
+                .windows(2)
+                .map(|pair| pair[1].saturating_sub(pair[0]) as f64 * period_ns * 1.0e-6),
+        );
         Ok(Timings {
             source: TimingSource::GpuTimestamps,
             passes,

@@ -1,4 +1,5 @@
-// cover.wgsl: the snow cover model. Rust twins: precip_cover::{snowpack, melt, update}.
+// cover.wgsl: the snow cover and surface water model. Rust twins:
+// precip_cover::{snowpack, melt, update, surface, water}.
 
 struct CoverStepParams {
     melt_threshold_c: f32,
@@ -13,14 +14,18 @@ struct CoverStepParams {
     compaction_time_days: f32,
     wet_darkening: f32,
     wetting_mm: f32,
-    drying_time_days: f32,
     mask_edge: f32,
     snow_rate_mm_per_day: f32,
     rain_rate_mm_per_day: f32,
     air_temperature_c: f32,
+    relative_humidity: f32,
+    wind_speed_mps: f32,
     dt_days: f32,
+    flow_iteration_s: f32,
+    cell_x_m: f32,
+    cell_z_m: f32,
     texel_count: u32,
-    reserved: u32,
+    texels_x: u32,
 }
 
 struct CoverTexel {
@@ -36,11 +41,57 @@ struct CoverTexel {
     accumulation_mask: f32,
     melt_mask: f32,
     feed: u32,
+    film_mm: f32,
+    standing_mm: f32,
+    infiltrated_mm: f32,
+    evaporated_mm: f32,
+    net_inflow_mm: f32,
+    ground_m: f32,
+    surface: u32,
+    reserved: u32,
+    outflow_mm: vec4<f32>,
 }
 
 const COVER_FEED_PARTICLES: u32 = 1u;
 const WATER_DENSITY_KG_M3: f32 = 1000.0;
 const BARE_SWE_MM: f32 = 1.0e-6;
+const HOURS_PER_DAY: f32 = 24.0;
+
+// surface.rs
+const SURFACE_SOIL: u32 = 0u;
+const SURFACE_ASPHALT: u32 = 1u;
+const SURFACE_GRASS: u32 = 2u;
+const SURFACE_ROOF: u32 = 3u;
+const SURFACE_WATER: u32 = 4u;
+
+struct SurfaceWater {
+    film_capacity_mm: f32,
+    infiltration_mm_per_h: f32,
+    manning_n: f32,
+}
+
+fn surface_water(surface: u32) -> SurfaceWater {
+    switch surface {
+        case 1u: { return SurfaceWater(0.5, 0.0, 0.015); }
+        case 2u: { return SurfaceWater(2.0, 10.0, 0.15); }
+        case 3u: { return SurfaceWater(0.3, 0.0, 0.012); }
+        case 4u: { return SurfaceWater(0.0, 0.0, 0.03); }
+        default: { return SurfaceWater(1.0, 3.4, 0.03); }
+    }
+}
+
+// water.rs
+const STILL_WATER_MM: f32 = 1.0e-4;
+
+fn saturation_vapour_pressure_hpa(air_temperature_c: f32) -> f32 {
+    let t = clamp(air_temperature_c, -60.0, 60.0);
+    return 6.1094 * exp(17.625 * t / (t + 243.04));
+}
+
+fn evaporation_mm_per_day(air_temperature_c: f32, relative_humidity: f32, wind_speed_mps: f32) -> f32 {
+    let wind = 0.26 * (1.0 + 0.54 * max(wind_speed_mps, 0.0));
+    return wind * saturation_vapour_pressure_hpa(air_temperature_c) * (1.0 - clamp(relative_humidity, 0.0, 1.0));
+}
 
 // snowpack.rs
 fn new_snow_density(air_temperature_c: f32) -> f32 {
@@ -84,11 +135,12 @@ fn update_texel(texel: CoverTexel, snow_mm: f32, rain_mm: f32, p: CoverStepParam
     var t = texel;
     let air = p.air_temperature_c;
     let dt_days = p.dt_days;
+    let water = surface_water(t.surface);
     let eligibility = clamp(t.eligibility, 0.0, 1.0);
     t.deposited_mm += snow_mm + rain_mm;
 
     let snow_kept = snow_mm * eligibility;
-    t.runoff_mm += snow_mm - snow_kept;
+    var to_surface_mm = snow_mm - snow_kept;
     if (snow_kept > 0.0) {
         let swe_total = t.swe_mm + snow_kept;
         t.age_days *= t.swe_mm / swe_total;
@@ -96,11 +148,10 @@ fn update_texel(texel: CoverTexel, snow_mm: f32, rain_mm: f32, p: CoverStepParam
         t.swe_mm = swe_total;
     }
 
-    var wetting_mm = rain_mm;
     if (t.swe_mm > 0.0) {
         t.liquid_mm += rain_mm;
     } else {
-        t.runoff_mm += rain_mm;
+        to_surface_mm += rain_mm;
     }
 
     let potential = degree_day_melt_mm(p, t.age_days, air, dt_days);
@@ -111,7 +162,6 @@ fn update_texel(texel: CoverTexel, snow_mm: f32, rain_mm: f32, p: CoverStepParam
         }
         t.swe_mm -= melt;
         t.liquid_mm += melt;
-        wetting_mm += melt;
     } else {
         let cold = max(p.melt_threshold_c - air, 0.0);
         let refreeze = min(t.liquid_mm, p.refreeze_factor_mm_per_c_day * cold * dt_days);
@@ -121,7 +171,7 @@ fn update_texel(texel: CoverTexel, snow_mm: f32, rain_mm: f32, p: CoverStepParam
 
     let capacity = p.water_holding_fraction * t.swe_mm;
     if (t.liquid_mm > capacity) {
-        t.runoff_mm += t.liquid_mm - capacity;
+        to_surface_mm += t.liquid_mm - capacity;
         t.liquid_mm = capacity;
     }
 
@@ -132,16 +182,44 @@ fn update_texel(texel: CoverTexel, snow_mm: f32, rain_mm: f32, p: CoverStepParam
     }
 
     t.peak_swe_mm = max(t.peak_swe_mm, t.swe_mm);
-    t.wetness = clamp(t.wetness + wetting_mm / p.wetting_mm, 0.0, 1.0) * exp(-dt_days / p.drying_time_days);
     t.age_days += dt_days;
 
     if (t.swe_mm <= BARE_SWE_MM) {
-        t.runoff_mm += t.swe_mm + t.liquid_mm;
+        to_surface_mm += t.swe_mm + t.liquid_mm;
         t.swe_mm = 0.0;
         t.liquid_mm = 0.0;
         t.depth_mm = 0.0;
         t.age_days = 0.0;
         t.peak_swe_mm = 0.0;
     }
+
+    if (t.surface == SURFACE_WATER) {
+        t.runoff_mm += to_surface_mm;
+    } else {
+        t.film_mm += to_surface_mm;
+        let excess = max(t.film_mm - water.film_capacity_mm, 0.0);
+        t.film_mm -= excess;
+        t.standing_mm += excess;
+        let soak = min(water.infiltration_mm_per_h * HOURS_PER_DAY * dt_days, t.standing_mm + t.film_mm);
+        let soak_standing = min(soak, t.standing_mm);
+        let soak_film = clamp(soak - soak_standing, 0.0, t.film_mm);
+        t.standing_mm -= soak_standing;
+        t.film_mm -= soak_film;
+        t.infiltrated_mm += soak_standing + soak_film;
+        if (t.swe_mm <= 0.0) {
+            let dry = min(evaporation_mm_per_day(air, p.relative_humidity, p.wind_speed_mps) * dt_days, t.standing_mm + t.film_mm);
+            let dry_standing = min(dry, t.standing_mm);
+            let dry_film = clamp(dry - dry_standing, 0.0, t.film_mm);
+            t.standing_mm -= dry_standing;
+            t.film_mm -= dry_film;
+            t.evaporated_mm += dry_standing + dry_film;
+        }
+    }
+    var film = 0.0;
+    if (water.film_capacity_mm > 0.0) {
+        film = t.film_mm / water.film_capacity_mm;
+    }
+    t.wetness = clamp(film + (t.standing_mm + t.liquid_mm) / p.wetting_mm, 0.0, 1.0);
     return t;
 }
+

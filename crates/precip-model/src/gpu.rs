@@ -159,12 +159,8 @@ pub const INIT_PASS: KernelPass = KernelPass {
     over: DispatchOver::Particles,
 };
 
-/// One sub-step, in order: the pending births are emptied, the particles move
-/// (listing those to re-birth, a landed one at its landing point), the listed ones
-/// deposit their water and are re-born, then the cover takes the deposits (or the
-/// rate), melts and ages. Sub-steps repeat this with their own uniform blocks
-/// (dynamic offsets).
-pub const SUBSTEP_PASSES: [KernelPass; 4] = [
+/// The kernels of one sub-step before the water's flow.
+const SUBSTEP_HEAD: [KernelPass; 4] = [
     KernelPass {
         program: Program::StepParticles,
         entry_point: "reset_births",
@@ -186,6 +182,68 @@ pub const SUBSTEP_PASSES: [KernelPass; 4] = [
         over: DispatchOver::CoverTexels,
     },
 ];
+
+/// One iteration of overland flow: every texel's outflows, then every texel's
+/// exchange ([`precip_cover::water`]).
+const FLOW_ITERATION: [KernelPass; 2] = [
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "water_outflow",
+        over: DispatchOver::CoverTexels,
+    },
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "water_inflow",
+        over: DispatchOver::CoverTexels,
+    },
+];
+
+/// Kernels of one sub-step.
+pub const SUBSTEP_KERNELS: usize =
+    SUBSTEP_HEAD.len() + FLOW_ITERATION.len() * precip_cover::WATER_FLOW_ITERATIONS as usize;
+
+/// One sub-step, in order: the pending births are emptied, the particles move
+/// (listing those to re-birth, a landed one at its landing point), the listed ones
+/// deposit their water and are re-born, the cover takes the deposits (or the
+/// rate), melts, ages and wets, then standing water flows
+/// ([`precip_cover::WATER_FLOW_ITERATIONS`] iterations of two kernels). Sub-steps
+/// repeat this with their own uniform blocks (dynamic offsets).
+pub const SUBSTEP_PASSES: [KernelPass; SUBSTEP_KERNELS] = {
+    let mut passes = [SUBSTEP_HEAD[0]; SUBSTEP_KERNELS];
+    let mut k = 0;
+    while k < SUBSTEP_KERNELS {
+        passes[k] = if k < SUBSTEP_HEAD.len() {
+            SUBSTEP_HEAD[k]
+        } else {
+            FLOW_ITERATION[(k - SUBSTEP_HEAD.len()) % FLOW_ITERATION.len()]
+        };
+        k += 1;
+    }
+    passes
+};
+
+/// Per-kernel timings of a step from the time each dispatch took, in dispatch order
+/// (sub-step after sub-step): summed per kernel entry point, in the order of
+/// [`SUBSTEP_PASSES`] (a kernel dispatched many times — the flow's — is one entry).
+#[must_use]
+pub fn substep_timings(elapsed_ms: impl IntoIterator<Item = f64>) -> Vec<crate::PassTiming> {
+    let mut passes: Vec<crate::PassTiming> = Vec::new();
+    for kernel in SUBSTEP_PASSES {
+        if !passes.iter().any(|p| p.pass == kernel.entry_point) {
+            passes.push(crate::PassTiming {
+                pass: kernel.entry_point,
+                milliseconds: 0.0,
+            });
+        }
+    }
+    for (i, ms) in elapsed_ms.into_iter().enumerate() {
+        let name = SUBSTEP_PASSES[i % SUBSTEP_KERNELS].entry_point;
+        if let Some(p) = passes.iter_mut().find(|p| p.pass == name) {
+            p.milliseconds += ms;
+        }
+    }
+    passes
+}
 
 /// What a kernel's bytes are counted per.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -6,7 +6,7 @@
 //! mid-air beside it).
 
 use glam::Vec2;
-use precip_cover::GridFrame;
+use precip_cover::{GridFrame, Surface};
 
 use crate::error::BackendError;
 
@@ -19,6 +19,9 @@ pub struct GroundMap {
     pub height_m: Vec<f32>,
     /// Snow eligibility of that surface per texel, `[0, 1]`.
     pub eligibility: Vec<f32>,
+    /// What that surface is made of, per texel; empty: from the eligibility
+    /// ([`Surface::from_eligibility`]).
+    pub surface: Vec<Surface>,
 }
 
 impl GroundMap {
@@ -30,6 +33,7 @@ impl GroundMap {
             frame,
             height_m: vec![height_m; n],
             eligibility: vec![eligibility; n],
+            surface: Vec::new(),
         }
     }
 
@@ -47,6 +51,15 @@ impl GroundMap {
                     problem: format!("has {len} values but the ground frame has {n} texels"),
                 });
             }
+        }
+        if !self.surface.is_empty() && self.surface.len() != n {
+            return Err(BackendError::Setup {
+                field: "ground.surface",
+                problem: format!(
+                    "has {} values but the ground frame has {n} texels: give one a texel, or none to derive them from the eligibility",
+                    self.surface.len()
+                ),
+            });
         }
         if let Some(i) = self
             .height_m
@@ -92,6 +105,15 @@ impl GroundMap {
             .texel_index(xz_m)
             .and_then(|i| self.eligibility.get(i).copied())
             .unwrap_or(0.0)
+    }
+
+    /// The surface under world `(x, z)` (off the map: from its eligibility, 0).
+    #[must_use]
+    pub fn surface_at(&self, xz_m: Vec2) -> Surface {
+        self.frame
+            .texel_index(xz_m)
+            .and_then(|i| self.surface.get(i).copied())
+            .unwrap_or_else(|| Surface::from_eligibility(self.eligibility_at(xz_m)))
     }
 
     /// The lowest ground height: below it a particle off the map has left the scene.

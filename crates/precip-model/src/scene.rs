@@ -59,6 +59,9 @@ pub struct Mesh {
     pub indices: Vec<u32>,
     /// Per-vertex snow eligibility in `[0, 1]`; empty: from the slope.
     pub snow_eligibility: Vec<f32>,
+    /// What the mesh is made of (glTF `extras.surface`, or `extras.water: true`);
+    /// `None`: paved where it may hold no snow, else soil.
+    pub surface: Option<precip_cover::Surface>,
     /// The material.
     pub material: Material,
 }

@@ -5,7 +5,8 @@ use std::sync::Arc;
 
 use glam::{UVec2, Vec2, Vec3};
 use precip_cover::{
-    CoverFeed, CoverGrid, CoverParams, CoverStepParams, GridFrame, generate_threshold_masks,
+    CoverAir, CoverFeed, CoverGrid, CoverParams, CoverStepParams, GridFrame,
+    generate_threshold_masks,
 };
 use precip_wind::WindVolumeSpec;
 
@@ -262,9 +263,9 @@ impl Setup {
         Ok(())
     }
 
-    /// The bare cover grid: eligibility from the ground map under each texel's centre,
-    /// fed by particles where the world emitter's footprint covers it, else by the
-    /// weather's rate.
+    /// The bare cover grid: eligibility, height and surface from the ground map under
+    /// each texel's centre, fed by particles where the world emitter's footprint
+    /// covers it, else by the weather's rate.
     pub fn initial_cover(&self) -> Result<CoverGrid, BackendError> {
         let frame = self.cover.frame;
         let n = frame.texel_count();
@@ -284,7 +285,13 @@ impl Setup {
             .collect();
         let masks =
             generate_threshold_masks(&frame, self.cover.mask_seed, self.cover.mask_patch_scale_m);
-        Ok(CoverGrid::new(frame, &eligibility, &masks, &feed)?)
+        let floor = self.ground.floor_m();
+        let heights: Vec<f32> = centres
+            .iter()
+            .map(|&c| self.ground.height_at(c).unwrap_or(floor))
+            .collect();
+        let surfaces: Vec<_> = centres.iter().map(|&c| self.ground.surface_at(c)).collect();
+        Ok(CoverGrid::new(frame, &eligibility, &masks, &feed)?.with_ground(&heights, &surfaces)?)
     }
 
     /// The cover kernel's block for a sub-step of `dt_s` seconds under `weather`: the
@@ -293,11 +300,15 @@ impl Setup {
     pub fn cover_step_params(&self, weather: &Weather, dt_s: f32) -> CoverStepParams {
         CoverStepParams::new(
             &self.cover.params,
-            weather.snow_rate_mm_per_h() * 24.0,
-            weather.rain_rate_mm_per_h() * 24.0,
-            weather.air_temperature_c,
+            CoverAir {
+                snow_rate_mm_per_day: weather.snow_rate_mm_per_h() * 24.0,
+                rain_rate_mm_per_day: weather.rain_rate_mm_per_h() * 24.0,
+                air_temperature_c: weather.air_temperature_c,
+                relative_humidity: weather.relative_humidity,
+                wind_speed_mps: weather.ground_wind_speed_mps(),
+            },
             dt_s * self.cover.time_scale / SECONDS_PER_DAY,
-            self.cover.frame.texel_count() as u32,
+            &self.cover.frame,
         )
     }
 

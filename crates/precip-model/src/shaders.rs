@@ -144,7 +144,7 @@ impl Program {
                 "birth_particles",
                 "init_particles",
             ],
-            Self::CoverUpdate => &["cover_update"],
+            Self::CoverUpdate => &["cover_update", "water_outflow", "water_inflow"],
             Self::ProbeRng => &["probe_rng"],
             Self::Render => &[
                 "vs_shadow",

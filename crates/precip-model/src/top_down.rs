@@ -3,7 +3,7 @@
 //!
 //! Each texel takes the top-most surface under its centre: every triangle whose XZ
 //! projection holds the centre offers its interpolated height, the highest wins, and
-//! its interpolated snow eligibility comes with it. Walls (zero XZ area) never win; a
+//! its interpolated snow eligibility and its mesh's surface come with it. Walls (zero XZ area) never win; a
 //! roof hides the floor and the ground beneath it, so particles land on the roof and
 //! the cover under the eaves belongs to the roof. Texels no triangle covers take the
 //! scene's lowest height with no eligibility.
@@ -13,7 +13,7 @@
 //! reference included — then lands particles on the very same heights (DESIGN.md §5).
 
 use glam::{Vec2, Vec3};
-use precip_cover::GridFrame;
+use precip_cover::{GridFrame, Surface};
 
 use crate::ground::GroundMap;
 use crate::scene::Scene;
@@ -41,6 +41,7 @@ impl GroundMap {
         let n = frame.texel_count();
         let mut height_m = vec![f32::NEG_INFINITY; n];
         let mut eligibility = vec![0.0; n];
+        let mut surface = vec![Surface::default(); n];
         let cell = frame.cell_m();
         let (nx, nz) = (i64::from(frame.texels.x), i64::from(frame.texels.y));
         for mesh in &scene.meshes {
@@ -69,20 +70,25 @@ impl GroundMap {
                             height_m[k] = h;
                             eligibility[k] =
                                 (w.x * elig[0] + w.y * elig[1] + w.z * elig[2]).clamp(0.0, 1.0);
+                            surface[k] = mesh
+                                .surface
+                                .unwrap_or_else(|| Surface::from_eligibility(eligibility[k]));
                         }
                     }
                 }
             }
         }
-        for h in &mut height_m {
+        for (h, s) in height_m.iter_mut().zip(&mut surface) {
             if !h.is_finite() {
                 *h = floor;
+                *s = Surface::Soil;
             }
         }
         Self {
             frame,
             height_m,
             eligibility,
+            surface,
         }
     }
 }

@@ -60,6 +60,9 @@ pub struct Weather {
     pub air_temperature_c: f32,
     /// The wind.
     pub wind: WindField,
+    /// Relative humidity of the air near the ground, `[0, 1]`: how fast wet surfaces
+    /// dry (evaporation stops in saturated air).
+    pub relative_humidity: f32,
 }
 
 impl Default for Weather {
@@ -70,11 +73,15 @@ impl Default for Weather {
             intensity_mm_per_h: 1.0,
             air_temperature_c: -5.0,
             wind: WindField::calm(),
+            relative_humidity: Self::DEFAULT_RELATIVE_HUMIDITY,
         }
     }
 }
 
 impl Weather {
+    /// Relative humidity when none is given: moist air, as under most precipitation.
+    pub const DEFAULT_RELATIVE_HUMIDITY: f32 = 0.9;
+
     /// Highest accepted intensity, mm/h (above the heaviest recorded hourly rain).
     pub const MAX_INTENSITY_MM_PER_H: f32 = 300.0;
 
@@ -102,6 +109,14 @@ impl Weather {
                 kind: self.kind,
                 air_temperature_c: t,
                 allowed,
+            });
+        }
+        let rh = self.relative_humidity;
+        if !(rh.is_finite() && (0.0..=1.0).contains(&rh)) {
+            return Err(WeatherError::OutOfRange {
+                field: "relative_humidity",
+                value: f64::from(rh),
+                allowed: "[0, 1] (a fraction, not percent)",
             });
         }
         self.wind.validate()?;
@@ -134,6 +149,13 @@ impl Weather {
     #[must_use]
     pub fn rain_rate_mm_per_h(&self) -> f32 {
         self.intensity_mm_per_h - self.snow_rate_mm_per_h()
+    }
+
+    /// Mean horizontal wind speed near the ground, m/s (evaporation).
+    #[must_use]
+    pub fn ground_wind_speed_mps(&self) -> f32 {
+        let w = self.wind.mean_wind_mps;
+        (w.x * w.x + w.z * w.z).sqrt()
     }
 }
 
@@ -196,6 +218,13 @@ mod tests {
                     ..base
                 },
                 "air_temperature_c",
+            ),
+            (
+                Weather {
+                    relative_humidity: 70.0,
+                    ..base
+                },
+                "relative_humidity",
             ),
         ];
         for (w, name) in cases {

@@ -145,14 +145,18 @@ fn rust_and_wgsl_layouts_match() {
             compaction_time_days,
             wet_darkening,
             wetting_mm,
-            drying_time_days,
             mask_edge,
             snow_rate_mm_per_day,
             rain_rate_mm_per_day,
             air_temperature_c,
+            relative_humidity,
+            wind_speed_mps,
             dt_days,
+            flow_iteration_s,
+            cell_x_m,
+            cell_z_m,
             texel_count,
-            reserved
+            texels_x
         }),
         rust_layout!(CoverTexel {
             swe_mm,
@@ -166,7 +170,16 @@ fn rust_and_wgsl_layouts_match() {
             eligibility,
             accumulation_mask,
             melt_mask,
-            feed
+            feed,
+            film_mm,
+            standing_mm,
+            infiltrated_mm,
+            evaporated_mm,
+            net_inflow_mm,
+            ground_m,
+            surface,
+            reserved,
+            outflow_mm
         }),
         rust_layout!(RenderParams {
             view_proj,

@@ -1,13 +1,56 @@
 //! Snow eligibility from glTF `extras` (DESIGN.md §6, rule 2): `{"snow": false}`,
-//! `{"snow": true}` or `{"snow": 0.0..1.0}` on a material, mesh or node.
+//! `{"snow": true}` or `{"snow": 0.0..1.0}` on a material, mesh or node; and the
+//! surface a mesh is made of: `{"surface": "asphalt" | "soil" | "grass" | "roof" |
+//! "water"}` or `{"water": true}`, with the same precedence (material, then mesh,
+//! then the nearest node up the hierarchy).
+
+use precip_model::cover::Surface;
+
+fn extras_object(extras: &gltf::json::Extras) -> Result<Option<serde_json::Value>, String> {
+    let Some(raw) = extras else {
+        return Ok(None);
+    };
+    serde_json::from_str(raw.get())
+        .map(Some)
+        .map_err(|e| e.to_string())
+}
+
+/// The `surface` (or `water: true`) of an `extras` object: `Ok(None)` when absent,
+/// `Err` with a message when present but not a known name.
+pub fn surface_extra(extras: &gltf::json::Extras) -> Result<Option<Surface>, String> {
+    let Some(value) = extras_object(extras)? else {
+        return Ok(None);
+    };
+    if let Some(water) = value.get("water") {
+        return match water {
+            serde_json::Value::Bool(true) => Ok(Some(Surface::Water)),
+            serde_json::Value::Bool(false) => Ok(None),
+            other => Err(format!("extras.water = {other} must be true or false")),
+        };
+    }
+    match value.get("surface") {
+        None => Ok(None),
+        Some(serde_json::Value::String(name)) => {
+            Surface::from_name(name).map(Some).ok_or_else(|| {
+                format!(
+                    "extras.surface = \"{name}\" is not a surface: use one of {}",
+                    Surface::NAMES.join(", ")
+                )
+            })
+        }
+        Some(other) => Err(format!(
+            "extras.surface = {other} must be a string: one of {}",
+            Surface::NAMES.join(", ")
+        )),
+    }
+}
 
 /// The `snow` value of an `extras` object: `Ok(None)` when absent (or `extras` is not
 /// an object), `Err` with a message when present but not a boolean or number in [0, 1].
 pub fn snow_extra(extras: &gltf::json::Extras) -> Result<Option<f32>, String> {
-    let Some(raw) = extras else {
+    let Some(value) = extras_object(extras)? else {
         return Ok(None);
     };
-    let value: serde_json::Value = serde_json::from_str(raw.get()).map_err(|e| e.to_string())?;
     match value.get("snow") {
         None => Ok(None),
         Some(serde_json::Value::Bool(b)) => Ok(Some(if *b { 1.0 } else { 0.0 })),
@@ -39,5 +82,26 @@ mod tests {
         assert!(snow_extra(&extras(r#"{"snow": 2}"#)).is_err());
         assert!(snow_extra(&extras(r#"{"snow": "yes"}"#)).is_err());
         assert_eq!(snow_extra(&extras("[1, 2]")), Ok(None));
+    }
+
+    #[test]
+    fn reads_the_surfaces() {
+        assert_eq!(surface_extra(&None), Ok(None));
+        assert_eq!(surface_extra(&extras(r#"{"snow": false}"#)), Ok(None));
+        assert_eq!(
+            surface_extra(&extras(r#"{"surface": "asphalt"}"#)),
+            Ok(Some(Surface::Asphalt))
+        );
+        assert_eq!(
+            surface_extra(&extras(r#"{"water": true}"#)),
+            Ok(Some(Surface::Water))
+        );
+        let unknown = surface_extra(&extras(r#"{"surface": "lava"}"#)).unwrap_err();
+        assert!(
+            unknown.contains("lava") && unknown.contains("asphalt"),
+            "{unknown}"
+        );
+        assert!(surface_extra(&extras(r#"{"surface": 3}"#)).is_err());
+        assert!(surface_extra(&extras(r#"{"water": "yes"}"#)).is_err());
     }
 }

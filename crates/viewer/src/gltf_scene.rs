@@ -25,12 +25,13 @@ use gltf::accessor::DataType;
 use gltf::mesh::Mode;
 use precip_model::{Material, Mesh, PreparedScene, Scene, SceneReport, TextureRgba8};
 
-use crate::eligibility::snow_extra;
+use crate::eligibility::{snow_extra, surface_extra};
 use crate::error::LoadError;
 use crate::gltf_data::{
     DracoPrimitive, Views, decode_draco, load_buffers, read_floats, read_indices,
 };
 use crate::node_graph::{find_cycle, walk_order};
+use precip_model::cover::Surface;
 
 /// What loading skipped or changed.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -370,6 +371,14 @@ struct Converter<'a> {
     meshes: Vec<Mesh>,
 }
 
+/// What a node passes to its meshes and children: the nearest `extras` up the
+/// hierarchy.
+#[derive(Debug, Clone, Copy, Default)]
+struct Inherited {
+    snow: Option<f32>,
+    surface: Option<Surface>,
+}
+
 impl Converter<'_> {
     fn invalid(&self, problem: String) -> LoadError {
         LoadError::Invalid {
@@ -400,12 +409,12 @@ impl Converter<'_> {
                 "node {node}: reached a second time (two parents, or a root listed twice); drawn once"
             ));
         }
-        let mut placed: Vec<(Mat4, Option<f32>)> = Vec::with_capacity(order.len());
+        let mut placed: Vec<(Mat4, Inherited)> = Vec::with_capacity(order.len());
         for visit in order {
             let (parent, inherited) = visit
                 .parent
                 .and_then(|p| placed.get(p).copied())
-                .unwrap_or((Mat4::IDENTITY, None));
+                .unwrap_or((Mat4::IDENTITY, Inherited::default()));
             let placement = self.node(&nodes[visit.node], parent, inherited)?;
             placed.push(placement);
         }
@@ -417,16 +426,20 @@ impl Converter<'_> {
         &mut self,
         node: &gltf::Node<'_>,
         parent: Mat4,
-        inherited_snow: Option<f32>,
-    ) -> Result<(Mat4, Option<f32>), LoadError> {
+        inherited: Inherited,
+    ) -> Result<(Mat4, Inherited), LoadError> {
         let local = Mat4::from_cols_array_2d(&node.transform().matrix());
         let world = parent * local;
-        let node_snow = snow_extra(node.extras())
-            .map_err(|e| self.invalid(format!("node {}: {e}", node.index())))?
-            .or(inherited_snow);
+        let bad = |e: String| self.invalid(format!("node {}: {e}", node.index()));
+        let here = Inherited {
+            snow: snow_extra(node.extras()).map_err(bad)?.or(inherited.snow),
+            surface: surface_extra(node.extras())
+                .map_err(bad)?
+                .or(inherited.surface),
+        };
         if let Some(mesh) = node.mesh() {
             if world.is_finite() {
-                self.mesh(&mesh, world, node_snow)?;
+                self.mesh(&mesh, world, here)?;
             } else {
                 self.report
                     .skipped
@@ -439,23 +452,26 @@ impl Converter<'_> {
                 node.index()
             ));
         }
-        Ok((world, node_snow))
+        Ok((world, here))
     }
 
     fn mesh(
         &mut self,
         mesh: &gltf::Mesh<'_>,
         world: Mat4,
-        node_snow: Option<f32>,
+        node: Inherited,
     ) -> Result<(), LoadError> {
         let mesh_name = mesh
             .name()
             .map_or_else(|| format!("mesh {}", mesh.index()), str::to_owned);
-        let mesh_snow =
-            snow_extra(mesh.extras()).map_err(|e| self.invalid(format!("{mesh_name}: {e}")))?;
+        let bad = |e: String| self.invalid(format!("{mesh_name}: {e}"));
+        let outer = Inherited {
+            snow: snow_extra(mesh.extras()).map_err(bad)?.or(node.snow),
+            surface: surface_extra(mesh.extras()).map_err(bad)?.or(node.surface),
+        };
         for primitive in mesh.primitives() {
             let name = format!("{mesh_name} primitive {}", primitive.index());
-            match self.primitive(&primitive, &name, world, mesh_snow.or(node_snow)) {
+            match self.primitive(&primitive, &name, world, outer) {
                 Ok(Some(m)) => {
                     self.report.primitives += 1;
                     self.meshes.push(m);
@@ -472,7 +488,7 @@ impl Converter<'_> {
         primitive: &gltf::Primitive<'_>,
         name: &str,
         world: Mat4,
-        outer_snow: Option<f32>,
+        outer: Inherited,
     ) -> Result<Option<Mesh>, String> {
         let mode = primitive.mode();
         if !matches!(
@@ -613,7 +629,7 @@ impl Converter<'_> {
             self.report.snow_mask_attribute += 1;
         } else {
             let material_snow = snow_extra(material.extras())?;
-            if let Some(e) = material_snow.or(outer_snow) {
+            if let Some(e) = material_snow.or(outer.snow) {
                 snow_eligibility = vec![e; n];
                 self.report.snow_extras += 1;
             }
@@ -666,6 +682,7 @@ impl Converter<'_> {
             uvs: if texture.is_some() { uvs } else { Vec::new() },
             indices,
             snow_eligibility,
+            surface: surface_extra(material.extras())?.or(outer.surface),
             material: Material {
                 base_colour: f,
                 base_colour_texture: texture,
@@ -710,7 +727,7 @@ fn convert(
         None => {
             // No scene: every mesh once, untransformed.
             for mesh in document.meshes() {
-                c.mesh(&mesh, Mat4::IDENTITY, None)?;
+                c.mesh(&mesh, Mat4::IDENTITY, Inherited::default())?;
             }
         }
     }

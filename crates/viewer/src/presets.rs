@@ -24,6 +24,14 @@ pub struct Preset {
     pub wind_from_deg: f32,
     /// Gust factor μ.
     pub gust_factor: f32,
+    /// Relative humidity near the ground, `[0, 1]` (how fast wet surfaces dry);
+    /// optional, 0.9 when absent.
+    #[serde(default = "default_relative_humidity")]
+    pub relative_humidity: f32,
+}
+
+fn default_relative_humidity() -> f32 {
+    Weather::DEFAULT_RELATIVE_HUMIDITY
 }
 
 /// A kind of precipitation, as written in presets and on the command line.
@@ -118,6 +126,7 @@ impl Preset {
                 gust_factor: self.gust_factor,
                 ..WindField::calm()
             },
+            relative_humidity: self.relative_humidity,
         };
         weather.validate()?;
         Ok(weather)

@@ -135,6 +135,7 @@ fn scenario(
         intensity_mm_per_h: 4.0,
         air_temperature_c,
         wind,
+        relative_humidity: 0.6,
     };
     setup.cover.time_scale = 500.0;
     if camera_share {

@@ -174,9 +174,7 @@ impl Backend for CpuBackend {
             let cover = state.setup.cover_step_params(&state.weather, h);
             state.cover.step(
                 &mut state.deposits,
-                cover.snow_rate_mm_per_day,
-                cover.rain_rate_mm_per_day,
-                cover.air_temperature_c,
+                cover.air(),
                 cover.dt_days,
                 &state.setup.cover.params,
             );

@@ -19,6 +19,7 @@ fn gusty_sleet(seed: u32) -> Setup {
             vertical_gust_mps: 0.5,
             ..WindField::calm()
         },
+        relative_humidity: Weather::DEFAULT_RELATIVE_HUMIDITY,
     };
     setup.cover.time_scale = 600.0;
     setup

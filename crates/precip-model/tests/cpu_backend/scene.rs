@@ -131,6 +131,7 @@ fn the_camera_volume_follows_the_camera_and_never_empties() {
             mean_wind_mps: Vec3::new(9.0, 0.0, 0.0),
             ..WindField::calm()
         },
+        relative_humidity: Weather::DEFAULT_RELATIVE_HUMIDITY,
     };
     let mut backend = common::configured(&setup);
     let mut camera = Camera::default();
