@@ -38,16 +38,14 @@ pub struct CoverTotals {
     pub net_inflow_kg: f64,
     /// Area with a wet surface (wetness ≥ ½), m².
     pub wet_area_m2: f64,
-    /// Area under standing water deeper than [`CoverTotals::PUDDLE_MM`], m².
+    /// Area under puddles: standing water over the surface's texture
+    /// ([`CoverTexel::puddle_ratio`] ≥ 1; water bodies aside), m².
     pub puddle_area_m2: f64,
     /// Area of the grid, m².
     pub area_m2: f64,
 }
 
 impl CoverTotals {
-    /// Standing water at least this deep counts as a puddle, mm.
-    pub const PUDDLE_MM: f32 = 1.0;
-
     /// `deposited + net inflow − (every column)`: zero up to rounding.
     #[must_use]
     pub fn imbalance_kg(&self) -> f64 {
@@ -231,12 +229,7 @@ impl CoverGrid {
             evaporated_kg: acc.evaporated_kg + kg(t.evaporated_mm),
             net_inflow_kg: acc.net_inflow_kg + kg(t.net_inflow_mm),
             wet_area_m2: acc.wet_area_m2 + if t.wetness >= 0.5 { area } else { 0.0 },
-            puddle_area_m2: acc.puddle_area_m2
-                + if t.standing_mm >= CoverTotals::PUDDLE_MM {
-                    area
-                } else {
-                    0.0
-                },
+            puddle_area_m2: acc.puddle_area_m2 + if t.puddle_ratio() >= 1.0 { area } else { 0.0 },
             area_m2: acc.area_m2,
         })
     }

@@ -19,6 +19,10 @@
 //!   loam 10 mm/h (root macropores roughly triple it); pavement and roofs 0.
 //! - **Manning's n** for shallow overland flow: asphalt 0.015, roofing 0.012, bare
 //!   soil 0.03, short grass 0.15 (Engman 1986, *J. Irrig. Drain. Eng.* 112(1)).
+//! - **Roughness height**: how deep standing water must be to top the surface's
+//!   texture and show as open water (a puddle's mirror). Asphalt 1 mm (the mean
+//!   texture depth of road surfaces is 0.5–1.5 mm, PIARC 1987), roofing 0.5 mm, bare
+//!   soil 5 mm (clods), turf 30 mm (the blades of mown grass).
 //!
 //! How much a wet surface darkens is the seed's one `R_d`
 //! ([`crate::CoverParams::wet_darkening`]): light trapped by total internal
@@ -53,6 +57,8 @@ pub struct SurfaceWater {
     pub infiltration_mm_per_h: f32,
     /// Manning's roughness coefficient for overland flow, s/m^(1/3).
     pub manning_n: f32,
+    /// Standing water shows as open water above this depth, mm.
+    pub roughness_mm: f32,
 }
 
 impl Surface {
@@ -119,26 +125,31 @@ impl Surface {
                 film_capacity_mm: 1.0,
                 infiltration_mm_per_h: 3.4,
                 manning_n: 0.03,
+                roughness_mm: 5.0,
             },
             Self::Asphalt => SurfaceWater {
                 film_capacity_mm: 0.5,
                 infiltration_mm_per_h: 0.0,
                 manning_n: 0.015,
+                roughness_mm: 1.0,
             },
             Self::Grass => SurfaceWater {
                 film_capacity_mm: 2.0,
                 infiltration_mm_per_h: 10.0,
                 manning_n: 0.15,
+                roughness_mm: 30.0,
             },
             Self::Roof => SurfaceWater {
                 film_capacity_mm: 0.3,
                 infiltration_mm_per_h: 0.0,
                 manning_n: 0.012,
+                roughness_mm: 0.5,
             },
             Self::Water => SurfaceWater {
                 film_capacity_mm: 0.0,
                 infiltration_mm_per_h: 0.0,
                 manning_n: 0.03,
+                roughness_mm: 0.0,
             },
         }
     }

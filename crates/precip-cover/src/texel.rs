@@ -97,6 +97,18 @@ impl CoverTexel {
         self.film_mm + self.standing_mm
     }
 
+    /// Standing water over the depth at which it tops the surface's texture: ≥ 1 is
+    /// open water (a puddle); a water body (no roughness) reads as 0.
+    #[must_use]
+    pub fn puddle_ratio(&self) -> f32 {
+        let roughness = crate::Surface::from_raw(self.surface).water().roughness_mm;
+        if roughness > 0.0 {
+            self.standing_mm / roughness
+        } else {
+            0.0
+        }
+    }
+
     /// `deposited + net inflow − (every column)`: zero up to rounding, mm.
     #[must_use]
     pub fn imbalance_mm(&self) -> f64 {

@@ -68,15 +68,16 @@ struct SurfaceWater {
     film_capacity_mm: f32,
     infiltration_mm_per_h: f32,
     manning_n: f32,
+    roughness_mm: f32,
 }
 
 fn surface_water(surface: u32) -> SurfaceWater {
     switch surface {
-        case 1u: { return SurfaceWater(0.5, 0.0, 0.015); }
-        case 2u: { return SurfaceWater(2.0, 10.0, 0.15); }
-        case 3u: { return SurfaceWater(0.3, 0.0, 0.012); }
-        case 4u: { return SurfaceWater(0.0, 0.0, 0.03); }
-        default: { return SurfaceWater(1.0, 3.4, 0.03); }
+        case 1u: { return SurfaceWater(0.5, 0.0, 0.015, 1.0); }
+        case 2u: { return SurfaceWater(2.0, 10.0, 0.15, 30.0); }
+        case 3u: { return SurfaceWater(0.3, 0.0, 0.012, 0.5); }
+        case 4u: { return SurfaceWater(0.0, 0.0, 0.03, 0.0); }
+        default: { return SurfaceWater(1.0, 3.4, 0.03, 5.0); }
     }
 }
 

@@ -17,5 +17,12 @@ fn cover_texture(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_i
     let t = cover[i];
     let xy = vec2<u32>(i % size.x, i / size.x);
     textureStore(cover_a_out, xy, vec4<f32>(t.depth_mm, t.swe_mm, t.peak_swe_mm, t.wetness));
-    textureStore(cover_b_out, xy, vec4<f32>(t.accumulation_mask, t.melt_mask, t.age_days, 0.0));
+    // Standing water over the surface's roughness (CoverTexel::puddle_ratio; a
+    // water body holds none: its mesh says what it is).
+    var puddle_ratio = 0.0;
+    let roughness_mm = surface_water(t.surface).roughness_mm;
+    if (roughness_mm > 0.0) {
+        puddle_ratio = t.standing_mm / roughness_mm;
+    }
+    textureStore(cover_b_out, xy, vec4<f32>(t.accumulation_mask, t.melt_mask, t.age_days, puddle_ratio));
 }

@@ -18,6 +18,8 @@ struct RenderParams {
     cover_look: vec4<f32>,
     // wet darkening, albedo decay per day, exposure tolerance m, flake mean opacity
     cover_look2: vec4<f32>,
+    // rain rings per m² s, 0, water bodies' depth m, 0
+    water_look: vec4<f32>,
     ground: GridFrame,
     cover: GridFrame,
     // particle count, culling on, cull workgroups, splat target width px (0: no splat)

@@ -22,7 +22,9 @@ fn frame_counts() -> vec4<u32> {
 @group(0) @binding(4) var<storage, read> drawn: array<u32>;
 // The cover as two filtered textures (cover_texture.wgsl writes them from the cover
 // texels each frame): A = (depth mm, SWE mm, peak SWE mm, wetness),
-// B = (accumulation mask, melt mask, age days, 0); linear, clamped to the edge.
+// B = (accumulation mask, melt mask, age days, standing water over the surface's
+// roughness);
+// linear, clamped to the edge.
 @group(0) @binding(5) var cover_a: texture_2d<f32>;
 @group(0) @binding(6) var cover_b: texture_2d<f32>;
 @group(0) @binding(7) var cover_sampler: sampler;
@@ -91,6 +93,8 @@ fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
     t.accumulation_mask = b.x;
     t.melt_mask = b.y;
     t.age_days = b.z;
+    // The puddle ratio rides in the standing-water field (fs_scene reads it so).
+    t.standing_mm = b.w;
     return t;
 }
 
@@ -154,6 +158,15 @@ fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
         n = -n;
     }
     var colour = base.rgb;
+    // A pixel's footprint on the surface, for the rain rings' level of detail (taken
+    // here: derivatives need uniform control flow).
+    let footprint_m = length(fwidth(in.surface_m.xz));
+    let ring_fade = clamp(1.0 - footprint_m / (0.5 * RING_WAVELENGTH_M), 0.0, 1.0);
+    var puddle_ratio = 0.0;
+    var wetness = 0.0;
+    var open_water = 0.0;
+    // A water body's vertices carry eligibility -1 (gpu_scene::WATER_BODY_ELIGIBILITY).
+    let body = select(0.0, 1.0, in.eligibility < -0.5);
     let i = grid_texel_index(params.cover, in.surface_m.xz);
     if (i >= 0) {
         let texel = cover_at(in.surface_m.xz);
@@ -164,9 +177,18 @@ fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
         // Fresh snow (albedo 0.8) shows near white; it greys as it ages.
         let snow_colour = vec3<f32>(min(1.0, 1.2 * snow_albedo(texel.age_days, params.cover_look2.y)));
         colour = mix(colour * darkening, snow_colour, snow);
+        // Water shows where the sky reaches and no snow lies over it.
+        open_water = sky_facing * (1.0 - snow);
+        puddle_ratio = texel.standing_mm;
+        wetness = texel.wetness;
     }
     let lit = shadow_lit(in.world_m);
     let intensity = blinn_phong(params.light, params.shadow, n, params.to_sun_extinction.xyz, to_viewer, lit);
+    var shaded = colour * intensity;
+    if (open_water > 0.0) {
+        let wet = water_surface(shaded, puddle_ratio, wetness, body, in.surface_m.xz, to_viewer, lit, ring_fade);
+        shaded = mix(shaded, wet, open_water);
+    }
     let fog = fog_transmittance(distance(in.world_m, camera), params.to_sun_extinction.w);
-    return vec4<f32>(mix(params.sky_colour_time.xyz, colour * intensity, fog), 1.0);
+    return vec4<f32>(mix(params.sky_colour_time.xyz, shaded, fog), 1.0);
 }

@@ -120,6 +120,10 @@ fn too_big(what: &str) -> BackendError {
     }
 }
 
+/// The eligibility a water body's vertices carry: no snow lies on it, and the
+/// scene's fragment shader draws it as open water (`fs_scene`).
+pub const WATER_BODY_ELIGIBILITY: f32 = -1.0;
+
 impl PackedScene {
     /// Tessellates `scene` (prepared: complete attributes) where the snow over
     /// `ground` raises it, as `settings` say, and packs it.
@@ -143,12 +147,17 @@ impl PackedScene {
         let mut ranges = Vec::with_capacity(scene.meshes.len());
         for (mesh, pieces) in scene.meshes.iter().zip(&tessellation.pieces) {
             let base = u32::try_from(vertices.len()).map_err(|_| too_big("vertices"))?;
+            let water_body = mesh.surface == Some(precip_cover::Surface::Water);
             for (i, p) in mesh.positions_m.iter().enumerate() {
                 vertices.push(SceneVertex {
                     position_m: p.to_array(),
                     normal: mesh.normals[i].to_array(),
                     uv: mesh.uvs[i].to_array(),
-                    eligibility: mesh.snow_eligibility[i],
+                    eligibility: if water_body {
+                        WATER_BODY_ELIGIBILITY
+                    } else {
+                        mesh.snow_eligibility[i]
+                    },
                 });
             }
             let start = at(indices.len())?;

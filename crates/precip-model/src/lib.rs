@@ -55,6 +55,7 @@ pub mod step;
 pub mod tessellate;
 pub mod top_down;
 pub mod visibility;
+pub mod water_look;
 pub mod weather;
 
 pub use backend::{

@@ -51,6 +51,9 @@ pub struct RenderSettings {
     pub tessellation_edge_m: f32,
     /// Most triangles the tessellated scene may have.
     pub max_scene_triangles: u64,
+    /// Depth of the scene's water bodies, m (how much of their bottom shows through:
+    /// [`crate::water_look::water_body_colour`]).
+    pub water_body_depth_m: f32,
 }
 
 impl Default for RenderSettings {
@@ -76,6 +79,7 @@ impl Default for RenderSettings {
             shadow_map_px: 2048,
             tessellation_edge_m: 0.5,
             max_scene_triangles: 2_000_000,
+            water_body_depth_m: 1.5,
         }
     }
 }
@@ -133,6 +137,12 @@ impl RenderSettings {
             ),
             ("render.rain_opacity", self.rain_opacity, 0.0, 1.0),
             (
+                "render.water_body_depth_m",
+                self.water_body_depth_m,
+                0.0,
+                1.0e4,
+            ),
+            (
                 "render.tessellation_edge_m",
                 self.tessellation_edge_m,
                 0.01,
@@ -167,7 +177,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (352 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (368 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -194,6 +204,9 @@ pub struct RenderParams {
     /// Wet darkening R_d, albedo decay per day, exposure tolerance m, the flake
     /// texture's mean opacity.
     pub cover_look2: Vec4,
+    /// Rain rings struck per m² and s, 0, water bodies' depth m, 0
+    /// ([`crate::water_look`]).
+    pub water_look: Vec4,
     /// The ground map's grid.
     pub ground: GridFrame,
     /// The cover grid.
@@ -202,7 +215,7 @@ pub struct RenderParams {
     /// px (0: splat off).
     pub counts: UVec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 352);
+const _: () = assert!(size_of::<RenderParams>() == 368);
 
 /// The camera's world → clip matrix for a target of `aspect` (width / height).
 #[must_use]
@@ -359,6 +372,12 @@ impl RenderParams {
                 f.cover_params.albedo_decay_per_day,
                 crate::displacement::exposure_tolerance_m(ground_cell),
                 crate::drawing::flake_mean_opacity(),
+            ),
+            water_look: Vec4::new(
+                crate::water_look::ring_rate_per_m2_s(f.weather.rain_rate_mm_per_h()),
+                0.0,
+                s.water_body_depth_m,
+                0.0,
             ),
             ground: f.ground,
             cover: f.cover,

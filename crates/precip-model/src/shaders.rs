@@ -41,6 +41,8 @@ pub const BIRTH: ShaderFile = shader_file!("birth.wgsl");
 pub const COVER: ShaderFile = shader_file!("cover.wgsl");
 /// Kernels `step_particles`, `birth_particles` and `init_particles`.
 pub const STEP_PARTICLES: ShaderFile = shader_file!("step_particles.wgsl");
+/// How water looks (Rust twin: `water_look`).
+pub const WATER_LOOK: ShaderFile = shader_file!("water_look.wgsl");
 /// Kernel `cover_update`.
 pub const COVER_UPDATE: ShaderFile = shader_file!("cover_update.wgsl");
 /// Test kernel `probe_rng`.
@@ -117,6 +119,7 @@ impl Program {
                 RENDER_LAYOUT,
                 DRAWING,
                 SHADING,
+                WATER_LOOK,
                 RENDER_SCENE,
                 PARTICLE_LISTS,
                 RENDER_PARTICLES,

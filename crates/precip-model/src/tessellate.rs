@@ -127,6 +127,7 @@ fn tessellate_mesh(mesh: &Mesh, split: &[bool], max_edge_m: f32) -> (Mesh, Vec<P
     let mut out = Mesh {
         name: mesh.name.clone(),
         material: mesh.material.clone(),
+        surface: mesh.surface,
         ..Mesh::default()
     };
     for (t, &split) in mesh.indices.chunks_exact(3).zip(split) {

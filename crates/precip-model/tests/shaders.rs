@@ -193,6 +193,7 @@ fn rust_and_wgsl_layouts_match() {
             sizing,
             cover_look,
             cover_look2,
+            water_look,
             ground,
             cover,
             counts

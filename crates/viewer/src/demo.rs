@@ -3,7 +3,9 @@
 //! carrying a `_SNOW_MASK` (a heated patio stays bare), the gabled house of
 //! `precip_model::builtin` (its walls' material says `"snow": false`; the ground under
 //! its eaves is sheltered), a road whose node says `"snow": false`, and fence posts
-//! whose tops hold snow by slope. It shows every mask convention of DESIGN.md §6.
+//! whose tops hold snow by slope. It shows every mask convention of DESIGN.md §6,
+//! and every surface: grass terrain, an asphalt road with a 2 % camber and a sag
+//! that holds a puddle in rain, roofing, and a pond (`"water": true`) in a hollow.
 
 use glam::{Vec2, Vec3};
 use precip_model::builtin::{HousePlan, house};
@@ -20,20 +22,58 @@ pub const TERRAIN_SIDE_M: f32 = 80.0;
 pub const ROAD_X_M: (f32, f32) = (11.0, 15.0);
 /// The heated patio: centre (x, z) and radius, m.
 pub const PATIO: (Vec2, f32) = (Vec2::new(-9.0, 7.0), 2.5);
+/// The sag in the road: its lowest point's z and its depth, m.
+pub const ROAD_SAG: (f32, f32) = (6.0, 0.15);
+/// The pond: centre (x, z), radius of its hollow, m.
+pub const POND: (Vec2, f32) = (Vec2::new(-20.0, 16.0), 7.0);
+/// Depth of the pond's hollow below the pond's surface at the centre, m.
+const POND_HOLLOW_M: f32 = 0.9;
+/// Height of the pond's surface above the terrain's undisturbed level there, m.
+const POND_LEVEL_M: f32 = -0.2;
+
+fn road_sag_m(x: f32, z: f32) -> f32 {
+    let road_mid = 0.5 * (ROAD_X_M.0 + ROAD_X_M.1);
+    let band = 1.0 - (((x - road_mid).abs() - 4.0) / 3.0).clamp(0.0, 1.0);
+    ROAD_SAG.1 * (-((z - ROAD_SAG.0) / 4.0).powi(2)).exp() * band
+}
+
+fn pond_hollow_m(x: f32, z: f32) -> f32 {
+    let d = Vec2::new(x, z).distance(POND.0) / POND.1;
+    (POND_HOLLOW_M - POND_LEVEL_M) * (-(d * d * d * d) * 2.5).exp()
+}
+
+/// Height of the pond's surface, m.
+#[must_use]
+pub fn pond_level_m() -> f32 {
+    undisturbed_height_m(POND.0.x, POND.0.y) + POND_LEVEL_M
+}
 
 /// Terrain height at (x, z): two hills and a gentle swell, flattened around the
-/// house and along the road.
+/// house and along the road, with the road's sag and the pond's hollow.
 #[must_use]
 pub fn terrain_height_m(x: f32, z: f32) -> f32 {
+    undisturbed_height_m(x, z) - road_sag_m(x, z) - pond_hollow_m(x, z)
+}
+
+/// The terrain without the sag and the hollow: two hills and a gentle swell over a
+/// site graded to drain, flattened around the house and along the road. The graded
+/// plane falls 2 % toward −z and lies 20 cm below the house's floor, which sits on a
+/// level pad (5 m round its centre) from which the ground falls away to the plane
+/// by 9 m; only hollows then hold water (the road's sag, the pond, dips of the
+/// swell).
+fn undisturbed_height_m(x: f32, z: f32) -> f32 {
     let hill =
         |cx: f32, cz: f32, h: f32, r2: f32| h * (-((x - cx).powi(2) + (z - cz).powi(2)) / r2).exp();
     let raw = hill(-24.0, -22.0, 5.0, 160.0)
         + hill(26.0, 24.0, 3.5, 120.0)
         + 0.6 * (x / 9.0).sin() * (z / 11.0).cos();
-    let near_house = ((x * x + z * z).sqrt() - 9.0).clamp(0.0, 8.0) / 8.0;
+    let r = (x * x + z * z).sqrt();
+    let near_house = (r - 9.0).clamp(0.0, 8.0) / 8.0;
     let road_mid = 0.5 * (ROAD_X_M.0 + ROAD_X_M.1);
     let near_road = ((x - road_mid).abs() - 3.0).clamp(0.0, 6.0) / 6.0;
-    raw * near_house * near_road
+    let plane = 0.02 * z - 0.2;
+    let off_pad = ((r - 5.0) / 4.0).clamp(0.0, 1.0);
+    raw * near_house * near_road + off_pad * plane
 }
 
 fn grid(
@@ -112,6 +152,32 @@ fn post(name: &str, at: Vec2) -> GlbMesh {
     m
 }
 
+/// The pond's surface: a flat disc at [`pond_level_m`] over the hollow (the
+/// terrain above that level hides its rim), its colour the bottom's.
+fn pond() -> GlbMesh {
+    let level = pond_level_m();
+    let mut m = GlbMesh {
+        name: "pond".to_owned(),
+        base_colour: [0.22, 0.2, 0.12, 1.0],
+        node_extras: Some(json!({ "water": true })),
+        ..GlbMesh::default()
+    };
+    let segments = 48u32;
+    m.positions.push([POND.0.x, level, POND.0.y]);
+    m.normals.push([0.0, 1.0, 0.0]);
+    for k in 0..segments {
+        let a = k as f32 / segments as f32 * std::f32::consts::TAU;
+        let r = POND.1;
+        m.positions
+            .push([POND.0.x + r * a.cos(), level, POND.0.y + r * a.sin()]);
+        m.normals.push([0.0, 1.0, 0.0]);
+        // Counter-clockwise seen from above (+Y): centre, next, this.
+        let (this, next) = (1 + k, 1 + (k + 1) % segments);
+        m.indices.extend_from_slice(&[0, next, this]);
+    }
+    m
+}
+
 /// The demo's meshes.
 #[must_use]
 pub fn demo_meshes() -> Vec<GlbMesh> {
@@ -126,18 +192,28 @@ pub fn demo_meshes() -> Vec<GlbMesh> {
             if d < PATIO.1 { 0.0 } else { 1.0 }
         })
         .collect();
-    let mut road = grid("road", ROAD_X_M, (-half, half), (2, 40), 0.04);
+    terrain.node_extras = Some(json!({ "surface": "grass" }));
+    let mut road = grid("road", ROAD_X_M, (-half, half), (4, 80), 0.04);
+    // A 2 % camber from the crown down to both edges.
+    let road_mid = 0.5 * (ROAD_X_M.0 + ROAD_X_M.1);
+    for p in &mut road.positions {
+        p[1] -= 0.02 * (p[0] - road_mid).abs();
+    }
     road.base_colour = [0.12, 0.12, 0.13, 1.0];
-    road.node_extras = Some(json!({ "snow": false }));
+    road.node_extras = Some(json!({ "snow": false, "surface": "asphalt" }));
 
-    let mut meshes = vec![terrain, road];
+    let mut meshes = vec![terrain, road, pond()];
     let plan = HousePlan::default();
     for mesh in house(&plan)
         .meshes
         .into_iter()
         .filter(|m| m.name != "ground")
     {
-        let material_extras = (mesh.name == "walls").then(|| json!({ "snow": false }));
+        let material_extras = match mesh.name.as_str() {
+            "walls" => Some(json!({ "snow": false })),
+            "roof" => Some(json!({ "surface": "roof" })),
+            _ => None,
+        };
         let c = mesh.material.base_colour;
         meshes.push(GlbMesh {
             name: format!("house {}", mesh.name),

@@ -1,5 +1,6 @@
 //! Headless frames: step, render, write `frame_NNNN.png`, with a progress bar, and a
-//! summary (frame times, particles simulated and drawn, cover water).
+//! summary (frame times, particles simulated and drawn, cover water, the water on
+//! the surfaces).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -22,10 +23,12 @@ pub struct Summary {
     pub stats: FrameStats,
     /// Particles simulated.
     pub particles: u64,
-    /// Water on the scene in the cover (snow water equivalent + held water), mean mm.
+    /// Water in the snow cover (snow water equivalent + held water), mean mm.
     pub cover_water_mm: f64,
     /// Largest snow depth on any texel, mm.
     pub max_depth_mm: f32,
+    /// The water on the surfaces: films, puddles, where the water went.
+    pub water: crate::water_summary::WaterSummary,
     /// The PNGs.
     pub files: Vec<PathBuf>,
 }
@@ -124,6 +127,7 @@ pub fn run_headless(
         particles,
         cover_water_mm: water,
         max_depth_mm,
+        water: crate::water_summary::WaterSummary::of(&cover),
         files,
     })
 }

@@ -291,7 +291,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         true,
     )?;
     println!(
-        "{} frames in {}: mean {:.1} ms, p95 {:.1} ms per frame (PNG included; {}); {} particles; cover water {:.2} mm on average, deepest snow {:.0} mm",
+        "{} frames in {}: mean {:.1} ms, p95 {:.1} ms per frame (PNG included; {}); {} particles; snow cover water {:.2} mm on average, deepest snow {:.0} mm; {}",
         summary.frames,
         args.out.display(),
         summary.mean_frame_ms,
@@ -299,8 +299,10 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         summary.stats.describe(),
         summary.particles,
         summary.cover_water_mm,
-        summary.max_depth_mm
+        summary.max_depth_mm,
+        summary.water.describe()
     );
+    println!("{}", summary.water.describe_books());
     if let Some(passes) = summary.stats.describe_passes() {
         println!("{passes}");
     }

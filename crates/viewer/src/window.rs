@@ -25,6 +25,7 @@ use winit::window::{Window, WindowId};
 use crate::BackendName;
 use crate::fly_camera::FlyCamera;
 use crate::frame_stats::FrameStats;
+use crate::water_summary::WaterSummary;
 
 /// Why the window could not run.
 #[derive(Debug, thiserror::Error)]
@@ -133,6 +134,8 @@ struct Running {
     frames: u32,
     started: Instant,
     stats: FrameStats,
+    /// The water on the surfaces, sampled every [`WaterSummary::EVERY_FRAMES`].
+    water: Option<WaterSummary>,
 }
 
 struct App {
@@ -151,8 +154,12 @@ struct App {
 fn title(r: &Running) -> String {
     let w = &r.weather;
     let wind = w.wind.mean_wind_mps;
+    let water = r
+        .water
+        .map(|s| format!(" — {}", s.describe()))
+        .unwrap_or_default();
     format!(
-        "precip — {:.1} ms/frame, {} particles — {:?} {:.1} mm/h, {:.1} °C, wind {:.1} m/s, cover ×{:.0}",
+        "precip — {:.1} ms/frame, {} particles — {:?} {:.1} mm/h, {:.1} °C, wind {:.1} m/s, cover ×{:.0}{water}",
         r.frame_ms,
         r.particles,
         w.kind,
@@ -204,6 +211,7 @@ impl App {
             frames: 0,
             started: Instant::now(),
             stats: FrameStats::default(),
+            water: None,
         })
     }
 }
@@ -330,6 +338,10 @@ impl Running {
         self.presenter.present(&view)?;
         self.stats.record(elapsed_ms, self.presenter.backend())?;
         self.frames += 1;
+        if self.frames.is_multiple_of(WaterSummary::EVERY_FRAMES) {
+            let cover = self.presenter.backend().read_cover()?;
+            self.water = Some(WaterSummary::of(&cover));
+        }
         self.window.set_title(&title(self));
         Ok(())
     }
