@@ -420,3 +420,52 @@ fn rain_gathers_in_a_dip_conserving_water_alike_on_every_backend() {
         }
     }
 }
+
+#[test]
+fn raindrops_splash_alike_and_deterministically_on_every_backend() {
+    let mut counts = Vec::new();
+    for mut s in all_subjects("splashes") {
+        let mut good = setup(12, 6_000);
+        good.weather = Weather {
+            kind: precip_model::PrecipitationKind::Rain,
+            intensity_mm_per_h: 20.0,
+            air_temperature_c: 12.0,
+            ..Weather::default()
+        };
+        let mut runs = Vec::new();
+        for _ in 0..2 {
+            s.backend.configure(&good).expect("configure");
+            for _ in 0..30 {
+                s.backend.step(0.05).expect("step");
+            }
+            runs.push(s.backend.read_particles().expect("particles"));
+        }
+        assert!(
+            bytes(&runs[0]) == bytes(&runs[1]),
+            "{}: the same seed splashes the same",
+            s.name
+        );
+        let splash = precip_model::particle::flags::SPLASH;
+        let flying: Vec<&Particle> = runs[0].iter().filter(|p| p.flags & splash != 0).collect();
+        assert!(
+            flying
+                .iter()
+                .all(|p| p.diameter_m < 1.6e-3 && p.kind() == precip_model::ParticleKind::Rain),
+            "{}: droplets are a quarter of a drop",
+            s.name
+        );
+        println!("{}: {} splash droplets in flight", s.name, flying.len());
+        counts.push((s.name.clone(), flying.len()));
+        s.check_clean("splashes");
+    }
+    // Drops land at ~1 000 a second here and most splash; a droplet flies ~0.1 s.
+    let (reference_name, reference) = &counts[0];
+    assert!(*reference > 20, "{reference_name}: {reference} droplets");
+    for (name, n) in &counts[1..] {
+        let ratio = *n as f64 / *reference as f64;
+        assert!(
+            (0.8..1.25).contains(&ratio),
+            "{name}: {n} droplets vs {reference} on {reference_name}"
+        );
+    }
+}

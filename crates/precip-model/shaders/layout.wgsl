@@ -37,6 +37,7 @@ const FLAG_CAMERA_VOLUME: u32 = 256u;
 // Set by step_particles on a particle that landed on the cover grid (its position is
 // then the landing point), read by birth_particles within the same sub-step.
 const FLAG_LANDED: u32 = 512u;
+const FLAG_SPLASH: u32 = 2048u;
 const KIND_DRY_SNOW: u32 = 0u;
 const KIND_WET_SNOW: u32 = 1u;
 const KIND_RAIN: u32 = 2u;

@@ -6,7 +6,9 @@
 // particle that landed on the cover grid is moved to its landing point and marked
 // FLAG_LANDED), and birth_particles, dispatched right after it indirectly over that
 // list alone, deposits the landed ones' water and re-births them with the same
-// inputs. Same result (the deposits are integer sums, so their order does not
+// inputs (or, for a raindrop that struck hard enough, throws up its splash droplet:
+// splash.wgsl; a camera-volume particle that reaches the ground is marked
+// FLAG_LANDED too, at the ground, and deposits nothing). Same result (the deposits are integer sums, so their order does not
 // matter); but the deposit's atomics and the large birth code run only for the few
 // particles re-born, not under a mask for every particle (lavapipe executes both
 // sides of a divergent branch). reset_births empties the list before each step.
@@ -48,6 +50,12 @@ fn step_in_camera_volume(index: u32, generation: u32, moved: Particle) -> Partic
     let ground = ground_height_at(vec2<f32>(position.x, position.z));
     let grounded = ground.x > 0.0 && position.y <= ground.y;
     next.position_m = position;
+    if (grounded) {
+        // Where it struck: birth_particles splashes it there, or re-births it at
+        // this x, z.
+        next.position_m.y = ground.y;
+        next.flags |= FLAG_LANDED;
+    }
     if (local.y < -half.y || grounded) {
         next.flags |= STEP_ENDS;
     }
@@ -162,10 +170,15 @@ fn birth_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
     for (var k = linear_index(id, groups); k < count; k += lanes) {
         let i = pending.indices[k];
         let particle = particles[i];
-        if ((particle.flags & FLAG_LANDED) != 0u) {
+        let landed = (particle.flags & FLAG_LANDED) != 0u;
+        if (landed && (particle.flags & FLAG_CAMERA_VOLUME) == 0u) {
             deposit_landed(particle);
         }
-        particles[i] = birth_particle(i, particle);
+        if (landed && splashes(particle)) {
+            particles[i] = splash_droplet(i, particle, particle.position_m);
+        } else {
+            particles[i] = birth_particle(i, particle);
+        }
     }
 }
 

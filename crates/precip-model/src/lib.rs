@@ -51,6 +51,7 @@ pub mod shadow_cache;
 pub mod shadow_fit;
 pub mod snowfall;
 pub mod snowflake;
+pub mod splash;
 pub mod step;
 pub mod tessellate;
 pub mod top_down;

@@ -46,6 +46,9 @@ pub mod flags {
     /// one sub-step: the particle landed on the cover grid and its position is where
     /// its water goes; never set in a particle read back.
     pub const LANDED: u32 = 1 << 9;
+    /// Bit 11: the particle is a splash droplet thrown up where its drop struck
+    /// ([`crate::splash`]); it splashes no further and is re-born when it lands.
+    pub const SPLASH: u32 = 1 << 11;
 }
 
 /// One particle: the seeds' state `(t, P, v, r0, r)` plus what the physics needs, in

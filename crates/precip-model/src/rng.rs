@@ -60,13 +60,19 @@ pub mod draw {
     /// Whether a camera-volume particle starts in this generation
     /// ([`crate::birth::stationary_generation`]).
     pub const STATIONARY: u32 = 104;
+    /// A splash droplet's direction round the vertical ([`crate::splash`]).
+    pub const SPLASH_AZIMUTH: u32 = 105;
+    /// A splash droplet's elevation.
+    pub const SPLASH_ELEVATION: u32 = 106;
+    /// A splash droplet's speed.
+    pub const SPLASH_SPEED: u32 = 107;
 }
 
 // Draw numbers never overlap: each decision has its own stream.
 const _: () = {
     let last_rain = draw::RAIN_DIAMETER + 2 * crate::raindrop::RAIN_DIAMETER_TRIES - 1;
     assert!(last_rain < draw::VOLUME_X && draw::VOLUME_X + 2 < draw::PREWARM);
-    assert!(draw::PREWARM < draw::STATIONARY);
+    assert!(draw::PREWARM < draw::STATIONARY && draw::STATIONARY < draw::SPLASH_AZIMUTH);
     assert!(draw::SNOW_SPEED < draw::RAIN_DIAMETER && draw::ROTATION_X + 2 < draw::KIND);
 };
 

@@ -43,6 +43,8 @@ pub const COVER: ShaderFile = shader_file!("cover.wgsl");
 pub const STEP_PARTICLES: ShaderFile = shader_file!("step_particles.wgsl");
 /// How water looks (Rust twin: `water_look`).
 pub const WATER_LOOK: ShaderFile = shader_file!("water_look.wgsl");
+/// Splash droplets (Rust twin: `splash`).
+pub const SPLASH: ShaderFile = shader_file!("splash.wgsl");
 /// Kernel `cover_update`.
 pub const COVER_UPDATE: ShaderFile = shader_file!("cover_update.wgsl");
 /// Test kernel `probe_rng`.
@@ -109,6 +111,7 @@ impl Program {
                 GROUND,
                 DEPOSIT,
                 BIRTH,
+                SPLASH,
                 STEP_PARTICLES,
             ],
             Self::CoverUpdate => &[LAYOUT, DEPOSIT, COVER, COVER_UPDATE],

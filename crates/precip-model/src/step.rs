@@ -15,10 +15,13 @@
 //!    already below that surface at `P` came in from the side (blown against a wall
 //!    or under an eave): it deposits at `P`, the wall's foot on the side it came from,
 //!    not on the roof above. Below the lowest ground
-//!    off the map, or at `t' ≥ t_max`, it is re-born without a deposit.
+//!    off the map, or at `t' ≥ t_max`, it is re-born without a deposit. A raindrop
+//!    that strikes hard enough throws up a splash droplet in its place instead of
+//!    being re-born ([`crate::splash`]; on the cover grid only).
 //! 3. Camera volume particles wrap through the box's sides and top; one that falls out
 //!    of the bottom or reaches the ground is re-born just under the top (spread over
-//!    one step's fall, so the flux in is continuous), at the same x, z.
+//!    one step's fall, so the flux in is continuous), at the same x, z; a raindrop
+//!    that strikes the ground hard enough splashes first.
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec2, Vec3};
@@ -31,6 +34,7 @@ use crate::ground::GroundMap;
 use crate::particle::{Particle, ParticleSource, flags};
 use crate::rng::{draw, particle_key, random_unit};
 use crate::rotation::advance_rotation;
+use crate::splash::{splash_droplet, splashes};
 
 /// Everything a step needs besides the buffers: the GPU's uniform block.
 ///
@@ -121,6 +125,9 @@ pub enum StepEvent {
     Moved,
     /// It landed and deposited its water, then was re-born.
     Landed,
+    /// It struck a surface (depositing its water, from the world emitter) and threw
+    /// up a splash droplet in its place ([`crate::splash`]).
+    Splashed,
     /// It was re-born without a deposit (t_max, left the scene, left the camera box).
     Reborn,
 }
@@ -186,9 +193,16 @@ pub fn step_particle(
                         xz
                     };
                     // Water landing off the cover grid fell outside the scene: not kept.
-                    let _kept = inputs
+                    let kept = inputs
                         .deposits
                         .add_at(inputs.cover_frame, at, channel, water_mm);
+                    if kept && splashes(&next) {
+                        let surface_m = Vec3::new(at.x, ground_m, at.y);
+                        return (
+                            splash_droplet(params.seed, index, &next, surface_m),
+                            StepEvent::Splashed,
+                        );
+                    }
                     return (
                         birth_on_emitter(index, particle.generation.wrapping_add(1), params),
                         StepEvent::Landed,
@@ -239,7 +253,15 @@ fn step_in_camera_volume(
     }
     let position = centre + local;
     let xz = Vec2::new(position.x, position.z);
-    let grounded = inputs.ground.height_at(xz).is_some_and(|g| position.y <= g);
+    let ground_m = inputs.ground.height_at(xz);
+    let grounded = ground_m.is_some_and(|g| position.y <= g);
+    if let Some(g) = ground_m.filter(|_| grounded && splashes(&next)) {
+        let surface_m = Vec3::new(position.x, g, position.z);
+        return (
+            splash_droplet(params.seed, index, &next, surface_m),
+            StepEvent::Splashed,
+        );
+    }
     if local.y < -half.y || grounded {
         let new_generation = generation.wrapping_add(1);
         let key = particle_key(params.seed, index, new_generation);

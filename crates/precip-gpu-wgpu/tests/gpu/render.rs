@@ -715,7 +715,7 @@ fn the_cover_textures_match_the_cover_texels() {
                 c.accumulation_mask,
                 c.melt_mask,
                 c.age_days,
-                0.0,
+                c.puddle_ratio(),
             ];
             for (k, (got, want)) in t.iter().zip(expected).enumerate() {
                 assert!(
