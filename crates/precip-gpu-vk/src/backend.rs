@@ -13,7 +13,8 @@
 use glam::Vec3;
 use precip_model::cover::CoverGrid;
 use precip_model::drag::MAX_SUBSTEP_S;
-use precip_model::gpu::{DispatchOver, dispatch_size, list_invocations};
+use precip_model::gpu::dispatch_size;
+use precip_model::shaders::Program;
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
 use precip_model::{
@@ -393,21 +394,11 @@ impl Backend for VkBackend {
             for k in 0..count {
                 let offset = (slot_base + u64::from(k) * r.uniform_stride) as u32;
                 for (kernel, pipeline) in &programs.substep {
-                    let (layout, set, items) = match kernel.over {
-                        DispatchOver::Particles => {
-                            (programs.step_layout, r.step_set, r.particle_count)
-                        }
-                        DispatchOver::CoverTexels => {
-                            (programs.cover_layout, r.cover_set, r.cover_texel_count)
-                        }
-                        DispatchOver::OneWorkgroup => (programs.step_layout, r.step_set, 1),
-                        DispatchOver::ParticleList => (
-                            programs.step_layout,
-                            r.step_set,
-                            list_invocations(r.particle_count),
-                        ),
+                    let (layout, set) = match kernel.program {
+                        Program::CoverUpdate => (programs.cover_layout, r.cover_set),
+                        _ => (programs.step_layout, r.step_set),
                     };
-                    let (x, y) = dispatch_size(items);
+                    let (x, y) = dispatch_size(kernel.over.invocations(r.dispatch_counts()));
                     // SAFETY: `cb` is recording; pipeline, layout and set match; the
                     // dynamic offset is aligned and within the uniform buffer.
                     unsafe {

@@ -3,9 +3,13 @@
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use precip_model::backend::MAX_SUBSTEPS;
+use precip_model::cover::GridFrame;
 use precip_model::cover::{CoverGrid, CoverStepParams, CoverTexel};
-use precip_model::gpu::{Frames, cover_bindings, pending_births_bytes, step_bindings};
+use precip_model::gpu::{
+    DispatchCounts, Frames, cover_bindings, pending_births_bytes, step_bindings,
+};
 use precip_model::step::StepParams;
+use precip_model::water_waves::initial_waves;
 use precip_model::wind::{WindParams, WindVolume};
 use precip_model::{BackendError, GroundMap, Particle};
 
@@ -38,6 +42,10 @@ pub struct Resources {
     pub pending_births: Buffer,
     /// Ground heights.
     pub ground: Buffer,
+    /// The water bodies' waves (`precip_model::water_waves`).
+    pub waves: Buffer,
+    /// Their grid.
+    pub wave_frame: GridFrame,
     frames: Buffer,
     wind_params: Buffer,
     /// The wind volume.
@@ -277,6 +285,8 @@ impl Resources {
         let blocks = u64::from(MAX_SUBSTEPS) * FRAMES_IN_FLIGHT as u64;
         let cover_bytes: &[u8] = bytemuck::cast_slice(&cover.texels);
         let ground_bytes: &[u8] = bytemuck::cast_slice(&ground.height_m);
+        let waves: Vec<i32> = initial_waves(&frames.waves, ground);
+        let wave_bytes: &[u8] = bytemuck::cast_slice(&waves);
         let uniform_usage = vk::BufferUsageFlags::UNIFORM_BUFFER;
         let specs = [
             (
@@ -306,6 +316,12 @@ impl Resources {
             (
                 "ground",
                 ground_bytes.len() as u64,
+                STORAGE,
+                MemoryLocation::GpuOnly,
+            ),
+            (
+                "waves",
+                wave_bytes.len() as u64,
                 STORAGE,
                 MemoryLocation::GpuOnly,
             ),
@@ -360,7 +376,7 @@ impl Resources {
                 (T::UNIFORM_BUFFER_DYNAMIC, 2),
                 (T::UNIFORM_BUFFER, 2),
                 (T::SAMPLED_IMAGE, 1),
-                (T::STORAGE_BUFFER, 6),
+                (T::STORAGE_BUFFER, 7),
             ],
             2,
         ) {
@@ -377,11 +393,12 @@ impl Resources {
             deposits,
             pending_births,
             ground_buffer,
+            waves_buffer,
             frames_buffer,
             wind_params,
             step_uniforms,
             cover_uniforms,
-        ] = match <[Buffer; 9]>::try_from(made) {
+        ] = match <[Buffer; 10]>::try_from(made) {
             Ok(all) => all,
             Err(made) => {
                 free(made);
@@ -402,6 +419,8 @@ impl Resources {
             deposits,
             pending_births,
             ground: ground_buffer,
+            waves: waves_buffer,
+            wave_frame: frames.waves,
             frames: frames_buffer,
             wind_params,
             wind: volume,
@@ -412,7 +431,13 @@ impl Resources {
             step_set: vk::DescriptorSet::null(),
             cover_set: vk::DescriptorSet::null(),
         };
-        match resources.fill(device, programs, cover_bytes, ground_bytes, frames, wind) {
+        match resources.fill(
+            device,
+            programs,
+            [cover_bytes, ground_bytes, wave_bytes],
+            frames,
+            wind,
+        ) {
             Ok(()) => Ok(resources),
             Err(e) => {
                 resources.destroy(device);
@@ -426,12 +451,12 @@ impl Resources {
         &mut self,
         device: &Device,
         programs: &Programs,
-        cover_bytes: &[u8],
-        ground_bytes: &[u8],
+        [cover_bytes, ground_bytes, wave_bytes]: [&[u8]; 3],
         frames: &Frames,
         wind: &WindVolume,
     ) -> Result<(), BackendError> {
         upload(device, &self.cover, cover_bytes)?;
+        upload(device, &self.waves, wave_bytes)?;
         upload(
             device,
             &self.deposits,
@@ -458,6 +483,7 @@ impl Resources {
         let particles_info = info(&self.particles, whole);
         let deposits_info = info(&self.deposits, whole);
         let births_info = info(&self.pending_births, whole);
+        let waves_info = info(&self.waves, whole);
         let cover_params = info(&self.cover_uniforms, size_of::<CoverStepParams>() as u64);
         let cover_info = info(&self.cover, whole);
         let image = image_info(self.wind.view);
@@ -478,6 +504,7 @@ impl Resources {
             write(step_set, step_bindings::DEPOSITS, T::STORAGE_BUFFER).buffer_info(&deposits_info),
             write(step_set, step_bindings::PENDING_BIRTHS, T::STORAGE_BUFFER)
                 .buffer_info(&births_info),
+            write(step_set, step_bindings::WAVES, T::STORAGE_BUFFER).buffer_info(&waves_info),
             write(
                 cover_set,
                 cover_bindings::COVER_PARAMS,
@@ -493,6 +520,16 @@ impl Resources {
         self.step_set = step_set;
         self.cover_set = cover_set;
         Ok(())
+    }
+
+    /// What the sub-step's dispatches run over.
+    #[must_use]
+    pub fn dispatch_counts(&self) -> DispatchCounts {
+        DispatchCounts {
+            particles: self.particle_count,
+            cover_texels: self.cover_texel_count,
+            wave_cells: self.wave_frame.texel_count() as u32,
+        }
     }
 
     /// Byte offset of in-flight slot `slot`'s ring of uniform blocks.
@@ -516,6 +553,7 @@ impl Resources {
             self.deposits,
             self.pending_births,
             self.ground,
+            self.waves,
             self.frames,
             self.wind_params,
             self.step_uniforms,

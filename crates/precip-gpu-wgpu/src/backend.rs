@@ -4,7 +4,8 @@
 use glam::Vec3;
 use precip_model::cover::{CoverGrid, CoverTexel};
 use precip_model::drag::MAX_SUBSTEP_S;
-use precip_model::gpu::{DispatchOver, FrameDraws, INIT_PASS, dispatch_size, list_invocations};
+use precip_model::gpu::{FrameDraws, INIT_PASS, dispatch_size};
+use precip_model::shaders::Program;
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
 use precip_model::{
@@ -240,6 +241,7 @@ impl WgpuBackend {
             render.shadow_bounds_m,
             state.time_s,
             state.resources.particle_count,
+            state.resources.wave_frame,
         );
         let draw_shadow =
             render
@@ -449,25 +451,17 @@ impl Backend for WgpuBackend {
                     }
                 };
                 stamp(&mut pass);
+                let counts = resources.dispatch_counts();
                 for k in 0..count {
                     let offset = (u64::from(k) * stride) as u32;
                     for (kernel, pipeline) in &pipelines.substep {
                         pass.set_pipeline(pipeline);
-                        let (bind_group, items) = match kernel.over {
-                            DispatchOver::Particles => {
-                                (&resources.step_bind_group, resources.particle_count)
-                            }
-                            DispatchOver::CoverTexels => {
-                                (&resources.cover_bind_group, resources.cover_texel_count)
-                            }
-                            DispatchOver::OneWorkgroup => (&resources.step_bind_group, 1),
-                            DispatchOver::ParticleList => (
-                                &resources.step_bind_group,
-                                list_invocations(resources.particle_count),
-                            ),
+                        let bind_group = match kernel.program {
+                            Program::CoverUpdate => &resources.cover_bind_group,
+                            _ => &resources.step_bind_group,
                         };
                         pass.set_bind_group(0, bind_group, &[offset]);
-                        let (x, y) = dispatch_size(items);
+                        let (x, y) = dispatch_size(kernel.over.invocations(counts));
                         pass.dispatch_workgroups(x, y, 1);
                         stamp(&mut pass);
                     }

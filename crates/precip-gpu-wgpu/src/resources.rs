@@ -1,9 +1,13 @@
 //! The buffers, texture and bind groups of one configuration.
 
 use precip_model::backend::MAX_SUBSTEPS;
+use precip_model::cover::GridFrame;
 use precip_model::cover::{CoverGrid, CoverStepParams, CoverTexel};
-use precip_model::gpu::{Frames, cover_bindings, pending_births_bytes, step_bindings};
+use precip_model::gpu::{
+    DispatchCounts, Frames, cover_bindings, pending_births_bytes, step_bindings,
+};
 use precip_model::step::StepParams;
+use precip_model::water_waves::initial_waves;
 use precip_model::wind::{WindParams, WindVolume};
 use precip_model::{GroundMap, Particle};
 use wgpu::util::DeviceExt;
@@ -29,6 +33,10 @@ pub struct Resources {
     pub pending_births: wgpu::Buffer,
     /// Ground heights, `array<f32>`.
     pub ground: wgpu::Buffer,
+    /// The water bodies' waves (`precip_model::water_waves`).
+    pub waves: wgpu::Buffer,
+    /// Their grid.
+    pub wave_frame: GridFrame,
     /// The wind volume, 3D `Rgba32Float`.
     pub wind_texture: wgpu::Texture,
     /// `WindParams`.
@@ -128,6 +136,11 @@ impl Resources {
             bytemuck::cast_slice::<CoverTexel, u8>(&cover.texels),
         );
         let deposits = storage_buffer(gpu, "precip deposits", &vec![0u8; cover.texels.len() * 8]);
+        let waves = storage_buffer(
+            gpu,
+            "precip waves",
+            bytemuck::cast_slice(&initial_waves(&frames.waves, ground)),
+        );
         let pending_births = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("precip pending births"),
             size: pending_births_bytes(particle_count),
@@ -217,6 +230,10 @@ impl Resources {
                     resource: deposits.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
+                    binding: step_bindings::WAVES,
+                    resource: waves.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
                     binding: step_bindings::PENDING_BIRTHS,
                     resource: pending_births.as_entire_binding(),
                 },
@@ -248,6 +265,8 @@ impl Resources {
             deposits,
             pending_births,
             ground: ground_buffer,
+            waves,
+            wave_frame: frames.waves,
             wind_texture,
             wind_params,
             frames: frames_buffer,
@@ -256,6 +275,16 @@ impl Resources {
             uniform_stride,
             step_bind_group,
             cover_bind_group,
+        }
+    }
+
+    /// What the sub-step's dispatches run over.
+    #[must_use]
+    pub fn dispatch_counts(&self) -> DispatchCounts {
+        DispatchCounts {
+            particles: self.particle_count,
+            cover_texels: self.cover_texel_count,
+            wave_cells: self.wave_frame.texel_count() as u32,
         }
     }
 

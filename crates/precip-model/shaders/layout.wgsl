@@ -83,6 +83,7 @@ struct GridFrame {
 struct Frames {
     ground: GridFrame,
     cover: GridFrame,
+    waves: GridFrame,
 }
 
 struct WindParams {

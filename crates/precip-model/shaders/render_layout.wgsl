@@ -22,6 +22,7 @@ struct RenderParams {
     water_look: vec4<f32>,
     ground: GridFrame,
     cover: GridFrame,
+    waves: GridFrame,
     // particle count, culling on, cull workgroups, splat target width px (0: no splat)
     counts: vec4<u32>,
 }

@@ -28,6 +28,8 @@ fn frame_counts() -> vec4<u32> {
 @group(0) @binding(5) var cover_a: texture_2d<f32>;
 @group(0) @binding(6) var cover_b: texture_2d<f32>;
 @group(0) @binding(7) var cover_sampler: sampler;
+// The water bodies' waves (water_waves.wgsl's buffer, read here as plain words).
+@group(0) @binding(12) var<storage, read> waves_read: array<i32>;
 // Group 1: light and the flake's opacity.
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(1) var shadow_sampler: sampler_comparison;
@@ -96,6 +98,30 @@ fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
     // The puddle ratio rides in the standing-water field (fs_scene reads it so).
     t.standing_mm = b.w;
     return t;
+}
+
+// A water body's wave height at cell `cell` of the wave grid, m (0 off the grid).
+fn wave_height_at(cell: vec2<i32>) -> f32 {
+    let n = vec2<i32>(params.waves.texels);
+    if (any(cell < vec2<i32>(0)) || any(cell >= n)) {
+        return 0.0;
+    }
+    return f32(waves_read[u32(cell.x + n.x * cell.y) * 4u]) / 1.0e7;
+}
+
+// The slope of the waves at (x, z) by central differences, and whether (x, z) is on
+// the wave grid (z component).
+fn wave_slope(xz_m: vec2<f32>) -> vec3<f32> {
+    let cell_m = params.waves.size_m / vec2<f32>(params.waves.texels);
+    let t = (xz_m - params.waves.origin_m) / cell_m;
+    let c = vec2<i32>(floor(t));
+    let n = vec2<i32>(params.waves.texels);
+    if (any(c < vec2<i32>(0)) || any(c >= n) || n.x * n.y <= 1) {
+        return vec3<f32>(0.0);
+    }
+    let dx = wave_height_at(c + vec2<i32>(1, 0)) - wave_height_at(c - vec2<i32>(1, 0));
+    let dz = wave_height_at(c + vec2<i32>(0, 1)) - wave_height_at(c - vec2<i32>(0, 1));
+    return vec3<f32>(dx / (2.0 * cell_m.x), dz / (2.0 * cell_m.y), 1.0);
 }
 
 struct SceneVertex {

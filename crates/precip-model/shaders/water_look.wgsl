@@ -87,10 +87,14 @@ fn water_body_colour(bottom_colour: vec3<f32>, depth_m: f32) -> vec3<f32> {
 
 // What a lit surface `shaded` looks like under its water: a wet film's blurred
 // sheen, a puddle's mirror with rain rings, a water body's (`body`: 1 on its mesh)
-// Fresnel surface with rings over its depths. `ring_fade` is 0 where a pixel spans a ring's wavelength (no aliasing).
+// Fresnel surface with its simulated waves (water_waves.wgsl) and rings over its
+// depths. `ring_fade` is 0 where a pixel spans a ring's wavelength (no aliasing).
 fn water_surface(shaded: vec3<f32>, puddle_ratio: f32, wetness: f32, body: f32, xz_m: vec2<f32>, to_viewer: vec3<f32>, lit: f32, ring_fade: f32) -> vec3<f32> {
     let puddle = puddle_cover(puddle_ratio);
-    let slope = ring_slope(xz_m, params.sky_colour_time.w, params.water_look.x) * (ring_fade * max(puddle, body));
+    var slope = ring_slope(xz_m, params.sky_colour_time.w, params.water_look.x) * (ring_fade * max(puddle, body));
+    // On a water body the simulated waves (longer than the grid's 4 cm cells) add to
+    // the rings, which stand for the capillary waves below the grid's scale.
+    slope += wave_slope(xz_m).xy * body;
     let n = normalize(vec3<f32>(-slope.x, 1.0, -slope.y));
     let f = fresnel_unpolarised(dot(n, to_viewer), WATER_REFRACTIVE_INDEX);
     let sky = overcast_sky(params.sky_colour_time.xyz, reflect(-to_viewer, n));

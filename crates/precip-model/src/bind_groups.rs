@@ -204,6 +204,7 @@ pub const STEP: GroupLayout = GroupLayout {
         binding(sb::PARTICLES, storage(false), Stages::Compute),
         binding(sb::DEPOSITS, storage(false), Stages::Compute),
         binding(sb::PENDING_BIRTHS, storage(false), Stages::Compute),
+        binding(sb::WAVES, storage(false), Stages::Compute),
     ],
 };
 
@@ -250,6 +251,7 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
         binding(rb::COVER_A, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::COVER_B, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::COVER_SAMPLER, FILTERING, Stages::DrawAndCompute),
+        binding(rb::WAVES, storage(true), Stages::DrawAndCompute),
     ],
 };
 

@@ -14,9 +14,9 @@ pub const WORKGROUP_SIZE: u32 = 64;
 /// Most workgroups along one dispatch dimension (WebGPU's guaranteed minimum).
 pub const MAX_WORKGROUPS_PER_DIMENSION: u32 = 65_535;
 
-/// The two grids the particle kernels read.
+/// The grids the particle kernels read.
 ///
-/// WGSL twin: `Frames` in `shaders/layout.wgsl` (64 bytes).
+/// WGSL twin: `Frames` in `shaders/layout.wgsl` (96 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct Frames {
@@ -24,8 +24,10 @@ pub struct Frames {
     pub ground: GridFrame,
     /// The cover grid (deposit texels).
     pub cover: GridFrame,
+    /// The water bodies' wave grid ([`crate::water_waves`]).
+    pub waves: GridFrame,
 }
-const _: () = assert!(size_of::<Frames>() == 64);
+const _: () = assert!(size_of::<Frames>() == 96);
 
 /// `drawIndirect`'s arguments.
 ///
@@ -111,6 +113,33 @@ pub enum DispatchOver {
     /// [`step_bindings::PENDING_BIRTHS`]; the splat list, [`render_bindings::DRAWN`])
     /// with the dispatch's stride, to the list's count.
     ParticleList,
+    /// One invocation per cell of the water bodies' wave grid.
+    WaveCells,
+}
+
+/// What the dispatches of a configuration run over.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct DispatchCounts {
+    /// Particles.
+    pub particles: u32,
+    /// Cover texels.
+    pub cover_texels: u32,
+    /// Wave cells.
+    pub wave_cells: u32,
+}
+
+impl DispatchOver {
+    /// Invocations of a dispatch over this (before rounding up to workgroups).
+    #[must_use]
+    pub const fn invocations(self, counts: DispatchCounts) -> u32 {
+        match self {
+            Self::Particles => counts.particles,
+            Self::CoverTexels => counts.cover_texels,
+            Self::OneWorkgroup => 1,
+            Self::ParticleList => list_invocations(counts.particles),
+            Self::WaveCells => counts.wave_cells,
+        }
+    }
 }
 
 /// Particles per invocation of a kernel over a list (see [`DispatchOver::ParticleList`]).
@@ -137,8 +166,9 @@ pub fn pending_births_bytes(particle_count: u32) -> u64 {
 
 /// Invocations of a kernel over a list of at most `particle_count` particles.
 #[must_use]
-pub fn list_invocations(particle_count: u32) -> u32 {
-    particle_count.div_ceil(LIST_ENTRIES_PER_INVOCATION).max(1)
+pub const fn list_invocations(particle_count: u32) -> u32 {
+    let n = particle_count.div_ceil(LIST_ENTRIES_PER_INVOCATION);
+    if n == 0 { 1 } else { n }
 }
 
 /// One kernel of the frame.
@@ -160,7 +190,7 @@ pub const INIT_PASS: KernelPass = KernelPass {
 };
 
 /// The kernels of one sub-step before the water's flow.
-const SUBSTEP_HEAD: [KernelPass; 4] = [
+const SUBSTEP_HEAD: [KernelPass; 5] = [
     KernelPass {
         program: Program::StepParticles,
         entry_point: "reset_births",
@@ -170,6 +200,11 @@ const SUBSTEP_HEAD: [KernelPass; 4] = [
         program: Program::StepParticles,
         entry_point: "step_particles",
         over: DispatchOver::Particles,
+    },
+    KernelPass {
+        program: Program::StepParticles,
+        entry_point: "wave_excite",
+        over: DispatchOver::ParticleList,
     },
     KernelPass {
         program: Program::StepParticles,
@@ -198,15 +233,32 @@ const FLOW_ITERATION: [KernelPass; 2] = [
     },
 ];
 
+/// The water bodies' waves, after the flow: the next heights, then the shift.
+const SUBSTEP_TAIL: [KernelPass; 2] = [
+    KernelPass {
+        program: Program::StepParticles,
+        entry_point: "wave_step",
+        over: DispatchOver::WaveCells,
+    },
+    KernelPass {
+        program: Program::StepParticles,
+        entry_point: "wave_shift",
+        over: DispatchOver::WaveCells,
+    },
+];
+
+/// Flow kernels a sub-step.
+const FLOW_KERNELS: usize = FLOW_ITERATION.len() * precip_cover::WATER_FLOW_ITERATIONS as usize;
+
 /// Kernels of one sub-step.
-pub const SUBSTEP_KERNELS: usize =
-    SUBSTEP_HEAD.len() + FLOW_ITERATION.len() * precip_cover::WATER_FLOW_ITERATIONS as usize;
+pub const SUBSTEP_KERNELS: usize = SUBSTEP_HEAD.len() + FLOW_KERNELS + SUBSTEP_TAIL.len();
 
 /// One sub-step, in order: the pending births are emptied, the particles move
-/// (listing those to re-birth, a landed one at its landing point), the listed ones
-/// deposit their water and are re-born, the cover takes the deposits (or the
-/// rate), melts, ages and wets, then standing water flows
-/// ([`precip_cover::WATER_FLOW_ITERATIONS`] iterations of two kernels). Sub-steps
+/// (listing those to re-birth, a landed one at its landing point), the landed ones
+/// strike the water bodies' waves, the listed ones deposit their water and are
+/// re-born (or splash), the cover takes the deposits (or the rate), melts, ages and
+/// wets, standing water flows ([`precip_cover::WATER_FLOW_ITERATIONS`] iterations of
+/// two kernels), and the waves advance ([`crate::water_waves`]). Sub-steps
 /// repeat this with their own uniform blocks (dynamic offsets).
 pub const SUBSTEP_PASSES: [KernelPass; SUBSTEP_KERNELS] = {
     let mut passes = [SUBSTEP_HEAD[0]; SUBSTEP_KERNELS];
@@ -214,8 +266,10 @@ pub const SUBSTEP_PASSES: [KernelPass; SUBSTEP_KERNELS] = {
     while k < SUBSTEP_KERNELS {
         passes[k] = if k < SUBSTEP_HEAD.len() {
             SUBSTEP_HEAD[k]
-        } else {
+        } else if k < SUBSTEP_HEAD.len() + FLOW_KERNELS {
             FLOW_ITERATION[(k - SUBSTEP_HEAD.len()) % FLOW_ITERATION.len()]
+        } else {
+            SUBSTEP_TAIL[k - SUBSTEP_HEAD.len() - FLOW_KERNELS]
         };
         k += 1;
     }
@@ -517,6 +571,9 @@ pub mod render_bindings {
     /// Group 2 of the splat kernel: the frame's [`super::FrameDraws`] (the splat
     /// list's count), read-only storage.
     pub const SPLAT_DRAWS: u32 = 6;
+    /// Group 0: the water bodies' waves (`array<i32>`, as
+    /// [`super::step_bindings::WAVES`]), read-only storage.
+    pub const WAVES: u32 = 12;
 }
 
 /// Vertex layout of the scene: position (3 × f32), normal (3 × f32), uv (2 × f32),
@@ -579,6 +636,9 @@ pub mod step_bindings {
     /// The pending births (a count, then `array<u32>` of particle indices:
     /// [`super::pending_births_bytes`]), read-write storage.
     pub const PENDING_BIRTHS: u32 = 7;
+    /// The water bodies' waves: `array<atomic<i32>>`,
+    /// [`crate::water_waves::WAVE_WORDS_PER_CELL`] a cell, read-write storage.
+    pub const WAVES: u32 = 8;
 }
 
 /// Bindings of [`Program::CoverUpdate`], group 0.

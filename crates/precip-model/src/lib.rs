@@ -57,6 +57,7 @@ pub mod tessellate;
 pub mod top_down;
 pub mod visibility;
 pub mod water_look;
+pub mod water_waves;
 pub mod weather;
 
 pub use backend::{

@@ -177,7 +177,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (368 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (400 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -211,11 +211,13 @@ pub struct RenderParams {
     pub ground: GridFrame,
     /// The cover grid.
     pub cover: GridFrame,
+    /// The water bodies' wave grid ([`crate::water_waves`]).
+    pub waves: GridFrame,
     /// Particle count, culling on (1/0), cull workgroups, the splat target's width in
     /// px (0: splat off).
     pub counts: UVec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 368);
+const _: () = assert!(size_of::<RenderParams>() == 400);
 
 /// The camera's world → clip matrix for a target of `aspect` (width / height).
 #[must_use]
@@ -283,6 +285,8 @@ pub struct FrameInputs<'a> {
     pub ground: GridFrame,
     /// Cover grid.
     pub cover: GridFrame,
+    /// The water bodies' wave grid.
+    pub waves: GridFrame,
     /// The scene's bounds `(lo, hi)`, m: the shadow map keeps every caster in them
     /// and spreads its texels over the part in view ([`crate::shadow_fit`]).
     pub shadow_bounds_m: (Vec3, Vec3),
@@ -296,7 +300,8 @@ pub struct FrameInputs<'a> {
 
 impl crate::Setup {
     /// The frame's uniform block for `view` under `weather` at `time_s`, the shadow map
-    /// enclosing `shadow_bounds_m`, for `particle_count` particles: what every GPU
+    /// enclosing `shadow_bounds_m`, for `particle_count` particles and the wave grid
+    /// `waves` (the one [`crate::Setup::frames`] gave at configure): what every GPU
     /// backend draws a frame of this setup with.
     #[must_use]
     pub fn render_params(
@@ -306,6 +311,7 @@ impl crate::Setup {
         shadow_bounds_m: (Vec3, Vec3),
         time_s: f64,
         particle_count: u32,
+        waves: GridFrame,
     ) -> RenderParams {
         RenderParams::new(&FrameInputs {
             view,
@@ -314,6 +320,7 @@ impl crate::Setup {
             cover_params: &self.cover.params,
             ground: self.ground.frame,
             cover: self.cover.frame,
+            waves,
             shadow_bounds_m,
             time_s: time_s as f32,
             particle_count,
@@ -381,6 +388,7 @@ impl RenderParams {
             ),
             ground: f.ground,
             cover: f.cover,
+            waves: f.waves,
             counts: UVec4::new(
                 f.particle_count,
                 u32::from(s.view_cone_culling),

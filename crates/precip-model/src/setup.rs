@@ -312,12 +312,18 @@ impl Setup {
         )
     }
 
-    /// The grids the particle kernels read.
+    /// The grids the particle kernels read (the wave grid over the cover texels
+    /// whose surface is water: computed here, once a configure).
     #[must_use]
     pub fn frames(&self) -> crate::gpu::Frames {
+        let cover = self.cover.frame;
+        let water = (0..cover.texel_count()).filter(|&i| {
+            self.ground.surface_at(cover.texel_centre(i)) == precip_cover::Surface::Water
+        });
         crate::gpu::Frames {
             ground: self.ground.frame,
-            cover: self.cover.frame,
+            cover,
+            waves: crate::water_waves::wave_frame_over(&cover, water),
         }
     }
 

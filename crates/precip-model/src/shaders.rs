@@ -43,6 +43,8 @@ pub const COVER: ShaderFile = shader_file!("cover.wgsl");
 pub const STEP_PARTICLES: ShaderFile = shader_file!("step_particles.wgsl");
 /// How water looks (Rust twin: `water_look`).
 pub const WATER_LOOK: ShaderFile = shader_file!("water_look.wgsl");
+/// Waves on water bodies (Rust twin: `water_waves`).
+pub const WATER_WAVES: ShaderFile = shader_file!("water_waves.wgsl");
 /// Splash droplets (Rust twin: `splash`).
 pub const SPLASH: ShaderFile = shader_file!("splash.wgsl");
 /// Kernel `cover_update`.
@@ -113,6 +115,7 @@ impl Program {
                 BIRTH,
                 SPLASH,
                 STEP_PARTICLES,
+                WATER_WAVES,
             ],
             Self::CoverUpdate => &[LAYOUT, DEPOSIT, COVER, COVER_UPDATE],
             Self::ProbeRng => &[RNG, PROBE_RNG],
@@ -149,6 +152,9 @@ impl Program {
                 "step_particles",
                 "birth_particles",
                 "init_particles",
+                "wave_excite",
+                "wave_step",
+                "wave_shift",
             ],
             Self::CoverUpdate => &["cover_update", "water_outflow", "water_inflow"],
             Self::ProbeRng => &["probe_rng"],

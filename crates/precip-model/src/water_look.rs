@@ -30,7 +30,9 @@
 //!   cell of [`RING_CELL_M`] on two offset lattices, struck at the rate of the
 //!   Marshall–Palmer flux of drops larger than 2 mm ([`ring_rate_per_m2_s`]),
 //!   capped at one ring a cell at a time (seed 004 bump-maps its ripples the same
-//!   way).
+//!   way). On water bodies they stand for the capillary waves finer than the
+//!   simulated height field's cells ([`crate::water_waves`]), whose slopes add to
+//!   theirs.
 
 use glam::{Vec2, Vec3};
 

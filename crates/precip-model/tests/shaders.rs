@@ -123,7 +123,11 @@ fn rust_and_wgsl_layouts_match() {
             texels,
             reserved
         }),
-        rust_layout!(Frames { ground, cover }),
+        rust_layout!(Frames {
+            ground,
+            cover,
+            waves
+        }),
         rust_layout!(WindParams {
             mean_wind_mps,
             gust_factor,
@@ -196,6 +200,7 @@ fn rust_and_wgsl_layouts_match() {
             water_look,
             ground,
             cover,
+            waves,
             counts
         }),
         rust_layout!(DrawArgs {

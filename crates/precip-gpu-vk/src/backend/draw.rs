@@ -152,6 +152,7 @@ impl VkBackend {
             render.shadow_bounds_m,
             state.time_s,
             state.resources.particle_count,
+            state.resources.wave_frame,
         );
         let draw_shadow =
             render

@@ -253,7 +253,7 @@ impl FrameResources {
             &[
                 (T::UNIFORM_BUFFER_DYNAMIC, 1),
                 (T::STORAGE_BUFFER_DYNAMIC, 2),
-                (T::STORAGE_BUFFER, 10 + 2 * FRAMES_IN_FLIGHT as u32),
+                (T::STORAGE_BUFFER, 11 + 2 * FRAMES_IN_FLIGHT as u32),
                 (T::SAMPLED_IMAGE, 4 + FRAMES_IN_FLIGHT as u32),
                 (T::SAMPLER, 3),
                 (T::STORAGE_IMAGE, 2),
@@ -291,6 +291,7 @@ impl FrameResources {
         let params_info = buffer_info(params, size_of::<RenderParams>() as u64);
         let (cover, ground, particles) =
             (whole(&sim.cover), whole(&sim.ground), whole(&sim.particles));
+        let waves = whole(&sim.waves);
         let (drawn_info, groups_info, draws_info, kinds_info) = (
             whole(drawn),
             whole(group_counts),
@@ -314,6 +315,7 @@ impl FrameResources {
             write(cover_texture_set, rb::COVER_A_OUT, T::STORAGE_IMAGE).image_info(&cover_a),
             write(cover_texture_set, rb::COVER_B_OUT, T::STORAGE_IMAGE).image_info(&cover_b),
             write(frame_set, rb::GROUND_HEIGHT, T::STORAGE_BUFFER).buffer_info(&ground),
+            write(frame_set, rb::WAVES, T::STORAGE_BUFFER).buffer_info(&waves),
             write(frame_set, rb::PARTICLES, T::STORAGE_BUFFER).buffer_info(&particles),
             write(frame_set, rb::DRAWN, T::STORAGE_BUFFER).buffer_info(&drawn_info),
             write(light_set, rb::SHADOW_MAP, T::SAMPLED_IMAGE).image_info(&shadow_image),

@@ -44,7 +44,7 @@ use precip_model::BackendError;
 use precip_model::bind_groups::{self as bg, GroupLayout, groups_of};
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 use precip_model::frame_recipe::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
-use precip_model::gpu::{DispatchOver, FRAME_PASSES, dispatch_size, list_invocations};
+use precip_model::gpu::{DispatchCounts, FRAME_PASSES, dispatch_size};
 use precip_model::shaders::Program;
 
 use self::frame::FrameResources;
@@ -422,14 +422,11 @@ pub unsafe fn record_frame(
                         entry,
                         layout,
                     );
-                    let (x, y) = match kernel.over {
-                        DispatchOver::OneWorkgroup => (1, 1),
-                        DispatchOver::CoverTexels => dispatch_size(frame.cover_texels),
-                        DispatchOver::Particles => dispatch_size(particle_count),
-                        DispatchOver::ParticleList => {
-                            dispatch_size(list_invocations(particle_count))
-                        }
-                    };
+                    let (x, y) = dispatch_size(kernel.over.invocations(DispatchCounts {
+                        particles: particle_count,
+                        cover_texels: frame.cover_texels,
+                        wave_cells: 0,
+                    }));
                     // SAFETY: `cb` is recording outside a render pass; the
                     // pipeline's sets are bound. Then its writes, to every later
                     // kernel, draw and indirect read of the frame.

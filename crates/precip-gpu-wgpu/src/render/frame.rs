@@ -190,6 +190,7 @@ impl FrameResources {
                 bind(rb::PARAMS, &params),
                 bind(rb::PARAMS_SWITCHES, &params),
                 bind(rb::GROUND_HEIGHT, &sim.ground),
+                bind(rb::WAVES, &sim.waves),
                 bind(rb::PARTICLES, &sim.particles),
                 bind(rb::DRAWN, &drawn),
                 view(rb::COVER_A, &cover_a),

@@ -52,7 +52,7 @@ use self::stamps::RenderStamps;
 use self::target::{ColourTarget, DepthBuffer};
 use precip_model::bind_groups::{self as bg, GroupLayout, groups_of};
 use precip_model::frame_recipe::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
-use precip_model::gpu::{DispatchOver, FRAME_PASSES, dispatch_size, list_invocations};
+use precip_model::gpu::{DispatchCounts, FRAME_PASSES, dispatch_size};
 use precip_model::shaders::Program;
 use precip_model::shadow_cache::ShadowCache;
 
@@ -235,14 +235,11 @@ pub fn encode_frame(
                     };
                     compute.set_pipeline(pipeline);
                     bind_groups!(compute, frame, depth, kernel.program, kernel.entry_point);
-                    let (x, y) = match kernel.over {
-                        DispatchOver::OneWorkgroup => (1, 1),
-                        DispatchOver::CoverTexels => dispatch_size(frame.cover_texels),
-                        DispatchOver::Particles => dispatch_size(particle_count),
-                        DispatchOver::ParticleList => {
-                            dispatch_size(list_invocations(particle_count))
-                        }
-                    };
+                    let (x, y) = dispatch_size(kernel.over.invocations(DispatchCounts {
+                        particles: particle_count,
+                        cover_texels: frame.cover_texels,
+                        wave_cells: 0,
+                    }));
                     compute.dispatch_workgroups(x, y, 1);
                 }
             }
