@@ -525,11 +525,11 @@ impl Resources {
     /// What the sub-step's dispatches run over.
     #[must_use]
     pub fn dispatch_counts(&self) -> DispatchCounts {
-        DispatchCounts {
-            particles: self.particle_count,
-            cover_texels: self.cover_texel_count,
-            wave_cells: self.wave_frame.texel_count() as u32,
-        }
+        DispatchCounts::of(
+            self.particle_count,
+            self.cover_texel_count,
+            &self.wave_frame,
+        )
     }
 
     /// Byte offset of in-flight slot `slot`'s ring of uniform blocks.

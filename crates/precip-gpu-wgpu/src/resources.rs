@@ -281,11 +281,11 @@ impl Resources {
     /// What the sub-step's dispatches run over.
     #[must_use]
     pub fn dispatch_counts(&self) -> DispatchCounts {
-        DispatchCounts {
-            particles: self.particle_count,
-            cover_texels: self.cover_texel_count,
-            wave_cells: self.wave_frame.texel_count() as u32,
-        }
+        DispatchCounts::of(
+            self.particle_count,
+            self.cover_texel_count,
+            &self.wave_frame,
+        )
     }
 
     /// Writes the wind's uniform block (mean wind changes without a re-bake).

@@ -128,6 +128,19 @@ pub struct DispatchCounts {
     pub wave_cells: u32,
 }
 
+impl DispatchCounts {
+    /// The counts of a configuration of `particles` particles, `cover_texels` cover
+    /// texels and the wave grid `waves`.
+    #[must_use]
+    pub fn of(particles: u32, cover_texels: u32, waves: &GridFrame) -> Self {
+        Self {
+            particles,
+            cover_texels,
+            wave_cells: u32::try_from(waves.texel_count()).unwrap_or(u32::MAX),
+        }
+    }
+}
+
 impl DispatchOver {
     /// Invocations of a dispatch over this (before rounding up to workgroups).
     #[must_use]
