@@ -58,6 +58,7 @@ fn quantized_meshopt_and_draco_files_load_as_the_demo() {
                 d.indices.len(),
                 "{name} mesh {i}: triangles"
             );
+            assert_eq!(m.surface, d.surface, "{name} mesh {i}: surface");
             let (a, b) = (area_m2(&scene, i), area_m2(&demo, i));
             assert!(
                 (a - b).abs() <= 0.005 * b + 1e-4,
