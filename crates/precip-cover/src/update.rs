@@ -402,6 +402,29 @@ mod tests {
         assert!(film.wetness.abs() < f32::MIN_POSITIVE && books_balance(&film));
     }
 
+    #[test]
+    fn snow_and_rain_on_a_water_body_join_it_and_build_no_cover() {
+        let pond = CoverTexel {
+            surface: Surface::Water as u32,
+            eligibility: 0.0,
+            ..eligible()
+        };
+        let t = update_texel(
+            pond,
+            CoverInput {
+                snow_mm: 3.0,
+                rain_mm: 1.0,
+                air_temperature_c: -2.0,
+                dt_days: 0.01,
+                ..CoverInput::default()
+            },
+            &CoverParams::default(),
+        );
+        assert!(t.swe_mm.abs() < f32::MIN_POSITIVE && t.depth_mm.abs() < f32::MIN_POSITIVE);
+        assert!(t.surface_water_mm().abs() < f32::MIN_POSITIVE);
+        assert!((t.runoff_mm - 4.0).abs() < 1e-6 && books_balance(&t));
+    }
+
     proptest! {
         #[test]
         fn water_is_conserved_and_never_negative(

@@ -5,3 +5,4 @@ mod common;
 mod determinism;
 mod mass_link;
 mod scene;
+mod splashes;
