@@ -1,6 +1,8 @@
 //! Helpers shared by the CPU backend's integration tests.
 
-use precip_model::cover::CoverGrid;
+use precip_model::cover::{CoverGrid, DepositBuffer};
+use precip_model::step::{StepInputs, StepParams};
+use precip_model::wind::WindVolume;
 use precip_model::{Backend, CpuBackend, Particle, Setup};
 
 /// A configured CPU backend.
@@ -26,5 +28,21 @@ pub fn cover_bytes(backend: &mut CpuBackend) -> Vec<u8> {
 pub fn run(backend: &mut CpuBackend, n: usize, dt: f32) {
     for _ in 0..n {
         backend.step(dt).expect("valid dt");
+    }
+}
+
+/// What `step_particle` reads for `setup`, with its block, wind and deposits.
+pub fn step_inputs<'a>(
+    setup: &'a Setup,
+    params: &'a StepParams,
+    wind: &'a WindVolume,
+    deposits: &'a DepositBuffer,
+) -> StepInputs<'a> {
+    StepInputs {
+        params,
+        wind,
+        ground: &setup.ground,
+        cover_frame: &setup.cover.frame,
+        deposits,
     }
 }

@@ -303,7 +303,7 @@ fn a_warm_spell_melts_the_cover_and_wets_the_ground() {
 #[test]
 fn landing_events_deposit_and_re_birth() {
     use precip_model::cover::DepositBuffer;
-    use precip_model::step::{StepInputs, step_particle};
+    use precip_model::step::step_particle;
     use precip_model::wind::WindVolume;
 
     let setup = Setup::over_flat_ground(10.0, 5, 5.0, 10);
@@ -311,13 +311,7 @@ fn landing_events_deposit_and_re_birth() {
     let params = setup.step_params(&weather, Vec3::ZERO, 0.05, 0.0);
     let wind = WindVolume::bake(&weather.wind, &setup.wind_volume).expect("valid");
     let deposits = DepositBuffer::new(setup.cover.frame.texel_count());
-    let inputs = StepInputs {
-        params: &params,
-        wind: &wind,
-        ground: &setup.ground,
-        cover_frame: &setup.cover.frame,
-        deposits: &deposits,
-    };
+    let inputs = common::step_inputs(&setup, &params, &wind, &deposits);
     let mut p = precip_model::birth::birth_on_emitter(3, 0, &params);
     p.position_m = Vec3::new(1.0, 0.01, 1.0);
     p.velocity_mps = Vec3::new(0.0, -1.0, 0.0);

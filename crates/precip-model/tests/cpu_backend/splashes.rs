@@ -1,12 +1,14 @@
 //! Splashes: as many as the landings of drops above Mundo's threshold, in the
 //! proportion the flux's size spectrum gives, and the same for the same seed.
 
+use crate::common;
+
 use glam::Vec3;
 use precip_model::cover::DepositBuffer;
 use precip_model::raindrop::{draw_raindrop_diameter_mm, raindrop_terminal_speed_mps};
 use precip_model::rng::particle_key;
 use precip_model::splash::{SPLASH_THRESHOLD_K, splash_number};
-use precip_model::step::{StepEvent, StepInputs, step_particle};
+use precip_model::step::{StepEvent, step_particle};
 use precip_model::wind::WindVolume;
 use precip_model::{Particle, PrecipitationKind, Setup, Weather};
 
@@ -30,13 +32,7 @@ fn run(seed: u32, steps: usize) -> (usize, usize, Vec<Particle>) {
     let (mut landed, mut splashed) = (0, 0);
     for k in 0..steps {
         let params = template.at(Vec3::ZERO, 0.05, k as f32 * 0.05);
-        let inputs = StepInputs {
-            params: &params,
-            wind: &wind,
-            ground: &setup.ground,
-            cover_frame: &setup.cover.frame,
-            deposits: &deposits,
-        };
+        let inputs = common::step_inputs(&setup, &params, &wind, &deposits);
         for (i, p) in particles.iter_mut().enumerate() {
             let (next, event) = step_particle(i as u32, p, &inputs);
             match event {
