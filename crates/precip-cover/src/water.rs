@@ -87,7 +87,8 @@ fn neighbour(frame: &GridFrame, index: usize, offset: (i64, i64)) -> Option<usiz
 pub const NEIGHBOURS: [(i64, i64); 4] = [(-1, 0), (1, 0), (0, -1), (0, 1)];
 
 /// The four outflows of texel `index` over one iteration of `tau_s` seconds, mm
-/// (WGSL twin: `water_outflow_of`).
+/// (WGSL twin: `water_outflow_of`). A texel or neighbour that `texels` lacks (a
+/// grid whose texels do not fit its frame) moves nothing.
 #[must_use]
 pub fn water_outflow_of(
     texels: &[CoverTexel],
@@ -95,7 +96,9 @@ pub fn water_outflow_of(
     index: usize,
     tau_s: f32,
 ) -> [f32; 4] {
-    let t = &texels[index];
+    let Some(t) = texels.get(index) else {
+        return [0.0; 4];
+    };
     let d_mm = t.standing_mm;
     if d_mm <= STILL_WATER_MM || Surface::from_raw(t.surface) == Surface::Water {
         return [0.0; 4];
@@ -110,17 +113,15 @@ pub fn water_outflow_of(
     let mut faces_down = 0u32;
     for (k, offset) in NEIGHBOURS.into_iter().enumerate() {
         let dx = if k < 2 { cell.x } else { cell.y };
-        let inside = neighbour(frame, index, offset);
+        let inside = neighbour(frame, index, offset).and_then(|j| texels.get(j));
         let (z_j, h_j) = match inside {
-            Some(j) => {
-                let o = &texels[j];
-                (o.ground_m, o.ground_m + o.standing_mm * 1.0e-3)
-            }
+            Some(o) => (o.ground_m, o.ground_m + o.standing_mm * 1.0e-3),
             // Free outflow: the ground beyond the edge continues the slope across
             // the edge texel, and holds no water.
             None => {
                 let opposite = neighbour(frame, index, (-offset.0, -offset.1))
-                    .map_or(z_i, |o| texels[o].ground_m);
+                    .and_then(|o| texels.get(o))
+                    .map_or(z_i, |o| o.ground_m);
                 let beyond = z_i.min(2.0 * z_i - opposite);
                 (beyond, beyond)
             }
@@ -160,14 +161,16 @@ pub fn water_outflow_of(
 /// (WGSL twin: `water_inflow_of`).
 #[must_use]
 pub fn water_inflow_of(texels: &[CoverTexel], frame: &GridFrame, index: usize) -> (f32, f32, f32) {
-    let mine = texels[index].outflow_mm;
+    let Some(mine) = texels.get(index).map(|t| t.outflow_mm) else {
+        return (0.0, 0.0, 0.0);
+    };
     let (mut out_inside, mut out_edge, mut inflow) = (0.0f32, 0.0f32, 0.0f32);
     for (k, offset) in NEIGHBOURS.into_iter().enumerate() {
-        match neighbour(frame, index, offset) {
-            Some(j) => {
+        match neighbour(frame, index, offset).and_then(|j| texels.get(j)) {
+            Some(o) => {
                 out_inside += mine[k];
                 // The neighbour's face toward me is the opposite one (k ^ 1).
-                inflow += texels[j].outflow_mm[k ^ 1];
+                inflow += o.outflow_mm[k ^ 1];
             }
             None => out_edge += mine[k],
         }
@@ -190,6 +193,28 @@ pub fn apply_flow(texel: &mut CoverTexel, (out_inside, out_edge, inflow): (f32, 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_grid_whose_texels_do_not_fit_its_frame_moves_nothing_and_never_panics() {
+        let frame = GridFrame::centred(
+            glam::Vec2::ZERO,
+            glam::Vec2::splat(4.0),
+            glam::UVec2::splat(4),
+        );
+        let texels = vec![
+            CoverTexel {
+                standing_mm: 5.0,
+                ground_m: 1.0,
+                ..CoverTexel::default()
+            };
+            3
+        ];
+        for i in 0..20 {
+            let _ = water_outflow_of(&texels, &frame, i, 10.0);
+            let _ = water_inflow_of(&texels, &frame, i);
+        }
+        assert_eq!(water_outflow_of(&texels, &frame, 7, 10.0), [0.0; 4]);
+    }
 
     #[test]
     fn evaporation_follows_temperature_wind_and_humidity() {

@@ -53,7 +53,6 @@ struct CoverTexel {
 }
 
 const COVER_FEED_PARTICLES: u32 = 1u;
-const WATER_DENSITY_KG_M3: f32 = 1000.0;
 const BARE_SWE_MM: f32 = 1.0e-6;
 const HOURS_PER_DAY: f32 = 24.0;
 

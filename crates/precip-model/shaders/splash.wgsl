@@ -10,9 +10,8 @@ const DRAW_SPLASH_SPEED: u32 = 107u;
 fn splash_number(diameter_m: f32, speed_mps: f32) -> f32 {
     let d = max(diameter_m, 0.0);
     let v = max(speed_mps, 0.0);
-    let weber = 1000.0 * d * v * v / 0.0728;
-    let reynolds = 1000.0 * d * v / 1.0e-3;
-    return sqrt(weber) * sqrt(sqrt(reynolds));
+    let reynolds = WATER_DENSITY_KG_M3 * d * v / VISCOSITY_PA_S;
+    return sqrt(weber_number(d, v)) * sqrt(sqrt(reynolds));
 }
 
 fn splashes(p: Particle) -> bool {

@@ -11,12 +11,6 @@ const WATER_ABSORPTION_PER_M: vec3<f32> = vec3<f32>(0.35, 0.06, 0.015);
 const DEEP_WATER_COLOUR: vec3<f32> = vec3<f32>(0.01, 0.035, 0.045);
 const TAU: f32 = 6.283185307;
 
-fn water_hash(input: u32) -> u32 {
-    let state = input * 747796405u + 2891336453u;
-    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
 fn fresnel_unpolarised(cos_incidence: f32, n: f32) -> f32 {
     let ci = clamp(cos_incidence, 0.0, 1.0);
     let si2 = max(1.0 - ci * ci, 0.0);
@@ -28,11 +22,6 @@ fn fresnel_unpolarised(cos_incidence: f32, n: f32) -> f32 {
 
 fn puddle_cover(puddle_ratio: f32) -> f32 {
     return smoothstep(0.5, 1.5, puddle_ratio);
-}
-
-fn ripple_phase_speed_mps(wavelength_m: f32) -> f32 {
-    let k = TAU / max(wavelength_m, 1.0e-4);
-    return sqrt(9.81 / k + 0.0728 * k / 1000.0);
 }
 
 fn ring_wave_slope(offset_m: vec2<f32>, age_s: f32) -> vec2<f32> {
@@ -58,7 +47,7 @@ fn ring_slope(xz_m: vec2<f32>, time_s: f32, rate_per_m2_s: f32) -> vec2<f32> {
     for (var layer = 0u; layer < 2u; layer += 1u) {
         let shifted = xz_m / RING_CELL_M + vec2<f32>(0.5 * f32(layer));
         let cell = floor(shifted);
-        let key = water_hash(water_hash(u32(i32(cell.x)) ^ (layer << 30u)) ^ u32(i32(cell.y)));
+        let key = pcg_hash(pcg_hash(u32(i32(cell.x)) ^ (layer << 30u)) ^ u32(i32(cell.y)));
         let phase = f32(key >> 8u) / 16777216.0;
         let t = time_s / period + phase;
         let cycle = u32(i32(floor(t)));
@@ -66,7 +55,7 @@ fn ring_slope(xz_m: vec2<f32>, time_s: f32, rate_per_m2_s: f32) -> vec2<f32> {
         if (age_s > RING_LIFE_S) {
             continue;
         }
-        let strike = water_hash(key ^ cycle);
+        let strike = pcg_hash(key ^ cycle);
         let centre = vec2<f32>(
             0.2 + 0.6 * (f32(strike & 0xffffu) / 65536.0),
             0.2 + 0.6 * (f32(strike >> 16u) / 65536.0),

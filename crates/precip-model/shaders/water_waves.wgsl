@@ -11,14 +11,11 @@ const WAVE_DAMPING_PER_S: f32 = 1.0;
 const WAVE_WORDS_PER_CELL: u32 = 4u;
 
 fn wave_speed_mps() -> f32 {
-    let k = 6.283185307 / (4.0 * WAVE_CELL_M);
-    return sqrt(9.81 / k + 0.0728 * k / 1000.0);
+    return ripple_phase_speed_mps(4.0 * WAVE_CELL_M);
 }
 
 fn crater_volume_m3(diameter_m: f32, speed_mps: f32) -> f32 {
-    let d = max(diameter_m, 0.0);
-    let weber = 1000.0 * d * speed_mps * speed_mps / 0.0728;
-    let crater = d * sqrt(sqrt(weber));
+    let crater = max(diameter_m, 0.0) * sqrt(sqrt(weber_number(diameter_m, speed_mps)));
     return 3.14159265 / 12.0 * crater * crater * crater;
 }
 

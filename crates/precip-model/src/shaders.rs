@@ -43,6 +43,8 @@ pub const COVER: ShaderFile = shader_file!("cover.wgsl");
 pub const STEP_PARTICLES: ShaderFile = shader_file!("step_particles.wgsl");
 /// How water looks (Rust twin: `water_look`).
 pub const WATER_LOOK: ShaderFile = shader_file!("water_look.wgsl");
+/// Water's constants, the Weber number and the ripples' phase speed.
+pub const WATER_PHYSICS: ShaderFile = shader_file!("water_physics.wgsl");
 /// Waves on water bodies (Rust twin: `water_waves`).
 pub const WATER_WAVES: ShaderFile = shader_file!("water_waves.wgsl");
 /// Splash droplets (Rust twin: `splash`).
@@ -113,14 +115,17 @@ impl Program {
                 GROUND,
                 DEPOSIT,
                 BIRTH,
+                WATER_PHYSICS,
                 SPLASH,
                 STEP_PARTICLES,
                 WATER_WAVES,
             ],
-            Self::CoverUpdate => &[LAYOUT, DEPOSIT, COVER, COVER_UPDATE],
+            Self::CoverUpdate => &[LAYOUT, DEPOSIT, WATER_PHYSICS, COVER, COVER_UPDATE],
             Self::ProbeRng => &[RNG, PROBE_RNG],
             Self::Render => &[
                 LAYOUT,
+                RNG,
+                WATER_PHYSICS,
                 COVER,
                 RENDER_LAYOUT,
                 DRAWING,

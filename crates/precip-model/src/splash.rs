@@ -27,16 +27,22 @@ use glam::Vec3;
 use crate::particle::{Particle, ParticleKind, flags};
 use crate::raindrop::{RAIN_DIAMETER_MIN_MM, raindrop_terminal_speed_mps};
 use crate::rng::{draw, particle_key, random_unit};
+use crate::snowflake::WATER_DENSITY_KG_M3;
 
 /// Mundo et al.'s splash threshold on `K = We^(1/2)·Re^(1/4)`.
 pub const SPLASH_THRESHOLD_K: f32 = 57.7;
 
-/// Density of water, kg/m³.
-const WATER_DENSITY_KG_M3: f32 = 1000.0;
-/// Surface tension of water, N/m.
-const SURFACE_TENSION_N_M: f32 = 0.0728;
-/// Dynamic viscosity of water, Pa·s.
-const VISCOSITY_PA_S: f32 = 1.0e-3;
+/// Surface tension of water (20 °C), N/m. WGSL: `water_physics.wgsl`.
+pub const SURFACE_TENSION_N_M: f32 = 0.0728;
+/// Dynamic viscosity of water (20 °C), Pa·s.
+pub const VISCOSITY_PA_S: f32 = 1.0e-3;
+
+/// The Weber number `We = ρ·D·v²/σ` of a drop of `diameter_m` at `speed_mps`
+/// (WGSL twin: `weber_number` in `water_physics.wgsl`).
+#[must_use]
+pub fn weber_number(diameter_m: f32, speed_mps: f32) -> f32 {
+    WATER_DENSITY_KG_M3 * diameter_m.max(0.0) * speed_mps * speed_mps / SURFACE_TENSION_N_M
+}
 
 /// Height above the surface a droplet starts at, m (clear of the landing test).
 pub const SPLASH_LIFT_M: f32 = 0.01;
@@ -46,9 +52,8 @@ pub const SPLASH_LIFT_M: f32 = 0.01;
 pub fn splash_number(diameter_m: f32, speed_mps: f32) -> f32 {
     let d = diameter_m.max(0.0);
     let v = speed_mps.max(0.0);
-    let weber = WATER_DENSITY_KG_M3 * d * v * v / SURFACE_TENSION_N_M;
     let reynolds = WATER_DENSITY_KG_M3 * d * v / VISCOSITY_PA_S;
-    weber.sqrt() * reynolds.sqrt().sqrt()
+    weber_number(d, v).sqrt() * reynolds.sqrt().sqrt()
 }
 
 /// Whether `particle`, striking a surface with its velocity, splashes: a raindrop,

@@ -84,11 +84,13 @@ pub fn puddle_cover(puddle_ratio: f32) -> f32 {
 }
 
 /// Phase speed of a deep-water capillary–gravity wave of `wavelength_m`, m/s:
-/// `c² = g/k + σk/ρ`, σ = 0.0728 N/m, ρ = 1000 kg/m³.
+/// `c² = g/k + σk/ρ`, σ = 0.0728 N/m, ρ = 1000 kg/m³ (WGSL twin in
+/// `water_physics.wgsl`).
 #[must_use]
 pub fn ripple_phase_speed_mps(wavelength_m: f32) -> f32 {
     let k = std::f32::consts::TAU / wavelength_m.max(1.0e-4);
-    (9.81 / k + 0.0728 * k / 1000.0).sqrt()
+    (9.81 / k + crate::splash::SURFACE_TENSION_N_M * k / crate::snowflake::WATER_DENSITY_KG_M3)
+        .sqrt()
 }
 
 /// Drops larger than 2 mm striking a square metre each second under rain of

@@ -104,7 +104,7 @@ pub fn initial_waves(frame: &GridFrame, ground: &crate::GroundMap) -> Vec<i32> {
 /// m³: a hemisphere of diameter `D·We^(1/4)`.
 #[must_use]
 pub fn crater_volume_m3(diameter_m: f32, speed_mps: f32) -> f32 {
-    let weber = 1000.0 * diameter_m.max(0.0) * speed_mps * speed_mps / 0.0728;
+    let weber = crate::splash::weber_number(diameter_m, speed_mps);
     let crater = diameter_m.max(0.0) * weber.sqrt().sqrt();
     std::f32::consts::PI / 12.0 * crater * crater * crater
 }
