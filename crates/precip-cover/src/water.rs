@@ -213,7 +213,11 @@ mod tests {
             let _ = water_outflow_of(&texels, &frame, i, 10.0);
             let _ = water_inflow_of(&texels, &frame, i);
         }
-        assert_eq!(water_outflow_of(&texels, &frame, 7, 10.0), [0.0; 4]);
+        assert!(
+            water_outflow_of(&texels, &frame, 7, 10.0)
+                .iter()
+                .all(|o| o.abs() < f32::MIN_POSITIVE)
+        );
     }
 
     #[test]
