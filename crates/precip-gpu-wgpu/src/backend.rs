@@ -558,17 +558,28 @@ impl Backend for WgpuBackend {
         Ok(Some(FrameDraws::counts(&bytes)))
     }
 
+    /// Precip's allocations and wgpu's fixed ones; not wgpu's indirect-call
+    /// validation pool, whose 1 MiB buffers wgpu adds while more frames are in flight
+    /// than it has buffers for and keeps for reuse (bounded by the frames in flight,
+    /// freed with the device): its size follows the host's timing, not our frames.
     fn device_memory(&self) -> Option<DeviceMemory> {
-        self.gpu
-            .device
-            .generate_allocator_report()
-            .map(|r| DeviceMemory {
-                allocations: r.allocations.len() as u64,
-                allocated_bytes: r.total_allocated_bytes,
+        self.gpu.device.generate_allocator_report().map(|r| {
+            let (allocations, allocated_bytes) = r
+                .allocations
+                .iter()
+                .filter(|a| !a.name.starts_with(WGPU_INDIRECT_VALIDATION_POOL))
+                .fold((0, 0), |(n, bytes), a| (n + 1, bytes + a.size));
+            DeviceMemory {
+                allocations,
+                allocated_bytes,
                 reserved_bytes: r.total_reserved_bytes,
-            })
+            }
+        })
     }
 }
+
+/// How wgpu names the buffers of its indirect-call validation pool.
+const WGPU_INDIRECT_VALIDATION_POOL: &str = "(wgpu internal) Indirect";
 
 /// A frame that cannot be drawn (a bug in precip): a typed error, never an `Ok` with
 /// nothing drawn.
