@@ -421,6 +421,108 @@ fn rain_gathers_in_a_dip_conserving_water_alike_on_every_backend() {
     }
 }
 
+/// Dry snow at 3 mm/h and −12 °C under a 14 m/s wind along +x over level ground of
+/// 1 m texels with a 2 m wall across it (one texel wide, x from −6 to −5 m), at an hour a second of cover time, fed at
+/// the weather's rate (particles only around the camera): every backend's cover
+/// gets the same snow and differs only by its arithmetic.
+fn snow_over_a_wall() -> Setup {
+    let mut s = rain_on_a_dip();
+    let frame = s.ground.frame;
+    let wall = |i: usize| (frame.texel_centre(i).x + 5.5).abs() < 0.1;
+    let n = frame.texel_count();
+    s.ground.height_m = (0..n).map(|i| if wall(i) { 2.0 } else { 0.0 }).collect();
+    s.ground.eligibility = (0..n).map(|i| if wall(i) { 0.0 } else { 1.0 }).collect();
+    s.ground.surface = vec![precip_model::cover::Surface::Grass; n];
+    s.weather = Weather {
+        kind: precip_model::PrecipitationKind::DrySnow,
+        intensity_mm_per_h: 3.0,
+        air_temperature_c: -12.0,
+        relative_humidity: 0.8,
+        wind: precip_model::wind::WindField {
+            mean_wind_mps: glam::Vec3::new(14.0, 0.0, 0.0),
+            ..precip_model::wind::WindField::calm()
+        },
+        ..Weather::default()
+    };
+    s
+}
+
+#[test]
+fn snow_drifts_behind_a_wall_alike_on_every_backend() {
+    let mut covers = Vec::new();
+    for mut s in all_subjects("drift") {
+        s.backend.configure(&snow_over_a_wall()).expect("configure");
+        for _ in 0..30 {
+            s.backend.step(0.1).expect("step");
+        }
+        let cover = s.backend.read_cover().expect("cover");
+        let totals = cover.totals();
+        let depth = |x: f32| cover.texel_at(x, 0.5).expect("on the grid").depth_mm;
+        let (lee, windward, open) = (depth(-4.5), depth(-6.5), depth(-15.5));
+        println!(
+            "{}: lee foot {lee:.0} mm, windward foot {windward:.0} mm, open {open:.0} mm; fallen {:.1} kg, drifted over the edges {:.1} kg, inside {:.2e} kg; steepest {:.1}°; imbalance {:.2e} kg",
+            s.name,
+            totals.deposited_kg,
+            totals.edge_drifted_kg,
+            totals.drifted_kg - totals.edge_drifted_kg,
+            cover.steepest_snow_slope_deg(),
+            totals.imbalance_kg()
+        );
+        assert!(lee > windward && lee > open, "{}: a lee drift", s.name);
+        assert!(totals.blowing_area_m2 > 0.0, "{}: snow is blowing", s.name);
+        assert!(
+            (totals.drifted_kg - totals.edge_drifted_kg).abs() < 1e-3 * totals.deposited_kg,
+            "{}: drift inside the grid makes or loses no snow: {totals:?}",
+            s.name
+        );
+        assert!(
+            totals.imbalance_kg().abs() < 1e-4 * totals.deposited_kg,
+            "{}: books: {totals:?}",
+            s.name
+        );
+        assert!(
+            cover.steepest_snow_slope_deg() <= 38.5,
+            "{}: no snow steeper than its repose",
+            s.name
+        );
+        s.check_clean("drift");
+        covers.push((s.name.clone(), cover));
+    }
+    // The same snow where the CPU reference has it, up to float rounding (which the
+    // threshold and the shelter can amplify in a texel or two: hence the totals
+    // tightly and texels loosely).
+    let (reference_name, reference) = &covers[0];
+    for (name, cover) in &covers[1..] {
+        let (a, b) = (reference.totals(), cover.totals());
+        for (what, x, y) in [
+            ("snow", a.swe_kg, b.swe_kg),
+            (
+                "drifted over the edges",
+                a.edge_drifted_kg,
+                b.edge_drifted_kg,
+            ),
+            ("snow volume", a.snow_volume_m3, b.snow_volume_m3),
+        ] {
+            assert!(
+                (x - y).abs() <= 0.01 * x.abs().max(y.abs()) + 1e-3,
+                "{name} vs {reference_name}: {what} {y} vs {x}"
+            );
+        }
+        let off = reference
+            .texels
+            .iter()
+            .zip(&cover.texels)
+            .filter(|(a, b)| {
+                (a.depth_mm - b.depth_mm).abs() > 0.05 * a.depth_mm.max(b.depth_mm) + 5.0
+            })
+            .count();
+        assert!(
+            off * 100 <= reference.texels.len(),
+            "{name} vs {reference_name}: {off} texels' depths differ"
+        );
+    }
+}
+
 #[test]
 fn raindrops_splash_alike_and_deterministically_on_every_backend() {
     let mut counts = Vec::new();

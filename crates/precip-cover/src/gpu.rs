@@ -2,6 +2,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
+use crate::drift::SNOW_DRIFT_ITERATIONS;
 use crate::frame::GridFrame;
 use crate::params::CoverParams;
 use crate::water::WATER_FLOW_ITERATIONS;
@@ -19,11 +20,14 @@ pub struct CoverAir {
     pub relative_humidity: f32,
     /// Mean wind speed near the ground, m/s.
     pub wind_speed_mps: f32,
+    /// The weather's mean wind at [`crate::blowing::WIND_REFERENCE_HEIGHT_M`], along
+    /// world x and z, m/s (blowing snow).
+    pub wind_mps: [f32; 2],
 }
 
 /// Everything one cover step needs besides the texels.
 ///
-/// WGSL twin: `CoverStepParams` in `shaders/cover.wgsl` (96 bytes).
+/// WGSL twin: `CoverStepParams` in `shaders/cover.wgsl` (128 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct CoverStepParams {
@@ -76,8 +80,23 @@ pub struct CoverStepParams {
     pub texel_count: u32,
     /// Texels along x.
     pub texels_x: u32,
+    /// Mean wind at 10 m along world x, m/s.
+    pub wind_x_mps: f32,
+    /// Mean wind at 10 m along world z, m/s.
+    pub wind_z_mps: f32,
+    /// Tangent of [`CoverParams::snow_repose_angle_deg`].
+    pub snow_repose_tan: f32,
+    /// One drift iteration, s of cover time (the step over
+    /// [`crate::drift::SNOW_DRIFT_ITERATIONS`]).
+    pub drift_iteration_s: f32,
+    /// The grid's corner of least x, m.
+    pub origin_x_m: f32,
+    /// The grid's corner of least z, m.
+    pub origin_z_m: f32,
+    /// Unused (`0`).
+    pub reserved: [u32; 2],
 }
-const _: () = assert!(size_of::<CoverStepParams>() == 96);
+const _: () = assert!(size_of::<CoverStepParams>() == 128);
 
 impl CoverStepParams {
     /// The block for one step of `dt_days` over the grid `frame`.
@@ -109,6 +128,13 @@ impl CoverStepParams {
             cell_z_m: cell.y,
             texel_count: frame.texel_count() as u32,
             texels_x: frame.texels.x,
+            wind_x_mps: air.wind_mps[0],
+            wind_z_mps: air.wind_mps[1],
+            snow_repose_tan: params.snow_repose_angle_deg.to_radians().tan(),
+            drift_iteration_s: dt_days * 86_400.0 / SNOW_DRIFT_ITERATIONS as f32,
+            origin_x_m: frame.origin_m.x,
+            origin_z_m: frame.origin_m.y,
+            reserved: [0; 2],
         }
     }
 
@@ -121,6 +147,7 @@ impl CoverStepParams {
             air_temperature_c: self.air_temperature_c,
             relative_humidity: self.relative_humidity,
             wind_speed_mps: self.wind_speed_mps,
+            wind_mps: [self.wind_x_mps, self.wind_z_mps],
         }
     }
 }

@@ -3,6 +3,9 @@
 use rayon::prelude::*;
 
 use crate::deposit::DepositBuffer;
+use crate::drift::{
+    SNOW_DRIFT_ITERATIONS, apply_drift, snow_inflow_of, snow_outflow_of, snow_wind_factor_of,
+};
 use crate::error::CoverError;
 use crate::frame::GridFrame;
 use crate::gpu::CoverAir;
@@ -12,7 +15,9 @@ use crate::shading::{CoverShading, shade_texel};
 use crate::surface::Surface;
 use crate::texel::{CoverFeed, CoverTexel};
 use crate::update::{CoverInput, update_texel};
-use crate::water::{WATER_FLOW_ITERATIONS, apply_flow, water_inflow_of, water_outflow_of};
+use crate::water::{
+    NEIGHBOURS, WATER_FLOW_ITERATIONS, apply_flow, neighbour, water_inflow_of, water_outflow_of,
+};
 
 /// The cover's water books over the whole grid, kg (mm × m²), summed in f64.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -36,6 +41,19 @@ pub struct CoverTotals {
     /// The flow's net inflow summed over the grid: zero up to rounding (what left
     /// over the edge is in `runoff_kg`).
     pub net_inflow_kg: f64,
+    /// Snow the wind brought over the grid's edges minus what it blew off them
+    /// (moves inside the grid sum to zero up to rounding).
+    pub drifted_kg: f64,
+    /// Of `drifted_kg`, what crossed the grid's edges (the rest sums to zero).
+    pub edge_drifted_kg: f64,
+    /// Area where snow is blowing (saltation in the last drift iteration), m².
+    pub blowing_area_m2: f64,
+    /// Area holding snow, m².
+    pub snow_area_m2: f64,
+    /// The deepest snow, mm.
+    pub max_snow_depth_mm: f64,
+    /// Snow volume, m³ (depth × area).
+    pub snow_volume_m3: f64,
     /// Area with a wet surface (wetness ≥ ½), m².
     pub wet_area_m2: f64,
     /// Area under puddles: standing water over the surface's texture
@@ -49,7 +67,7 @@ impl CoverTotals {
     /// `deposited + net inflow − (every column)`: zero up to rounding.
     #[must_use]
     pub fn imbalance_kg(&self) -> f64 {
-        self.deposited_kg + self.net_inflow_kg
+        self.deposited_kg + self.net_inflow_kg + self.drifted_kg
             - (self.swe_kg
                 + self.liquid_kg
                 + self.runoff_kg
@@ -63,6 +81,16 @@ impl CoverTotals {
     #[must_use]
     pub fn surface_water_kg(&self) -> f64 {
         self.film_kg + self.standing_kg
+    }
+
+    /// Mean snow depth over the grid, mm.
+    #[must_use]
+    pub fn mean_snow_depth_mm(&self) -> f64 {
+        if self.area_m2 > 0.0 {
+            self.snow_volume_m3 * 1.0e3 / self.area_m2
+        } else {
+            0.0
+        }
     }
 }
 
@@ -109,6 +137,7 @@ impl CoverGrid {
                 accumulation_mask: masks.accumulation[i],
                 melt_mask: masks.melt[i],
                 feed: feed[i] as u32,
+                wind_factor: 1.0,
                 ..CoverTexel::default()
             })
             .collect();
@@ -183,10 +212,82 @@ impl CoverGrid {
                 };
                 *texel = update_texel(*texel, input, params);
             });
+        self.drift_snow(air, dt_days, params);
         let iteration_s = dt_days * 86_400.0 / WATER_FLOW_ITERATIONS as f32;
         for _ in 0..WATER_FLOW_ITERATIONS {
             self.flow_water(iteration_s);
         }
+    }
+
+    /// Moves snow by the wind and by gravity over `dt_days` ([`crate::drift`]): every
+    /// texel's wind factor, then [`SNOW_DRIFT_ITERATIONS`] iterations of two passes
+    /// (the GPU's `snow_wind`, `snow_outflow` and `snow_inflow` kernels).
+    pub fn drift_snow(&mut self, air: CoverAir, dt_days: f32, params: &CoverParams) {
+        let frame = self.frame;
+        let wind = glam::Vec2::from(air.wind_mps);
+        let factors: Vec<f32> = (0..self.texels.len())
+            .into_par_iter()
+            .map(|i| snow_wind_factor_of(&self.texels, &frame, i, wind))
+            .collect();
+        for (t, f) in self.texels.iter_mut().zip(factors) {
+            t.wind_factor = f;
+        }
+        let tau_s = dt_days * 86_400.0 / SNOW_DRIFT_ITERATIONS as f32;
+        let repose_tan = params.snow_repose_angle_deg.to_radians().tan();
+        for _ in 0..SNOW_DRIFT_ITERATIONS {
+            let outflows: Vec<_> = (0..self.texels.len())
+                .into_par_iter()
+                .map(|i| {
+                    snow_outflow_of(
+                        &self.texels,
+                        &frame,
+                        i,
+                        wind,
+                        air.air_temperature_c,
+                        tau_s,
+                        repose_tan,
+                    )
+                })
+                .collect();
+            for (t, o) in self.texels.iter_mut().zip(outflows) {
+                t.outflow_mm = o.outflow_mm;
+                t.moving_density_kg_m3 = o.density_kg_m3;
+                t.saltation_kg_per_m_s = o.saltation_kg_per_m_s;
+            }
+            let exchanges: Vec<_> = (0..self.texels.len())
+                .into_par_iter()
+                .map(|i| {
+                    snow_inflow_of(&self.texels, &frame, i, wind, air.air_temperature_c, tau_s)
+                })
+                .collect();
+            for (t, e) in self.texels.iter_mut().zip(exchanges) {
+                apply_drift(t, e);
+            }
+        }
+    }
+
+    /// The steepest face of snow over the grid, degrees: over every texel with snow
+    /// and each neighbour, the rise of its surface above the higher of the
+    /// neighbour's surface and its own ground, over the texels' spacing (a drift
+    /// against a wall is measured by its own face, not the wall's).
+    #[must_use]
+    pub fn steepest_snow_slope_deg(&self) -> f32 {
+        let cell = self.frame.cell_m();
+        let mut steepest = 0.0f32;
+        for (i, t) in self.texels.iter().enumerate() {
+            if t.depth_mm <= 0.0 {
+                continue;
+            }
+            for (k, offset) in NEIGHBOURS.into_iter().enumerate() {
+                let dx = if k < 2 { cell.x } else { cell.y };
+                if let Some(o) = neighbour(&self.frame, i, offset).and_then(|j| self.texels.get(j))
+                {
+                    let rise = t.surface_m() - o.surface_m().max(t.ground_m);
+                    steepest = steepest.max(rise / dx);
+                }
+            }
+        }
+        steepest.atan().to_degrees()
     }
 
     /// One iteration of overland flow of `iteration_s` seconds: every texel's
@@ -228,6 +329,17 @@ impl CoverGrid {
             infiltrated_kg: acc.infiltrated_kg + kg(t.infiltrated_mm),
             evaporated_kg: acc.evaporated_kg + kg(t.evaporated_mm),
             net_inflow_kg: acc.net_inflow_kg + kg(t.net_inflow_mm),
+            drifted_kg: acc.drifted_kg + kg(t.drifted_mm),
+            edge_drifted_kg: acc.edge_drifted_kg + kg(t.edge_drifted_mm),
+            blowing_area_m2: acc.blowing_area_m2
+                + if t.saltation_kg_per_m_s > 0.0 {
+                    area
+                } else {
+                    0.0
+                },
+            snow_area_m2: acc.snow_area_m2 + if t.depth_mm > 0.0 { area } else { 0.0 },
+            max_snow_depth_mm: acc.max_snow_depth_mm.max(f64::from(t.depth_mm)),
+            snow_volume_m3: acc.snow_volume_m3 + f64::from(t.depth_mm) * 1.0e-3 * area,
             wet_area_m2: acc.wet_area_m2 + if t.wetness >= 0.5 { area } else { 0.0 },
             puddle_area_m2: acc.puddle_area_m2 + if t.puddle_ratio() >= 1.0 { area } else { 0.0 },
             area_m2: acc.area_m2,
@@ -263,6 +375,7 @@ mod tests {
             air_temperature_c: temperature,
             relative_humidity: 0.8,
             wind_speed_mps: 2.0,
+            wind_mps: [0.0, 0.0],
         }
     }
 

@@ -24,7 +24,9 @@
 //! (`A_M = T_M.g − A_S`, `M_M = T_M.r − M_S`) and wet darkening into the values a
 //! surface shader needs.
 
+pub mod blowing;
 mod deposit;
+pub mod drift;
 mod error;
 mod frame;
 mod gpu;
@@ -40,6 +42,7 @@ mod update;
 pub mod water;
 
 pub use deposit::{DEPOSIT_UNITS_PER_MM, DepositBuffer, deposit_units};
+pub use drift::SNOW_DRIFT_ITERATIONS;
 pub use error::CoverError;
 pub use frame::GridFrame;
 pub use gpu::{CoverAir, CoverStepParams};

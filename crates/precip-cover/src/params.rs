@@ -38,6 +38,10 @@ pub struct CoverParams {
     pub wetting_mm: f32,
     /// Width of the soft edge of mask patches, in mask units `(0, 1]`.
     pub mask_edge: f32,
+    /// The steepest a snow surface stands, degrees: steeper snow slides to the
+    /// neighbour below ([`crate::drift`]). 38° lies inside the 30–45° at which dry
+    /// slabs release (McClung & Schaerer, *The Avalanche Handbook*, 2006).
+    pub snow_repose_angle_deg: f32,
 }
 
 impl Default for CoverParams {
@@ -56,6 +60,7 @@ impl Default for CoverParams {
             wet_darkening: 0.4,
             wetting_mm: 1.0,
             mask_edge: 0.05,
+            snow_repose_angle_deg: 38.0,
         }
     }
 }
@@ -141,6 +146,13 @@ impl CoverParams {
             1.0e3,
             "[0.001, 1000] mm",
         )?;
-        check_range("mask_edge", self.mask_edge, 0.001, 1.0, "(0, 1]")
+        check_range("mask_edge", self.mask_edge, 0.001, 1.0, "(0, 1]")?;
+        check_range(
+            "snow_repose_angle_deg",
+            self.snow_repose_angle_deg,
+            10.0,
+            80.0,
+            "[10, 80] degrees",
+        )
     }
 }

@@ -28,9 +28,9 @@ impl CoverFeed {
 /// State of the snow cover and the surface water in one texel. Water amounts are mm
 /// of water (kg/m²).
 ///
-/// Books, at all times: `deposited_mm + net_inflow_mm = swe_mm + liquid_mm + film_mm
-/// + standing_mm + infiltrated_mm + evaporated_mm + runoff_mm`.
-/// WGSL twin: `CoverTexel` in `shaders/cover.wgsl` (96 bytes).
+/// Books, at all times: `deposited_mm + net_inflow_mm + drifted_mm = swe_mm +
+/// liquid_mm + film_mm + standing_mm + infiltrated_mm + evaporated_mm + runoff_mm`.
+/// WGSL twin: `CoverTexel` in `shaders/cover.wgsl` (128 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default, Pod, Zeroable)]
 pub struct CoverTexel {
@@ -76,15 +76,43 @@ pub struct CoverTexel {
     pub ground_m: f32,
     /// [`crate::Surface`] as `u32`.
     pub surface: u32,
-    /// Unused (`0`).
-    pub reserved: u32,
-    /// Standing water sent to the −x, +x, −z, +z neighbours in the last flow
-    /// iteration, mm (scratch of the flow's two passes).
+    /// Density of the snow this texel sent away in the last drift iteration, kg/m³
+    /// (scratch of the drift's two passes: the receivers' depth).
+    pub moving_density_kg_m3: f32,
+    /// Water (standing, in the flow's passes) or snow (SWE, in the drift's) sent to
+    /// the −x, +x, −z, +z neighbours in the last iteration, mm (scratch of each
+    /// pair of passes).
     pub outflow_mm: [f32; 4],
+    /// Snow that the wind and slides brought minus what they took, cumulative, mm
+    /// of water (over the grid: what crossed its edges).
+    pub drifted_mm: f32,
+    /// The wind's speed here over the weather's (speed-up over crests, shelter
+    /// behind obstacles; [`crate::drift`]), this step.
+    pub wind_factor: f32,
+    /// Snow carried in saltation from this texel in the last drift iteration,
+    /// kg/(m·s) (0: no blowing snow here).
+    pub saltation_kg_per_m_s: f32,
+    /// Of [`Self::drifted_mm`], what crossed the grid's edge here (in from beyond
+    /// an up-wind edge minus out over a down-wind one), cumulative, mm.
+    pub edge_drifted_mm: f32,
+    /// Unused (`0`).
+    pub reserved1: [u32; 4],
 }
-const _: () = assert!(size_of::<CoverTexel>() == 96);
+const _: () = assert!(size_of::<CoverTexel>() == 128);
 
 impl CoverTexel {
+    /// Height of the snow's (or the bare ground's) surface, m.
+    #[must_use]
+    pub fn surface_m(&self) -> f32 {
+        self.ground_m + self.depth_mm * 1.0e-3
+    }
+
+    /// Bulk density of the pack, kg/m³ (`None` without snow).
+    #[must_use]
+    pub fn snow_density_kg_m3(&self) -> Option<f32> {
+        (self.swe_mm > 0.0 && self.depth_mm > 0.0).then(|| self.swe_mm * 1000.0 / self.depth_mm)
+    }
+
     /// Water stored in the snow pack (frozen + liquid), mm.
     #[must_use]
     pub fn stored_mm(&self) -> f32 {
@@ -109,11 +137,11 @@ impl CoverTexel {
         }
     }
 
-    /// `deposited + net inflow − (every column)`: zero up to rounding, mm.
+    /// `deposited + net inflow + drifted − (every column)`: zero up to rounding, mm.
     #[must_use]
     pub fn imbalance_mm(&self) -> f64 {
         let f = f64::from;
-        f(self.deposited_mm) + f(self.net_inflow_mm)
+        f(self.deposited_mm) + f(self.net_inflow_mm) + f(self.drifted_mm)
             - (f(self.swe_mm)
                 + f(self.liquid_mm)
                 + f(self.film_mm)

@@ -74,7 +74,7 @@ pub fn evaporation_mm_per_day(
 }
 
 /// Texel index of `(i, j) + offset` on `frame`, or `None` off the grid.
-fn neighbour(frame: &GridFrame, index: usize, offset: (i64, i64)) -> Option<usize> {
+pub(crate) fn neighbour(frame: &GridFrame, index: usize, offset: (i64, i64)) -> Option<usize> {
     let nx = i64::from(frame.texels.x);
     let nz = i64::from(frame.texels.y);
     let (i, j) = (index as i64 % nx, index as i64 / nx);

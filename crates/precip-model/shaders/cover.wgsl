@@ -26,6 +26,13 @@ struct CoverStepParams {
     cell_z_m: f32,
     texel_count: u32,
     texels_x: u32,
+    wind_x_mps: f32,
+    wind_z_mps: f32,
+    snow_repose_tan: f32,
+    drift_iteration_s: f32,
+    origin_x_m: f32,
+    origin_z_m: f32,
+    reserved: vec2<u32>,
 }
 
 struct CoverTexel {
@@ -48,8 +55,13 @@ struct CoverTexel {
     net_inflow_mm: f32,
     ground_m: f32,
     surface: u32,
-    reserved: u32,
+    moving_density_kg_m3: f32,
     outflow_mm: vec4<f32>,
+    drifted_mm: f32,
+    wind_factor: f32,
+    saltation_kg_per_m_s: f32,
+    edge_drifted_mm: f32,
+    reserved1: vec4<u32>,
 }
 
 const COVER_FEED_PARTICLES: u32 = 1u;

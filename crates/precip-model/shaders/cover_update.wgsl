@@ -1,6 +1,8 @@
-// cover_update.wgsl: the cover kernel and the two kernels of an overland-flow
-// iteration. Rust twin: precip_cover::CoverGrid::{step, flow_water}.
-// Program: layout, deposit, cover, this file (precip_model::shaders::Program::CoverUpdate).
+// cover_update.wgsl: the cover kernel, the snow's drift (the wind factor, then two
+// kernels an iteration) and the two kernels of an overland-flow iteration. Rust
+// twin: precip_cover::CoverGrid::{step, drift_snow, flow_water}.
+// Program: layout, deposit, water physics, cover, blowing, this file
+// (precip_model::shaders::Program::CoverUpdate).
 
 @group(0) @binding(0) var<uniform> cover_params: CoverStepParams;
 @group(0) @binding(1) var<storage, read_write> cover: array<CoverTexel>;
@@ -136,6 +138,250 @@ fn water_inflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
         t.runoff_mm += inflow;
     } else {
         t.standing_mm = max(t.standing_mm + inflow - out_inside - out_edge, 0.0);
+    }
+    cover[i] = t;
+}
+
+// drift.rs: snow moved by the wind and by gravity.
+const SNOW_DRIFT_ITERATIONS: u32 = 8u;
+const WIND_PACKED_DENSITY_KG_M3: f32 = 300.0;
+const WAKE_LENGTH_RATIO: f32 = 12.0;
+const SHELTER_REACH_M: f32 = 60.0;
+const SHELTER_SAMPLES: u32 = 128u;
+const SHELTER_RELIEF_M: f32 = 0.3;
+const TERRAIN_SPAN_M: f32 = 3.0;
+const TERRAIN_SAMPLES: u32 = 16u;
+const FULL_CURVATURE: f32 = 0.05;
+const NO_SNOW_MM: f32 = 1.0e-6;
+
+fn texel_surface_m(t: CoverTexel) -> f32 {
+    return t.ground_m + t.depth_mm * 1.0e-3;
+}
+
+// The surface height at world xz: the nearest texel's (off the grid, the edge's).
+fn snow_surface_at(xz: vec2<f32>, fallback: f32) -> f32 {
+    let p = cover_params;
+    let texels = vec2<f32>(f32(p.texels_x), f32(p.texel_count / p.texels_x));
+    let t = (xz - vec2<f32>(p.origin_x_m, p.origin_z_m)) / vec2<f32>(p.cell_x_m, p.cell_z_m);
+    let cell = clamp(floor(t), vec2<f32>(0.0), max(texels - 1.0, vec2<f32>(0.0)));
+    let index = u32(cell.x) + p.texels_x * u32(cell.y);
+    if (index >= p.texel_count) {
+        return fallback;
+    }
+    return texel_surface_m(cover[index]);
+}
+
+fn cover_texel_centre(i: u32) -> vec2<f32> {
+    let p = cover_params;
+    let ij = vec2<f32>(f32(i % p.texels_x), f32(i / p.texels_x));
+    return vec2<f32>(p.origin_x_m, p.origin_z_m) + (ij + 0.5) * vec2<f32>(p.cell_x_m, p.cell_z_m);
+}
+
+fn snow_wind_factor_of(i: u32, wind_mps: vec2<f32>) -> f32 {
+    let speed = length(wind_mps);
+    if (speed <= 0.0) {
+        return 1.0;
+    }
+    let dir = wind_mps / speed;
+    let p = cover_texel_centre(i);
+    let h = texel_surface_m(cover[i]);
+    let cell = max(min(cover_params.cell_x_m, cover_params.cell_z_m), 1.0e-3);
+    let steps = clamp(u32(ceil(TERRAIN_SPAN_M / cell)), 1u, TERRAIN_SAMPLES);
+    var up = 0.0;
+    var down = 0.0;
+    for (var k = 1u; k <= steps; k += 1u) {
+        let d = TERRAIN_SPAN_M * f32(k) / f32(steps);
+        up += snow_surface_at(p - dir * d, h);
+        down += snow_surface_at(p + dir * d, h);
+    }
+    up /= f32(steps);
+    down /= f32(steps);
+    let reach = TERRAIN_SPAN_M * f32(steps + 1u) / f32(2u * steps);
+    let slope = clamp((h - up) / reach, -0.5, 0.5);
+    let curvature = clamp((h - 0.5 * (up + down)) / (2.0 * reach) / FULL_CURVATURE * 0.5, -0.5, 0.5);
+    let terrain = 1.0 + 0.5 * slope + 0.5 * curvature;
+    let samples = clamp(u32(ceil(SHELTER_REACH_M / cell)), 1u, SHELTER_SAMPLES);
+    let spacing = SHELTER_REACH_M / f32(samples);
+    var shelter = 0.0;
+    for (var k = 1u; k <= samples; k += 1u) {
+        let d = spacing * f32(k);
+        shelter = max(shelter, (snow_surface_at(p - dir * d, h) - h - SHELTER_RELIEF_M) / d);
+    }
+    let wake = WAKE_LENGTH_RATIO * shelter;
+    return terrain / (1.0 + wake * wake);
+}
+
+// Every texel's wind factor, once a step before the drift's iterations.
+@compute @workgroup_size(64)
+fn snow_wind(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= cover_params.texel_count) {
+        return;
+    }
+    let wind = vec2<f32>(cover_params.wind_x_mps, cover_params.wind_z_mps);
+    let factor = snow_wind_factor_of(i, wind);
+    cover[i].wind_factor = factor;
+}
+
+// Whether the wind blows out of a texel through face k (-x, +x, -z, +z), or
+// (outward == false) into it.
+fn faces_wind(k: u32, wind_mps: vec2<f32>, outward: bool) -> bool {
+    var component = wind_mps.y;
+    if (k < 2u) {
+        component = wind_mps.x;
+    }
+    if ((k % 2u == 0u) == outward) {
+        return component < 0.0;
+    }
+    return component > 0.0;
+}
+
+fn face_wind_component(k: u32, wind_mps: vec2<f32>) -> f32 {
+    if (k < 2u) {
+        return abs(wind_mps.x);
+    }
+    return abs(wind_mps.y);
+}
+
+fn face_spacing_m(k: u32, p: CoverStepParams) -> f32 {
+    if (k < 2u) {
+        return p.cell_x_m;
+    }
+    return p.cell_z_m;
+}
+
+// A drift iteration, first pass: every texel's outflows (its own fields only).
+@compute @workgroup_size(64)
+fn snow_outflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= cover_params.texel_count) {
+        return;
+    }
+    let p = cover_params;
+    let t = cover[i];
+    cover[i].outflow_mm = vec4<f32>(0.0);
+    cover[i].moving_density_kg_m3 = 0.0;
+    cover[i].saltation_kg_per_m_s = 0.0;
+    if (t.swe_mm <= NO_SNOW_MM || t.depth_mm <= 0.0) {
+        return;
+    }
+    let density = t.swe_mm * 1000.0 / t.depth_mm;
+    let wind_mps = vec2<f32>(p.wind_x_mps, p.wind_z_mps);
+    let speed = length(wind_mps);
+    let h_i = texel_surface_m(t);
+    let wet = t.liquid_mm > WET_SNOW_LIQUID_FRACTION * t.swe_mm;
+    let threshold = threshold_friction_velocity_mps(p.air_temperature_c, density, wet);
+    var flux = saltation_flux_kg_per_m_s(
+        friction_velocity_mps(speed * t.wind_factor),
+        threshold,
+        air_density_kg_m3(p.air_temperature_c),
+    );
+    var wind = vec4<f32>(0.0);
+    var excess = vec4<f32>(0.0);
+    var faces_down = 0u;
+    for (var k = 0u; k < 4u; k += 1u) {
+        let dx = face_spacing_m(k, p);
+        let j = neighbour_of(i, k, p);
+        if (faces_wind(k, wind_mps, true) && speed > 0.0) {
+            wind[k] = flux * face_wind_component(k, wind_mps) / speed * p.drift_iteration_s / dx;
+        }
+        if (j >= 0) {
+            let rest = max(texel_surface_m(cover[u32(j)]) + p.snow_repose_tan * dx, t.ground_m + 0.5 * p.snow_repose_tan * dx);
+            excess[k] = max(h_i - rest, 0.0);
+            if (excess[k] > 0.0) {
+                faces_down += 1u;
+            }
+        }
+    }
+    let share = 0.5 / f32(max(faces_down, 1u));
+    let slide = share * excess * density;
+    let wind_total = wind.x + wind.y + wind.z + wind.w;
+    let slide_total = slide.x + slide.y + slide.z + slide.w;
+    let total = wind_total + slide_total;
+    if (total <= 0.0) {
+        return;
+    }
+    let scale = min(t.swe_mm / total, 1.0);
+    flux *= scale;
+    let wind_density = max(density, WIND_PACKED_DENSITY_KG_M3);
+    let volume = wind_total / wind_density + slide_total / density;
+    cover[i].outflow_mm = (wind + slide) * scale;
+    cover[i].moving_density_kg_m3 = total / volume;
+    if (wind_total > 0.0) {
+        cover[i].saltation_kg_per_m_s = flux;
+    }
+}
+
+// Second pass: every texel sends its outflows and takes its neighbours' toward it
+// (precip_cover::drift::{snow_inflow_of, apply_drift}).
+@compute @workgroup_size(64)
+fn snow_inflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= cover_params.texel_count) {
+        return;
+    }
+    let p = cover_params;
+    var t = cover[i];
+    let wind_mps = vec2<f32>(p.wind_x_mps, p.wind_z_mps);
+    let speed = length(wind_mps);
+    var out_inside = 0.0;
+    var out_edge = 0.0;
+    var in_mm = 0.0;
+    var in_edge_mm = 0.0;
+    var in_depth_mm = 0.0;
+    for (var k = 0u; k < 4u; k += 1u) {
+        let j = neighbour_of(i, k, p);
+        if (j >= 0) {
+            out_inside += t.outflow_mm[k];
+            let o = cover[u32(j)];
+            let arriving = o.outflow_mm[k ^ 1u];
+            if (arriving > 0.0) {
+                in_mm += arriving;
+                in_depth_mm += arriving * 1000.0 / o.moving_density_kg_m3;
+            }
+        } else {
+            out_edge += t.outflow_mm[k];
+            if (faces_wind(k, wind_mps, false) && speed > 0.0 && t.saltation_kg_per_m_s > 0.0) {
+                let arriving = t.saltation_kg_per_m_s * face_wind_component(k, wind_mps) / speed
+                    * p.drift_iteration_s / face_spacing_m(k, p);
+                in_mm += arriving;
+                in_edge_mm += arriving;
+                in_depth_mm += arriving * 1000.0 / t.moving_density_kg_m3;
+            }
+        }
+    }
+    let out = out_inside + out_edge;
+    if (out > 0.0 && t.swe_mm > 0.0) {
+        t.depth_mm = max(t.depth_mm * (1.0 - out / t.swe_mm), 0.0);
+        t.swe_mm = max(t.swe_mm - out, 0.0);
+        t.peak_swe_mm = max(t.peak_swe_mm - out, t.swe_mm);
+    }
+    // Snow passes on where the wind here lifts fresh wind-packed snow, even where
+    // none may lie; elsewhere the eligible share stays and the rest melts.
+    var eligibility = clamp(t.eligibility, 0.0, 1.0);
+    let in_transit = friction_velocity_mps(speed * t.wind_factor)
+        > threshold_friction_velocity_mps(p.air_temperature_c, WIND_PACKED_DENSITY_KG_M3, false);
+    if (in_transit) {
+        eligibility = 1.0;
+    }
+    let kept = in_mm * eligibility;
+    if (kept > 0.0) {
+        let swe = t.swe_mm + kept;
+        t.age_days *= t.swe_mm / swe;
+        t.swe_mm = swe;
+        t.depth_mm += in_depth_mm * eligibility;
+        t.peak_swe_mm += kept;
+    }
+    let melted = in_mm - kept;
+    if (t.surface == SURFACE_WATER) {
+        t.runoff_mm += melted;
+    } else {
+        t.standing_mm += melted;
+    }
+    t.drifted_mm += in_mm - out;
+    t.edge_drifted_mm += in_edge_mm - out_edge;
+    if (t.swe_mm <= NO_SNOW_MM) {
+        t.depth_mm = 0.0;
     }
     cover[i] = t;
 }

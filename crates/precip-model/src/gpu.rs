@@ -202,8 +202,8 @@ pub const INIT_PASS: KernelPass = KernelPass {
     over: DispatchOver::Particles,
 };
 
-/// The kernels of one sub-step before the water's flow.
-const SUBSTEP_HEAD: [KernelPass; 5] = [
+/// The kernels of one sub-step before the snow's drift.
+const SUBSTEP_HEAD: [KernelPass; 6] = [
     KernelPass {
         program: Program::StepParticles,
         entry_point: "reset_births",
@@ -227,6 +227,26 @@ const SUBSTEP_HEAD: [KernelPass; 5] = [
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "cover_update",
+        over: DispatchOver::CoverTexels,
+    },
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "snow_wind",
+        over: DispatchOver::CoverTexels,
+    },
+];
+
+/// One iteration of the snow's drift: every texel's outflows, then every texel's
+/// exchange ([`precip_cover::drift`]).
+const DRIFT_ITERATION: [KernelPass; 2] = [
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "snow_outflow",
+        over: DispatchOver::CoverTexels,
+    },
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "snow_inflow",
         over: DispatchOver::CoverTexels,
     },
 ];
@@ -260,29 +280,38 @@ const SUBSTEP_TAIL: [KernelPass; 2] = [
     },
 ];
 
+/// Drift kernels a sub-step.
+const DRIFT_KERNELS: usize = DRIFT_ITERATION.len() * precip_cover::SNOW_DRIFT_ITERATIONS as usize;
+
 /// Flow kernels a sub-step.
 const FLOW_KERNELS: usize = FLOW_ITERATION.len() * precip_cover::WATER_FLOW_ITERATIONS as usize;
 
 /// Kernels of one sub-step.
-pub const SUBSTEP_KERNELS: usize = SUBSTEP_HEAD.len() + FLOW_KERNELS + SUBSTEP_TAIL.len();
+pub const SUBSTEP_KERNELS: usize =
+    SUBSTEP_HEAD.len() + DRIFT_KERNELS + FLOW_KERNELS + SUBSTEP_TAIL.len();
 
 /// One sub-step, in order: the pending births are emptied, the particles move
 /// (listing those to re-birth, a landed one at its landing point), the landed ones
 /// strike the water bodies' waves, the listed ones deposit their water and are
 /// re-born (or splash), the cover takes the deposits (or the rate), melts, ages and
-/// wets, standing water flows ([`precip_cover::WATER_FLOW_ITERATIONS`] iterations of
-/// two kernels), and the waves advance ([`crate::water_waves`]). Sub-steps
-/// repeat this with their own uniform blocks (dynamic offsets).
+/// wets, the wind's factor over the ground is read, snow drifts and slides
+/// ([`precip_cover::SNOW_DRIFT_ITERATIONS`] iterations of two kernels), standing
+/// water flows ([`precip_cover::WATER_FLOW_ITERATIONS`] iterations of two kernels),
+/// and the waves advance ([`crate::water_waves`]). Sub-steps repeat this with their
+/// own uniform blocks (dynamic offsets).
 pub const SUBSTEP_PASSES: [KernelPass; SUBSTEP_KERNELS] = {
     let mut passes = [SUBSTEP_HEAD[0]; SUBSTEP_KERNELS];
+    let head = SUBSTEP_HEAD.len();
     let mut k = 0;
     while k < SUBSTEP_KERNELS {
-        passes[k] = if k < SUBSTEP_HEAD.len() {
+        passes[k] = if k < head {
             SUBSTEP_HEAD[k]
-        } else if k < SUBSTEP_HEAD.len() + FLOW_KERNELS {
-            FLOW_ITERATION[(k - SUBSTEP_HEAD.len()) % FLOW_ITERATION.len()]
+        } else if k < head + DRIFT_KERNELS {
+            DRIFT_ITERATION[(k - head) % DRIFT_ITERATION.len()]
+        } else if k < head + DRIFT_KERNELS + FLOW_KERNELS {
+            FLOW_ITERATION[(k - head - DRIFT_KERNELS) % FLOW_ITERATION.len()]
         } else {
-            SUBSTEP_TAIL[k - SUBSTEP_HEAD.len() - FLOW_KERNELS]
+            SUBSTEP_TAIL[k - head - DRIFT_KERNELS - FLOW_KERNELS]
         };
         k += 1;
     }

@@ -306,6 +306,7 @@ impl Setup {
                 air_temperature_c: weather.air_temperature_c,
                 relative_humidity: weather.relative_humidity,
                 wind_speed_mps: weather.ground_wind_speed_mps(),
+                wind_mps: [weather.wind.mean_wind_mps.x, weather.wind.mean_wind_mps.z],
             },
             dt_s * self.cover.time_scale / SECONDS_PER_DAY,
             &self.cover.frame,

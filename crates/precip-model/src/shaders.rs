@@ -50,6 +50,11 @@ pub const WATER_WAVES: ShaderFile = shader_file!("water_waves.wgsl");
 /// Splash droplets (Rust twin: `splash`).
 pub const SPLASH: ShaderFile = shader_file!("splash.wgsl");
 /// Kernel `cover_update`.
+/// When the wind lifts snow and how much it carries (Rust twin:
+/// `precip_cover::blowing`).
+pub const BLOWING: ShaderFile = shader_file!("blowing.wgsl");
+/// Kernels `cover_update`, `snow_wind`, `snow_outflow`, `snow_inflow`,
+/// `water_outflow`, `water_inflow`.
 pub const COVER_UPDATE: ShaderFile = shader_file!("cover_update.wgsl");
 /// Test kernel `probe_rng`.
 pub const PROBE_RNG: ShaderFile = shader_file!("probe_rng.wgsl");
@@ -120,7 +125,7 @@ impl Program {
                 STEP_PARTICLES,
                 WATER_WAVES,
             ],
-            Self::CoverUpdate => &[LAYOUT, DEPOSIT, WATER_PHYSICS, COVER, COVER_UPDATE],
+            Self::CoverUpdate => &[LAYOUT, DEPOSIT, WATER_PHYSICS, COVER, BLOWING, COVER_UPDATE],
             Self::ProbeRng => &[RNG, PROBE_RNG],
             Self::Render => &[
                 LAYOUT,
@@ -161,7 +166,14 @@ impl Program {
                 "wave_step",
                 "wave_shift",
             ],
-            Self::CoverUpdate => &["cover_update", "water_outflow", "water_inflow"],
+            Self::CoverUpdate => &[
+                "cover_update",
+                "snow_wind",
+                "snow_outflow",
+                "snow_inflow",
+                "water_outflow",
+                "water_inflow",
+            ],
             Self::ProbeRng => &["probe_rng"],
             Self::Render => &[
                 "vs_shadow",

@@ -160,7 +160,14 @@ fn rust_and_wgsl_layouts_match() {
             cell_x_m,
             cell_z_m,
             texel_count,
-            texels_x
+            texels_x,
+            wind_x_mps,
+            wind_z_mps,
+            snow_repose_tan,
+            drift_iteration_s,
+            origin_x_m,
+            origin_z_m,
+            reserved
         }),
         rust_layout!(CoverTexel {
             swe_mm,
@@ -182,8 +189,13 @@ fn rust_and_wgsl_layouts_match() {
             net_inflow_mm,
             ground_m,
             surface,
-            reserved,
-            outflow_mm
+            moving_density_kg_m3,
+            outflow_mm,
+            drifted_mm,
+            wind_factor,
+            saltation_kg_per_m_s,
+            edge_drifted_mm,
+            reserved1
         }),
         rust_layout!(RenderParams {
             view_proj,
