@@ -439,10 +439,9 @@ fn snow_over_a_wall() -> Setup {
         air_temperature_c: -12.0,
         relative_humidity: 0.8,
         wind: precip_model::wind::WindField {
-            mean_wind_mps: glam::Vec3::new(14.0, 0.0, 0.0),
+            mean_wind_mps: Vec3::new(14.0, 0.0, 0.0),
             ..precip_model::wind::WindField::calm()
         },
-        ..Weather::default()
     };
     s
 }

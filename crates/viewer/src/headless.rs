@@ -29,6 +29,8 @@ pub struct Summary {
     pub max_depth_mm: f32,
     /// The water on the surfaces: films, puddles, where the water went.
     pub water: crate::water_summary::WaterSummary,
+    /// The snow: depths, the steepest face, blowing snow.
+    pub snow: crate::snow_summary::SnowSummary,
     /// The PNGs.
     pub files: Vec<PathBuf>,
 }
@@ -128,6 +130,7 @@ pub fn run_headless(
         cover_water_mm: water,
         max_depth_mm,
         water: crate::water_summary::WaterSummary::of(&cover),
+        snow: crate::snow_summary::SnowSummary::of(&cover),
         files,
     })
 }

@@ -19,6 +19,7 @@ pub mod meshopt_views;
 pub mod node_graph;
 pub mod presets;
 pub mod scene_setup;
+pub mod snow_summary;
 pub mod water_summary;
 pub mod window;
 

@@ -302,6 +302,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         summary.max_depth_mm,
         summary.water.describe()
     );
+    println!("{}", summary.snow.describe());
     println!("{}", summary.water.describe_books());
     if let Some(passes) = summary.stats.describe_passes() {
         println!("{passes}");

@@ -63,8 +63,9 @@ impl WaterSummary {
     pub fn describe_books(&self) -> String {
         let t = &self.totals;
         format!(
-            "water landed {:.0} kg = snow {:.0} + held {:.0} + films {:.0} + standing {:.0} + infiltrated {:.0} + evaporated {:.0} + run off {:.0} (imbalance {:.2e} kg)",
+            "water landed {:.0} kg + drifted in over the edges {:.0} kg = snow {:.0} + held {:.0} + films {:.0} + standing {:.0} + infiltrated {:.0} + evaporated {:.0} + run off {:.0} (imbalance {:.2e} kg)",
             t.deposited_kg,
+            t.drifted_kg,
             t.swe_kg,
             t.liquid_kg,
             t.film_kg,

@@ -25,6 +25,7 @@ use winit::window::{Window, WindowId};
 use crate::BackendName;
 use crate::fly_camera::FlyCamera;
 use crate::frame_stats::FrameStats;
+use crate::snow_summary::SnowSummary;
 use crate::water_summary::WaterSummary;
 
 /// Why the window could not run.
@@ -136,6 +137,8 @@ struct Running {
     stats: FrameStats,
     /// The water on the surfaces, sampled every [`WaterSummary::EVERY_FRAMES`].
     water: Option<WaterSummary>,
+    /// The snow, sampled with the water.
+    snow: Option<SnowSummary>,
 }
 
 struct App {
@@ -158,8 +161,13 @@ fn title(r: &Running) -> String {
         .water
         .map(|s| format!(" — {}", s.describe()))
         .unwrap_or_default();
+    let blowing = r
+        .snow
+        .filter(SnowSummary::blowing)
+        .map(|s| format!(" — BLOWING SNOW over {:.0} m²", s.blowing_area_m2))
+        .unwrap_or_default();
     format!(
-        "precip — {:.1} ms/frame, {} particles — {:?} {:.1} mm/h, {:.1} °C, wind {:.1} m/s, cover ×{:.0}{water}",
+        "precip — {:.1} ms/frame, {} particles — {:?} {:.1} mm/h, {:.1} °C, wind {:.1} m/s, cover ×{:.0}{blowing}{water}",
         r.frame_ms,
         r.particles,
         w.kind,
@@ -212,6 +220,7 @@ impl App {
             started: Instant::now(),
             stats: FrameStats::default(),
             water: None,
+            snow: None,
         })
     }
 }
@@ -341,6 +350,7 @@ impl Running {
         if self.frames.is_multiple_of(WaterSummary::EVERY_FRAMES) {
             let cover = self.presenter.backend().read_cover()?;
             self.water = Some(WaterSummary::of(&cover));
+            self.snow = Some(SnowSummary::of(&cover));
         }
         self.window.set_title(&title(self));
         Ok(())

@@ -1,0 +1,88 @@
+//! What the snow has done on the scene, in a line: the headless summary and the
+//! window's title (sampled with [`crate::water_summary::WaterSummary`]) report it from
+//! the cover read back.
+
+use precip_model::cover::CoverGrid;
+
+/// The snow on the scene's surfaces.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SnowSummary {
+    /// Mean snow depth over the grid, mm.
+    pub mean_depth_mm: f64,
+    /// The deepest snow, mm.
+    pub deepest_mm: f64,
+    /// The steepest face of snow, degrees
+    /// ([`CoverGrid::steepest_snow_slope_deg`]).
+    pub steepest_deg: f32,
+    /// Area where snow is blowing, m².
+    pub blowing_area_m2: f64,
+    /// Snow the wind brought over the grid's edges minus what it blew off, kg.
+    pub drifted_in_kg: f64,
+}
+
+impl SnowSummary {
+    /// From a cover read back.
+    #[must_use]
+    pub fn of(cover: &CoverGrid) -> Self {
+        let totals = cover.totals();
+        Self {
+            mean_depth_mm: totals.mean_snow_depth_mm(),
+            deepest_mm: totals.max_snow_depth_mm,
+            steepest_deg: cover.steepest_snow_slope_deg(),
+            blowing_area_m2: totals.blowing_area_m2,
+            drifted_in_kg: totals.edge_drifted_kg,
+        }
+    }
+
+    /// Whether the wind lifts snow anywhere.
+    #[must_use]
+    pub fn blowing(&self) -> bool {
+        self.blowing_area_m2 > 0.0
+    }
+
+    /// In words, for a title or a summary line.
+    #[must_use]
+    pub fn describe(&self) -> String {
+        let blowing = if self.blowing() {
+            format!(", blowing snow over {:.0} m²", self.blowing_area_m2)
+        } else {
+            String::new()
+        };
+        format!(
+            "snow {:.0} mm deep on average, deepest {:.0} mm, steepest face {:.1}°{blowing}",
+            self.mean_depth_mm, self.deepest_mm, self.steepest_deg
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use precip_model::cover::{
+        CoverFeed, CoverGrid, CoverTexel, GridFrame, generate_threshold_masks,
+    };
+
+    use super::*;
+
+    #[test]
+    fn it_reads_depths_slopes_and_blowing_snow() {
+        let frame = GridFrame::centred(
+            glam::Vec2::ZERO,
+            glam::Vec2::splat(4.0),
+            glam::UVec2::splat(4),
+        );
+        let masks = generate_threshold_masks(&frame, 0, 4.0);
+        let mut cover =
+            CoverGrid::new(frame, &[1.0; 16], &masks, &[CoverFeed::Particles; 16]).expect("grid");
+        cover.texels[5] = CoverTexel {
+            swe_mm: 100.0,
+            depth_mm: 400.0,
+            saltation_kg_per_m_s: 0.01,
+            ..cover.texels[5]
+        };
+        let s = SnowSummary::of(&cover);
+        assert!((s.mean_depth_mm - 25.0).abs() < 1e-3, "{s:?}");
+        assert!((s.deepest_mm - 400.0).abs() < 1e-3);
+        assert!((s.steepest_deg - 0.4f32.atan().to_degrees()).abs() < 1e-2);
+        assert!(s.blowing() && s.describe().contains("blowing snow over 1 m²"));
+    }
+}
