@@ -64,19 +64,40 @@ fn newborn(position_m: vec3<f32>, velocity_mps: vec3<f32>, species: Species, rot
     return p;
 }
 
-fn birth_on_emitter(index: u32, generation: u32) -> Particle {
-    let key = particle_key(step_params.seed, index, generation);
+// Rust: fall_drift_m (the mean wind's drift of a steady fall to the ground).
+fn fall_drift_m(height_m: f32, ground_m: f32, terminal_speed_mps: f32) -> vec3<f32> {
+    let fall_s = max(height_m - ground_m, 0.0) / max(terminal_speed_mps, 1.0e-3);
+    return vec3<f32>(step_params.mean_wind_mps.x, 0.0, step_params.mean_wind_mps.z) * fall_s;
+}
+
+// The ground under world xz, the floor off the map.
+fn ground_or_floor_m(xz_m: vec2<f32>) -> f32 {
+    let g = ground_height_at(xz_m);
+    return select(step_params.ground_floor_m, g.y, g.x > 0.0);
+}
+
+// The point on the emitter that a particle is aimed at.
+fn emitter_aim_m(key: u32) -> vec3<f32> {
     let ocs = vec3<f32>(
         step_params.emitter_size_m.x * centred(key, DRAW_POSITION_U),
         step_params.emitter_size_m.y * centred(key, DRAW_POSITION_V),
         0.0,
     );
+    return (step_params.emitter_model * vec4<f32>(ocs, 1.0)).xyz;
+}
+
+// Rust: birth_on_emitter (aimed: born up-wind of its point by its own fall's drift).
+fn birth_on_emitter(index: u32, generation: u32) -> Particle {
+    let key = particle_key(step_params.seed, index, generation);
     let velocity = step_params.emitter_velocity_mps
         + centred3(key, DRAW_VELOCITY_X) * (2.0 * step_params.emitter_velocity_spread_mps);
+    let species = draw_species(key);
+    let aim = emitter_aim_m(key);
+    let ground_m = ground_or_floor_m(vec2<f32>(aim.x, aim.z));
     return newborn(
-        (step_params.emitter_model * vec4<f32>(ocs, 1.0)).xyz,
+        aim - fall_drift_m(aim.y, ground_m, species.terminal_speed_mps),
         velocity,
-        draw_species(key),
+        species,
         draw_rotation(key, step_params.world_rotation.x),
         generation,
         false,
@@ -128,8 +149,9 @@ fn initial_particle(index: u32) -> Particle {
     let key = particle_key(step_params.seed, index, 0u);
     if (index < step_params.world_count) {
         var p = birth_on_emitter(index, 0u);
-        let ground = ground_height_at(vec2<f32>(p.position_m.x, p.position_m.z));
-        let ground_m = select(step_params.ground_floor_m, ground.y, ground.x > 0.0);
+        // Down to the ground where it is aimed, under the emitter's point.
+        let aim = emitter_aim_m(key);
+        let ground_m = ground_or_floor_m(vec2<f32>(aim.x, aim.z));
         let fall_s = min(max(p.position_m.y - ground_m, 0.0) / p.terminal_speed_mps, step_params.emitter_life_time_s);
         let age = random_unit(key, DRAW_PREWARM) * fall_s;
         p.velocity_mps = step_params.mean_wind_mps - vec3<f32>(0.0, 1.0, 0.0) * p.terminal_speed_mps;

@@ -64,7 +64,7 @@ fn step_in_camera_volume(index: u32, generation: u32, moved: Particle) -> Partic
 
 fn step_particle(index: u32, particle: Particle) -> Particle {
     let dt = step_params.dt_s;
-    let wind_mps = wind_velocity_at(particle.position_m, step_params.time_s);
+    let wind_mps = terrain_following_wind(wind_velocity_at(particle.position_m, step_params.time_s), particle.position_m);
     let velocity = drag_velocity(particle.velocity_mps, wind_mps, particle.terminal_speed_mps, dt);
     let position = particle.position_m + (particle.velocity_mps + velocity) * (0.5 * dt);
 

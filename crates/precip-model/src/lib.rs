@@ -53,6 +53,7 @@ pub mod snowfall;
 pub mod snowflake;
 pub mod splash;
 pub mod step;
+pub mod terrain_flow;
 pub mod tessellate;
 pub mod top_down;
 pub mod visibility;

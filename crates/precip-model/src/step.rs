@@ -4,7 +4,8 @@
 //!
 //! ## Order within a step
 //!
-//! 1. Wind sampled at the old position and time; velocity by [`drag_velocity`];
+//! 1. Wind sampled at the old position and time, turned to follow the ground near
+//!    it ([`crate::terrain_flow`]); velocity by [`drag_velocity`];
 //!    position `P' = P + ½(v + v')·dt`; age `t' = t + dt`; rotation advanced.
 //! 2. World emitter particles gather water, `R·A/n` per second (R the intensity,
 //!    A the emitter's ground area, n its particle count): over a long run the water
@@ -35,6 +36,7 @@ use crate::particle::{Particle, ParticleSource, flags};
 use crate::rng::{draw, particle_key, random_unit};
 use crate::rotation::advance_rotation;
 use crate::splash::{splash_droplet, splashes};
+use crate::terrain_flow::terrain_following_wind;
 
 /// Everything a step needs besides the buffers: the GPU's uniform block.
 ///
@@ -141,7 +143,11 @@ pub fn step_particle(
 ) -> (Particle, StepEvent) {
     let params = inputs.params;
     let dt = params.dt_s;
-    let wind = inputs.wind.velocity_mps(particle.position_m, params.time_s);
+    let wind = terrain_following_wind(
+        inputs.wind.velocity_mps(particle.position_m, params.time_s),
+        particle.position_m,
+        inputs.ground,
+    );
     let velocity = drag_velocity(particle.velocity_mps, wind, particle.terminal_speed_mps, dt);
     let position = particle.position_m + (particle.velocity_mps + velocity) * (0.5 * dt);
 
@@ -204,13 +210,23 @@ pub fn step_particle(
                         );
                     }
                     return (
-                        birth_on_emitter(index, particle.generation.wrapping_add(1), params),
+                        birth_on_emitter(
+                            index,
+                            particle.generation.wrapping_add(1),
+                            params,
+                            inputs.ground,
+                        ),
                         StepEvent::Landed,
                     );
                 }
                 None if position.y < params.ground_floor_m => {
                     return (
-                        birth_on_emitter(index, particle.generation.wrapping_add(1), params),
+                        birth_on_emitter(
+                            index,
+                            particle.generation.wrapping_add(1),
+                            params,
+                            inputs.ground,
+                        ),
                         StepEvent::Reborn,
                     );
                 }
@@ -218,7 +234,12 @@ pub fn step_particle(
             }
             if next.age_s >= params.emitter_life_time_s {
                 return (
-                    birth_on_emitter(index, particle.generation.wrapping_add(1), params),
+                    birth_on_emitter(
+                        index,
+                        particle.generation.wrapping_add(1),
+                        params,
+                        inputs.ground,
+                    ),
                     StepEvent::Reborn,
                 );
             }

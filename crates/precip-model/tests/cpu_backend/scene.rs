@@ -312,7 +312,7 @@ fn landing_events_deposit_and_re_birth() {
     let wind = WindVolume::bake(&weather.wind, &setup.wind_volume).expect("valid");
     let deposits = DepositBuffer::new(setup.cover.frame.texel_count());
     let inputs = common::step_inputs(&setup, &params, &wind, &deposits);
-    let mut p = precip_model::birth::birth_on_emitter(3, 0, &params);
+    let mut p = precip_model::birth::birth_on_emitter(3, 0, &params, &setup.ground);
     p.position_m = Vec3::new(1.0, 0.01, 1.0);
     p.velocity_mps = Vec3::new(0.0, -1.0, 0.0);
     p.water_kg = 0.25;
