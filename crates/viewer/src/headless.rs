@@ -1,6 +1,6 @@
 //! Headless frames: step, render, write `frame_NNNN.png`, with a progress bar, and a
 //! summary (frame times, particles simulated and drawn, cover water, the water on
-//! the surfaces).
+//! the surfaces, the snow); at the end the snow's depth map, `snow_depth_mm.png`.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -115,6 +115,13 @@ pub fn run_headless(
         .sum::<f64>()
         / texels;
     let max_depth_mm = cover.texels.iter().map(|t| t.depth_mm).fold(0.0, f32::max);
+    let map_file = out.join("snow_depth_mm.png");
+    crate::snow_summary::snow_depth_map_mm(&cover)
+        .save(&map_file)
+        .map_err(|e| HeadlessError::Write {
+            file: map_file.clone(),
+            detail: e.to_string(),
+        })?;
     let mut sorted = times.clone();
     sorted.sort_by(f64::total_cmp);
     let p95 = sorted

@@ -1,7 +1,7 @@
 //! From a loaded scene and the user's choices to a [`Setup`] (DESIGN.md §2):
 //! the ground map and cover grid fit the scene's bounds at a chosen resolution; the
 //! camera volume always holds precipitation around the camera; a world emitter covers
-//! the scene (shifted upwind by the drift of a fall) when the scene is small enough
+//! the scene (aimed: its particles land on it in any wind) when the scene is small enough
 //! for the particle budget, so the cover there is fed by landing particles, and by the
 //! weather's rate elsewhere.
 //!
@@ -45,16 +45,11 @@ pub struct SceneOptions {
     pub camera: Option<Camera>,
 }
 
-/// Typical fall speed of the weather's particles, m/s (for the emitter's upwind shift).
-fn typical_fall_speed_mps(weather: &Weather) -> f32 {
-    1.0 + 4.0 * (1.0 - weather.snow_fraction())
-}
-
 /// The setup for `scene` (prepared) under `options`.
 pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup, BackendError> {
     let (lo, hi) = scene.bounds_m().ok_or(precip_model::SceneError::Empty)?;
     let centre = Vec2::new(0.5 * (lo.x + hi.x), 0.5 * (lo.z + hi.z));
-    let side = (hi.x - lo.x).max(hi.z - lo.z).max(1.0) * 1.05;
+    let side = (hi.x - lo.x).max(hi.z - lo.z).max(1.0);
     let texel = if options.texel_m.is_finite() && options.texel_m > 0.0 {
         options.texel_m
     } else {
@@ -79,19 +74,13 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
     let world = (world_particles as f32 / area >= MIN_WORLD_DENSITY_PER_M2).then(|| {
         let clearance = 10.0;
         let top = hi.y + clearance;
-        let fall_s = (top - lo.y) / typical_fall_speed_mps(&options.weather);
-        let upwind = -options.weather.wind.mean_wind_mps * fall_s;
-        // Cover the scene and the drift: centre upwind, enlarged by the drift.
-        let reach = side + upwind.truncate().abs().max_element().min(side);
+        // Over the scene: the emitter is aimed (each particle is born up-wind of
+        // where it lands by its own fall's drift; precip_model::birth_on_emitter).
         EmitterSetup {
             emitter: WorldEmitter::horizontal(
-                Vec3::new(
-                    centre.x + 0.5 * upwind.x.clamp(-side, side),
-                    top,
-                    centre.y + 0.5 * upwind.z.clamp(-side, side),
-                ),
-                reach,
-                reach,
+                Vec3::new(centre.x, top, centre.y),
+                side,
+                side,
                 top - lo.y,
             ),
             particle_count: world_particles,
@@ -188,20 +177,39 @@ mod tests {
             (0, 1_000),
             "40 m needs 3.2k particles: no emitter, the camera volume takes the budget"
         );
-        assert_eq!(setup.ground.frame.texels.x, 84, "42 m at 0.5 m");
+        assert_eq!(setup.ground.frame.texels.x, 80, "40 m at 0.5 m");
     }
 
     #[test]
-    fn the_emitter_moves_upwind() {
+    fn in_wind_the_emitter_stays_over_the_scene_and_is_aimed() {
         let scene = house_on_plane().prepare().expect("valid").0;
         let mut o = options(100_000);
         o.weather.wind.mean_wind_mps = Vec3::new(3.0, 0.0, 0.0);
         let setup = scene_setup(scene, &o).expect("valid");
         let e = setup.world_emitter.expect("an emitter").emitter;
         assert!(
-            e.model.w_axis.x < -5.0,
+            e.model.w_axis.x.abs() < 1e-3,
             "centre at x = {}",
             e.model.w_axis.x
         );
+        // Its particles are born up-wind of where they land (precip_model::birth):
+        // the same draw in calm air lies down-wind by the fall's drift, ≥ 10 m
+        // (3 m/s over a fall of ≥ 10 m at ≤ 3 m/s).
+        let calm = Weather {
+            wind: precip_model::wind::WindField::calm(),
+            ..o.weather
+        };
+        let windy = setup.step_params(&o.weather, Vec3::ZERO, 0.05, 0.0);
+        let still = setup.step_params(&calm, Vec3::ZERO, 0.05, 0.0);
+        for index in 0..8 {
+            let born = precip_model::birth::birth_on_emitter(index, 0, &windy, &setup.ground);
+            let aim = precip_model::birth::birth_on_emitter(index, 0, &still, &setup.ground);
+            assert!(
+                born.position_m.x < aim.position_m.x - 10.0,
+                "born at x = {}, aimed at {}",
+                born.position_m.x,
+                aim.position_m.x
+            );
+        }
     }
 }

@@ -55,6 +55,20 @@ impl SnowSummary {
     }
 }
 
+/// The snow's depth seen from above, one pixel a texel (column = x, row = z, the
+/// grid's minimum corner top left), as 16-bit grey in millimetres (65 535 = 65.5 m
+/// or deeper): the map a sensor model or a GIS tool reads, written by the headless
+/// run as `snow_depth_mm.png`.
+#[must_use]
+pub fn snow_depth_map_mm(cover: &CoverGrid) -> image::ImageBuffer<image::Luma<u16>, Vec<u16>> {
+    let texels = cover.frame.texels;
+    image::ImageBuffer::from_fn(texels.x, texels.y, |x, z| {
+        let i = (x + texels.x * z) as usize;
+        let depth_mm = cover.texels.get(i).map_or(0.0, |t| t.depth_mm);
+        image::Luma([depth_mm.round().clamp(0.0, f32::from(u16::MAX)) as u16])
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use precip_model::cover::{
@@ -84,5 +98,9 @@ mod tests {
         assert!((s.deepest_mm - 400.0).abs() < 1e-3);
         assert!((s.steepest_deg - 0.4f32.atan().to_degrees()).abs() < 1e-2);
         assert!(s.blowing() && s.describe().contains("blowing snow over 1 m²"));
+        let map = snow_depth_map_mm(&cover);
+        assert_eq!(map.dimensions(), (4, 4));
+        assert_eq!(map.get_pixel(1, 1).0, [400]);
+        assert_eq!(map.get_pixel(0, 0).0, [0]);
     }
 }

@@ -86,8 +86,16 @@ fn without_a_display_the_viewer_says_so_and_renders_frames_headless() {
     // Mesa's device-select layer must not reach libwayland, whose complaint about a
     // missing XDG_RUNTIME_DIR reads as precip's error.
     assert!(!err.contains("XDG_RUNTIME_DIR"), "{err}");
-    let frames = std::fs::read_dir(&dir).expect("frames").count();
+    let files: Vec<String> = std::fs::read_dir(&dir)
+        .expect("frames")
+        .filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().into_owned()))
+        .collect();
+    let frames = files.iter().filter(|f| f.starts_with("frame_")).count();
     assert_eq!(frames, 60, "the default frame count");
+    assert!(
+        files.iter().any(|f| f == "snow_depth_mm.png"),
+        "the snow's depth map: {files:?}"
+    );
     let summary = String::from_utf8_lossy(&out.stdout);
     assert!(
         summary.contains("p95") && summary.contains("particles"),

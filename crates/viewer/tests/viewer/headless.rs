@@ -71,7 +71,9 @@ fn a_headless_run_over_the_demo_writes_frames_and_snow_settles_where_it_should()
             .collect();
         let patio: Vec<Vec2> = [Vec2::ZERO, Vec2::X, Vec2::NEG_X, Vec2::Y, Vec2::NEG_Y]
             .iter()
-            .map(|d| PATIO.0 + *d)
+            // Within its heated core: at its rim the mask fades, and snow sliding
+            // off the snow around it stays there in that share.
+            .map(|d| PATIO.0 + 0.5 * *d)
             .collect();
         let summary_text = format!(
             "roof {:.1} mm, road {:.2} mm, patio {:.2} mm (plan {}×{} m)",
