@@ -9,14 +9,19 @@
 //! Integer sums do not depend on the order of the additions: the CPU reference and
 //! the GPU get the same bits however their threads interleave.
 //!
-//! Layout: two `u32` per texel, interleaved `[snow, rain]` (WGSL twin:
-//! `deposits: array<atomic<u32>>` in `shaders/layout.wgsl`).
+//! Layout: [`DEPOSIT_CHANNELS`] `u32` per texel, interleaved `[snow, rain, grains]`
+//! (WGSL twin: `deposits: array<atomic<u32>>`, `DEPOSIT_*` in `shaders/deposit.wgsl`).
+//! The grains' channel holds sand and dust in kg/m² with the same scale (a mm of
+//! water is a kg/m²).
 
 use std::sync::atomic::{AtomicU32, Ordering};
 
 use glam::Vec2;
 
 use crate::frame::GridFrame;
+
+/// Channels a texel: snow, rain, grains (sand and dust).
+pub const DEPOSIT_CHANNELS: usize = 3;
 
 /// Fixed-point units per mm of water.
 pub const DEPOSIT_UNITS_PER_MM: f32 = 1_048_576.0;
@@ -30,6 +35,17 @@ pub fn deposit_units(water_mm: f32) -> u32 {
     (water_mm * DEPOSIT_UNITS_PER_MM + 0.5).clamp(0.0, MAX_DEPOSIT_UNITS) as u32
 }
 
+/// What landed on one texel during a step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Landed {
+    /// Snow, mm of water.
+    pub snow_mm: f32,
+    /// Rain, mm.
+    pub rain_mm: f32,
+    /// Sand and dust, kg/m².
+    pub grains_kg_m2: f32,
+}
+
 /// Water landed per texel during one step, fixed point, safe to add to from threads.
 #[derive(Debug, Default)]
 pub struct DepositBuffer {
@@ -41,18 +57,29 @@ impl DepositBuffer {
     pub const SNOW: usize = 0;
     /// Channel index of rain.
     pub const RAIN: usize = 1;
+    /// Channel index of sand and dust (kg/m², the same scale as mm of water).
+    pub const GRAINS: usize = 2;
+
+    /// Bytes of the buffer for `texel_count` texels (the GPU's `deposits`).
+    #[must_use]
+    pub const fn bytes_for(texel_count: usize) -> usize {
+        DEPOSIT_CHANNELS * 4 * texel_count
+    }
 
     /// An empty buffer for `texel_count` texels.
     #[must_use]
     pub fn new(texel_count: usize) -> Self {
         Self {
-            units: (0..2 * texel_count).map(|_| AtomicU32::new(0)).collect(),
+            units: (0..DEPOSIT_CHANNELS * texel_count)
+                .map(|_| AtomicU32::new(0))
+                .collect(),
         }
     }
 
     /// Adds `water_mm` to `channel` of texel `index` (wrapping like `atomicAdd`).
     pub fn add(&self, index: usize, channel: usize, water_mm: f32) {
-        if let Some(slot) = self.units.get(2 * index + channel.min(1)) {
+        let channel = channel.min(DEPOSIT_CHANNELS - 1);
+        if let Some(slot) = self.units.get(DEPOSIT_CHANNELS * index + channel) {
             slot.fetch_add(deposit_units(water_mm), Ordering::Relaxed);
         }
     }
@@ -73,25 +100,37 @@ impl DepositBuffer {
     /// Snow and rain landed on texel `index`, mm, without clearing.
     #[must_use]
     pub fn peek_mm(&self, index: usize) -> (f32, f32) {
-        let read = |c: usize| {
-            self.units.get(2 * index + c).map_or(0.0, |u| {
+        (self.peek(index, Self::SNOW), self.peek(index, Self::RAIN))
+    }
+
+    /// `channel` of texel `index` (mm, or kg/m² of grains), without clearing.
+    #[must_use]
+    pub fn peek(&self, index: usize, channel: usize) -> f32 {
+        self.units
+            .get(DEPOSIT_CHANNELS * index + channel)
+            .map_or(0.0, |u| {
                 u.load(Ordering::Relaxed) as f32 / DEPOSIT_UNITS_PER_MM
             })
-        };
-        (read(Self::SNOW), read(Self::RAIN))
     }
 
-    /// Reads and clears texel `index`: (snow, rain) in mm.
-    pub fn take_mm(&mut self, index: usize) -> (f32, f32) {
+    /// Reads and clears texel `index`: snow and rain in mm, grains in kg/m².
+    pub fn take_mm(&mut self, index: usize) -> Landed {
         let mut take = |c: usize| {
-            self.units.get_mut(2 * index + c).map_or(0.0, |u| {
-                std::mem::take(u.get_mut()) as f32 / DEPOSIT_UNITS_PER_MM
-            })
+            self.units
+                .get_mut(DEPOSIT_CHANNELS * index + c)
+                .map_or(0.0, |u| {
+                    std::mem::take(u.get_mut()) as f32 / DEPOSIT_UNITS_PER_MM
+                })
         };
-        (take(Self::SNOW), take(Self::RAIN))
+        Landed {
+            snow_mm: take(Self::SNOW),
+            rain_mm: take(Self::RAIN),
+            grains_kg_m2: take(Self::GRAINS),
+        }
     }
 
-    /// The raw units, `[snow, rain]` per texel (for comparison with a GPU buffer).
+    /// The raw units, `[snow, rain, grains]` per texel (for comparison with a GPU
+    /// buffer).
     #[must_use]
     pub fn raw_units(&self) -> Vec<u32> {
         self.units
@@ -122,10 +161,10 @@ mod tests {
         assert_eq!(forward.raw_units(), backward.raw_units());
         let exact: f64 = amounts.iter().map(|&a| f64::from(a)).sum();
         let mut f = forward;
-        let (snow, rain) = f.take_mm(0);
-        assert!((f64::from(snow) - exact).abs() < 1e-3 * exact);
-        assert!(rain.abs() < f32::MIN_POSITIVE);
-        assert_eq!(f.raw_units(), vec![0, 0], "take clears");
+        let landed = f.take_mm(0);
+        assert!((f64::from(landed.snow_mm) - exact).abs() < 1e-3 * exact);
+        assert!(landed.rain_mm.abs() < f32::MIN_POSITIVE);
+        assert_eq!(f.raw_units(), vec![0, 0, 0], "take clears");
     }
 
     #[test]
@@ -135,6 +174,9 @@ mod tests {
         assert!(buffer.add_at(&frame, Vec2::new(1.0, -1.0), DepositBuffer::RAIN, 2.0));
         assert!(!buffer.add_at(&frame, Vec2::new(3.0, 0.0), DepositBuffer::RAIN, 2.0));
         assert!((buffer.peek_mm(1).1 - 2.0).abs() < 1e-6);
-        assert_eq!(buffer.raw_units().iter().filter(|&&u| u > 0).count(), 1);
+        assert!(buffer.add_at(&frame, Vec2::new(-1.0, 1.0), DepositBuffer::GRAINS, 0.5));
+        assert!((buffer.peek(2, DepositBuffer::GRAINS) - 0.5).abs() < 1e-6);
+        assert_eq!(buffer.raw_units().iter().filter(|&&u| u > 0).count(), 2);
+        assert_eq!(DepositBuffer::bytes_for(4), 4 * 4 * DEPOSIT_CHANNELS);
     }
 }

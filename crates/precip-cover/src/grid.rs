@@ -2,7 +2,7 @@
 
 use rayon::prelude::*;
 
-use crate::deposit::DepositBuffer;
+use crate::deposit::{DepositBuffer, Landed};
 use crate::drift::{
     SNOW_DRIFT_ITERATIONS, apply_drift, snow_inflow_of, snow_outflow_of, snow_wind_factor_of,
 };
@@ -46,6 +46,8 @@ pub struct CoverTotals {
     pub drifted_kg: f64,
     /// Of `drifted_kg`, what crossed the grid's edges (the rest sums to zero).
     pub edge_drifted_kg: f64,
+    /// Sand and dust settled on the grid, kg (outside the water books).
+    pub dust_kg: f64,
     /// Area where snow is blowing (saltation in the last drift iteration), m².
     pub blowing_area_m2: f64,
     /// Area holding snow, m².
@@ -188,15 +190,17 @@ impl CoverGrid {
         dt_days: f32,
         params: &CoverParams,
     ) {
-        let landed: Vec<(f32, f32)> = (0..self.texels.len())
+        let landed: Vec<Landed> = (0..self.texels.len())
             .map(|i| deposits.take_mm(i))
             .collect();
         self.texels
             .par_iter_mut()
             .zip(landed.par_iter())
-            .for_each(|(texel, &(snow, rain))| {
+            .for_each(|(texel, landed)| {
+                // Grains come from particles alone, whatever the texel's feed.
+                texel.dust_kg_m2 += landed.grains_kg_m2;
                 let (snow_mm, rain_mm) = match CoverFeed::from_raw(texel.feed) {
-                    CoverFeed::Particles => (snow, rain),
+                    CoverFeed::Particles => (landed.snow_mm, landed.rain_mm),
                     CoverFeed::WeatherRate => (
                         air.snow_rate_mm_per_day * dt_days,
                         air.rain_rate_mm_per_day * dt_days,
@@ -331,6 +335,7 @@ impl CoverGrid {
             net_inflow_kg: acc.net_inflow_kg + kg(t.net_inflow_mm),
             drifted_kg: acc.drifted_kg + kg(t.drifted_mm),
             edge_drifted_kg: acc.edge_drifted_kg + kg(t.edge_drifted_mm),
+            dust_kg: acc.dust_kg + kg(t.dust_kg_m2),
             blowing_area_m2: acc.blowing_area_m2
                 + if t.saltation_kg_per_m_s > 0.0 {
                     area

@@ -41,7 +41,7 @@ mod texel;
 mod update;
 pub mod water;
 
-pub use deposit::{DEPOSIT_UNITS_PER_MM, DepositBuffer, deposit_units};
+pub use deposit::{DEPOSIT_CHANNELS, DEPOSIT_UNITS_PER_MM, DepositBuffer, Landed, deposit_units};
 pub use drift::SNOW_DRIFT_ITERATIONS;
 pub use error::CoverError;
 pub use frame::GridFrame;
@@ -51,7 +51,8 @@ pub use masks::{ThresholdMasks, generate_threshold_masks};
 pub use melt::{degree_day_melt_mm, melt_factor, snow_albedo, vegetation_transmission};
 pub use params::CoverParams;
 pub use shading::{
-    CoverShading, accumulated_fraction, melted_fraction, shade_texel, shade_with_masks,
+    CoverShading, GRAINS_COVERING_KG_M2, accumulated_fraction, melted_fraction,
+    settled_grain_cover, shade_texel, shade_with_masks,
 };
 pub use snowpack::{compacted_density, new_snow_density};
 pub use surface::{Surface, SurfaceWater};

@@ -9,6 +9,12 @@
 //! `mask_edge` so patch borders are not aliased. The thresholds are rescaled by
 //! `1 + edge` so that `A_S = 0` shows no snow anywhere and `A_S = 1` shows it
 //! everywhere. Wet darkening multiplies the ground by `1 − R_d·wetness`.
+//!
+//! Sand and dust that settled ([`CoverTexel::dust_kg_m2`]) tint the bare surface
+//! under the snow: grains scattered at random hide `1 − e^(−m/m₀)` of it
+//! ([`settled_grain_cover`]; a layer of mass `m` of grains of diameter `d` projects
+//! `3m/(2ρd)` of area per area, so `m₀ = 2ρd/3`: 0.35 kg/m² for 0.2 mm sand, 0.02
+//! for 10 µm dust; [`GRAINS_COVERING_KG_M2`] takes 0.1, between them).
 
 use crate::params::CoverParams;
 use crate::texel::CoverTexel;
@@ -26,6 +32,16 @@ pub struct CoverShading {
     pub accumulation_mask_result: f32,
     /// `M_M`: melt mask result (≤ 0: melted bare).
     pub melt_mask_result: f32,
+}
+
+/// The mass of settled grains that hides `1 − 1/e` of a surface, kg/m² (module docs).
+pub const GRAINS_COVERING_KG_M2: f32 = 0.1;
+
+/// The fraction of a surface that settled sand and dust hide (module docs).
+/// WGSL twin: `settled_grain_cover` in `shaders/shading.wgsl`.
+#[must_use]
+pub fn settled_grain_cover(dust_kg_m2: f32) -> f32 {
+    1.0 - (-dust_kg_m2.max(0.0) / GRAINS_COVERING_KG_M2).exp()
 }
 
 /// `A_S`: the fraction of the area the accumulated snow covers, from its depth.
@@ -78,6 +94,16 @@ pub fn shade_with_masks(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn settled_grains_hide_the_surface_as_their_layer_grows() {
+        assert!(settled_grain_cover(0.0).abs() < 1e-7);
+        assert!(
+            (settled_grain_cover(GRAINS_COVERING_KG_M2) - (1.0 - (-1.0f32).exp())).abs() < 1e-6
+        );
+        assert!(settled_grain_cover(1.0) > 0.99);
+        assert!(settled_grain_cover(-1.0).abs() < 1e-7);
+    }
 
     #[test]
     fn no_snow_shows_nothing_full_snow_shows_everywhere() {

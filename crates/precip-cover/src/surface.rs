@@ -16,13 +16,17 @@
 //! - **Infiltration capacity**: saturated hydraulic conductivity `K_s`, the
 //!   long-time infiltration rate of a ponded surface (Green–Ampt). Loam 3.4 mm/h
 //!   (Rawls, Brakensiek & Miller 1983, *J. Hydraul. Eng.* 109(1), table 1); turf over
-//!   loam 10 mm/h (root macropores roughly triple it); pavement and roofs 0.
+//!   loam 10 mm/h (root macropores roughly triple it); sand 210 mm/h (same table);
+//!   pavement and roofs 0.
 //! - **Manning's n** for shallow overland flow: asphalt 0.015, roofing 0.012, bare
-//!   soil 0.03, short grass 0.15 (Engman 1986, *J. Irrig. Drain. Eng.* 112(1)).
+//!   soil 0.03, short grass 0.15 (Engman 1986, *J. Irrig. Drain. Eng.* 112(1));
+//!   loose sand 0.02 (between fallow soil and smooth bare ground in the same table).
 //! - **Roughness height**: how deep standing water must be to top the surface's
 //!   texture and show as open water (a puddle's mirror). Asphalt 1 mm (the mean
 //!   texture depth of road surfaces is 0.5–1.5 mm, PIARC 1987), roofing 0.5 mm, bare
-//!   soil 5 mm (clods), turf 30 mm (the blades of mown grass).
+//!   soil 5 mm (clods), turf 30 mm (the blades of mown grass), sand 2 mm (ripples).
+//! - Sand's film capacity, 0.5 mm: what a sand surface holds before water stands is
+//!   small, its large pores drain at once.
 //!
 //! How much a wet surface darkens is the seed's one `R_d`
 //! ([`crate::CoverParams::wet_darkening`]): light trapped by total internal
@@ -46,6 +50,9 @@ pub enum Surface {
     Roof = 3,
     /// A water body (pond, lake, sea): takes in all that lands or flows onto it.
     Water = 4,
+    /// Loose sand (dunes, beaches, desert floor): drains fast, and the wind lifts
+    /// its grains ([`Surface::erodibility`]).
+    Sand = 5,
 }
 
 /// The constants of water on one [`Surface`] (see the module docs for sources).
@@ -63,16 +70,17 @@ pub struct SurfaceWater {
 
 impl Surface {
     /// Every kind, in `u32` order.
-    pub const ALL: [Self; 5] = [
+    pub const ALL: [Self; 6] = [
         Self::Soil,
         Self::Asphalt,
         Self::Grass,
         Self::Roof,
         Self::Water,
+        Self::Sand,
     ];
 
     /// The names the asset uses (`extras.surface`), in `u32` order.
-    pub const NAMES: [&'static str; 5] = ["soil", "asphalt", "grass", "roof", "water"];
+    pub const NAMES: [&'static str; 6] = ["soil", "asphalt", "grass", "roof", "water", "sand"];
 
     /// From the stored `u32` (unknown values read as soil).
     #[must_use]
@@ -82,6 +90,7 @@ impl Surface {
             2 => Self::Grass,
             3 => Self::Roof,
             4 => Self::Water,
+            5 => Self::Sand,
             _ => Self::Soil,
         }
     }
@@ -96,6 +105,7 @@ impl Surface {
             "grass" | "turf" | "lawn" => Some(Self::Grass),
             "roof" | "roofing" => Some(Self::Roof),
             "water" => Some(Self::Water),
+            "sand" | "dune" | "beach" | "desert" => Some(Self::Sand),
             _ => None,
         }
     }
@@ -151,6 +161,25 @@ impl Surface {
                 manning_n: 0.03,
                 roughness_mm: 0.0,
             },
+            Self::Sand => SurfaceWater {
+                film_capacity_mm: 0.5,
+                infiltration_mm_per_h: 210.0,
+                manning_n: 0.02,
+                roughness_mm: 2.0,
+            },
+        }
+    }
+
+    /// The share of the surface whose loose grains the wind can lift, `[0, 1]`:
+    /// 1 for sand, 0 for the rest (soil under vegetation or crust, paving, roofs,
+    /// water). Where the friction velocity passes the grains' threshold, sand and
+    /// dust rise from it (`precip_model::grain`). WGSL twin: the erodibility words
+    /// of the ground buffer (`precip_model::GroundMap::gpu_words`).
+    #[must_use]
+    pub const fn erodibility(self) -> f32 {
+        match self {
+            Self::Sand => 1.0,
+            Self::Soil | Self::Asphalt | Self::Grass | Self::Roof | Self::Water => 0.0,
         }
     }
 }

@@ -95,8 +95,11 @@ pub struct CoverTexel {
     /// Of [`Self::drifted_mm`], what crossed the grid's edge here (in from beyond
     /// an up-wind edge minus out over a down-wind one), cumulative, mm.
     pub edge_drifted_mm: f32,
+    /// Sand and dust that settled here, cumulative, kg/m² (not water: outside the
+    /// water books; the wind does not move it again).
+    pub dust_kg_m2: f32,
     /// Unused (`0`).
-    pub reserved1: [u32; 4],
+    pub reserved1: [u32; 3],
 }
 const _: () = assert!(size_of::<CoverTexel>() == 128);
 

@@ -4,7 +4,7 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 use precip_model::backend::MAX_SUBSTEPS;
 use precip_model::cover::GridFrame;
-use precip_model::cover::{CoverGrid, CoverStepParams, CoverTexel};
+use precip_model::cover::{CoverGrid, CoverStepParams, CoverTexel, DepositBuffer};
 use precip_model::gpu::{
     DispatchCounts, Frames, cover_bindings, pending_births_bytes, step_bindings,
 };
@@ -284,7 +284,8 @@ impl Resources {
         let uniform_stride = block.div_ceil(align) * align;
         let blocks = u64::from(MAX_SUBSTEPS) * FRAMES_IN_FLIGHT as u64;
         let cover_bytes: &[u8] = bytemuck::cast_slice(&cover.texels);
-        let ground_bytes: &[u8] = bytemuck::cast_slice(&ground.height_m);
+        let ground_words = ground.gpu_words();
+        let ground_bytes: &[u8] = bytemuck::cast_slice(&ground_words);
         let waves: Vec<i32> = initial_waves(&frames.waves, ground);
         let wave_bytes: &[u8] = bytemuck::cast_slice(&waves);
         let uniform_usage = vk::BufferUsageFlags::UNIFORM_BUFFER;
@@ -303,7 +304,7 @@ impl Resources {
             ),
             (
                 "deposits",
-                cover.texels.len() as u64 * 8,
+                DepositBuffer::bytes_for(cover.texels.len()) as u64,
                 STORAGE,
                 MemoryLocation::GpuOnly,
             ),

@@ -143,11 +143,11 @@ impl WgpuBackend {
         self.draw(view, Some((target, texture.format())))
     }
 
-    /// The cover's two filtered textures as the last frame wrote them (tests and
+    /// The cover's three filtered textures as the last frame wrote them (tests and
     /// tools): per texel `[depth mm, SWE mm, peak SWE mm, wetness, accumulation mask,
-    /// melt mask, age days, 0]`, rows of the cover grid in order; `None` before a
-    /// frame.
-    pub fn read_cover_textures(&mut self) -> Result<Option<Vec<[f32; 8]>>, BackendError> {
+    /// melt mask, age days, puddle ratio, sand and dust kg/m², 0, 0, 0]`, rows of the
+    /// cover grid in order; `None` before a frame.
+    pub fn read_cover_textures(&mut self) -> Result<Option<Vec<[f32; 12]>>, BackendError> {
         let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
             operation: "read_cover_textures",
         })?;
@@ -162,12 +162,17 @@ impl WgpuBackend {
                 .map(|h| f16_to_f32(u16::from_le_bytes([h[0], h[1]])))
                 .collect())
         };
-        let [a, b] = &render.frame.cover_textures;
-        let (a, b) = (halves(a)?, halves(b)?);
+        let [a, b, c] = &render.frame.cover_textures;
+        let (a, b, c) = (halves(a)?, halves(b)?, halves(c)?);
         Ok(Some(
             a.chunks_exact(4)
                 .zip(b.chunks_exact(4))
-                .map(|(a, b)| [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]])
+                .zip(c.chunks_exact(4))
+                .map(|((a, b), c)| {
+                    [
+                        a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3], c[0], c[1], c[2], c[3],
+                    ]
+                })
                 .collect(),
         ))
     }
@@ -285,7 +290,7 @@ impl WgpuBackend {
                 FrameTarget {
                     colour,
                     depth,
-                    sky: setup.render.sky_colour,
+                    sky: precip_model::render::haze_colour(&setup.render, &state.weather),
                     draw_shadow,
                     detail,
                 },

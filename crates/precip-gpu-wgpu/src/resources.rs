@@ -2,7 +2,7 @@
 
 use precip_model::backend::MAX_SUBSTEPS;
 use precip_model::cover::GridFrame;
-use precip_model::cover::{CoverGrid, CoverStepParams, CoverTexel};
+use precip_model::cover::{CoverGrid, CoverStepParams, CoverTexel, DepositBuffer};
 use precip_model::gpu::{
     DispatchCounts, Frames, cover_bindings, pending_births_bytes, step_bindings,
 };
@@ -135,7 +135,11 @@ impl Resources {
             "precip cover",
             bytemuck::cast_slice::<CoverTexel, u8>(&cover.texels),
         );
-        let deposits = storage_buffer(gpu, "precip deposits", &vec![0u8; cover.texels.len() * 8]);
+        let deposits = storage_buffer(
+            gpu,
+            "precip deposits",
+            &vec![0u8; DepositBuffer::bytes_for(cover.texels.len())],
+        );
         let waves = storage_buffer(
             gpu,
             "precip waves",
@@ -150,7 +154,7 @@ impl Resources {
         let ground_buffer = storage_buffer(
             gpu,
             "precip ground heights",
-            bytemuck::cast_slice(&ground.height_m),
+            bytemuck::cast_slice(&ground.gpu_words()),
         );
         let n = wind.spec.texels;
         let wind_texture = device.create_texture(&wgpu::TextureDescriptor {

@@ -16,6 +16,10 @@ struct Species {
 }
 
 fn draw_species(key: u32) -> Species {
+    if (step_params.grain_diameter_m > 0.0) {
+        let diameter = step_params.grain_diameter_m * (0.5 + random_unit(key, DRAW_GRAIN_SIZE));
+        return Species(KIND_GRAIN, diameter, grain_settling_speed_mps(diameter, step_params.grain_density_kg_m3));
+    }
     let is_snow = random_unit(key, DRAW_KIND) < step_params.snow_fraction;
     if (is_snow) {
         let wet = step_params.snow_is_wet != 0u;
@@ -104,6 +108,75 @@ fn birth_on_emitter(index: u32, generation: u32) -> Particle {
     );
 }
 
+// Rust: precip_model::birth::LIFT_TRIES.
+const LIFT_TRIES: u32 = 4u;
+
+// Rust: is_lifted.
+fn is_lifted(index: u32) -> bool {
+    return index >= step_params.lift_from && index < step_params.world_count;
+}
+
+// Rust: launch_speed_mps.
+fn launch_speed_mps(key: u32) -> f32 {
+    return LAUNCH_SPEED_PER_FRICTION_VELOCITY * step_params.friction_velocity_mps
+        * (0.5 + random_unit(key, DRAW_LIFT_HEIGHT));
+}
+
+// Rust: initial_lifted (a saltating grain part-way through its first hop).
+fn initial_lifted(index: u32) -> Particle {
+    var p = birth_lifted(index, 0u);
+    if (step_params.grain_suspended != 0u) {
+        return p;
+    }
+    let key = particle_key(step_params.seed, index, 0u);
+    let w0 = p.velocity_mps.y;
+    let age = random_unit(key, DRAW_PREWARM) * 2.0 * w0 / GRAVITY_MPS2;
+    p.position_m.y += w0 * age - 0.5 * GRAVITY_MPS2 * age * age;
+    p.velocity_mps.y = w0 - GRAVITY_MPS2 * age;
+    p.age_s = age;
+    p.water_kg = step_params.lift_per_particle_kg_per_s * age;
+    return p;
+}
+
+// Rust: birth_lifted (a grain the wind lifts from erodible ground).
+fn birth_lifted(index: u32, generation: u32) -> Particle {
+    let key = particle_key(step_params.seed, index, generation);
+    let species = draw_species(key);
+    let span = step_params.lift_area_max_m - step_params.lift_area_min_m;
+    var at = step_params.lift_area_min_m;
+    for (var t = 0u; t < LIFT_TRIES; t++) {
+        let d = DRAW_LIFT + 3u * t;
+        at = step_params.lift_area_min_m + span * vec2<f32>(random_unit(key, d), random_unit(key, d + 1u));
+        if (random_unit(key, d + 2u) < erodibility_at(at)) {
+            break;
+        }
+    }
+    let ground_m = ground_or_floor_m(at);
+    var height_m = LAUNCH_HEIGHT_M;
+    var velocity = vec3<f32>(0.0, launch_speed_mps(key), 0.0);
+    if (step_params.grain_suspended != 0u) {
+        let rouse = rouse_number(species.terminal_speed_mps, step_params.friction_velocity_mps);
+        height_m = rouse_height_m(rouse, step_params.lift_layer_top_m, random_unit(key, DRAW_LIFT_HEIGHT));
+        velocity = step_params.mean_wind_mps - vec3<f32>(0.0, 1.0, 0.0) * species.terminal_speed_mps;
+    }
+    return newborn(
+        vec3<f32>(at.x, ground_m + height_m, at.y),
+        velocity,
+        species,
+        draw_rotation(key, step_params.world_rotation.x),
+        generation,
+        false,
+    );
+}
+
+// Rust: birth_in_world.
+fn birth_in_world(index: u32, generation: u32) -> Particle {
+    if (is_lifted(index)) {
+        return birth_lifted(index, generation);
+    }
+    return birth_on_emitter(index, generation);
+}
+
 fn birth_in_camera_volume(index: u32, generation: u32, position_m: vec3<f32>) -> Particle {
     let key = particle_key(step_params.seed, index, generation);
     let species = draw_species(key);
@@ -122,6 +195,9 @@ const STATIONARY_TRIES: u32 = 16u;
 
 // Rust: slowest_terminal_speed_mps.
 fn slowest_terminal_speed_mps() -> f32 {
+    if (step_params.grain_diameter_m > 0.0) {
+        return grain_settling_speed_mps(0.5 * step_params.grain_diameter_m, step_params.grain_density_kg_m3);
+    }
     let snow = snow_terminal_speed_mps(step_params.snow_is_wet != 0u, 0.0);
     let rain = raindrop_terminal_speed_mps(RAIN_DIAMETER_MIN_MM);
     if (step_params.snow_fraction >= 1.0) {
@@ -147,6 +223,9 @@ fn stationary_generation(index: u32) -> u32 {
 
 fn initial_particle(index: u32) -> Particle {
     let key = particle_key(step_params.seed, index, 0u);
+    if (is_lifted(index)) {
+        return initial_lifted(index);
+    }
     if (index < step_params.world_count) {
         var p = birth_on_emitter(index, 0u);
         // Down to the ground where it is aimed, under the emitter's point.

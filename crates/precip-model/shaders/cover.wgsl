@@ -61,7 +61,8 @@ struct CoverTexel {
     wind_factor: f32,
     saltation_kg_per_m_s: f32,
     edge_drifted_mm: f32,
-    reserved1: vec4<u32>,
+    dust_kg_m2: f32,
+    reserved1: array<u32, 3>,
 }
 
 const COVER_FEED_PARTICLES: u32 = 1u;
@@ -74,6 +75,7 @@ const SURFACE_ASPHALT: u32 = 1u;
 const SURFACE_GRASS: u32 = 2u;
 const SURFACE_ROOF: u32 = 3u;
 const SURFACE_WATER: u32 = 4u;
+const SURFACE_SAND: u32 = 5u;
 
 struct SurfaceWater {
     film_capacity_mm: f32,
@@ -88,6 +90,7 @@ fn surface_water(surface: u32) -> SurfaceWater {
         case 2u: { return SurfaceWater(2.0, 10.0, 0.15, 30.0); }
         case 3u: { return SurfaceWater(0.3, 0.0, 0.012, 0.5); }
         case 4u: { return SurfaceWater(0.0, 0.0, 0.03, 0.0); }
+        case 5u: { return SurfaceWater(0.5, 210.0, 0.02, 2.0); }
         default: { return SurfaceWater(1.0, 3.4, 0.03, 5.0); }
     }
 }

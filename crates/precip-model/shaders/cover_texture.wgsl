@@ -1,11 +1,13 @@
-// cover_texture.wgsl: the cover texels as the two filtered textures surfaces read
-// (render_scene.wgsl's cover_a, cover_b), written once a frame before the shadow
-// pass. Its own bind group 0: the texels (binding 1, as the cover update's) and the
-// two storage views (bindings 8, 9) — never bound with the sampled views.
+// cover_texture.wgsl: the cover texels as the three filtered textures surfaces read
+// (render_scene.wgsl's cover_a, cover_b, cover_c), written once a frame before the
+// shadow pass. Its own bind group 0: the texels (binding 1, as the cover update's)
+// and the three storage views (bindings 8, 9, 14) — never bound with the sampled
+// views.
 
 @group(0) @binding(1) var<storage, read> cover: array<CoverTexel>;
 @group(0) @binding(8) var cover_a_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(9) var cover_b_out: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(14) var cover_c_out: texture_storage_2d<rgba16float, write>;
 
 @compute @workgroup_size(64)
 fn cover_texture(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -25,4 +27,5 @@ fn cover_texture(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_i
         puddle_ratio = t.standing_mm / roughness_mm;
     }
     textureStore(cover_b_out, xy, vec4<f32>(t.accumulation_mask, t.melt_mask, t.age_days, puddle_ratio));
+    textureStore(cover_c_out, xy, vec4<f32>(t.dust_kg_m2, 0.0, 0.0, 0.0));
 }

@@ -15,9 +15,12 @@ fn cover_update(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
         return;
     }
     // Read and clear this texel's landed water (fed by particles) or use the rate.
-    let snow_units = atomicExchange(&deposits[2u * i + DEPOSIT_SNOW], 0u);
-    let rain_units = atomicExchange(&deposits[2u * i + DEPOSIT_RAIN], 0u);
-    let texel = cover[i];
+    let snow_units = atomicExchange(&deposits[DEPOSIT_CHANNELS * i + DEPOSIT_SNOW], 0u);
+    let rain_units = atomicExchange(&deposits[DEPOSIT_CHANNELS * i + DEPOSIT_RAIN], 0u);
+    let grain_units = atomicExchange(&deposits[DEPOSIT_CHANNELS * i + DEPOSIT_GRAINS], 0u);
+    var texel = cover[i];
+    // Grains come from particles alone, whatever the texel's feed.
+    texel.dust_kg_m2 += f32(grain_units) / DEPOSIT_UNITS_PER_MM;
     var snow_mm = cover_params.snow_rate_mm_per_day * cover_params.dt_days;
     var rain_mm = cover_params.rain_rate_mm_per_day * cover_params.dt_days;
     if (texel.feed == COVER_FEED_PARTICLES) {

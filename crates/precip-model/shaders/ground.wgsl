@@ -1,5 +1,6 @@
 // ground.wgsl: the ground height map. Rust twin: precip_model::ground::GroundMap.
-// Needs the globals `frames: Frames` and `ground_height: array<f32>`.
+// Needs the globals `frames: Frames` and `ground_height: array<f32>` (the heights of
+// the texels, then their erodibility: GroundMap::gpu_words).
 
 // (1, height) on the map, (0, 0) off it. Nearest texel: an eave must not catch
 // particles beside it.
@@ -9,6 +10,17 @@ fn ground_height_at(xz_m: vec2<f32>) -> vec2<f32> {
         return vec2<f32>(0.0, 0.0);
     }
     return vec2<f32>(1.0, ground_height[u32(i)]);
+}
+
+// The share of the surface at xz whose grains the wind lifts, 0 off the map (Rust:
+// GroundMap::erodibility_at).
+fn erodibility_at(xz_m: vec2<f32>) -> f32 {
+    let i = grid_texel_index(frames.ground, xz_m);
+    if (i < 0) {
+        return 0.0;
+    }
+    let n = frames.ground.texels.x * frames.ground.texels.y;
+    return ground_height[n + u32(i)];
 }
 
 // Rust: precip_model::terrain_flow (TERRAIN_FLOW_SPAN_M, TERRAIN_FLOW_DEPTH_M).
@@ -59,6 +71,10 @@ fn shelter_up_wind(direction: vec2<f32>, position_m: vec3<f32>) -> f32 {
 // 1975's no-penetration condition, fading over TERRAIN_FLOW_DEPTH_M), climbing over
 // what is ahead. Rust: terrain_following_wind.
 fn terrain_following_wind(wind_mps: vec3<f32>, position_m: vec3<f32>) -> vec3<f32> {
+    // Above the highest ground plus the flow's depth nothing changes: skip the reads.
+    if (position_m.y >= step_params.flow_ceiling_m) {
+        return wind_mps;
+    }
     let xz = vec2<f32>(position_m.x, position_m.z);
     let here = ground_height_at(xz);
     if (here.x == 0.0) {

@@ -41,6 +41,7 @@ const FLAG_SPLASH: u32 = 2048u;
 const KIND_DRY_SNOW: u32 = 0u;
 const KIND_WET_SNOW: u32 = 1u;
 const KIND_RAIN: u32 = 2u;
+const KIND_GRAIN: u32 = 3u;
 
 struct StepParams {
     emitter_model: mat4x4<f32>,
@@ -65,6 +66,16 @@ struct StepParams {
     rain_slope_per_mm: f32,
     deposit_scale_mm_per_kg: f32,
     ground_floor_m: f32,
+    grain_diameter_m: f32,
+    grain_density_kg_m3: f32,
+    lift_from: u32,
+    lift_per_particle_kg_per_s: f32,
+    friction_velocity_mps: f32,
+    lift_layer_top_m: f32,
+    grain_suspended: u32,
+    flow_ceiling_m: f32,
+    lift_area_min_m: vec2<f32>,
+    lift_area_max_m: vec2<f32>,
 }
 
 // The particles to re-birth this sub-step (Rust: precip_model::gpu::pending_births_bytes).

@@ -1,5 +1,6 @@
-// physics.wgsl: snowflakes, raindrops, drag and rotation.
-// Rust twins, function for function: precip_model::{snowflake, raindrop, drag, rotation}.
+// physics.wgsl: snowflakes, raindrops, grains, drag and rotation.
+// Rust twins, function for function: precip_model::{snowflake, raindrop, grain, drag,
+// rotation}.
 
 const GRAVITY_MPS2: f32 = 9.81;
 const GRAVITY: vec3<f32> = vec3<f32>(0.0, -9.81, 0.0);
@@ -80,4 +81,35 @@ fn advance_rotation(magnitude_rad: f32, increasing: bool, amplitude_rad: f32, sp
         return vec2<f32>(0.0, 1.0);
     }
     return vec2<f32>(moved, select(0.0, 1.0, increasing));
+}
+
+// grain.rs
+const AIR_DENSITY_KG_M3: f32 = 1.225;
+const AIR_KINEMATIC_VISCOSITY_M2_S: f32 = 1.46e-5;
+const VON_KARMAN: f32 = 0.4;
+const SUSPENSION_REFERENCE_HEIGHT_M: f32 = 0.1;
+const LAUNCH_HEIGHT_M: f32 = 0.02;
+const LAUNCH_SPEED_PER_FRICTION_VELOCITY: f32 = 2.0;
+
+fn grain_settling_speed_mps(diameter_m: f32, density_kg_m3: f32) -> f32 {
+    let d = max(diameter_m, 0.0);
+    let r = max(density_kg_m3 - AIR_DENSITY_KG_M3, 0.0) / AIR_DENSITY_KG_M3;
+    let c1 = 18.0;
+    let c2 = 1.0;
+    let denominator = c1 * AIR_KINEMATIC_VISCOSITY_M2_S + sqrt(0.75 * c2 * r * GRAVITY_MPS2 * d * d * d);
+    return r * GRAVITY_MPS2 * d * d / max(denominator, 1.17549435e-38);
+}
+
+fn rouse_number(settling_mps: f32, friction_velocity_mps: f32) -> f32 {
+    return settling_mps / (VON_KARMAN * max(friction_velocity_mps, 1.0e-3));
+}
+
+fn rouse_height_m(rouse: f32, top_m: f32, f: f32) -> f32 {
+    let a = SUSPENSION_REFERENCE_HEIGHT_M;
+    let b = max(top_m, a);
+    let e = 1.0 - rouse;
+    if (abs(e) < 1.0e-3) {
+        return a * pow(b / a, f);
+    }
+    return pow(pow(a, e) + f * (pow(b, e) - pow(a, e)), 1.0 / e);
 }

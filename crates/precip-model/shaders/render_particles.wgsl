@@ -11,8 +11,12 @@ struct ParticleVarying {
     @location(3) world_m: vec3<f32>,
 }
 
-// The light a snowflake sends toward the camera, fogged: a thin translucent plate,
-// lit from whichever side the sun is on (sprites and splats alike).
+// Quartz sand and mineral dust in daylight (sRGB ~ #c8a878, linear).
+const GRAIN_COLOUR: vec3<f32> = vec3<f32>(0.58, 0.39, 0.19);
+
+// The light a snowflake (or a grain of sand or dust, drawn the same way) sends toward
+// the camera, fogged: a thin translucent plate, lit from whichever side the sun is on
+// (sprites and splats alike).
 fn snow_colour(p: Particle, distance_m: f32) -> vec3<f32> {
     let to_sun = params.to_sun_extinction.xyz;
     let n = normalize_or_zero(params.camera_m_cone_cos.xyz - p.position_m);
@@ -20,9 +24,12 @@ fn snow_colour(p: Particle, distance_m: f32) -> vec3<f32> {
     let lit = shadow_lit(p.position_m);
     let light = blinn_phong(params.light, params.shadow, facing, to_sun, n, lit);
     let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-    let white = select(0.95, 0.85, kind == KIND_WET_SNOW);
+    var albedo = vec3<f32>(select(0.95, 0.85, kind == KIND_WET_SNOW));
+    if (kind == KIND_GRAIN) {
+        albedo = GRAIN_COLOUR;
+    }
     let fog = fog_transmittance(distance_m, params.to_sun_extinction.w);
-    return mix(params.sky_colour_time.xyz, vec3<f32>(white * light), fog);
+    return mix(params.sky_colour_time.xyz, albedo * light, fog);
 }
 
 // The light of a drop's face of normal `n` toward `to_viewer`, fogged by `fog`.

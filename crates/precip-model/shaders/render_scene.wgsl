@@ -20,13 +20,14 @@ fn frame_counts() -> vec4<u32> {
 @group(0) @binding(3) var<storage, read> particles: array<Particle>;
 // Drawn particles: sprites at [0, N), streaks at [N, 2N) (N = particle count).
 @group(0) @binding(4) var<storage, read> drawn: array<u32>;
-// The cover as two filtered textures (cover_texture.wgsl writes them from the cover
+// The cover as three filtered textures (cover_texture.wgsl writes them from the cover
 // texels each frame): A = (depth mm, SWE mm, peak SWE mm, wetness),
 // B = (accumulation mask, melt mask, age days, standing water over the surface's
-// roughness);
+// roughness), C = (sand and dust settled kg/m², 0, 0, 0);
 // linear, clamped to the edge.
 @group(0) @binding(5) var cover_a: texture_2d<f32>;
 @group(0) @binding(6) var cover_b: texture_2d<f32>;
+@group(0) @binding(13) var cover_c: texture_2d<f32>;
 @group(0) @binding(7) var cover_sampler: sampler;
 // The water bodies' waves (water_waves.wgsl's buffer, read here as plain words).
 @group(0) @binding(12) var<storage, read> waves_read: array<i32>;
@@ -87,7 +88,9 @@ fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
     let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
     let a = textureSampleLevel(cover_a, cover_sampler, uv, 0.0);
     let b = textureSampleLevel(cover_b, cover_sampler, uv, 0.0);
+    let c = textureSampleLevel(cover_c, cover_sampler, uv, 0.0);
     var t: CoverTexel;
+    t.dust_kg_m2 = c.x;
     t.depth_mm = a.x;
     t.swe_mm = a.y;
     t.peak_swe_mm = a.z;
@@ -200,6 +203,9 @@ fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
         let sky_facing = exposure(in.surface_m, n) * upward(n);
         let snow = s.snow_alpha * clamp(in.eligibility, 0.0, 1.0) * sky_facing;
         let darkening = mix(1.0, s.ground_darkening, sky_facing);
+        // Settled sand and dust over the bare surface, under any snow (not on water).
+        let grains = settled_grain_cover(texel.dust_kg_m2) * sky_facing * (1.0 - body);
+        colour = mix(colour, SETTLED_GRAIN_COLOUR, grains);
         // Fresh snow (albedo 0.8) shows near white; it greys as it ages.
         let snow_colour = vec3<f32>(min(1.0, 1.2 * snow_albedo(texel.age_days, params.cover_look2.y)));
         colour = mix(colour * darkening, snow_colour, snow);

@@ -1,5 +1,15 @@
 // shading.wgsl: the cover as a surface shader sees it. Rust twins:
-// precip_cover::shading::{accumulated_fraction, melted_fraction, shade_with_masks}.
+// precip_cover::shading::{accumulated_fraction, melted_fraction, shade_with_masks,
+// settled_grain_cover}.
+
+// Rust: precip_cover::shading::GRAINS_COVERING_KG_M2.
+const GRAINS_COVERING_KG_M2: f32 = 0.1;
+// Settled quartz sand and dust (linear RGB).
+const SETTLED_GRAIN_COLOUR: vec3<f32> = vec3<f32>(0.55, 0.42, 0.26);
+
+fn settled_grain_cover(dust_kg_m2: f32) -> f32 {
+    return 1.0 - exp(-max(dust_kg_m2, 0.0) / GRAINS_COVERING_KG_M2);
+}
 
 struct CoverShading {
     snow_alpha: f32,

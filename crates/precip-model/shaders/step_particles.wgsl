@@ -90,7 +90,8 @@ fn step_particle(index: u32, particle: Particle) -> Particle {
     if (camera) {
         return step_in_camera_volume(index, particle.generation, next);
     }
-    next.water_kg += step_params.water_per_particle_kg_per_s * dt;
+    let lifted = is_lifted(index);
+    next.water_kg += select(step_params.water_per_particle_kg_per_s, step_params.lift_per_particle_kg_per_s, lifted) * dt;
     let xz = vec2<f32>(position.x, position.z);
     let ground = ground_height_at(xz);
     let landed = ground.x > 0.0 && position.y <= ground.y;
@@ -105,7 +106,8 @@ fn step_particle(index: u32, particle: Particle) -> Particle {
             next.flags |= FLAG_LANDED;
         }
     }
-    let left_scene = ground.x == 0.0 && position.y < step_params.ground_floor_m;
+    // Below the floor off the map, or a lifted grain blown off it.
+    let left_scene = ground.x == 0.0 && (position.y < step_params.ground_floor_m || lifted);
     if (landed || left_scene || next.age_s >= step_params.emitter_life_time_s) {
         next.flags |= STEP_ENDS;
     }
@@ -146,18 +148,21 @@ fn birth_particle(index: u32, particle: Particle) -> Particle {
             - random_unit(key, DRAW_PREWARM) * born.terminal_speed_mps * step_params.dt_s;
         return born;
     }
-    return birth_on_emitter(index, generation);
+    return birth_in_world(index, generation);
 }
 
 // Deposits a landed particle's water where it landed (Rust: the deposit in
 // step_particle).
 fn deposit_landed(particle: Particle) {
     let kind = (particle.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-    let channel = select(DEPOSIT_SNOW, DEPOSIT_RAIN, kind == KIND_RAIN);
+    var channel = select(DEPOSIT_SNOW, DEPOSIT_RAIN, kind == KIND_RAIN);
+    if (kind == KIND_GRAIN) {
+        channel = DEPOSIT_GRAINS;
+    }
     let water_mm = particle.water_kg * step_params.deposit_scale_mm_per_kg;
     let texel = grid_texel_index(frames.cover, particle.position_m.xz);
     if (texel >= 0) {
-        atomicAdd(&deposits[2u * u32(texel) + channel], deposit_units(water_mm));
+        atomicAdd(&deposits[DEPOSIT_CHANNELS * u32(texel) + channel], deposit_units(water_mm));
     }
 }
 

@@ -250,6 +250,7 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
         binding(rb::DRAWN, storage(true), Stages::DrawAndCompute),
         binding(rb::COVER_A, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::COVER_B, FILTERED_2D, Stages::DrawAndCompute),
+        binding(rb::COVER_C, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::COVER_SAMPLER, FILTERING, Stages::DrawAndCompute),
         binding(rb::WAVES, storage(true), Stages::DrawAndCompute),
     ],
@@ -308,6 +309,11 @@ pub const COVER_TEXTURE: GroupLayout = GroupLayout {
         ),
         binding(
             rb::COVER_B_OUT,
+            BindingKind::StorageTextureRgba16Float,
+            Stages::Compute,
+        ),
+        binding(
+            rb::COVER_C_OUT,
             BindingKind::StorageTextureRgba16Float,
             Stages::Compute,
         ),

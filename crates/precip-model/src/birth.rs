@@ -3,6 +3,10 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::grain::{
+    LAUNCH_HEIGHT_M, LAUNCH_SPEED_PER_FRICTION_VELOCITY, grain_settling_speed_mps, rouse_height_m,
+    rouse_number,
+};
 use crate::ground::GroundMap;
 use crate::particle::{Particle, ParticleKind, ParticleSource, pack_flags, rotation0};
 use crate::raindrop::{
@@ -24,11 +28,21 @@ fn centred3(key: u32, d: u32) -> Vec3 {
 
 /// Kind, diameter (m) and terminal speed (m/s) of a newborn particle.
 ///
-/// Snow with probability `snow_fraction` (sleet), else rain. Snow: `D = D̄(T)·(0.5 + f)`,
+/// Sand or dust weather: a grain, `d = d̄·(0.5 + f)`, falling at its settling speed
+/// ([`crate::grain::grain_settling_speed_mps`]). Otherwise snow with probability
+/// `snow_fraction` (sleet), else rain. Snow: `D = D̄(T)·(0.5 + f)`,
 /// `V_pmax` across the dry/wet range. Rain: D from the flux-weighted Marshall–Palmer
 /// draw, `V_pmax = v(D)`.
 #[must_use]
 pub fn draw_species(key: u32, params: &StepParams) -> (ParticleKind, f32, f32) {
+    if params.grain_diameter_m > 0.0 {
+        let diameter = params.grain_diameter_m * (0.5 + random_unit(key, draw::GRAIN_SIZE));
+        return (
+            ParticleKind::Grain,
+            diameter,
+            grain_settling_speed_mps(diameter, params.grain_density_kg_m3),
+        );
+    }
     let is_snow = random_unit(key, draw::KIND) < params.snow_fraction;
     if is_snow {
         let wet = params.snow_is_wet != 0;
@@ -89,6 +103,24 @@ fn newborn(
     }
 }
 
+/// A newborn world particle (emitter or lifted) with the world's drawn rotation.
+fn world_newborn(
+    position_m: Vec3,
+    velocity_mps: Vec3,
+    species: (ParticleKind, f32, f32),
+    (key, generation): (u32, u32),
+    params: &StepParams,
+) -> Particle {
+    newborn(
+        position_m,
+        velocity_mps,
+        species,
+        draw_rotation(key, params.world_rotation.x),
+        generation,
+        ParticleSource::WorldEmitter,
+    )
+}
+
 /// Tries of [`stationary_generation`] before the last is kept.
 pub const STATIONARY_TRIES: u32 = 16;
 
@@ -97,6 +129,9 @@ pub const STATIONARY_TRIES: u32 = 16;
 /// fall).
 #[must_use]
 pub fn slowest_terminal_speed_mps(params: &StepParams) -> f32 {
+    if params.grain_diameter_m > 0.0 {
+        return grain_settling_speed_mps(0.5 * params.grain_diameter_m, params.grain_density_kg_m3);
+    }
     let snow = snow_terminal_speed_mps(params.snow_is_wet != 0, 0.0);
     let rain = raindrop_terminal_speed_mps(RAIN_DIAMETER_MIN_MM);
     if params.snow_fraction >= 1.0 {
@@ -162,6 +197,113 @@ fn emitter_aim_m(key: u32, params: &StepParams) -> Vec3 {
     ))
 }
 
+/// Tries of a lifted grain for erodible ground before the last point is kept.
+pub const LIFT_TRIES: u32 = 4;
+
+/// Whether world particle `index` is one the wind lifts from the ground.
+#[must_use]
+pub const fn is_lifted(index: u32, params: &StepParams) -> bool {
+    index >= params.lift_from && index < params.world_count
+}
+
+/// A grain the wind lifts from erodible ground ([`crate::grain`]).
+///
+/// Where: a point drawn in the rectangle around the map's erodible texels
+/// (`lift_area_min_m … lift_area_max_m`), kept with probability its erodibility, up
+/// to [`LIFT_TRIES`] tries (the last is kept). How: sand leaves the surface at
+/// [`LAUNCH_HEIGHT_M`] straight up at [`launch_speed_mps`]; dust starts at a height of the
+/// Rouse profile through the layer up to `lift_layer_top_m`, moving with the mean
+/// wind at its fall speed.
+#[must_use]
+pub fn birth_lifted(
+    index: u32,
+    generation: u32,
+    params: &StepParams,
+    ground: &GroundMap,
+) -> Particle {
+    let key = particle_key(params.seed, index, generation);
+    let species = draw_species(key, params);
+    let span = params.lift_area_max_m - params.lift_area_min_m;
+    let mut at = params.lift_area_min_m;
+    for t in 0..LIFT_TRIES {
+        let d = draw::LIFT + 3 * t;
+        at =
+            params.lift_area_min_m + span * Vec2::new(random_unit(key, d), random_unit(key, d + 1));
+        if random_unit(key, d + 2) < ground.erodibility_at(at) {
+            break;
+        }
+    }
+    let ground_m = ground.height_at(at).unwrap_or(params.ground_floor_m);
+    let (height_m, velocity) = if params.grain_suspended != 0 {
+        let rouse = rouse_number(species.2, params.friction_velocity_mps);
+        (
+            rouse_height_m(
+                rouse,
+                params.lift_layer_top_m,
+                random_unit(key, draw::LIFT_HEIGHT),
+            ),
+            params.mean_wind_mps - Vec3::Y * species.2,
+        )
+    } else {
+        (LAUNCH_HEIGHT_M, Vec3::Y * launch_speed_mps(key, params))
+    };
+    world_newborn(
+        Vec3::new(at.x, ground_m + height_m, at.y),
+        velocity,
+        species,
+        (key, generation),
+        params,
+    )
+}
+
+/// A saltating grain's lift-off speed, m/s: `w₀ = 2·u*·(0.5 + f)` (lift-off speeds
+/// spread widely about their mean; the spread also keeps grains launched together
+/// from hopping in step).
+#[must_use]
+pub fn launch_speed_mps(key: u32, params: &StepParams) -> f32 {
+    LAUNCH_SPEED_PER_FRICTION_VELOCITY
+        * params.friction_velocity_mps
+        * (0.5 + random_unit(key, draw::LIFT_HEIGHT))
+}
+
+/// A lifted grain as the run starts: a saltating one part-way through its first
+/// hop (a point of the vacuum trajectory of its lift-off speed, at a fraction of
+/// its flight time drawn with the pre-warm draw, carrying what it gathered so far),
+/// so the grains of the first frames do not all leave the surface together; a
+/// suspended one as [`birth_lifted`] places it.
+#[must_use]
+pub fn initial_lifted(index: u32, params: &StepParams, ground: &GroundMap) -> Particle {
+    let mut p = birth_lifted(index, 0, params, ground);
+    if params.grain_suspended != 0 {
+        return p;
+    }
+    let key = particle_key(params.seed, index, 0);
+    let w0 = p.velocity_mps.y;
+    let g = crate::drag::GRAVITY_MPS2;
+    let age = random_unit(key, draw::PREWARM) * 2.0 * w0 / g;
+    p.position_m.y += w0 * age - 0.5 * g * age * age;
+    p.velocity_mps.y = w0 - g * age;
+    p.age_s = age;
+    p.water_kg = params.lift_per_particle_kg_per_s * age;
+    p
+}
+
+/// A world particle's (re-)birth: lifted from the ground ([`birth_lifted`]) or on
+/// the emitter ([`birth_on_emitter`]) by its index.
+#[must_use]
+pub fn birth_in_world(
+    index: u32,
+    generation: u32,
+    params: &StepParams,
+    ground: &GroundMap,
+) -> Particle {
+    if is_lifted(index, params) {
+        birth_lifted(index, generation, params, ground)
+    } else {
+        birth_on_emitter(index, generation, params, ground)
+    }
+}
+
 /// A particle born on the world emitter (MODEL.md §1):
 /// `P = M_model·(W(f − ½), H(f − ½), 0, 1) − Δ`, `v = v0 + 2·k_v·V_rand`.
 ///
@@ -186,13 +328,12 @@ pub fn birth_on_emitter(
     let species = draw_species(key, params);
     let aim = emitter_aim_m(key, params);
     let ground_m = ground_or_floor_m(ground, aim, params);
-    newborn(
+    world_newborn(
         aim - fall_drift_m(aim.y, ground_m, species.2, params),
         velocity,
         species,
-        draw_rotation(key, params.world_rotation.x),
-        generation,
-        ParticleSource::WorldEmitter,
+        (key, generation),
+        params,
     )
 }
 
@@ -227,6 +368,9 @@ pub fn birth_in_camera_volume(
 #[must_use]
 pub fn initial_particle(index: u32, params: &StepParams, ground: &GroundMap) -> Particle {
     let key = particle_key(params.seed, index, 0);
+    if is_lifted(index, params) {
+        return initial_lifted(index, params, ground);
+    }
     if index < params.world_count {
         let mut p = birth_on_emitter(index, 0, params, ground);
         // Down to the ground where it is aimed, under the emitter's point.

@@ -31,6 +31,14 @@ pub enum WeatherError {
         /// The range of that kind, in words.
         allowed: &'static str,
     },
+    /// Grains were given for a kind that has none.
+    #[error(
+        "weather `grain` is given for {kind:?}, which has no grains: give it for sand or dust only, or leave it out"
+    )]
+    GrainWithoutGrains {
+        /// The kind asked for.
+        kind: PrecipitationKind,
+    },
     /// The wind field was invalid.
     #[error("weather wind: {0}")]
     Wind(#[from] WindError),

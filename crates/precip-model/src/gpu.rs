@@ -485,8 +485,9 @@ pub mod render_passes {
     pub const SPLAT_RESOLVE: (&str, Option<&str>) = ("vs_splat_resolve", Some("fs_splat_resolve"));
 }
 
-/// The cover texels into the two filtered textures the surfaces read
-/// ([`render_bindings::COVER_A`], [`render_bindings::COVER_B`]): first in a frame.
+/// The cover texels into the three filtered textures the surfaces read
+/// ([`render_bindings::COVER_A`], [`render_bindings::COVER_B`],
+/// [`render_bindings::COVER_C`]): first in a frame.
 pub const COVER_TEXTURE_PASS: KernelPass = KernelPass {
     program: Program::Render,
     entry_point: "cover_texture",
@@ -616,6 +617,11 @@ pub mod render_bindings {
     /// Group 0: the water bodies' waves (`array<i32>`, as
     /// [`super::step_bindings::WAVES`]), read-only storage.
     pub const WAVES: u32 = 12;
+    /// Group 0: the cover's third texture (sand and dust settled, kg/m²; 0, 0, 0).
+    pub const COVER_C: u32 = 13;
+    /// Group 0 of the `cover_texture` kernel: [`COVER_C`] as a write-only storage
+    /// texture.
+    pub const COVER_C_OUT: u32 = 14;
 }
 
 /// Vertex layout of the scene: position (3 × f32), normal (3 × f32), uv (2 × f32),

@@ -116,6 +116,37 @@ impl GroundMap {
             .unwrap_or_else(|| Surface::from_eligibility(self.eligibility_at(xz_m)))
     }
 
+    /// The share of the surface under world `(x, z)` whose grains the wind lifts
+    /// ([`Surface::erodibility`]); 0 off the map.
+    #[must_use]
+    pub fn erodibility_at(&self, xz_m: Vec2) -> f32 {
+        if self.frame.texel_index(xz_m).is_none() {
+            return 0.0;
+        }
+        self.surface_at(xz_m).erodibility()
+    }
+
+    /// The erodible area of the map, m² (texel area × erodibility, summed).
+    #[must_use]
+    pub fn erodible_area_m2(&self) -> f32 {
+        let n = self.frame.texel_count();
+        let sum: f32 = (0..n)
+            .map(|i| self.erodibility_at(self.frame.texel_centre(i)))
+            .sum();
+        sum * self.frame.texel_area_m2()
+    }
+
+    /// The map as the GPU reads it (`ground_height` in `shaders/ground.wgsl`): the
+    /// heights of all texels, then the erodibility of each.
+    #[must_use]
+    pub fn gpu_words(&self) -> Vec<f32> {
+        let n = self.frame.texel_count();
+        let mut words = Vec::with_capacity(2 * n);
+        words.extend_from_slice(&self.height_m);
+        words.extend((0..n).map(|i| self.erodibility_at(self.frame.texel_centre(i))));
+        words
+    }
+
     /// The lowest ground height: below it a particle off the map has left the scene.
     #[must_use]
     pub fn floor_m(&self) -> f32 {

@@ -37,6 +37,7 @@ pub mod error;
 pub mod frame_recipe;
 pub mod gpu;
 pub mod gpu_scene;
+pub mod grain;
 pub mod ground;
 pub mod limits;
 pub mod particle;
@@ -74,7 +75,7 @@ pub use limits::DeviceLimits;
 pub use particle::{Particle, ParticleKind, ParticleSource};
 pub use render::RenderSettings;
 pub use scene::{Material, Mesh, PreparedScene, Scene, SceneError, SceneReport, TextureRgba8};
-pub use setup::{CameraVolumeSetup, CoverSetup, EmitterSetup, Setup};
+pub use setup::{CameraVolumeSetup, CoverSetup, EmitterSetup, GrainLift, Setup};
 pub use weather::{PrecipitationKind, Weather};
 
 pub use precip_cover as cover;

@@ -13,13 +13,15 @@ pub enum ParticleKind {
     WetSnow = 1,
     /// A raindrop.
     Rain = 2,
+    /// A grain of sand or dust ([`crate::grain`]).
+    Grain = 3,
 }
 
 impl ParticleKind {
     /// Whether it is snow.
     #[must_use]
     pub const fn is_snow(self) -> bool {
-        !matches!(self, Self::Rain)
+        matches!(self, Self::DrySnow | Self::WetSnow)
     }
 }
 
@@ -129,7 +131,8 @@ impl Particle {
         match (self.flags >> flags::KIND_SHIFT) & flags::KIND_MASK {
             0 => ParticleKind::DrySnow,
             1 => ParticleKind::WetSnow,
-            _ => ParticleKind::Rain,
+            2 => ParticleKind::Rain,
+            _ => ParticleKind::Grain,
         }
     }
 
@@ -219,6 +222,7 @@ mod tests {
             ParticleKind::DrySnow,
             ParticleKind::WetSnow,
             ParticleKind::Rain,
+            ParticleKind::Grain,
         ] {
             for source in [ParticleSource::WorldEmitter, ParticleSource::CameraVolume] {
                 for bits in 0..8u32 {

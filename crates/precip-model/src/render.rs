@@ -329,6 +329,21 @@ impl crate::Setup {
     }
 }
 
+/// The colour of air thick with sand or dust (a brown-orange haze, as photographed
+/// in haboobs and Saharan dust events).
+pub const DUST_HAZE_COLOUR: Vec3 = Vec3::new(0.66, 0.5, 0.33);
+
+/// The colour of the sky and the fog in `weather`: sand and dust scatter the
+/// daylight warm, so the haze takes their colour in proportion to their share of
+/// the extinction (the backends clear the frame to it, too).
+#[must_use]
+pub fn haze_colour(settings: &RenderSettings, weather: &Weather) -> Vec3 {
+    let extinction_per_m = settings.clear_air_extinction_per_m + weather.extinction_per_m();
+    let grain_share = (weather.grain_extinction_per_m() / extinction_per_m.max(f32::MIN_POSITIVE))
+        .clamp(0.0, 1.0);
+    settings.sky_colour.lerp(DUST_HAZE_COLOUR, grain_share)
+}
+
 impl RenderParams {
     /// The block for one frame.
     #[must_use]
@@ -342,6 +357,7 @@ impl RenderParams {
         let l = &s.lighting;
         let ground_cell = f.ground.cell_m();
         let extinction_per_m = s.clear_air_extinction_per_m + f.weather.extinction_per_m();
+        let haze = haze_colour(s, f.weather);
         Self {
             view_proj: view_projection(camera, aspect),
             sun_view_proj: crate::shadow_fit::fitted_sun_view_projection(
@@ -354,7 +370,7 @@ impl RenderParams {
             camera_m_cone_cos: camera.position_m.extend(cone_cos),
             view_dir_pixel_angle: camera.forward.normalize().extend(pixel_angle),
             to_sun_extinction: s.to_sun.normalize().extend(extinction_per_m),
-            sky_colour_time: s.sky_colour.extend(f.time_s),
+            sky_colour_time: haze.extend(f.time_s),
             light: Vec4::new(l.ambient, l.diffuse, l.specular, l.shininess),
             shadow: Vec4::new(
                 l.shadow_colour,

@@ -53,6 +53,14 @@ pub mod draw {
     pub const SNOW_SPEED: u32 = 13;
     /// First of the raindrop diameter draws (two per try, up to 14 + 2·32 = 78).
     pub const RAIN_DIAMETER: u32 = 14;
+    /// A grain's size within ±50 % of the weather's ([`crate::grain`]).
+    pub const GRAIN_SIZE: u32 = 79;
+    /// Where in the suspended layer a lifted dust grain starts, or how fast a
+    /// saltating sand grain leaves the surface.
+    pub const LIFT_HEIGHT: u32 = 80;
+    /// First of a lifted grain's tries for erodible ground: three draws a try
+    /// (X, Z, acceptance), [`crate::birth::LIFT_TRIES`] tries (81 … 92).
+    pub const LIFT: u32 = 81;
     /// Camera-volume position, X (then +1, +2).
     pub const VOLUME_X: u32 = 100;
     /// Pre-warm: how far along its fall a particle starts.
@@ -71,7 +79,10 @@ pub mod draw {
 // Draw numbers never overlap: each decision has its own stream.
 const _: () = {
     let last_rain = draw::RAIN_DIAMETER + 2 * crate::raindrop::RAIN_DIAMETER_TRIES - 1;
-    assert!(last_rain < draw::VOLUME_X && draw::VOLUME_X + 2 < draw::PREWARM);
+    assert!(last_rain < draw::GRAIN_SIZE && draw::GRAIN_SIZE < draw::LIFT_HEIGHT);
+    assert!(draw::LIFT_HEIGHT < draw::LIFT);
+    assert!(draw::LIFT + 3 * crate::birth::LIFT_TRIES <= draw::VOLUME_X);
+    assert!(draw::VOLUME_X + 2 < draw::PREWARM);
     assert!(draw::PREWARM < draw::STATIONARY && draw::STATIONARY < draw::SPLASH_AZIMUTH);
     assert!(draw::SNOW_SPEED < draw::RAIN_DIAMETER && draw::ROTATION_X + 2 < draw::KIND);
 };

@@ -13,6 +13,7 @@ use precip_wind::WindVolumeSpec;
 use crate::camera::Camera;
 use crate::emitter::{CameraVolume, WorldEmitter};
 use crate::error::BackendError;
+use crate::grain::{Grain, lifted_flux_kg_per_m2_s, sand_friction_velocity_mps};
 use crate::ground::GroundMap;
 use crate::raindrop::marshall_palmer_slope_per_mm;
 use crate::render::RenderSettings;
@@ -343,9 +344,11 @@ impl Setup {
         let (world_count, camera_count) = self.particle_counts();
         let emitter = self.world_emitter.map(|e| e.emitter);
         let rain_rate = weather.rain_rate_mm_per_h();
+        let lift = self.grain_lift(weather, world_count);
+        let sky_count = lift.lift_from;
         let water_per_particle_kg_per_s = match emitter {
-            Some(e) if world_count > 0 => {
-                weather.intensity_mm_per_h / 3600.0 * e.horizontal_area_m2() / world_count as f32
+            Some(e) if sky_count > 0 => {
+                weather.intensity_mm_per_h / 3600.0 * e.horizontal_area_m2() / sky_count as f32
             }
             _ => 0.0,
         };
@@ -381,6 +384,94 @@ impl Setup {
             }),
             deposit_scale_mm_per_kg: self.cover.time_scale / self.cover.frame.texel_area_m2(),
             ground_floor_m: self.ground.floor_m(),
+            grain_diameter_m: lift.grain.map_or(0.0, |g| g.diameter_m),
+            grain_density_kg_m3: lift.grain.map_or(0.0, |g| g.density_kg_m3),
+            lift_from: lift.lift_from,
+            lift_per_particle_kg_per_s: lift.per_particle_kg_per_s,
+            friction_velocity_mps: lift.friction_velocity_mps,
+            lift_layer_top_m: lift.layer_top_m,
+            grain_suspended: u32::from(lift.suspended),
+            flow_ceiling_m: crate::terrain_flow::flow_ceiling_m(&self.ground),
+            lift_area_min_m: lift.area_min_m,
+            lift_area_max_m: lift.area_max_m,
         }
     }
+
+    /// How sand or dust weather shares the world particles between the grains
+    /// settling from the sky (born on the emitter) and the grains the wind lifts
+    /// from the erodible ground ([`crate::grain`]), in proportion to their mass
+    /// fluxes: the sky's `R·A` (R the weather's rate, A the emitter's ground area)
+    /// and the ground's `F·A_e` (F the lifted flux at the wind's friction velocity
+    /// over sand, `A_e` the map's erodible area). Each pool's particles gather their
+    /// pool's flux over their count, so the grains landed and in the air add up to
+    /// what the two sources gave.
+    #[must_use]
+    pub fn grain_lift(&self, weather: &Weather, world_count: u32) -> GrainLift {
+        let none = GrainLift {
+            grain: weather.grains(),
+            lift_from: world_count,
+            ..GrainLift::default()
+        };
+        let (Some(grain), Some(e)) = (weather.grains(), self.world_emitter) else {
+            return none;
+        };
+        let friction_velocity_mps = sand_friction_velocity_mps(weather.ground_wind_speed_mps());
+        let frame = self.ground.frame;
+        let half = 0.5 * frame.size_m / frame.texels.as_vec2();
+        let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
+        for i in 0..frame.texel_count() {
+            let c = frame.texel_centre(i);
+            if self.ground.erodibility_at(c) > 0.0 {
+                lo = lo.min(c - half);
+                hi = hi.max(c + half);
+            }
+        }
+        let lifted_kg_s =
+            lifted_flux_kg_per_m2_s(&grain, friction_velocity_mps) * self.ground.erodible_area_m2();
+        let sky_kg_s = weather.grain_rate_kg_per_m2_h() / 3600.0 * e.emitter.horizontal_area_m2();
+        if !(lifted_kg_s > 0.0 && lo.x <= hi.x) || world_count == 0 {
+            return none;
+        }
+        let lift_count = if sky_kg_s > 0.0 && world_count >= 2 {
+            let share = lifted_kg_s / (lifted_kg_s + sky_kg_s);
+            ((world_count as f32 * share).round() as u32).clamp(1, world_count - 1)
+        } else {
+            world_count
+        };
+        let layer_top_m = (e.emitter.model.w_axis.y - self.ground.floor_m()).max(1.0);
+        GrainLift {
+            grain: Some(grain),
+            lift_from: world_count - lift_count,
+            per_particle_kg_per_s: lifted_kg_s / lift_count as f32,
+            friction_velocity_mps,
+            layer_top_m,
+            suspended: grain.is_suspended_by(friction_velocity_mps),
+            area_min_m: lo,
+            area_max_m: hi,
+            lifted_kg_per_s: lifted_kg_s,
+        }
+    }
+}
+
+/// Sand or dust lifted from the ground ([`Setup::grain_lift`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GrainLift {
+    /// The weather's grains (`None`: snow and rain).
+    pub grain: Option<Grain>,
+    /// World particles from this index on are lifted (`world_count`: none).
+    pub lift_from: u32,
+    /// Grains each lifted particle gathers per second, kg/s.
+    pub per_particle_kg_per_s: f32,
+    /// The wind's friction velocity over sand, m/s.
+    pub friction_velocity_mps: f32,
+    /// Top of the suspended layer, m above the ground.
+    pub layer_top_m: f32,
+    /// Whether the lifted grains stay suspended (dust) or saltate (sand).
+    pub suspended: bool,
+    /// The erodible texels' bounds, min (x, z), m.
+    pub area_min_m: Vec2,
+    /// The erodible texels' bounds, max (x, z), m.
+    pub area_max_m: Vec2,
+    /// Grains the wind lifts from the map each second, kg/s.
+    pub lifted_kg_per_s: f32,
 }

@@ -10,7 +10,10 @@
 //! 2. World emitter particles gather water, `R·A/n` per second (R the intensity,
 //!    A the emitter's ground area, n its particle count): over a long run the water
 //!    landed equals `R·A·time` exactly, whatever the particles' speeds (each particle
-//!    stands for 1/n of the emitter's flux for as long as it lives).
+//!    stands for 1/n of the emitter's flux for as long as it lives). Sand and dust
+//!    the wind lifts from the ground ([`crate::grain`], particles `[lift_from,
+//!    world_count)`) gather the lifted flux over their count the same way, land in
+//!    the cover's grains channel, and are re-born when they leave the map.
 //!    If `P'` is at or below the ground map, the water is added to the cover texel
 //!    there (fixed point, atomic) and the particle is re-born. A particle that was
 //!    already below that surface at `P` came in from the side (blown against a wall
@@ -29,10 +32,10 @@ use glam::{Mat4, Vec2, Vec3};
 use precip_cover::{DepositBuffer, GridFrame};
 use precip_wind::WindVolume;
 
-use crate::birth::{birth_in_camera_volume, birth_on_emitter};
+use crate::birth::{birth_in_camera_volume, birth_in_world, is_lifted};
 use crate::drag::drag_velocity;
 use crate::ground::GroundMap;
-use crate::particle::{Particle, ParticleSource, flags};
+use crate::particle::{Particle, ParticleKind, ParticleSource, flags};
 use crate::rng::{draw, particle_key, random_unit};
 use crate::rotation::advance_rotation;
 use crate::splash::{splash_droplet, splashes};
@@ -40,7 +43,7 @@ use crate::terrain_flow::terrain_following_wind;
 
 /// Everything a step needs besides the buffers: the GPU's uniform block.
 ///
-/// WGSL twin: `StepParams` in `shaders/layout.wgsl` (192 bytes).
+/// WGSL twin: `StepParams` in `shaders/layout.wgsl` (240 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct StepParams {
@@ -88,8 +91,31 @@ pub struct StepParams {
     pub deposit_scale_mm_per_kg: f32,
     /// Below this height a particle off the ground map has left the scene, m.
     pub ground_floor_m: f32,
+    /// Sand or dust weather: the grains' mean diameter, m; 0: snow and rain fall.
+    pub grain_diameter_m: f32,
+    /// The grains' density, kg/m³.
+    pub grain_density_kg_m3: f32,
+    /// World particles `[lift_from, world_count)` are lifted by the wind from
+    /// erodible ground ([`crate::grain`]); `world_count`: none are.
+    pub lift_from: u32,
+    /// Grains each lifted particle gathers per second, kg/s.
+    pub lift_per_particle_kg_per_s: f32,
+    /// Friction velocity u* of the wind over the erodible ground, m/s.
+    pub friction_velocity_mps: f32,
+    /// Top of the layer suspended grains are born in, m above the ground.
+    pub lift_layer_top_m: f32,
+    /// 1: the lifted grains are suspended (dust, born through the layer by the
+    /// Rouse profile); 0: they saltate (sand, launched from the surface).
+    pub grain_suspended: u32,
+    /// Above this height the ground does not turn the wind, m
+    /// ([`crate::terrain_flow::flow_ceiling_m`]).
+    pub flow_ceiling_m: f32,
+    /// Lifted grains are born in the rectangle from this corner (min x, min z), m…
+    pub lift_area_min_m: Vec2,
+    /// … to this one (max x, max z), m: the erodible texels' bounds.
+    pub lift_area_max_m: Vec2,
 }
-const _: () = assert!(size_of::<StepParams>() == 192);
+const _: () = assert!(size_of::<StepParams>() == 240);
 
 impl StepParams {
     /// This block for one sub-step: the per-sub-step fields set, the rest (weather,
@@ -147,6 +173,7 @@ pub fn step_particle(
         inputs.wind.velocity_mps(particle.position_m, params.time_s),
         particle.position_m,
         inputs.ground,
+        params.flow_ceiling_m,
     );
     let velocity = drag_velocity(particle.velocity_mps, wind, particle.terminal_speed_mps, dt);
     let position = particle.position_m + (particle.velocity_mps + velocity) * (0.5 * dt);
@@ -182,14 +209,19 @@ pub fn step_particle(
 
     match source {
         ParticleSource::WorldEmitter => {
-            next.water_kg += params.water_per_particle_kg_per_s * dt;
+            let lifted = is_lifted(index, params);
+            next.water_kg += if lifted {
+                params.lift_per_particle_kg_per_s
+            } else {
+                params.water_per_particle_kg_per_s
+            } * dt;
             let xz = Vec2::new(position.x, position.z);
             match inputs.ground.height_at(xz) {
                 Some(ground_m) if position.y <= ground_m => {
-                    let channel = if next.kind().is_snow() {
-                        DepositBuffer::SNOW
-                    } else {
-                        DepositBuffer::RAIN
+                    let channel = match next.kind() {
+                        ParticleKind::DrySnow | ParticleKind::WetSnow => DepositBuffer::SNOW,
+                        ParticleKind::Rain => DepositBuffer::RAIN,
+                        ParticleKind::Grain => DepositBuffer::GRAINS,
                     };
                     let water_mm = next.water_kg * params.deposit_scale_mm_per_kg;
                     let from_side = particle.position_m.y < ground_m;
@@ -210,7 +242,7 @@ pub fn step_particle(
                         );
                     }
                     return (
-                        birth_on_emitter(
+                        birth_in_world(
                             index,
                             particle.generation.wrapping_add(1),
                             params,
@@ -219,9 +251,11 @@ pub fn step_particle(
                         StepEvent::Landed,
                     );
                 }
-                None if position.y < params.ground_floor_m => {
+                // Below the floor off the map, or a lifted grain blown off it (it
+                // started on the map: what leaves it is gone).
+                None if position.y < params.ground_floor_m || lifted => {
                     return (
-                        birth_on_emitter(
+                        birth_in_world(
                             index,
                             particle.generation.wrapping_add(1),
                             params,
@@ -234,7 +268,7 @@ pub fn step_particle(
             }
             if next.age_s >= params.emitter_life_time_s {
                 return (
-                    birth_on_emitter(
+                    birth_in_world(
                         index,
                         particle.generation.wrapping_add(1),
                         params,
@@ -310,6 +344,9 @@ mod tests {
         assert_eq!(std::mem::offset_of!(StepParams, seed), 160);
         assert_eq!(std::mem::offset_of!(StepParams, air_temperature_c), 176);
         assert_eq!(std::mem::offset_of!(StepParams, ground_floor_m), 188);
+        assert_eq!(std::mem::offset_of!(StepParams, grain_diameter_m), 192);
+        assert_eq!(std::mem::offset_of!(StepParams, flow_ceiling_m), 220);
+        assert_eq!(std::mem::offset_of!(StepParams, lift_area_max_m), 232);
     }
 
     #[test]

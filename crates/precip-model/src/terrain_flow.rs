@@ -34,7 +34,10 @@
 //!   `u'_h ×= 1/(1 + (L·S_x)²)`, `L = 12`): flakes settle in the lee of walls and
 //!   houses instead of sailing on, as in the recirculation behind a real one.
 //!
-//! Off the map the ground is level.
+//! Off the map the ground is level. Above [`flow_ceiling_m`] (the map's highest
+//! ground plus [`TERRAIN_FLOW_DEPTH_M`]) none of the three parts changes the wind, so
+//! a particle there skips the ground reads (most of the step's cost in a deep
+//! emitter): the result is the same bits.
 
 use glam::{Vec2, Vec3};
 use precip_cover::drift::{SHELTER_RELIEF_M, WAKE_LENGTH_RATIO};
@@ -60,9 +63,30 @@ pub const TERRAIN_FLOW_WAKE_REACH_M: f32 = 36.0;
 /// Samples over [`TERRAIN_FLOW_WAKE_REACH_M`].
 pub const TERRAIN_FLOW_WAKE_SAMPLES: u32 = 12;
 
-/// The wind `wind_mps` at `position_m` turned to follow the ground (module docs).
+/// The height above which the ground does not turn the wind, m: the map's highest
+/// ground plus [`TERRAIN_FLOW_DEPTH_M`] (`StepParams::flow_ceiling_m`).
 #[must_use]
-pub fn terrain_following_wind(wind_mps: Vec3, position_m: Vec3, ground: &GroundMap) -> Vec3 {
+pub fn flow_ceiling_m(ground: &GroundMap) -> f32 {
+    ground
+        .height_m
+        .iter()
+        .copied()
+        .fold(f32::NEG_INFINITY, f32::max)
+        + TERRAIN_FLOW_DEPTH_M
+}
+
+/// The wind `wind_mps` at `position_m` turned to follow the ground (module docs);
+/// `ceiling_m` is [`flow_ceiling_m`] of `ground`.
+#[must_use]
+pub fn terrain_following_wind(
+    wind_mps: Vec3,
+    position_m: Vec3,
+    ground: &GroundMap,
+    ceiling_m: f32,
+) -> Vec3 {
+    if position_m.y >= ceiling_m {
+        return wind_mps;
+    }
     let xz = Vec2::new(position_m.x, position_m.z);
     let Some(here_m) = ground.height_at(xz) else {
         return wind_mps;
@@ -160,20 +184,55 @@ mod tests {
     }
 
     #[test]
+    fn above_the_ceiling_the_skipped_reads_would_change_nothing() {
+        let ground = ramp(0.2);
+        let ceiling = flow_ceiling_m(&ground);
+        assert!((ceiling - (0.2 * 19.75 + TERRAIN_FLOW_DEPTH_M)).abs() < 1e-4);
+        let wind = Vec3::new(9.0, -0.5, 3.0);
+        for p in [
+            Vec3::new(-15.0, ceiling, 2.0),
+            Vec3::new(0.0, ceiling + 0.01, -7.0),
+            Vec3::new(18.0, ceiling + 30.0, 0.0),
+        ] {
+            assert_eq!(terrain_following_wind(wind, p, &ground, ceiling), wind);
+            // The full computation, no ceiling: the same bits.
+            assert_eq!(
+                terrain_following_wind(wind, p, &ground, f32::INFINITY),
+                wind
+            );
+        }
+    }
+
+    #[test]
     fn at_the_surface_the_wind_runs_along_it_and_aloft_it_is_untouched() {
         let ground = ramp(0.5);
         let wind = Vec3::new(14.0, 0.0, 0.0);
         let normal = Vec3::new(-0.5, 1.0, 0.0).normalize();
         // On the surface of the texel (centre x = 0.25 m, 0.125 m up).
-        let at_surface = terrain_following_wind(wind, Vec3::new(0.25, 0.125, 0.0), &ground);
+        let at_surface = terrain_following_wind(
+            wind,
+            Vec3::new(0.25, 0.125, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         assert!(at_surface.dot(normal).abs() < 1e-3, "{at_surface}");
         assert!(
             at_surface.y > 5.0,
             "rises over the windward face: {at_surface}"
         );
-        let aloft = terrain_following_wind(wind, Vec3::new(0.25, 20.0, 0.0), &ground);
+        let aloft = terrain_following_wind(
+            wind,
+            Vec3::new(0.25, 20.0, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         assert_eq!(aloft, wind);
-        let half = terrain_following_wind(wind, Vec3::new(0.25, 0.125 + 5.0, 0.0), &ground);
+        let half = terrain_following_wind(
+            wind,
+            Vec3::new(0.25, 0.125 + 5.0, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         assert!(
             half.dot(normal) < -1.0 && half.dot(normal) > 0.9 * wind.dot(normal),
             "{half}"
@@ -192,18 +251,38 @@ mod tests {
         let wind = Vec3::new(10.0, 0.0, 0.0);
         // 7 m before a 4 m wall, 1 m up: the steepest sight line to the wall's top
         // rises 3 m over 7.5 m (the first sample on top).
-        let far = terrain_following_wind(wind, Vec3::new(-2.0, 1.0, 0.0), &ground);
+        let far = terrain_following_wind(
+            wind,
+            Vec3::new(-2.0, 1.0, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         assert!((far - Vec3::new(10.0, 4.0, 0.0)).length() < 1e-4, "{far}");
         // Close under the top the climb is capped at 45°: the flake strikes the wall.
-        let close = terrain_following_wind(wind, Vec3::new(4.6, 1.0, 0.0), &ground);
+        let close = terrain_following_wind(
+            wind,
+            Vec3::new(4.6, 1.0, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         assert!(
             (close.y - close.x).abs() < 1e-4 && close.x < 10.0,
             "{close}"
         );
         // Above the wall's top, or blowing away from it: nothing to climb.
-        let over = terrain_following_wind(wind, Vec3::new(-2.0, 15.0, 0.0), &ground);
+        let over = terrain_following_wind(
+            wind,
+            Vec3::new(-2.0, 15.0, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         assert_eq!(over, wind);
-        let away = terrain_following_wind(-wind, Vec3::new(-2.0, 1.0, 0.0), &ground);
+        let away = terrain_following_wind(
+            -wind,
+            Vec3::new(-2.0, 1.0, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         assert!(away.y.abs() < 1e-6, "{away}");
     }
 
@@ -220,12 +299,22 @@ mod tests {
         let wind = Vec3::new(10.0, 0.0, 0.0);
         // Behind the wall, 1 m up: the 5th sample up-wind (15 m) is on it,
         // S_x = (4.3 − 1 − 0.3)/15.
-        let behind = terrain_following_wind(wind, Vec3::new(-4.75, 1.0, 0.0), &ground);
+        let behind = terrain_following_wind(
+            wind,
+            Vec3::new(-4.75, 1.0, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         let sx = 3.0 / 15.0;
         let expected = 10.0 / (1.0 + (12.0 * sx) * (12.0 * sx));
         assert!((behind.x - expected).abs() < 1e-3, "{behind} vs {expected}");
         // Above the wall's top: the open wind.
-        let above = terrain_following_wind(wind, Vec3::new(-4.75, 12.0, 0.0), &ground);
+        let above = terrain_following_wind(
+            wind,
+            Vec3::new(-4.75, 12.0, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         assert_eq!(above, wind);
     }
 
@@ -233,12 +322,27 @@ mod tests {
     fn over_level_ground_and_off_the_map_nothing_changes() {
         let ground = ramp(0.0);
         let wind = Vec3::new(3.0, -1.0, 2.0);
-        let level = terrain_following_wind(wind, Vec3::new(0.0, 20.0, 0.0), &ground);
+        let level = terrain_following_wind(
+            wind,
+            Vec3::new(0.0, 20.0, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         assert_eq!(level, wind);
         // The vertical part is the flake's business (its settling), not the wind's.
-        let low = terrain_following_wind(wind, Vec3::new(0.0, 0.0, 0.0), &ground);
+        let low = terrain_following_wind(
+            wind,
+            Vec3::new(0.0, 0.0, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         assert!((low - Vec3::new(3.0, 0.0, 2.0)).length() < 1e-5, "{low}");
-        let off = terrain_following_wind(wind, Vec3::new(100.0, 0.0, 0.0), &ground);
+        let off = terrain_following_wind(
+            wind,
+            Vec3::new(100.0, 0.0, 0.0),
+            &ground,
+            flow_ceiling_m(&ground),
+        );
         assert_eq!(off, wind);
     }
 }

@@ -17,6 +17,7 @@
 //! which sums the whole spectrum. A camera volume holds that density up to its budget
 //! ([`Weather::simulated_particle_count`]).
 
+use crate::grain::{grain_extinction_per_m, settling_concentration_kg_m3};
 use crate::raindrop::{
     MARSHALL_PALMER_N0, RAIN_DIAMETER_MAX_MM, RAIN_DIAMETER_MIN_MM, marshall_palmer_slope_per_mm,
     rain_number_density_per_m3,
@@ -89,11 +90,37 @@ pub fn koschmieder_visibility_m(extinction_per_m: f32) -> f32 {
 }
 
 impl Weather {
-    /// Extinction coefficient of the precipitation, per m (fog density follows it).
+    /// Extinction coefficient of the precipitation, per m (fog density follows it):
+    /// snow and rain by their spectra, sand and dust by the mass concentration their
+    /// settling rate holds in the air ([`crate::grain`]).
     #[must_use]
     pub fn extinction_per_m(&self) -> f32 {
         snow_extinction_per_m(self.snow_rate_mm_per_h(), self.snow_is_wet())
             + rain_extinction_per_m(self.rain_rate_mm_per_h())
+            + self.grain_extinction_per_m()
+    }
+
+    /// The sand's or dust's part of [`Weather::extinction_per_m`], per m: the mass
+    /// concentration its settling rate holds, `C = F/w`, through `σ = 3·C/(ρ_p·d)`.
+    #[must_use]
+    pub fn grain_extinction_per_m(&self) -> f32 {
+        self.grains().map_or(0.0, |g| {
+            grain_extinction_per_m(
+                settling_concentration_kg_m3(self.grain_rate_kg_per_m2_h(), &g),
+                &g,
+            )
+        })
+    }
+
+    /// Grains per m³ in the air (sand and dust; 0 otherwise): the mass concentration
+    /// over one mean grain's mass.
+    #[must_use]
+    pub fn grain_number_density_per_m3(&self) -> f32 {
+        self.grains().map_or(0.0, |g| {
+            let concentration = settling_concentration_kg_m3(self.grain_rate_kg_per_m2_h(), &g);
+            let mass_kg = g.density_kg_m3 * std::f32::consts::FRAC_PI_6 * g.diameter_m.powi(3);
+            concentration / mass_kg.max(f32::MIN_POSITIVE)
+        })
     }
 
     /// Visibility in the precipitation, m.
@@ -107,6 +134,7 @@ impl Weather {
     pub fn number_density_per_m3(&self) -> f32 {
         snow_number_density_per_m3(self.snow_rate_mm_per_h())
             + rain_number_density_per_m3(self.rain_rate_mm_per_h())
+            + self.grain_number_density_per_m3()
     }
 
     /// Flakes and drops per m³ of the sizes simulated one by one (module docs): the
@@ -137,7 +165,7 @@ impl Weather {
         } else {
             0.0
         };
-        snow + rain
+        snow + rain + self.grain_number_density_per_m3()
     }
 
     /// How many particles a volume of `volume_m3` holds in reality, of the sizes

@@ -3,6 +3,7 @@
 use precip_wind::WindField;
 
 use crate::error::WeatherError;
+use crate::grain::Grain;
 
 /// The kind of precipitation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -16,6 +17,12 @@ pub enum PrecipitationKind {
     /// Sleet: a mix of wet snow and rain whose snow fraction follows the air
     /// temperature ([`sleet_snow_fraction`]).
     Sleet,
+    /// Blowing sand ([`crate::grain`]): grains settling from the air and lifted by
+    /// the wind from sand in the scene.
+    Sand,
+    /// Mineral dust ([`crate::grain`]): a haze settling slowly, and dust thrown up
+    /// from sand in the scene by a strong wind.
+    Dust,
 }
 
 impl PrecipitationKind {
@@ -31,6 +38,18 @@ impl PrecipitationKind {
                 "-10..=+50 °C for rain (freezing rain below 0 °C)",
             ),
             Self::Sleet => (-5.0, 6.0, "-5..=+6 °C for sleet"),
+            Self::Sand | Self::Dust => (-60.0, 50.0, "-60..=+50 °C for sand and dust"),
+        }
+    }
+
+    /// The grains of this kind when the weather names none: 0.2 mm quartz sand,
+    /// 10 µm quartz dust; `None` for water and ice.
+    #[must_use]
+    pub const fn default_grain(self) -> Option<Grain> {
+        match self {
+            Self::Sand => Some(Grain::SAND),
+            Self::Dust => Some(Grain::DUST),
+            Self::DrySnow | Self::WetSnow | Self::Rain | Self::Sleet => None,
         }
     }
 }
@@ -54,8 +73,12 @@ pub struct Weather {
     /// What falls.
     pub kind: PrecipitationKind,
     /// Precipitation rate as liquid water, mm/h (snow: its water equivalent);
-    /// allowed `[0, 300]`.
+    /// allowed `[0, 300]`. Sand and dust: the grains settling from the air (carried
+    /// in from up-wind), kg/(m²·h) — the same number (a mm of water is a kg/m²).
     pub intensity_mm_per_h: f32,
+    /// Sand and dust only: the grains; `None`: the kind's own
+    /// ([`PrecipitationKind::default_grain`]).
+    pub grain: Option<Grain>,
     /// Air temperature, °C; allowed `[-60, 50]` and the kind's own range.
     pub air_temperature_c: f32,
     /// The wind.
@@ -74,6 +97,7 @@ impl Default for Weather {
             air_temperature_c: -5.0,
             wind: WindField::calm(),
             relative_humidity: Self::DEFAULT_RELATIVE_HUMIDITY,
+            grain: None,
         }
     }
 }
@@ -119,8 +143,45 @@ impl Weather {
                 allowed: "[0, 1] (a fraction, not percent)",
             });
         }
+        if let Some(grain) = self.grain {
+            if self.kind.default_grain().is_none() {
+                return Err(WeatherError::GrainWithoutGrains { kind: self.kind });
+            }
+            let d = grain.diameter_m;
+            if !(d.is_finite() && (1.0e-6..=2.0e-3).contains(&d)) {
+                return Err(WeatherError::OutOfRange {
+                    field: "grain.diameter_m",
+                    value: f64::from(d),
+                    allowed: "[0.000001, 0.002] m (1 µm dust to 2 mm coarse sand)",
+                });
+            }
+            let rho = grain.density_kg_m3;
+            if !(rho.is_finite() && (500.0..=8000.0).contains(&rho)) {
+                return Err(WeatherError::OutOfRange {
+                    field: "grain.density_kg_m3",
+                    value: f64::from(rho),
+                    allowed: "[500, 8000] kg/m³ (quartz is 2650)",
+                });
+            }
+        }
         self.wind.validate()?;
         Ok(())
+    }
+
+    /// The grains in the air: sand or dust weather's, `None` for water and ice.
+    #[must_use]
+    pub fn grains(&self) -> Option<Grain> {
+        self.kind.default_grain().map(|g| self.grain.unwrap_or(g))
+    }
+
+    /// Sand or dust settling from the air, kg/(m²·h); 0 for water and ice.
+    #[must_use]
+    pub fn grain_rate_kg_per_m2_h(&self) -> f32 {
+        if self.grains().is_some() {
+            self.intensity_mm_per_h
+        } else {
+            0.0
+        }
     }
 
     /// Fraction of the water that falls as snow.
@@ -128,7 +189,7 @@ impl Weather {
     pub fn snow_fraction(&self) -> f32 {
         match self.kind {
             PrecipitationKind::DrySnow | PrecipitationKind::WetSnow => 1.0,
-            PrecipitationKind::Rain => 0.0,
+            PrecipitationKind::Rain | PrecipitationKind::Sand | PrecipitationKind::Dust => 0.0,
             PrecipitationKind::Sleet => sleet_snow_fraction(self.air_temperature_c),
         }
     }
@@ -148,7 +209,7 @@ impl Weather {
     /// Rain's water rate, mm/h.
     #[must_use]
     pub fn rain_rate_mm_per_h(&self) -> f32 {
-        self.intensity_mm_per_h - self.snow_rate_mm_per_h()
+        self.intensity_mm_per_h - self.snow_rate_mm_per_h() - self.grain_rate_kg_per_m2_h()
     }
 
     /// Mean horizontal wind speed near the ground, m/s (evaporation).
@@ -178,6 +239,34 @@ mod tests {
             (w.snow_rate_mm_per_h() - 1.0).abs() < 1e-5
                 && (w.rain_rate_mm_per_h() - 3.0).abs() < 1e-5
         );
+    }
+
+    #[test]
+    fn sand_and_dust_carry_grains_and_no_water() {
+        let sand = Weather {
+            kind: PrecipitationKind::Sand,
+            intensity_mm_per_h: 2.0,
+            air_temperature_c: 35.0,
+            ..Weather::default()
+        };
+        assert!(sand.validate().is_ok());
+        assert_eq!(sand.grains(), Some(Grain::SAND));
+        assert!((sand.grain_rate_kg_per_m2_h() - 2.0).abs() < 1e-6);
+        assert!(sand.snow_rate_mm_per_h().abs() < 1e-6 && sand.rain_rate_mm_per_h().abs() < 1e-6);
+        let dust = Weather {
+            kind: PrecipitationKind::Dust,
+            ..sand
+        };
+        assert_eq!(dust.grains(), Some(Grain::DUST));
+        let snow_with_grains = Weather {
+            grain: Some(Grain::SAND),
+            ..Weather::default()
+        };
+        assert!(matches!(
+            snow_with_grains.validate(),
+            Err(WeatherError::GrainWithoutGrains { .. })
+        ));
+        assert_eq!(Weather::default().grains(), None);
     }
 
     #[test]
@@ -225,6 +314,28 @@ mod tests {
                     ..base
                 },
                 "relative_humidity",
+            ),
+            (
+                Weather {
+                    kind: PrecipitationKind::Dust,
+                    grain: Some(Grain {
+                        diameter_m: 0.01,
+                        ..Grain::DUST
+                    }),
+                    ..base
+                },
+                "grain.diameter_m",
+            ),
+            (
+                Weather {
+                    kind: PrecipitationKind::Sand,
+                    grain: Some(Grain {
+                        density_kg_m3: f32::NAN,
+                        ..Grain::SAND
+                    }),
+                    ..base
+                },
+                "grain.density_kg_m3",
             ),
         ];
         for (w, name) in cases {

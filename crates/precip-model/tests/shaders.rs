@@ -115,7 +115,17 @@ fn rust_and_wgsl_layouts_match() {
             air_temperature_c,
             rain_slope_per_mm,
             deposit_scale_mm_per_kg,
-            ground_floor_m
+            ground_floor_m,
+            grain_diameter_m,
+            grain_density_kg_m3,
+            lift_from,
+            lift_per_particle_kg_per_s,
+            friction_velocity_mps,
+            lift_layer_top_m,
+            grain_suspended,
+            flow_ceiling_m,
+            lift_area_min_m,
+            lift_area_max_m
         }),
         rust_layout!(GridFrame {
             origin_m,
@@ -195,6 +205,7 @@ fn rust_and_wgsl_layouts_match() {
             wind_factor,
             saltation_kg_per_m_s,
             edge_drifted_mm,
+            dust_kg_m2,
             reserved1
         }),
         rust_layout!(RenderParams {

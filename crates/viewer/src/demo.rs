@@ -5,7 +5,9 @@
 //! its eaves is sheltered), a road whose node says `"snow": false`, and fence posts
 //! whose tops hold snow by slope. It shows every mask convention of DESIGN.md §6,
 //! and every surface: grass terrain, an asphalt road with a 2 % camber and a sag
-//! that holds a puddle in rain, roofing, and a pond (`"water": true`) in a hollow.
+//! that holds a puddle in rain, roofing, a pond (`"water": true`) in a hollow, and a
+//! patch of loose sand up-wind of the house (`"surface": "sand"`) that the wind
+//! lifts grains from in sand and dust weather.
 
 use glam::{Vec2, Vec3};
 use precip_model::builtin::{HousePlan, house};
@@ -28,6 +30,9 @@ pub const ROAD_SAG: (f32, f32) = (6.0, 0.15);
 pub const POND: (Vec2, f32) = (Vec2::new(-20.0, 16.0), 7.0);
 /// Depth of the pond's hollow below the pond's surface at the centre, m.
 const POND_HOLLOW_M: f32 = 0.9;
+/// A patch of loose sand up-wind of the house (x range, z range), m: the grains
+/// a sandstorm or a dust haze lifts come from it (`"surface": "sand"`).
+pub const SAND_PATCH: ((f32, f32), (f32, f32)) = ((-30.0, -18.0), (-6.0, 4.0));
 /// Height of the pond's surface above the terrain's undisturbed level there, m.
 const POND_LEVEL_M: f32 = -0.2;
 
@@ -202,7 +207,11 @@ pub fn demo_meshes() -> Vec<GlbMesh> {
     road.base_colour = [0.12, 0.12, 0.13, 1.0];
     road.node_extras = Some(json!({ "snow": false, "surface": "asphalt" }));
 
-    let mut meshes = vec![terrain, road, pond()];
+    let mut sand = grid("sand", SAND_PATCH.0, SAND_PATCH.1, (24, 20), 0.03);
+    sand.base_colour = [0.62, 0.5, 0.32, 1.0];
+    sand.node_extras = Some(json!({ "surface": "sand" }));
+
+    let mut meshes = vec![terrain, road, sand, pond()];
     let plan = HousePlan::default();
     for mesh in house(&plan)
         .meshes

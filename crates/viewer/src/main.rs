@@ -198,6 +198,11 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         preset.intensity_mm_per_h = 2.0;
     }
     if let Some(k) = args.kind {
+        if k != preset.kind {
+            // The preset's grains are its own kind's.
+            preset.grain_diameter_mm = None;
+            preset.grain_density_kg_m3 = None;
+        }
         preset.kind = k;
         if args.temperature.is_none() {
             preset.air_temperature_c = match k {
@@ -205,6 +210,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
                 KindName::WetSnow => 0.0,
                 KindName::Rain => 8.0,
                 KindName::Sleet => 1.0,
+                KindName::Sand | KindName::Dust => 30.0,
             };
         }
     }

@@ -1,9 +1,11 @@
-//! Weather presets: TOML files (serde) naming the weather in physical units. Six ship
-//! with the viewer (`presets/*.toml` at the repository root, also built in by name).
+//! Weather presets: TOML files (serde) naming the weather in physical units. Eight
+//! ship with the viewer (`presets/*.toml` at the repository root, also built in by
+//! name).
 
 use std::path::Path;
 
 use glam::Vec3;
+use precip_model::grain::Grain;
 use precip_model::wind::WindField;
 use precip_model::{PrecipitationKind, Weather};
 use serde::{Deserialize, Serialize};
@@ -12,9 +14,10 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Preset {
-    /// "dry-snow", "wet-snow", "rain" or "sleet".
+    /// "dry-snow", "wet-snow", "rain", "sleet", "sand" or "dust".
     pub kind: KindName,
-    /// Precipitation rate as water, mm/h.
+    /// Precipitation rate as water, mm/h; sand and dust: the grains settling from
+    /// the air, kg/(m²·h).
     pub intensity_mm_per_h: f32,
     /// Air temperature, °C.
     pub air_temperature_c: f32,
@@ -28,6 +31,13 @@ pub struct Preset {
     /// optional, 0.9 when absent.
     #[serde(default = "default_relative_humidity")]
     pub relative_humidity: f32,
+    /// Sand and dust: the grains' mean diameter, mm; optional (0.2 mm sand, 0.01 mm
+    /// dust when absent).
+    #[serde(default)]
+    pub grain_diameter_mm: Option<f32>,
+    /// Sand and dust: the grains' density, kg/m³; optional (quartz, 2650).
+    #[serde(default)]
+    pub grain_density_kg_m3: Option<f32>,
 }
 
 fn default_relative_humidity() -> f32 {
@@ -46,6 +56,10 @@ pub enum KindName {
     Rain,
     /// Sleet.
     Sleet,
+    /// Blowing sand.
+    Sand,
+    /// Mineral dust.
+    Dust,
 }
 
 impl From<KindName> for PrecipitationKind {
@@ -55,12 +69,14 @@ impl From<KindName> for PrecipitationKind {
             KindName::WetSnow => Self::WetSnow,
             KindName::Rain => Self::Rain,
             KindName::Sleet => Self::Sleet,
+            KindName::Sand => Self::Sand,
+            KindName::Dust => Self::Dust,
         }
     }
 }
 
 /// The shipped presets, by name.
-pub const BUILT_IN: [(&str, &str); 6] = [
+pub const BUILT_IN: [(&str, &str); 8] = [
     (
         "light-snow",
         include_str!("../../../presets/light-snow.toml"),
@@ -70,6 +86,8 @@ pub const BUILT_IN: [(&str, &str); 6] = [
     ("drizzle", include_str!("../../../presets/drizzle.toml")),
     ("downpour", include_str!("../../../presets/downpour.toml")),
     ("sleet", include_str!("../../../presets/sleet.toml")),
+    ("sandstorm", include_str!("../../../presets/sandstorm.toml")),
+    ("dust-haze", include_str!("../../../presets/dust-haze.toml")),
 ];
 
 /// A preset that cannot be used.
@@ -115,6 +133,22 @@ impl Preset {
         Self::parse(&text, name_or_path)
     }
 
+    /// The grains the preset names (`None`: the kind's own, or none given).
+    fn grain(&self) -> Option<Grain> {
+        if self.grain_diameter_mm.is_none() && self.grain_density_kg_m3.is_none() {
+            return None;
+        }
+        let default = PrecipitationKind::from(self.kind)
+            .default_grain()
+            .unwrap_or(Grain::SAND);
+        Some(Grain {
+            diameter_m: self
+                .grain_diameter_mm
+                .map_or(default.diameter_m, |d| d * 1.0e-3),
+            density_kg_m3: self.grain_density_kg_m3.unwrap_or(default.density_kg_m3),
+        })
+    }
+
     /// The weather, validated.
     pub fn weather(&self) -> Result<Weather, precip_model::WeatherError> {
         let weather = Weather {
@@ -127,6 +161,7 @@ impl Preset {
                 ..WindField::calm()
             },
             relative_humidity: self.relative_humidity,
+            grain: self.grain(),
         };
         weather.validate()?;
         Ok(weather)
@@ -143,6 +178,44 @@ mod tests {
             let preset = Preset::parse(text, name).expect("parses");
             preset.weather().unwrap_or_else(|e| panic!("{name}: {e}"));
         }
+    }
+
+    #[test]
+    fn sand_and_dust_presets_carry_their_grains_and_see_as_far_as_they_say() {
+        let sand = Preset::load("sandstorm").and_then(|p| {
+            p.weather().map_err(|e| PresetError {
+                name: "sandstorm".into(),
+                problem: e.to_string(),
+            })
+        });
+        let sand = sand.expect("sandstorm");
+        let grain = sand.grains().expect("sand has grains");
+        assert!(
+            (grain.diameter_m - Grain::SAND.diameter_m).abs() < 1e-9,
+            "{grain:?}"
+        );
+        let v = sand.visibility_m();
+        assert!((250.0..450.0).contains(&v), "sandstorm sees {v} m");
+        let dust = Preset::load("dust-haze")
+            .expect("dust-haze")
+            .weather()
+            .expect("valid");
+        assert_eq!(dust.grains(), Some(Grain::DUST));
+        let v = dust.visibility_m();
+        assert!((1_500.0..2_500.0).contains(&v), "dust haze sees {v} m");
+        let text = format!(
+            "{}
+grain_diameter_mm = 9.0
+",
+            BUILT_IN[7].1
+        );
+        assert!(
+            Preset::parse(&text, "x")
+                .expect("parses")
+                .weather()
+                .is_err(),
+            "a 9 mm grain is refused"
+        );
     }
 
     #[test]

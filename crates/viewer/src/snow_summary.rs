@@ -18,6 +18,10 @@ pub struct SnowSummary {
     pub blowing_area_m2: f64,
     /// Snow the wind brought over the grid's edges minus what it blew off, kg.
     pub drifted_in_kg: f64,
+    /// Sand and dust settled on the grid, kg.
+    pub dust_kg: f64,
+    /// The most sand and dust on one texel, kg/m².
+    pub dust_heaviest_kg_m2: f32,
 }
 
 impl SnowSummary {
@@ -31,6 +35,12 @@ impl SnowSummary {
             steepest_deg: cover.steepest_snow_slope_deg(),
             blowing_area_m2: totals.blowing_area_m2,
             drifted_in_kg: totals.edge_drifted_kg,
+            dust_kg: totals.dust_kg,
+            dust_heaviest_kg_m2: cover
+                .texels
+                .iter()
+                .map(|t| t.dust_kg_m2)
+                .fold(0.0, f32::max),
         }
     }
 
@@ -48,8 +58,16 @@ impl SnowSummary {
         } else {
             String::new()
         };
+        let dust = if self.dust_kg > 0.0 {
+            format!(
+                "; sand and dust settled: {:.1} kg, up to {:.3} kg/m²",
+                self.dust_kg, self.dust_heaviest_kg_m2
+            )
+        } else {
+            String::new()
+        };
         format!(
-            "snow {:.0} mm deep on average, deepest {:.0} mm, steepest face {:.1}°{blowing}",
+            "snow {:.0} mm deep on average, deepest {:.0} mm, steepest face {:.1}°{blowing}{dust}",
             self.mean_depth_mm, self.deepest_mm, self.steepest_deg
         )
     }

@@ -4,7 +4,8 @@
 //! swapchain ([`precip_gpu_vk::VkBackend::present`]).
 //!
 //! Keys: W/A/S/D and Q/E fly, arrows or the mouse (left button held) look, Shift flies
-//! faster; 1 dry snow, 2 wet snow, 3 rain, 4 sleet; +/− intensity ×1.5; [ ] wind speed
+//! faster; 1 dry snow, 2 wet snow, 3 rain, 4 sleet, 5 sand, 6 dust; +/− intensity ×1.5;
+//! [ ] wind speed
 //! −/+ 1 m/s; , . wind direction −/+ 15°; T/G cover time scale ×2 / ÷2; C culling;
 //! Escape quits.
 
@@ -268,19 +269,31 @@ fn weather_key(key: KeyCode, w: &Weather) -> Option<Weather> {
     match key {
         KeyCode::Digit1 => {
             w.kind = PrecipitationKind::DrySnow;
+            w.grain = None;
             w.air_temperature_c = w.air_temperature_c.min(-2.0);
         }
         KeyCode::Digit2 => {
             w.kind = PrecipitationKind::WetSnow;
+            w.grain = None;
             w.air_temperature_c = 0.0;
         }
         KeyCode::Digit3 => {
             w.kind = PrecipitationKind::Rain;
+            w.grain = None;
             w.air_temperature_c = w.air_temperature_c.max(5.0);
         }
         KeyCode::Digit4 => {
             w.kind = PrecipitationKind::Sleet;
+            w.grain = None;
             w.air_temperature_c = 1.0;
+        }
+        KeyCode::Digit5 => {
+            w.kind = PrecipitationKind::Sand;
+            w.grain = None;
+        }
+        KeyCode::Digit6 => {
+            w.kind = PrecipitationKind::Dust;
+            w.grain = None;
         }
         KeyCode::Equal | KeyCode::NumpadAdd => {
             w.intensity_mm_per_h = (w.intensity_mm_per_h * 1.5).clamp(0.1, 100.0)

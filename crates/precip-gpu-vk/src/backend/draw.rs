@@ -177,7 +177,7 @@ impl VkBackend {
             passes,
             framebuffer,
             size,
-            sky: setup.render.sky_colour,
+            sky: precip_model::render::haze_colour(&setup.render, &state.weather),
             splat_sets: (
                 render.frame.splat_sets[slot as usize],
                 render.frame.resolve_sets[slot as usize],

@@ -40,7 +40,7 @@ pub struct FrameResources {
     pub shadow_map: Image,
     /// The cover's two filtered textures (`GENERAL`: written by `cover_texture`,
     /// sampled by the draws).
-    cover_images: [Image; 2],
+    cover_images: [Image; 3],
     /// Set 0 of the `cover_texture` kernel.
     pub cover_texture_set: vk::DescriptorSet,
     /// Cover texels (the kernel's dispatch).
@@ -233,7 +233,7 @@ impl FrameResources {
         made.framebuffer = Some(shadow_framebuffer);
         device.name(shadow_framebuffer, "precip shadow framebuffer");
         let texels = setup.cover.frame.texels;
-        for name in ["cover a", "cover b"] {
+        for name in ["cover a", "cover b", "cover c"] {
             made.images.push(Image::new(
                 device,
                 &ImageSpec {
@@ -244,7 +244,7 @@ impl FrameResources {
                 },
             )?);
         }
-        to_general(device, &[&made.images[1], &made.images[2]])?;
+        to_general(device, &[&made.images[1], &made.images[2], &made.images[3]])?;
 
         use vk::DescriptorType as T;
         let pool = descriptors::pool(
@@ -254,9 +254,9 @@ impl FrameResources {
                 (T::UNIFORM_BUFFER_DYNAMIC, 1),
                 (T::STORAGE_BUFFER_DYNAMIC, 2),
                 (T::STORAGE_BUFFER, 11 + 2 * FRAMES_IN_FLIGHT as u32),
-                (T::SAMPLED_IMAGE, 4 + FRAMES_IN_FLIGHT as u32),
+                (T::SAMPLED_IMAGE, 5 + FRAMES_IN_FLIGHT as u32),
                 (T::SAMPLER, 3),
-                (T::STORAGE_IMAGE, 2),
+                (T::STORAGE_IMAGE, 3),
             ],
             4 + 2 * FRAMES_IN_FLIGHT as u32,
         )?;
@@ -283,7 +283,11 @@ impl FrameResources {
                 image_layout: vk::ImageLayout::GENERAL,
             }]
         };
-        let (cover_a, cover_b) = (general(made.images[1].view), general(made.images[2].view));
+        let (cover_a, cover_b, cover_c) = (
+            general(made.images[1].view),
+            general(made.images[2].view),
+            general(made.images[3].view),
+        );
         let cover_sampler = sampler_info(renderer.samplers.flake);
         let whole = |b: &Buffer| buffer_info(b, vk::WHOLE_SIZE);
         let [params, group_counts, drawn, drawn_kinds, draws] =
@@ -310,10 +314,12 @@ impl FrameResources {
                 .buffer_info(&params_info),
             write(frame_set, rb::COVER_A, T::SAMPLED_IMAGE).image_info(&cover_a),
             write(frame_set, rb::COVER_B, T::SAMPLED_IMAGE).image_info(&cover_b),
+            write(frame_set, rb::COVER_C, T::SAMPLED_IMAGE).image_info(&cover_c),
             write(frame_set, rb::COVER_SAMPLER, T::SAMPLER).image_info(&cover_sampler),
             write(cover_texture_set, rb::COVER, T::STORAGE_BUFFER).buffer_info(&cover),
             write(cover_texture_set, rb::COVER_A_OUT, T::STORAGE_IMAGE).image_info(&cover_a),
             write(cover_texture_set, rb::COVER_B_OUT, T::STORAGE_IMAGE).image_info(&cover_b),
+            write(cover_texture_set, rb::COVER_C_OUT, T::STORAGE_IMAGE).image_info(&cover_c),
             write(frame_set, rb::GROUND_HEIGHT, T::STORAGE_BUFFER).buffer_info(&ground),
             write(frame_set, rb::WAVES, T::STORAGE_BUFFER).buffer_info(&waves),
             write(frame_set, rb::PARTICLES, T::STORAGE_BUFFER).buffer_info(&particles),
@@ -345,8 +351,8 @@ impl FrameResources {
         ) else {
             return Err(missing("buffer"));
         };
-        let (Some(shadow_map), Some(cover_a), Some(cover_b)) =
-            (images.next(), images.next(), images.next())
+        let (Some(shadow_map), Some(cover_a), Some(cover_b), Some(cover_c)) =
+            (images.next(), images.next(), images.next(), images.next())
         else {
             return Err(missing("image"));
         };
@@ -359,7 +365,7 @@ impl FrameResources {
             draws,
             shadow_map,
             shadow_framebuffer,
-            cover_images: [cover_a, cover_b],
+            cover_images: [cover_a, cover_b, cover_c],
             cover_texture_set,
             cover_texels: texels.x * texels.y,
             pool,

@@ -39,7 +39,7 @@ pub struct FrameResources {
     /// Cover texels (the `cover_texture` kernel's dispatch).
     pub cover_texels: u32,
     /// The cover's two filtered textures (A, B).
-    pub cover_textures: [wgpu::Texture; 2],
+    pub cover_textures: [wgpu::Texture; 3],
 }
 
 fn storage(gpu: &GpuDevice, label: &str, size: u64, usage: wgpu::BufferUsages) -> wgpu::Buffer {
@@ -169,8 +169,9 @@ impl FrameResources {
         let cover_textures = [
             cover_texture("precip cover a"),
             cover_texture("precip cover b"),
+            cover_texture("precip cover c"),
         ];
-        let [cover_a, cover_b] = cover_textures
+        let [cover_a, cover_b, cover_c] = cover_textures
             .each_ref()
             .map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
         let cover_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
@@ -195,6 +196,7 @@ impl FrameResources {
                 bind(rb::DRAWN, &drawn),
                 view(rb::COVER_A, &cover_a),
                 view(rb::COVER_B, &cover_b),
+                view(rb::COVER_C, &cover_c),
                 wgpu::BindGroupEntry {
                     binding: rb::COVER_SAMPLER,
                     resource: wgpu::BindingResource::Sampler(&cover_sampler),
@@ -208,6 +210,7 @@ impl FrameResources {
                 bind(rb::COVER, &sim.cover),
                 view(rb::COVER_A_OUT, &cover_a),
                 view(rb::COVER_B_OUT, &cover_b),
+                view(rb::COVER_C_OUT, &cover_c),
             ],
         });
         let light_group = device.create_bind_group(&wgpu::BindGroupDescriptor {

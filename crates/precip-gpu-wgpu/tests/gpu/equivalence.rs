@@ -102,6 +102,11 @@ fn compare_cover(cpu: &CoverGrid, gpu: &CoverGrid, flipped_water_mm: f64) {
             (x.swe_mm - y.swe_mm).abs() <= 1e-3 * x.swe_mm.abs().max(1.0) + flipped_water_mm as f32,
             "{x:?} vs {y:?}"
         );
+        assert!(
+            (x.dust_kg_m2 - y.dust_kg_m2).abs()
+                <= 1e-3 * x.dust_kg_m2.abs().max(1.0) + flipped_water_mm as f32,
+            "grains: {x:?} vs {y:?}"
+        );
     }
 }
 
@@ -119,6 +124,7 @@ fn scenario(
         PrecipitationKind::WetSnow => -0.5,
         PrecipitationKind::Sleet => 1.0,
         PrecipitationKind::Rain => 9.0,
+        PrecipitationKind::Sand | PrecipitationKind::Dust => 30.0,
     };
     let wind = if windy {
         WindField {
@@ -136,8 +142,22 @@ fn scenario(
         air_temperature_c,
         wind,
         relative_humidity: 0.6,
+        grain: None,
     };
     setup.cover.time_scale = 500.0;
+    if matches!(kind, PrecipitationKind::Sand | PrecipitationKind::Dust) {
+        // Sand up-wind (x < −10 m): grains are lifted from it as well.
+        let frame = setup.ground.frame;
+        setup.ground.surface = (0..frame.texel_count())
+            .map(|i| {
+                if frame.texel_centre(i).x < -10.0 {
+                    precip_model::cover::Surface::Sand
+                } else {
+                    precip_model::cover::Surface::Grass
+                }
+            })
+            .collect();
+    }
     if camera_share {
         setup
             .world_emitter
@@ -177,9 +197,10 @@ fn check(setup: &Setup, steps: usize, dt: f32) {
         assert!(c.worst_relative <= 2e-5, "{name}: {c:?}");
         // A flipped landing moves one particle's water (a few ms of the emitter's share
         // times the cover time scale) between texels or steps.
-        let water_per_particle = setup
-            .step_params(&setup.weather, Vec3::ZERO, dt, 0.0)
-            .water_per_particle_kg_per_s;
+        let params = setup.step_params(&setup.weather, Vec3::ZERO, dt, 0.0);
+        let water_per_particle = params
+            .water_per_particle_kg_per_s
+            .max(params.lift_per_particle_kg_per_s);
         let flipped_mm = f64::from(water_per_particle) * 30.0 * f64::from(setup.cover.time_scale)
             / f64::from(setup.cover.frame.texel_area_m2())
             * (c.flipped as f64 + 1.0);
@@ -189,6 +210,20 @@ fn check(setup: &Setup, steps: usize, dt: f32) {
             flipped_mm,
         );
     }
+}
+
+#[test]
+fn lifted_sand_and_dust_match() {
+    check(
+        &scenario(8, PrecipitationKind::Sand, true, 4_000, false),
+        40,
+        0.05,
+    );
+    check(
+        &scenario(9, PrecipitationKind::Dust, true, 4_000, true),
+        40,
+        0.05,
+    );
 }
 
 #[test]
@@ -211,6 +246,8 @@ proptest! {
             Just(PrecipitationKind::WetSnow),
             Just(PrecipitationKind::Rain),
             Just(PrecipitationKind::Sleet),
+            Just(PrecipitationKind::Sand),
+            Just(PrecipitationKind::Dust),
         ],
         windy in any::<bool>(),
         count in 500u32..10_000,

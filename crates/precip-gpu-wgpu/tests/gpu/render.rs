@@ -679,9 +679,10 @@ fn splatted_far_snow_matches_the_all_sprite_frame() {
     }
 }
 
-/// The surfaces read the cover from two RGBA16F textures the frame writes from the
+/// The surfaces read the cover from three RGBA16F textures the frame writes from the
 /// cover texels: after a day of snow they hold every texel's depth, SWE, peak SWE,
-/// wetness, masks and age to half precision (relative 2⁻¹⁰, plus 10⁻³ absolute).
+/// wetness, masks, age, puddles and settled grains to half precision (relative
+/// 2⁻¹⁰, plus 10⁻³ absolute).
 #[test]
 fn the_cover_textures_match_the_cover_texels() {
     let (setup, _) = snowed_house();
@@ -716,6 +717,10 @@ fn the_cover_textures_match_the_cover_texels() {
                 c.melt_mask,
                 c.age_days,
                 c.puddle_ratio(),
+                c.dust_kg_m2,
+                0.0,
+                0.0,
+                0.0,
             ];
             for (k, (got, want)) in t.iter().zip(expected).enumerate() {
                 assert!(

@@ -20,6 +20,7 @@ fn gusty_sleet(seed: u32) -> Setup {
             ..WindField::calm()
         },
         relative_humidity: Weather::DEFAULT_RELATIVE_HUMIDITY,
+        grain: None,
     };
     setup.cover.time_scale = 600.0;
     setup

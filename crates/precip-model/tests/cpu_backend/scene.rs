@@ -141,6 +141,7 @@ fn the_camera_volume_follows_the_camera_and_never_empties() {
             ..WindField::calm()
         },
         relative_humidity: Weather::DEFAULT_RELATIVE_HUMIDITY,
+        grain: None,
     };
     let mut backend = common::configured(&setup);
     let mut camera = Camera::default();
