@@ -76,6 +76,10 @@ struct StepParams {
     flow_ceiling_m: f32,
     lift_area_min_m: vec2<f32>,
     lift_area_max_m: vec2<f32>,
+    wall_rebound_speed_mps: f32,
+    reserved0: u32,
+    reserved1: u32,
+    reserved2: u32,
 }
 
 // The particles to re-birth this sub-step (Rust: precip_model::gpu::pending_births_bytes).

@@ -94,7 +94,17 @@ fn step_particle(index: u32, particle: Particle) -> Particle {
     next.water_kg += select(step_params.water_per_particle_kg_per_s, step_params.lift_per_particle_kg_per_s, lifted) * dt;
     let xz = vec2<f32>(position.x, position.z);
     let ground = ground_height_at(xz);
-    let landed = ground.x > 0.0 && position.y <= ground.y;
+    var landed = ground.x > 0.0 && position.y <= ground.y;
+    // Rust: rebounds_off_a_wall (snow blown against a wall faster than its transport
+    // threshold rises along it from where it was).
+    let speed_h = length(velocity.xz);
+    let kind = (particle.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
+    let is_snow = kind == KIND_DRY_SNOW || kind == KIND_WET_SNOW;
+    if (landed && particle.position_m.y < ground.y && is_snow && speed_h > step_params.wall_rebound_speed_mps) {
+        landed = false;
+        next.position_m = particle.position_m;
+        next.velocity_mps = vec3<f32>(0.0, max(speed_h, velocity.y), 0.0);
+    }
     if (landed) {
         // Already below this surface before the step: it came in from the side (a
         // wall, an eave) and deposits where it was, at the wall's foot. Water landing

@@ -394,6 +394,14 @@ impl Setup {
             flow_ceiling_m: crate::terrain_flow::flow_ceiling_m(&self.ground),
             lift_area_min_m: lift.area_min_m,
             lift_area_max_m: lift.area_max_m,
+            wall_rebound_speed_mps: if weather.snow_is_wet() {
+                precip_cover::blowing::WET_SNOW_THRESHOLD_WIND_MPS
+            } else {
+                precip_cover::blowing::dry_snow_threshold_wind_mps(weather.air_temperature_c)
+            },
+            reserved0: 0,
+            reserved1: 0,
+            reserved2: 0,
         }
     }
 

@@ -18,7 +18,11 @@
 //!    there (fixed point, atomic) and the particle is re-born. A particle that was
 //!    already below that surface at `P` came in from the side (blown against a wall
 //!    or under an eave): it deposits at `P`, the wall's foot on the side it came from,
-//!    not on the roof above. Below the lowest ground
+//!    not on the roof above — unless it is snow moving faster than the snow's
+//!    transport threshold (`wall_rebound_speed_mps`, Li & Pomeroy's 10 m wind): a
+//!    strong wind does not let flakes settle against a windward wall (its down-draft
+//!    and the horseshoe vortex at the foot scour there), so the flake goes back to `P`
+//!    and rises along the wall at its horizontal speed, and the flow carries it over. Below the lowest ground
 //!    off the map, or at `t' ≥ t_max`, it is re-born without a deposit. A raindrop
 //!    that strikes hard enough throws up a splash droplet in its place instead of
 //!    being re-born ([`crate::splash`]; on the cover grid only).
@@ -43,7 +47,7 @@ use crate::terrain_flow::terrain_following_wind;
 
 /// Everything a step needs besides the buffers: the GPU's uniform block.
 ///
-/// WGSL twin: `StepParams` in `shaders/layout.wgsl` (240 bytes).
+/// WGSL twin: `StepParams` in `shaders/layout.wgsl` (256 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct StepParams {
@@ -114,8 +118,17 @@ pub struct StepParams {
     pub lift_area_min_m: Vec2,
     /// … to this one (max x, max z), m: the erodible texels' bounds.
     pub lift_area_max_m: Vec2,
+    /// A snowflake blown against a wall faster than this is carried up along it
+    /// instead of settling at its foot, m/s (the snow's transport threshold).
+    pub wall_rebound_speed_mps: f32,
+    /// Unused (`0`).
+    pub reserved0: u32,
+    /// Unused (`0`).
+    pub reserved1: u32,
+    /// Unused (`0`).
+    pub reserved2: u32,
 }
-const _: () = assert!(size_of::<StepParams>() == 240);
+const _: () = assert!(size_of::<StepParams>() == 256);
 
 impl StepParams {
     /// This block for one sub-step: the per-sub-step fields set, the rest (weather,
@@ -217,6 +230,15 @@ pub fn step_particle(
             } * dt;
             let xz = Vec2::new(position.x, position.z);
             match inputs.ground.height_at(xz) {
+                Some(ground_m)
+                    if position.y <= ground_m
+                        && rebounds_off_a_wall(particle, &next, ground_m, params) =>
+                {
+                    // Carried up along the wall from where it was (step 2).
+                    let speed = Vec2::new(next.velocity_mps.x, next.velocity_mps.z).length();
+                    next.position_m = particle.position_m;
+                    next.velocity_mps = Vec3::new(0.0, speed.max(next.velocity_mps.y), 0.0);
+                }
                 Some(ground_m) if position.y <= ground_m => {
                     let channel = match next.kind() {
                         ParticleKind::DrySnow | ParticleKind::WetSnow => DepositBuffer::SNOW,
@@ -285,6 +307,20 @@ pub fn step_particle(
     }
 }
 
+/// Whether world particle `next` (at `particle` before the step), below the ground
+/// `ground_m` where it moved, struck a wall and rebounds: snow that came in from
+/// the side faster than [`StepParams::wall_rebound_speed_mps`].
+fn rebounds_off_a_wall(
+    particle: &Particle,
+    next: &Particle,
+    ground_m: f32,
+    params: &StepParams,
+) -> bool {
+    let from_side = particle.position_m.y < ground_m;
+    let speed = Vec2::new(next.velocity_mps.x, next.velocity_mps.z).length();
+    from_side && next.kind().is_snow() && speed > params.wall_rebound_speed_mps
+}
+
 /// Wraps `x` into `[−h, h)`.
 fn wrap_centred(x: f32, h: f32) -> f32 {
     x - 2.0 * h * ((x + h) / (2.0 * h)).floor()
@@ -347,6 +383,10 @@ mod tests {
         assert_eq!(std::mem::offset_of!(StepParams, grain_diameter_m), 192);
         assert_eq!(std::mem::offset_of!(StepParams, flow_ceiling_m), 220);
         assert_eq!(std::mem::offset_of!(StepParams, lift_area_max_m), 232);
+        assert_eq!(
+            std::mem::offset_of!(StepParams, wall_rebound_speed_mps),
+            240
+        );
     }
 
     #[test]

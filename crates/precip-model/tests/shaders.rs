@@ -125,7 +125,11 @@ fn rust_and_wgsl_layouts_match() {
             grain_suspended,
             flow_ceiling_m,
             lift_area_min_m,
-            lift_area_max_m
+            lift_area_max_m,
+            wall_rebound_speed_mps,
+            reserved0,
+            reserved1,
+            reserved2
         }),
         rust_layout!(GridFrame {
             origin_m,

@@ -212,6 +212,27 @@ fn check(setup: &Setup, steps: usize, dt: f32) {
     }
 }
 
+/// A 14 m/s blizzard against a 3 m wall across the scene: flakes striking it faster
+/// than the snow's transport threshold rise along it (precip_model::step).
+#[test]
+fn snow_rebounding_off_a_wall_matches() {
+    let mut setup = scenario(11, PrecipitationKind::DrySnow, false, 6_000, false);
+    setup.weather.air_temperature_c = -12.0;
+    setup.weather.wind = WindField {
+        mean_wind_mps: Vec3::new(14.0, 0.0, 0.0),
+        ..WindField::calm()
+    };
+    let frame = setup.ground.frame;
+    for i in 0..frame.texel_count() {
+        if (frame.texel_centre(i).x - 3.0).abs() < 1.0 {
+            setup.ground.height_m[i] = 3.0;
+        }
+    }
+    let params = setup.step_params(&setup.weather, Vec3::ZERO, 0.05, 0.0);
+    assert!(params.wall_rebound_speed_mps > 5.0 && params.wall_rebound_speed_mps < 14.0);
+    check(&setup, 40, 0.05);
+}
+
 #[test]
 fn lifted_sand_and_dust_match() {
     check(

@@ -336,6 +336,50 @@ fn landing_events_deposit_and_re_birth() {
 }
 
 #[test]
+fn flakes_blown_against_a_wall_rise_along_it_in_a_strong_wind_and_settle_in_a_light_one() {
+    use precip_model::cover::DepositBuffer;
+    use precip_model::step::step_particle;
+    use precip_model::wind::WindVolume;
+
+    let mut setup = Setup::over_flat_ground(10.0, 10, 5.0, 10);
+    // A 3 m wall: the column of texels at x = 0.5 m.
+    let frame = setup.ground.frame;
+    for i in 0..frame.texel_count() {
+        if (frame.texel_centre(i).x - 0.5).abs() < 0.1 {
+            setup.ground.height_m[i] = 3.0;
+        }
+    }
+    setup.weather.air_temperature_c = -12.0;
+    for (wind_mps, rebounds) in [(14.0, true), (3.0, false)] {
+        setup.weather.wind = WindField {
+            mean_wind_mps: Vec3::new(wind_mps, 0.0, 0.0),
+            ..WindField::calm()
+        };
+        let params = setup.step_params(&setup.weather, Vec3::ZERO, 0.05, 0.0);
+        let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume).expect("valid");
+        let deposits = DepositBuffer::new(setup.cover.frame.texel_count());
+        let inputs = common::step_inputs(&setup, &params, &wind, &deposits);
+        let mut p = precip_model::birth::birth_on_emitter(3, 0, &params, &setup.ground);
+        // 1 m up, just before the wall, moving into it with the wind.
+        p.position_m = Vec3::new(-0.1, 1.0, 0.3);
+        p.velocity_mps = Vec3::new(wind_mps, -1.0, 0.0);
+        let (next, event) = step_particle(3, &p, &inputs);
+        let landed: f32 = (0..setup.cover.frame.texel_count())
+            .map(|i| deposits.peek_mm(i).0)
+            .sum();
+        if rebounds {
+            assert_eq!(event, StepEvent::Moved, "{wind_mps} m/s");
+            assert_eq!(next.position_m, p.position_m, "back where it was");
+            assert!(next.velocity_mps.y > 5.0, "rising: {}", next.velocity_mps);
+            assert!(landed.abs() < f32::MIN_POSITIVE, "nothing deposited");
+        } else {
+            assert_eq!(event, StepEvent::Landed, "{wind_mps} m/s");
+            assert!(landed > 0.0, "settled at the wall's foot");
+        }
+    }
+}
+
+#[test]
 fn particles_land_on_the_roof_of_a_scene_and_never_inside_the_house() {
     use precip_model::builtin::{HousePlan, house_on_plane};
     let plan = HousePlan::default();
