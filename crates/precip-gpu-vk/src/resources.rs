@@ -377,7 +377,7 @@ impl Resources {
                 (T::UNIFORM_BUFFER_DYNAMIC, 2),
                 (T::UNIFORM_BUFFER, 2),
                 (T::SAMPLED_IMAGE, 1),
-                (T::STORAGE_BUFFER, 7),
+                (T::STORAGE_BUFFER, 8),
             ],
             2,
         ) {
@@ -461,7 +461,7 @@ impl Resources {
         upload(
             device,
             &self.deposits,
-            &vec![0u8; cover_bytes.len() / size_of::<CoverTexel>() * 8],
+            &vec![0u8; DepositBuffer::bytes_for(cover_bytes.len() / size_of::<CoverTexel>())],
         )?;
         upload(device, &self.ground, ground_bytes)?;
         self.frames.write(0, bytemuck::bytes_of(frames))?;
@@ -506,6 +506,7 @@ impl Resources {
             write(step_set, step_bindings::PENDING_BIRTHS, T::STORAGE_BUFFER)
                 .buffer_info(&births_info),
             write(step_set, step_bindings::WAVES, T::STORAGE_BUFFER).buffer_info(&waves_info),
+            write(step_set, step_bindings::COVER, T::STORAGE_BUFFER).buffer_info(&cover_info),
             write(
                 cover_set,
                 cover_bindings::COVER_PARAMS,

@@ -238,6 +238,10 @@ impl Resources {
                     resource: waves.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
+                    binding: step_bindings::COVER,
+                    resource: cover_buffer.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
                     binding: step_bindings::PENDING_BIRTHS,
                     resource: pending_births.as_entire_binding(),
                 },

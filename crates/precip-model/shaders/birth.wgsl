@@ -1,5 +1,7 @@
-// birth.wgsl: birth and re-birth. Rust twin: precip_model::birth.
-// Needs the global `step_params: StepParams` (and ground.wgsl for initial_particle).
+// birth.wgsl: birth and re-birth. Rust twins: precip_model::birth and
+// precip_model::drifting_snow.
+// Needs the globals `step_params: StepParams`, `cover_words: array<f32>` (drifting
+// snow) and ground.wgsl.
 
 fn centred(key: u32, d: u32) -> f32 {
     return random_unit(key, d) - 0.5;
@@ -138,19 +140,81 @@ fn initial_lifted(index: u32) -> Particle {
     return p;
 }
 
-// Rust: birth_lifted (a grain the wind lifts from erodible ground).
-fn birth_lifted(index: u32, generation: u32) -> Particle {
-    let key = particle_key(step_params.seed, index, generation);
-    let species = draw_species(key);
+// Rust: precip_model::drifting_snow.
+const COVER_TEXEL_WORDS: u32 = 32u;
+const COVER_WORD_DEPTH: u32 = 2u;
+const COVER_WORD_SALTATION: u32 = 26u;
+const DRIFTING_SNOW_REFERENCE_FLUX: f32 = 0.01;
+const DRIFTING_SNOW_DIAMETER_M: f32 = 2.0e-4;
+const ICE_DENSITY_KG_M3: f32 = 917.0;
+const PARKED_BELOW_FLOOR_M: f32 = 1.0;
+
+// Rust: CoverView::blowing_snow_at: (saltation kg/(m·s), snow depth m), zeros off
+// the grid.
+fn blowing_snow_at(xz_m: vec2<f32>) -> vec2<f32> {
+    let i = grid_texel_index(frames.cover, xz_m);
+    if (i < 0 || u32(i) * COVER_TEXEL_WORDS >= arrayLength(&cover_words)) {
+        return vec2<f32>(0.0);
+    }
+    let base = u32(i) * COVER_TEXEL_WORDS;
+    return vec2<f32>(cover_words[base + COVER_WORD_SALTATION], cover_words[base + COVER_WORD_DEPTH] * 1.0e-3);
+}
+
+// Rust: lift_point: (x, z, 1) kept, or (x, z, 0) for the last try; weighted by the
+// blowing snow (`snow`) or by the erodibility.
+fn lift_point(key: u32, snow: bool) -> vec3<f32> {
     let span = step_params.lift_area_max_m - step_params.lift_area_min_m;
     var at = step_params.lift_area_min_m;
     for (var t = 0u; t < LIFT_TRIES; t++) {
         let d = DRAW_LIFT + 3u * t;
         at = step_params.lift_area_min_m + span * vec2<f32>(random_unit(key, d), random_unit(key, d + 1u));
-        if (random_unit(key, d + 2u) < erodibility_at(at)) {
-            break;
+        var weight = 0.0;
+        if (snow) {
+            weight = min(blowing_snow_at(at).x / DRIFTING_SNOW_REFERENCE_FLUX, 1.0);
+        } else {
+            weight = erodibility_at(at);
+        }
+        if (random_unit(key, d + 2u) < weight) {
+            return vec3<f32>(at, 1.0);
         }
     }
+    return vec3<f32>(at, 0.0);
+}
+
+// Rust: birth_drifting_snow.
+fn birth_drifting_snow(key: u32, generation: u32) -> Particle {
+    let found = lift_point(key, true);
+    let at = found.xy;
+    let f = random_unit(key, DRAW_GRAIN_SIZE);
+    let speed = grain_settling_speed_mps(DRIFTING_SNOW_DIAMETER_M * (0.5 + f), ICE_DENSITY_KG_M3);
+    // Drawn as the smallest flakes (Rust: birth_drifting_snow).
+    let diameter = snowflake_diameter_m(step_params.air_temperature_c, 0.5 * f);
+    let kind = select(KIND_DRY_SNOW, KIND_WET_SNOW, step_params.snow_is_wet != 0u);
+    var position = vec3<f32>(at.x, step_params.ground_floor_m - PARKED_BELOW_FLOOR_M, at.y);
+    if (found.z > 0.5) {
+        let surface_m = ground_or_floor_m(at) + blowing_snow_at(at).y;
+        let rouse = rouse_number(speed, step_params.friction_velocity_mps);
+        position.y = surface_m + rouse_height_m(rouse, step_params.lift_layer_top_m, random_unit(key, DRAW_LIFT_HEIGHT));
+    }
+    return newborn(
+        position,
+        step_params.mean_wind_mps - vec3<f32>(0.0, 1.0, 0.0) * speed,
+        Species(kind, diameter, speed),
+        draw_rotation(key, step_params.world_rotation.x),
+        generation,
+        false,
+    );
+}
+
+// Rust: birth_lifted (a grain the wind lifts from erodible ground; in snow weather,
+// drifting snow).
+fn birth_lifted(index: u32, generation: u32) -> Particle {
+    let key = particle_key(step_params.seed, index, generation);
+    if (step_params.grain_diameter_m <= 0.0) {
+        return birth_drifting_snow(key, generation);
+    }
+    let species = draw_species(key);
+    let at = lift_point(key, false).xy;
     let ground_m = ground_or_floor_m(at);
     var height_m = LAUNCH_HEIGHT_M;
     var velocity = vec3<f32>(0.0, launch_speed_mps(key), 0.0);

@@ -23,6 +23,9 @@
 @group(0) @binding(5) var<storage, read_write> particles: array<Particle>;
 @group(0) @binding(6) var<storage, read_write> deposits: array<atomic<u32>>;
 @group(0) @binding(7) var<storage, read_write> pending: PendingBirths;
+// The cover texels as words (precip_model::drifting_snow::COVER_TEXEL_WORDS a texel):
+// where snow is blowing, for drifting snow's births.
+@group(0) @binding(9) var<storage, read> cover_words: array<f32>;
 
 // Within this kernel only, never stored: the particle's life ends this step.
 const STEP_ENDS: u32 = 1024u;

@@ -205,6 +205,7 @@ pub const STEP: GroupLayout = GroupLayout {
         binding(sb::DEPOSITS, storage(false), Stages::Compute),
         binding(sb::PENDING_BIRTHS, storage(false), Stages::Compute),
         binding(sb::WAVES, storage(false), Stages::Compute),
+        binding(sb::COVER, storage(true), Stages::Compute),
     ],
 };
 

@@ -3,6 +3,10 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::drifting_snow::{
+    CoverView, DRIFTING_SNOW_DIAMETER_M, DRIFTING_SNOW_REFERENCE_FLUX, ICE_DENSITY_KG_M3,
+    PARKED_BELOW_FLOOR_M,
+};
 use crate::grain::{
     LAUNCH_HEIGHT_M, LAUNCH_SPEED_PER_FRICTION_VELOCITY, grain_settling_speed_mps, rouse_height_m,
     rouse_number,
@@ -214,25 +218,23 @@ pub const fn is_lifted(index: u32, params: &StepParams) -> bool {
 /// [`LAUNCH_HEIGHT_M`] straight up at [`launch_speed_mps`]; dust starts at a height of the
 /// Rouse profile through the layer up to `lift_layer_top_m`, moving with the mean
 /// wind at its fall speed.
+///
+/// In snow weather the lifted particles are drifting snow instead
+/// ([`birth_drifting_snow`]).
 #[must_use]
 pub fn birth_lifted(
     index: u32,
     generation: u32,
     params: &StepParams,
     ground: &GroundMap,
+    cover: &CoverView<'_>,
 ) -> Particle {
     let key = particle_key(params.seed, index, generation);
-    let species = draw_species(key, params);
-    let span = params.lift_area_max_m - params.lift_area_min_m;
-    let mut at = params.lift_area_min_m;
-    for t in 0..LIFT_TRIES {
-        let d = draw::LIFT + 3 * t;
-        at =
-            params.lift_area_min_m + span * Vec2::new(random_unit(key, d), random_unit(key, d + 1));
-        if random_unit(key, d + 2) < ground.erodibility_at(at) {
-            break;
-        }
+    if params.grain_diameter_m <= 0.0 {
+        return birth_drifting_snow(key, generation, params, ground, cover);
     }
+    let species = draw_species(key, params);
+    let (at, _) = lift_point(key, params, |at| ground.erodibility_at(at));
     let ground_m = ground.height_at(at).unwrap_or(params.ground_floor_m);
     let (height_m, velocity) = if params.grain_suspended != 0 {
         let rouse = rouse_number(species.2, params.friction_velocity_mps);
@@ -256,6 +258,72 @@ pub fn birth_lifted(
     )
 }
 
+/// A point in the lift area (`lift_area_min_m … lift_area_max_m`) kept with
+/// probability `weight(point)`, up to [`LIFT_TRIES`] tries; the last when none is
+/// kept (and `false`).
+fn lift_point(key: u32, params: &StepParams, weight: impl Fn(Vec2) -> f32) -> (Vec2, bool) {
+    let span = params.lift_area_max_m - params.lift_area_min_m;
+    let mut at = params.lift_area_min_m;
+    for t in 0..LIFT_TRIES {
+        let d = draw::LIFT + 3 * t;
+        at =
+            params.lift_area_min_m + span * Vec2::new(random_unit(key, d), random_unit(key, d + 1));
+        if random_unit(key, d + 2) < weight(at) {
+            return (at, true);
+        }
+    }
+    (at, false)
+}
+
+/// A drifting snow grain ([`crate::drifting_snow`]): from a point where the cover's
+/// snow is blowing (kept with probability `min(1, Q/Q_ref)`), a 0.2 mm ice grain
+/// (its fall speed; drawn at the size of the weather's smallest flakes) born over
+/// the snow's surface at a height of the Rouse profile up to
+/// `lift_layer_top_m`, moving with the mean wind; where none is found, parked under
+/// the ground map's floor for a step. It carries no mass.
+#[must_use]
+pub fn birth_drifting_snow(
+    key: u32,
+    generation: u32,
+    params: &StepParams,
+    ground: &GroundMap,
+    cover: &CoverView<'_>,
+) -> Particle {
+    let (at, found) = lift_point(key, params, |at| {
+        (cover.blowing_snow_at(at).0 / DRIFTING_SNOW_REFERENCE_FLUX).min(1.0)
+    });
+    let f = random_unit(key, draw::GRAIN_SIZE);
+    let speed = grain_settling_speed_mps(DRIFTING_SNOW_DIAMETER_M * (0.5 + f), ICE_DENSITY_KG_M3);
+    // Drawn as the smallest flakes: each stands for a cloud of grains too small to
+    // see one by one.
+    let diameter = snowflake_diameter_m(params.air_temperature_c, 0.5 * f);
+    let kind = if params.snow_is_wet != 0 {
+        ParticleKind::WetSnow
+    } else {
+        ParticleKind::DrySnow
+    };
+    let position = if found {
+        let surface_m =
+            ground.height_at(at).unwrap_or(params.ground_floor_m) + cover.blowing_snow_at(at).1;
+        let rouse = rouse_number(speed, params.friction_velocity_mps);
+        let height = rouse_height_m(
+            rouse,
+            params.lift_layer_top_m,
+            random_unit(key, draw::LIFT_HEIGHT),
+        );
+        Vec3::new(at.x, surface_m + height, at.y)
+    } else {
+        Vec3::new(at.x, params.ground_floor_m - PARKED_BELOW_FLOOR_M, at.y)
+    };
+    world_newborn(
+        position,
+        params.mean_wind_mps - Vec3::Y * speed,
+        (kind, diameter, speed),
+        (key, generation),
+        params,
+    )
+}
+
 /// A saltating grain's lift-off speed, m/s: `w₀ = 2·u*·(0.5 + f)` (lift-off speeds
 /// spread widely about their mean; the spread also keeps grains launched together
 /// from hopping in step).
@@ -273,7 +341,12 @@ pub fn launch_speed_mps(key: u32, params: &StepParams) -> f32 {
 /// suspended one as [`birth_lifted`] places it.
 #[must_use]
 pub fn initial_lifted(index: u32, params: &StepParams, ground: &GroundMap) -> Particle {
-    let mut p = birth_lifted(index, 0, params, ground);
+    // No snow lies at the start: drifting-snow slots wait for it.
+    let no_cover = CoverView {
+        frame: &ground.frame,
+        texels: &[],
+    };
+    let mut p = birth_lifted(index, 0, params, ground, &no_cover);
     if params.grain_suspended != 0 {
         return p;
     }
@@ -296,9 +369,10 @@ pub fn birth_in_world(
     generation: u32,
     params: &StepParams,
     ground: &GroundMap,
+    cover: &CoverView<'_>,
 ) -> Particle {
     if is_lifted(index, params) {
-        birth_lifted(index, generation, params, ground)
+        birth_lifted(index, generation, params, ground, cover)
     } else {
         birth_on_emitter(index, generation, params, ground)
     }

@@ -687,6 +687,9 @@ pub mod step_bindings {
     /// The water bodies' waves: `array<atomic<i32>>`,
     /// [`crate::water_waves::WAVE_WORDS_PER_CELL`] a cell, read-write storage.
     pub const WAVES: u32 = 8;
+    /// The cover texels as words (`array<f32>`, [`crate::drifting_snow`]'s word
+    /// offsets), read-only storage: where snow is blowing, for drifting snow's births.
+    pub const COVER: u32 = 9;
 }
 
 /// Bindings of [`Program::CoverUpdate`], group 0.

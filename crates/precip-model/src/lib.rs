@@ -32,6 +32,7 @@ pub mod cpu;
 pub mod displacement;
 pub mod drag;
 pub mod drawing;
+pub mod drifting_snow;
 pub mod emitter;
 pub mod error;
 pub mod frame_recipe;

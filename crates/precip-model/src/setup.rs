@@ -11,6 +11,7 @@ use precip_cover::{
 use precip_wind::WindVolumeSpec;
 
 use crate::camera::Camera;
+use crate::drifting_snow::{DRIFTING_SNOW_LAYER_TOP_M, DRIFTING_SNOW_SHARE};
 use crate::emitter::{CameraVolume, WorldEmitter};
 use crate::error::BackendError;
 use crate::grain::{Grain, lifted_flux_kg_per_m2_s, sand_friction_velocity_mps};
@@ -412,7 +413,8 @@ impl Setup {
     /// and the ground's `F·A_e` (F the lifted flux at the wind's friction velocity
     /// over sand, `A_e` the map's erodible area). Each pool's particles gather their
     /// pool's flux over their count, so the grains landed and in the air add up to
-    /// what the two sources gave.
+    /// what the two sources gave. Snow weather in a wind that can lift the snow sets
+    /// a share aside for drifting snow instead ([`crate::drifting_snow`]).
     #[must_use]
     pub fn grain_lift(&self, weather: &Weather, world_count: u32) -> GrainLift {
         let none = GrainLift {
@@ -420,8 +422,11 @@ impl Setup {
             lift_from: world_count,
             ..GrainLift::default()
         };
-        let (Some(grain), Some(e)) = (weather.grains(), self.world_emitter) else {
+        let Some(e) = self.world_emitter else {
             return none;
+        };
+        let Some(grain) = weather.grains() else {
+            return self.drifting_snow(weather, world_count).unwrap_or(none);
         };
         let friction_velocity_mps = sand_friction_velocity_mps(weather.ground_wind_speed_mps());
         let frame = self.ground.frame;
@@ -461,7 +466,39 @@ impl Setup {
     }
 }
 
-/// Sand or dust lifted from the ground ([`Setup::grain_lift`]).
+impl Setup {
+    /// The drifting-snow pool of snow weather ([`crate::drifting_snow`]): a share of
+    /// the world particles when the mean wind reaches 80 % of the snow's transport
+    /// threshold (its gusts pass it), carrying no mass, born over the cover grid;
+    /// `None` otherwise.
+    fn drifting_snow(&self, weather: &Weather, world_count: u32) -> Option<GrainLift> {
+        let snow_only = weather.snow_fraction() >= 1.0;
+        let wind = weather.ground_wind_speed_mps();
+        let threshold = if weather.snow_is_wet() {
+            precip_cover::blowing::WET_SNOW_THRESHOLD_WIND_MPS
+        } else {
+            precip_cover::blowing::dry_snow_threshold_wind_mps(weather.air_temperature_c)
+        };
+        let count = (world_count as f32 * DRIFTING_SNOW_SHARE) as u32;
+        if !(snow_only && wind >= 0.8 * threshold && count > 0 && count < world_count) {
+            return None;
+        }
+        let frame = self.cover.frame;
+        Some(GrainLift {
+            grain: None,
+            lift_from: world_count - count,
+            per_particle_kg_per_s: 0.0,
+            friction_velocity_mps: precip_cover::blowing::friction_velocity_mps(wind),
+            layer_top_m: DRIFTING_SNOW_LAYER_TOP_M,
+            suspended: true,
+            area_min_m: frame.origin_m,
+            area_max_m: frame.origin_m + frame.size_m,
+            lifted_kg_per_s: 0.0,
+        })
+    }
+}
+
+/// Sand, dust or drifting snow lifted from the ground ([`Setup::grain_lift`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct GrainLift {
     /// The weather's grains (`None`: snow and rain).

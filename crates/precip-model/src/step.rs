@@ -33,11 +33,12 @@
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec2, Vec3};
-use precip_cover::{DepositBuffer, GridFrame};
+use precip_cover::{CoverTexel, DepositBuffer, GridFrame};
 use precip_wind::WindVolume;
 
 use crate::birth::{birth_in_camera_volume, birth_in_world, is_lifted};
 use crate::drag::drag_velocity;
+use crate::drifting_snow::CoverView;
 use crate::ground::GroundMap;
 use crate::particle::{Particle, ParticleKind, ParticleSource, flags};
 use crate::rng::{draw, particle_key, random_unit};
@@ -155,8 +156,22 @@ pub struct StepInputs<'a> {
     pub ground: &'a GroundMap,
     /// The cover grid's frame (deposit texels).
     pub cover_frame: &'a GridFrame,
+    /// The cover's texels as the step starts (where snow is blowing, for drifting
+    /// snow's births; empty: none).
+    pub cover_texels: &'a [CoverTexel],
     /// Landed water, fixed point.
     pub deposits: &'a DepositBuffer,
+}
+
+impl StepInputs<'_> {
+    /// The cover as births read it.
+    #[must_use]
+    pub fn cover(&self) -> CoverView<'_> {
+        CoverView {
+            frame: self.cover_frame,
+            texels: self.cover_texels,
+        }
+    }
 }
 
 /// What happened to a particle in a step (for tests and statistics).
@@ -269,6 +284,7 @@ pub fn step_particle(
                             particle.generation.wrapping_add(1),
                             params,
                             inputs.ground,
+                            &inputs.cover(),
                         ),
                         StepEvent::Landed,
                     );
@@ -282,6 +298,7 @@ pub fn step_particle(
                             particle.generation.wrapping_add(1),
                             params,
                             inputs.ground,
+                            &inputs.cover(),
                         ),
                         StepEvent::Reborn,
                     );
@@ -295,6 +312,7 @@ pub fn step_particle(
                         particle.generation.wrapping_add(1),
                         params,
                         inputs.ground,
+                        &inputs.cover(),
                     ),
                     StepEvent::Reborn,
                 );

@@ -233,6 +233,31 @@ fn snow_rebounding_off_a_wall_matches() {
     check(&setup, 40, 0.05);
 }
 
+/// Drifting snow: births read the cover's blowing snow (precip_model::drifting_snow).
+#[test]
+fn drifting_snow_matches() {
+    let mut setup = scenario(12, PrecipitationKind::DrySnow, false, 6_000, false);
+    setup.weather.air_temperature_c = -12.0;
+    setup.weather.intensity_mm_per_h = 6.0;
+    setup.weather.wind = WindField {
+        mean_wind_mps: Vec3::new(14.0, 0.0, 0.0),
+        ..WindField::calm()
+    };
+    setup.cover.time_scale = 3_000.0;
+    let (world, _) = setup.particle_counts();
+    let from = setup.grain_lift(&setup.weather, world).lift_from;
+    assert!(from < world);
+    let mut cpu = common::cpu_run(&setup, 60, 0.1);
+    let particles = cpu.read_particles().expect("configured");
+    let floor = setup.ground.floor_m();
+    let drifting = particles[from as usize..world as usize]
+        .iter()
+        .filter(|p| p.position_m.y > floor)
+        .count();
+    assert!(drifting > 0, "snow drifts within the run");
+    check(&setup, 60, 0.1);
+}
+
 #[test]
 fn lifted_sand_and_dust_match() {
     check(

@@ -159,6 +159,7 @@ impl Backend for CpuBackend {
                 wind: &state.wind,
                 ground: &state.setup.ground,
                 cover_frame: &state.cover.frame,
+                cover_texels: &state.cover.texels,
                 deposits: &state.deposits,
             };
             state

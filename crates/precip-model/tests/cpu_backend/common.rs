@@ -43,6 +43,7 @@ pub fn step_inputs<'a>(
         wind,
         ground: &setup.ground,
         cover_frame: &setup.cover.frame,
+        cover_texels: &[],
         deposits,
     }
 }

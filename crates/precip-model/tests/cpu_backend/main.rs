@@ -3,6 +3,7 @@
 mod bad_input;
 mod common;
 mod determinism;
+mod drifting;
 mod mass_link;
 mod scene;
 mod splashes;
