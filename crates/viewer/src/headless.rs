@@ -62,6 +62,21 @@ pub fn run_headless(
     out: &Path,
     progress: bool,
 ) -> Result<Summary, HeadlessError> {
+    run_headless_with(backend, view, frames, dt_s, out, progress, None)
+}
+
+/// [`run_headless`], taking the weather from a CIGI host when `cigi` is given: the
+/// datagrams waiting are read before each frame and a change takes effect in it
+/// (the backend keeps running: no re-configure).
+pub fn run_headless_with(
+    backend: &mut dyn Backend,
+    view: &View,
+    frames: u32,
+    dt_s: f32,
+    out: &Path,
+    progress: bool,
+    mut cigi: Option<&mut precip_cigi::CigiReceiver>,
+) -> Result<Summary, HeadlessError> {
     std::fs::create_dir_all(out).map_err(|e| HeadlessError::Write {
         file: out.to_path_buf(),
         detail: e.to_string(),
@@ -82,6 +97,12 @@ pub fn run_headless(
     let mut files = Vec::with_capacity(frames as usize);
     for frame in 0..frames {
         let start = Instant::now();
+        if let Some(weather) = cigi
+            .as_deref_mut()
+            .and_then(precip_cigi::CigiReceiver::poll)
+        {
+            backend.set_weather(&weather)?;
+        }
         backend.set_camera(&view.camera)?;
         backend.step(dt_s)?;
         backend.render(view)?;

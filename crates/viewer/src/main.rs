@@ -10,7 +10,7 @@ use glam::Vec3;
 use precip_model::{Camera, View};
 use precip_viewer::backends::{BackendName, open_headless};
 use precip_viewer::demo::{DEMO_GLB, demo_glb};
-use precip_viewer::headless::run_headless;
+use precip_viewer::headless::run_headless_with;
 use precip_viewer::presets::{KindName, Preset};
 use precip_viewer::scene_setup::{SceneOptions, scene_setup};
 use precip_viewer::window::{WindowError, display_available, run_window};
@@ -110,6 +110,10 @@ struct RunArgs {
     /// Seconds of simulation per headless frame.
     #[arg(long, default_value_t = 1.0 / 30.0)]
     dt: f32,
+    /// Headless: take the weather from a CIGI 3.3 host on this UDP port (IG Control
+    /// and global Weather Control; applied at the next frame).
+    #[arg(long)]
+    cigi: Option<u16>,
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -244,6 +248,11 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     let frames = match args.frames {
         Some(n) => n,
         None if display_available() => {
+            if args.cigi.is_some() {
+                eprintln!(
+                    "note: --cigi drives headless runs (--frames N); the window does not listen yet"
+                );
+            }
             match run_window(setup.clone(), args.size, args.backend, args.quit_after) {
                 Ok(shown) => {
                     if shown.frames > 0 {
@@ -288,14 +297,44 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         width_px: args.size.0,
         height_px: args.size.1,
     };
-    let summary = run_headless(
+    let mut cigi = match args.cigi {
+        Some(port) => {
+            let receiver = precip_cigi::CigiReceiver::bind(port, setup.weather)?;
+            eprintln!("CIGI: listening on {}", receiver.local_addr()?);
+            Some(receiver)
+        }
+        None => None,
+    };
+    let summary = run_headless_with(
         backend.as_mut(),
         &view,
         frames,
         args.dt.clamp(1e-3, 1.0),
         &args.out,
         true,
+        cigi.as_mut(),
     )?;
+    if let Some(receiver) = &cigi {
+        let c = receiver.counts();
+        let w = receiver.weather();
+        println!(
+            "CIGI: {} datagrams ({} malformed), {} IG Control, Weather Control {} applied, {} ignored, {} refused, {} other packets; weather in effect: {:?} {:.2} mm/h at {:.1} °C, wind {:.1} m/s",
+            c.datagrams,
+            c.malformed,
+            c.ig_control,
+            c.weather_applied,
+            c.weather_ignored,
+            c.weather_refused,
+            c.other,
+            w.kind,
+            w.intensity_mm_per_h,
+            w.air_temperature_c,
+            w.wind.mean_wind_mps.length()
+        );
+        if let Some(e) = receiver.last_error() {
+            println!("CIGI: the last malformed datagram: {e}");
+        }
+    }
     println!(
         "{} frames in {}: mean {:.1} ms, p95 {:.1} ms per frame (PNG included; {}); {} particles; snow cover water {:.2} mm on average, deepest snow {:.0} mm; {}",
         summary.frames,

@@ -52,6 +52,77 @@ fn inspect_succeeds_on_a_scene_and_fails_with_the_reason_on_a_bad_file() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A CIGI host on loopback sets heavy rain while a headless run goes on; a garbage
+/// datagram is counted and skipped.
+#[test]
+fn a_cigi_host_drives_the_headless_run_over_udp() {
+    if precip_gpu_wgpu::adapters().is_empty() {
+        assert!(
+            std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
+            "PRECIP_REQUIRE_GPU=1 but no wgpu adapter found"
+        );
+        println!("SKIPPED a_cigi_host_drives_the_headless_run_over_udp: no wgpu adapter");
+        return;
+    }
+    let port = std::net::UdpSocket::bind("127.0.0.1:0")
+        .and_then(|s| s.local_addr())
+        .expect("a free port")
+        .port();
+    let dir = temp_dir("cigi");
+    let mut child = precip()
+        .args([
+            "--frames",
+            "40",
+            "--size",
+            "64x36",
+            "--particles",
+            "5000",
+            "--cigi",
+        ])
+        .arg(port.to_string())
+        .arg("--out")
+        .arg(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .expect("runs");
+    // IG Control (big-endian) and a global Weather Control: rain, severity 4.
+    let mut message = vec![1u8, 24, 3, 0, 0x31, 0, 0x80, 0];
+    message.extend([0u8; 16]);
+    message.extend([12u8, 56, 0, 0, 4, 70, 1, 4 << 2]);
+    for v in [
+        12.0f32, 0.0, 0.0, 100.0, 500.0, 1_000.0, 50.0, 6.0, 0.0, 270.0, 1013.0, 0.0,
+    ] {
+        message.extend(v.to_be_bytes());
+    }
+    let host = std::net::UdpSocket::bind("127.0.0.1:0").expect("host socket");
+    let start = std::time::Instant::now();
+    while child.try_wait().expect("alive").is_none()
+        && start.elapsed() < std::time::Duration::from_secs(300)
+    {
+        let _ = host.send_to(b"junk", ("127.0.0.1", port));
+        let _ = host.send_to(&message, ("127.0.0.1", port));
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    let out = child.wait_with_output().expect("finishes");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}");
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("CIGI:"))
+        .unwrap_or_else(|| panic!("no CIGI line: {text}"));
+    assert!(
+        line.contains("weather in effect: Rain 25.00 mm/h"),
+        "{line}"
+    );
+    assert!(
+        !line.contains(" 0 applied") && !line.contains("(0 malformed)"),
+        "{line}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn without_a_display_the_viewer_says_so_and_renders_frames_headless() {
     if precip_gpu_wgpu::adapters().is_empty() {

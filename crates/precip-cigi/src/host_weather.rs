@@ -1,0 +1,164 @@
+//! [`HostWeather`]: the weather a host sets with global Weather Control packets.
+//!
+//! ## Severity to intensity
+//!
+//! CIGI 3.3 gives a layer's severity as 0 (least) to 5 (most severe) without units
+//! and leaves its meaning to the IG. precip spreads the six steps over the
+//! intensity classes of the AMS Glossary (rain: light below 2.5 mm/h, moderate to
+//! 7.6, heavy above, violent above 50; snow, as water: light below 1 mm/h, heavy
+//! above 2.5), roughly doubling a step, so 0 is the lightest that shows and 5 the
+//! heaviest a simulator meets:
+//!
+//! | severity | 0 | 1 | 2 | 3 | 4 | 5 |
+//! | --- | --- | --- | --- | --- | --- | --- |
+//! | rain, mm/h | 0.5 | 1.5 | 4 | 10 | 25 | 60 |
+//! | snow and sleet, mm/h of water | 0.2 | 0.5 | 1 | 2 | 4 | 8 |
+//! | sand and dust: visibility, m | 5 000 | 2 000 | 1 000 | 500 | 200 | 50 |
+//!
+//! Sand and dust are given by what one sees through them (WMO: a dust haze above
+//! 1 km, a sandstorm below, a severe one below 200 m), so a visibility range the
+//! host sends wins over the severity; the settling rate is the one that holds that
+//! visibility ([`precip_model::grain`]). The layer's coverage (%) scales the rate
+//! (showers over part of the area). Base elevation and thickness are kept
+//! ([`HostWeather::layer_extent_m`]) but precipitation falls to the ground from
+//! whatever layer sends it. Hail (layer 7), fog and cloud layers and the regional and
+//! entity scopes are counted as ignored.
+
+use glam::Vec3;
+use precip_model::grain::{Grain, grain_settling_speed_mps};
+use precip_model::wind::WindField;
+use precip_model::{PrecipitationKind, Weather};
+
+use crate::packet::WeatherControl;
+
+/// Rain's rate by severity, mm/h (module docs).
+pub const RAIN_MM_PER_H: [f32; 6] = [0.5, 1.5, 4.0, 10.0, 25.0, 60.0];
+/// Snow's and sleet's water rate by severity, mm/h.
+pub const SNOW_MM_PER_H: [f32; 6] = [0.2, 0.5, 1.0, 2.0, 4.0, 8.0];
+/// Sand's and dust's visibility by severity, m.
+pub const GRAIN_VISIBILITY_M: [f32; 6] = [5_000.0, 2_000.0, 1_000.0, 500.0, 200.0, 50.0];
+
+/// The precipitation kind of a Weather Control layer; `None` for the layers precip
+/// does not draw.
+#[must_use]
+pub const fn layer_kind(layer: u8) -> Option<PrecipitationKind> {
+    match layer {
+        4 => Some(PrecipitationKind::Rain),
+        5 => Some(PrecipitationKind::DrySnow),
+        6 => Some(PrecipitationKind::Sleet),
+        8 => Some(PrecipitationKind::Sand),
+        9 => Some(PrecipitationKind::Dust),
+        _ => None,
+    }
+}
+
+/// The settling rate of `grain` that holds visibility `visibility_m`, kg/(m²·h):
+/// `σ = 3.912/V`, `C = σ·ρ·d/3`, rate `= C·w·3600`.
+#[must_use]
+pub fn grain_rate_for_visibility(grain: &Grain, visibility_m: f32) -> f32 {
+    let sigma = 3.912 / visibility_m.max(1.0);
+    let concentration = sigma * grain.density_kg_m3 * grain.diameter_m / 3.0;
+    concentration * grain_settling_speed_mps(grain.diameter_m, grain.density_kg_m3) * 3600.0
+}
+
+/// The wind vector of a speed and the direction it blows from (degrees clockwise
+/// from north = −Z; east = +X), m/s.
+#[must_use]
+pub fn wind_from(speed_mps: f32, from_deg: f32) -> Vec3 {
+    let from = from_deg.to_radians();
+    -speed_mps * Vec3::new(from.sin(), 0.0, -from.cos())
+}
+
+/// What a global Weather Control did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Applied {
+    /// The weather changed to this.
+    Changed(Weather),
+    /// The packet was for a layer, scope or kind precip does not draw.
+    Ignored,
+    /// The weather it asks for is not physical (precip_model's validation): kept
+    /// the last one.
+    Refused,
+}
+
+/// The weather the host has set, starting from a given one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HostWeather {
+    weather: Weather,
+    layer_extent_m: Option<(f32, f32)>,
+}
+
+impl HostWeather {
+    /// Starts from `weather`.
+    #[must_use]
+    pub fn new(weather: Weather) -> Self {
+        Self {
+            weather,
+            layer_extent_m: None,
+        }
+    }
+
+    /// The weather in effect.
+    #[must_use]
+    pub fn weather(&self) -> Weather {
+        self.weather
+    }
+
+    /// The last precipitation layer's base elevation and thickness, m.
+    #[must_use]
+    pub fn layer_extent_m(&self) -> Option<(f32, f32)> {
+        self.layer_extent_m
+    }
+
+    /// Applies one Weather Control packet (module docs).
+    pub fn apply(&mut self, packet: &WeatherControl) -> Applied {
+        let Some(kind) = layer_kind(packet.layer) else {
+            return Applied::Ignored;
+        };
+        if packet.scope != 0 {
+            return Applied::Ignored;
+        }
+        let severity = usize::from(packet.severity.min(5));
+        let coverage = (packet.coverage_percent / 100.0).clamp(0.0, 1.0);
+        let mut next = self.weather;
+        if !packet.enabled {
+            if next.kind != kind {
+                return Applied::Ignored;
+            }
+            next.intensity_mm_per_h = 0.0;
+        } else {
+            next.kind = kind;
+            next.grain = None;
+            let rate = match kind.default_grain() {
+                Some(grain) => {
+                    let visibility = if packet.visibility_m > 0.0 {
+                        packet.visibility_m
+                    } else {
+                        GRAIN_VISIBILITY_M[severity]
+                    };
+                    grain_rate_for_visibility(&grain, visibility)
+                }
+                None if kind == PrecipitationKind::Rain => RAIN_MM_PER_H[severity],
+                None => SNOW_MM_PER_H[severity],
+            };
+            next.intensity_mm_per_h = rate * coverage;
+            next.air_temperature_c = packet.air_temperature_c;
+            if kind == PrecipitationKind::DrySnow && packet.air_temperature_c > -1.0 {
+                // Snow near and above freezing is wet.
+                next.kind = PrecipitationKind::WetSnow;
+            }
+        }
+        next.relative_humidity = (f32::from(packet.humidity_percent) / 100.0).clamp(0.0, 1.0);
+        let horizontal = wind_from(packet.horizontal_wind_mps.max(0.0), packet.wind_from_deg);
+        next.wind = WindField {
+            mean_wind_mps: horizontal + Vec3::Y * packet.vertical_wind_mps,
+            ..next.wind
+        };
+        if next.validate().is_err() {
+            return Applied::Refused;
+        }
+        self.weather = next;
+        self.layer_extent_m = Some((packet.base_elevation_m, packet.thickness_m));
+        Applied::Changed(next)
+    }
+}

@@ -1,0 +1,136 @@
+//! [`CigiReceiver`]: host messages from a UDP port, read without blocking once a
+//! frame.
+
+use std::net::{SocketAddr, UdpSocket};
+
+use precip_model::Weather;
+
+use crate::error::CigiError;
+use crate::host_weather::{Applied, HostWeather};
+use crate::packet::{Packet, parse_message};
+
+/// What the receiver has seen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PacketCounts {
+    /// Datagrams read.
+    pub datagrams: u64,
+    /// Datagrams skipped as malformed (short, unknown order, bad sizes, …).
+    pub malformed: u64,
+    /// IG Control packets.
+    pub ig_control: u64,
+    /// Weather Control packets that changed the weather.
+    pub weather_applied: u64,
+    /// Weather Control packets for layers or scopes precip does not draw.
+    pub weather_ignored: u64,
+    /// Weather Control packets asking for weather that is not physical.
+    pub weather_refused: u64,
+    /// Other packets, skipped by their size.
+    pub other: u64,
+}
+
+/// The most datagrams read in one [`CigiReceiver::poll`], so a flooding host cannot
+/// stall a frame.
+pub const MAX_DATAGRAMS_PER_POLL: usize = 256;
+
+/// Reads a host's CIGI messages from a UDP port.
+#[derive(Debug)]
+pub struct CigiReceiver {
+    socket: UdpSocket,
+    weather: HostWeather,
+    counts: PacketCounts,
+    last_error: Option<CigiError>,
+    buffer: Vec<u8>,
+    /// The weather [`CigiReceiver::poll`] last returned (or started from).
+    announced: Weather,
+}
+
+impl CigiReceiver {
+    /// Listens on `port` of every interface (0: a free port), starting from
+    /// `weather`.
+    pub fn bind(port: u16, weather: Weather) -> Result<Self, CigiError> {
+        let socket = UdpSocket::bind(("0.0.0.0", port))
+            .map_err(|e| CigiError::Socket(format!("cannot listen on UDP port {port}: {e}")))?;
+        socket
+            .set_nonblocking(true)
+            .map_err(|e| CigiError::Socket(e.to_string()))?;
+        Ok(Self {
+            socket,
+            weather: HostWeather::new(weather),
+            counts: PacketCounts::default(),
+            last_error: None,
+            buffer: vec![0u8; 65_536],
+            announced: weather,
+        })
+    }
+
+    /// The address it listens on.
+    pub fn local_addr(&self) -> Result<SocketAddr, CigiError> {
+        self.socket
+            .local_addr()
+            .map_err(|e| CigiError::Socket(e.to_string()))
+    }
+
+    /// Reads the datagrams waiting (at most [`MAX_DATAGRAMS_PER_POLL`]); returns
+    /// the weather if they changed it since the last time it returned one.
+    pub fn poll(&mut self) -> Option<Weather> {
+        let mut changed = None;
+        for _ in 0..MAX_DATAGRAMS_PER_POLL {
+            let Ok((len, _)) = self.socket.recv_from(&mut self.buffer) else {
+                break;
+            };
+            self.counts.datagrams += 1;
+            let datagram = self.buffer.get(..len).unwrap_or_default();
+            match parse_message(datagram) {
+                Ok(packets) => {
+                    for packet in packets {
+                        if let Some(w) = self.take(&packet) {
+                            changed = Some(w);
+                        }
+                    }
+                }
+                Err(e) => {
+                    self.counts.malformed += 1;
+                    self.last_error = Some(e);
+                }
+            }
+        }
+        changed
+    }
+
+    fn take(&mut self, packet: &Packet) -> Option<Weather> {
+        match packet {
+            Packet::IgControl(_) => self.counts.ig_control += 1,
+            Packet::Other { .. } => self.counts.other += 1,
+            Packet::WeatherControl(w) => match self.weather.apply(w) {
+                Applied::Changed(weather) => {
+                    self.counts.weather_applied += 1;
+                    // A host repeats its weather every frame: only a change is news.
+                    let news = weather != self.announced;
+                    self.announced = weather;
+                    return news.then_some(weather);
+                }
+                Applied::Ignored => self.counts.weather_ignored += 1,
+                Applied::Refused => self.counts.weather_refused += 1,
+            },
+        }
+        None
+    }
+
+    /// The weather in effect.
+    #[must_use]
+    pub fn weather(&self) -> Weather {
+        self.weather.weather()
+    }
+
+    /// What it has seen.
+    #[must_use]
+    pub fn counts(&self) -> PacketCounts {
+        self.counts
+    }
+
+    /// Why the last malformed datagram was skipped.
+    #[must_use]
+    pub fn last_error(&self) -> Option<&CigiError> {
+        self.last_error.as_ref()
+    }
+}

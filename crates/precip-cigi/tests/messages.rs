@@ -1,0 +1,331 @@
+//! CIGI messages of every kind precip reads, in both byte orders, fuzzed, and over
+//! loopback UDP.
+
+use std::net::UdpSocket;
+use std::time::{Duration, Instant};
+
+use precip_cigi::host_weather::{RAIN_MM_PER_H, SNOW_MM_PER_H};
+use precip_cigi::{
+    Applied, ByteOrder, CigiError, CigiReceiver, HostWeather, Packet, WeatherControl, parse_message,
+};
+use precip_model::{PrecipitationKind, Weather};
+use proptest::prelude::*;
+
+/// Writes packets as a host would, in `order`.
+struct Writer {
+    order: ByteOrder,
+    bytes: Vec<u8>,
+}
+
+impl Writer {
+    fn new(order: ByteOrder) -> Self {
+        Self {
+            order,
+            bytes: Vec::new(),
+        }
+    }
+    fn u16(&mut self, v: u16) {
+        self.bytes.extend(match self.order {
+            ByteOrder::Big => v.to_be_bytes(),
+            ByteOrder::Little => v.to_le_bytes(),
+        });
+    }
+    fn u32(&mut self, v: u32) {
+        self.bytes.extend(match self.order {
+            ByteOrder::Big => v.to_be_bytes(),
+            ByteOrder::Little => v.to_le_bytes(),
+        });
+    }
+    fn f32(&mut self, v: f32) {
+        self.u32(v.to_bits());
+    }
+    fn ig_control(&mut self, frame: u32) {
+        self.bytes.extend([1, 24, 3, 0, (3 << 4) | 1, 0]);
+        self.u16(0x8000);
+        self.u32(frame);
+        self.u32(0);
+        self.u32(frame.saturating_sub(1));
+        self.u32(0);
+    }
+    #[expect(clippy::too_many_arguments, reason = "one per field a test varies")]
+    fn weather(
+        &mut self,
+        layer: u8,
+        enabled: bool,
+        severity: u8,
+        temperature_c: f32,
+        visibility_m: f32,
+        coverage: f32,
+        wind: (f32, f32, f32),
+        scope: u8,
+    ) {
+        self.bytes.extend([12, 56]);
+        self.u16(0);
+        self.bytes
+            .extend([layer, 40, u8::from(enabled), (severity << 2) | scope]);
+        for v in [
+            temperature_c,
+            visibility_m,
+            0.0,
+            coverage,
+            800.0,
+            1_500.0,
+            100.0,
+            wind.0,
+            wind.1,
+            wind.2,
+            1013.0,
+            0.0,
+        ] {
+            self.f32(v);
+        }
+    }
+}
+
+fn rain_message(order: ByteOrder, severity: u8) -> Vec<u8> {
+    let mut w = Writer::new(order);
+    w.ig_control(42);
+    w.weather(4, true, severity, 12.0, 0.0, 100.0, (8.0, 0.0, 270.0), 0);
+    w.bytes
+}
+
+#[test]
+fn both_byte_orders_read_the_same_packets() {
+    let big = parse_message(&rain_message(ByteOrder::Big, 3)).expect("big-endian");
+    let little = parse_message(&rain_message(ByteOrder::Little, 3)).expect("little-endian");
+    assert_eq!(big.len(), 2);
+    let (Packet::IgControl(a), Packet::IgControl(b)) = (big[0], little[0]) else {
+        panic!("IG Control first: {big:?}");
+    };
+    assert_eq!(
+        (a.byte_order, b.byte_order),
+        (ByteOrder::Big, ByteOrder::Little)
+    );
+    assert_eq!((a.host_frame, b.host_frame), (42, 42));
+    assert_eq!((a.major_version, a.minor_version, a.ig_mode), (3, 3, 1));
+    assert_eq!(big[1], little[1]);
+    let Packet::WeatherControl(w) = big[1] else {
+        panic!("weather second");
+    };
+    assert_eq!((w.layer, w.severity, w.scope, w.enabled), (4, 3, 0, true));
+    assert!((w.air_temperature_c - 12.0).abs() < 1e-6 && (w.wind_from_deg - 270.0).abs() < 1e-6);
+    assert!((w.base_elevation_m - 800.0).abs() < 1e-6 && (w.thickness_m - 1_500.0).abs() < 1e-6);
+}
+
+#[test]
+fn every_precipitation_layer_sets_its_kind_and_severity_sets_the_rate() {
+    let mut host = HostWeather::new(Weather::default());
+    let cases = [
+        (4u8, 12.0f32, PrecipitationKind::Rain),
+        (5, -8.0, PrecipitationKind::DrySnow),
+        (5, 0.0, PrecipitationKind::WetSnow),
+        (6, 1.0, PrecipitationKind::Sleet),
+        (8, 35.0, PrecipitationKind::Sand),
+        (9, 30.0, PrecipitationKind::Dust),
+    ];
+    for (layer, t, kind) in cases {
+        for severity in 0..6u8 {
+            let mut w = Writer::new(ByteOrder::Big);
+            w.ig_control(1);
+            w.weather(layer, true, severity, t, 0.0, 100.0, (14.0, 0.5, 300.0), 0);
+            let packets = parse_message(&w.bytes).expect("valid");
+            let Packet::WeatherControl(p) = packets[1] else {
+                panic!()
+            };
+            let Applied::Changed(weather) = host.apply(&p) else {
+                panic!("layer {layer} severity {severity}: {:?}", host.apply(&p));
+            };
+            assert_eq!(weather.kind, kind);
+            let expected = match kind {
+                PrecipitationKind::Rain => Some(RAIN_MM_PER_H[usize::from(severity)]),
+                PrecipitationKind::DrySnow
+                | PrecipitationKind::WetSnow
+                | PrecipitationKind::Sleet => Some(SNOW_MM_PER_H[usize::from(severity)]),
+                _ => None,
+            };
+            if let Some(rate) = expected {
+                assert!((weather.intensity_mm_per_h - rate).abs() < 1e-6);
+            }
+            // Visibility falls as severity rises, for every kind.
+            let v = weather.visibility_m();
+            assert!(v.is_finite() && v > 0.0);
+            assert!((weather.relative_humidity - 0.4).abs() < 1e-6);
+            // From 300°: toward +x, +z; 0.5 m/s up.
+            let m = weather.wind.mean_wind_mps;
+            assert!(m.x > 11.0 && m.z > 6.0 && (m.y - 0.5).abs() < 1e-6, "{m}");
+        }
+    }
+    // A sandstorm at a given visibility holds it.
+    let mut w = Writer::new(ByteOrder::Little);
+    w.ig_control(2);
+    w.weather(8, true, 0, 35.0, 300.0, 100.0, (16.0, 0.0, 300.0), 0);
+    let Packet::WeatherControl(p) = parse_message(&w.bytes).expect("valid")[1] else {
+        panic!()
+    };
+    let Applied::Changed(sand) = host.apply(&p) else {
+        panic!()
+    };
+    assert!(
+        (sand.visibility_m() - 300.0).abs() < 3.0,
+        "{}",
+        sand.visibility_m()
+    );
+}
+
+#[test]
+fn disabling_the_layer_clears_it_and_other_layers_and_scopes_are_ignored() {
+    let mut host = HostWeather::new(Weather::default());
+    let packet = |layer, enabled, scope, temperature| WeatherControl {
+        entity_region_id: 0,
+        layer,
+        humidity_percent: 80,
+        enabled,
+        random_winds: false,
+        scope,
+        severity: 2,
+        air_temperature_c: temperature,
+        visibility_m: 0.0,
+        coverage_percent: 50.0,
+        base_elevation_m: 0.0,
+        thickness_m: 0.0,
+        horizontal_wind_mps: 3.0,
+        vertical_wind_mps: 0.0,
+        wind_from_deg: 0.0,
+    };
+    let Applied::Changed(rain) = host.apply(&packet(4, true, 0, 10.0)) else {
+        panic!()
+    };
+    assert!(
+        (rain.intensity_mm_per_h - 0.5 * RAIN_MM_PER_H[2]).abs() < 1e-6,
+        "coverage scales it"
+    );
+    assert_eq!(
+        host.apply(&packet(1, true, 0, 10.0)),
+        Applied::Ignored,
+        "a cloud layer"
+    );
+    assert_eq!(
+        host.apply(&packet(7, true, 0, 10.0)),
+        Applied::Ignored,
+        "hail"
+    );
+    assert_eq!(
+        host.apply(&packet(4, true, 1, 10.0)),
+        Applied::Ignored,
+        "a region"
+    );
+    assert_eq!(
+        host.apply(&packet(5, false, 0, 10.0)),
+        Applied::Ignored,
+        "another layer off"
+    );
+    assert_eq!(
+        host.apply(&packet(5, true, 0, 30.0)),
+        Applied::Refused,
+        "snow at 30 °C"
+    );
+    assert_eq!(host.weather(), rain, "refused leaves the weather as it was");
+    let Applied::Changed(clear) = host.apply(&packet(4, false, 0, 10.0)) else {
+        panic!()
+    };
+    assert!(clear.intensity_mm_per_h.abs() < f32::MIN_POSITIVE);
+}
+
+#[test]
+fn malformed_messages_are_named() {
+    let good = rain_message(ByteOrder::Big, 1);
+    assert!(matches!(
+        parse_message(&good[..10]),
+        Err(CigiError::Truncated { .. })
+    ));
+    assert!(matches!(
+        parse_message(&good[..40]),
+        Err(CigiError::Truncated { .. })
+    ));
+    let mut bad = good.clone();
+    bad[6] = 0x12;
+    assert!(matches!(
+        parse_message(&bad),
+        Err(CigiError::BadMagic { .. })
+    ));
+    let mut bad = good.clone();
+    bad[2] = 4;
+    assert!(matches!(
+        parse_message(&bad),
+        Err(CigiError::UnsupportedVersion { major_version: 4 })
+    ));
+    let mut bad = good.clone();
+    bad[0] = 12;
+    assert!(matches!(
+        parse_message(&bad),
+        Err(CigiError::NotIgControlFirst { .. })
+    ));
+    let mut bad = good.clone();
+    bad[25] = 60;
+    assert!(matches!(
+        parse_message(&bad),
+        Err(CigiError::BadSize { .. } | CigiError::Truncated { .. })
+    ));
+    let mut bad = good.clone();
+    bad[24 + 8..24 + 12].copy_from_slice(&f32::NAN.to_be_bytes());
+    assert!(matches!(
+        parse_message(&bad),
+        Err(CigiError::NonFinite { .. })
+    ));
+    // An unknown packet is skipped by its size.
+    let mut other = good.clone();
+    other.extend([99, 8, 0, 0, 0, 0, 0, 0]);
+    let packets = parse_message(&other).expect("skips it");
+    assert_eq!(packets[2], Packet::Other { opcode: 99 });
+}
+
+proptest! {
+    #[test]
+    fn any_bytes_are_read_or_refused_without_a_panic(bytes in proptest::collection::vec(any::<u8>(), 0..300)) {
+        let _ = parse_message(&bytes);
+    }
+
+    #[test]
+    fn mutated_messages_are_read_or_refused_without_a_panic(
+        at in 0usize..80, value in any::<u8>(), cut in 0usize..81, little in any::<bool>(),
+    ) {
+        let order = if little { ByteOrder::Little } else { ByteOrder::Big };
+        let mut bytes = rain_message(order, 4);
+        bytes[at] = value;
+        bytes.truncate(cut);
+        if let Ok(packets) = parse_message(&bytes) {
+            let mut host = HostWeather::new(Weather::default());
+            for p in packets {
+                if let Packet::WeatherControl(w) = p {
+                    let _ = host.apply(&w);
+                    prop_assert!(host.weather().validate().is_ok());
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_host_on_loopback_changes_the_weather_and_bad_datagrams_are_counted() {
+    let mut receiver = CigiReceiver::bind(0, Weather::default()).expect("a free port");
+    let port = receiver.local_addr().expect("bound").port();
+    let host = UdpSocket::bind("127.0.0.1:0").expect("host socket");
+    let to = ("127.0.0.1", port);
+    host.send_to(&[1, 2, 3], to).expect("sent");
+    host.send_to(&rain_message(ByteOrder::Little, 5), to)
+        .expect("sent");
+    let start = Instant::now();
+    let mut weather = None;
+    while weather.is_none() && start.elapsed() < Duration::from_secs(5) {
+        weather = receiver.poll();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let weather = weather.expect("the host's rain arrives");
+    assert_eq!(weather.kind, PrecipitationKind::Rain);
+    assert!((weather.intensity_mm_per_h - RAIN_MM_PER_H[5]).abs() < 1e-6);
+    let counts = receiver.counts();
+    assert_eq!(counts.datagrams, 2);
+    assert_eq!(counts.malformed, 1);
+    assert_eq!((counts.ig_control, counts.weather_applied), (1, 1));
+    assert!(receiver.last_error().is_some());
+}
