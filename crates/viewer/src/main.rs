@@ -110,8 +110,8 @@ struct RunArgs {
     /// Seconds of simulation per headless frame.
     #[arg(long, default_value_t = 1.0 / 30.0)]
     dt: f32,
-    /// Headless: take the weather from a CIGI 3.3 host on this UDP port (IG Control
-    /// and global Weather Control; applied at the next frame).
+    /// Take the weather from a CIGI 3.3 host on this UDP port (IG Control and global
+    /// Weather Control; applied at the next frame).
     #[arg(long)]
     cigi: Option<u16>,
 }
@@ -248,12 +248,21 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     let frames = match args.frames {
         Some(n) => n,
         None if display_available() => {
-            if args.cigi.is_some() {
-                eprintln!(
-                    "note: --cigi drives headless runs (--frames N); the window does not listen yet"
-                );
-            }
-            match run_window(setup.clone(), args.size, args.backend, args.quit_after) {
+            let cigi = match args.cigi {
+                Some(port) => {
+                    let receiver = precip_cigi::CigiReceiver::bind(port, setup.weather)?;
+                    eprintln!("CIGI: listening on {}", receiver.local_addr()?);
+                    Some(receiver)
+                }
+                None => None,
+            };
+            match run_window(
+                setup.clone(),
+                args.size,
+                args.backend,
+                args.quit_after,
+                cigi,
+            ) {
                 Ok(shown) => {
                     if shown.frames > 0 {
                         println!(

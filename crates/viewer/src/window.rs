@@ -153,6 +153,8 @@ struct App {
     shown: Option<(u32, f64, FrameStats)>,
     /// The Vulkan validation layer's log, when it runs.
     validation: Option<crate::backends::ValidationLog>,
+    /// A CIGI host's messages, read before each frame.
+    cigi: Option<precip_cigi::CigiReceiver>,
 }
 
 fn title(r: &Running) -> String {
@@ -453,6 +455,11 @@ impl ApplicationHandler for App {
                 r.last_cursor = Some((position.x, position.y));
             }
             WindowEvent::RedrawRequested => {
+                if let Some(weather) = self.cigi.as_mut().and_then(precip_cigi::CigiReceiver::poll)
+                    && r.presenter.backend().set_weather(&weather).is_ok()
+                {
+                    r.weather = weather;
+                }
                 if let Err(e) = r.frame() {
                     self.error = Some(e);
                     event_loop.exit();
@@ -489,11 +496,13 @@ pub struct WindowSummary {
 
 /// Opens a window of `size` over `setup`, drawing with `backend`, and runs until it
 /// is closed (or, with `quit_after`, after that many frames).
+/// With `cigi`, a host's weather takes effect at the next frame.
 pub fn run_window(
     setup: Setup,
     size: (u32, u32),
     backend: BackendName,
     quit_after: Option<u32>,
+    cigi: Option<precip_cigi::CigiReceiver>,
 ) -> Result<WindowSummary, WindowError> {
     if !display_available() {
         return Err(WindowError::NoDisplay(
@@ -510,6 +519,7 @@ pub fn run_window(
         error: None,
         shown: None,
         validation: None,
+        cigi,
     };
     event_loop
         .run_app(&mut app)
