@@ -9,7 +9,9 @@
 //! ICD's layouts ([`packet`]). Short, unknown, oversized or malformed datagrams are
 //! counted and skipped ([`CigiReceiver`], [`PacketCounts`]), never a panic.
 //!
-//! Not yet here (issue 16): the viewer's `--cigi PORT`, OpenSCENARIO, the optics.
+//! The viewer listens with `--cigi PORT` (headless and in the window). Not yet here
+//! (issue 16): the other weather layers' looks (fog, clouds), hail, regional and
+//! entity scopes, and the IG's answers (Start of Frame) to the host.
 
 pub mod error;
 pub mod host_weather;
