@@ -18,6 +18,7 @@ pub mod headless;
 pub mod meshopt_views;
 pub mod node_graph;
 pub mod presets;
+pub mod scenario;
 pub mod scene_setup;
 pub mod snow_summary;
 pub mod water_summary;

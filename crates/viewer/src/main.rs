@@ -114,6 +114,10 @@ struct RunArgs {
     /// Weather Control; applied at the next frame).
     #[arg(long)]
     cigi: Option<u16>,
+    /// Take the weather (precipitation, temperature, wind, fog) from the
+    /// Environment/Weather of an OpenSCENARIO 1.x file instead of a preset.
+    #[arg(long)]
+    scenario: Option<PathBuf>,
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -223,7 +227,15 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     preset.wind_speed_mps = args.wind.unwrap_or(preset.wind_speed_mps);
     preset.wind_from_deg = args.wind_from.unwrap_or(preset.wind_from_deg);
     preset.gust_factor = args.gust.unwrap_or(preset.gust_factor);
-    let weather = preset.weather().context("the weather")?;
+    let scenario = args
+        .scenario
+        .as_deref()
+        .map(precip_viewer::scenario::load_scenario_weather)
+        .transpose()?;
+    let weather = match &scenario {
+        Some(s) => s.weather,
+        None => preset.weather().context("the weather")?,
+    };
     let camera = match (args.camera, args.look_at) {
         (Some(eye), Some(at)) => Some(Camera {
             position_m: eye,
@@ -244,7 +256,10 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         weather,
         camera,
     };
-    let setup = scene_setup(loaded.scene, &options)?;
+    let mut setup = scene_setup(loaded.scene, &options)?;
+    if let Some(fog) = scenario.and_then(|s| s.fog_extinction_per_m) {
+        setup.render.clear_air_extinction_per_m = fog;
+    }
     let frames = match args.frames {
         Some(n) => n,
         None if display_available() => {
