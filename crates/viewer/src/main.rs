@@ -118,6 +118,25 @@ struct RunArgs {
     /// Environment/Weather of an OpenSCENARIO 1.x file instead of a preset.
     #[arg(long)]
     scenario: Option<PathBuf>,
+    /// Display rig: this channel looks this many degrees right of the camera (the
+    /// rig's forward); channels of one rig show the same precipitation from the seed
+    /// and the clock alone.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    channel_yaw: f32,
+    /// Display rig: this channel looks this many degrees above the camera's forward.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    channel_pitch: f32,
+}
+
+/// A rig channel's forward: `forward` turned `yaw_deg` to the right about the
+/// vertical, then `pitch_deg` up about its right-hand axis.
+fn channel_forward(forward: Vec3, yaw_deg: f32, pitch_deg: f32) -> Vec3 {
+    let turned = glam::Quat::from_rotation_y(-yaw_deg.to_radians()) * forward;
+    let right = turned.cross(Vec3::Y).normalize_or_zero();
+    if right == Vec3::ZERO {
+        return turned;
+    }
+    glam::Quat::from_axis_angle(right, pitch_deg.to_radians()) * turned
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -260,6 +279,8 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     if let Some(fog) = scenario.and_then(|s| s.fog_extinction_per_m) {
         setup.render.clear_air_extinction_per_m = fog;
     }
+    setup.camera.forward =
+        channel_forward(setup.camera.forward, args.channel_yaw, args.channel_pitch);
     let frames = match args.frames {
         Some(n) => n,
         None if display_available() => {
