@@ -61,14 +61,6 @@ pub fn grain_rate_for_visibility(grain: &Grain, visibility_m: f32) -> f32 {
     concentration * grain_settling_speed_mps(grain.diameter_m, grain.density_kg_m3) * 3600.0
 }
 
-/// The wind vector of a speed and the direction it blows from (degrees clockwise
-/// from north = −Z; east = +X), m/s.
-#[must_use]
-pub fn wind_from(speed_mps: f32, from_deg: f32) -> Vec3 {
-    let from = from_deg.to_radians();
-    -speed_mps * Vec3::new(from.sin(), 0.0, -from.cos())
-}
-
 /// What a global Weather Control did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Applied {
@@ -149,7 +141,8 @@ impl HostWeather {
             }
         }
         next.relative_humidity = (f32::from(packet.humidity_percent) / 100.0).clamp(0.0, 1.0);
-        let horizontal = wind_from(packet.horizontal_wind_mps.max(0.0), packet.wind_from_deg);
+        let horizontal =
+            WindField::mean_wind_from(packet.horizontal_wind_mps.max(0.0), packet.wind_from_deg);
         next.wind = WindField {
             mean_wind_mps: horizontal + Vec3::Y * packet.vertical_wind_mps,
             ..next.wind

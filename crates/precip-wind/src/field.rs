@@ -32,6 +32,15 @@ impl WindField {
     /// The default gust factor μ, inside the seed's 3–5 % range.
     pub const DEFAULT_GUST_FACTOR: f32 = 0.04;
 
+    /// The mean wind vector of a speed and the meteorological direction it blows
+    /// from (degrees clockwise from north = −Z; east = +X), m/s: the convention of
+    /// presets and of CIGI hosts.
+    #[must_use]
+    pub fn mean_wind_from(speed_mps: f32, from_deg: f32) -> Vec3 {
+        let from = from_deg.to_radians();
+        -speed_mps * Vec3::new(from.sin(), 0.0, -from.cos())
+    }
+
     /// Still air: no mean wind, and so no horizontal gust; a weak vertical gust.
     #[must_use]
     pub const fn calm() -> Self {

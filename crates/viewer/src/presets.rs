@@ -104,9 +104,7 @@ pub struct PresetError {
 /// north = −Z; east = +X).
 #[must_use]
 pub fn wind_vector(speed_mps: f32, from_deg: f32) -> Vec3 {
-    let from = from_deg.to_radians();
-    let toward_from = Vec3::new(from.sin(), 0.0, -from.cos());
-    -speed_mps * toward_from
+    WindField::mean_wind_from(speed_mps, from_deg)
 }
 
 impl Preset {
