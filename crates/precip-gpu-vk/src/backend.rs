@@ -14,6 +14,7 @@ use glam::Vec3;
 use precip_model::cover::CoverGrid;
 use precip_model::drag::MAX_SUBSTEP_S;
 use precip_model::gpu::dispatch_size;
+use precip_model::lidar::{BeamQuery, BeamReturn};
 use precip_model::shaders::Program;
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
@@ -435,6 +436,20 @@ impl Backend for VkBackend {
 
     fn render(&mut self, view: &View) -> Result<(), BackendError> {
         self.draw(view, None)
+    }
+
+    fn weather(&self) -> Result<Weather, BackendError> {
+        Ok(self.state("weather")?.weather)
+    }
+
+    fn query_beams(&mut self, query: &BeamQuery) -> Result<Vec<BeamReturn>, BackendError> {
+        let beams = query.validate()?;
+        self.settle()?;
+        let state = self.state("query_beams")?;
+        let r = &state.resources;
+        let params = query.params(&beams, r.particle_count, &state.setup.ground);
+        let hits = crate::beams::query_beams(&self.device, &self.programs, r, &params, &beams)?;
+        Ok(query.answer(&beams, &hits, &state.weather))
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {

@@ -15,6 +15,7 @@
 //!   barriers.
 //! - [`descriptors`] — pools sized for their sets, allocation, write infos.
 //! - [`spirv`], [`programs`] — modules, set and pipeline layouts, compute pipelines.
+//! - [`beams`] — LiDAR beams: the `query_beams` kernel and its read-back.
 //! - [`resources`] — one configuration's buffers, wind volume, descriptor sets, uploads.
 //! - [`query`] — timestamps per kernel.
 //! - [`render`] — drawing: layouts, render passes, pipelines, samplers, the scene,
@@ -48,6 +49,7 @@
 )]
 
 mod backend;
+mod beams;
 mod bind_groups;
 mod buffer;
 mod commands;

@@ -31,6 +31,12 @@ pub struct Programs {
     pub init: vk::Pipeline,
     /// The kernels of one sub-step, in the recipe's order.
     pub substep: Vec<(KernelPass, vk::Pipeline)>,
+    /// Set 0 of `query_beams`.
+    pub beams_set_layout: vk::DescriptorSetLayout,
+    /// Its pipeline layout.
+    pub beams_layout: vk::PipelineLayout,
+    /// `query_beams`.
+    pub query_beams: vk::Pipeline,
 }
 
 fn pipeline_layout(
@@ -101,14 +107,20 @@ impl Programs {
             };
             substep.push((kernel, compute(device, layout, m, kernel.entry_point)?));
         }
+        let beams_set_layout = set_layout(device, &bind_groups::BEAMS)?;
+        let beams_layout = pipeline_layout(device, beams_set_layout)?;
+        let beams_module = module(device, Program::QueryBeams)?;
         Ok(Self {
+            query_beams: compute(device, beams_layout, beams_module, "query_beams")?,
+            beams_set_layout,
+            beams_layout,
             init: compute(device, step_layout, step_module, INIT_PASS.entry_point)?,
             substep,
             step_set_layout,
             cover_set_layout,
             step_layout,
             cover_layout,
-            modules: vec![step_module, cover_module],
+            modules: vec![step_module, cover_module, beams_module],
         })
     }
 
@@ -122,6 +134,7 @@ impl Programs {
         // object is destroyed once (the lists are drained).
         unsafe {
             device.raw.destroy_pipeline(self.init, None);
+            device.raw.destroy_pipeline(self.query_beams, None);
             for (_, p) in self.substep.drain(..) {
                 device.raw.destroy_pipeline(p, None);
             }
@@ -130,6 +143,10 @@ impl Programs {
             }
             device.raw.destroy_pipeline_layout(self.step_layout, None);
             device.raw.destroy_pipeline_layout(self.cover_layout, None);
+            device.raw.destroy_pipeline_layout(self.beams_layout, None);
+            device
+                .raw
+                .destroy_descriptor_set_layout(self.beams_set_layout, None);
             device
                 .raw
                 .destroy_descriptor_set_layout(self.step_set_layout, None);

@@ -46,7 +46,8 @@ pub struct Resources {
     pub waves: Buffer,
     /// Their grid.
     pub wave_frame: GridFrame,
-    frames: Buffer,
+    /// `Frames`.
+    pub frames: Buffer,
     wind_params: Buffer,
     /// The wind volume.
     pub wind: Image,

@@ -5,7 +5,7 @@ use precip_model::shaders::Program;
 
 /// The programs the build script compiles.
 #[cfg(test)]
-pub const COMPILED: [Program; 5] = include!("compiled_programs.in");
+pub const COMPILED: [Program; 6] = include!("compiled_programs.in");
 
 /// The SPIR-V words of `program`, or `None` for programs this backend does not run.
 #[must_use]
@@ -16,6 +16,7 @@ pub fn words(program: Program) -> Option<Vec<u32>> {
         Program::ProbeRng => include_bytes!(concat!(env!("OUT_DIR"), "/ProbeRng.spv")),
         Program::Render => include_bytes!(concat!(env!("OUT_DIR"), "/Render.spv")),
         Program::CullParticles => include_bytes!(concat!(env!("OUT_DIR"), "/CullParticles.spv")),
+        Program::QueryBeams => include_bytes!(concat!(env!("OUT_DIR"), "/QueryBeams.spv")),
         Program::ProbeDrawing => return None,
     };
     Some(

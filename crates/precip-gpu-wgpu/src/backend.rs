@@ -5,6 +5,7 @@ use glam::Vec3;
 use precip_model::cover::{CoverGrid, CoverTexel};
 use precip_model::drag::MAX_SUBSTEP_S;
 use precip_model::gpu::{FrameDraws, INIT_PASS, dispatch_size};
+use precip_model::lidar::{BeamQuery, BeamReturn};
 use precip_model::shaders::Program;
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
@@ -489,6 +490,29 @@ impl Backend for WgpuBackend {
 
     fn render(&mut self, view: &View) -> Result<(), BackendError> {
         self.draw(view, None)
+    }
+
+    fn weather(&self) -> Result<Weather, BackendError> {
+        self.state
+            .as_ref()
+            .map(|s| s.weather)
+            .ok_or(BackendError::NotConfigured {
+                operation: "weather",
+            })
+    }
+
+    fn query_beams(&mut self, query: &BeamQuery) -> Result<Vec<BeamReturn>, BackendError> {
+        let beams = query.validate()?;
+        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
+            operation: "query_beams",
+        })?;
+        let r = &state.resources;
+        let params = query.params(&beams, r.particle_count, &state.setup.ground);
+        let (gpu, pipelines) = (&self.gpu, &self.pipelines);
+        let hits = scoped(gpu, "query_beams", || {
+            crate::beams::query_beams(gpu, pipelines, r, &params, &beams)
+        })??;
+        Ok(query.answer(&beams, &hits, &state.weather))
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {

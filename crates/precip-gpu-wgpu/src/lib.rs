@@ -16,6 +16,7 @@
 //! - [`conv`] — pure conversions of wgpu errors into [`BackendError`](precip_model::BackendError).
 //! - [`render`] — drawing: scene with cover, culling, sprites and tetrahedra, shadows,
 //!   fog; offscreen targets and read-back.
+//! - [`beams`] — LiDAR beams: the `query_beams` kernel and its read-back.
 //! - [`backend`] — [`WgpuBackend`].
 //!
 //! ## Frames
@@ -25,6 +26,7 @@
 //! back while stepping.
 
 pub mod backend;
+pub mod beams;
 pub mod bind_groups;
 pub mod conv;
 pub mod device;

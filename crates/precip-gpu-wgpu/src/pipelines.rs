@@ -17,6 +17,10 @@ pub struct Pipelines {
     pub init: wgpu::ComputePipeline,
     /// The kernels of one sub-step, in the recipe's order.
     pub substep: Vec<(KernelPass, wgpu::ComputePipeline)>,
+    /// Layout of [`Program::QueryBeams`]'s group 0.
+    pub beams_layout: wgpu::BindGroupLayout,
+    /// `query_beams`.
+    pub query_beams: wgpu::ComputePipeline,
 }
 
 /// A WGSL program as a shader module.
@@ -70,7 +74,11 @@ impl Pipelines {
                 )
             })
             .collect();
+        let beams_layout = bind_group_layout(device, &bind_groups::BEAMS);
+        let beams_module = shader_module(device, Program::QueryBeams);
         Self {
+            query_beams: pipeline(device, &beams_layout, &beams_module, "query_beams"),
+            beams_layout,
             init: pipeline(device, &step_layout, &step_module, INIT_PASS.entry_point),
             substep,
             step_layout,

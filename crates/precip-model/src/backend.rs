@@ -6,6 +6,8 @@ use precip_cover::CoverGrid;
 
 use crate::camera::{Camera, Image, View};
 use crate::error::BackendError;
+use crate::lidar::{BeamQuery, BeamReturn};
+use crate::optics::Optics;
 use crate::particle::Particle;
 use crate::setup::Setup;
 use crate::weather::Weather;
@@ -121,6 +123,19 @@ pub trait Backend {
     fn step(&mut self, dt_s: f32) -> Result<(), BackendError>;
     /// Draws the scene, cover and precipitation for `view`.
     fn render(&mut self, view: &View) -> Result<(), BackendError>;
+    /// The weather in effect (the setup's, or the last `set_weather`'s).
+    fn weather(&self) -> Result<Weather, BackendError>;
+    /// Casts LiDAR beams against the particles and the scene's ground map as they
+    /// are now ([`crate::lidar`]): per beam, the first particle struck and the hard
+    /// target behind with its two-way transmittance.
+    fn query_beams(&mut self, query: &BeamQuery) -> Result<Vec<BeamReturn>, BackendError>;
+    /// Extinction and backscatter at 550, 905 and 1550 nm and the meteorological
+    /// optical range, from the particles in the camera volume now
+    /// ([`Optics::live`]). Reads the particles back: once a frame at most.
+    fn optics(&mut self) -> Result<Optics, BackendError> {
+        let weather = self.weather()?;
+        Ok(Optics::live(&weather, &self.read_particles()?))
+    }
     /// Copies the particles back (tests and tools, never the frame loop).
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError>;
     /// Copies the cover back.

@@ -9,7 +9,8 @@
 use precip_cover::CoverStepParams;
 
 use crate::gpu::{Frames, cover_bindings as cv, cull_bindings as cb, render_bindings as rb};
-use crate::gpu::{render_passes, step_bindings as sb};
+use crate::gpu::{beam_bindings as bb, render_passes, step_bindings as sb};
+use crate::lidar::BeamParams;
 use crate::render::RenderParams;
 use crate::shaders::Program;
 use crate::step::StepParams;
@@ -321,6 +322,27 @@ pub const COVER_TEXTURE: GroupLayout = GroupLayout {
     ],
 };
 
+/// Group 0 of `query_beams`.
+pub const BEAMS: GroupLayout = GroupLayout {
+    name: "precip query_beams",
+    bindings: &[
+        binding(
+            bb::PARAMS,
+            uniform(size_of::<BeamParams>(), false),
+            Stages::Compute,
+        ),
+        binding(
+            bb::FRAMES,
+            uniform(size_of::<Frames>(), false),
+            Stages::Compute,
+        ),
+        binding(bb::GROUND_HEIGHT, storage(true), Stages::Compute),
+        binding(bb::PARTICLES, storage(true), Stages::Compute),
+        binding(bb::BEAMS, storage(true), Stages::Compute),
+        binding(bb::HITS, storage(false), Stages::Compute),
+    ],
+};
+
 /// The groups (0, 1, …) an entry point of `program` runs with; `None` for a test
 /// probe's or an unknown entry point.
 #[must_use]
@@ -329,6 +351,7 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::StepParticles, _) => &[STEP],
         (Program::CoverUpdate, _) => &[COVER_UPDATE],
         (Program::CullParticles, _) => &[CULL],
+        (Program::QueryBeams, _) => &[BEAMS],
         (Program::Render, "cover_texture") => &[COVER_TEXTURE],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
@@ -356,6 +379,7 @@ mod tests {
             Program::CoverUpdate,
             Program::CullParticles,
             Program::Render,
+            Program::QueryBeams,
         ] {
             for entry in program.entry_points() {
                 let groups = groups_of(program, entry)

@@ -96,6 +96,9 @@ pub enum BackendError {
     /// A render target or view that cannot be drawn.
     #[error("invalid view: {0}")]
     InvalidView(String),
+    /// A LiDAR beam query that cannot be cast.
+    #[error("invalid beam query: {0}")]
+    InvalidBeams(String),
     /// The scene cannot be used.
     #[error("scene: {0}")]
     Scene(#[from] crate::scene::SceneError),

@@ -665,6 +665,22 @@ pub struct ProbeDrawing {
 }
 const _: () = assert!(size_of::<ProbeDrawing>() == 64);
 
+/// Bindings of [`Program::QueryBeams`], group 0 (`shaders/lidar.wgsl`).
+pub mod beam_bindings {
+    /// [`crate::lidar::BeamParams`].
+    pub const PARAMS: u32 = 0;
+    /// [`super::Frames`].
+    pub const FRAMES: u32 = 1;
+    /// The ground map's words ([`crate::GroundMap::gpu_words`]).
+    pub const GROUND_HEIGHT: u32 = 2;
+    /// The particles, read only.
+    pub const PARTICLES: u32 = 3;
+    /// The beams ([`crate::lidar::Beam`]).
+    pub const BEAMS: u32 = 4;
+    /// One [`crate::lidar::BeamHit`] per beam, written.
+    pub const HITS: u32 = 5;
+}
+
 /// Bindings of [`Program::StepParticles`], group 0.
 pub mod step_bindings {
     /// `StepParams`, uniform, dynamic offset.

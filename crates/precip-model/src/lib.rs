@@ -14,6 +14,8 @@
 //!   displacement), [`builtin`] (a house on a plane).
 //! - Drawing (MODEL.md §5): [`drawing`] (sprite, tetrahedron, view cone, lighting, fog),
 //!   [`render`] (settings and the per-frame block of the renderers).
+//! - Sensors: [`optics`] (extinction, backscatter and MOR at 550/905/1550 nm),
+//!   [`lidar`] (beams against the particles and the scene).
 //! - Contract: [`backend`] (the trait), [`setup`], [`camera`], [`error`].
 //! - [`cpu`] — the reference backend.
 //! - GPU: [`shaders`] (the WGSL sources, joined per program), [`gpu`] (the frame
@@ -40,7 +42,9 @@ pub mod gpu;
 pub mod gpu_scene;
 pub mod grain;
 pub mod ground;
+pub mod lidar;
 pub mod limits;
+pub mod optics;
 pub mod particle;
 pub mod raindrop;
 pub mod render;

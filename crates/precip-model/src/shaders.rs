@@ -32,7 +32,11 @@ pub const PHYSICS: ShaderFile = shader_file!("physics.wgsl");
 /// The wind sampler.
 pub const WIND: ShaderFile = shader_file!("wind.wgsl");
 /// The ground height map.
+pub const GROUND_MAP: ShaderFile = shader_file!("ground_map.wgsl");
+/// How the ground turns the particles' wind.
 pub const GROUND: ShaderFile = shader_file!("ground.wgsl");
+/// LiDAR beams: kernel `query_beams` (Rust twin: `lidar`).
+pub const LIDAR: ShaderFile = shader_file!("lidar.wgsl");
 /// Fixed-point deposits.
 pub const DEPOSIT: ShaderFile = shader_file!("deposit.wgsl");
 /// Birth and re-birth.
@@ -95,17 +99,20 @@ pub enum Program {
     CullParticles,
     /// A test probe of the drawing formulas.
     ProbeDrawing,
+    /// LiDAR beams against the particles and the ground.
+    QueryBeams,
 }
 
 impl Program {
     /// Every program.
-    pub const ALL: [Self; 6] = [
+    pub const ALL: [Self; 7] = [
         Self::StepParticles,
         Self::CoverUpdate,
         Self::ProbeRng,
         Self::Render,
         Self::CullParticles,
         Self::ProbeDrawing,
+        Self::QueryBeams,
     ];
 
     /// The files, in the order they are joined.
@@ -117,6 +124,7 @@ impl Program {
                 RNG,
                 PHYSICS,
                 WIND,
+                GROUND_MAP,
                 GROUND,
                 DEPOSIT,
                 BIRTH,
@@ -150,6 +158,7 @@ impl Program {
                 CULL_PARTICLES,
             ],
             Self::ProbeDrawing => &[DRAWING, PROBE_DRAWING],
+            Self::QueryBeams => &[LAYOUT, GROUND_MAP, LIDAR],
         }
     }
 
@@ -190,6 +199,7 @@ impl Program {
             ],
             Self::CullParticles => &["cull_count", "cull_scan", "cull_write"],
             Self::ProbeDrawing => &["probe_drawing"],
+            Self::QueryBeams => &["query_beams"],
         }
     }
 
@@ -203,6 +213,7 @@ impl Program {
             Self::Render => "precip render",
             Self::CullParticles => "precip cull_particles",
             Self::ProbeDrawing => "precip probe_drawing",
+            Self::QueryBeams => "precip query_beams",
         }
     }
 

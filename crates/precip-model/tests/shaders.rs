@@ -10,6 +10,7 @@ use precip_model::Particle;
 use precip_model::bind_groups::{BindingKind, Stages, TextureSample, groups_of};
 use precip_model::cover::{CoverStepParams, CoverTexel, GridFrame};
 use precip_model::gpu::{DrawArgs, FrameDraws, Frames, ProbeDrawing};
+use precip_model::lidar::{Beam, BeamHit, BeamParams};
 use precip_model::render::RenderParams;
 use precip_model::shaders::Program;
 use precip_model::step::StepParams;
@@ -56,6 +57,7 @@ fn wgsl_layouts() -> HashMap<String, (u32, HashMap<String, u32>)> {
         Program::Render,
         Program::CullParticles,
         Program::ProbeDrawing,
+        Program::QueryBeams,
     ] {
         let module = parse(program);
         for (_, ty) in module.types.iter() {
@@ -130,6 +132,24 @@ fn rust_and_wgsl_layouts_match() {
             reserved0,
             reserved1,
             reserved2
+        }),
+        rust_layout!(Beam {
+            origin_m,
+            divergence_rad,
+            direction,
+            max_range_m
+        }),
+        rust_layout!(BeamHit {
+            particle_range_m,
+            particle_diameter_m,
+            particle_flags,
+            target_range_m
+        }),
+        rust_layout!(BeamParams {
+            beam_count,
+            particle_count,
+            aperture_radius_m,
+            march_step_m
         }),
         rust_layout!(GridFrame {
             origin_m,

@@ -17,6 +17,7 @@ pub mod gltf_scene;
 pub mod headless;
 pub mod meshopt_views;
 pub mod node_graph;
+pub mod optics_report;
 pub mod presets;
 pub mod scenario;
 pub mod scene_setup;

@@ -39,6 +39,13 @@ enum Command {
         /// A .gltf or .glb file.
         file: PathBuf,
     },
+    /// Print the optics of a weather: extinction and backscatter at 550, 905 and
+    /// 1550 nm and the meteorological optical range, from its size spectra and from
+    /// the particles the CPU reference simulates for it.
+    Optics {
+        #[command(flatten)]
+        weather: WeatherArgs,
+    },
     /// Write the built-in demo scene as a .glb.
     Demo {
         /// Where to write it.
@@ -47,14 +54,9 @@ enum Command {
     },
 }
 
+/// The weather, from a preset and the options that override it.
 #[derive(clap::Args, Debug)]
-struct RunArgs {
-    /// The scene (.gltf or .glb); the built-in demo when absent.
-    scene: Option<PathBuf>,
-    /// The GPU backend: wgpu, or vk (precip's own Vulkan backend; with
-    /// PRECIP_VK_VALIDATION=1 it runs under the Khronos validation layer).
-    #[arg(long, value_enum, default_value_t = BackendName::Wgpu)]
-    backend: BackendName,
+struct WeatherArgs {
     /// A weather preset: a TOML file or a shipped name (light-snow, blizzard,
     /// wet-snow, drizzle, downpour, sleet); the options below override it.
     #[arg(long)]
@@ -77,6 +79,18 @@ struct RunArgs {
     /// Gust factor μ.
     #[arg(long)]
     gust: Option<f32>,
+}
+
+#[derive(clap::Args, Debug)]
+struct RunArgs {
+    /// The scene (.gltf or .glb); the built-in demo when absent.
+    scene: Option<PathBuf>,
+    /// The GPU backend: wgpu, or vk (precip's own Vulkan backend; with
+    /// PRECIP_VK_VALIDATION=1 it runs under the Khronos validation layer).
+    #[arg(long, value_enum, default_value_t = BackendName::Wgpu)]
+    backend: BackendName,
+    #[command(flatten)]
+    weather: WeatherArgs,
     /// Particles in all.
     #[arg(long, default_value_t = 300_000)]
     particles: u32,
@@ -209,14 +223,8 @@ fn inspect(file: &std::path::Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn run(args: &RunArgs) -> anyhow::Result<()> {
-    let loaded = match &args.scene {
-        Some(path) => load_scene(path)?,
-        None => load_scene_from_slice(DEMO_GLB, "built-in demo.glb")?,
-    };
-    for line in &loaded.report.skipped {
-        eprintln!("warning: skipped {line}");
-    }
+/// The preset named (light snow at 2 mm/h when none is) with the options applied.
+fn preset_of(args: &WeatherArgs) -> anyhow::Result<Preset> {
     let mut preset = match &args.preset {
         Some(p) => Preset::load(p)?,
         None => Preset::load("light-snow")?,
@@ -246,6 +254,17 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     preset.wind_speed_mps = args.wind.unwrap_or(preset.wind_speed_mps);
     preset.wind_from_deg = args.wind_from.unwrap_or(preset.wind_from_deg);
     preset.gust_factor = args.gust.unwrap_or(preset.gust_factor);
+    Ok(preset)
+}
+
+fn run(args: &RunArgs) -> anyhow::Result<()> {
+    let loaded = match &args.scene {
+        Some(path) => load_scene(path)?,
+        None => load_scene_from_slice(DEMO_GLB, "built-in demo.glb")?,
+    };
+    for line in &loaded.report.skipped {
+        eprintln!("warning: skipped {line}");
+    }
     let scenario = args
         .scenario
         .as_deref()
@@ -253,7 +272,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         .transpose()?;
     let weather = match &scenario {
         Some(s) => s.weather,
-        None => preset.weather().context("the weather")?,
+        None => preset_of(&args.weather)?.weather().context("the weather")?,
     };
     let camera = match (args.camera, args.look_at) {
         (Some(eye), Some(at)) => Some(Camera {
@@ -437,6 +456,10 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Some(Command::Inspect { file }) => inspect(file),
+        Some(Command::Optics { weather }) => preset_of(weather).and_then(|p| {
+            let weather = p.weather().context("the weather")?;
+            precip_viewer::optics_report::print_optics(&weather)
+        }),
         Some(Command::Demo { out }) => std::fs::write(out, demo_glb())
             .with_context(|| format!("writing {}", out.display()))
             .map(|()| println!("wrote {}", out.display())),

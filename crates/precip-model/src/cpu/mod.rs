@@ -21,6 +21,7 @@ use crate::birth::initial_particle;
 use crate::camera::{Camera, Image, View};
 use crate::drag::MAX_SUBSTEP_S;
 use crate::error::BackendError;
+use crate::lidar::{BeamQuery, BeamReturn, query_on_cpu};
 use crate::particle::Particle;
 use crate::setup::Setup;
 use crate::step::{StepInputs, StepParams, step_particle};
@@ -204,6 +205,23 @@ impl Backend for CpuBackend {
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {
         Ok(self.state_mut("read_particles")?.particles.clone())
+    }
+
+    fn weather(&self) -> Result<Weather, BackendError> {
+        self.state
+            .as_ref()
+            .map(|s| s.weather)
+            .ok_or(BackendError::NotConfigured {
+                operation: "weather",
+            })
+    }
+
+    fn query_beams(&mut self, query: &BeamQuery) -> Result<Vec<BeamReturn>, BackendError> {
+        let beams = query.validate()?;
+        let state = self.state_mut("query_beams")?;
+        let params = query.params(&beams, state.particles.len() as u32, &state.setup.ground);
+        let hits = query_on_cpu(&beams, &params, &state.particles, &state.setup.ground);
+        Ok(query.answer(&beams, &hits, &state.weather))
     }
 
     fn read_cover(&mut self) -> Result<CoverGrid, BackendError> {

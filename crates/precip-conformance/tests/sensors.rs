@@ -1,0 +1,188 @@
+//! What sensors get, alike on every backend: LiDAR beams against the particles and
+//! the ground (each backend's answer equals the CPU reference's on that backend's own
+//! particles), and the optics from the particles in the air.
+
+use glam::Vec3;
+use precip_conformance::all_subjects;
+use precip_model::lidar::{Beam, BeamParams, BeamQuery, NO_PARTICLE, query_on_cpu};
+use precip_model::optics::{Band, Optics, OpticsSource};
+use precip_model::setup::CameraVolumeSetup;
+use precip_model::{CameraVolume, ParticleKind, PrecipitationKind, Setup, Weather};
+
+/// Snow around a camera 1.7 m over a 40 m square with a 3 m wall 6 m ahead (−z):
+/// 20 000 flakes in a 10 m camera volume (20 per m³), so beams strike flakes often.
+fn snow_before_a_wall() -> Setup {
+    let mut s = Setup::over_flat_ground(40.0, 80, 15.0, 2_000);
+    s.seed = 5;
+    s.weather = Weather {
+        intensity_mm_per_h: 2.0,
+        air_temperature_c: -5.0,
+        ..Weather::default()
+    };
+    s.camera.position_m = Vec3::new(0.0, 1.7, 0.0);
+    s.camera.forward = Vec3::NEG_Z;
+    s.camera_volume = Some(CameraVolumeSetup {
+        volume: CameraVolume {
+            half_extent_m: Vec3::splat(5.0),
+            ..CameraVolume::default()
+        },
+        particle_count: 20_000,
+    });
+    let frame = s.ground.frame;
+    for i in 0..frame.texel_count() {
+        let c = frame.texel_centre(i);
+        if (c.y + 6.0).abs() < 0.3 {
+            s.ground.height_m[i] = 3.0;
+        }
+    }
+    s
+}
+
+/// A spinning LiDAR's fan: 16 channels from −15° to +10°, every 3° around.
+fn fan(origin_m: Vec3) -> Vec<Beam> {
+    let mut beams = Vec::new();
+    for channel in 0..16 {
+        let elevation = (-15.0 + 25.0 * channel as f32 / 15.0).to_radians();
+        for step in 0..120 {
+            let azimuth = (3.0 * step as f32).to_radians();
+            beams.push(Beam {
+                divergence_rad: 3.0e-3,
+                ..Beam::ray(
+                    origin_m,
+                    Vec3::new(
+                        elevation.cos() * azimuth.sin(),
+                        elevation.sin(),
+                        -elevation.cos() * azimuth.cos(),
+                    ),
+                    40.0,
+                )
+            });
+        }
+    }
+    beams
+}
+
+#[test]
+fn beams_strike_the_same_particles_and_targets_as_the_cpu_reference_on_every_backend() {
+    let setup = snow_before_a_wall();
+    for mut s in all_subjects("beams") {
+        s.backend.configure(&setup).expect("configure");
+        for _ in 0..3 {
+            s.backend.step(0.05).expect("step");
+        }
+        let query = BeamQuery {
+            beams: fan(setup.camera.position_m),
+            band: Band::NearInfrared,
+            aperture_radius_m: 0.01,
+            extinction_per_m: None,
+        };
+        let returns = s.backend.query_beams(&query).expect("beams");
+        assert_eq!(returns.len(), query.beams.len());
+        // The reference on this backend's own particles.
+        let particles = s.backend.read_particles().expect("particles");
+        let beams = query.validate().expect("valid");
+        let params: BeamParams = query.params(&beams, particles.len() as u32, &setup.ground);
+        let reference = query_on_cpu(&beams, &params, &particles, &setup.ground);
+        let extinction = query.extinction_in(&setup.weather);
+        let expected = BeamQuery::returns(&beams, &reference, query.aperture_radius_m, extinction);
+        let mut differing = 0;
+        for (got, want) in returns.iter().zip(&expected) {
+            let same_particle = match (got.particle, want.particle) {
+                (Some(a), Some(b)) => {
+                    a.diameter_m.to_bits() == b.diameter_m.to_bits()
+                        && a.kind == b.kind
+                        && (a.range_m - b.range_m).abs() < 1e-4 * b.range_m.max(1.0)
+                }
+                (None, None) => true,
+                _ => false,
+            };
+            let same_target = match (got.target, want.target) {
+                (Some(a), Some(b)) => (a.range_m - b.range_m).abs() < 1e-3,
+                (None, None) => true,
+                _ => false,
+            };
+            if !(same_particle && same_target) {
+                differing += 1;
+            }
+        }
+        let struck = returns.iter().filter(|r| r.particle.is_some()).count();
+        let walls = returns
+            .iter()
+            .filter(|r| r.target.is_some_and(|t| t.range_m < 7.0 && t.range_m > 5.0))
+            .count();
+        let flakes = returns
+            .iter()
+            .filter_map(|r| r.particle)
+            .filter(|p| p.kind == ParticleKind::DrySnow)
+            .count();
+        println!(
+            "{}: {} beams, {struck} struck a flake ({flakes} dry snow), {walls} met the wall 6 m ahead, {differing} differ from the CPU reference on its particles",
+            s.name,
+            returns.len()
+        );
+        assert!(
+            struck > 100 && flakes == struck,
+            "{}: {struck} struck",
+            s.name
+        );
+        assert!(walls > 100, "{}: {walls} beams met the wall", s.name);
+        // Only grazing strikes (a flake's rim on the cone's edge) may round apart.
+        assert!(
+            differing * 200 <= returns.len(),
+            "{}: {differing} differ",
+            s.name
+        );
+        assert!(reference.iter().any(|h| h.particle_flags == NO_PARTICLE));
+        s.check_clean("beams");
+    }
+}
+
+#[test]
+fn optics_from_the_particles_in_the_air_follow_the_weather_on_every_backend() {
+    let mut setup = snow_before_a_wall();
+    setup.weather = Weather {
+        kind: PrecipitationKind::Rain,
+        intensity_mm_per_h: 10.0,
+        air_temperature_c: 12.0,
+        ..Weather::default()
+    };
+    let spectra = Optics::of_weather(&setup.weather);
+    let mut first: Option<Optics> = None;
+    for mut s in all_subjects("optics") {
+        s.backend.configure(&setup).expect("configure");
+        s.backend.step(0.05).expect("step");
+        let live = s.backend.optics().expect("optics");
+        assert_eq!(live.source, OpticsSource::LiveParticles { sampled: 20_000 });
+        for band in Band::ALL {
+            let (a, b) = (live.band(band), spectra.band(band));
+            println!(
+                "{} {band:?}: extinction {:.3e}/m (spectra {:.3e}), backscatter {:.3e}/(m·sr) (spectra {:.3e})",
+                s.name,
+                a.extinction_per_m,
+                b.extinction_per_m,
+                a.backscatter_per_m_sr,
+                b.backscatter_per_m_sr
+            );
+            // 20 000 drops drawn from Marshall–Palmer sample its cross-sections to a
+            // few per cent.
+            let ratio = a.extinction_per_m / b.extinction_per_m;
+            assert!(
+                (0.95..1.05).contains(&ratio),
+                "{} {band:?}: {ratio}",
+                s.name
+            );
+        }
+        match &first {
+            None => first = Some(live),
+            Some(reference) => {
+                let (a, b) = (live.band(Band::Visible), reference.band(Band::Visible));
+                assert!(
+                    (a.extinction_per_m / b.extinction_per_m - 1.0).abs() < 1e-3,
+                    "{}: {a:?} vs the CPU's {b:?}",
+                    s.name
+                );
+            }
+        }
+        s.check_clean("optics");
+    }
+}
