@@ -268,3 +268,39 @@ fn headless_frames_agree_across_backends() {
         "{close} of {total} pixels within 1/255"
     );
 }
+
+#[test]
+fn optics_prints_every_band_and_the_mor_and_refuses_an_unphysical_weather() {
+    let out = precip()
+        .args(["optics", "--kind", "rain", "--intensity", "10"])
+        .output()
+        .expect("runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for needle in [
+        "Rain 10.00 mm/h",
+        "550 nm",
+        "905 nm",
+        "1550 nm",
+        "meteorological optical range",
+    ] {
+        assert!(text.contains(needle), "{needle}: {text}");
+    }
+    // Marshall–Palmer at 10 mm/h: σ = 1.556e-3/m, a MOR of ln 20/σ = 1 926 m.
+    assert!(
+        text.contains("1.5556e-3") && text.contains("1926 m from the spectra"),
+        "{text}"
+    );
+
+    let out = precip()
+        .args(["optics", "--kind", "rain", "--temperature=-20"])
+        .output()
+        .expect("runs");
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("not physical"), "{err}");
+}
