@@ -1,6 +1,6 @@
 //! The camera, a view (camera + target size), and a read-back image.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use crate::error::BackendError;
 
@@ -21,6 +21,11 @@ pub struct Camera {
     pub near_m: f32,
     /// Far plane, m.
     pub far_m: f32,
+    /// Off-axis projection: the image's centre moved by this many half-widths (x,
+    /// right) and half-heights (y, up) of the field of view, each in `[-4, 4]` (0:
+    /// on axis). The channels of a tiled display rig share one image plane: each
+    /// shows its window of it, and where windows overlap they draw the same rays.
+    pub lens_shift: Vec2,
 }
 
 impl Default for Camera {
@@ -33,6 +38,7 @@ impl Default for Camera {
             aspect: 16.0 / 9.0,
             near_m: 0.1,
             far_m: 2000.0,
+            lens_shift: Vec2::ZERO,
         }
     }
 }
@@ -78,7 +84,23 @@ impl Camera {
                 "near_m and far_m must be finite with 0 < near < far",
             ));
         }
+        if !(self.lens_shift.is_finite() && self.lens_shift.abs().max_element() <= 4.0) {
+            return Err(BackendError::InvalidCamera(
+                "lens_shift must be finite, each within ±4 half-widths",
+            ));
+        }
         Ok(())
+    }
+
+    /// The on-axis frustum enclosing this one on a target of `aspect`: its vertical
+    /// field of view and aspect (the same as this camera's without a lens shift).
+    /// Culling and the shadow map's fit use it, so the channels of a rig shifted
+    /// symmetrically cull and shadow alike.
+    #[must_use]
+    pub fn enclosing_frustum(&self, aspect: f32) -> (f32, f32) {
+        let tan_v = (0.5 * self.vertical_fov_rad).tan() * (1.0 + self.lens_shift.y.abs());
+        let tan_h = (0.5 * self.vertical_fov_rad).tan() * aspect * (1.0 + self.lens_shift.x.abs());
+        (2.0 * tan_v.atan(), tan_h / tan_v)
     }
 }
 
@@ -109,6 +131,22 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_shifted_lens_is_enclosed_by_a_wider_frustum() {
+        let camera = Camera {
+            vertical_fov_rad: 90f32.to_radians(),
+            lens_shift: Vec2::new(0.5, -1.0),
+            ..Camera::default()
+        };
+        let (fov, aspect) = camera.enclosing_frustum(2.0);
+        // tan: vertical 1 → 2, horizontal 2 → 3.
+        assert!(((0.5 * fov).tan() - 2.0).abs() < 1e-5);
+        assert!((aspect - 1.5).abs() < 1e-5);
+        let on_axis = Camera::default();
+        let (fov, aspect) = on_axis.enclosing_frustum(1.5);
+        assert!((fov - on_axis.vertical_fov_rad).abs() < 1e-6 && (aspect - 1.5).abs() < 1e-6);
+    }
+
+    #[test]
     fn bad_cameras_are_refused() {
         let good = Camera::default();
         assert!(good.validate().is_ok());
@@ -136,6 +174,14 @@ mod tests {
             Camera {
                 near_m: 10.0,
                 far_m: 1.0,
+                ..good
+            },
+            Camera {
+                lens_shift: Vec2::new(0.0, 5.0),
+                ..good
+            },
+            Camera {
+                lens_shift: Vec2::NAN,
                 ..good
             },
         ] {

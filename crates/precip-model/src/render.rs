@@ -223,8 +223,11 @@ const _: () = assert!(size_of::<RenderParams>() == 400);
 #[must_use]
 pub fn view_projection(camera: &Camera, aspect: f32) -> Mat4 {
     let proj = directx::perspective(camera.vertical_fov_rad, aspect, camera.near_m, camera.far_m);
+    // The lens shift moves clip space by −shift·w: what was at NDC `u` is drawn at
+    // `u − shift`.
+    let shift = Mat4::from_translation(Vec3::new(-camera.lens_shift.x, -camera.lens_shift.y, 0.0));
     let view = look_to_mat4(camera.position_m, camera.forward.normalize(), camera.up);
-    proj * view
+    shift * proj * view
 }
 
 /// The sun's view of the box `(lo, hi)`: world → light space, looking along the
@@ -350,8 +353,15 @@ impl RenderParams {
     pub fn new(f: &FrameInputs<'_>) -> Self {
         let camera = &f.view.camera;
         let aspect = f.view.width_px as f32 / f.view.height_px as f32;
-        let hfov = horizontal_fov_rad(camera, aspect);
-        let cone_cos = view_cone_cos(hfov, camera.vertical_fov_rad);
+        // Culling and the shadow map see the on-axis frustum enclosing a shifted one.
+        let (enclosing_fov, enclosing_aspect) = camera.enclosing_frustum(aspect);
+        let enclosing = Camera {
+            vertical_fov_rad: enclosing_fov,
+            lens_shift: glam::Vec2::ZERO,
+            ..*camera
+        };
+        let hfov = horizontal_fov_rad(&enclosing, enclosing_aspect);
+        let cone_cos = view_cone_cos(hfov, enclosing_fov);
         let pixel_angle = 2.0 * (0.5 * camera.vertical_fov_rad).tan() / f.view.height_px as f32;
         let s = f.settings;
         let l = &s.lighting;
@@ -363,8 +373,8 @@ impl RenderParams {
             sun_view_proj: crate::shadow_fit::fitted_sun_view_projection(
                 s.to_sun,
                 f.shadow_bounds_m,
-                camera,
-                aspect,
+                &enclosing,
+                enclosing_aspect,
                 crate::shadow_fit::shadow_distance_m(camera, extinction_per_m),
             ),
             camera_m_cone_cos: camera.position_m.extend(cone_cos),
@@ -436,6 +446,13 @@ mod tests {
         let up = (0.5 * camera.vertical_fov_rad).tan() * 10.0;
         let top = m * (ahead + Vec3::Y * up).extend(1.0);
         assert!((top.y / top.w - 1.0).abs() < 1e-4);
+        // Shifted half a height up, the top edge is the image's centre.
+        let shifted = Camera {
+            lens_shift: glam::Vec2::new(0.0, 1.0),
+            ..camera
+        };
+        let top = view_projection(&shifted, 1.5) * (ahead + Vec3::Y * up).extend(1.0);
+        assert!((top.y / top.w).abs() < 1e-4);
     }
 
     #[test]

@@ -140,6 +140,12 @@ struct RunArgs {
     /// Display rig: this channel looks this many degrees above the camera's forward.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     channel_pitch: f32,
+    /// Tiled display rig: this channel shows its window of the rig's image plane, the
+    /// image's centre moved X half-widths right and Y half-heights up (e.g. two
+    /// channels at -0.5,0 and 0.5,0 overlap by half and span a view 1.5 times as
+    /// wide); overlapping windows draw the same pixels.
+    #[arg(long, value_parser = parse_vec2, allow_hyphen_values = true)]
+    channel_shift: Option<glam::Vec2>,
 }
 
 /// A rig channel's forward: `forward` turned `yaw_deg` to the right about the
@@ -173,6 +179,17 @@ fn parse_vec3(s: &str) -> Result<Vec3, String> {
     match parts[..] {
         [x, y, z] if x.is_finite() && y.is_finite() && z.is_finite() => Ok(Vec3::new(x, y, z)),
         _ => Err("expected x,y,z".into()),
+    }
+}
+
+fn parse_vec2(s: &str) -> Result<glam::Vec2, String> {
+    let parts: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|e| format!("{p}: {e}")))
+        .collect::<Result<_, _>>()?;
+    match parts[..] {
+        [x, y] if x.abs() <= 4.0 && y.abs() <= 4.0 => Ok(glam::Vec2::new(x, y)),
+        _ => Err("expected x,y, each within ±4 (half-widths, half-heights)".into()),
     }
 }
 
@@ -300,6 +317,9 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     }
     setup.camera.forward =
         channel_forward(setup.camera.forward, args.channel_yaw, args.channel_pitch);
+    if let Some(shift) = args.channel_shift {
+        setup.camera.lens_shift = shift;
+    }
     let frames = match args.frames {
         Some(n) => n,
         None if display_available() => {
