@@ -9,9 +9,14 @@
 //! ICD's layouts ([`packet`]). Short, unknown, oversized or malformed datagrams are
 //! counted and skipped ([`CigiReceiver`], [`PacketCounts`]), never a panic.
 //!
-//! The viewer listens with `--cigi PORT` (headless and in the window). Not yet here
-//! (issue 16): the other weather layers' looks (fog, clouds), hail, regional and
-//! entity scopes, and the IG's answers (Start of Frame) to the host.
+//! The IG answers every frame with Start of Frame ([`StartOfFrame`],
+//! [`CigiReceiver::send_start_of_frame`]) to the host it last heard from (or one
+//! given with [`CigiReceiver::reply_to`]), in the host's byte order, echoing its
+//! frame counter, so a host running synchronously can pace itself on it.
+//!
+//! The viewer listens with `--cigi PORT` (headless and in the window). Not yet here:
+//! the other weather layers' looks (fog, clouds), hail, and regional and entity
+//! scopes.
 
 pub mod error;
 pub mod host_weather;
@@ -20,5 +25,7 @@ pub mod receiver;
 
 pub use error::CigiError;
 pub use host_weather::{Applied, HostWeather};
-pub use packet::{ByteOrder, IgControl, Packet, WeatherControl, parse_message};
+pub use packet::{
+    ByteOrder, IgControl, Packet, StartOfFrame, WeatherControl, parse_message, parse_start_of_frame,
+};
 pub use receiver::{CigiReceiver, PacketCounts};

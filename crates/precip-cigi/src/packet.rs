@@ -6,6 +6,13 @@
 //! little-endian one. Every packet starts with its opcode and its size in bytes;
 //! packets precip does not use are skipped by their size. Layouts: CIGI ICD 3.3,
 //! §4.1.1 (IG Control) and §4.1.12 (Weather Control).
+//!
+//! The IG answers each frame with Start of Frame (§4.2.1, opcode 101, 24 bytes:
+//! major version, database, IG status, IG mode / timestamp valid / earth model /
+//! minor version, the magic number, the IG's frame counter, a timestamp in 10 µs
+//! ticks, the last host frame received), which [`StartOfFrame::to_bytes`] writes in
+//! the host's byte order; IG-to-host messages start with it as host messages start
+//! with IG Control, so [`parse_start_of_frame`] reads one back.
 
 use crate::error::CigiError;
 
@@ -17,6 +24,10 @@ pub const IG_CONTROL_SIZE: usize = 24;
 pub const WEATHER_CONTROL_OPCODE: u8 = 12;
 /// Size of Weather Control, bytes.
 pub const WEATHER_CONTROL_SIZE: usize = 56;
+/// Opcode of Start of Frame (IG to host).
+pub const START_OF_FRAME_OPCODE: u8 = 101;
+/// Size of Start of Frame, bytes.
+pub const START_OF_FRAME_SIZE: usize = 24;
 /// The magic number as a big-endian sender writes it.
 pub const BYTE_SWAP_MAGIC: u16 = 0x8000;
 
@@ -82,6 +93,87 @@ pub struct WeatherControl {
     pub vertical_wind_mps: f32,
     /// Direction the wind blows from, degrees clockwise from true north.
     pub wind_from_deg: f32,
+}
+
+/// Start of Frame: what the IG tells the host each frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StartOfFrame {
+    /// The database the IG has loaded (the host's request, echoed).
+    pub database: i8,
+    /// IG status: 0 normal.
+    pub ig_status: u8,
+    /// IG mode: 0 reset/standby, 1 operate, 2 debug, 3 offline maintenance.
+    pub ig_mode: u8,
+    /// The IG's frame counter.
+    pub ig_frame: u32,
+    /// Time since the IG started, 10 µs ticks (wrapping).
+    pub timestamp_10us: u32,
+    /// The last host frame the IG received (IG Control's frame counter).
+    pub last_host_frame: u32,
+}
+
+impl StartOfFrame {
+    /// The packet's 24 bytes in `order` (CIGI 3.3, timestamp valid, WGS 84).
+    #[must_use]
+    pub fn to_bytes(&self, order: ByteOrder) -> [u8; START_OF_FRAME_SIZE] {
+        let mut out = [0u8; START_OF_FRAME_SIZE];
+        out[0] = START_OF_FRAME_OPCODE;
+        out[1] = START_OF_FRAME_SIZE as u8;
+        out[2] = 3;
+        out[3] = self.database.to_ne_bytes()[0];
+        out[4] = self.ig_status;
+        // Minor version 3 in bits 4–7, timestamp valid (bit 2), IG mode (bits 0–1).
+        out[5] = (3 << 4) | 0x04 | (self.ig_mode & 0b11);
+        let put16 = |v: u16| match order {
+            ByteOrder::Big => v.to_be_bytes(),
+            ByteOrder::Little => v.to_le_bytes(),
+        };
+        let put32 = |v: u32| match order {
+            ByteOrder::Big => v.to_be_bytes(),
+            ByteOrder::Little => v.to_le_bytes(),
+        };
+        out[6..8].copy_from_slice(&put16(BYTE_SWAP_MAGIC));
+        out[8..12].copy_from_slice(&put32(self.ig_frame));
+        out[12..16].copy_from_slice(&put32(self.timestamp_10us));
+        out[16..20].copy_from_slice(&put32(self.last_host_frame));
+        out
+    }
+}
+
+/// Reads a Start of Frame (what a host receives from precip) and its byte order.
+pub fn parse_start_of_frame(bytes: &[u8]) -> Result<(StartOfFrame, ByteOrder), CigiError> {
+    if bytes.len() < START_OF_FRAME_SIZE {
+        return Err(CigiError::Truncated {
+            offset: 0,
+            needed: START_OF_FRAME_SIZE,
+            available: bytes.len(),
+        });
+    }
+    if bytes[0] != START_OF_FRAME_OPCODE || usize::from(bytes[1]) != START_OF_FRAME_SIZE {
+        return Err(CigiError::BadSize {
+            opcode: bytes[0],
+            size: usize::from(bytes[1]),
+            expected: Some(START_OF_FRAME_SIZE),
+        });
+    }
+    if bytes[2] != 3 {
+        return Err(CigiError::UnsupportedVersion {
+            major_version: bytes[2],
+        });
+    }
+    let order = byte_order(bytes)?;
+    let r = Reader { bytes, order };
+    Ok((
+        StartOfFrame {
+            database: i8::from_ne_bytes([r.u8(3)]),
+            ig_status: r.u8(4),
+            ig_mode: r.u8(5) & 0b11,
+            ig_frame: r.u32(8),
+            timestamp_10us: r.u32(12),
+            last_host_frame: r.u32(16),
+        },
+        order,
+    ))
 }
 
 /// A packet of a message.

@@ -7,7 +7,7 @@ use precip_model::Weather;
 
 use crate::error::CigiError;
 use crate::host_weather::{Applied, HostWeather};
-use crate::packet::{Packet, parse_message};
+use crate::packet::{ByteOrder, IgControl, Packet, StartOfFrame, parse_message};
 
 /// What the receiver has seen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -26,6 +26,8 @@ pub struct PacketCounts {
     pub weather_refused: u64,
     /// Other packets, skipped by their size.
     pub other: u64,
+    /// Start of Frame packets sent to the host.
+    pub start_of_frame_sent: u64,
 }
 
 /// The most datagrams read in one [`CigiReceiver::poll`], so a flooding host cannot
@@ -42,6 +44,13 @@ pub struct CigiReceiver {
     buffer: Vec<u8>,
     /// The weather [`CigiReceiver::poll`] last returned (or started from).
     announced: Weather,
+    /// Where Start of Frame goes: set by [`CigiReceiver::reply_to`], else the sender
+    /// of the last well-formed message.
+    host: Option<SocketAddr>,
+    /// Whether `host` was given (not learnt).
+    host_fixed: bool,
+    /// The host's last IG Control.
+    last_control: Option<IgControl>,
 }
 
 impl CigiReceiver {
@@ -60,7 +69,50 @@ impl CigiReceiver {
             last_error: None,
             buffer: vec![0u8; 65_536],
             announced: weather,
+            host: None,
+            host_fixed: false,
+            last_control: None,
         })
+    }
+
+    /// Sends Start of Frame to `host` (a host that listens on another port than it
+    /// sends from); by default it goes to the sender of the last message.
+    pub fn reply_to(&mut self, host: SocketAddr) {
+        self.host = Some(host);
+        self.host_fixed = true;
+    }
+
+    /// Tells the host the IG began frame `ig_frame`, `since_start` after it started:
+    /// a Start of Frame in the host's byte order, echoing its database, IG mode and
+    /// last frame counter. Nothing is sent before a host has been heard (or given);
+    /// a failed send is kept as [`CigiReceiver::last_error`], never fatal.
+    pub fn send_start_of_frame(&mut self, ig_frame: u32, since_start: std::time::Duration) -> bool {
+        let Some(host) = self.host else {
+            return false;
+        };
+        let control = self.last_control;
+        let packet = StartOfFrame {
+            database: control.map_or(0, |c| c.database),
+            ig_status: 0,
+            ig_mode: control.map_or(1, |c| c.ig_mode),
+            ig_frame,
+            // 10 µs ticks, wrapping as the ICD's 32-bit counter does.
+            timestamp_10us: (since_start.as_micros() / 10) as u32,
+            last_host_frame: control.map_or(0, |c| c.host_frame),
+        };
+        let order = control.map_or(ByteOrder::Big, |c| c.byte_order);
+        match self.socket.send_to(&packet.to_bytes(order), host) {
+            Ok(_) => {
+                self.counts.start_of_frame_sent += 1;
+                true
+            }
+            Err(e) => {
+                self.last_error = Some(CigiError::Socket(format!(
+                    "sending Start of Frame to {host}: {e}"
+                )));
+                false
+            }
+        }
     }
 
     /// The address it listens on.
@@ -75,13 +127,16 @@ impl CigiReceiver {
     pub fn poll(&mut self) -> Option<Weather> {
         let mut changed = None;
         for _ in 0..MAX_DATAGRAMS_PER_POLL {
-            let Ok((len, _)) = self.socket.recv_from(&mut self.buffer) else {
+            let Ok((len, sender)) = self.socket.recv_from(&mut self.buffer) else {
                 break;
             };
             self.counts.datagrams += 1;
             let datagram = self.buffer.get(..len).unwrap_or_default();
             match parse_message(datagram) {
                 Ok(packets) => {
+                    if !self.host_fixed {
+                        self.host = Some(sender);
+                    }
                     for packet in packets {
                         if let Some(w) = self.take(&packet) {
                             changed = Some(w);
@@ -99,7 +154,10 @@ impl CigiReceiver {
 
     fn take(&mut self, packet: &Packet) -> Option<Weather> {
         match packet {
-            Packet::IgControl(_) => self.counts.ig_control += 1,
+            Packet::IgControl(c) => {
+                self.counts.ig_control += 1;
+                self.last_control = Some(*c);
+            }
             Packet::Other { .. } => self.counts.other += 1,
             Packet::WeatherControl(w) => match self.weather.apply(w) {
                 Applied::Changed(weather) => {

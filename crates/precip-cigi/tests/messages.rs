@@ -6,7 +6,8 @@ use std::time::{Duration, Instant};
 
 use precip_cigi::host_weather::{RAIN_MM_PER_H, SNOW_MM_PER_H};
 use precip_cigi::{
-    Applied, ByteOrder, CigiError, CigiReceiver, HostWeather, Packet, WeatherControl, parse_message,
+    Applied, ByteOrder, CigiError, CigiReceiver, HostWeather, Packet, StartOfFrame, WeatherControl,
+    parse_message, parse_start_of_frame,
 };
 use precip_model::{PrecipitationKind, Weather};
 use proptest::prelude::*;
@@ -82,9 +83,12 @@ impl Writer {
     }
 }
 
+/// The host frame counter of [`rain_message`].
+const RAIN_HOST_FRAME: u32 = 42;
+
 fn rain_message(order: ByteOrder, severity: u8) -> Vec<u8> {
     let mut w = Writer::new(order);
-    w.ig_control(42);
+    w.ig_control(RAIN_HOST_FRAME);
     w.weather(4, true, severity, 12.0, 0.0, 100.0, (8.0, 0.0, 270.0), 0);
     w.bytes
 }
@@ -306,8 +310,35 @@ proptest! {
 }
 
 #[test]
+fn start_of_frame_reads_back_in_both_byte_orders() {
+    let sof = StartOfFrame {
+        database: -3,
+        ig_status: 0,
+        ig_mode: 1,
+        ig_frame: 0x0102_0304,
+        timestamp_10us: 123_456,
+        last_host_frame: 99,
+    };
+    for order in [ByteOrder::Big, ByteOrder::Little] {
+        let bytes = sof.to_bytes(order);
+        assert_eq!((bytes[0], bytes[1], bytes[2]), (101, 24, 3));
+        // Minor version 3, timestamp valid, operate.
+        assert_eq!(bytes[5], 0x35);
+        assert_eq!(parse_start_of_frame(&bytes).expect("reads"), (sof, order));
+    }
+    assert!(matches!(
+        parse_start_of_frame(&sof.to_bytes(ByteOrder::Big)[..20]),
+        Err(CigiError::Truncated { .. })
+    ));
+}
+
+#[test]
 fn a_host_on_loopback_changes_the_weather_and_bad_datagrams_are_counted() {
     let mut receiver = CigiReceiver::bind(0, Weather::default()).expect("a free port");
+    assert!(
+        !receiver.send_start_of_frame(0, Duration::ZERO),
+        "no host heard yet"
+    );
     let port = receiver.local_addr().expect("bound").port();
     let host = UdpSocket::bind("127.0.0.1:0").expect("host socket");
     let to = ("127.0.0.1", port);
@@ -328,4 +359,19 @@ fn a_host_on_loopback_changes_the_weather_and_bad_datagrams_are_counted() {
     assert_eq!(counts.malformed, 1);
     assert_eq!((counts.ig_control, counts.weather_applied), (1, 1));
     assert!(receiver.last_error().is_some());
+
+    // The IG answers the host that spoke, in its byte order, echoing its frame.
+    assert!(receiver.send_start_of_frame(41, Duration::from_millis(25)));
+    host.set_read_timeout(Some(Duration::from_secs(5)))
+        .expect("timeout");
+    let mut buffer = [0u8; 64];
+    let (len, _) = host.recv_from(&mut buffer).expect("Start of Frame arrives");
+    let (sof, order) = parse_start_of_frame(&buffer[..len]).expect("well formed");
+    assert_eq!(order, ByteOrder::Little);
+    assert_eq!(
+        (sof.ig_frame, sof.timestamp_10us, sof.ig_mode),
+        (41, 2_500, 1)
+    );
+    assert_eq!(sof.last_host_frame, RAIN_HOST_FRAME);
+    assert_eq!(receiver.counts().start_of_frame_sent, 1);
 }

@@ -95,6 +95,7 @@ pub fn run_headless_with(
     let mut times = Vec::with_capacity(frames as usize);
     let mut stats = FrameStats::default();
     let mut files = Vec::with_capacity(frames as usize);
+    let run_started = Instant::now();
     for frame in 0..frames {
         let start = Instant::now();
         if let Some(weather) = cigi
@@ -120,6 +121,9 @@ pub fn run_headless_with(
             detail: e.to_string(),
         })?;
         files.push(file);
+        if let Some(receiver) = cigi.as_deref_mut() {
+            receiver.send_start_of_frame(frame, run_started.elapsed());
+        }
         let ms = start.elapsed().as_secs_f64() * 1e3;
         stats.record(ms, backend)?;
         times.push(ms);

@@ -402,7 +402,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         let c = receiver.counts();
         let w = receiver.weather();
         println!(
-            "CIGI: {} datagrams ({} malformed), {} IG Control, Weather Control {} applied, {} ignored, {} refused, {} other packets; weather in effect: {:?} {:.2} mm/h at {:.1} °C, wind {:.1} m/s",
+            "CIGI: {} datagrams ({} malformed), {} IG Control, Weather Control {} applied, {} ignored, {} refused, {} other packets, {} Start of Frame sent; weather in effect: {:?} {:.2} mm/h at {:.1} °C, wind {:.1} m/s",
             c.datagrams,
             c.malformed,
             c.ig_control,
@@ -410,6 +410,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             c.weather_ignored,
             c.weather_refused,
             c.other,
+            c.start_of_frame_sent,
             w.kind,
             w.intensity_mm_per_h,
             w.air_temperature_c,

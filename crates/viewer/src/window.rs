@@ -464,6 +464,9 @@ impl ApplicationHandler for App {
                     self.error = Some(e);
                     event_loop.exit();
                 }
+                if let Some(receiver) = self.cigi.as_mut() {
+                    receiver.send_start_of_frame(r.frames, r.started.elapsed());
+                }
                 self.shown = Some((r.frames, r.started.elapsed().as_secs_f64(), r.stats.clone()));
                 if self.quit_after.is_some_and(|n| r.frames >= n) {
                     event_loop.exit();

@@ -97,13 +97,23 @@ fn a_cigi_host_drives_the_headless_run_over_udp() {
         message.extend(v.to_be_bytes());
     }
     let host = std::net::UdpSocket::bind("127.0.0.1:0").expect("host socket");
+    host.set_nonblocking(true).expect("non-blocking");
     let start = std::time::Instant::now();
+    let mut frames_started = Vec::new();
+    let mut buffer = [0u8; 256];
     while child.try_wait().expect("alive").is_none()
         && start.elapsed() < std::time::Duration::from_secs(300)
     {
         let _ = host.send_to(b"junk", ("127.0.0.1", port));
         let _ = host.send_to(&message, ("127.0.0.1", port));
         std::thread::sleep(std::time::Duration::from_millis(100));
+        // The IG's Start of Frame, one a frame, back to this host.
+        while let Ok((len, _)) = host.recv_from(&mut buffer) {
+            let (sof, order) =
+                precip_cigi::parse_start_of_frame(&buffer[..len]).expect("well formed");
+            assert_eq!(order, precip_cigi::ByteOrder::Big);
+            frames_started.push(sof.ig_frame);
+        }
     }
     let out = child.wait_with_output().expect("finishes");
     let text = String::from_utf8_lossy(&out.stdout);
@@ -120,6 +130,11 @@ fn a_cigi_host_drives_the_headless_run_over_udp() {
         !line.contains(" 0 applied") && !line.contains("(0 malformed)"),
         "{line}"
     );
+    assert!(
+        !frames_started.is_empty() && frames_started.windows(2).all(|w| w[0] < w[1]),
+        "Start of Frame counters: {frames_started:?}"
+    );
+    assert!(!line.contains(" 0 Start of Frame sent"), "{line}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
