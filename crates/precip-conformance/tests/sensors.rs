@@ -186,3 +186,75 @@ fn optics_from_the_particles_in_the_air_follow_the_weather_on_every_backend() {
         s.check_clean("optics");
     }
 }
+
+#[test]
+fn bad_beam_queries_are_refused_alike_and_queries_hold_no_memory() {
+    use precip_model::BackendError;
+    let setup = snow_before_a_wall();
+    let good = BeamQuery {
+        beams: fan(setup.camera.position_m)[..240].to_vec(),
+        band: Band::ShortwaveInfrared,
+        aperture_radius_m: 0.0,
+        extinction_per_m: Some(1.0e-3),
+    };
+    for mut s in all_subjects("bad beams") {
+        assert!(
+            matches!(
+                s.backend.query_beams(&good),
+                Err(BackendError::NotConfigured { .. })
+            ),
+            "{}: before configure",
+            s.name
+        );
+        s.backend.configure(&setup).expect("configure");
+        for bad in [
+            BeamQuery {
+                beams: Vec::new(),
+                ..good.clone()
+            },
+            BeamQuery {
+                beams: vec![Beam::ray(Vec3::ZERO, Vec3::new(f32::NAN, 0.0, 0.0), 10.0)],
+                ..good.clone()
+            },
+            BeamQuery {
+                beams: vec![Beam::ray(Vec3::ZERO, Vec3::X, 1.0e6)],
+                ..good.clone()
+            },
+            BeamQuery {
+                aperture_radius_m: f32::INFINITY,
+                ..good.clone()
+            },
+        ] {
+            assert!(
+                matches!(
+                    s.backend.query_beams(&bad),
+                    Err(BackendError::InvalidBeams(_))
+                ),
+                "{}: {:?} accepted",
+                s.name,
+                bad.beams.first()
+            );
+        }
+        // Each query frees what it made: the device's allocations come back.
+        let first = s.backend.query_beams(&good).expect("beams");
+        let before = s.backend.device_memory();
+        for _ in 0..10 {
+            assert_eq!(
+                s.backend.query_beams(&good).expect("beams"),
+                first,
+                "{}",
+                s.name
+            );
+        }
+        let after = s.backend.device_memory();
+        if let (Some(b), Some(a)) = (before, after) {
+            println!("{}: device memory {b:?} → {a:?} after 10 queries", s.name);
+            assert!(
+                a.allocations <= b.allocations && a.allocated_bytes <= b.allocated_bytes,
+                "{}: {b:?} → {a:?}",
+                s.name
+            );
+        }
+        s.check_clean("bad beams");
+    }
+}
