@@ -449,7 +449,7 @@ impl Backend for VkBackend {
         let r = &state.resources;
         let params = query.params(&beams, r.particle_count, &state.setup.ground);
         let hits = crate::beams::query_beams(&self.device, &self.programs, r, &params, &beams)?;
-        Ok(query.answer(&beams, &hits, &state.weather))
+        query.answer(NAME, &beams, &hits, &state.weather)
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {

@@ -9,7 +9,7 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 use precip_model::BackendError;
 use precip_model::gpu::{Frames, beam_bindings, dispatch_size};
-use precip_model::lidar::{Beam, BeamHit, BeamParams};
+use precip_model::lidar::{Beam, BeamHit, BeamParams, BeamQuery};
 
 use crate::buffer::Buffer;
 use crate::commands::{compute_barrier, submit};
@@ -86,13 +86,19 @@ fn run(
         device,
         "beam hits",
         hits_bytes,
-        U::STORAGE_BUFFER | U::TRANSFER_SRC,
+        U::STORAGE_BUFFER | U::TRANSFER_SRC | U::TRANSFER_DST,
         MemoryLocation::GpuOnly,
     )?);
     let [params_buffer, beams_buffer, hits] = &objects.buffers[..] else {
         unreachable!("three buffers were pushed");
     };
     upload(device, beams_buffer, beam_bytes)?;
+    // Filled with UNWRITTEN: a hit the kernel never wrote is found, not read as one.
+    upload(
+        device,
+        hits,
+        bytemuck::cast_slice(&BeamQuery::unwritten_hits(beams.len())),
+    )?;
     use vk::DescriptorType as T;
     let pool = descriptors::pool(
         device,

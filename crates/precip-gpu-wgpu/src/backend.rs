@@ -512,7 +512,7 @@ impl Backend for WgpuBackend {
         let hits = scoped(gpu, "query_beams", || {
             crate::beams::query_beams(gpu, pipelines, r, &params, &beams)
         })??;
-        Ok(query.answer(&beams, &hits, &state.weather))
+        query.answer(NAME, &beams, &hits, &state.weather)
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {

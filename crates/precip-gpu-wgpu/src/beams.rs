@@ -4,7 +4,7 @@
 
 use precip_model::BackendError;
 use precip_model::gpu::{beam_bindings, dispatch_size};
-use precip_model::lidar::{Beam, BeamHit, BeamParams};
+use precip_model::lidar::{Beam, BeamHit, BeamParams, BeamQuery};
 use wgpu::util::DeviceExt;
 
 use crate::device::GpuDevice;
@@ -32,11 +32,11 @@ pub fn query_beams(
         usage: wgpu::BufferUsages::STORAGE,
     });
     let hits_bytes = (beams.len() * size_of::<BeamHit>()) as u64;
-    let hits = device.create_buffer(&wgpu::BufferDescriptor {
+    // Filled with UNWRITTEN: a hit the kernel never wrote is found, not read as one.
+    let hits = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("precip beam hits"),
-        size: hits_bytes,
+        contents: bytemuck::cast_slice(&BeamQuery::unwritten_hits(beams.len())),
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
     });
     let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("precip query_beams"),

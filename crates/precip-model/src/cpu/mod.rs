@@ -221,7 +221,7 @@ impl Backend for CpuBackend {
         let state = self.state_mut("query_beams")?;
         let params = query.params(&beams, state.particles.len() as u32, &state.setup.ground);
         let hits = query_on_cpu(&beams, &params, &state.particles, &state.setup.ground);
-        Ok(query.answer(&beams, &hits, &state.weather))
+        query.answer(NAME, &beams, &hits, &state.weather)
     }
 
     fn read_cover(&mut self) -> Result<CoverGrid, BackendError> {

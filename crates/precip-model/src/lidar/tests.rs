@@ -6,6 +6,8 @@
 use glam::UVec2;
 use precip_cover::GridFrame;
 
+use proptest::prelude::*;
+
 use super::*;
 use crate::particle::{ParticleSource, pack_flags};
 use crate::rng::{particle_key, random_unit};
@@ -282,4 +284,116 @@ fn hits_in_a_uniform_field_are_poisson() {
             );
         }
     }
+}
+
+fn unit(v: (f32, f32, f32)) -> Vec3 {
+    let v = Vec3::new(v.0, v.1, v.2);
+    if v.length_squared() < 1e-4 {
+        Vec3::X
+    } else {
+        v.normalize()
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    /// The kernel's group bound leaves out no particle a beam of the group strikes.
+    #[test]
+    fn the_group_bound_keeps_every_struck_particle(
+        origin in (-5.0f32..5.0, 0.0f32..3.0, -5.0f32..5.0),
+        spread_m in 0.0f32..2.0,
+        heading in (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0),
+        fan_rad in 0.0f32..1.5,
+        divergence_rad in 0.0f32..0.1,
+        aperture_m in 0.0f32..0.5,
+        diameter_m in 0.0f32..0.02,
+        seed in 0u32..1000,
+    ) {
+        let axis = unit(heading);
+        let beams: Vec<Beam> = (0..64u32)
+            .map(|i| {
+                let key = particle_key(seed, i, 1);
+                let jitter = Vec3::new(random_unit(key, 0), random_unit(key, 1), random_unit(key, 2)) - 0.5;
+                let turn = Vec3::new(random_unit(key, 3), random_unit(key, 4), random_unit(key, 5)) - 0.5;
+                Beam {
+                    divergence_rad,
+                    ..Beam::ray(
+                        Vec3::new(origin.0, origin.1, origin.2) + jitter * spread_m,
+                        (axis + turn * fan_rad).normalize_or(axis),
+                        5.0 + 50.0 * random_unit(key, 6),
+                    )
+                }
+            })
+            .collect();
+        let bound = beam_group_bound(&beams, aperture_m);
+        for k in 0..400u32 {
+            // Particles near the beams: a point along a beam, pushed off it.
+            let key = particle_key(seed, k, 2);
+            let beam = beams[(k % 64) as usize];
+            let t = random_unit(key, 0) * beam.max_range_m;
+            let off = (Vec3::new(random_unit(key, 1), random_unit(key, 2), random_unit(key, 3)) - 0.5)
+                * (0.2 + t * 0.1);
+            let centre = beam.origin_m + beam.direction * t + off;
+            let struck = beams.iter().any(|b| beam_strike_range_m(b, aperture_m, centre, diameter_m).is_some());
+            prop_assert!(
+                !struck || group_may_strike(&bound, centre, diameter_m),
+                "left out a struck particle at {centre} of {bound:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_narrow_group_bound_leaves_out_what_lies_aside_and_behind() {
+    let beams: Vec<Beam> = (0..64)
+        .map(|i| {
+            let azimuth = (i as f32 - 31.5) * 0.35f32.to_radians();
+            Beam {
+                divergence_rad: 3.0e-3,
+                ..Beam::ray(Vec3::Y, Vec3::new(azimuth.sin(), 0.0, -azimuth.cos()), 50.0)
+            }
+        })
+        .collect();
+    let bound = beam_group_bound(&beams, 0.01);
+    // 64 steps of 0.35°: ±11° and a little.
+    assert!(
+        (bound.half_angle_rad - 11.03f32.to_radians()).abs() < 0.01,
+        "{bound:?}"
+    );
+    assert!(group_may_strike(&bound, Vec3::new(0.0, 1.0, -20.0), 0.005));
+    assert!(
+        !group_may_strike(&bound, Vec3::new(0.0, 1.0, 20.0), 0.005),
+        "behind"
+    );
+    assert!(
+        !group_may_strike(&bound, Vec3::new(20.0, 1.0, -5.0), 0.005),
+        "aside"
+    );
+    assert!(
+        !group_may_strike(&bound, Vec3::new(0.0, 1.0, -80.0), 0.005),
+        "beyond reach"
+    );
+}
+
+#[test]
+fn hits_the_kernel_never_wrote_are_an_error_not_an_answer() {
+    let beams = vec![Beam::ray(Vec3::ZERO, Vec3::X, 10.0); 3];
+    let q = query(beams.clone());
+    let mut hits = BeamQuery::unwritten_hits(3);
+    hits[0].particle_flags = NO_PARTICLE;
+    hits[1].particle_flags = NO_PARTICLE;
+    match q.answer("test", &beams, &hits, &crate::Weather::default()) {
+        Err(BackendError::Device { message, .. }) => {
+            assert!(message.contains("left 1 of 3"), "{message}")
+        }
+        other => panic!("{other:?}"),
+    }
+    hits[2].particle_flags = NO_PARTICLE;
+    assert_eq!(
+        q.answer("test", &beams, &hits, &crate::Weather::default())
+            .expect("answered")
+            .len(),
+        3
+    );
 }
