@@ -27,7 +27,7 @@ use std::collections::VecDeque;
 
 use ash::vk;
 
-use crate::commands::{InFlight, compute_barrier, submit};
+use crate::commands::{InFlight, compute_barrier, record_dispatch, submit};
 use crate::device::Device;
 use crate::error::NAME;
 use crate::instance::Instance;
@@ -259,24 +259,19 @@ impl Backend for VkBackend {
         let programs = &self.programs;
         let r = &resources;
         submit(device, |cb| {
-            let (x, y) = dispatch_size(count);
-            // SAFETY: `cb` is recording; the pipeline, layout and set are live and match.
+            // SAFETY: `cb` is recording outside a render pass (inside `submit`); the
+            // init pipeline was made with the step layout, whose set has one dynamic
+            // binding.
             unsafe {
-                device
-                    .raw
-                    .cmd_bind_pipeline(cb, vk::PipelineBindPoint::COMPUTE, programs.init);
-                device.raw.cmd_bind_descriptor_sets(
+                record_dispatch(
+                    device,
                     cb,
-                    vk::PipelineBindPoint::COMPUTE,
-                    programs.step_layout,
-                    0,
-                    &[r.step_set],
+                    (programs.init, programs.step_layout),
+                    r.step_set,
                     &[0],
+                    dispatch_size(count),
                 );
-                device.raw.cmd_dispatch(cb, x, y, 1);
             }
-            // SAFETY: `cb` is recording, outside a render pass (inside `submit`).
-            unsafe { compute_barrier(device, cb) };
         })?
         .wait(device)?;
         if let Some(t) = self.timestamps.as_mut() {

@@ -12,7 +12,7 @@ use precip_model::gpu::{Frames, beam_bindings, dispatch_size};
 use precip_model::lidar::{Beam, BeamHit, BeamParams, BeamQuery};
 
 use crate::buffer::Buffer;
-use crate::commands::{compute_barrier, submit};
+use crate::commands::{record_dispatch, submit};
 use crate::descriptors::{self, buffer_info, write};
 use crate::device::Device;
 use crate::programs::Programs;
@@ -126,24 +126,18 @@ fn run(
     // SAFETY: every write names a live buffer of the binding's type and usage.
     unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
     submit(device, |cb| {
-        let (x, y) = dispatch_size(params.beam_count);
-        // SAFETY: `cb` is recording; the pipeline, layout and set are live and match.
+        // SAFETY: `cb` is recording outside a render pass (inside `submit`); the
+        // pipeline was made with the beams layout, whose set has no dynamic binding.
         unsafe {
-            device
-                .raw
-                .cmd_bind_pipeline(cb, vk::PipelineBindPoint::COMPUTE, programs.query_beams);
-            device.raw.cmd_bind_descriptor_sets(
+            record_dispatch(
+                device,
                 cb,
-                vk::PipelineBindPoint::COMPUTE,
-                programs.beams_layout,
-                0,
-                &[set],
+                (programs.query_beams, programs.beams_layout),
+                set,
                 &[],
+                dispatch_size(params.beam_count),
             );
-            device.raw.cmd_dispatch(cb, x, y, 1);
         }
-        // SAFETY: `cb` is recording, outside a render pass (inside `submit`).
-        unsafe { compute_barrier(device, cb) };
     })?
     .wait(device)?;
     let bytes = download(device, hits, hits_bytes)?;

@@ -197,3 +197,38 @@ pub unsafe fn memory_barrier(
         );
     }
 }
+
+/// Records one compute dispatch: binds `pipeline` and `set` (with its dynamic
+/// `offsets`) on `layout`, dispatches `groups` (x, y), and a [`compute_barrier`].
+///
+/// # Safety
+/// - `commands` is a command buffer of `device` in the recording state, outside a
+///   render pass.
+/// - `pipeline`, `layout` and `set` are live, made for each other, and `offsets`
+///   has one entry per dynamic binding of the set.
+pub unsafe fn record_dispatch(
+    device: &Device,
+    commands: vk::CommandBuffer,
+    (pipeline, layout): (vk::Pipeline, vk::PipelineLayout),
+    set: vk::DescriptorSet,
+    offsets: &[u32],
+    (x, y): (u32, u32),
+) {
+    // SAFETY: the caller guarantees the command buffer is recording outside a render
+    // pass and the pipeline, layout, set and offsets match.
+    unsafe {
+        device
+            .raw
+            .cmd_bind_pipeline(commands, vk::PipelineBindPoint::COMPUTE, pipeline);
+        device.raw.cmd_bind_descriptor_sets(
+            commands,
+            vk::PipelineBindPoint::COMPUTE,
+            layout,
+            0,
+            &[set],
+            offsets,
+        );
+        device.raw.cmd_dispatch(commands, x, y, 1);
+        compute_barrier(device, commands);
+    }
+}
