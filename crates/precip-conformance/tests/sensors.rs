@@ -75,6 +75,8 @@ fn beams_strike_the_same_particles_and_targets_as_the_cpu_reference_on_every_bac
             band: Band::NearInfrared,
             aperture_radius_m: 0.01,
             extinction_per_m: None,
+            // The kernel alone: strikes drawn from the spectrum are checked below.
+            sample_unresolved: false,
         };
         let returns = s.backend.query_beams(&query).expect("beams");
         assert_eq!(returns.len(), query.beams.len());
@@ -196,6 +198,7 @@ fn bad_beam_queries_are_refused_alike_and_queries_hold_no_memory() {
         band: Band::ShortwaveInfrared,
         aperture_radius_m: 0.0,
         extinction_per_m: Some(1.0e-3),
+        sample_unresolved: true,
     };
     for mut s in all_subjects("bad beams") {
         assert!(
@@ -256,5 +259,73 @@ fn bad_beam_queries_are_refused_alike_and_queries_hold_no_memory() {
             );
         }
         s.check_clean("bad beams");
+    }
+}
+
+#[test]
+fn strikes_drawn_from_the_spectrum_are_the_same_on_every_backend() {
+    use precip_model::lidar::{EchoOrigin, UnresolvedAir};
+    let setup = snow_before_a_wall();
+    let query = BeamQuery {
+        beams: fan(setup.camera.position_m),
+        band: Band::NearInfrared,
+        aperture_radius_m: 0.01,
+        extinction_per_m: None,
+        sample_unresolved: true,
+    };
+    // What every backend's clock and step parameters are after three 0.05 s steps.
+    let time_s = (0..3).fold(0.0f64, |t, _| t + f64::from(0.05f32));
+    let species = setup.step_params(&setup.weather, Vec3::ZERO, 0.05, 0.0);
+    let air = UnresolvedAir::of_configuration(
+        &setup,
+        &setup.weather,
+        species,
+        setup.camera.position_m,
+        time_s,
+    );
+    for mut s in all_subjects("drawn strikes") {
+        s.backend.configure(&setup).expect("configure");
+        for _ in 0..3 {
+            s.backend.step(0.05).expect("step");
+        }
+        let returns = s.backend.query_beams(&query).expect("beams");
+        let particles = s.backend.read_particles().expect("particles");
+        let beams = query.validate().expect("valid");
+        let params = query.params(&beams, particles.len() as u32, &setup.ground);
+        let reference = query_on_cpu(&beams, &params, &particles, &setup.ground);
+        let expected = query
+            .answer("reference", &beams, &reference, &setup.weather, &air)
+            .expect("answered");
+        let drawn = returns
+            .iter()
+            .filter(|r| r.particle.is_some_and(|p| p.origin == EchoOrigin::Spectrum))
+            .count();
+        let simulated = returns
+            .iter()
+            .filter(|r| r.particle.is_some_and(|p| p.origin != EchoOrigin::Spectrum))
+            .count();
+        let differing = returns
+            .iter()
+            .zip(&expected)
+            .filter(|(a, b)| {
+                a.particle.map(|p| (p.origin, p.kind)) != b.particle.map(|p| (p.origin, p.kind))
+                    || a.particle.zip(b.particle).is_some_and(|(p, q)| {
+                        (p.range_m - q.range_m).abs() > 1e-4 * q.range_m.max(1.0)
+                    })
+            })
+            .count();
+        println!(
+            "{}: {drawn} beams struck a flake drawn from the spectrum, {simulated} a simulated one; {differing} differ from the reference",
+            s.name
+        );
+        // The camera volume holds 20 of the air's 79 flakes per m³ (of the sizes
+        // simulated): most strikes are drawn.
+        assert!(drawn > simulated && simulated > 50, "{}", s.name);
+        assert!(
+            differing * 200 <= returns.len(),
+            "{}: {differing} differ",
+            s.name
+        );
+        s.check_clean("drawn strikes");
     }
 }

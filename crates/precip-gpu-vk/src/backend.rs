@@ -14,7 +14,7 @@ use glam::Vec3;
 use precip_model::cover::CoverGrid;
 use precip_model::drag::MAX_SUBSTEP_S;
 use precip_model::gpu::dispatch_size;
-use precip_model::lidar::{BeamQuery, BeamReturn};
+use precip_model::lidar::{BeamQuery, BeamReturn, UnresolvedAir};
 use precip_model::shaders::Program;
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
@@ -444,7 +444,14 @@ impl Backend for VkBackend {
         let r = &state.resources;
         let params = query.params(&beams, r.particle_count, &state.setup.ground);
         let hits = crate::beams::query_beams(&self.device, &self.programs, r, &params, &beams)?;
-        query.answer(NAME, &beams, &hits, &state.weather)
+        let air = UnresolvedAir::of_configuration(
+            &state.setup,
+            &state.weather,
+            state.step_template,
+            state.camera.position_m,
+            state.time_s,
+        );
+        query.answer(NAME, &beams, &hits, &state.weather, &air)
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {

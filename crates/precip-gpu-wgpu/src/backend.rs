@@ -5,7 +5,7 @@ use glam::Vec3;
 use precip_model::cover::{CoverGrid, CoverTexel};
 use precip_model::drag::MAX_SUBSTEP_S;
 use precip_model::gpu::{FrameDraws, INIT_PASS, dispatch_size};
-use precip_model::lidar::{BeamQuery, BeamReturn};
+use precip_model::lidar::{BeamQuery, BeamReturn, UnresolvedAir};
 use precip_model::shaders::Program;
 use precip_model::step::StepParams;
 use precip_model::wind::WindVolume;
@@ -512,7 +512,14 @@ impl Backend for WgpuBackend {
         let hits = scoped(gpu, "query_beams", || {
             crate::beams::query_beams(gpu, pipelines, r, &params, &beams)
         })??;
-        query.answer(NAME, &beams, &hits, &state.weather)
+        let air = UnresolvedAir::of_configuration(
+            &state.setup,
+            &state.weather,
+            state.step_template,
+            state.camera.position_m,
+            state.time_s,
+        );
+        query.answer(NAME, &beams, &hits, &state.weather, &air)
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {

@@ -8,7 +8,7 @@
 
 use anyhow::Context as _;
 use precip_model::View;
-use precip_model::lidar::BeamQuery;
+use precip_model::lidar::{BeamQuery, EchoOrigin};
 use precip_model::optics::Band;
 use precip_viewer::backends::{BackendName, open_headless};
 use precip_viewer::demo::DEMO_GLB;
@@ -65,15 +65,31 @@ fn main() -> anyhow::Result<()> {
         band: Band::NearInfrared,
         aperture_radius_m: 0.01,
         extinction_per_m: Some(backend.optics()?.band(Band::NearInfrared).extinction_per_m),
+        sample_unresolved: true,
     };
     let started = std::time::Instant::now();
     let returns = backend.query_beams(&query)?;
     let took = started.elapsed();
-    let points = point_cloud(&query.beams, &returns, query.band);
+    let points = point_cloud(
+        &query.beams,
+        &returns,
+        query.band,
+        lidar.detection_threshold(),
+    );
     write_ply(&out.join("scan.ply"), &points)?;
     let from_particles = points.iter().filter(|p| p.from_particle).count();
+    let drawn = returns
+        .iter()
+        .filter(|r| r.particle.is_some_and(|p| p.origin == EchoOrigin::Spectrum))
+        .count();
+    let near: Vec<f32> = points
+        .iter()
+        .filter(|p| p.from_particle)
+        .map(|p| (p.position_m - lidar.origin_m).length())
+        .collect();
+    let furthest = near.iter().copied().fold(0.0f32, f32::max);
     println!(
-        "{} beams in {:.0} ms: {} points, {from_particles} of them echoes from {preset} particles; wrote {} and {}",
+        "{} beams in {:.0} ms: {} points detected, {from_particles} of them echoes from {preset} particles (the furthest at {furthest:.1} m; {drawn} beams struck a particle drawn from the spectrum); wrote {} and {}",
         query.beams.len(),
         took.as_secs_f64() * 1e3,
         points.len(),

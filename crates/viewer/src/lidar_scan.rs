@@ -7,6 +7,9 @@
 //! (`π·β_p/A_p`: about 0.22 for snow, whose lidar ratio is 29 sr, and 0.02 for
 //! rain at 905 nm), or the ground behind it at [`GROUND_REFLECTANCE`], seen through
 //! the air's two-way transmittance and what the particle leaves of the footprint.
+//! An echo weaker than the sensor's detection threshold — a [`RATED_REFLECTANCE`]
+//! target at its full range — gives no point: far flakes, which fill a sliver of the
+//! widened beam, are not seen; near ones are (the clutter LiDARs show in snow).
 
 use std::io::Write as _;
 use std::path::Path;
@@ -18,6 +21,10 @@ use precip_model::optics::{Band, backscatter_cross_section_m2_sr};
 /// The ground's reflectance at the LiDAR's wavelength (soil, grass, asphalt are
 /// 0.1–0.4 at 905 nm).
 pub const GROUND_REFLECTANCE: f32 = 0.3;
+
+/// The weakest target a sensor is specified to see at its full range: a 10 %
+/// reflectance (automotive LiDARs quote their range for 10 % targets).
+pub const RATED_REFLECTANCE: f32 = 0.1;
 
 /// A spinning LiDAR's pattern.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,6 +59,12 @@ impl SpinningLidar {
             divergence_rad: 3.0e-3,
             max_range_m: 120.0,
         }
+    }
+
+    /// The weakest echo it detects, reflectance over range² (1/m²).
+    #[must_use]
+    pub fn detection_threshold(&self) -> f32 {
+        RATED_REFLECTANCE / (self.max_range_m * self.max_range_m)
     }
 
     /// Its beams, channel by channel; azimuth 0 looks along −z, turning toward +x.
@@ -95,9 +108,15 @@ pub struct LidarPoint {
     pub from_particle: bool,
 }
 
-/// The points of `returns` (one per beam of `beams`) in `band`.
+/// The points of `returns` (one per beam of `beams`) in `band` whose echo reaches
+/// `detection_threshold` (1/m²; [`SpinningLidar::detection_threshold`]).
 #[must_use]
-pub fn point_cloud(beams: &[Beam], returns: &[BeamReturn], band: Band) -> Vec<LidarPoint> {
+pub fn point_cloud(
+    beams: &[Beam],
+    returns: &[BeamReturn],
+    band: Band,
+    detection_threshold: f32,
+) -> Vec<LidarPoint> {
     beams
         .iter()
         .zip(returns)
@@ -116,7 +135,7 @@ pub fn point_cloud(beams: &[Beam], returns: &[BeamReturn], band: Band) -> Vec<Li
                     * r.target.map_or(0.0, |t| t.two_way_transmittance)
                     * (1.0 - r.particle.map_or(0.0, |p| p.footprint_share))
             } / range.max(0.1).powi(2);
-            Some(LidarPoint {
+            (intensity >= detection_threshold).then_some(LidarPoint {
                 position_m: beam.origin_m + beam.direction * range,
                 intensity,
                 from_particle,
@@ -160,8 +179,7 @@ pub fn write_ply(path: &Path, points: &[LidarPoint]) -> std::io::Result<()> {
 #[cfg(test)]
 mod tests {
     use precip_model::ParticleKind;
-    use precip_model::lidar::{ParticleEcho, TargetEcho};
-    use precip_model::particle::ParticleSource;
+    use precip_model::lidar::{EchoOrigin, ParticleEcho, TargetEcho};
 
     use super::*;
 
@@ -188,7 +206,7 @@ mod tests {
                 range_m: 4.0,
                 diameter_m: 0.006,
                 kind: ParticleKind::DrySnow,
-                source: ParticleSource::CameraVolume,
+                origin: EchoOrigin::CameraVolume,
                 footprint_share: 0.5,
             }),
             target: Some(TargetEcho {
@@ -208,8 +226,23 @@ mod tests {
             &[beam, beam, beam],
             &[flake, bare, nothing],
             Band::NearInfrared,
+            0.0,
         );
         assert_eq!(points.len(), 2);
+        // A 120 m sensor's threshold keeps the flake at 4 m and the ground at 60 m.
+        let threshold = SpinningLidar::automotive(Vec3::ZERO).detection_threshold();
+        let seen = point_cloud(&[beam, beam], &[flake, bare], Band::NearInfrared, threshold);
+        assert_eq!(seen.len(), 2);
+        // The same flake at 40 m fills 1 % of the footprint's share: not seen.
+        let far = BeamReturn {
+            particle: flake.particle.map(|p| ParticleEcho {
+                range_m: 40.0,
+                footprint_share: 0.005,
+                ..p
+            }),
+            target: None,
+        };
+        assert!(point_cloud(&[beam], &[far], Band::NearInfrared, threshold).is_empty());
         assert!(points[0].from_particle && (points[0].position_m.z + 4.0).abs() < 1e-6);
         assert!(!points[1].from_particle && (points[1].position_m.z + 60.0).abs() < 1e-4);
         let path = std::env::temp_dir().join(format!("precip-ply-{}.ply", std::process::id()));

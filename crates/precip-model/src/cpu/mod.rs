@@ -21,7 +21,7 @@ use crate::birth::initial_particle;
 use crate::camera::{Camera, Image, View};
 use crate::drag::MAX_SUBSTEP_S;
 use crate::error::BackendError;
-use crate::lidar::{BeamQuery, BeamReturn, query_on_cpu};
+use crate::lidar::{BeamQuery, BeamReturn, UnresolvedAir, query_on_cpu};
 use crate::particle::Particle;
 use crate::setup::Setup;
 use crate::step::{StepInputs, StepParams, step_particle};
@@ -221,7 +221,14 @@ impl Backend for CpuBackend {
         let state = self.state_mut("query_beams")?;
         let params = query.params(&beams, state.particles.len() as u32, &state.setup.ground);
         let hits = query_on_cpu(&beams, &params, &state.particles, &state.setup.ground);
-        query.answer(NAME, &beams, &hits, &state.weather)
+        let air = UnresolvedAir::of_configuration(
+            &state.setup,
+            &state.weather,
+            state.step_template,
+            state.camera.position_m,
+            state.time_s,
+        );
+        query.answer(NAME, &beams, &hits, &state.weather, &air)
     }
 
     fn read_cover(&mut self) -> Result<CoverGrid, BackendError> {

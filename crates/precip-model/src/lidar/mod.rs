@@ -54,6 +54,10 @@ use crate::ground::GroundMap;
 use crate::optics::Band;
 use crate::particle::{Particle, ParticleKind, ParticleSource};
 
+pub mod unresolved;
+
+pub use unresolved::{SampledStrike, UnresolvedAir};
+
 /// The most beams one query takes.
 pub const MAX_BEAMS: usize = 1 << 20;
 /// The longest range a beam may have, m.
@@ -142,6 +146,10 @@ pub struct BeamQuery {
     /// The air's extinction in the band, per m; `None`: the weather's spectra
     /// ([`crate::optics::Optics::of_weather`]).
     pub extinction_per_m: Option<f32>,
+    /// Also draw strikes on the particles not simulated one by one
+    /// ([`unresolved`]): where the simulation is sparser than the air (beyond the
+    /// camera volume), so echoes come at the air's rate at every range.
+    pub sample_unresolved: bool,
 }
 
 impl BeamQuery {
@@ -245,14 +253,16 @@ impl BeamQuery {
         ]
     }
 
-    /// The returns of `hits` for this query's `beams` (validated) in `weather`; an
-    /// error naming the backend if a hit was never written or one is missing.
+    /// The returns of `hits` for this query's `beams` (validated) in `weather`, with
+    /// strikes drawn from `air` where [`BeamQuery::sample_unresolved`]; an error
+    /// naming the backend if a hit was never written or one is missing.
     pub fn answer(
         &self,
         backend: &'static str,
         beams: &[Beam],
         hits: &[BeamHit],
         weather: &crate::Weather,
+        air: &UnresolvedAir,
     ) -> Result<Vec<BeamReturn>, BackendError> {
         let unwritten = hits
             .iter()
@@ -268,12 +278,38 @@ impl BeamQuery {
                 ),
             });
         }
-        Ok(Self::returns(
+        let mut returns = Self::returns(
             beams,
             hits,
             self.aperture_radius_m,
             self.extinction_in(weather),
-        ))
+        );
+        if self.sample_unresolved {
+            let mean_radius_m = air.mean_radius_m();
+            for (i, (beam, r)) in beams.iter().zip(&mut returns).enumerate() {
+                let limit = r
+                    .particle
+                    .map_or(f32::INFINITY, |p| p.range_m)
+                    .min(r.target.map_or(f32::INFINITY, |t| t.range_m));
+                if let Some(s) =
+                    air.strike(i as u32, beam, self.aperture_radius_m, mean_radius_m, limit)
+                {
+                    r.particle = Some(ParticleEcho {
+                        range_m: s.range_m,
+                        diameter_m: s.diameter_m,
+                        kind: s.kind,
+                        origin: EchoOrigin::Spectrum,
+                        footprint_share: footprint_share(
+                            beam,
+                            self.aperture_radius_m,
+                            s.range_m,
+                            s.diameter_m,
+                        ),
+                    });
+                }
+            }
+        }
+        Ok(returns)
     }
 
     /// The returns of `hits` (one per beam, as [`query_on_cpu`] or the kernel wrote
@@ -293,6 +329,30 @@ impl BeamQuery {
     }
 }
 
+/// Where a struck particle comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EchoOrigin {
+    /// A simulated particle of the camera volume.
+    CameraVolume,
+    /// A simulated particle of the world emitter.
+    WorldEmitter,
+    /// Drawn from the spectrum where the simulation is sparser than the air
+    /// ([`unresolved`]).
+    Spectrum,
+}
+
+/// The share of the beam's footprint at `range_m` a particle of `diameter_m` covers.
+#[must_use]
+pub fn footprint_share(beam: &Beam, aperture_radius_m: f32, range_m: f32, diameter_m: f32) -> f32 {
+    let radius = beam_radius_m(beam, aperture_radius_m, range_m);
+    let half = 0.5 * diameter_m;
+    if radius > 0.0 {
+        (half * half / (radius * radius)).min(1.0)
+    } else {
+        1.0
+    }
+}
+
 /// The first particle a beam struck.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ParticleEcho {
@@ -302,8 +362,8 @@ pub struct ParticleEcho {
     pub diameter_m: f32,
     /// What it is.
     pub kind: ParticleKind,
-    /// Which pool it is of.
-    pub source: ParticleSource,
+    /// Where it comes from.
+    pub origin: EchoOrigin,
     /// The share of the beam's footprint at its range it covers, `(0, 1]`.
     pub footprint_share: f32,
 }
@@ -333,18 +393,20 @@ impl BeamReturn {
                 flags: hit.particle_flags,
                 ..Particle::zeroed()
             };
-            let radius = beam_radius_m(beam, aperture_radius_m, hit.particle_range_m);
-            let half = 0.5 * hit.particle_diameter_m;
             ParticleEcho {
                 range_m: hit.particle_range_m,
                 diameter_m: hit.particle_diameter_m,
                 kind: probe.kind(),
-                source: probe.source(),
-                footprint_share: if radius > 0.0 {
-                    (half * half / (radius * radius)).min(1.0)
-                } else {
-                    1.0
+                origin: match probe.source() {
+                    ParticleSource::CameraVolume => EchoOrigin::CameraVolume,
+                    ParticleSource::WorldEmitter => EchoOrigin::WorldEmitter,
                 },
+                footprint_share: footprint_share(
+                    beam,
+                    aperture_radius_m,
+                    hit.particle_range_m,
+                    hit.particle_diameter_m,
+                ),
             }
         });
         let target = (hit.target_range_m >= 0.0).then(|| TargetEcho {

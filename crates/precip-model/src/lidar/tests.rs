@@ -36,6 +36,7 @@ fn query(beams: Vec<Beam>) -> BeamQuery {
         band: Band::NearInfrared,
         aperture_radius_m: 0.0,
         extinction_per_m: Some(0.0),
+        sample_unresolved: false,
     }
 }
 
@@ -116,8 +117,8 @@ fn a_wall_stops_the_beam_and_hides_the_particles_behind_it() {
     let r = returns[0];
     let p = r.particle.expect("struck");
     assert_eq!(
-        (p.kind, p.source),
-        (ParticleKind::Rain, ParticleSource::CameraVolume)
+        (p.kind, p.origin),
+        (ParticleKind::Rain, EchoOrigin::CameraVolume)
     );
     assert_eq!(p.footprint_share, 1.0);
     let t = r.target.expect("the wall");
@@ -383,7 +384,13 @@ fn hits_the_kernel_never_wrote_are_an_error_not_an_answer() {
     let mut hits = BeamQuery::unwritten_hits(3);
     hits[0].particle_flags = NO_PARTICLE;
     hits[1].particle_flags = NO_PARTICLE;
-    match q.answer("test", &beams, &hits, &crate::Weather::default()) {
+    match q.answer(
+        "test",
+        &beams,
+        &hits,
+        &crate::Weather::default(),
+        &still_air(),
+    ) {
         Err(BackendError::Device { message, .. }) => {
             assert!(message.contains("left 1 of 3"), "{message}")
         }
@@ -391,9 +398,25 @@ fn hits_the_kernel_never_wrote_are_an_error_not_an_answer() {
     }
     hits[2].particle_flags = NO_PARTICLE;
     assert_eq!(
-        q.answer("test", &beams, &hits, &crate::Weather::default())
-            .expect("answered")
-            .len(),
+        q.answer(
+            "test",
+            &beams,
+            &hits,
+            &crate::Weather::default(),
+            &still_air()
+        )
+        .expect("answered")
+        .len(),
         3
     );
+}
+
+fn still_air() -> UnresolvedAir {
+    UnresolvedAir::new(
+        0.0,
+        (Vec3::ZERO, Vec3::ZERO, 0),
+        crate::step::StepParams::zeroed(),
+        1,
+        0.0,
+    )
 }
