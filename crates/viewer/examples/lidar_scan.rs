@@ -63,7 +63,7 @@ fn main() -> anyhow::Result<()> {
     let query = BeamQuery {
         beams: lidar.beams(),
         band: Band::NearInfrared,
-        aperture_radius_m: 0.01,
+        aperture_radius_m: precip_viewer::lidar_scan::APERTURE_RADIUS_M,
         extinction_per_m: Some(backend.optics()?.band(Band::NearInfrared).extinction_per_m),
         sample_unresolved: true,
     };

@@ -33,6 +33,20 @@ pub struct Summary {
     pub snow: crate::snow_summary::SnowSummary,
     /// The PNGs.
     pub files: Vec<PathBuf>,
+    /// With a LiDAR: the points its scans held in all, and how many of them were
+    /// echoes from particles.
+    pub lidar_points: Option<(u64, u64)>,
+}
+
+/// What a headless run does besides drawing.
+#[derive(Debug, Default)]
+pub struct HeadlessExtras<'a> {
+    /// Take the weather from this CIGI host (read before each frame; a change takes
+    /// effect in it) and answer it with Start of Frame after each frame.
+    pub cigi: Option<&'a mut precip_cigi::CigiReceiver>,
+    /// Scan with this LiDAR after each frame, writing `scan_NNNN.ply` beside the
+    /// frame's PNG ([`crate::lidar_scan`]).
+    pub lidar: Option<crate::lidar_scan::SpinningLidar>,
 }
 
 /// Something that stopped a headless run.
@@ -62,12 +76,19 @@ pub fn run_headless(
     out: &Path,
     progress: bool,
 ) -> Result<Summary, HeadlessError> {
-    run_headless_with(backend, view, frames, dt_s, out, progress, None)
+    run_headless_with(
+        backend,
+        view,
+        frames,
+        dt_s,
+        out,
+        progress,
+        HeadlessExtras::default(),
+    )
 }
 
-/// [`run_headless`], taking the weather from a CIGI host when `cigi` is given: the
-/// datagrams waiting are read before each frame and a change takes effect in it
-/// (the backend keeps running: no re-configure).
+/// [`run_headless`] with `extras`: the weather from a CIGI host (the backend keeps
+/// running: no re-configure), a LiDAR's scans.
 pub fn run_headless_with(
     backend: &mut dyn Backend,
     view: &View,
@@ -75,8 +96,10 @@ pub fn run_headless_with(
     dt_s: f32,
     out: &Path,
     progress: bool,
-    mut cigi: Option<&mut precip_cigi::CigiReceiver>,
+    extras: HeadlessExtras<'_>,
 ) -> Result<Summary, HeadlessError> {
+    let HeadlessExtras { mut cigi, lidar } = extras;
+    let mut lidar_points = lidar.map(|_| (0u64, 0u64));
     std::fs::create_dir_all(out).map_err(|e| HeadlessError::Write {
         file: out.to_path_buf(),
         detail: e.to_string(),
@@ -121,6 +144,11 @@ pub fn run_headless_with(
             detail: e.to_string(),
         })?;
         files.push(file);
+        if let (Some(lidar), Some(totals)) = (&lidar, lidar_points.as_mut()) {
+            let (points, echoes) = scan(backend, lidar, &out.join(format!("scan_{frame:04}.ply")))?;
+            totals.0 += points;
+            totals.1 += echoes;
+        }
         if let Some(receiver) = cigi.as_deref_mut() {
             receiver.send_start_of_frame(frame, run_started.elapsed());
         }
@@ -164,5 +192,34 @@ pub fn run_headless_with(
         water: crate::water_summary::WaterSummary::of(&cover),
         snow: crate::snow_summary::SnowSummary::of(&cover),
         files,
+        lidar_points,
     })
+}
+
+/// One scan of `lidar` into `file`: (points, echoes from particles).
+fn scan(
+    backend: &mut dyn Backend,
+    lidar: &crate::lidar_scan::SpinningLidar,
+    file: &Path,
+) -> Result<(u64, u64), HeadlessError> {
+    let query = precip_model::lidar::BeamQuery {
+        beams: lidar.beams(),
+        band: precip_model::optics::Band::NearInfrared,
+        aperture_radius_m: crate::lidar_scan::APERTURE_RADIUS_M,
+        extinction_per_m: None,
+        sample_unresolved: true,
+    };
+    let returns = backend.query_beams(&query)?;
+    let points = crate::lidar_scan::point_cloud(
+        &query.beams,
+        &returns,
+        query.band,
+        lidar.detection_threshold(),
+    );
+    crate::lidar_scan::write_ply(file, &points).map_err(|e| HeadlessError::Write {
+        file: file.to_path_buf(),
+        detail: e.to_string(),
+    })?;
+    let echoes = points.iter().filter(|p| p.from_particle).count();
+    Ok((points.len() as u64, echoes as u64))
 }

@@ -22,6 +22,9 @@ use precip_model::optics::{Band, backscatter_cross_section_m2_sr};
 /// 0.1–0.4 at 905 nm).
 pub const GROUND_REFLECTANCE: f32 = 0.3;
 
+/// The beams' radius where they leave the sensor, m.
+pub const APERTURE_RADIUS_M: f32 = 0.01;
+
 /// The weakest target a sensor is specified to see at its full range: a 10 %
 /// reflectance (automotive LiDARs quote their range for 10 % targets).
 pub const RATED_REFLECTANCE: f32 = 0.1;

@@ -146,6 +146,11 @@ struct RunArgs {
     /// wide); overlapping windows draw the same pixels.
     #[arg(long, value_parser = parse_vec2, allow_hyphen_values = true)]
     channel_shift: Option<glam::Vec2>,
+    /// Headless: scan with a 32-channel spinning LiDAR at the camera after each frame
+    /// (905 nm, 3 mrad, 120 m) and write `scan_NNNN.ply` beside the frame: the
+    /// stronger echo of each beam, from the ground or a particle.
+    #[arg(long)]
+    lidar: bool,
 }
 
 /// A rig channel's forward: `forward` turned `yaw_deg` to the right about the
@@ -323,6 +328,9 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     let frames = match args.frames {
         Some(n) => n,
         None if display_available() => {
+            if args.lidar {
+                eprintln!("warning: --lidar scans in headless runs only (give --frames N)");
+            }
             let cigi = match args.cigi {
                 Some(port) => {
                     let receiver = precip_cigi::CigiReceiver::bind(port, setup.weather)?;
@@ -396,8 +404,18 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         args.dt.clamp(1e-3, 1.0),
         &args.out,
         true,
-        cigi.as_mut(),
+        precip_viewer::headless::HeadlessExtras {
+            cigi: cigi.as_mut(),
+            lidar: args.lidar.then(|| {
+                precip_viewer::lidar_scan::SpinningLidar::automotive(view.camera.position_m)
+            }),
+        },
     )?;
+    if let Some((points, echoes)) = summary.lidar_points {
+        println!(
+            "LiDAR: {points} points in {frames} scans (scan_NNNN.ply), {echoes} of them echoes from particles"
+        );
+    }
     if let Some(receiver) = &cigi {
         let c = receiver.counts();
         let w = receiver.weather();

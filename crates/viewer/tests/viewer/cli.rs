@@ -319,3 +319,58 @@ fn optics_prints_every_band_and_the_mor_and_refuses_an_unphysical_weather() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("not physical"), "{err}");
 }
+
+#[test]
+fn a_headless_run_with_lidar_writes_a_point_cloud_beside_each_frame() {
+    if precip_gpu_wgpu::adapters().is_empty() {
+        assert!(
+            std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
+            "PRECIP_REQUIRE_GPU=1 but no wgpu adapter found"
+        );
+        println!(
+            "SKIPPED a_headless_run_with_lidar_writes_a_point_cloud_beside_each_frame: no wgpu adapter"
+        );
+        return;
+    }
+    let dir = temp_dir("lidar");
+    let out = precip()
+        .args([
+            "--frames",
+            "2",
+            "--size",
+            "64x36",
+            "--particles",
+            "5000",
+            "--lidar",
+            "--out",
+        ])
+        .arg(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.contains("LiDAR:") && text.contains("in 2 scans"),
+        "{text}"
+    );
+    for frame in 0..2 {
+        let ply =
+            std::fs::read_to_string(dir.join(format!("scan_{frame:04}.ply"))).expect("a scan");
+        let header_end = ply.find("end_header\n").expect("a PLY header");
+        let declared: usize = ply
+            .lines()
+            .find_map(|l| l.strip_prefix("element vertex "))
+            .and_then(|n| n.parse().ok())
+            .expect("a vertex count");
+        assert!(declared > 1000, "{declared} points");
+        assert_eq!(ply[header_end..].lines().count() - 1, declared);
+        assert!(dir.join(format!("frame_{frame:04}.png")).exists());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
