@@ -2,8 +2,9 @@
 //! built-in demo ([`demo`], written with [`glb`]), weather presets ([`presets`]),
 //! the scene's simulation set-up ([`scene_setup`]), a fly camera ([`fly_camera`]),
 //! headless frames ([`headless`]) and the interactive window ([`window`]), on either
-//! GPU backend ([`backends`]). The
-//! `precip` binary is its command line.
+//! GPU backend ([`backends`]); weather from OpenSCENARIO files ([`scenario`]), a
+//! spinning LiDAR's scans as PLY point clouds ([`lidar_scan`]) and the optics table
+//! of `precip optics` ([`optics_report`]). The `precip` binary is its command line.
 
 pub mod backends;
 pub mod demo;
