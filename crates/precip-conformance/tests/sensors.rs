@@ -62,6 +62,20 @@ fn fan(origin_m: Vec3) -> Vec<Beam> {
     beams
 }
 
+/// The CPU reference's hits for `query` on `backend`'s own particles, and the
+/// validated beams.
+fn reference_hits(
+    backend: &mut dyn precip_model::Backend,
+    query: &BeamQuery,
+    setup: &Setup,
+) -> (Vec<Beam>, Vec<precip_model::lidar::BeamHit>) {
+    let particles = backend.read_particles().expect("particles");
+    let beams = query.validate().expect("valid");
+    let params: BeamParams = query.params(&beams, particles.len() as u32, &setup.ground);
+    let hits = query_on_cpu(&beams, &params, &particles, &setup.ground);
+    (beams, hits)
+}
+
 #[test]
 fn beams_strike_the_same_particles_and_targets_as_the_cpu_reference_on_every_backend() {
     let setup = snow_before_a_wall();
@@ -81,10 +95,7 @@ fn beams_strike_the_same_particles_and_targets_as_the_cpu_reference_on_every_bac
         let returns = s.backend.query_beams(&query).expect("beams");
         assert_eq!(returns.len(), query.beams.len());
         // The reference on this backend's own particles.
-        let particles = s.backend.read_particles().expect("particles");
-        let beams = query.validate().expect("valid");
-        let params: BeamParams = query.params(&beams, particles.len() as u32, &setup.ground);
-        let reference = query_on_cpu(&beams, &params, &particles, &setup.ground);
+        let (beams, reference) = reference_hits(s.backend.as_mut(), &query, &setup);
         let extinction = query.extinction_in(&setup.weather);
         let expected = BeamQuery::returns(&beams, &reference, query.aperture_radius_m, extinction);
         let mut differing = 0;
@@ -289,10 +300,7 @@ fn strikes_drawn_from_the_spectrum_are_the_same_on_every_backend() {
             s.backend.step(0.05).expect("step");
         }
         let returns = s.backend.query_beams(&query).expect("beams");
-        let particles = s.backend.read_particles().expect("particles");
-        let beams = query.validate().expect("valid");
-        let params = query.params(&beams, particles.len() as u32, &setup.ground);
-        let reference = query_on_cpu(&beams, &params, &particles, &setup.ground);
+        let (beams, reference) = reference_hits(s.backend.as_mut(), &query, &setup);
         let expected = query
             .answer("reference", &beams, &reference, &setup.weather, &air)
             .expect("answered");

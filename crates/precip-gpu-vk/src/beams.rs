@@ -90,7 +90,10 @@ fn run(
         MemoryLocation::GpuOnly,
     )?);
     let [params_buffer, beams_buffer, hits] = &objects.buffers[..] else {
-        unreachable!("three buffers were pushed");
+        return Err(BackendError::Device {
+            backend: crate::error::NAME,
+            message: "the beam query lost a buffer (a bug in precip: please report it)".into(),
+        });
     };
     upload(device, beams_buffer, beam_bytes)?;
     // Filled with UNWRITTEN: a hit the kernel never wrote is found, not read as one.

@@ -9,6 +9,20 @@ fn precip() -> Command {
     Command::new(env!("CARGO_BIN_EXE_precip"))
 }
 
+/// Whether a wgpu adapter exists; without one, prints why `test` did nothing (a
+/// failure under `PRECIP_REQUIRE_GPU=1`).
+fn gpu_or_skip(test: &str) -> bool {
+    if !precip_gpu_wgpu::adapters().is_empty() {
+        return true;
+    }
+    assert!(
+        std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
+        "PRECIP_REQUIRE_GPU=1 but no wgpu adapter found"
+    );
+    println!("SKIPPED {test}: no wgpu adapter found");
+    false
+}
+
 fn temp_dir(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("precip-cli-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -56,12 +70,7 @@ fn inspect_succeeds_on_a_scene_and_fails_with_the_reason_on_a_bad_file() {
 /// datagram is counted and skipped.
 #[test]
 fn a_cigi_host_drives_the_headless_run_over_udp() {
-    if precip_gpu_wgpu::adapters().is_empty() {
-        assert!(
-            std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
-            "PRECIP_REQUIRE_GPU=1 but no wgpu adapter found"
-        );
-        println!("SKIPPED a_cigi_host_drives_the_headless_run_over_udp: no wgpu adapter");
+    if !gpu_or_skip("a_cigi_host_drives_the_headless_run_over_udp") {
         return;
     }
     let port = std::net::UdpSocket::bind("127.0.0.1:0")
@@ -140,12 +149,7 @@ fn a_cigi_host_drives_the_headless_run_over_udp() {
 
 #[test]
 fn without_a_display_the_viewer_says_so_and_renders_frames_headless() {
-    if precip_gpu_wgpu::adapters().is_empty() {
-        assert!(
-            std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
-            "PRECIP_REQUIRE_GPU=1 but no wgpu adapter found"
-        );
-        eprintln!("SKIPPED headless fallback: no wgpu adapter found");
+    if !gpu_or_skip("headless fallback") {
         return;
     }
     let dir = temp_dir("fallback");
@@ -192,12 +196,7 @@ fn without_a_display_the_viewer_says_so_and_renders_frames_headless() {
 
 #[test]
 fn the_window_presents_frames_on_both_backends() {
-    if precip_gpu_wgpu::adapters().is_empty() {
-        assert!(
-            std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
-            "PRECIP_REQUIRE_GPU=1 but no wgpu adapter found"
-        );
-        eprintln!("SKIPPED window: no GPU adapter found");
+    if !gpu_or_skip("window") {
         return;
     }
     let Some(x) = Xvfb::start() else {
@@ -235,12 +234,7 @@ fn the_window_presents_frames_on_both_backends() {
 
 #[test]
 fn headless_frames_agree_across_backends() {
-    if precip_gpu_wgpu::adapters().is_empty() {
-        assert!(
-            std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
-            "PRECIP_REQUIRE_GPU=1 but no wgpu adapter found"
-        );
-        eprintln!("SKIPPED headless_frames_agree_across_backends: no GPU adapter found");
+    if !gpu_or_skip("headless_frames_agree_across_backends") {
         return;
     }
     let mut frames = Vec::new();
@@ -322,14 +316,7 @@ fn optics_prints_every_band_and_the_mor_and_refuses_an_unphysical_weather() {
 
 #[test]
 fn a_headless_run_with_lidar_writes_a_point_cloud_beside_each_frame() {
-    if precip_gpu_wgpu::adapters().is_empty() {
-        assert!(
-            std::env::var("PRECIP_REQUIRE_GPU").as_deref() != Ok("1"),
-            "PRECIP_REQUIRE_GPU=1 but no wgpu adapter found"
-        );
-        println!(
-            "SKIPPED a_headless_run_with_lidar_writes_a_point_cloud_beside_each_frame: no wgpu adapter"
-        );
+    if !gpu_or_skip("a_headless_run_with_lidar_writes_a_point_cloud_beside_each_frame") {
         return;
     }
     let dir = temp_dir("lidar");
