@@ -9,7 +9,7 @@ pub mod traffic;
 use glam::Vec3;
 use precip_gpu_vk::VkBackend;
 use precip_gpu_wgpu::WgpuBackend;
-use precip_model::builtin::house_on_plane;
+use precip_model::scene::builtin::house_on_plane;
 use precip_model::wind::WindField;
 use precip_model::{Backend, CpuBackend, Setup, View};
 
@@ -79,10 +79,10 @@ pub fn backends() -> Vec<(&'static str, Box<dyn Backend>)> {
     out
 }
 
-/// Bytes a step moves per particle ([`precip_model::gpu::step_bytes_per_particle`]:
+/// Bytes a step moves per particle ([`precip_gpu::recipe::step_bytes_per_particle`]:
 /// `step_particles` reads and writes the 64-byte particle; the birth kernel touches
 /// only the few re-born).
 #[must_use]
 pub fn step_bytes_per_particle() -> u64 {
-    precip_model::gpu::step_bytes_per_particle()
+    precip_gpu::recipe::step_bytes_per_particle()
 }

@@ -1,10 +1,10 @@
 //! Bytes each kernel and draw moves per frame, from the frame recipe's counts
-//! ([`precip_model::gpu::KERNEL_BYTES`]) and a frame's drawn counts, and the rate that
+//! ([`precip_gpu::recipe::KERNEL_BYTES`]) and a frame's drawn counts, and the rate that
 //! makes with the pass's measured GPU time: the report prints it for every GPU
 //! backend's frame at 10⁶ particles.
 
+use precip_gpu::recipe::{BytesPer, KERNEL_BYTES};
 use precip_model::DrawnCounts;
-use precip_model::gpu::{BytesPer, KERNEL_BYTES};
 use serde_json::{Value, json};
 
 /// The timed pass a kernel or draw runs in.

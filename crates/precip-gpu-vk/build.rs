@@ -1,4 +1,4 @@
-//! Compiles precip-model's WGSL programs to SPIR-V with naga (DESIGN.md §4: WGSL is the
+//! Compiles precip-gpu's WGSL programs to SPIR-V with naga (DESIGN.md §4: WGSL is the
 //! single source). One `.spv` per program in OUT_DIR, all entry points in each.
 //!
 //! Bounds checks: those wgpu compiles in ([`BOUNDS_CHECKS`]).
@@ -8,7 +8,7 @@
 
 use naga::back::spv;
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use precip_model::shaders::Program;
+use precip_gpu::shaders::Program;
 
 /// The bounds checks wgpu compiles into the same WGSL on a Vulkan device without the
 /// robustness extensions (wgpu-hal's `vulkan/adapter.rs`): array indices clamped,
@@ -44,6 +44,13 @@ fn main() {
         let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
         std::fs::write(out.join(format!("{program:?}.spv")), bytes).expect("write SPIR-V");
     }
-    println!("cargo:rerun-if-changed=../precip-model/shaders");
+    for shaders in [
+        "../precip-model/shaders",
+        "../precip-wind/shaders",
+        "../precip-cover/shaders",
+        "../precip-gpu/shaders",
+    ] {
+        println!("cargo:rerun-if-changed={shaders}");
+    }
     println!("cargo:rerun-if-changed=src/compiled_programs.in");
 }

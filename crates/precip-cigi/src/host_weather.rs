@@ -18,14 +18,14 @@
 //! Sand and dust are given by what one sees through them (WMO: a dust haze above
 //! 1 km, a sandstorm below, a severe one below 200 m), so a visibility range the
 //! host sends wins over the severity; the settling rate is the one that holds that
-//! visibility ([`precip_model::grain`]). The layer's coverage (%) scales the rate
+//! visibility ([`precip_model::physics::grain`]). The layer's coverage (%) scales the rate
 //! (showers over part of the area). Base elevation and thickness are kept
 //! ([`HostWeather::layer_extent_m`]) but precipitation falls to the ground from
 //! whatever layer sends it. Hail (layer 7), fog and cloud layers and the regional and
 //! entity scopes are counted as ignored.
 
 use glam::Vec3;
-use precip_model::grain::{Grain, grain_settling_speed_mps};
+use precip_model::physics::grain::{Grain, grain_settling_speed_mps};
 use precip_model::wind::WindField;
 use precip_model::{PrecipitationKind, Weather};
 

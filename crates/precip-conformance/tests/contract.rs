@@ -314,7 +314,7 @@ fn timings_name_the_same_passes_on_every_gpu_backend() {
 fn rain_on_a_dip() -> Setup {
     let mut s = setup(5, 4_000);
     s.world_emitter = None;
-    s.camera_volume = Some(precip_model::setup::CameraVolumeSetup {
+    s.camera_volume = Some(precip_model::backend::setup::CameraVolumeSetup {
         volume: precip_model::CameraVolume::default(),
         particle_count: 2_000,
     });
@@ -671,7 +671,7 @@ fn raindrops_splash_alike_and_deterministically_on_every_backend() {
             "{}: the same seed splashes the same",
             s.name
         );
-        let splash = precip_model::particle::flags::SPLASH;
+        let splash = precip_model::particles::particle::flags::SPLASH;
         let flying: Vec<&Particle> = runs[0].iter().filter(|p| p.flags & splash != 0).collect();
         assert!(
             flying

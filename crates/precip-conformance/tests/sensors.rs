@@ -4,9 +4,9 @@
 
 use glam::Vec3;
 use precip_conformance::all_subjects;
-use precip_model::lidar::{Beam, BeamParams, BeamQuery, NO_PARTICLE, query_on_cpu};
-use precip_model::optics::{Band, Optics, OpticsSource};
-use precip_model::setup::CameraVolumeSetup;
+use precip_model::backend::setup::CameraVolumeSetup;
+use precip_model::sensors::lidar::{Beam, BeamParams, BeamQuery, NO_PARTICLE, query_on_cpu};
+use precip_model::sensors::optics::{Band, Optics, OpticsSource};
 use precip_model::{CameraVolume, ParticleKind, PrecipitationKind, Setup, Weather};
 
 /// Snow around a camera 1.7 m over a 40 m square with a 3 m wall 6 m ahead (−z):
@@ -68,7 +68,7 @@ fn reference_hits(
     backend: &mut dyn precip_model::Backend,
     query: &BeamQuery,
     setup: &Setup,
-) -> (Vec<Beam>, Vec<precip_model::lidar::BeamHit>) {
+) -> (Vec<Beam>, Vec<precip_model::sensors::lidar::BeamHit>) {
     let particles = backend.read_particles().expect("particles");
     let beams = query.validate().expect("valid");
     let params: BeamParams = query.params(&beams, particles.len() as u32, &setup.ground);
@@ -275,7 +275,7 @@ fn bad_beam_queries_are_refused_alike_and_queries_hold_no_memory() {
 
 #[test]
 fn strikes_drawn_from_the_spectrum_are_the_same_on_every_backend() {
-    use precip_model::lidar::{EchoOrigin, UnresolvedAir};
+    use precip_model::sensors::lidar::{EchoOrigin, UnresolvedAir};
     let setup = snow_before_a_wall();
     let query = BeamQuery {
         beams: fan(setup.camera.position_m),

@@ -7,7 +7,7 @@
 //! run beside it.
 
 use precip_conformance::{Subject, gpu_subjects, resident_kib};
-use precip_model::builtin::house_on_plane;
+use precip_model::scene::builtin::house_on_plane;
 use precip_model::wind::WindField;
 use precip_model::{Backend, DeviceMemory, PrecipitationKind, Setup, View};
 

@@ -40,6 +40,7 @@ mod surface;
 mod texel;
 mod update;
 pub mod water;
+pub mod wgsl;
 
 pub use deposit::{DEPOSIT_CHANNELS, DEPOSIT_UNITS_PER_MM, DepositBuffer, Landed, deposit_units};
 pub use drift::SNOW_DRIFT_ITERATIONS;

@@ -173,7 +173,7 @@ impl Surface {
     /// The share of the surface whose loose grains the wind can lift, `[0, 1]`:
     /// 1 for sand, 0 for the rest (soil under vegetation or crust, paving, roofs,
     /// water). Where the friction velocity passes the grains' threshold, sand and
-    /// dust rise from it (`precip_model::grain`). WGSL twin: the erodibility words
+    /// dust rise from it (`precip_model::physics::grain`). WGSL twin: the erodibility words
     /// of the ground buffer (`precip_model::GroundMap::gpu_words`).
     #[must_use]
     pub const fn erodibility(self) -> f32 {

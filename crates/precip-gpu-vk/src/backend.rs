@@ -10,17 +10,14 @@
 //! of another size) are retired and freed when that work has finished
 //! ([`crate::retire`]).
 
-use glam::Vec3;
+use precip_gpu::recipe::dispatch_size;
+use precip_gpu::shaders::Program;
 use precip_model::cover::CoverGrid;
-use precip_model::drag::MAX_SUBSTEP_S;
-use precip_model::gpu::dispatch_size;
-use precip_model::lidar::{BeamQuery, BeamReturn, UnresolvedAir};
-use precip_model::shaders::Program;
-use precip_model::step::StepParams;
-use precip_model::wind::WindVolume;
+use precip_model::host::HostState;
+use precip_model::sensors::lidar::{BeamQuery, BeamReturn};
 use precip_model::{
     Backend, BackendError, BackendInfo, Camera, DeviceMemory, DrawnCounts, Image, Particle, Setup,
-    TimingSource, Timings, View, Weather, substeps,
+    TimingSource, Timings, View, Weather,
 };
 
 use std::collections::VecDeque;
@@ -45,15 +42,11 @@ pub use present::Presented;
 
 const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
 
+/// A configured simulation: the host state every backend shares, and the device's.
 #[derive(Debug)]
 struct State {
-    setup: Setup,
-    weather: Weather,
-    wind: WindVolume,
-    camera: Camera,
+    host: HostState,
     resources: Resources,
-    step_template: StepParams,
-    time_s: f64,
     /// Drawing's resources, made on the first render.
     render: Option<RenderState>,
 }
@@ -228,7 +221,7 @@ impl Backend for VkBackend {
 
     fn configure(&mut self, setup: &Setup) -> Result<(), BackendError> {
         self.device.limits().check_setup(setup)?;
-        let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume)?;
+        let host = HostState::configure(setup)?;
         let cover = setup.initial_cover()?;
         let (world, camera) = setup.particle_counts();
         let count = world + camera;
@@ -247,14 +240,12 @@ impl Backend for VkBackend {
             count,
             &setup.ground,
             &cover,
-            &setup.frames(),
-            &wind,
+            &host.frames(),
+            host.wind(),
         )?;
-        let step_template = setup.step_params(&setup.weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
-        let params = step_template.at(setup.camera.position_m, MAX_SUBSTEP_S, 0.0);
         resources
             .step_uniforms
-            .write(0, bytemuck::bytes_of(&params))?;
+            .write(0, bytemuck::bytes_of(&host.init_block()))?;
         let device = &self.device;
         let programs = &self.programs;
         let r = &resources;
@@ -279,20 +270,14 @@ impl Backend for VkBackend {
         }
         self.steps_submitted = 0;
         self.state = Some(State {
-            setup: setup.clone(),
-            weather: setup.weather,
-            wind,
-            camera: setup.camera,
+            host,
             resources,
-            step_template,
-            time_s: 0.0,
             render: None,
         });
         Ok(())
     }
 
     fn set_weather(&mut self, weather: &Weather) -> Result<(), BackendError> {
-        weather.validate()?;
         self.state("set_weather")?;
         self.settle()?;
         let device = &self.device;
@@ -301,33 +286,26 @@ impl Backend for VkBackend {
                 operation: "set_weather",
             });
         };
-        let (wind, rebaked) = state.wind.for_field(&weather.wind)?;
-        if rebaked {
-            upload_image(device, &state.resources.wind, wind.as_bytes())?;
+        let change = state.host.set_weather(weather)?;
+        if change.wind_rebaked {
+            upload_image(device, &state.resources.wind, state.host.wind().as_bytes())?;
         }
-        state.resources.write_wind_params(&wind.gpu_params())?;
-        state.wind = wind;
-        state.step_template = state
-            .setup
-            .step_params(weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
-        state.weather = *weather;
-        Ok(())
+        state.resources.write_wind_params(&state.host.wind_params())
     }
 
     fn set_camera(&mut self, camera: &Camera) -> Result<(), BackendError> {
-        camera.validate()?;
         self.state
             .as_mut()
             .ok_or(BackendError::NotConfigured {
                 operation: "set_camera",
             })?
-            .camera = *camera;
-        Ok(())
+            .host
+            .set_camera(camera)
     }
 
     fn step(&mut self, dt_s: f32) -> Result<(), BackendError> {
-        let (count, h) = substeps(dt_s)?;
-        self.state("step")?;
+        let steps = self.state("step")?.host.substeps(dt_s)?;
+        let count = steps.blocks.len() as u32;
         // This step's slot of uniform blocks and queries was last used FRAMES_IN_FLIGHT
         // steps ago: wait for that submission only.
         self.wait_until(FRAMES_IN_FLIGHT - 1)?;
@@ -340,21 +318,15 @@ impl Backend for VkBackend {
         };
         let stride = state.resources.uniform_stride as usize;
         let base = state.resources.slot_base(slot) as usize;
-        let mut time_s = state.time_s;
-        for k in 0..count as usize {
-            let step = state
-                .step_template
-                .at(state.camera.position_m, h, time_s as f32);
-            let cover = state.setup.cover_step_params(&state.weather, h);
+        for (k, blocks) in steps.blocks.iter().enumerate() {
             state
                 .resources
                 .step_uniforms
-                .write(base + k * stride, bytemuck::bytes_of(&step))?;
+                .write(base + k * stride, bytemuck::bytes_of(&blocks.step))?;
             state
                 .resources
                 .cover_uniforms
-                .write(base + k * stride, bytemuck::bytes_of(&cover))?;
-            time_s += f64::from(h);
+                .write(base + k * stride, bytemuck::bytes_of(&blocks.cover))?;
         }
         let r = &state.resources;
         let mut written = 0;
@@ -424,7 +396,7 @@ impl Backend for VkBackend {
             t.slot = slot;
         }
         if let Some(state) = self.state.as_mut() {
-            state.time_s = time_s;
+            state.host.advance(&steps);
         }
         Ok(())
     }
@@ -434,7 +406,7 @@ impl Backend for VkBackend {
     }
 
     fn weather(&self) -> Result<Weather, BackendError> {
-        Ok(self.state("weather")?.weather)
+        Ok(*self.state("weather")?.host.weather())
     }
 
     fn query_beams(&mut self, query: &BeamQuery) -> Result<Vec<BeamReturn>, BackendError> {
@@ -442,16 +414,10 @@ impl Backend for VkBackend {
         self.settle()?;
         let state = self.state("query_beams")?;
         let r = &state.resources;
-        let params = query.params(&beams, r.particle_count, &state.setup.ground);
+        let params = query.params(&beams, r.particle_count, &state.host.setup().ground);
         let hits = crate::beams::query_beams(&self.device, &self.programs, r, &params, &beams)?;
-        let air = UnresolvedAir::of_configuration(
-            &state.setup,
-            &state.weather,
-            state.step_template,
-            state.camera.position_m,
-            state.time_s,
-        );
-        query.answer(NAME, &beams, &hits, &state.weather, &air)
+        let air = state.host.unresolved_air();
+        query.answer(NAME, &beams, &hits, state.host.weather(), &air)
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {
@@ -475,7 +441,7 @@ impl Backend for VkBackend {
             u64::from(r.cover_texel_count) * COVER_TEXEL_BYTES,
         )?;
         Ok(CoverGrid {
-            frame: state.setup.cover.frame,
+            frame: state.host.setup().cover.frame,
             texels: bytemuck::pod_collect_to_vec(&bytes),
         })
     }

@@ -1,4 +1,4 @@
-//! LiDAR beams ([`precip_model::lidar`]): the `query_beams` kernel over the
+//! LiDAR beams ([`precip_model::sensors::lidar`]): the `query_beams` kernel over the
 //! configuration's particles and ground map, its hits read back. The wgpu backend's
 //! `beams.rs` does the same with its own objects.
 //!
@@ -7,9 +7,9 @@
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
+use precip_gpu::recipe::{Frames, beam_bindings, dispatch_size};
 use precip_model::BackendError;
-use precip_model::gpu::{Frames, beam_bindings, dispatch_size};
-use precip_model::lidar::{Beam, BeamHit, BeamParams, BeamQuery};
+use precip_model::sensors::lidar::{Beam, BeamHit, BeamParams, BeamQuery};
 
 use crate::buffer::Buffer;
 use crate::commands::{record_dispatch, submit};

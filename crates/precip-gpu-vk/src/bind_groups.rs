@@ -1,9 +1,9 @@
-//! Descriptor set layouts from `precip_model::bind_groups`' tables (the wgpu
+//! Descriptor set layouts from `precip_gpu::bind_groups`' tables (the wgpu
 //! backend's `bind_groups.rs` makes its bind group layouts from the same tables).
 
 use ash::vk;
+use precip_gpu::bind_groups::{BindingKind, GroupLayout, Stages};
 use precip_model::BackendError;
-use precip_model::bind_groups::{BindingKind, GroupLayout, Stages};
 
 use crate::device::Device;
 use crate::error::map_vk;

@@ -28,7 +28,7 @@ pub const DEPTH: vk::ImageSubresourceRange = vk::ImageSubresourceRange {
 };
 
 /// The depth format of the shadow map and of the camera's depth buffer (wgpu:
-/// `Depth32Float`, `precip_model::gpu::render_bindings::SHADOW_FORMAT_NAME`).
+/// `Depth32Float`, `precip_gpu::recipe::render_bindings::SHADOW_FORMAT_NAME`).
 pub const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
 
 /// What an image is.

@@ -5,7 +5,7 @@
 //!
 //! The same WGSL as every backend: the build script compiles precip-model's programs
 //! to SPIR-V with naga; the kernels, their order, bindings and dispatch sizes come
-//! from `precip_model::gpu`, so this backend and the wgpu one cannot drift apart.
+//! from `precip_gpu::recipe`, so this backend and the wgpu one cannot drift apart.
 //! One file per Vulkan concept, in the spirit of wgpu-hal's `vulkan/` and kajiya:
 //!
 //! - [`instance`] — loader, validation layer, debug messenger (messages kept).

@@ -1,14 +1,14 @@
 //! Shader modules, descriptor set layouts, pipeline layouts and the compute pipelines
-//! of the frame recipe (`precip_model::gpu`), the same kernels and bindings the wgpu
+//! of the frame recipe (`precip_gpu::recipe`), the same kernels and bindings the wgpu
 //! backend uses.
 
 use std::ffi::CString;
 
 use ash::vk;
+use precip_gpu::bind_groups;
+use precip_gpu::recipe::{INIT_PASS, KernelPass, SUBSTEP_PASSES};
+use precip_gpu::shaders::Program;
 use precip_model::BackendError;
-use precip_model::bind_groups;
-use precip_model::gpu::{INIT_PASS, KernelPass, SUBSTEP_PASSES};
-use precip_model::shaders::Program;
 
 use crate::bind_groups::set_layout;
 use crate::device::Device;

@@ -1,8 +1,8 @@
 //! Timestamp queries around each kernel of a step (as the wgpu backend names them).
 
 use ash::vk;
+use precip_gpu::recipe::{SUBSTEP_KERNELS, substep_timings};
 use precip_model::backend::MAX_SUBSTEPS;
-use precip_model::gpu::{SUBSTEP_KERNELS, substep_timings};
 use precip_model::{BackendError, TimingSource, Timings};
 
 use crate::device::Device;

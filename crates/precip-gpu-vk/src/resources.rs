@@ -2,14 +2,14 @@
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
+use precip_gpu::recipe::{
+    DispatchCounts, Frames, cover_bindings, pending_births_bytes, step_bindings,
+};
 use precip_model::backend::MAX_SUBSTEPS;
 use precip_model::cover::GridFrame;
 use precip_model::cover::{CoverGrid, CoverStepParams, CoverTexel, DepositBuffer};
-use precip_model::gpu::{
-    DispatchCounts, Frames, cover_bindings, pending_births_bytes, step_bindings,
-};
-use precip_model::step::StepParams;
-use precip_model::water_waves::initial_waves;
+use precip_model::particles::step::StepParams;
+use precip_model::physics::water_waves::initial_waves;
 use precip_model::wind::{WindParams, WindVolume};
 use precip_model::{BackendError, GroundMap, Particle};
 
@@ -38,11 +38,11 @@ pub struct Resources {
     /// Two `u32` per cover texel.
     pub deposits: Buffer,
     /// The particles to re-birth this sub-step and the birth kernel's indirect
-    /// dispatch (`precip_model::gpu::pending_births_bytes`).
+    /// dispatch (`precip_gpu::recipe::pending_births_bytes`).
     pub pending_births: Buffer,
     /// Ground heights.
     pub ground: Buffer,
-    /// The water bodies' waves (`precip_model::water_waves`).
+    /// The water bodies' waves (`precip_model::physics::water_waves`).
     pub waves: Buffer,
     /// Their grid.
     pub wave_frame: GridFrame,

@@ -1,7 +1,7 @@
 //! The SPIR-V the build script compiled from precip-model's WGSL (one module per
 //! program, every entry point in it).
 
-use precip_model::shaders::Program;
+use precip_gpu::shaders::Program;
 
 /// The programs the build script compiles.
 #[cfg(test)]

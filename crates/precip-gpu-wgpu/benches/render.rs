@@ -7,7 +7,7 @@ use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use precip_gpu_wgpu::WgpuBackend;
-use precip_model::builtin::house_on_plane;
+use precip_model::scene::builtin::house_on_plane;
 use precip_model::{Backend, Setup, View};
 
 fn render(c: &mut Criterion) {

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use precip_gpu_wgpu::WgpuBackend;
-use precip_model::builtin::house_on_plane;
+use precip_model::scene::builtin::house_on_plane;
 use precip_model::wind::WindField;
 use precip_model::{Backend, PrecipitationKind, Setup, View};
 

@@ -1,22 +1,20 @@
 //! [`WgpuBackend`]: the [`Backend`] over wgpu: configure, weather, step, render (see
 //! [`crate::render`]), read-back and timings.
 
-use glam::Vec3;
+use precip_gpu::recipe::{FrameDraws, INIT_PASS, dispatch_size};
+use precip_gpu::shaders::Program;
 use precip_model::cover::{CoverGrid, CoverTexel};
-use precip_model::drag::MAX_SUBSTEP_S;
-use precip_model::gpu::{FrameDraws, INIT_PASS, dispatch_size};
-use precip_model::lidar::{BeamQuery, BeamReturn, UnresolvedAir};
-use precip_model::shaders::Program;
-use precip_model::step::StepParams;
-use precip_model::wind::WindVolume;
+use precip_model::host::HostState;
+use precip_model::sensors::lidar::{BeamQuery, BeamReturn};
 use precip_model::{
     Backend, BackendError, BackendInfo, Camera, DeviceMemory, DrawnCounts, Image, Particle, Setup,
-    TimingSource, Timings, View, Weather, substeps,
+    TimingSource, Timings, View, Weather,
 };
 
-use crate::conv::{NAME, map_scope_error};
 use crate::device::GpuDevice;
-use crate::pipelines::Pipelines;
+use crate::error::{NAME, map_scope_error};
+use crate::programs::Programs;
+use crate::query::Timestamps;
 use crate::readback::read_buffer;
 use crate::render::frame::FrameResources;
 use crate::render::scene::SceneGpu;
@@ -24,23 +22,16 @@ use crate::render::stamps::RenderStamps;
 use crate::render::target::{ColourTarget, DepthBuffer, OFFSCREEN_FORMAT, read_texture};
 use crate::render::{FrameTarget, RenderState, Renderer, encode_frame};
 use crate::resources::{Resources, upload_wind};
-use crate::timestamps::Timestamps;
-use precip_model::shadow_cache::ShadowCache;
+use precip_model::drawing::shadow_cache::ShadowCache;
 
 /// Bytes of one particle on the GPU.
 const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
 
-/// A configured simulation.
+/// A configured simulation: the host state every backend shares, and the device's.
 #[derive(Debug)]
 struct State {
-    setup: Setup,
-    weather: Weather,
-    wind: WindVolume,
-    camera: Camera,
+    host: HostState,
     resources: Resources,
-    /// Step uniforms of the current weather; sub-steps set camera, dt and time.
-    step_template: StepParams,
-    time_s: f64,
     /// Drawing's resources, made on the first render.
     render: Option<RenderState>,
 }
@@ -49,7 +40,7 @@ struct State {
 #[derive(Debug)]
 pub struct WgpuBackend {
     gpu: GpuDevice,
-    pipelines: Pipelines,
+    programs: Programs,
     timestamps: Option<Timestamps>,
     render_stamps: Option<RenderStamps>,
     renderer: Option<Renderer>,
@@ -84,12 +75,12 @@ impl WgpuBackend {
     /// Runs on a device the caller owns.
     #[must_use]
     pub fn with_device(gpu: GpuDevice) -> Self {
-        let pipelines = Pipelines::new(&gpu.device);
+        let programs = Programs::new(&gpu.device);
         let timestamps = Timestamps::new(&gpu);
         let render_stamps = RenderStamps::new(&gpu);
         Self {
             gpu,
-            pipelines,
+            programs,
             timestamps,
             render_stamps,
             renderer: None,
@@ -197,21 +188,16 @@ impl WgpuBackend {
             renderer.prepare_format(&gpu.device, format);
         })?;
         if state.render.is_none() {
-            let settings = &state.setup.render;
-            let scene = match &state.setup.scene {
+            let setup = state.host.setup();
+            let settings = &setup.render;
+            let scene = match &setup.scene {
                 Some(scene) => Some(scoped(&gpu, "uploading the scene", || {
-                    SceneGpu::upload(
-                        &gpu,
-                        &renderer.layouts,
-                        scene,
-                        settings,
-                        &state.setup.ground,
-                    )
+                    SceneGpu::upload(&gpu, &renderer.layouts, scene, settings, &setup.ground)
                 })??),
                 None => None,
             };
             let frame = scoped(&gpu, "preparing to render", || {
-                FrameResources::new(&gpu, &renderer.layouts, &state.resources, &state.setup)
+                FrameResources::new(&gpu, &renderer.layouts, &state.resources, setup)
             })?;
             state.render = Some(RenderState {
                 scene,
@@ -219,7 +205,7 @@ impl WgpuBackend {
                 offscreen: None,
                 depth: None,
                 rendered: false,
-                shadow_bounds_m: state.setup.scene_bounds_m(),
+                shadow_bounds_m: setup.scene_bounds_m(),
                 shadow_cache: ShadowCache::default(),
             });
         }
@@ -240,19 +226,18 @@ impl WgpuBackend {
                 &render.frame.draws,
             ));
         }
-        let setup = &state.setup;
-        let params = setup.render_params(
+        let host = &state.host;
+        let setup = host.setup();
+        let params = host.render_params(
             view,
-            &state.weather,
             render.shadow_bounds_m,
-            state.time_s,
             state.resources.particle_count,
             state.resources.wave_frame,
         );
         let draw_shadow =
             render
                 .shadow_cache
-                .for_frame(setup, &state.weather, &params, state.time_s);
+                .for_frame(setup, host.weather(), &params, host.time_s());
         if let Some(s) = self.render_stamps.as_mut() {
             s.shadow_drawn = draw_shadow;
         }
@@ -272,7 +257,7 @@ impl WgpuBackend {
         };
         let (Some(draws), Some(depth)) = (renderer.draws(format), render_ref.depth.as_ref()) else {
             return Err(cannot_draw(&format!(
-                "no draw pipelines or depth buffer for the target format {format:?}"
+                "no draw programs or depth buffer for the target format {format:?}"
             )));
         };
         scoped(&gpu, "render", || {
@@ -291,7 +276,7 @@ impl WgpuBackend {
                 FrameTarget {
                     colour,
                     depth,
-                    sky: precip_model::render::haze_colour(&setup.render, &state.weather),
+                    sky: precip_model::drawing::render::haze_colour(&setup.render, host.weather()),
                     draw_shadow,
                     detail,
                 },
@@ -326,26 +311,27 @@ impl Backend for WgpuBackend {
 
     fn configure(&mut self, setup: &Setup) -> Result<(), BackendError> {
         self.gpu.limits().check_setup(setup)?;
-        let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume)?;
+        let host = HostState::configure(setup)?;
         let cover = setup.initial_cover()?;
         let (world, camera) = setup.particle_counts();
         let count = world + camera;
         let gpu = &self.gpu;
-        let pipelines = &self.pipelines;
-        let step_template = setup.step_params(&setup.weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
+        let programs = &self.programs;
         let resources = scoped(gpu, "configure", || {
             let resources = Resources::new(
                 gpu,
-                pipelines,
+                programs,
                 count,
                 &setup.ground,
                 &cover,
-                &setup.frames(),
-                &wind,
+                &host.frames(),
+                host.wind(),
             );
-            let params = step_template.at(setup.camera.position_m, MAX_SUBSTEP_S, 0.0);
-            gpu.queue
-                .write_buffer(&resources.step_uniforms, 0, bytemuck::bytes_of(&params));
+            gpu.queue.write_buffer(
+                &resources.step_uniforms,
+                0,
+                bytemuck::bytes_of(&host.init_block()),
+            );
             let mut encoder = gpu
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -356,7 +342,7 @@ impl Backend for WgpuBackend {
                     label: Some(INIT_PASS.entry_point),
                     timestamp_writes: None,
                 });
-                pass.set_pipeline(&pipelines.init);
+                pass.set_pipeline(&programs.init);
                 pass.set_bind_group(0, &resources.step_bind_group, &[0]);
                 let (x, y) = dispatch_size(count);
                 pass.dispatch_workgroups(x, y, 1);
@@ -369,13 +355,8 @@ impl Backend for WgpuBackend {
             t.written = 0;
         }
         self.state = Some(State {
-            setup: setup.clone(),
-            weather: setup.weather,
-            wind,
-            camera: setup.camera,
+            host,
             resources,
-            step_template,
-            time_s: 0.0,
             render: None,
         });
         if let Some(s) = self.render_stamps.as_mut() {
@@ -385,55 +366,44 @@ impl Backend for WgpuBackend {
     }
 
     fn set_weather(&mut self, weather: &Weather) -> Result<(), BackendError> {
-        weather.validate()?;
         let gpu = self.gpu.clone();
         let state = self.state_mut("set_weather")?;
-        let (wind, rebaked) = state.wind.for_field(&weather.wind)?;
-        if rebaked {
-            upload_wind(&gpu, &state.resources.wind_texture, &wind);
+        let change = state.host.set_weather(weather)?;
+        if change.wind_rebaked {
+            upload_wind(&gpu, &state.resources.wind_texture, state.host.wind());
         }
-        state.resources.write_wind_params(&gpu, &wind.gpu_params());
-        state.wind = wind;
-        state.step_template = state
-            .setup
-            .step_params(weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
-        state.weather = *weather;
+        state
+            .resources
+            .write_wind_params(&gpu, &state.host.wind_params());
         Ok(())
     }
 
     fn set_camera(&mut self, camera: &Camera) -> Result<(), BackendError> {
-        camera.validate()?;
-        self.state_mut("set_camera")?.camera = *camera;
-        Ok(())
+        self.state_mut("set_camera")?.host.set_camera(camera)
     }
 
     fn step(&mut self, dt_s: f32) -> Result<(), BackendError> {
-        let (count, h) = substeps(dt_s)?;
         let gpu = self.gpu.clone();
-        let pipelines = &self.pipelines;
+        let programs = &self.programs;
         let timestamps = self.timestamps.as_mut();
         let state = self
             .state
             .as_mut()
             .ok_or(BackendError::NotConfigured { operation: "step" })?;
+        let steps = state.host.substeps(dt_s)?;
+        let count = steps.blocks.len() as u32;
         let resources = &state.resources;
         let stride = resources.uniform_stride;
 
-        // One uniform block per sub-step; the host clock advances as the CPU's does.
+        // One uniform block per sub-step, each at its dynamic offset.
         let mut step_blocks = vec![0u8; (stride * u64::from(count)) as usize];
         let mut cover_blocks = step_blocks.clone();
-        let mut time_s = state.time_s;
-        for k in 0..count as usize {
+        for (k, blocks) in steps.blocks.iter().enumerate() {
             let at = k * stride as usize;
-            let step = state
-                .step_template
-                .at(state.camera.position_m, h, time_s as f32);
-            let cover = state.setup.cover_step_params(&state.weather, h);
-            step_blocks[at..at + size_of_val(&step)].copy_from_slice(bytemuck::bytes_of(&step));
-            cover_blocks[at..at + size_of_val(&cover)].copy_from_slice(bytemuck::bytes_of(&cover));
-            time_s += f64::from(h);
+            let (step, cover) = (&blocks.step, &blocks.cover);
+            step_blocks[at..at + size_of_val(step)].copy_from_slice(bytemuck::bytes_of(step));
+            cover_blocks[at..at + size_of_val(cover)].copy_from_slice(bytemuck::bytes_of(cover));
         }
-
         let written = scoped(&gpu, "step", || {
             gpu.queue
                 .write_buffer(&resources.step_uniforms, 0, &step_blocks);
@@ -460,7 +430,7 @@ impl Backend for WgpuBackend {
                 let counts = resources.dispatch_counts();
                 for k in 0..count {
                     let offset = (u64::from(k) * stride) as u32;
-                    for (kernel, pipeline) in &pipelines.substep {
+                    for (kernel, pipeline) in &programs.substep {
                         pass.set_pipeline(pipeline);
                         let bind_group = match kernel.program {
                             Program::CoverUpdate => &resources.cover_bind_group,
@@ -482,7 +452,7 @@ impl Backend for WgpuBackend {
         if let Some(t) = timestamps {
             t.written = written;
         }
-        state.time_s = time_s;
+        state.host.advance(&steps);
         // Free finished work without waiting for the GPU.
         let _ = gpu.device.poll(wgpu::PollType::Poll);
         Ok(())
@@ -495,7 +465,7 @@ impl Backend for WgpuBackend {
     fn weather(&self) -> Result<Weather, BackendError> {
         self.state
             .as_ref()
-            .map(|s| s.weather)
+            .map(|s| *s.host.weather())
             .ok_or(BackendError::NotConfigured {
                 operation: "weather",
             })
@@ -507,19 +477,13 @@ impl Backend for WgpuBackend {
             operation: "query_beams",
         })?;
         let r = &state.resources;
-        let params = query.params(&beams, r.particle_count, &state.setup.ground);
-        let (gpu, pipelines) = (&self.gpu, &self.pipelines);
+        let params = query.params(&beams, r.particle_count, &state.host.setup().ground);
+        let (gpu, programs) = (&self.gpu, &self.programs);
         let hits = scoped(gpu, "query_beams", || {
-            crate::beams::query_beams(gpu, pipelines, r, &params, &beams)
+            crate::beams::query_beams(gpu, programs, r, &params, &beams)
         })??;
-        let air = UnresolvedAir::of_configuration(
-            &state.setup,
-            &state.weather,
-            state.step_template,
-            state.camera.position_m,
-            state.time_s,
-        );
-        query.answer(NAME, &beams, &hits, &state.weather, &air)
+        let air = state.host.unresolved_air();
+        query.answer(NAME, &beams, &hits, state.host.weather(), &air)
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {
@@ -546,7 +510,7 @@ impl Backend for WgpuBackend {
             u64::from(r.cover_texel_count) * size_of::<CoverTexel>() as u64,
         )?;
         Ok(CoverGrid {
-            frame: state.setup.cover.frame,
+            frame: state.host.setup().cover.frame,
             texels: bytemuck::pod_collect_to_vec(&bytes),
         })
     }

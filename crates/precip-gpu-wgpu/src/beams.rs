@@ -1,21 +1,21 @@
-//! LiDAR beams ([`precip_model::lidar`]): the `query_beams` kernel over the
+//! LiDAR beams ([`precip_model::sensors::lidar`]): the `query_beams` kernel over the
 //! configuration's particles and ground map, its hits read back. The Vulkan backend's
 //! `beams.rs` does the same with its own objects.
 
+use precip_gpu::recipe::{beam_bindings, dispatch_size};
 use precip_model::BackendError;
-use precip_model::gpu::{beam_bindings, dispatch_size};
-use precip_model::lidar::{Beam, BeamHit, BeamParams, BeamQuery};
+use precip_model::sensors::lidar::{Beam, BeamHit, BeamParams, BeamQuery};
 use wgpu::util::DeviceExt;
 
 use crate::device::GpuDevice;
-use crate::pipelines::Pipelines;
+use crate::programs::Programs;
 use crate::readback::read_buffer;
 use crate::resources::Resources;
 
 /// Casts `beams` (validated) with `params`; one hit per beam.
 pub fn query_beams(
     gpu: &GpuDevice,
-    pipelines: &Pipelines,
+    programs: &Programs,
     resources: &Resources,
     params: &BeamParams,
     beams: &[Beam],
@@ -40,7 +40,7 @@ pub fn query_beams(
     });
     let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("precip query_beams"),
-        layout: &pipelines.beams_layout,
+        layout: &programs.beams_layout,
         entries: &[
             wgpu::BindGroupEntry {
                 binding: beam_bindings::PARAMS,
@@ -76,7 +76,7 @@ pub fn query_beams(
             label: Some("query_beams"),
             timestamp_writes: None,
         });
-        pass.set_pipeline(&pipelines.query_beams);
+        pass.set_pipeline(&programs.query_beams);
         pass.set_bind_group(0, &bind_group, &[]);
         let (x, y) = dispatch_size(params.beam_count);
         pass.dispatch_workgroups(x, y, 1);

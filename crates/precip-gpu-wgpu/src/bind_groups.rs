@@ -1,11 +1,11 @@
-//! Bind group layouts from `precip_model::bind_groups`' tables (the Vulkan backend's
+//! Bind group layouts from `precip_gpu::bind_groups`' tables (the Vulkan backend's
 //! `bind_groups.rs` makes its descriptor set layouts from the same tables).
 
 use std::num::NonZeroU64;
 
-use precip_model::bind_groups::{BindingKind, GroupLayout, Stages, TextureSample};
+use precip_gpu::bind_groups::{BindingKind, GroupLayout, Stages, TextureSample};
 
-/// The cover textures' format (`precip_model::gpu::COVER_TEXTURE_FORMAT_NAME`).
+/// The cover textures' format (`precip_gpu::recipe::COVER_TEXTURE_FORMAT_NAME`).
 pub const COVER_TEXTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 fn stages(s: Stages) -> wgpu::ShaderStages {

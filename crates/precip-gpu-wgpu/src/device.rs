@@ -2,7 +2,7 @@
 
 use precip_model::BackendError;
 
-use crate::conv::{map_device_error, no_adapter};
+use crate::error::{map_device_error, no_adapter};
 
 /// A device with its queue and what precip needs to know about it.
 #[derive(Debug, Clone)]

@@ -3,17 +3,17 @@
 //! ## Design
 //!
 //! This crate holds no physics: it runs the WGSL programs of
-//! [`precip_model::shaders`] in the order of the frame recipe in
-//! [`precip_model::gpu`], with the uniform blocks precip-model builds. The CPU
+//! [`precip_gpu::shaders`] in the order of the frame recipe in
+//! [`precip_gpu::recipe`], with the uniform blocks precip-model builds. The CPU
 //! reference runs the same functions in Rust, so the two can be compared.
 //!
 //! - [`device`] — finding adapters and opening a device (or adopting the caller's).
-//! - [`bind_groups`] — bind group layouts from `precip_model::bind_groups`' tables.
-//! - [`pipelines`] — shader modules and compute pipelines.
+//! - [`bind_groups`] — bind group layouts from `precip_gpu::bind_groups`' tables.
+//! - [`programs`] — shader modules and compute pipelines (vk: `programs`).
 //! - [`resources`] — the buffers and the wind texture of one configuration.
-//! - [`timestamps`] — GPU timestamp queries per kernel, where the adapter has them.
+//! - [`query`] — GPU timestamp queries per kernel, where the adapter has them.
 //! - [`readback`] — copying a buffer back (tests and tools; never the frame loop).
-//! - [`conv`] — pure conversions of wgpu errors into [`BackendError`](precip_model::BackendError).
+//! - [`error`] — pure conversions of wgpu errors into [`BackendError`](precip_model::BackendError).
 //! - [`render`] — drawing: scene with cover, culling, sprites and tetrahedra, shadows,
 //!   fog; offscreen targets and read-back.
 //! - [`beams`] — LiDAR beams: the `query_beams` kernel and its read-back.
@@ -28,13 +28,13 @@
 pub mod backend;
 pub mod beams;
 pub mod bind_groups;
-pub mod conv;
 pub mod device;
-pub mod pipelines;
+pub mod error;
+pub mod programs;
+pub mod query;
 pub mod readback;
 pub mod render;
 pub mod resources;
-pub mod timestamps;
 
 pub use backend::WgpuBackend;
 pub use device::{GpuDevice, adapters};

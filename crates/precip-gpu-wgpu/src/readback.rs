@@ -2,8 +2,8 @@
 
 use precip_model::BackendError;
 
-use crate::conv::map_device_error;
 use crate::device::GpuDevice;
+use crate::error::map_device_error;
 
 /// Copies `size` bytes of `source` back, waiting for the GPU.
 pub fn read_buffer(

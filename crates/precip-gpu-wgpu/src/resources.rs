@@ -1,19 +1,19 @@
 //! The buffers, texture and bind groups of one configuration.
 
+use precip_gpu::recipe::{
+    DispatchCounts, Frames, cover_bindings, pending_births_bytes, step_bindings,
+};
 use precip_model::backend::MAX_SUBSTEPS;
 use precip_model::cover::GridFrame;
 use precip_model::cover::{CoverGrid, CoverStepParams, CoverTexel, DepositBuffer};
-use precip_model::gpu::{
-    DispatchCounts, Frames, cover_bindings, pending_births_bytes, step_bindings,
-};
-use precip_model::step::StepParams;
-use precip_model::water_waves::initial_waves;
+use precip_model::particles::step::StepParams;
+use precip_model::physics::water_waves::initial_waves;
 use precip_model::wind::{WindParams, WindVolume};
 use precip_model::{GroundMap, Particle};
 use wgpu::util::DeviceExt;
 
 use crate::device::GpuDevice;
-use crate::pipelines::Pipelines;
+use crate::programs::Programs;
 
 /// Everything a configuration allocates on the device.
 #[derive(Debug)]
@@ -29,11 +29,11 @@ pub struct Resources {
     /// Landed water, two `u32` per cover texel.
     pub deposits: wgpu::Buffer,
     /// The particles to re-birth this sub-step and the birth kernel's indirect
-    /// dispatch (`precip_model::gpu::pending_births_bytes`).
+    /// dispatch (`precip_gpu::recipe::pending_births_bytes`).
     pub pending_births: wgpu::Buffer,
     /// Ground heights, `array<f32>`.
     pub ground: wgpu::Buffer,
-    /// The water bodies' waves (`precip_model::water_waves`).
+    /// The water bodies' waves (`precip_model::physics::water_waves`).
     pub waves: wgpu::Buffer,
     /// Their grid.
     pub wave_frame: GridFrame,
@@ -113,7 +113,7 @@ impl Resources {
     #[must_use]
     pub fn new(
         gpu: &GpuDevice,
-        pipelines: &Pipelines,
+        programs: &Programs,
         particle_count: u32,
         ground: &GroundMap,
         cover: &CoverGrid,
@@ -203,7 +203,7 @@ impl Resources {
 
         let step_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("precip step_particles"),
-            layout: &pipelines.step_layout,
+            layout: &programs.step_layout,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: step_bindings::STEP_PARAMS,
@@ -249,7 +249,7 @@ impl Resources {
         });
         let cover_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("precip cover_update"),
-            layout: &pipelines.cover_layout,
+            layout: &programs.cover_layout,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: cover_bindings::COVER_PARAMS,

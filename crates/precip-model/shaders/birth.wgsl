@@ -1,5 +1,5 @@
-// birth.wgsl: birth and re-birth. Rust twins: precip_model::birth and
-// precip_model::drifting_snow.
+// birth.wgsl: birth and re-birth. Rust twins: precip_model::particles::birth and
+// precip_model::physics::drifting_snow.
 // Needs the globals `step_params: StepParams`, `cover_words: array<f32>` (drifting
 // snow) and ground.wgsl.
 
@@ -110,7 +110,7 @@ fn birth_on_emitter(index: u32, generation: u32) -> Particle {
     );
 }
 
-// Rust: precip_model::birth::LIFT_TRIES.
+// Rust: precip_model::particles::birth::LIFT_TRIES.
 const LIFT_TRIES: u32 = 4u;
 
 // Rust: is_lifted.
@@ -140,7 +140,7 @@ fn initial_lifted(index: u32) -> Particle {
     return p;
 }
 
-// Rust: precip_model::drifting_snow.
+// Rust: precip_model::physics::drifting_snow.
 const COVER_TEXEL_WORDS: u32 = 32u;
 const COVER_WORD_DEPTH: u32 = 2u;
 const COVER_WORD_SALTATION: u32 = 26u;
@@ -254,7 +254,7 @@ fn birth_in_camera_volume(index: u32, generation: u32, position_m: vec3<f32>) ->
     );
 }
 
-// Rust: precip_model::birth::STATIONARY_TRIES.
+// Rust: precip_model::particles::birth::STATIONARY_TRIES.
 const STATIONARY_TRIES: u32 = 16u;
 
 // Rust: slowest_terminal_speed_mps.

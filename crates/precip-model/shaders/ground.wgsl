@@ -1,7 +1,7 @@
-// ground.wgsl: how the ground turns the particles' wind (Rust twin: precip_model::terrain_flow);
+// ground.wgsl: how the ground turns the particles' wind (Rust twin: precip_model::physics::terrain_flow);
 // after ground_map.wgsl.
 
-// Rust: precip_model::terrain_flow (TERRAIN_FLOW_SPAN_M, TERRAIN_FLOW_DEPTH_M).
+// Rust: precip_model::physics::terrain_flow (TERRAIN_FLOW_SPAN_M, TERRAIN_FLOW_DEPTH_M).
 const TERRAIN_FLOW_SPAN_M: f32 = 2.0;
 const TERRAIN_FLOW_DEPTH_M: f32 = 10.0;
 const TERRAIN_FLOW_LOOKAHEAD_M: f32 = 12.0;

@@ -1,4 +1,4 @@
-// ground_map.wgsl: the ground height map. Rust twin: precip_model::ground::GroundMap.
+// ground_map.wgsl: the ground height map. Rust twin: precip_model::particles::ground::GroundMap.
 // Needs the globals `frames: Frames` and `ground_height: array<f32>` (the heights of
 // the texels, then their erodibility: GroundMap::gpu_words).
 

@@ -1,6 +1,6 @@
 // layout.wgsl: every struct that crosses between Rust and the GPU, and grid lookups.
-// Rust twins: precip_model::particle::Particle, precip_model::step::StepParams,
-// precip_cover::GridFrame, precip_model::gpu::Frames, precip_wind::WindParams.
+// Rust twins: precip_model::particles::particle::Particle, precip_model::particles::step::StepParams,
+// precip_cover::GridFrame, precip_model::host::Frames, precip_wind::WindParams.
 
 // 64 bytes; the step reads and writes the first 48 and the water.
 struct Particle {
@@ -13,23 +13,23 @@ struct Particle {
     diameter_m: f32,
     water_kg: f32,
     generation: u32,
-    // r0, 10 bits an axis (Rust: precip_model::particle::rotation0).
+    // r0, 10 bits an axis (Rust: precip_model::particles::particle::rotation0).
     rotation0: u32,
 }
 
-// Rust: precip_model::particle::rotation0::pack.
+// Rust: precip_model::particles::particle::rotation0::pack.
 fn pack_rotation0(units: vec3<f32>) -> u32 {
     let steps = min(vec3<u32>(units * 1024.0), vec3<u32>(1023u));
     return steps.x | (steps.y << 10u) | (steps.z << 20u);
 }
 
-// Rust: precip_model::particle::rotation0::unpack_rad.
+// Rust: precip_model::particles::particle::rotation0::unpack_rad.
 fn rotation0_rad(packed: u32) -> vec3<f32> {
     let steps = vec3<u32>(packed, packed >> 10u, packed >> 20u) & vec3<u32>(1023u);
     return vec3<f32>(steps) * (6.2831855 / 1024.0);
 }
 
-// Particle.flags (Rust: precip_model::particle::flags).
+// Particle.flags (Rust: precip_model::particles::particle::flags).
 const FLAG_ROTATION_INCREASING_X: u32 = 1u;
 const FLAG_KIND_SHIFT: u32 = 4u;
 const FLAG_KIND_MASK: u32 = 3u;
@@ -82,7 +82,7 @@ struct StepParams {
     reserved2: u32,
 }
 
-// The particles to re-birth this sub-step (Rust: precip_model::gpu::pending_births_bytes).
+// The particles to re-birth this sub-step (Rust: precip_gpu::recipe::pending_births_bytes).
 struct PendingBirths {
     count: atomic<u32>,
     indices: array<u32>,

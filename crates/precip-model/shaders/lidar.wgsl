@@ -1,5 +1,5 @@
 // lidar.wgsl: LiDAR beams against the particles and the ground map. Rust twin:
-// precip_model::lidar, function by function. Kernel `query_beams`: one invocation a
+// precip_model::sensors::lidar, function by function. Kernel `query_beams`: one invocation a
 // beam; the workgroup bounds its 64 beams by one cone, reads the particles 64 at a
 // time, keeps in shared memory those the cone may reach, and each beam tests the
 // kept ones (ties go to the lower particle index, as on the CPU).
@@ -25,7 +25,7 @@ struct BeamParams {
     march_step_m: f32,
 }
 
-// Rust: precip_model::gpu::beam_bindings.
+// Rust: precip_gpu::recipe::beam_bindings.
 @group(0) @binding(0) var<uniform> beam_params: BeamParams;
 @group(0) @binding(1) var<uniform> frames: Frames;
 @group(0) @binding(2) var<storage, read> ground_height: array<f32>;

@@ -1,4 +1,4 @@
-// rng.wgsl: counter-based random numbers, bit for bit the Rust precip_model::rng.
+// rng.wgsl: counter-based random numbers, bit for bit the Rust precip_model::particles::rng.
 
 fn pcg_hash(input: u32) -> u32 {
     let state = input * 747796405u + 2891336453u;
@@ -18,7 +18,7 @@ fn random_unit(key: u32, draw: u32) -> f32 {
     return f32(random_u32(key, draw) >> 8u) * (1.0 / 16777216.0);
 }
 
-// Rust: precip_model::rng::draw.
+// Rust: precip_model::particles::rng::draw.
 const DRAW_POSITION_U: u32 = 0u;
 const DRAW_POSITION_V: u32 = 1u;
 const DRAW_VELOCITY_X: u32 = 2u;

@@ -1,5 +1,5 @@
 // splash.wgsl: a raindrop striking a surface throws up a splash droplet in its
-// place. Rust twin: precip_model::splash.
+// place. Rust twin: precip_model::physics::splash.
 
 const SPLASH_THRESHOLD_K: f32 = 57.7;
 const SPLASH_LIFT_M: f32 = 0.01;

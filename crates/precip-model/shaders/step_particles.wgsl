@@ -1,5 +1,5 @@
-// step_particles.wgsl: the particle kernels. Rust twin: precip_model::step::step_particle
-// and precip_model::birth::initial_particle.
+// step_particles.wgsl: the particle kernels. Rust twin: precip_model::particles::step::step_particle
+// and precip_model::particles::birth::initial_particle.
 //
 // The Rust step deposits and re-births inline; here step_particles only appends the
 // particle to the pending births (keeping the position the camera volume needs; a
@@ -13,7 +13,7 @@
 // particles re-born, not under a mask for every particle (lavapipe executes both
 // sides of a divergent branch). reset_births empties the list before each step.
 // Program: layout, rng, physics, wind, ground, deposit, birth, this file
-// (precip_model::shaders::Program::StepParticles).
+// (precip_gpu::shaders::Program::StepParticles).
 
 @group(0) @binding(0) var<uniform> step_params: StepParams;
 @group(0) @binding(1) var<uniform> frames: Frames;
@@ -23,7 +23,7 @@
 @group(0) @binding(5) var<storage, read_write> particles: array<Particle>;
 @group(0) @binding(6) var<storage, read_write> deposits: array<atomic<u32>>;
 @group(0) @binding(7) var<storage, read_write> pending: PendingBirths;
-// The cover texels as words (precip_model::drifting_snow::COVER_TEXEL_WORDS a texel):
+// The cover texels as words (precip_model::physics::drifting_snow::COVER_TEXEL_WORDS a texel):
 // where snow is blowing, for drifting snow's births.
 @group(0) @binding(9) var<storage, read> cover_words: array<f32>;
 
@@ -180,7 +180,7 @@ fn deposit_landed(particle: Particle) {
 }
 
 // Over the pending births only: each invocation walks the list with the dispatch's
-// stride (precip_model::gpu::LIST_ENTRIES_PER_INVOCATION).
+// stride (precip_gpu::recipe::LIST_ENTRIES_PER_INVOCATION).
 @compute @workgroup_size(64)
 fn birth_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let lanes = groups.x * groups.y * 64u;

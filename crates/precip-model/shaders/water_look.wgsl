@@ -1,5 +1,5 @@
 // water_look.wgsl: how water on the scene looks (MODEL.md §6, seed 004). Rust twins:
-// precip_model::water_look, function by function.
+// precip_model::drawing::water_look, function by function.
 
 const WATER_REFRACTIVE_INDEX: f32 = 1.333;
 const WET_GLOSS: f32 = 0.5;

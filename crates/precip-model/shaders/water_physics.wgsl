@@ -1,7 +1,7 @@
 // water_physics.wgsl: water's constants and the numbers built from them, shared by
-// the programs that need them. Rust twins: precip_model::snowflake::WATER_DENSITY_KG_M3,
-// precip_model::splash::{SURFACE_TENSION_N_M, VISCOSITY_PA_S, weber_number},
-// precip_model::water_look::ripple_phase_speed_mps.
+// the programs that need them. Rust twins: precip_model::physics::snowflake::WATER_DENSITY_KG_M3,
+// precip_model::physics::splash::{SURFACE_TENSION_N_M, VISCOSITY_PA_S, weber_number},
+// precip_model::drawing::water_look::ripple_phase_speed_mps.
 
 const WATER_DENSITY_KG_M3: f32 = 1000.0;
 const SURFACE_TENSION_N_M: f32 = 0.0728;

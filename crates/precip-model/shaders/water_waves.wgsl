@@ -1,5 +1,5 @@
 // water_waves.wgsl: rain on water bodies, a height field struck by the drops that
-// land and carried by the damped wave equation. Rust twin: precip_model::water_waves.
+// land and carried by the damped wave equation. Rust twin: precip_model::physics::water_waves.
 // The buffer: WAVE_WORDS_PER_CELL i32 a cell (fixed point, WAVE_UNITS_PER_M): height
 // now, a sub-step before, the strikes summed (then the next height), water (0/1).
 

@@ -1,86 +1,63 @@
-//! The precip model: weather in physical units, snowflake and raindrop physics,
-//! particles and their emitters, the [`Backend`] trait and the CPU reference backend.
+//! The precip model: weather in physical units, the physics of snowflakes,
+//! raindrops and grains, the particles and their emitters, scenes, drawing
+//! formulas, sensors, the host state every backend shares, the [`Backend`] trait
+//! and the CPU reference backend.
 //!
 //! ## Map
 //!
-//! - Weather and derived quantities: [`weather`], [`visibility`].
-//! - Physics (MODEL.md §2): [`snowflake`], [`raindrop`], [`snowfall`] (size spectra),
-//!   [`drag`] (gravity + drag, the stable integrator), [`rotation`].
-//! - Particles (MODEL.md §1): [`particle`] (the GPU layout), [`rng`] (counter-based
-//!   random numbers), [`emitter`] (world emitter, camera volume), [`birth`],
-//!   [`step`] (one particle's step), [`ground`] (what particles land on).
-//! - Scenes: [`scene`] (the neutral triangle scene, validated, with slope eligibility),
-//!   [`top_down`] (its ground map), [`tessellate`] (vertices for the snow's
-//!   displacement), [`builtin`] (a house on a plane).
-//! - Drawing (MODEL.md §5): [`drawing`] (sprite, tetrahedron, view cone, lighting, fog),
-//!   [`render`] (settings and the per-frame block of the renderers).
-//! - Sensors: [`optics`] (extinction, backscatter and MOR at 550/905/1550 nm),
-//!   [`lidar`] (beams against the particles and the scene).
-//! - Contract: [`backend`] (the trait), [`setup`], [`camera`], [`error`].
-//! - [`cpu`] — the reference backend.
-//! - GPU: [`shaders`] (the WGSL sources, joined per program), [`gpu`] (the frame
-//!   recipe, bindings and uniform blocks both GPU backends follow).
+//! Each topic is a folder; every formula is written once in Rust here and once in
+//! WGSL beside it (`shaders/`, listed in [`wgsl`]), with the same names, so a reader
+//! compares them function by function. `docs/model.md` gives each equation, its
+//! source and the numbers it is tested against; `docs/architecture.md` the crates
+//! and how a frame runs.
 //!
-//! Every formula here has a WGSL twin of the same name in `shaders/`, so a reader
-//! compares them function by function. The wind lives in
-//! `precip-wind` and the snow cover in `precip-cover`.
+//! - [`weather`]: what the user sets ([`Weather`], validated) and what follows from
+//!   it (visibility, particle budgets).
+//! - [`physics`]: snowflakes, raindrops, size spectra, drag, rotation, sand and dust,
+//!   splashes, waves on water bodies, the wind near the ground, drifting snow.
+//! - [`particles`]: the particle's GPU layout, counter-based random numbers, the
+//!   emitters, birth, one particle's step, the ground map they land on.
+//! - [`scene`]: the neutral triangle scene, its top-down ground map, tessellation
+//!   and displacement, the built-in demo, the scene packed for the GPU.
+//! - [`drawing`]: sprite, tetrahedron, lighting and fog; render settings and the
+//!   frame's block; the sun's shadow map; how water looks.
+//! - [`sensors`]: optics (extinction, backscatter, MOR) and LiDAR beams.
+//! - [`backend`]: the [`Backend`] contract, [`Setup`], [`Camera`], errors, device
+//!   limits.
+//! - [`host`]: [`host::HostState`], the host side every backend shares (weather,
+//!   wind volume, clock, sub-steps, every uniform block, computed once).
+//! - [`cpu`]: the reference backend.
+//! - [`wgsl`]: the WGSL twins, for `precip-gpu`'s programs.
+//! - [`cover`] and [`wind`]: the snow cover (`precip-cover`) and the wind field
+//!   (`precip-wind`), re-exported.
+//!
+//! The GPU's plan (programs, bindings, recipes) is in the `precip-gpu` crate.
 
 pub mod backend;
-pub mod bind_groups;
-pub mod birth;
-pub mod builtin;
-pub mod camera;
 pub mod cpu;
-pub mod displacement;
-pub mod drag;
 pub mod drawing;
-pub mod drifting_snow;
-pub mod emitter;
-pub mod error;
-pub mod frame_recipe;
-pub mod gpu;
-pub mod gpu_scene;
-pub mod grain;
-pub mod ground;
-pub mod lidar;
-pub mod limits;
-pub mod optics;
-pub mod particle;
-pub mod raindrop;
-pub mod render;
-pub mod rng;
-pub mod rotation;
+pub mod host;
+pub mod particles;
+pub mod physics;
 pub mod scene;
-pub mod setup;
-pub mod shaders;
-pub mod shadow_cache;
-pub mod shadow_fit;
-pub mod snowfall;
-pub mod snowflake;
-pub mod splash;
-pub mod step;
-pub mod terrain_flow;
-pub mod tessellate;
-pub mod top_down;
-pub mod visibility;
-pub mod water_look;
-pub mod water_waves;
+pub mod sensors;
 pub mod weather;
+pub mod wgsl;
 
+pub use backend::camera::{Camera, Image, View};
+pub use backend::error::{BackendError, WeatherError};
+pub use backend::limits::DeviceLimits;
+pub use backend::setup::{CameraVolumeSetup, CoverSetup, EmitterSetup, GrainLift, Setup};
 pub use backend::{
     Backend, BackendInfo, DeviceMemory, DrawnCounts, MAX_STEP_S, PassTiming, TimingSource, Timings,
     substeps,
 };
-pub use camera::{Camera, Image, View};
 pub use cpu::CpuBackend;
-pub use emitter::{CameraVolume, WorldEmitter};
-pub use error::{BackendError, WeatherError};
-pub use ground::GroundMap;
-pub use limits::DeviceLimits;
-pub use particle::{Particle, ParticleKind, ParticleSource};
-pub use render::RenderSettings;
+pub use drawing::render::RenderSettings;
+pub use particles::emitter::{CameraVolume, WorldEmitter};
+pub use particles::ground::GroundMap;
+pub use particles::particle::{Particle, ParticleKind, ParticleSource};
 pub use scene::{Material, Mesh, PreparedScene, Scene, SceneError, SceneReport, TextureRgba8};
-pub use setup::{CameraVolumeSetup, CoverSetup, EmitterSetup, GrainLift, Setup};
 pub use weather::{PrecipitationKind, Weather};
 
 pub use precip_cover as cover;

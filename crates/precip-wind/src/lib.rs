@@ -28,6 +28,7 @@ mod error;
 mod field;
 mod sampler;
 mod volume;
+pub mod wgsl;
 
 pub use error::WindError;
 pub use field::WindField;

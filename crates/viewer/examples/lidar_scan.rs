@@ -8,8 +8,8 @@
 
 use anyhow::Context as _;
 use precip_model::View;
-use precip_model::lidar::{BeamQuery, EchoOrigin};
-use precip_model::optics::Band;
+use precip_model::sensors::lidar::{BeamQuery, EchoOrigin};
+use precip_model::sensors::optics::Band;
 use precip_viewer::backends::{BackendName, open_headless};
 use precip_viewer::demo::DEMO_GLB;
 use precip_viewer::lidar_scan::{SpinningLidar, point_cloud, write_ply};

@@ -1,7 +1,7 @@
 //! The built-in demo scene, written by this code as a small GLB (shipped as
 //! `assets/demo.glb`; `precip demo --out FILE` writes it again): hilly terrain
 //! carrying a `_SNOW_MASK` (a heated patio stays bare), the gabled house of
-//! `precip_model::builtin` (its walls' material says `"snow": false`; the ground under
+//! `precip_model::scene::builtin` (its walls' material says `"snow": false`; the ground under
 //! its eaves is sheltered), a road whose node says `"snow": false`, and fence posts
 //! whose tops hold snow by slope. It shows every mask convention of DESIGN.md §6,
 //! and every surface: grass terrain, an asphalt road with a 2 % camber and a sag
@@ -10,7 +10,7 @@
 //! lifts grains from in sand and dust weather.
 
 use glam::{Vec2, Vec3};
-use precip_model::builtin::{HousePlan, house};
+use precip_model::scene::builtin::{HousePlan, house};
 use serde_json::json;
 
 use crate::glb::{GlbMesh, write_glb};

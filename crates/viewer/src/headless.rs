@@ -202,9 +202,9 @@ fn scan(
     lidar: &crate::lidar_scan::SpinningLidar,
     file: &Path,
 ) -> Result<(u64, u64), HeadlessError> {
-    let query = precip_model::lidar::BeamQuery {
+    let query = precip_model::sensors::lidar::BeamQuery {
         beams: lidar.beams(),
-        band: precip_model::optics::Band::NearInfrared,
+        band: precip_model::sensors::optics::Band::NearInfrared,
         aperture_radius_m: crate::lidar_scan::APERTURE_RADIUS_M,
         extinction_per_m: None,
         sample_unresolved: true,

@@ -2,7 +2,7 @@
 //! points as a PLY file (the `lidar_scan` example writes one beside a rendered frame).
 //!
 //! Each beam reports one point, the stronger echo of the two the backend's beam query
-//! returns ([`precip_model::lidar::BeamReturn::strongest_echo_m`]): the first flake
+//! returns ([`precip_model::sensors::lidar::BeamReturn::strongest_echo_m`]): the first flake
 //! or drop struck, whose reflectance is its backscatter per area
 //! (`π·β_p/A_p`: about 0.22 for snow, whose lidar ratio is 29 sr, and 0.02 for
 //! rain at 905 nm), or the ground behind it at [`GROUND_REFLECTANCE`], seen through
@@ -15,8 +15,8 @@ use std::io::Write as _;
 use std::path::Path;
 
 use glam::Vec3;
-use precip_model::lidar::{Beam, BeamReturn};
-use precip_model::optics::{Band, backscatter_cross_section_m2_sr};
+use precip_model::sensors::lidar::{Beam, BeamReturn};
+use precip_model::sensors::optics::{Band, backscatter_cross_section_m2_sr};
 
 /// The ground's reflectance at the LiDAR's wavelength (soil, grass, asphalt are
 /// 0.1–0.4 at 905 nm).
@@ -182,7 +182,7 @@ pub fn write_ply(path: &Path, points: &[LidarPoint]) -> std::io::Result<()> {
 #[cfg(test)]
 mod tests {
     use precip_model::ParticleKind;
-    use precip_model::lidar::{EchoOrigin, ParticleEcho, TargetEcho};
+    use precip_model::sensors::lidar::{EchoOrigin, ParticleEcho, TargetEcho};
 
     use super::*;
 

@@ -1,9 +1,9 @@
 //! `precip optics`: a weather's optics in a table — from its size spectra, and from
-//! the particles the CPU reference simulates for it ([`precip_model::optics`]).
+//! the particles the CPU reference simulates for it ([`precip_model::sensors::optics`]).
 
 use glam::Vec3;
-use precip_model::optics::{Band, Optics};
-use precip_model::setup::CameraVolumeSetup;
+use precip_model::backend::setup::CameraVolumeSetup;
+use precip_model::sensors::optics::{Band, Optics};
 use precip_model::{Backend, CameraVolume, CpuBackend, Setup, Weather};
 
 /// Particles in the sampled camera volume.

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use glam::Vec3;
-use precip_model::grain::Grain;
+use precip_model::physics::grain::Grain;
 use precip_model::wind::WindField;
 use precip_model::{PrecipitationKind, Weather};
 use serde::{Deserialize, Serialize};

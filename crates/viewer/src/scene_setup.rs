@@ -135,7 +135,7 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
 
 #[cfg(test)]
 mod tests {
-    use precip_model::builtin::house_on_plane;
+    use precip_model::scene::builtin::house_on_plane;
 
     use super::*;
 
@@ -192,7 +192,7 @@ mod tests {
             "centre at x = {}",
             e.model.w_axis.x
         );
-        // Its particles are born up-wind of where they land (precip_model::birth):
+        // Its particles are born up-wind of where they land (precip_model::particles::birth):
         // the same draw in calm air lies down-wind by the fall's drift, ≥ 10 m
         // (3 m/s over a fall of ≥ 10 m at ≤ 3 m/s).
         let calm = Weather {
@@ -202,8 +202,10 @@ mod tests {
         let windy = setup.step_params(&o.weather, Vec3::ZERO, 0.05, 0.0);
         let still = setup.step_params(&calm, Vec3::ZERO, 0.05, 0.0);
         for index in 0..8 {
-            let born = precip_model::birth::birth_on_emitter(index, 0, &windy, &setup.ground);
-            let aim = precip_model::birth::birth_on_emitter(index, 0, &still, &setup.ground);
+            let born =
+                precip_model::particles::birth::birth_on_emitter(index, 0, &windy, &setup.ground);
+            let aim =
+                precip_model::particles::birth::birth_on_emitter(index, 0, &still, &setup.ground);
             assert!(
                 born.position_m.x < aim.position_m.x - 10.0,
                 "born at x = {}, aimed at {}",

@@ -244,7 +244,7 @@ fn wgpu_presenter(
         compatible_surface: Some(&surface),
         ..Default::default()
     }))
-    .map_err(|e| precip_gpu_wgpu::conv::no_adapter(&e))?;
+    .map_err(|e| precip_gpu_wgpu::error::no_adapter(&e))?;
     let backend = WgpuBackend::on_adapter(&adapter)?;
     let mut config = surface
         .get_default_config(&adapter, width, height)

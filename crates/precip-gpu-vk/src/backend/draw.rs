@@ -11,7 +11,7 @@ use crate::render::scene::SceneGpu;
 use crate::render::target::{OFFSCREEN_FORMAT, OffscreenTarget};
 use crate::render::{FrameTarget, RenderState, Renderer, record_frame};
 use crate::resources::{FRAMES_IN_FLIGHT, download};
-use precip_model::gpu::FrameDraws;
+use precip_gpu::recipe::FrameDraws;
 use precip_model::{BackendError, DrawnCounts, View};
 
 /// A swapchain image to draw into: its framebuffer (made for the camera pass of
@@ -83,19 +83,19 @@ impl VkBackend {
             });
         };
         if state.render.is_none() {
-            let settings = &state.setup.render;
-            let scene = match &state.setup.scene {
+            let setup = state.host.setup();
+            let settings = &setup.render;
+            let scene = match &setup.scene {
                 Some(scene) => Some(SceneGpu::upload(
                     device,
                     renderer,
                     scene,
                     settings,
-                    &state.setup.ground,
+                    &setup.ground,
                 )?),
                 None => None,
             };
-            let frame = match FrameResources::new(device, renderer, &state.resources, &state.setup)
-            {
+            let frame = match FrameResources::new(device, renderer, &state.resources, setup) {
                 Ok(f) => f,
                 Err(e) => {
                     if let Some(s) = scene {
@@ -109,10 +109,10 @@ impl VkBackend {
                 frame,
                 offscreen: None,
                 rendered: false,
-                shadow_bounds_m: state.setup.scene_bounds_m(),
+                shadow_bounds_m: setup.scene_bounds_m(),
                 frames_drawn: 0,
                 splat_sums: None,
-                shadow_cache: precip_model::shadow_cache::ShadowCache::default(),
+                shadow_cache: precip_model::drawing::shadow_cache::ShadowCache::default(),
             });
         }
         let Some(render) = state.render.as_mut() else {
@@ -145,19 +145,18 @@ impl VkBackend {
         };
         let zero_splat_sums = (!sums.zeroed).then_some(sums.buffer.raw);
         sums.zeroed = true;
-        let setup = &state.setup;
-        let params = setup.render_params(
+        let host = &state.host;
+        let setup = host.setup();
+        let params = host.render_params(
             view,
-            &state.weather,
             render.shadow_bounds_m,
-            state.time_s,
             state.resources.particle_count,
             state.resources.wave_frame,
         );
         let draw_shadow =
             render
                 .shadow_cache
-                .for_frame(setup, &state.weather, &params, state.time_s);
+                .for_frame(setup, host.weather(), &params, host.time_s());
         let slot = render.frames_drawn % FRAMES_IN_FLIGHT as u64;
         let offset = slot * render.frame.params_stride;
         if let Some(sums) = &render.splat_sums {
@@ -177,7 +176,7 @@ impl VkBackend {
             passes,
             framebuffer,
             size,
-            sky: precip_model::render::haze_colour(&setup.render, &state.weather),
+            sky: precip_model::drawing::render::haze_colour(&setup.render, host.weather()),
             splat_sets: (
                 render.frame.splat_sets[slot as usize],
                 render.frame.resolve_sets[slot as usize],

@@ -84,7 +84,7 @@ impl VkBackend {
                 operation: "present (attach a window first)",
             });
         };
-        precip_model::render::validate_view(view)?;
+        precip_model::drawing::render::validate_view(view)?;
         // The acquire semaphore about to be reused was waited on by a frame that is
         // not the latest submission, so this wait finishes it.
         self.wait_until(FRAMES_IN_FLIGHT - 1)?;

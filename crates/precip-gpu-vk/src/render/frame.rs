@@ -5,11 +5,11 @@
 use ash::vk;
 use glam::UVec3;
 use gpu_allocator::MemoryLocation;
-use precip_model::gpu::{
+use precip_gpu::recipe::{
     DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
     cull_bindings as cb, cull_groups, render_bindings as rb,
 };
-use precip_model::render::RenderParams;
+use precip_model::drawing::render::RenderParams;
 use precip_model::{BackendError, Setup};
 
 use super::Renderer;
@@ -19,7 +19,7 @@ use crate::device::Device;
 use crate::error::map_vk;
 use crate::image::{DEPTH_FORMAT, Image, ImageSpec};
 
-/// The cover textures' format (`precip_model::gpu::COVER_TEXTURE_FORMAT_NAME`).
+/// The cover textures' format (`precip_gpu::recipe::COVER_TEXTURE_FORMAT_NAME`).
 pub const COVER_TEXTURE_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 use crate::resources::{FRAMES_IN_FLIGHT, Resources, to_general};
 

@@ -1,16 +1,16 @@
-//! Descriptor set layouts (from `precip_model::bind_groups`' tables, as the wgpu
+//! Descriptor set layouts (from `precip_gpu::bind_groups`' tables, as the wgpu
 //! backend's bind group layouts) and one pipeline layout per entry point of the
-//! frame recipe, made of its groups (`precip_model::bind_groups::groups_of`): the
+//! frame recipe, made of its groups (`precip_gpu::bind_groups::groups_of`): the
 //! same set layouts in the same order, so sets bound for one stay valid for the next.
 //!
 //! `RenderParams` is dynamic read-only storage (not a uniform: see render_scene.wgsl):
 //! one block per frame in flight, so the host writes frame n + 1's while frame n draws.
 
 use ash::vk;
+use precip_gpu::bind_groups::{self as bg, GroupLayout, groups_of};
+use precip_gpu::frame;
+use precip_gpu::shaders::Program;
 use precip_model::BackendError;
-use precip_model::bind_groups::{self as bg, GroupLayout, groups_of};
-use precip_model::frame_recipe;
-use precip_model::shaders::Program;
 
 use crate::bind_groups::set_layout;
 use crate::device::Device;
@@ -80,9 +80,9 @@ impl RenderLayouts {
         self.splat = set_layout(device, &bg::SPLAT)?;
         self.splat_resolve = set_layout(device, &bg::SPLAT_RESOLVE)?;
         self.cover_texture = set_layout(device, &bg::COVER_TEXTURE)?;
-        let entries = frame_recipe::kernels()
+        let entries = frame::kernels()
             .map(|k| (k.program, k.entry_point))
-            .chain(frame_recipe::draws().map(|(_, d)| (Program::Render, d.entry_points.0)));
+            .chain(frame::draws().map(|(_, d)| (Program::Render, d.entry_points.0)));
         for (program, entry) in entries {
             let sets: Vec<vk::DescriptorSetLayout> = groups_of(program, entry)
                 .unwrap_or(&[])

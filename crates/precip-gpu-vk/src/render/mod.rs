@@ -1,8 +1,8 @@
 //! Drawing on Vulkan: the same frame as the wgpu backend's (`precip_gpu_wgpu::render`),
 //! from the same WGSL and the same data: [`record_frame`] executes
-//! `precip_model::gpu::FRAME_PASSES` (`precip_model::frame_recipe`) as wgpu's
+//! `precip_gpu::recipe::FRAME_PASSES` (`precip_gpu::frame`) as wgpu's
 //! `encode_frame` does, binding each entry point's groups from
-//! `precip_model::bind_groups::groups_of`.
+//! `precip_gpu::bind_groups::groups_of`.
 //!
 //! ## A frame, in one command buffer
 //!
@@ -40,12 +40,12 @@ pub mod target;
 
 use ash::vk;
 use glam::{UVec3, Vec3};
+use precip_gpu::bind_groups::{self as bg, GroupLayout, groups_of};
+use precip_gpu::frame::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
+use precip_gpu::recipe::{DispatchCounts, FRAME_PASSES, dispatch_size};
+use precip_gpu::shaders::Program;
 use precip_model::BackendError;
-use precip_model::bind_groups::{self as bg, GroupLayout, groups_of};
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
-use precip_model::frame_recipe::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
-use precip_model::gpu::{DispatchCounts, FRAME_PASSES, dispatch_size};
-use precip_model::shaders::Program;
 
 use self::frame::FrameResources;
 use self::layouts::RenderLayouts;
@@ -218,7 +218,7 @@ pub struct RenderState {
     /// Frames drawn since configure (picks the uniform block).
     pub frames_drawn: u64,
     /// Whether a frame redraws the shadow map.
-    pub shadow_cache: precip_model::shadow_cache::ShadowCache,
+    pub shadow_cache: precip_model::drawing::shadow_cache::ShadowCache,
     /// The splat's sums, for the last frame's size.
     pub splat_sums: Option<frame::SplatSums>,
 }

@@ -1,4 +1,4 @@
-//! The frame's pipelines, made from the recipe (`precip_model::frame_recipe`): one
+//! The frame's pipelines, made from the recipe (`precip_gpu::frame`): one
 //! graphics pipeline per [`Draw`] (per colour format, like the wgpu backend's; a draw
 //! of the depth-only shadow pass against the shadow pass) and one compute pipeline
 //! per kernel, each with its entry point's pipeline layout
@@ -9,10 +9,10 @@
 use std::ffi::CString;
 
 use ash::vk;
+use precip_gpu::frame::{self, Blend, DepthTarget, Draw, PassWork, Topology};
+use precip_gpu::recipe::SceneVertex;
+use precip_gpu::shaders::Program;
 use precip_model::BackendError;
-use precip_model::frame_recipe::{self, Blend, DepthTarget, Draw, PassWork, Topology};
-use precip_model::gpu::SceneVertex;
-use precip_model::shaders::Program;
 
 use super::layouts::RenderLayouts;
 use crate::device::Device;
@@ -175,7 +175,7 @@ impl DrawPipelines {
         let mut made = Self {
             by_vertex_entry: Vec::new(),
         };
-        for (pass, draw) in frame_recipe::draws() {
+        for (pass, draw) in frame::draws() {
             let render_pass = match pass.work {
                 PassWork::Render(r) if r.depth == DepthTarget::ShadowMap => shadow_pass,
                 _ => camera_pass,
@@ -232,7 +232,7 @@ impl KernelPipelines {
         let mut made = Self {
             by_entry: Vec::new(),
         };
-        for kernel in frame_recipe::kernels() {
+        for kernel in frame::kernels() {
             let entry = kernel.entry_point;
             let made_one = match (module_of(kernel.program), layouts.pipeline_layout(entry)) {
                 (Some(module), Some(layout)) => compute(device, layout, module, entry),

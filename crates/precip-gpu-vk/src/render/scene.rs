@@ -7,9 +7,9 @@ use std::ops::Range;
 use ash::vk;
 use glam::{UVec3, Vec3};
 use gpu_allocator::MemoryLocation;
+use precip_gpu::recipe::{SceneVertex, render_bindings as rb};
 use precip_model::GroundMap;
-use precip_model::gpu::{SceneVertex, render_bindings as rb};
-use precip_model::gpu_scene::{PackedScene, SceneLod};
+use precip_model::scene::gpu_scene::{PackedScene, SceneLod};
 use precip_model::{BackendError, RenderSettings, Scene, TextureRgba8};
 
 use super::Renderer;

@@ -1,5 +1,5 @@
 //! Timestamps around the passes of a frame, named and ordered as the wgpu backend's
-//! (`precip_model::gpu::TIMED_RENDER_PASSES`).
+//! (`precip_gpu::recipe::TIMED_RENDER_PASSES`).
 
 use ash::vk;
 use precip_model::{BackendError, PassTiming};
@@ -8,8 +8,8 @@ use crate::device::Device;
 use crate::error::map_vk;
 
 /// The passes timed, in order.
-pub const PASSES: [&str; precip_model::gpu::TIMED_RENDER_PASSES.len()] =
-    precip_model::gpu::TIMED_RENDER_PASSES;
+pub const PASSES: [&str; precip_gpu::recipe::TIMED_RENDER_PASSES.len()] =
+    precip_gpu::recipe::TIMED_RENDER_PASSES;
 
 /// Queries: two a pass, at its start (`2·i`) and its end (`2·i + 1`), as wgpu's
 /// pass timestamps.

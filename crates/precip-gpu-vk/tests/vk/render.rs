@@ -6,7 +6,7 @@
 use glam::Vec3;
 use precip_gpu_vk::VkBackend;
 use precip_gpu_wgpu::WgpuBackend;
-use precip_model::builtin::house_on_plane;
+use precip_model::scene::builtin::house_on_plane;
 use precip_model::wind::WindField;
 use precip_model::{Backend, BackendError, Camera, Image, PrecipitationKind, Setup, View};
 use proptest::prelude::*;
@@ -207,7 +207,7 @@ fn timings_name_every_pass_of_a_frame() {
     }
     for pass in ["step_particles"]
         .into_iter()
-        .chain(precip_model::gpu::TIMED_RENDER_PASSES)
+        .chain(precip_gpu::recipe::TIMED_RENDER_PASSES)
     {
         let t = timings
             .passes

@@ -2,12 +2,12 @@
 //! lists and indirect draws, the shadow map, the flake texture, the cover's two
 //! filtered textures and the bind groups.
 
-use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
-use precip_model::gpu::{
+use precip_gpu::recipe::{
     DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, cull_bindings as cb, cull_groups,
     render_bindings as rb,
 };
-use precip_model::render::RenderParams;
+use precip_model::drawing::render::RenderParams;
+use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 
 use precip_model::Setup;
 

@@ -1,7 +1,7 @@
 //! Bind group layouts of the render, cull, splat and cover-texture kernels, made from
-//! `precip_model::bind_groups`' tables.
+//! `precip_gpu::bind_groups`' tables.
 
-use precip_model::bind_groups as bg;
+use precip_gpu::bind_groups as bg;
 
 use crate::bind_groups::bind_group_layout;
 

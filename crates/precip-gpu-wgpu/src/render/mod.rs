@@ -3,25 +3,25 @@
 //!
 //! ## A frame
 //!
-//! [`encode_frame`] executes `precip_model::gpu::FRAME_PASSES`
-//! (`precip_model::frame_recipe`): each pass a compute pass or a render pass with its
+//! [`encode_frame`] executes `precip_gpu::recipe::FRAME_PASSES`
+//! (`precip_gpu::frame`): each pass a compute pass or a render pass with its
 //! two timestamps, each kernel and draw with the pipeline made from its recipe entry
-//! and the groups of its entry point (`precip_model::bind_groups::groups_of`).
+//! and the groups of its entry point (`precip_gpu::bind_groups::groups_of`).
 //! Vulkan twin: `precip_gpu_vk::render::record_frame`.
 //!
 //! 0. **cover_texture** — the cover texels into two filtered textures
-//!    (`precip_model::gpu::COVER_TEXTURE_PASS`) that the surfaces sample.
+//!    (`precip_gpu::recipe::COVER_TEXTURE_PASS`) that the surfaces sample.
 //! 1. **shadow** — the scene's displaced geometry from the sun into a depth map.
 //! 2. **scene** — every mesh, displaced by the snow depth and shaded with the cover
 //!    (coverage by the threshold masks, wet darkening, exposure to the sky from the
 //!    ground map, slope and eligibility), Blinn–Phong with the shadow map, fog.
-//! 3. **cull_particles** — three compute kernels (`precip_model::gpu::CULL_PASSES`)
+//! 3. **cull_particles** — three compute kernels (`precip_gpu::recipe::CULL_PASSES`)
 //!    test each particle against the view cone, compact the drawn ones into a snow
 //!    list and a rain list in buffer order, and write two indirect draws' instance
 //!    counts. Culled particles cost no vertex or raster work; with culling off the
 //!    same lists hold every particle, so the images match. Sub-pixel particles are in
 //!    neither list.
-//! 4. **splat_particles** — one kernel (`precip_model::gpu::SPLAT_PASS`) adds each
+//! 4. **splat_particles** — one kernel (`precip_gpu::recipe::SPLAT_PASS`) adds each
 //!    sub-pixel particle's light to the splat sums at its pixel, tested against the
 //!    scene's depth (render_splat.wgsl).
 //! 5. **particles** — the splat sums blended over the scene (and zeroed), then snow
@@ -50,11 +50,11 @@ use self::pipelines::{DrawPipelines, KernelPipelines};
 use self::scene::SceneGpu;
 use self::stamps::RenderStamps;
 use self::target::{ColourTarget, DepthBuffer};
-use precip_model::bind_groups::{self as bg, GroupLayout, groups_of};
-use precip_model::frame_recipe::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
-use precip_model::gpu::{DispatchCounts, FRAME_PASSES, dispatch_size};
-use precip_model::shaders::Program;
-use precip_model::shadow_cache::ShadowCache;
+use precip_gpu::bind_groups::{self as bg, GroupLayout, groups_of};
+use precip_gpu::frame::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
+use precip_gpu::recipe::{DispatchCounts, FRAME_PASSES, dispatch_size};
+use precip_gpu::shaders::Program;
+use precip_model::drawing::shadow_cache::ShadowCache;
 
 /// Layouts and pipelines of one device.
 #[derive(Debug)]

@@ -1,16 +1,16 @@
-//! The frame's pipelines, made from the recipe (`precip_model::frame_recipe`): one
+//! The frame's pipelines, made from the recipe (`precip_gpu::frame`): one
 //! render pipeline per [`Draw`] (per colour format, so the viewer's surface format
 //! and the offscreen sRGB target both work) and one compute pipeline per kernel,
 //! each with the pipeline layout of its entry point's groups
-//! (`precip_model::bind_groups::groups_of`). Vulkan twin: `precip_gpu_vk::render::pipelines`.
+//! (`precip_gpu::bind_groups::groups_of`). Vulkan twin: `precip_gpu_vk::render::pipelines`.
 
-use precip_model::bind_groups::{GroupLayout, groups_of};
-use precip_model::frame_recipe::{self, Blend, Draw, Topology};
-use precip_model::gpu::SceneVertex;
-use precip_model::shaders::Program;
+use precip_gpu::bind_groups::{GroupLayout, groups_of};
+use precip_gpu::frame::{self, Blend, Draw, Topology};
+use precip_gpu::recipe::SceneVertex;
+use precip_gpu::shaders::Program;
 
 use super::layouts::RenderLayouts;
-use crate::pipelines::shader_module;
+use crate::programs::shader_module;
 
 /// The depth format of the shadow map and of the camera's depth buffer.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -145,7 +145,7 @@ impl DrawPipelines {
     ) -> Self {
         let module = shader_module(device, Program::Render);
         Self {
-            by_vertex_entry: frame_recipe::draws()
+            by_vertex_entry: frame::draws()
                 .map(|(_, d)| {
                     (
                         d.entry_points.0,
@@ -172,7 +172,7 @@ impl KernelPipelines {
     pub fn new(device: &wgpu::Device, layouts: &RenderLayouts) -> Self {
         let mut modules: Vec<(Program, wgpu::ShaderModule)> = Vec::new();
         let mut by_entry = Vec::new();
-        for kernel in frame_recipe::kernels() {
+        for kernel in frame::kernels() {
             if !modules.iter().any(|(p, _)| *p == kernel.program) {
                 modules.push((kernel.program, shader_module(device, kernel.program)));
             }

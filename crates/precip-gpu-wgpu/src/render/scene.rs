@@ -2,9 +2,9 @@
 //! for the snow's displacement), and a material bind group per mesh.
 
 use glam::Vec3;
+use precip_gpu::recipe::render_bindings as rb;
 use precip_model::GroundMap;
-use precip_model::gpu::render_bindings as rb;
-use precip_model::gpu_scene::{PackedScene, SceneLod};
+use precip_model::scene::gpu_scene::{PackedScene, SceneLod};
 use precip_model::{BackendError, RenderSettings, Scene, TextureRgba8};
 use wgpu::util::DeviceExt;
 

@@ -7,8 +7,8 @@ use crate::device::GpuDevice;
 use crate::readback::read_buffer;
 
 /// The passes of a frame, in order; pass `i` writes queries `2i` and `2i + 1`.
-pub const RENDER_PASSES: [&str; precip_model::gpu::TIMED_RENDER_PASSES.len()] =
-    precip_model::gpu::TIMED_RENDER_PASSES;
+pub const RENDER_PASSES: [&str; precip_gpu::recipe::TIMED_RENDER_PASSES.len()] =
+    precip_gpu::recipe::TIMED_RENDER_PASSES;
 
 /// The render query set and its resolve buffer.
 #[derive(Debug)]

@@ -3,7 +3,7 @@
 
 use precip_model::{BackendError, Image};
 
-use precip_model::gpu::{SPLAT_BYTES_PER_PIXEL, render_bindings as rb};
+use precip_gpu::recipe::{SPLAT_BYTES_PER_PIXEL, render_bindings as rb};
 
 use super::layouts::RenderLayouts;
 use super::pipelines::DEPTH_FORMAT;

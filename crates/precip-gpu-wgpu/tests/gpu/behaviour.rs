@@ -157,7 +157,7 @@ fn timings_come_from_gpu_timestamps_where_the_adapter_has_them() {
             assert_eq!(timings.source, TimingSource::GpuTimestamps);
             assert_eq!(
                 timings.passes.len(),
-                precip_model::gpu::substep_timings([]).len(),
+                precip_gpu::recipe::substep_timings([]).len(),
                 "one entry a kernel"
             );
             assert!(

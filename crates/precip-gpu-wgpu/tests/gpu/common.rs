@@ -50,14 +50,14 @@ pub fn cpu_run(setup: &Setup, steps: usize, dt: f32) -> CpuBackend {
 /// binding 0 the input bytes, binding 1 an output of `output_bytes`; returns the output.
 pub fn run_probe(
     gpu: &precip_gpu_wgpu::GpuDevice,
-    program: precip_model::shaders::Program,
+    program: precip_gpu::shaders::Program,
     input: &[u8],
     items: u32,
     output_bytes: u64,
 ) -> Vec<u8> {
     use wgpu::util::DeviceExt;
     let device = &gpu.device;
-    let module = precip_gpu_wgpu::pipelines::shader_module(device, program);
+    let module = precip_gpu_wgpu::programs::shader_module(device, program);
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(program.label()),
         layout: None,

@@ -2,10 +2,10 @@
 //! and normals), read back through the `probe_drawing` test kernel.
 
 use glam::Vec3;
+use precip_gpu::recipe::ProbeDrawing;
+use precip_gpu::shaders::Program;
 use precip_model::drawing::{raindrop_tetrahedron_sized, snow_sprite_corners_turned};
-use precip_model::gpu::ProbeDrawing;
-use precip_model::rng::{particle_key, random_unit};
-use precip_model::shaders::Program;
+use precip_model::particles::rng::{particle_key, random_unit};
 
 use crate::common;
 

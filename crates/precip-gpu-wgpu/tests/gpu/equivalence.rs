@@ -213,7 +213,7 @@ fn check(setup: &Setup, steps: usize, dt: f32) {
 }
 
 /// A 14 m/s blizzard against a 3 m wall across the scene: flakes striking it faster
-/// than the snow's transport threshold rise along it (precip_model::step).
+/// than the snow's transport threshold rise along it (precip_model::particles::step).
 #[test]
 fn snow_rebounding_off_a_wall_matches() {
     let mut setup = scenario(11, PrecipitationKind::DrySnow, false, 6_000, false);
@@ -233,7 +233,7 @@ fn snow_rebounding_off_a_wall_matches() {
     check(&setup, 40, 0.05);
 }
 
-/// Drifting snow: births read the cover's blowing snow (precip_model::drifting_snow).
+/// Drifting snow: births read the cover's blowing snow (precip_model::physics::drifting_snow).
 #[test]
 fn drifting_snow_matches() {
     let mut setup = scenario(12, PrecipitationKind::DrySnow, false, 6_000, false);

@@ -1,7 +1,7 @@
 //! Helpers for image tests: pixels, luma, projection, sRGB.
 
 use glam::{Vec2, Vec3};
-use precip_model::render::view_projection;
+use precip_model::drawing::render::view_projection;
 use precip_model::{Image, View};
 
 /// The RGB of pixel `(x, y)`.

@@ -4,7 +4,7 @@
 
 use glam::{Vec2, Vec3};
 use precip_gpu_wgpu::WgpuBackend;
-use precip_model::builtin::{HousePlan, house_on_plane};
+use precip_model::scene::builtin::{HousePlan, house_on_plane};
 use precip_model::wind::WindField;
 use precip_model::{
     Backend, BackendError, Camera, CameraVolume, CameraVolumeSetup, Material, Mesh,
@@ -528,7 +528,7 @@ fn timings_name_every_pass_of_a_frame() {
             eprintln!("{name}: no timestamps on this adapter");
             continue;
         }
-        for pass in precip_model::gpu::TIMED_RENDER_PASSES {
+        for pass in precip_gpu::recipe::TIMED_RENDER_PASSES {
             let t = timings
                 .passes
                 .iter()

@@ -2,8 +2,8 @@
 
 use crate::common;
 
-use precip_model::rng::{particle_key, pcg_hash, random_u32, random_unit};
-use precip_model::shaders::Program;
+use precip_gpu::shaders::Program;
+use precip_model::particles::rng::{particle_key, pcg_hash, random_u32, random_unit};
 
 #[test]
 fn wgsl_rng_equals_rust_rng() {

@@ -11,20 +11,18 @@
 
 use std::time::Instant;
 
-use glam::Vec3;
 use precip_cover::{CoverGrid, DepositBuffer};
-use precip_wind::WindVolume;
 use rayon::prelude::*;
 
-use crate::backend::{Backend, BackendInfo, PassTiming, TimingSource, Timings, substeps};
-use crate::birth::initial_particle;
-use crate::camera::{Camera, Image, View};
-use crate::drag::MAX_SUBSTEP_S;
-use crate::error::BackendError;
-use crate::lidar::{BeamQuery, BeamReturn, UnresolvedAir, query_on_cpu};
-use crate::particle::Particle;
-use crate::setup::Setup;
-use crate::step::{StepInputs, StepParams, step_particle};
+use crate::backend::camera::{Camera, Image, View};
+use crate::backend::error::BackendError;
+use crate::backend::setup::Setup;
+use crate::backend::{Backend, BackendInfo, PassTiming, TimingSource, Timings};
+use crate::host::HostState;
+use crate::particles::birth::initial_particle;
+use crate::particles::particle::Particle;
+use crate::particles::step::{StepInputs, step_particle};
+use crate::sensors::lidar::{BeamQuery, BeamReturn, query_on_cpu};
 use crate::weather::Weather;
 
 /// The most particles the CPU backend holds (5.4 GB of particle state).
@@ -33,19 +31,14 @@ pub const CPU_MAX_PARTICLES: u64 = 1 << 26;
 /// Name of this backend.
 const NAME: &str = "cpu";
 
-/// The state of a configured backend.
+/// The state of a configured backend: the host state every backend shares, and
+/// what the CPU keeps where a GPU keeps buffers.
 #[derive(Debug)]
 struct State {
-    setup: Setup,
-    weather: Weather,
-    wind: WindVolume,
-    camera: Camera,
+    host: HostState,
     particles: Vec<Particle>,
     cover: CoverGrid,
     deposits: DepositBuffer,
-    /// Step uniforms of the current weather; sub-steps set camera, dt and time.
-    step_template: StepParams,
-    time_s: f64,
 }
 
 /// The CPU reference backend.
@@ -71,7 +64,7 @@ impl CpuBackend {
     /// Simulated time since configure, s.
     #[must_use]
     pub fn time_s(&self) -> f64 {
-        self.state.as_ref().map_or(0.0, |s| s.time_s)
+        self.state.as_ref().map_or(0.0, |s| s.host.time_s())
     }
 }
 
@@ -92,25 +85,20 @@ impl Backend for CpuBackend {
     fn configure(&mut self, setup: &Setup) -> Result<(), BackendError> {
         setup.validate(CPU_MAX_PARTICLES, "CPU backend limit")?;
         let start = Instant::now();
-        let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume)?;
+        let host = HostState::configure(setup)?;
         let bake_ms = elapsed_ms(start);
         let cover = setup.initial_cover()?;
-        let params = setup.step_params(&setup.weather, setup.camera.position_m, MAX_SUBSTEP_S, 0.0);
+        let params = host.init_block();
         let particles: Vec<Particle> = (0..params.particle_count)
             .into_par_iter()
             .map(|i| initial_particle(i, &params, &setup.ground))
             .collect();
         let deposits = DepositBuffer::new(cover.texels.len());
         self.state = Some(State {
-            setup: setup.clone(),
-            weather: setup.weather,
-            wind,
-            camera: setup.camera,
+            host,
             particles,
             cover,
             deposits,
-            step_template: params,
-            time_s: 0.0,
         });
         self.timings = vec![PassTiming {
             pass: "wind_bake",
@@ -120,45 +108,34 @@ impl Backend for CpuBackend {
     }
 
     fn set_weather(&mut self, weather: &Weather) -> Result<(), BackendError> {
-        weather.validate()?;
         let state = self.state_mut("set_weather")?;
-        let mut timings = Vec::new();
         let start = Instant::now();
-        let (wind, rebaked) = state.wind.for_field(&weather.wind)?;
-        if rebaked {
-            timings.push(PassTiming {
+        let change = state.host.set_weather(weather)?;
+        self.timings = if change.wind_rebaked {
+            vec![PassTiming {
                 pass: "wind_bake",
                 milliseconds: elapsed_ms(start),
-            });
-        }
-        state.wind = wind;
-        state.step_template = state
-            .setup
-            .step_params(weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
-        state.weather = *weather;
-        self.timings = timings;
+            }]
+        } else {
+            Vec::new()
+        };
         Ok(())
     }
 
     fn set_camera(&mut self, camera: &Camera) -> Result<(), BackendError> {
-        camera.validate()?;
-        self.state_mut("set_camera")?.camera = *camera;
-        Ok(())
+        self.state_mut("set_camera")?.host.set_camera(camera)
     }
 
     fn step(&mut self, dt_s: f32) -> Result<(), BackendError> {
-        let (count, h) = substeps(dt_s)?;
         let state = self.state_mut("step")?;
+        let steps = state.host.substeps(dt_s)?;
         let (mut particle_ms, mut cover_ms) = (0.0, 0.0);
-        for _ in 0..count {
+        for blocks in &steps.blocks {
             let start = Instant::now();
-            let params = state
-                .step_template
-                .at(state.camera.position_m, h, state.time_s as f32);
             let inputs = StepInputs {
-                params: &params,
-                wind: &state.wind,
-                ground: &state.setup.ground,
+                params: &blocks.step,
+                wind: state.host.wind(),
+                ground: &state.host.setup().ground,
                 cover_frame: &state.cover.frame,
                 cover_texels: &state.cover.texels,
                 deposits: &state.deposits,
@@ -173,16 +150,15 @@ impl Backend for CpuBackend {
             particle_ms += elapsed_ms(start);
 
             let start = Instant::now();
-            let cover = state.setup.cover_step_params(&state.weather, h);
             state.cover.step(
                 &mut state.deposits,
-                cover.air(),
-                cover.dt_days,
-                &state.setup.cover.params,
+                blocks.cover.air(),
+                blocks.cover.dt_days,
+                &state.host.setup().cover.params,
             );
             cover_ms += elapsed_ms(start);
-            state.time_s += f64::from(h);
         }
+        state.host.advance(&steps);
         self.timings = vec![
             PassTiming {
                 pass: "step_particles",
@@ -210,7 +186,7 @@ impl Backend for CpuBackend {
     fn weather(&self) -> Result<Weather, BackendError> {
         self.state
             .as_ref()
-            .map(|s| s.weather)
+            .map(|s| *s.host.weather())
             .ok_or(BackendError::NotConfigured {
                 operation: "weather",
             })
@@ -219,16 +195,11 @@ impl Backend for CpuBackend {
     fn query_beams(&mut self, query: &BeamQuery) -> Result<Vec<BeamReturn>, BackendError> {
         let beams = query.validate()?;
         let state = self.state_mut("query_beams")?;
-        let params = query.params(&beams, state.particles.len() as u32, &state.setup.ground);
-        let hits = query_on_cpu(&beams, &params, &state.particles, &state.setup.ground);
-        let air = UnresolvedAir::of_configuration(
-            &state.setup,
-            &state.weather,
-            state.step_template,
-            state.camera.position_m,
-            state.time_s,
-        );
-        query.answer(NAME, &beams, &hits, &state.weather, &air)
+        let ground = &state.host.setup().ground;
+        let params = query.params(&beams, state.particles.len() as u32, ground);
+        let hits = query_on_cpu(&beams, &params, &state.particles, ground);
+        let air = state.host.unresolved_air();
+        query.answer(NAME, &beams, &hits, state.host.weather(), &air)
     }
 
     fn read_cover(&mut self) -> Result<CoverGrid, BackendError> {

@@ -1,7 +1,7 @@
 //! Helpers shared by the CPU backend's integration tests.
 
 use precip_model::cover::{CoverGrid, DepositBuffer};
-use precip_model::step::{StepInputs, StepParams};
+use precip_model::particles::step::{StepInputs, StepParams};
 use precip_model::wind::WindVolume;
 use precip_model::{Backend, CpuBackend, Particle, Setup};
 

@@ -4,7 +4,7 @@ use crate::common;
 
 use glam::{UVec2, Vec2, Vec3};
 use precip_model::cover::{CoverFeed, GridFrame};
-use precip_model::step::StepEvent;
+use precip_model::particles::step::StepEvent;
 use precip_model::wind::WindField;
 use precip_model::{
     Backend, Camera, CameraVolume, CameraVolumeSetup, GroundMap, ParticleSource, PrecipitationKind,
@@ -304,7 +304,7 @@ fn a_warm_spell_melts_the_cover_and_wets_the_ground() {
 #[test]
 fn landing_events_deposit_and_re_birth() {
     use precip_model::cover::DepositBuffer;
-    use precip_model::step::step_particle;
+    use precip_model::particles::step::step_particle;
     use precip_model::wind::WindVolume;
 
     let setup = Setup::over_flat_ground(10.0, 5, 5.0, 10);
@@ -313,7 +313,7 @@ fn landing_events_deposit_and_re_birth() {
     let wind = WindVolume::bake(&weather.wind, &setup.wind_volume).expect("valid");
     let deposits = DepositBuffer::new(setup.cover.frame.texel_count());
     let inputs = common::step_inputs(&setup, &params, &wind, &deposits);
-    let mut p = precip_model::birth::birth_on_emitter(3, 0, &params, &setup.ground);
+    let mut p = precip_model::particles::birth::birth_on_emitter(3, 0, &params, &setup.ground);
     p.position_m = Vec3::new(1.0, 0.01, 1.0);
     p.velocity_mps = Vec3::new(0.0, -1.0, 0.0);
     p.water_kg = 0.25;
@@ -338,7 +338,7 @@ fn landing_events_deposit_and_re_birth() {
 #[test]
 fn flakes_blown_against_a_wall_rise_along_it_in_a_strong_wind_and_settle_in_a_light_one() {
     use precip_model::cover::DepositBuffer;
-    use precip_model::step::step_particle;
+    use precip_model::particles::step::step_particle;
     use precip_model::wind::WindVolume;
 
     let mut setup = Setup::over_flat_ground(10.0, 10, 5.0, 10);
@@ -359,7 +359,7 @@ fn flakes_blown_against_a_wall_rise_along_it_in_a_strong_wind_and_settle_in_a_li
         let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume).expect("valid");
         let deposits = DepositBuffer::new(setup.cover.frame.texel_count());
         let inputs = common::step_inputs(&setup, &params, &wind, &deposits);
-        let mut p = precip_model::birth::birth_on_emitter(3, 0, &params, &setup.ground);
+        let mut p = precip_model::particles::birth::birth_on_emitter(3, 0, &params, &setup.ground);
         // 1 m up, just before the wall, moving into it with the wind.
         p.position_m = Vec3::new(-0.1, 1.0, 0.3);
         p.velocity_mps = Vec3::new(wind_mps, -1.0, 0.0);
@@ -381,7 +381,7 @@ fn flakes_blown_against_a_wall_rise_along_it_in_a_strong_wind_and_settle_in_a_li
 
 #[test]
 fn particles_land_on_the_roof_of_a_scene_and_never_inside_the_house() {
-    use precip_model::builtin::{HousePlan, house_on_plane};
+    use precip_model::scene::builtin::{HousePlan, house_on_plane};
     let plan = HousePlan::default();
     let (mut setup, _) = Setup::over_scene(house_on_plane(), 64, 4.0, 6_000).expect("valid");
     setup.cover.time_scale = 200.0;
@@ -431,7 +431,7 @@ fn particles_land_on_the_roof_of_a_scene_and_never_inside_the_house() {
 
 #[test]
 fn flakes_blown_under_an_eave_pile_at_the_wall_not_on_the_roof_edge() {
-    use precip_model::builtin::{HousePlan, house_on_plane};
+    use precip_model::scene::builtin::{HousePlan, house_on_plane};
     let plan = HousePlan::default();
     let (mut setup, _) = Setup::over_scene(house_on_plane(), 88, 4.0, 12_000).expect("valid");
     setup.cover.time_scale = 200.0;

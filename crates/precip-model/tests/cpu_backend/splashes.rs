@@ -5,10 +5,10 @@ use crate::common;
 
 use glam::Vec3;
 use precip_model::cover::DepositBuffer;
-use precip_model::raindrop::{draw_raindrop_diameter_mm, raindrop_terminal_speed_mps};
-use precip_model::rng::particle_key;
-use precip_model::splash::{SPLASH_THRESHOLD_K, splash_number};
-use precip_model::step::{StepEvent, step_particle};
+use precip_model::particles::rng::particle_key;
+use precip_model::particles::step::{StepEvent, step_particle};
+use precip_model::physics::raindrop::{draw_raindrop_diameter_mm, raindrop_terminal_speed_mps};
+use precip_model::physics::splash::{SPLASH_THRESHOLD_K, splash_number};
 use precip_model::wind::WindVolume;
 use precip_model::{Particle, PrecipitationKind, Setup, Weather};
 
@@ -27,7 +27,7 @@ fn run(seed: u32, steps: usize) -> (usize, usize, Vec<Particle>) {
     let deposits = DepositBuffer::new(setup.cover.frame.texel_count());
     let template = setup.step_params(&setup.weather, Vec3::ZERO, 0.05, 0.0);
     let mut particles: Vec<Particle> = (0..3_000)
-        .map(|i| precip_model::birth::initial_particle(i, &template, &setup.ground))
+        .map(|i| precip_model::particles::birth::initial_particle(i, &template, &setup.ground))
         .collect();
     let (mut landed, mut splashed) = (0, 0);
     for k in 0..steps {
@@ -51,7 +51,7 @@ fn splashes_follow_the_landings_and_the_seed() {
     let (landed, splashed, particles) = run(7, 400);
     let flying = particles
         .iter()
-        .filter(|p| p.flags & precip_model::particle::flags::SPLASH != 0)
+        .filter(|p| p.flags & precip_model::particles::particle::flags::SPLASH != 0)
         .count();
     // Every splash droplet lands again as a plain landing, save those still flying:
     // the drops' own strikes are the landings less the droplets' plus the splashes.
@@ -59,7 +59,7 @@ fn splashes_follow_the_landings_and_the_seed() {
     let share = splashed as f64 / strikes as f64;
     // Expected: the share of drops born (from the flux's spectrum) that strike above
     // the threshold at their terminal speed.
-    let slope = precip_model::raindrop::marshall_palmer_slope_per_mm(20.0);
+    let slope = precip_model::physics::raindrop::marshall_palmer_slope_per_mm(20.0);
     let n = 20_000;
     let above = (0..n)
         .filter(|&i| {

@@ -3,7 +3,7 @@
 
 use glam::Vec2;
 use precip_gpu_wgpu::{WgpuBackend, adapters};
-use precip_model::builtin::HousePlan;
+use precip_model::scene::builtin::HousePlan;
 use precip_model::{Backend, View, Weather};
 use precip_viewer::demo::{DEMO_GLB, PATIO, ROAD_X_M};
 use precip_viewer::headless::run_headless;

@@ -1,0 +1,390 @@
+// cover_update.wgsl: the cover kernel, the snow's drift (the wind factor, then two
+// kernels an iteration) and the two kernels of an overland-flow iteration. Rust
+// twin: precip_cover::CoverGrid::{step, drift_snow, flow_water}.
+// Program: layout, deposit, water physics, cover, blowing, this file
+// (precip_gpu::shaders::Program::CoverUpdate).
+
+@group(0) @binding(0) var<uniform> cover_params: CoverStepParams;
+@group(0) @binding(1) var<storage, read_write> cover: array<CoverTexel>;
+@group(0) @binding(2) var<storage, read_write> deposits: array<atomic<u32>>;
+
+@compute @workgroup_size(64)
+fn cover_update(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= cover_params.texel_count) {
+        return;
+    }
+    // Read and clear this texel's landed water (fed by particles) or use the rate.
+    let snow_units = atomicExchange(&deposits[DEPOSIT_CHANNELS * i + DEPOSIT_SNOW], 0u);
+    let rain_units = atomicExchange(&deposits[DEPOSIT_CHANNELS * i + DEPOSIT_RAIN], 0u);
+    let grain_units = atomicExchange(&deposits[DEPOSIT_CHANNELS * i + DEPOSIT_GRAINS], 0u);
+    var texel = cover[i];
+    // Grains come from particles alone, whatever the texel's feed.
+    texel.dust_kg_m2 += f32(grain_units) / DEPOSIT_UNITS_PER_MM;
+    var snow_mm = cover_params.snow_rate_mm_per_day * cover_params.dt_days;
+    var rain_mm = cover_params.rain_rate_mm_per_day * cover_params.dt_days;
+    if (texel.feed == COVER_FEED_PARTICLES) {
+        snow_mm = f32(snow_units) / DEPOSIT_UNITS_PER_MM;
+        rain_mm = f32(rain_units) / DEPOSIT_UNITS_PER_MM;
+    }
+    cover[i] = update_texel(texel, snow_mm, rain_mm, cover_params);
+}
+
+// water.rs: overland flow. Neighbour k of texel i: -x, +x, -z, +z.
+fn neighbour_of(i: u32, k: u32, p: CoverStepParams) -> i32 {
+    let nx = i32(p.texels_x);
+    let nz = i32(p.texel_count / p.texels_x);
+    let x = i32(i % p.texels_x);
+    let z = i32(i / p.texels_x);
+    var offsets = array<vec2<i32>, 4>(vec2<i32>(-1, 0), vec2<i32>(1, 0), vec2<i32>(0, -1), vec2<i32>(0, 1));
+    let o = offsets[k];
+    let a = x + o.x;
+    let b = z + o.y;
+    if (a < 0 || a >= nx || b < 0 || b >= nz) {
+        return -1;
+    }
+    return a + nx * b;
+}
+
+fn water_outflow_of(i: u32, tau_s: f32, p: CoverStepParams) -> vec4<f32> {
+    let t = cover[i];
+    let d_mm = t.standing_mm;
+    if (d_mm <= STILL_WATER_MM || t.surface == SURFACE_WATER) {
+        return vec4<f32>(0.0);
+    }
+    let n = surface_water(t.surface).manning_n;
+    let z_i = t.ground_m;
+    let h_i = z_i + d_mm * 1.0e-3;
+    var out = vec4<f32>(0.0);
+    var drops = vec4<f32>(0.0);
+    var faces_down = 0u;
+    for (var k = 0u; k < 4u; k += 1u) {
+        var dx = p.cell_z_m;
+        if (k < 2u) {
+            dx = p.cell_x_m;
+        }
+        let j = neighbour_of(i, k, p);
+        var z_j = 0.0;
+        var h_j = 0.0;
+        if (j >= 0) {
+            let o = cover[u32(j)];
+            z_j = o.ground_m;
+            h_j = o.ground_m + o.standing_mm * 1.0e-3;
+        } else {
+            let opposite = neighbour_of(i, k ^ 1u, p);
+            var z_o = z_i;
+            if (opposite >= 0) {
+                z_o = cover[u32(opposite)].ground_m;
+            }
+            z_j = min(z_i, 2.0 * z_i - z_o);
+            h_j = z_j;
+        }
+        let drop_m = h_i - h_j;
+        let h_flow = h_i - max(z_i, z_j);
+        if (drop_m <= 0.0 || h_flow <= 0.0) {
+            continue;
+        }
+        out[k] = pow(h_flow, 5.0 / 3.0) * sqrt(drop_m / dx) * tau_s / (n * dx);
+        if (j >= 0) {
+            drops[k] = drop_m;
+            faces_down += 1u;
+        } else {
+            drops[k] = 3.0e38;
+        }
+    }
+    let share = 0.5 / f32(max(faces_down, 1u));
+    var total = 0.0;
+    for (var k = 0u; k < 4u; k += 1u) {
+        out[k] = min(out[k], share * drops[k]) * 1.0e3;
+        total += out[k];
+    }
+    if (total > d_mm) {
+        out *= d_mm / total;
+    }
+    return out;
+}
+
+// One flow iteration, first pass: every texel's four outflows (its own field only).
+@compute @workgroup_size(64)
+fn water_outflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= cover_params.texel_count) {
+        return;
+    }
+    cover[i].outflow_mm = water_outflow_of(i, cover_params.flow_iteration_s, cover_params);
+}
+
+// Second pass: every texel sends its outflows and takes its neighbours' toward it
+// (precip_cover::water::{water_inflow_of, apply_flow}).
+@compute @workgroup_size(64)
+fn water_inflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= cover_params.texel_count) {
+        return;
+    }
+    var t = cover[i];
+    var out_inside = 0.0;
+    var out_edge = 0.0;
+    var inflow = 0.0;
+    for (var k = 0u; k < 4u; k += 1u) {
+        let j = neighbour_of(i, k, cover_params);
+        if (j >= 0) {
+            out_inside += t.outflow_mm[k];
+            inflow += cover[u32(j)].outflow_mm[k ^ 1u];
+        } else {
+            out_edge += t.outflow_mm[k];
+        }
+    }
+    t.net_inflow_mm += inflow - out_inside;
+    t.runoff_mm += out_edge;
+    if (t.surface == SURFACE_WATER) {
+        t.runoff_mm += inflow;
+    } else {
+        t.standing_mm = max(t.standing_mm + inflow - out_inside - out_edge, 0.0);
+    }
+    cover[i] = t;
+}
+
+// drift.rs: snow moved by the wind and by gravity.
+const SNOW_DRIFT_ITERATIONS: u32 = 8u;
+const WIND_PACKED_DENSITY_KG_M3: f32 = 300.0;
+const WAKE_LENGTH_RATIO: f32 = 12.0;
+const SHELTER_REACH_M: f32 = 60.0;
+const SHELTER_SAMPLES: u32 = 128u;
+const SHELTER_RELIEF_M: f32 = 0.3;
+const TERRAIN_SPAN_M: f32 = 3.0;
+const TERRAIN_SAMPLES: u32 = 16u;
+const FULL_CURVATURE: f32 = 0.05;
+const NO_SNOW_MM: f32 = 1.0e-6;
+
+fn texel_surface_m(t: CoverTexel) -> f32 {
+    return t.ground_m + t.depth_mm * 1.0e-3;
+}
+
+// The surface height at world xz: the nearest texel's (off the grid, the edge's).
+fn snow_surface_at(xz: vec2<f32>, fallback: f32) -> f32 {
+    let p = cover_params;
+    let texels = vec2<f32>(f32(p.texels_x), f32(p.texel_count / p.texels_x));
+    let t = (xz - vec2<f32>(p.origin_x_m, p.origin_z_m)) / vec2<f32>(p.cell_x_m, p.cell_z_m);
+    let cell = clamp(floor(t), vec2<f32>(0.0), max(texels - 1.0, vec2<f32>(0.0)));
+    let index = u32(cell.x) + p.texels_x * u32(cell.y);
+    if (index >= p.texel_count) {
+        return fallback;
+    }
+    return texel_surface_m(cover[index]);
+}
+
+fn cover_texel_centre(i: u32) -> vec2<f32> {
+    let p = cover_params;
+    let ij = vec2<f32>(f32(i % p.texels_x), f32(i / p.texels_x));
+    return vec2<f32>(p.origin_x_m, p.origin_z_m) + (ij + 0.5) * vec2<f32>(p.cell_x_m, p.cell_z_m);
+}
+
+fn snow_wind_factor_of(i: u32, wind_mps: vec2<f32>) -> f32 {
+    let speed = length(wind_mps);
+    if (speed <= 0.0) {
+        return 1.0;
+    }
+    let dir = wind_mps / speed;
+    let p = cover_texel_centre(i);
+    let h = texel_surface_m(cover[i]);
+    let cell = max(min(cover_params.cell_x_m, cover_params.cell_z_m), 1.0e-3);
+    let steps = clamp(u32(ceil(TERRAIN_SPAN_M / cell)), 1u, TERRAIN_SAMPLES);
+    var up = 0.0;
+    var down = 0.0;
+    for (var k = 1u; k <= steps; k += 1u) {
+        let d = TERRAIN_SPAN_M * f32(k) / f32(steps);
+        up += snow_surface_at(p - dir * d, h);
+        down += snow_surface_at(p + dir * d, h);
+    }
+    up /= f32(steps);
+    down /= f32(steps);
+    let reach = TERRAIN_SPAN_M * f32(steps + 1u) / f32(2u * steps);
+    let slope = clamp((h - up) / reach, -0.5, 0.5);
+    let curvature = clamp((h - 0.5 * (up + down)) / (2.0 * reach) / FULL_CURVATURE * 0.5, -0.5, 0.5);
+    let terrain = 1.0 + 0.5 * slope + 0.5 * curvature;
+    let samples = clamp(u32(ceil(SHELTER_REACH_M / cell)), 1u, SHELTER_SAMPLES);
+    let spacing = SHELTER_REACH_M / f32(samples);
+    var shelter = 0.0;
+    for (var k = 1u; k <= samples; k += 1u) {
+        let d = spacing * f32(k);
+        shelter = max(shelter, (snow_surface_at(p - dir * d, h) - h - SHELTER_RELIEF_M) / d);
+    }
+    let wake = WAKE_LENGTH_RATIO * shelter;
+    return terrain / (1.0 + wake * wake);
+}
+
+// Every texel's wind factor, once a step before the drift's iterations.
+@compute @workgroup_size(64)
+fn snow_wind(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= cover_params.texel_count) {
+        return;
+    }
+    let wind = vec2<f32>(cover_params.wind_x_mps, cover_params.wind_z_mps);
+    let factor = snow_wind_factor_of(i, wind);
+    cover[i].wind_factor = factor;
+}
+
+// Whether the wind blows out of a texel through face k (-x, +x, -z, +z), or
+// (outward == false) into it.
+fn faces_wind(k: u32, wind_mps: vec2<f32>, outward: bool) -> bool {
+    var component = wind_mps.y;
+    if (k < 2u) {
+        component = wind_mps.x;
+    }
+    if ((k % 2u == 0u) == outward) {
+        return component < 0.0;
+    }
+    return component > 0.0;
+}
+
+fn face_wind_component(k: u32, wind_mps: vec2<f32>) -> f32 {
+    if (k < 2u) {
+        return abs(wind_mps.x);
+    }
+    return abs(wind_mps.y);
+}
+
+fn face_spacing_m(k: u32, p: CoverStepParams) -> f32 {
+    if (k < 2u) {
+        return p.cell_x_m;
+    }
+    return p.cell_z_m;
+}
+
+// A drift iteration, first pass: every texel's outflows (its own fields only).
+@compute @workgroup_size(64)
+fn snow_outflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= cover_params.texel_count) {
+        return;
+    }
+    let p = cover_params;
+    let t = cover[i];
+    cover[i].outflow_mm = vec4<f32>(0.0);
+    cover[i].moving_density_kg_m3 = 0.0;
+    cover[i].saltation_kg_per_m_s = 0.0;
+    if (t.swe_mm <= NO_SNOW_MM || t.depth_mm <= 0.0) {
+        return;
+    }
+    let density = t.swe_mm * 1000.0 / t.depth_mm;
+    let wind_mps = vec2<f32>(p.wind_x_mps, p.wind_z_mps);
+    let speed = length(wind_mps);
+    let h_i = texel_surface_m(t);
+    let wet = t.liquid_mm > WET_SNOW_LIQUID_FRACTION * t.swe_mm;
+    let threshold = threshold_friction_velocity_mps(p.air_temperature_c, density, wet);
+    var flux = saltation_flux_kg_per_m_s(
+        friction_velocity_mps(speed * t.wind_factor),
+        threshold,
+        air_density_kg_m3(p.air_temperature_c),
+    );
+    var wind = vec4<f32>(0.0);
+    var excess = vec4<f32>(0.0);
+    var faces_down = 0u;
+    for (var k = 0u; k < 4u; k += 1u) {
+        let dx = face_spacing_m(k, p);
+        let j = neighbour_of(i, k, p);
+        if (faces_wind(k, wind_mps, true) && speed > 0.0) {
+            wind[k] = flux * face_wind_component(k, wind_mps) / speed * p.drift_iteration_s / dx;
+        }
+        if (j >= 0) {
+            let rest = max(texel_surface_m(cover[u32(j)]) + p.snow_repose_tan * dx, t.ground_m + 0.5 * p.snow_repose_tan * dx);
+            excess[k] = max(h_i - rest, 0.0);
+            if (excess[k] > 0.0) {
+                faces_down += 1u;
+            }
+        }
+    }
+    let share = 0.5 / f32(max(faces_down, 1u));
+    let slide = share * excess * density;
+    let wind_total = wind.x + wind.y + wind.z + wind.w;
+    let slide_total = slide.x + slide.y + slide.z + slide.w;
+    let total = wind_total + slide_total;
+    if (total <= 0.0) {
+        return;
+    }
+    let scale = min(t.swe_mm / total, 1.0);
+    flux *= scale;
+    let wind_density = max(density, WIND_PACKED_DENSITY_KG_M3);
+    let volume = wind_total / wind_density + slide_total / density;
+    cover[i].outflow_mm = (wind + slide) * scale;
+    cover[i].moving_density_kg_m3 = total / volume;
+    if (wind_total > 0.0) {
+        cover[i].saltation_kg_per_m_s = flux;
+    }
+}
+
+// Second pass: every texel sends its outflows and takes its neighbours' toward it
+// (precip_cover::drift::{snow_inflow_of, apply_drift}).
+@compute @workgroup_size(64)
+fn snow_inflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    if (i >= cover_params.texel_count) {
+        return;
+    }
+    let p = cover_params;
+    var t = cover[i];
+    let wind_mps = vec2<f32>(p.wind_x_mps, p.wind_z_mps);
+    let speed = length(wind_mps);
+    var out_inside = 0.0;
+    var out_edge = 0.0;
+    var in_mm = 0.0;
+    var in_edge_mm = 0.0;
+    var in_depth_mm = 0.0;
+    for (var k = 0u; k < 4u; k += 1u) {
+        let j = neighbour_of(i, k, p);
+        if (j >= 0) {
+            out_inside += t.outflow_mm[k];
+            let o = cover[u32(j)];
+            let arriving = o.outflow_mm[k ^ 1u];
+            if (arriving > 0.0) {
+                in_mm += arriving;
+                in_depth_mm += arriving * 1000.0 / o.moving_density_kg_m3;
+            }
+        } else {
+            out_edge += t.outflow_mm[k];
+            if (faces_wind(k, wind_mps, false) && speed > 0.0 && t.saltation_kg_per_m_s > 0.0) {
+                let arriving = t.saltation_kg_per_m_s * face_wind_component(k, wind_mps) / speed
+                    * p.drift_iteration_s / face_spacing_m(k, p);
+                in_mm += arriving;
+                in_edge_mm += arriving;
+                in_depth_mm += arriving * 1000.0 / t.moving_density_kg_m3;
+            }
+        }
+    }
+    let out = out_inside + out_edge;
+    if (out > 0.0 && t.swe_mm > 0.0) {
+        t.depth_mm = max(t.depth_mm * (1.0 - out / t.swe_mm), 0.0);
+        t.swe_mm = max(t.swe_mm - out, 0.0);
+        t.peak_swe_mm = max(t.peak_swe_mm - out, t.swe_mm);
+    }
+    // Snow passes on where the wind here lifts fresh wind-packed snow, even where
+    // none may lie; elsewhere the eligible share stays and the rest melts.
+    var eligibility = clamp(t.eligibility, 0.0, 1.0);
+    let in_transit = friction_velocity_mps(speed * t.wind_factor)
+        > threshold_friction_velocity_mps(p.air_temperature_c, WIND_PACKED_DENSITY_KG_M3, false);
+    if (in_transit) {
+        eligibility = 1.0;
+    }
+    let kept = in_mm * eligibility;
+    if (kept > 0.0) {
+        let swe = t.swe_mm + kept;
+        t.age_days *= t.swe_mm / swe;
+        t.swe_mm = swe;
+        t.depth_mm += in_depth_mm * eligibility;
+        t.peak_swe_mm += kept;
+    }
+    let melted = in_mm - kept;
+    if (t.surface == SURFACE_WATER) {
+        t.runoff_mm += melted;
+    } else {
+        t.standing_mm += melted;
+    }
+    t.drifted_mm += in_mm - out;
+    t.edge_drifted_mm += in_edge_mm - out_edge;
+    if (t.swe_mm <= NO_SNOW_MM) {
+        t.depth_mm = 0.0;
+    }
+    cover[i] = t;
+}

@@ -1,0 +1,56 @@
+// render_layout.wgsl: the renderer's shared structs. Rust twins:
+// precip_model::drawing::render::RenderParams, the indirect draw arguments of wgpu/Vulkan.
+
+struct RenderParams {
+    view_proj: mat4x4<f32>,
+    sun_view_proj: mat4x4<f32>,
+    camera_m_cone_cos: vec4<f32>,
+    view_dir_pixel_angle: vec4<f32>,
+    to_sun_extinction: vec4<f32>,
+    sky_colour_time: vec4<f32>,
+    // k_A·I_A, k_D·I_D, k_S·I_S, shininess
+    light: vec4<f32>,
+    // shadow colour, shadow density, attenuation, shadow-map texel (uv)
+    shadow: vec4<f32>,
+    // snow scale, min px, min opacity, rain streak s
+    sizing: vec4<f32>,
+    // rain opacity, displacement on, full-cover depth mm, mask edge
+    cover_look: vec4<f32>,
+    // wet darkening, albedo decay per day, exposure tolerance m, flake mean opacity
+    cover_look2: vec4<f32>,
+    // rain rings per m² s, 0, water bodies' depth m, 0
+    water_look: vec4<f32>,
+    ground: GridFrame,
+    cover: GridFrame,
+    waves: GridFrame,
+    // particle count, culling on, cull workgroups, splat target width px (0: no splat)
+    counts: vec4<u32>,
+}
+
+// drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).
+struct DrawArgs {
+    vertex_count: u32,
+    instance_count: u32,
+    first_vertex: u32,
+    first_instance: u32,
+}
+
+// What the cull writes each frame (Rust: precip_gpu::recipe::FrameDraws).
+struct FrameDraws {
+    snow: DrawArgs,
+    rain: DrawArgs,
+    splatted: u32,
+    reserved0: u32,
+    reserved1: u32,
+    reserved2: u32,
+}
+
+// Vertices per snow sprite (a strip) and per rain tetrahedron (a list).
+const SNOW_SPRITE_VERTICES: u32 = 4u;
+const RAIN_TETRAHEDRON_VERTICES: u32 = 12u;
+
+// What a particle is drawn as: nothing, a sprite, a tetrahedron, or a splat.
+const DRAWN_NOT: u32 = 0u;
+const DRAWN_SNOW: u32 = 1u;
+const DRAWN_RAIN: u32 = 2u;
+const DRAWN_SPLAT: u32 = 3u;

@@ -1,0 +1,226 @@
+// render_scene.wgsl: the render program's bindings, the shadow map, the cover seen by
+// a surface, and the scene's passes (vs_shadow; vs_scene + fs_scene). The bindings
+// are listed in precip_gpu::recipe::render_bindings.
+
+// Group 0: the frame.
+// RenderParams is a uniform block, and the same block is bound again as read-only
+// storage (`switches`) for every branch that tests nothing but the block: Mesa's
+// lavapipe up to 23.1 inlines the uniforms such a branch tests, recompiling at every
+// draw and never freeing the variants (1.8 MB a frame here); storage is never
+// inlined (precip_gpu::recipe::render_bindings::PARAMS_SWITCHES).
+@group(0) @binding(0) var<uniform> params: RenderParams;
+@group(0) @binding(11) var<storage, read> switches: RenderParams;
+
+// The frame's counts, for branches (particle_lists.wgsl; the cull program reads its
+// storage block).
+fn frame_counts() -> vec4<u32> {
+    return switches.counts;
+}
+@group(0) @binding(2) var<storage, read> ground_height: array<f32>;
+@group(0) @binding(3) var<storage, read> particles: array<Particle>;
+// Drawn particles: sprites at [0, N), streaks at [N, 2N) (N = particle count).
+@group(0) @binding(4) var<storage, read> drawn: array<u32>;
+// The cover as three filtered textures (cover_texture.wgsl writes them from the cover
+// texels each frame): A = (depth mm, SWE mm, peak SWE mm, wetness),
+// B = (accumulation mask, melt mask, age days, standing water over the surface's
+// roughness), C = (sand and dust settled kg/m², 0, 0, 0);
+// linear, clamped to the edge.
+@group(0) @binding(5) var cover_a: texture_2d<f32>;
+@group(0) @binding(6) var cover_b: texture_2d<f32>;
+@group(0) @binding(13) var cover_c: texture_2d<f32>;
+@group(0) @binding(7) var cover_sampler: sampler;
+// The water bodies' waves (water_waves.wgsl's buffer, read here as plain words).
+@group(0) @binding(12) var<storage, read> waves_read: array<i32>;
+// Group 1: light and the flake's opacity.
+@group(1) @binding(0) var shadow_map: texture_depth_2d;
+@group(1) @binding(1) var shadow_sampler: sampler_comparison;
+@group(1) @binding(2) var flake_opacity: texture_2d<f32>;
+@group(1) @binding(3) var flake_sampler: sampler;
+// Group 2: the mesh's material.
+struct Material {
+    base_colour: vec4<f32>,
+}
+@group(2) @binding(0) var<uniform> material: Material;
+@group(2) @binding(1) var base_colour_texture: texture_2d<f32>;
+@group(2) @binding(2) var material_sampler: sampler;
+
+// Depth offset (NDC) of the shadow test, against acne.
+const SHADOW_BIAS: f32 = 0.0005;
+
+// Visibility of the sun at `world_m`: one comparison sample, which the sampler's
+// linear filter turns into a 2×2 percentage-closer filter in the texture unit; 1
+// outside the map.
+fn shadow_lit(world_m: vec3<f32>) -> f32 {
+    let p = params.sun_view_proj * vec4<f32>(world_m, 1.0);
+    let ndc = p.xyz / p.w;
+    let uv = vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y);
+    if (any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0 || ndc.z < 0.0) {
+        return 1.0;
+    }
+    return textureSampleCompareLevel(shadow_map, shadow_sampler, uv, ndc.z - SHADOW_BIAS);
+}
+
+// Whether a surface point is the top-most at its (x, z): within a tolerance (texel
+// size, slope) of the ground map's height there. Off the map: exposed.
+fn exposure(world_m: vec3<f32>, normal: vec3<f32>) -> f32 {
+    let i = grid_texel_index(params.ground, world_m.xz);
+    if (i < 0) {
+        return 1.0;
+    }
+    let top = ground_height[i];
+    let cell = params.ground.size_m / vec2<f32>(params.ground.texels);
+    let slope = length(normal.xz) / max(abs(normal.y), 0.05);
+    let tolerance = params.cover_look2.z + max(cell.x, cell.y) * min(slope, 4.0);
+    return select(0.0, 1.0, world_m.y >= top - tolerance);
+}
+
+// How much a surface faces up for snow: none below 0.2, full from 0.6.
+fn upward(normal: vec3<f32>) -> f32 {
+    return smoothstep(0.2, 0.6, normal.y);
+}
+
+// The cover at (x, z), interpolated between texel centres (clamped at the grid's
+// edges) by the texture unit: the particles' landings are discrete, so a surface
+// reads a smoothed pack, and the threshold masks give patches with smooth borders
+// finer than the grid. Each field is interpolated on its own, as texels were mixed
+// before (the fields the surface does not read are zero).
+fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
+    let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
+    let a = textureSampleLevel(cover_a, cover_sampler, uv, 0.0);
+    let b = textureSampleLevel(cover_b, cover_sampler, uv, 0.0);
+    let c = textureSampleLevel(cover_c, cover_sampler, uv, 0.0);
+    var t: CoverTexel;
+    t.dust_kg_m2 = c.x;
+    t.depth_mm = a.x;
+    t.swe_mm = a.y;
+    t.peak_swe_mm = a.z;
+    t.wetness = a.w;
+    t.accumulation_mask = b.x;
+    t.melt_mask = b.y;
+    t.age_days = b.z;
+    // The puddle ratio rides in the standing-water field (fs_scene reads it so).
+    t.standing_mm = b.w;
+    return t;
+}
+
+// A water body's wave height at cell `cell` of the wave grid, m (0 off the grid).
+fn wave_height_at(cell: vec2<i32>) -> f32 {
+    let n = vec2<i32>(params.waves.texels);
+    if (any(cell < vec2<i32>(0)) || any(cell >= n)) {
+        return 0.0;
+    }
+    return f32(waves_read[u32(cell.x + n.x * cell.y) * 4u]) / 1.0e7;
+}
+
+// The slope of the waves at (x, z) by central differences, and whether (x, z) is on
+// the wave grid (z component).
+fn wave_slope(xz_m: vec2<f32>) -> vec3<f32> {
+    let cell_m = params.waves.size_m / vec2<f32>(params.waves.texels);
+    let t = (xz_m - params.waves.origin_m) / cell_m;
+    let c = vec2<i32>(floor(t));
+    let n = vec2<i32>(params.waves.texels);
+    if (any(c < vec2<i32>(0)) || any(c >= n) || n.x * n.y <= 1) {
+        return vec3<f32>(0.0);
+    }
+    let dx = wave_height_at(c + vec2<i32>(1, 0)) - wave_height_at(c - vec2<i32>(1, 0));
+    let dz = wave_height_at(c + vec2<i32>(0, 1)) - wave_height_at(c - vec2<i32>(0, 1));
+    return vec3<f32>(dx / (2.0 * cell_m.x), dz / (2.0 * cell_m.y), 1.0);
+}
+
+struct SceneVertex {
+    @location(0) position_m: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) eligibility: f32,
+}
+
+struct SceneVarying {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world_m: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) eligibility: f32,
+    // The surface before displacement: where the cover is looked up.
+    @location(4) surface_m: vec3<f32>,
+}
+
+// The vertex raised by the snow on it (upward, eligible, exposed surfaces).
+fn displaced(v: SceneVertex) -> vec3<f32> {
+    var p = v.position_m;
+    if (switches.cover_look.y < 0.5) {
+        return p;
+    }
+    let n = normalize(v.normal);
+    if (grid_texel_index(params.cover, p.xz) >= 0) {
+        let depth_m = cover_at(p.xz).depth_mm * 1.0e-3;
+        p.y += depth_m * clamp(v.eligibility, 0.0, 1.0) * upward(n) * exposure(p, n);
+    }
+    return p;
+}
+
+@vertex
+fn vs_shadow(v: SceneVertex) -> @builtin(position) vec4<f32> {
+    return params.sun_view_proj * vec4<f32>(displaced(v), 1.0);
+}
+
+@vertex
+fn vs_scene(v: SceneVertex) -> SceneVarying {
+    let p = displaced(v);
+    var out: SceneVarying;
+    out.clip = params.view_proj * vec4<f32>(p, 1.0);
+    out.world_m = p;
+    out.normal = v.normal;
+    out.uv = v.uv;
+    out.eligibility = v.eligibility;
+    out.surface_m = v.position_m;
+    return out;
+}
+
+@fragment
+fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
+    let base = material.base_colour * textureSample(base_colour_texture, material_sampler, in.uv);
+    let camera = params.camera_m_cone_cos.xyz;
+    let to_viewer = normalize_or_zero(camera - in.world_m);
+    var n = normalize_or_zero(in.normal);
+    // Two-sided: a face seen from behind (a roof's underside) is lit as its back.
+    if (dot(n, to_viewer) < 0.0) {
+        n = -n;
+    }
+    var colour = base.rgb;
+    // A pixel's footprint on the surface, for the rain rings' level of detail (taken
+    // here: derivatives need uniform control flow).
+    let footprint_m = length(fwidth(in.surface_m.xz));
+    let ring_fade = clamp(1.0 - footprint_m / (0.5 * RING_WAVELENGTH_M), 0.0, 1.0);
+    var puddle_ratio = 0.0;
+    var wetness = 0.0;
+    var open_water = 0.0;
+    // A water body's vertices carry eligibility -1 (gpu_scene::WATER_BODY_ELIGIBILITY).
+    let body = select(0.0, 1.0, in.eligibility < -0.5);
+    let i = grid_texel_index(params.cover, in.surface_m.xz);
+    if (i >= 0) {
+        let texel = cover_at(in.surface_m.xz);
+        let s = cover_shading(texel, texel.accumulation_mask, texel.melt_mask, params.cover_look.z, params.cover_look.w, params.cover_look2.x);
+        let sky_facing = exposure(in.surface_m, n) * upward(n);
+        let snow = s.snow_alpha * clamp(in.eligibility, 0.0, 1.0) * sky_facing;
+        let darkening = mix(1.0, s.ground_darkening, sky_facing);
+        // Settled sand and dust over the bare surface, under any snow (not on water).
+        let grains = settled_grain_cover(texel.dust_kg_m2) * sky_facing * (1.0 - body);
+        colour = mix(colour, SETTLED_GRAIN_COLOUR, grains);
+        // Fresh snow (albedo 0.8) shows near white; it greys as it ages.
+        let snow_colour = vec3<f32>(min(1.0, 1.2 * snow_albedo(texel.age_days, params.cover_look2.y)));
+        colour = mix(colour * darkening, snow_colour, snow);
+        // Water shows where the sky reaches and no snow lies over it.
+        open_water = sky_facing * (1.0 - snow);
+        puddle_ratio = texel.standing_mm;
+        wetness = texel.wetness;
+    }
+    let lit = shadow_lit(in.world_m);
+    let intensity = blinn_phong(params.light, params.shadow, n, params.to_sun_extinction.xyz, to_viewer, lit);
+    var shaded = colour * intensity;
+    if (open_water > 0.0) {
+        let wet = water_surface(shaded, puddle_ratio, wetness, body, in.surface_m.xz, to_viewer, lit, ring_fade);
+        shaded = mix(shaded, wet, open_water);
+    }
+    let fog = fog_transmittance(distance(in.world_m, camera), params.to_sun_extinction.w);
+    return vec4<f32>(mix(params.sky_colour_time.xyz, shaded, fog), 1.0);
+}

@@ -1,0 +1,400 @@
+//! Every bind group of the GPU programs as data, and the groups each entry point is
+//! used with: both GPU backends build their bind group layouts (wgpu) and descriptor
+//! set layouts (Vulkan) from these tables and nothing else, and a test checks them
+//! against naga's reflection of the WGSL (`tests/shaders.rs`: every resource an entry
+//! point uses is in its table with the same kind).
+//!
+//! Binding numbers are the `*_bindings` constants of [`crate::recipe`].
+
+use precip_cover::CoverStepParams;
+
+use crate::recipe::{Frames, cover_bindings as cv, cull_bindings as cb, render_bindings as rb};
+use crate::recipe::{beam_bindings as bb, render_passes, step_bindings as sb};
+use crate::shaders::Program;
+use precip_model::drawing::render::RenderParams;
+use precip_model::particles::step::StepParams;
+use precip_model::sensors::lidar::BeamParams;
+use precip_wind::WindParams;
+
+/// The stages a binding is visible to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stages {
+    /// Compute kernels only.
+    Compute,
+    /// Vertex and fragment shaders.
+    Draw,
+    /// Fragment shaders only.
+    Fragment,
+    /// Vertex, fragment and compute (the frame's groups: the draws and the splat).
+    DrawAndCompute,
+}
+
+/// How a texture is sampled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TextureSample {
+    /// Float texels; filterable or not.
+    Float {
+        /// Through a filtering sampler.
+        filterable: bool,
+    },
+    /// A depth texture.
+    Depth,
+}
+
+/// What a binding is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BindingKind {
+    /// A uniform block at least `min_bytes` long (0: any).
+    Uniform {
+        /// Smallest size, bytes.
+        min_bytes: u64,
+        /// Bound with a dynamic offset.
+        dynamic: bool,
+    },
+    /// A storage buffer.
+    Storage {
+        /// Read-only.
+        read_only: bool,
+        /// Smallest size, bytes (0: any).
+        min_bytes: u64,
+        /// Bound with a dynamic offset.
+        dynamic: bool,
+    },
+    /// A sampled texture.
+    Texture {
+        /// Its texels.
+        sample: TextureSample,
+        /// 3D (else 2D).
+        volume: bool,
+    },
+    /// A write-only storage texture of RGBA16F texels (2D).
+    StorageTextureRgba16Float,
+    /// A sampler.
+    Sampler {
+        /// A comparison sampler (else filtering).
+        comparison: bool,
+    },
+}
+
+/// One binding of a group.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Binding {
+    /// Its number.
+    pub binding: u32,
+    /// Its kind.
+    pub kind: BindingKind,
+    /// Where it is seen.
+    pub stages: Stages,
+}
+
+/// A bind group's layout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GroupLayout {
+    /// A label for debuggers.
+    pub name: &'static str,
+    /// Its bindings.
+    pub bindings: &'static [Binding],
+}
+
+impl GroupLayout {
+    /// How many bindings take a dynamic offset (each the frame's `RenderParams`
+    /// block, or a sub-step's uniform block).
+    #[must_use]
+    pub fn dynamic_bindings(&self) -> usize {
+        self.bindings
+            .iter()
+            .filter(|b| {
+                matches!(
+                    b.kind,
+                    BindingKind::Uniform { dynamic: true, .. }
+                        | BindingKind::Storage { dynamic: true, .. }
+                )
+            })
+            .count()
+    }
+
+    /// Whether a binding takes a dynamic offset.
+    #[must_use]
+    pub fn has_dynamic_binding(&self) -> bool {
+        self.dynamic_bindings() > 0
+    }
+}
+
+/// The value paired with `group`'s table in `pairs` (tables match by name): how a
+/// backend maps a table to its layout or bind group.
+#[must_use]
+pub fn lookup<T, const N: usize>(group: &GroupLayout, pairs: [(&GroupLayout, T); N]) -> Option<T> {
+    pairs
+        .into_iter()
+        .find(|(table, _)| table.name == group.name)
+        .map(|(_, value)| value)
+}
+
+const fn binding(binding: u32, kind: BindingKind, stages: Stages) -> Binding {
+    Binding {
+        binding,
+        kind,
+        stages,
+    }
+}
+
+const fn uniform(min_bytes: usize, dynamic: bool) -> BindingKind {
+    BindingKind::Uniform {
+        min_bytes: min_bytes as u64,
+        dynamic,
+    }
+}
+
+const fn storage(read_only: bool) -> BindingKind {
+    BindingKind::Storage {
+        read_only,
+        min_bytes: 0,
+        dynamic: false,
+    }
+}
+
+/// `RenderParams` as read-only storage (the cull's block, the frame's switches: see
+/// `render_bindings::PARAMS_SWITCHES`), one block per frame in flight at a dynamic
+/// offset.
+const RENDER_PARAMS: BindingKind = BindingKind::Storage {
+    read_only: true,
+    min_bytes: size_of::<RenderParams>() as u64,
+    dynamic: true,
+};
+
+const FILTERED_2D: BindingKind = BindingKind::Texture {
+    sample: TextureSample::Float { filterable: true },
+    volume: false,
+};
+
+const DEPTH_2D: BindingKind = BindingKind::Texture {
+    sample: TextureSample::Depth,
+    volume: false,
+};
+
+const FILTERING: BindingKind = BindingKind::Sampler { comparison: false };
+
+/// Group 0 of `StepParticles`.
+pub const STEP: GroupLayout = GroupLayout {
+    name: "precip step_particles",
+    bindings: &[
+        binding(
+            sb::STEP_PARAMS,
+            uniform(size_of::<StepParams>(), true),
+            Stages::Compute,
+        ),
+        binding(
+            sb::FRAMES,
+            uniform(size_of::<Frames>(), false),
+            Stages::Compute,
+        ),
+        binding(
+            sb::WIND,
+            uniform(size_of::<WindParams>(), false),
+            Stages::Compute,
+        ),
+        binding(
+            sb::WIND_VOLUME,
+            BindingKind::Texture {
+                sample: TextureSample::Float { filterable: false },
+                volume: true,
+            },
+            Stages::Compute,
+        ),
+        binding(sb::GROUND_HEIGHT, storage(true), Stages::Compute),
+        binding(sb::PARTICLES, storage(false), Stages::Compute),
+        binding(sb::DEPOSITS, storage(false), Stages::Compute),
+        binding(sb::PENDING_BIRTHS, storage(false), Stages::Compute),
+        binding(sb::WAVES, storage(false), Stages::Compute),
+        binding(sb::COVER, storage(true), Stages::Compute),
+    ],
+};
+
+/// Group 0 of `CoverUpdate`.
+pub const COVER_UPDATE: GroupLayout = GroupLayout {
+    name: "precip cover_update",
+    bindings: &[
+        binding(
+            cv::COVER_PARAMS,
+            uniform(size_of::<CoverStepParams>(), true),
+            Stages::Compute,
+        ),
+        binding(cv::COVER, storage(false), Stages::Compute),
+        binding(cv::DEPOSITS, storage(false), Stages::Compute),
+    ],
+};
+
+/// Group 0 of `CullParticles`.
+pub const CULL: GroupLayout = GroupLayout {
+    name: "precip cull",
+    bindings: &[
+        binding(cb::PARAMS, RENDER_PARAMS, Stages::Compute),
+        binding(cb::PARTICLES, storage(true), Stages::Compute),
+        binding(cb::GROUP_COUNTS, storage(false), Stages::Compute),
+        binding(cb::DRAWN, storage(false), Stages::Compute),
+        binding(cb::DRAWS, storage(false), Stages::Compute),
+        binding(cb::DRAWN_KINDS, storage(false), Stages::Compute),
+    ],
+};
+
+/// Group 0 of the draws and the splat kernel: the frame.
+pub const RENDER_FRAME: GroupLayout = GroupLayout {
+    name: "precip render frame",
+    bindings: &[
+        binding(
+            rb::PARAMS,
+            uniform(size_of::<RenderParams>(), true),
+            Stages::DrawAndCompute,
+        ),
+        binding(rb::PARAMS_SWITCHES, RENDER_PARAMS, Stages::DrawAndCompute),
+        binding(rb::GROUND_HEIGHT, storage(true), Stages::DrawAndCompute),
+        binding(rb::PARTICLES, storage(true), Stages::DrawAndCompute),
+        binding(rb::DRAWN, storage(true), Stages::DrawAndCompute),
+        binding(rb::COVER_A, FILTERED_2D, Stages::DrawAndCompute),
+        binding(rb::COVER_B, FILTERED_2D, Stages::DrawAndCompute),
+        binding(rb::COVER_C, FILTERED_2D, Stages::DrawAndCompute),
+        binding(rb::COVER_SAMPLER, FILTERING, Stages::DrawAndCompute),
+        binding(rb::WAVES, storage(true), Stages::DrawAndCompute),
+    ],
+};
+
+/// Group 1: light and the flake's opacity.
+pub const RENDER_LIGHT: GroupLayout = GroupLayout {
+    name: "precip render light",
+    bindings: &[
+        binding(rb::SHADOW_MAP, DEPTH_2D, Stages::DrawAndCompute),
+        binding(
+            rb::SHADOW_SAMPLER,
+            BindingKind::Sampler { comparison: true },
+            Stages::DrawAndCompute,
+        ),
+        binding(rb::FLAKE_OPACITY, FILTERED_2D, Stages::DrawAndCompute),
+        binding(rb::FLAKE_SAMPLER, FILTERING, Stages::DrawAndCompute),
+    ],
+};
+
+/// Group 2 of the scene's draws: a mesh's material.
+pub const RENDER_MATERIAL: GroupLayout = GroupLayout {
+    name: "precip render material",
+    bindings: &[
+        binding(rb::MATERIAL, uniform(16, false), Stages::Draw),
+        binding(rb::BASE_COLOUR_TEXTURE, FILTERED_2D, Stages::Draw),
+        binding(rb::MATERIAL_SAMPLER, FILTERING, Stages::Draw),
+    ],
+};
+
+/// Group 2 of the splat kernel: the camera's depth and the sums.
+pub const SPLAT: GroupLayout = GroupLayout {
+    name: "precip splat",
+    bindings: &[
+        binding(rb::SPLAT_SCENE_DEPTH, DEPTH_2D, Stages::Compute),
+        binding(rb::SPLAT_SUMS, storage(false), Stages::Compute),
+        binding(rb::SPLAT_DRAWS, storage(true), Stages::Compute),
+    ],
+};
+
+/// Group 2 of the splat's resolve draw: the sums.
+pub const SPLAT_RESOLVE: GroupLayout = GroupLayout {
+    name: "precip splat resolve",
+    bindings: &[binding(rb::RESOLVED_SUMS, storage(false), Stages::Fragment)],
+};
+
+/// Group 0 of the `cover_texture` kernel.
+pub const COVER_TEXTURE: GroupLayout = GroupLayout {
+    name: "precip cover texture",
+    bindings: &[
+        binding(rb::COVER, storage(true), Stages::Compute),
+        binding(
+            rb::COVER_A_OUT,
+            BindingKind::StorageTextureRgba16Float,
+            Stages::Compute,
+        ),
+        binding(
+            rb::COVER_B_OUT,
+            BindingKind::StorageTextureRgba16Float,
+            Stages::Compute,
+        ),
+        binding(
+            rb::COVER_C_OUT,
+            BindingKind::StorageTextureRgba16Float,
+            Stages::Compute,
+        ),
+    ],
+};
+
+/// Group 0 of `query_beams`.
+pub const BEAMS: GroupLayout = GroupLayout {
+    name: "precip query_beams",
+    bindings: &[
+        binding(
+            bb::PARAMS,
+            uniform(size_of::<BeamParams>(), false),
+            Stages::Compute,
+        ),
+        binding(
+            bb::FRAMES,
+            uniform(size_of::<Frames>(), false),
+            Stages::Compute,
+        ),
+        binding(bb::GROUND_HEIGHT, storage(true), Stages::Compute),
+        binding(bb::PARTICLES, storage(true), Stages::Compute),
+        binding(bb::BEAMS, storage(true), Stages::Compute),
+        binding(bb::HITS, storage(false), Stages::Compute),
+    ],
+};
+
+/// The groups (0, 1, …) an entry point of `program` runs with; `None` for a test
+/// probe's or an unknown entry point.
+#[must_use]
+pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupLayout]> {
+    Some(match (program, entry_point) {
+        (Program::StepParticles, _) => &[STEP],
+        (Program::CoverUpdate, _) => &[COVER_UPDATE],
+        (Program::CullParticles, _) => &[CULL],
+        (Program::QueryBeams, _) => &[BEAMS],
+        (Program::Render, "cover_texture") => &[COVER_TEXTURE],
+        (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
+        (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
+        (Program::Render, "vs_scene" | "fs_scene") => {
+            &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL]
+        }
+        (Program::Render, "vs_splat_resolve" | "fs_splat_resolve") => {
+            &[RENDER_FRAME, RENDER_LIGHT, SPLAT_RESOLVE]
+        }
+        (Program::Render, "vs_snow" | "fs_snow" | "vs_rain" | "fs_rain") => {
+            &[RENDER_FRAME, RENDER_LIGHT]
+        }
+        _ => return None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_entry_point_of_the_frame_has_its_groups_and_no_binding_is_listed_twice() {
+        for program in [
+            Program::StepParticles,
+            Program::CoverUpdate,
+            Program::CullParticles,
+            Program::Render,
+            Program::QueryBeams,
+        ] {
+            for entry in program.entry_points() {
+                let groups = groups_of(program, entry)
+                    .unwrap_or_else(|| panic!("{program:?} {entry} has no groups"));
+                for g in groups {
+                    let mut numbers: Vec<u32> = g.bindings.iter().map(|b| b.binding).collect();
+                    numbers.sort_unstable();
+                    numbers.dedup();
+                    assert_eq!(numbers.len(), g.bindings.len(), "{}", g.name);
+                    // Every dynamic binding of a group is the frame's or the
+                    // sub-step's block: the backends give each the block's offset,
+                    // from an array of two.
+                    assert!(g.dynamic_bindings() <= 2, "{}", g.name);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,329 @@
+//! A frame as data: its passes in order, each a list of compute kernels or a render
+//! pass (attachments, how they load and store, draws with their pipeline state),
+//! when it runs, and its timestamps. Both GPU backends execute [`FRAME_PASSES`]
+//! with the same loop (`render/mod.rs`'s `encode_frame` on wgpu, `record_frame` on
+//! Vulkan) and build the draws' pipelines from [`Draw`]; what stays per backend is
+//! how a kind of attachment, group or draw maps to its objects. A new pass is WGSL
+//! plus an entry here.
+//!
+//! Timestamps: each pass is bracketed by two, at its start and its end, on both
+//! backends (`2·i`, `2·i + 1` for pass `i`), so per-pass times compare; a pass that
+//! does not run (the shadow map kept by [`precip_model::drawing::shadow_cache`]) is not reported.
+
+use crate::recipe::{
+    COVER_TEXTURE_PASS, CULL_PASSES, FrameDraws, KernelPass, SPLAT_PASS, render_passes,
+};
+
+/// How a render pass starts with an attachment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AttachmentLoad {
+    /// Cleared: depth to 1 (far), colour to the sky's colour.
+    Clear,
+    /// As the last pass left it.
+    Load,
+}
+
+/// Which depth buffer a render pass uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DepthTarget {
+    /// The sun's shadow map (`RenderSettings::shadow_map_px` square).
+    ShadowMap,
+    /// The camera's depth buffer, the frame target's size.
+    Camera,
+}
+
+/// What a draw draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DrawOf {
+    /// Every mesh of the scene from its vertex and index buffers; with `materials`,
+    /// each mesh's material group bound before it.
+    SceneMeshes {
+        /// Bind each mesh's material group.
+        materials: bool,
+    },
+    /// One triangle of 3 vertices covering the target.
+    FullScreenTriangle,
+    /// `drawIndirect` with the frame's [`FrameDraws`] at this byte offset.
+    Indirect {
+        /// Byte offset of the [`crate::recipe::DrawArgs`].
+        offset: u64,
+    },
+}
+
+/// Primitive topology.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Topology {
+    /// Triangle list.
+    TriangleList,
+    /// Triangle strip.
+    TriangleStrip,
+}
+
+/// How a draw writes the colour target.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Blend {
+    /// No colour target (depth only).
+    None,
+    /// Replaces the colour.
+    Opaque,
+    /// Straight alpha blending: `src·a + dst·(1 − a)`.
+    Alpha,
+}
+
+/// One draw of a render pass: its entry points of [`crate::shaders::Program::Render`]
+/// and its pipeline state. Depth is tested less-or-equal in every draw.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Draw {
+    /// Vertex and fragment entry points.
+    pub entry_points: (&'static str, Option<&'static str>),
+    /// What it draws.
+    pub of: DrawOf,
+    /// Reads the scene's vertex buffer (`SceneVertex`), else pulls from storage.
+    pub scene_vertices: bool,
+    /// Topology.
+    pub topology: Topology,
+    /// Writes depth.
+    pub depth_write: bool,
+    /// Depth bias `(constant, slope)`, against shadow acne.
+    pub depth_bias: Option<(i32, f32)>,
+    /// Colour.
+    pub blend: Blend,
+}
+
+/// A render pass.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderPassRecipe {
+    /// Its depth buffer.
+    pub depth: DepthTarget,
+    /// How the depth starts.
+    pub depth_load: AttachmentLoad,
+    /// Whether the depth is kept after the pass.
+    pub depth_stored: bool,
+    /// The frame's colour target and how it starts, or `None` (depth only).
+    pub colour: Option<AttachmentLoad>,
+    /// The draws, in order.
+    pub draws: &'static [Draw],
+}
+
+/// What a pass does.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PassWork {
+    /// Compute kernels in order, each after the last one's writes.
+    Kernels(&'static [KernelPass]),
+    /// A render pass.
+    Render(RenderPassRecipe),
+}
+
+/// When a pass runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PassWhen {
+    /// Every frame.
+    Always,
+    /// When [`precip_model::drawing::shadow_cache::ShadowCache`] says the map is to be redrawn.
+    ShadowRedrawn,
+}
+
+/// One pass of the frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FramePass {
+    /// Its name (timings, debug labels).
+    pub name: &'static str,
+    /// What it does.
+    pub work: PassWork,
+    /// When it runs.
+    pub when: PassWhen,
+}
+
+const SHADOW_DRAW: Draw = Draw {
+    entry_points: render_passes::SHADOW,
+    of: DrawOf::SceneMeshes { materials: false },
+    scene_vertices: true,
+    topology: Topology::TriangleList,
+    depth_write: true,
+    depth_bias: Some((2, 2.0)),
+    blend: Blend::None,
+};
+
+const SCENE_DRAW: Draw = Draw {
+    entry_points: render_passes::SCENE,
+    of: DrawOf::SceneMeshes { materials: true },
+    scene_vertices: true,
+    topology: Topology::TriangleList,
+    depth_write: true,
+    depth_bias: None,
+    blend: Blend::Opaque,
+};
+
+const PARTICLE_DRAWS: [Draw; 3] = [
+    // At depth 0 it passes the less-equal test everywhere: no depth test.
+    Draw {
+        entry_points: render_passes::SPLAT_RESOLVE,
+        of: DrawOf::FullScreenTriangle,
+        scene_vertices: false,
+        topology: Topology::TriangleList,
+        depth_write: false,
+        depth_bias: None,
+        blend: Blend::Alpha,
+    },
+    Draw {
+        entry_points: render_passes::SNOW,
+        of: DrawOf::Indirect {
+            offset: FrameDraws::SNOW_OFFSET,
+        },
+        scene_vertices: false,
+        topology: Topology::TriangleStrip,
+        depth_write: false,
+        depth_bias: None,
+        blend: Blend::Alpha,
+    },
+    Draw {
+        entry_points: render_passes::RAIN,
+        of: DrawOf::Indirect {
+            offset: FrameDraws::RAIN_OFFSET,
+        },
+        scene_vertices: false,
+        topology: Topology::TriangleList,
+        depth_write: false,
+        depth_bias: None,
+        blend: Blend::Alpha,
+    },
+];
+
+/// The frame, in order (see the module docs and `precip_gpu_wgpu::render`).
+pub const FRAME_PASSES: [FramePass; 6] = [
+    FramePass {
+        name: "cover_texture",
+        work: PassWork::Kernels(&[COVER_TEXTURE_PASS]),
+        when: PassWhen::Always,
+    },
+    FramePass {
+        name: "shadow",
+        work: PassWork::Render(RenderPassRecipe {
+            depth: DepthTarget::ShadowMap,
+            depth_load: AttachmentLoad::Clear,
+            depth_stored: true,
+            colour: None,
+            draws: &[SHADOW_DRAW],
+        }),
+        when: PassWhen::ShadowRedrawn,
+    },
+    FramePass {
+        name: "scene",
+        work: PassWork::Render(RenderPassRecipe {
+            depth: DepthTarget::Camera,
+            depth_load: AttachmentLoad::Clear,
+            depth_stored: true,
+            colour: Some(AttachmentLoad::Clear),
+            draws: &[SCENE_DRAW],
+        }),
+        when: PassWhen::Always,
+    },
+    FramePass {
+        name: "cull_particles",
+        work: PassWork::Kernels(&CULL_PASSES),
+        when: PassWhen::Always,
+    },
+    FramePass {
+        name: "splat_particles",
+        work: PassWork::Kernels(&[SPLAT_PASS]),
+        when: PassWhen::Always,
+    },
+    FramePass {
+        name: "particles",
+        work: PassWork::Render(RenderPassRecipe {
+            depth: DepthTarget::Camera,
+            depth_load: AttachmentLoad::Load,
+            depth_stored: false,
+            colour: Some(AttachmentLoad::Load),
+            draws: &PARTICLE_DRAWS,
+        }),
+        when: PassWhen::Always,
+    },
+];
+
+/// The names of [`FRAME_PASSES`], in order: the passes a frame's timings report.
+pub const TIMED_RENDER_PASSES: [&str; FRAME_PASSES.len()] = {
+    let mut names = [""; FRAME_PASSES.len()];
+    let mut i = 0;
+    while i < FRAME_PASSES.len() {
+        names[i] = FRAME_PASSES[i].name;
+        i += 1;
+    }
+    names
+};
+
+/// Every draw of the frame, in frame order (each backend makes one pipeline for
+/// each; the shadow's against the shadow pass, the others per colour format).
+pub fn draws() -> impl Iterator<Item = (&'static FramePass, &'static Draw)> {
+    FRAME_PASSES.iter().flat_map(|p| {
+        let draws: &'static [Draw] = match &p.work {
+            PassWork::Render(r) => r.draws,
+            PassWork::Kernels(_) => &[],
+        };
+        draws.iter().map(move |d| (p, d))
+    })
+}
+
+/// Every kernel of the frame, in frame order.
+pub fn kernels() -> impl Iterator<Item = &'static KernelPass> {
+    FRAME_PASSES.iter().flat_map(|p| match &p.work {
+        PassWork::Kernels(k) => k.iter(),
+        PassWork::Render(_) => [].iter(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bind_groups::groups_of;
+    use crate::shaders::Program;
+
+    #[test]
+    fn every_entry_point_exists_and_has_its_groups() {
+        for k in kernels() {
+            assert!(k.program.entry_points().contains(&k.entry_point), "{k:?}");
+            assert!(groups_of(k.program, k.entry_point).is_some(), "{k:?}");
+        }
+        for (pass, d) in draws() {
+            let (vs, fs) = d.entry_points;
+            for e in std::iter::once(vs).chain(fs) {
+                assert!(
+                    Program::Render.entry_points().contains(&e),
+                    "{}: {e}",
+                    pass.name
+                );
+                assert!(groups_of(Program::Render, e).is_some(), "{e}");
+            }
+        }
+    }
+
+    #[test]
+    fn colour_and_depth_state_fit_their_passes() {
+        for (pass, d) in draws() {
+            let PassWork::Render(r) = pass.work else {
+                unreachable!("draws are in render passes")
+            };
+            // A depth-only pass draws no colour, and a colour pass always does.
+            assert_eq!(r.colour.is_none(), d.blend == Blend::None, "{}", pass.name);
+            // A pass that writes depth keeps it.
+            assert!(!d.depth_write || r.depth_stored, "{}", pass.name);
+            // Only the fragment-less draw has no fragment stage.
+            assert_eq!(d.entry_points.1.is_none(), d.blend == Blend::None);
+        }
+    }
+
+    #[test]
+    fn the_timed_names_are_the_passes_in_order() {
+        assert_eq!(
+            TIMED_RENDER_PASSES,
+            [
+                "cover_texture",
+                "shadow",
+                "scene",
+                "cull_particles",
+                "splat_particles",
+                "particles"
+            ]
+        );
+    }
+}

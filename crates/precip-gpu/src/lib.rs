@@ -1,0 +1,29 @@
+//! precip's GPU work as data, shared by every GPU backend (`precip-gpu-wgpu`,
+//! `precip-gpu-vk`). It holds no physics: the formulas live in `precip-model`,
+//! `precip-wind` and `precip-cover`, each once in Rust and once in WGSL beside it.
+//!
+//! ## Map
+//!
+//! - [`shaders`]: the GPU programs, each the concatenation of WGSL files read from
+//!   the crates of their Rust twins (`precip_model::wgsl`, `precip_wind::wgsl`,
+//!   `precip_cover::wgsl`) and this crate's GPU-only files (`shaders/`: culling,
+//!   splatting, the render passes, the cover's textures, test probes).
+//! - [`bind_groups`]: every program's bind-group layouts as tables, from which each
+//!   backend makes its layouts.
+//! - [`recipe`]: the kernels of configure (`INIT_PASS`), of one sub-step
+//!   (`SUBSTEP_PASSES`) and of the frame's compute passes, what each is dispatched
+//!   over, the bindings' numbers, the buffers' byte sizes and the blocks the kernels
+//!   write (`FrameDraws`).
+//! - [`frame`]: the frame as data: its passes in order, each a list of kernels or a
+//!   render pass (attachments, draws and their pipeline state), and when it runs.
+//!
+//! The host state and the uniform blocks come from `precip_model::host`.
+//! `docs/architecture.md` describes how a backend executes this plan, and the
+//! walkthroughs for a new kernel, render pass or precipitation kind.
+
+pub mod bind_groups;
+pub mod frame;
+pub mod recipe;
+pub mod shaders;
+
+pub use shaders::Program;

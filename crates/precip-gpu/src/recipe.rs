@@ -1,0 +1,725 @@
+//! The kernels as data: which kernels configure, a sub-step and a frame's compute
+//! passes run, in which order, over what ([`DispatchOver`]), with which bindings
+//! (the `*_bindings` modules), and the byte sizes of the buffers they share, so the
+//! wgpu and Vulkan backends cannot drift apart; and the blocks the kernels write
+//! ([`FrameDraws`]). The host-side blocks and the dispatch arithmetic come from
+//! `precip_model::host` and are re-exported here.
+
+use bytemuck::{Pod, Zeroable};
+use precip_cover::GridFrame;
+
+use crate::shaders::Program;
+
+pub use precip_model::host::{
+    Frames, MAX_WORKGROUPS_PER_DIMENSION, SceneVertex, WORKGROUP_SIZE, cull_groups, dispatch_size,
+};
+
+/// `drawIndirect`'s arguments.
+///
+/// WGSL twin: `DrawArgs` in `shaders/render_layout.wgsl` (16 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct DrawArgs {
+    /// Vertices per instance.
+    pub vertex_count: u32,
+    /// Instances: drawn particles.
+    pub instance_count: u32,
+    /// First vertex.
+    pub first_vertex: u32,
+    /// First instance.
+    pub first_instance: u32,
+}
+const _: () = assert!(size_of::<DrawArgs>() == 16);
+
+/// What the cull kernels write each frame: the two indirect draws and how many
+/// particles the splat draws.
+///
+/// WGSL twin: `FrameDraws` in `shaders/render_layout.wgsl` (48 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct FrameDraws {
+    /// Snow sprites (4-vertex strips), at [`FrameDraws::SNOW_OFFSET`].
+    pub snow: DrawArgs,
+    /// Rain tetrahedra (12-vertex lists), at [`FrameDraws::RAIN_OFFSET`].
+    pub rain: DrawArgs,
+    /// Particles splatted (sub-pixel, in the view cone).
+    pub splatted: u32,
+    /// Unused.
+    pub reserved: [u32; 3],
+}
+const _: () = assert!(size_of::<FrameDraws>() == 48);
+
+impl FrameDraws {
+    /// Byte offset of the snow draw in the buffer.
+    pub const SNOW_OFFSET: u64 = 0;
+    /// Byte offset of the rain draw.
+    pub const RAIN_OFFSET: u64 = 16;
+    /// Bytes of the buffer.
+    pub const BYTES: u64 = size_of::<Self>() as u64;
+
+    /// The counts, from the buffer's bytes (fewer bytes read as zeros).
+    #[must_use]
+    pub fn counts(bytes: &[u8]) -> precip_model::DrawnCounts {
+        let mut draws = Self::zeroed();
+        let n = bytes.len().min(size_of::<Self>());
+        bytemuck::bytes_of_mut(&mut draws)[..n].copy_from_slice(&bytes[..n]);
+        precip_model::DrawnCounts {
+            sprites: draws.snow.instance_count,
+            streaks: draws.rain.instance_count,
+            splats: draws.splatted,
+        }
+    }
+}
+
+/// What a kernel is dispatched over.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DispatchOver {
+    /// One invocation per particle.
+    Particles,
+    /// One invocation per cover texel.
+    CoverTexels,
+    /// A single workgroup.
+    OneWorkgroup,
+    /// A list of particles: one invocation per [`LIST_ENTRIES_PER_INVOCATION`]
+    /// particles, each walking the list (the pending births, binding
+    /// [`step_bindings::PENDING_BIRTHS`]; the splat list, [`render_bindings::DRAWN`])
+    /// with the dispatch's stride, to the list's count.
+    ParticleList,
+    /// One invocation per cell of the water bodies' wave grid.
+    WaveCells,
+}
+
+/// What the dispatches of a configuration run over.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct DispatchCounts {
+    /// Particles.
+    pub particles: u32,
+    /// Cover texels.
+    pub cover_texels: u32,
+    /// Wave cells.
+    pub wave_cells: u32,
+}
+
+impl DispatchCounts {
+    /// The counts of a configuration of `particles` particles, `cover_texels` cover
+    /// texels and the wave grid `waves`.
+    #[must_use]
+    pub fn of(particles: u32, cover_texels: u32, waves: &GridFrame) -> Self {
+        Self {
+            particles,
+            cover_texels,
+            wave_cells: u32::try_from(waves.texel_count()).unwrap_or(u32::MAX),
+        }
+    }
+}
+
+impl DispatchOver {
+    /// Invocations of a dispatch over this (before rounding up to workgroups).
+    #[must_use]
+    pub const fn invocations(self, counts: DispatchCounts) -> u32 {
+        match self {
+            Self::Particles => counts.particles,
+            Self::CoverTexels => counts.cover_texels,
+            Self::OneWorkgroup => 1,
+            Self::ParticleList => list_invocations(counts.particles),
+            Self::WaveCells => counts.wave_cells,
+        }
+    }
+}
+
+/// Particles per invocation of a kernel over a list (see [`DispatchOver::ParticleList`]).
+///
+/// The step appends each particle to re-birth to a list (a count, then one `u32`
+/// index each; `reset_births` empties it before each step), and the cull lists the
+/// particles to splat; the birth and splat kernels run over `⌈particles / 16⌉`
+/// invocations that walk their list, so they cost what the particles listed cost,
+/// densely: on lavapipe, which executes both sides of a divergent branch under a
+/// mask (a loop ends when no lane is left), the full-size birth kernel cost 27–41 ms
+/// at 10⁶ particles for a few thousand births. A fixed dispatch rather than an
+/// indirect one, because WebGPU forbids a buffer as indirect arguments and as
+/// writable storage in one dispatch (the list would need a copy every sub-step).
+pub const LIST_ENTRIES_PER_INVOCATION: u32 = 16;
+
+/// Bytes of the pending births for `particle_count` particles: the count, then an
+/// index per particle (each is re-born at most once a sub-step).
+///
+/// WGSL twin: `PendingBirths` in `shaders/layout.wgsl`.
+#[must_use]
+pub fn pending_births_bytes(particle_count: u32) -> u64 {
+    4 + 4 * u64::from(particle_count.max(1))
+}
+
+/// Invocations of a kernel over a list of at most `particle_count` particles.
+#[must_use]
+pub const fn list_invocations(particle_count: u32) -> u32 {
+    let n = particle_count.div_ceil(LIST_ENTRIES_PER_INVOCATION);
+    if n == 0 { 1 } else { n }
+}
+
+/// One kernel of the frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct KernelPass {
+    /// The program it is in.
+    pub program: Program,
+    /// Its entry point.
+    pub entry_point: &'static str,
+    /// Its dispatch.
+    pub over: DispatchOver,
+}
+
+/// Initialisation (configure): pre-warmed particles.
+pub const INIT_PASS: KernelPass = KernelPass {
+    program: Program::StepParticles,
+    entry_point: "init_particles",
+    over: DispatchOver::Particles,
+};
+
+/// The kernels of one sub-step before the snow's drift.
+const SUBSTEP_HEAD: [KernelPass; 6] = [
+    KernelPass {
+        program: Program::StepParticles,
+        entry_point: "reset_births",
+        over: DispatchOver::OneWorkgroup,
+    },
+    KernelPass {
+        program: Program::StepParticles,
+        entry_point: "step_particles",
+        over: DispatchOver::Particles,
+    },
+    KernelPass {
+        program: Program::StepParticles,
+        entry_point: "wave_excite",
+        over: DispatchOver::ParticleList,
+    },
+    KernelPass {
+        program: Program::StepParticles,
+        entry_point: "birth_particles",
+        over: DispatchOver::ParticleList,
+    },
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "cover_update",
+        over: DispatchOver::CoverTexels,
+    },
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "snow_wind",
+        over: DispatchOver::CoverTexels,
+    },
+];
+
+/// One iteration of the snow's drift: every texel's outflows, then every texel's
+/// exchange ([`precip_cover::drift`]).
+const DRIFT_ITERATION: [KernelPass; 2] = [
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "snow_outflow",
+        over: DispatchOver::CoverTexels,
+    },
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "snow_inflow",
+        over: DispatchOver::CoverTexels,
+    },
+];
+
+/// One iteration of overland flow: every texel's outflows, then every texel's
+/// exchange ([`precip_cover::water`]).
+const FLOW_ITERATION: [KernelPass; 2] = [
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "water_outflow",
+        over: DispatchOver::CoverTexels,
+    },
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "water_inflow",
+        over: DispatchOver::CoverTexels,
+    },
+];
+
+/// The water bodies' waves, after the flow: the next heights, then the shift.
+const SUBSTEP_TAIL: [KernelPass; 2] = [
+    KernelPass {
+        program: Program::StepParticles,
+        entry_point: "wave_step",
+        over: DispatchOver::WaveCells,
+    },
+    KernelPass {
+        program: Program::StepParticles,
+        entry_point: "wave_shift",
+        over: DispatchOver::WaveCells,
+    },
+];
+
+/// Drift kernels a sub-step.
+const DRIFT_KERNELS: usize = DRIFT_ITERATION.len() * precip_cover::SNOW_DRIFT_ITERATIONS as usize;
+
+/// Flow kernels a sub-step.
+const FLOW_KERNELS: usize = FLOW_ITERATION.len() * precip_cover::WATER_FLOW_ITERATIONS as usize;
+
+/// Kernels of one sub-step.
+pub const SUBSTEP_KERNELS: usize =
+    SUBSTEP_HEAD.len() + DRIFT_KERNELS + FLOW_KERNELS + SUBSTEP_TAIL.len();
+
+/// One sub-step, in order: the pending births are emptied, the particles move
+/// (listing those to re-birth, a landed one at its landing point), the landed ones
+/// strike the water bodies' waves, the listed ones deposit their water and are
+/// re-born (or splash), the cover takes the deposits (or the rate), melts, ages and
+/// wets, the wind's factor over the ground is read, snow drifts and slides
+/// ([`precip_cover::SNOW_DRIFT_ITERATIONS`] iterations of two kernels), standing
+/// water flows ([`precip_cover::WATER_FLOW_ITERATIONS`] iterations of two kernels),
+/// and the waves advance ([`precip_model::physics::water_waves`]). Sub-steps repeat this with their
+/// own uniform blocks (dynamic offsets).
+pub const SUBSTEP_PASSES: [KernelPass; SUBSTEP_KERNELS] = {
+    let mut passes = [SUBSTEP_HEAD[0]; SUBSTEP_KERNELS];
+    let head = SUBSTEP_HEAD.len();
+    let mut k = 0;
+    while k < SUBSTEP_KERNELS {
+        passes[k] = if k < head {
+            SUBSTEP_HEAD[k]
+        } else if k < head + DRIFT_KERNELS {
+            DRIFT_ITERATION[(k - head) % DRIFT_ITERATION.len()]
+        } else if k < head + DRIFT_KERNELS + FLOW_KERNELS {
+            FLOW_ITERATION[(k - head - DRIFT_KERNELS) % FLOW_ITERATION.len()]
+        } else {
+            SUBSTEP_TAIL[k - head - DRIFT_KERNELS - FLOW_KERNELS]
+        };
+        k += 1;
+    }
+    passes
+};
+
+/// Per-kernel timings of a step from the time each dispatch took, in dispatch order
+/// (sub-step after sub-step): summed per kernel entry point, in the order of
+/// [`SUBSTEP_PASSES`] (a kernel dispatched many times — the flow's — is one entry).
+#[must_use]
+pub fn substep_timings(elapsed_ms: impl IntoIterator<Item = f64>) -> Vec<precip_model::PassTiming> {
+    let mut passes: Vec<precip_model::PassTiming> = Vec::new();
+    for kernel in SUBSTEP_PASSES {
+        if !passes.iter().any(|p| p.pass == kernel.entry_point) {
+            passes.push(precip_model::PassTiming {
+                pass: kernel.entry_point,
+                milliseconds: 0.0,
+            });
+        }
+    }
+    for (i, ms) in elapsed_ms.into_iter().enumerate() {
+        let name = SUBSTEP_PASSES[i % SUBSTEP_KERNELS].entry_point;
+        if let Some(p) = passes.iter_mut().find(|p| p.pass == name) {
+            p.milliseconds += ms;
+        }
+    }
+    passes
+}
+
+/// What a kernel's bytes are counted per.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BytesPer {
+    /// Every particle of the dispatch.
+    Particle,
+    /// Every particle re-born (a few per sub-step).
+    Birth,
+    /// Every particle drawn that way (a sprite or streak, or a splat).
+    Drawn,
+}
+
+/// Bytes of particle state and per-particle lists a kernel reads and writes, counted
+/// from its WGSL: a whole [`precip_model::Particle`] is 64 bytes, a word 4 (the wind volume,
+/// ground map, cover and uniform blocks, small and cached, are not counted). The
+/// report turns them into bytes per second with the kernels' measured times.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct KernelBytes {
+    /// The entry point.
+    pub entry_point: &'static str,
+    /// Counted per.
+    pub per: BytesPer,
+    /// Bytes read.
+    pub read: u32,
+    /// Bytes written.
+    pub written: u32,
+}
+
+const PARTICLE_BYTES: u32 = size_of::<precip_model::Particle>() as u32;
+
+/// The bytes each particle kernel and draw moves ([`KernelBytes`]).
+pub const KERNEL_BYTES: [KernelBytes; 8] = [
+    // The particle, read and written whole (52 of its 64 bytes change).
+    KernelBytes {
+        entry_point: "step_particles",
+        per: BytesPer::Particle,
+        read: PARTICLE_BYTES,
+        written: PARTICLE_BYTES,
+    },
+    // The step's append (a word), the index read back, the particle read (flags,
+    // water, position) and written new.
+    KernelBytes {
+        entry_point: "birth_particles",
+        per: BytesPer::Birth,
+        read: 4 + PARTICLE_BYTES,
+        written: 4 + PARTICLE_BYTES,
+    },
+    // Position, velocity, flags and diameter span the particle's four rows; its class
+    // and rank are written as one word (`drawn_kinds`).
+    KernelBytes {
+        entry_point: "cull_count",
+        per: BytesPer::Particle,
+        read: PARTICLE_BYTES,
+        written: 4,
+    },
+    // The class word; the index of each particle drawn or splatted.
+    KernelBytes {
+        entry_point: "cull_write",
+        per: BytesPer::Particle,
+        read: 4,
+        written: 0,
+    },
+    KernelBytes {
+        entry_point: "cull_write",
+        per: BytesPer::Drawn,
+        read: 0,
+        written: 4,
+    },
+    // The splat list's entry, the particle, and four pixels' sums (4 words each,
+    // read and written by the atomics).
+    KernelBytes {
+        entry_point: "splat_particles",
+        per: BytesPer::Drawn,
+        read: 4 + PARTICLE_BYTES + 4 * 16,
+        written: 4 * 16,
+    },
+    // The index and the particle, once an instance (its 4 or 12 vertices hit the
+    // cache for the rest).
+    KernelBytes {
+        entry_point: "vs_snow",
+        per: BytesPer::Drawn,
+        read: 4 + PARTICLE_BYTES,
+        written: 0,
+    },
+    KernelBytes {
+        entry_point: "vs_rain",
+        per: BytesPer::Drawn,
+        read: 4 + PARTICLE_BYTES,
+        written: 0,
+    },
+];
+
+/// Bytes read plus written per particle by the kernels of one sub-step over all
+/// particles (re-births, a few per sub-step, not counted).
+#[must_use]
+pub fn step_bytes_per_particle() -> u64 {
+    KERNEL_BYTES
+        .iter()
+        .filter(|k| k.per == BytesPer::Particle)
+        .filter(|k| {
+            SUBSTEP_PASSES
+                .iter()
+                .any(|p| p.entry_point == k.entry_point)
+        })
+        .map(|k| u64::from(k.read + k.written))
+        .sum()
+}
+
+/// The culling kernels of a frame, in order; `cull_scan` runs as one workgroup,
+/// the others over the particles' workgroups (the same count `dispatch_size` gives).
+pub const CULL_PASSES: [KernelPass; 3] = [
+    KernelPass {
+        program: Program::CullParticles,
+        entry_point: "cull_count",
+        over: DispatchOver::Particles,
+    },
+    KernelPass {
+        program: Program::CullParticles,
+        entry_point: "cull_scan",
+        over: DispatchOver::OneWorkgroup,
+    },
+    KernelPass {
+        program: Program::CullParticles,
+        entry_point: "cull_write",
+        over: DispatchOver::Particles,
+    },
+];
+
+/// The draws of a frame, in order, each a vertex and fragment entry point of
+/// [`Program::Render`]. The shadow pass writes depth only (no fragment stage).
+pub mod render_passes {
+    /// Sun's depth: the scene's displaced geometry.
+    pub const SHADOW: (&str, Option<&str>) = ("vs_shadow", None);
+    /// The scene with its cover.
+    pub const SCENE: (&str, Option<&str>) = ("vs_scene", Some("fs_scene"));
+    /// Snow sprites: triangle strip of 4 vertices per drawn particle, indirect draw 0.
+    pub const SNOW: (&str, Option<&str>) = ("vs_snow", Some("fs_snow"));
+    /// Rain tetrahedra: triangle list of 12 vertices per drawn particle, indirect draw 1.
+    pub const RAIN: (&str, Option<&str>) = ("vs_rain", Some("fs_rain"));
+    /// The splat sums blended over the frame: one triangle of 3 vertices covering the
+    /// target, no depth test (the splat kernel tested each particle), alpha blending;
+    /// first in the particles' pass.
+    pub const SPLAT_RESOLVE: (&str, Option<&str>) = ("vs_splat_resolve", Some("fs_splat_resolve"));
+}
+
+/// The cover texels into the three filtered textures the surfaces read
+/// ([`render_bindings::COVER_A`], [`render_bindings::COVER_B`],
+/// [`render_bindings::COVER_C`]): first in a frame.
+pub const COVER_TEXTURE_PASS: KernelPass = KernelPass {
+    program: Program::Render,
+    entry_point: "cover_texture",
+    over: DispatchOver::CoverTexels,
+};
+
+/// The format of the cover textures (filterable everywhere, a storage format in
+/// WebGPU and Vulkan).
+pub const COVER_TEXTURE_FORMAT_NAME: &str = "Rgba16Float";
+
+/// The splat of sub-pixel particles: after the scene's pass (it reads the scene's
+/// depth) and the cull kernels, before the particles' pass, whose first draw
+/// ([`render_passes::SPLAT_RESOLVE`]) blends the sums over the frame.
+pub const SPLAT_PASS: KernelPass = KernelPass {
+    program: Program::Render,
+    entry_point: "splat_particles",
+    over: DispatchOver::ParticleList,
+};
+
+/// The passes of a frame as data, and their timed names
+/// ([`crate::frame`]).
+pub use crate::frame::{FRAME_PASSES, TIMED_RENDER_PASSES};
+
+/// Bytes of the cull kernels' per-workgroup counts (`vec4<u32>` each).
+pub const GROUP_COUNT_BYTES: u64 = 16;
+
+/// Bytes of the splat sums per pixel of the target (4 × u32: Σa·r, Σa·g, Σa·b, Σa).
+pub const SPLAT_BYTES_PER_PIXEL: u64 = 16;
+
+/// Bindings of [`Program::CullParticles`], group 0.
+pub mod cull_bindings {
+    /// `RenderParams`, read-only storage (see `render_bindings::PARAMS`).
+    pub const PARAMS: u32 = 0;
+    /// Particles, read-only storage.
+    pub const PARTICLES: u32 = 1;
+    /// Per-workgroup counts (sprites, streaks, splats, 0), then offsets:
+    /// `array<vec4<u32>>`, one per cull workgroup.
+    pub const GROUP_COUNTS: u32 = 2;
+    /// The drawn lists: `array<u32>` of 3 × particle count (N): sprites from 0,
+    /// streaks from N, splats from 2N ([`DRAWN_LIST_BYTES_PER_PARTICLE`]).
+    pub const DRAWN: u32 = 3;
+    /// The two indirect draws and the splat count, [`super::FrameDraws`].
+    pub const DRAWS: u32 = 4;
+    /// How each particle is drawn this frame, `array<u32>` of the particle count,
+    /// written by `cull_count`: the class (`DRAWN_*`) in bits 0–7, the particle's
+    /// rank among its workgroup's particles of that class from bit 8 (counted by
+    /// the workgroup's first lane), so `cull_write` places it with no barrier.
+    pub const DRAWN_KINDS: u32 = 5;
+}
+
+/// Bytes of the drawn lists per particle: three `u32` lists (sprites, streaks,
+/// splats), each as long as the particles.
+pub const DRAWN_LIST_BYTES_PER_PARTICLE: u64 = 12;
+
+/// Bindings of [`Program::Render`].
+pub mod render_bindings {
+    /// Group 0 (the frame; vertex, fragment and the splat kernel): `RenderParams`, a
+    /// uniform block at a dynamic offset.
+    pub const PARAMS: u32 = 0;
+    /// Group 0: the same `RenderParams` block as read-only storage, read only by the
+    /// branches that depend on nothing but the block (the displacement switch, the
+    /// counts: culling on, splat width). Mesa's lavapipe up to 23.1 "inlines" the
+    /// uniforms such a branch tests: it recompiles the shader at every draw and keeps
+    /// every variant until the device is destroyed (1.8 MB a frame measured); storage
+    /// is never inlined. Reading all of the block from storage instead cost lavapipe
+    /// 3× in the scene pass (125 → 38 ms at 1280×720).
+    pub const PARAMS_SWITCHES: u32 = 11;
+    /// Group 0 of the `cover_texture` kernel only (its own group): cover texels,
+    /// read-only storage.
+    pub const COVER: u32 = 1;
+    /// Group 0: ground heights, read-only storage.
+    pub const GROUND_HEIGHT: u32 = 2;
+    /// Group 0: particles, read-only storage.
+    pub const PARTICLES: u32 = 3;
+    /// Group 0: the drawn lists, read-only storage (see [`super::cull_bindings::DRAWN`]).
+    pub const DRAWN: u32 = 4;
+    /// Group 0: the cover's first texture (depth mm, SWE mm, peak SWE mm, wetness),
+    /// `texture_2d<f32>`, [`super::COVER_TEXTURE_FORMAT_NAME`].
+    pub const COVER_A: u32 = 5;
+    /// Group 0: the second (accumulation mask, melt mask, age days, 0).
+    pub const COVER_B: u32 = 6;
+    /// Group 0: their sampler (linear, clamped to the edge).
+    pub const COVER_SAMPLER: u32 = 7;
+    /// Group 0 of the `cover_texture` kernel: [`COVER_A`] as a write-only storage
+    /// texture.
+    pub const COVER_A_OUT: u32 = 8;
+    /// Group 0 of the `cover_texture` kernel: [`COVER_B`] as a write-only storage
+    /// texture.
+    pub const COVER_B_OUT: u32 = 9;
+    /// Group 1 (light): the shadow map, `texture_depth_2d`.
+    pub const SHADOW_MAP: u32 = 0;
+    /// Group 1: its comparison sampler (less-equal, linear).
+    pub const SHADOW_SAMPLER: u32 = 1;
+    /// Group 1: the flake's opacity, `texture_2d<f32>` (R8).
+    pub const FLAKE_OPACITY: u32 = 2;
+    /// Group 1: its sampler (linear, clamped).
+    pub const FLAKE_SAMPLER: u32 = 3;
+    /// Group 2 (material): `Material { base_colour: vec4 }`, uniform.
+    pub const MATERIAL: u32 = 0;
+    /// Group 2: base-colour texture (sRGB).
+    pub const BASE_COLOUR_TEXTURE: u32 = 1;
+    /// Group 2: its sampler (linear, repeat).
+    pub const MATERIAL_SAMPLER: u32 = 2;
+    /// The shadow map's format.
+    pub const SHADOW_FORMAT_NAME: &str = "Depth32Float";
+    /// Group 2 of the splat kernel (its own group, numbered apart from the material's
+    /// bindings): the camera's depth buffer, `texture_depth_2d`, read with
+    /// `textureLoad`.
+    pub const SPLAT_SCENE_DEPTH: u32 = 3;
+    /// Group 2 of the splat kernel: the splat sums, `array<atomic<u32>>`, read-write
+    /// storage of [`super::SPLAT_BYTES_PER_PIXEL`] per pixel of the target.
+    pub const SPLAT_SUMS: u32 = 4;
+    /// Group 2 of the resolve draw (fragment): the same sums as plain `array<u32>`
+    /// (one fragment per pixel reads and zeroes its own: no atomics needed).
+    pub const RESOLVED_SUMS: u32 = 5;
+    /// Group 2 of the splat kernel: the frame's [`super::FrameDraws`] (the splat
+    /// list's count), read-only storage.
+    pub const SPLAT_DRAWS: u32 = 6;
+    /// Group 0: the water bodies' waves (`array<i32>`, as
+    /// [`super::step_bindings::WAVES`]), read-only storage.
+    pub const WAVES: u32 = 12;
+    /// Group 0: the cover's third texture (sand and dust settled, kg/m²; 0, 0, 0).
+    pub const COVER_C: u32 = 13;
+    /// Group 0 of the `cover_texture` kernel: [`COVER_C`] as a write-only storage
+    /// texture.
+    pub const COVER_C_OUT: u32 = 14;
+}
+
+/// One input of the `probe_drawing` test kernel (64 bytes). WGSL: `ProbeDrawing`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct ProbeDrawing {
+    /// Particle centre, m.
+    pub centre_m: [f32; 3],
+    /// Sprite side, m.
+    pub side_m: f32,
+    /// Camera, m.
+    pub camera_m: [f32; 3],
+    /// Sprite spin, rad.
+    pub spin_rad: f32,
+    /// Drop velocity, m/s.
+    pub velocity_mps: [f32; 3],
+    /// Sprite tumble.
+    pub tumble: f32,
+    /// Tetrahedron height, m.
+    pub h_m: f32,
+    /// Tetrahedron base side, m.
+    pub a_m: f32,
+    /// Unused.
+    pub reserved: [f32; 2],
+}
+const _: () = assert!(size_of::<ProbeDrawing>() == 64);
+
+/// Bindings of [`Program::QueryBeams`], group 0 (`shaders/lidar.wgsl`).
+pub mod beam_bindings {
+    /// [`precip_model::sensors::lidar::BeamParams`].
+    pub const PARAMS: u32 = 0;
+    /// [`super::Frames`].
+    pub const FRAMES: u32 = 1;
+    /// The ground map's words ([`precip_model::GroundMap::gpu_words`]).
+    pub const GROUND_HEIGHT: u32 = 2;
+    /// The particles, read only.
+    pub const PARTICLES: u32 = 3;
+    /// The beams ([`precip_model::sensors::lidar::Beam`]).
+    pub const BEAMS: u32 = 4;
+    /// One [`precip_model::sensors::lidar::BeamHit`] per beam, written.
+    pub const HITS: u32 = 5;
+}
+
+/// Bindings of [`Program::StepParticles`], group 0.
+pub mod step_bindings {
+    /// `StepParams`, uniform, dynamic offset.
+    pub const STEP_PARAMS: u32 = 0;
+    /// `Frames`, uniform.
+    pub const FRAMES: u32 = 1;
+    /// `WindParams`, uniform.
+    pub const WIND: u32 = 2;
+    /// The wind volume, `texture_3d<f32>` (`Rgba32Float`, read with `textureLoad`).
+    pub const WIND_VOLUME: u32 = 3;
+    /// Ground heights, `array<f32>`, read-only storage.
+    pub const GROUND_HEIGHT: u32 = 4;
+    /// Particles, `array<Particle>`, read-write storage.
+    pub const PARTICLES: u32 = 5;
+    /// Deposits, `array<atomic<u32>>`, read-write storage.
+    pub const DEPOSITS: u32 = 6;
+    /// The pending births (a count, then `array<u32>` of particle indices:
+    /// [`super::pending_births_bytes`]), read-write storage.
+    pub const PENDING_BIRTHS: u32 = 7;
+    /// The water bodies' waves: `array<atomic<i32>>`,
+    /// [`precip_model::physics::water_waves::WAVE_WORDS_PER_CELL`] a cell, read-write storage.
+    pub const WAVES: u32 = 8;
+    /// The cover texels as words (`array<f32>`, [`precip_model::physics::drifting_snow`]'s word
+    /// offsets), read-only storage: where snow is blowing, for drifting snow's births.
+    pub const COVER: u32 = 9;
+}
+
+/// Bindings of [`Program::CoverUpdate`], group 0.
+pub mod cover_bindings {
+    /// `CoverStepParams`, uniform, dynamic offset.
+    pub const COVER_PARAMS: u32 = 0;
+    /// Cover texels, read-write storage.
+    pub const COVER: u32 = 1;
+    /// Deposits, read-write storage.
+    pub const DEPOSITS: u32 = 2;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_step_moves_the_particle_once_each_way() {
+        assert_eq!(step_bytes_per_particle(), 128);
+        for k in KERNEL_BYTES {
+            assert!(
+                SUBSTEP_PASSES
+                    .iter()
+                    .chain(&CULL_PASSES)
+                    .chain([&SPLAT_PASS])
+                    .any(|p| p.entry_point == k.entry_point)
+                    || [render_passes::SNOW.0, render_passes::RAIN.0].contains(&k.entry_point),
+                "{k:?} names no kernel or draw of the frame"
+            );
+        }
+    }
+
+    #[test]
+    fn every_kernel_of_the_recipe_is_an_entry_point_of_its_program() {
+        for kernel in SUBSTEP_PASSES.iter().chain([&INIT_PASS]) {
+            assert!(
+                kernel.program.entry_points().contains(&kernel.entry_point),
+                "{kernel:?}"
+            );
+        }
+        let in_recipe = |name: &str| {
+            SUBSTEP_PASSES
+                .iter()
+                .chain([&INIT_PASS])
+                .any(|k| k.entry_point == name)
+        };
+        for kernel in CULL_PASSES {
+            assert!(kernel.program.entry_points().contains(&kernel.entry_point));
+        }
+        for kernel in [SPLAT_PASS, COVER_TEXTURE_PASS] {
+            assert!(kernel.program.entry_points().contains(&kernel.entry_point));
+        }
+        for (vs, fs) in [
+            render_passes::SHADOW,
+            render_passes::SCENE,
+            render_passes::SNOW,
+            render_passes::RAIN,
+            render_passes::SPLAT_RESOLVE,
+        ] {
+            assert!(Program::Render.entry_points().contains(&vs));
+            assert!(fs.is_none_or(|f| Program::Render.entry_points().contains(&f)));
+        }
+        for program in [Program::StepParticles, Program::CoverUpdate] {
+            for name in program.entry_points() {
+                assert!(in_recipe(name), "{name} of {program:?} is never dispatched");
+            }
+        }
+    }
+}

@@ -1,0 +1,248 @@
+//! The WGSL sources: one file per kernel plus shared files, joined in a fixed order.
+//!
+//! WGSL has no `#include`, so each GPU program is the concatenation of the shared
+//! files it needs and its kernel file, in the order [`Program::files`] gives. Every
+//! backend takes its source from [`Program::source`]: wgpu loads it as it is, the
+//! Vulkan backend translates the same text to SPIR-V with naga at build time.
+
+/// One WGSL file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ShaderFile {
+    /// File name: under `shaders/` of the crate of its Rust twin (`precip-model`,
+    /// `precip-wind`, `precip-cover`), or of this crate for GPU-only files.
+    pub name: &'static str,
+    /// Its text.
+    pub source: &'static str,
+}
+
+/// A file of another crate, beside its Rust twin.
+macro_rules! twin_file {
+    ($name:literal, $source:path) => {
+        ShaderFile {
+            name: $name,
+            source: $source,
+        }
+    };
+}
+
+/// A GPU-only file of this crate's `shaders/`.
+macro_rules! shader_file {
+    ($name:literal) => {
+        ShaderFile {
+            name: $name,
+            source: include_str!(concat!("../shaders/", $name)),
+        }
+    };
+}
+
+/// Structs shared with Rust, grid lookups.
+pub const LAYOUT: ShaderFile = twin_file!("layout.wgsl", precip_model::wgsl::LAYOUT);
+/// Counter-based RNG.
+pub const RNG: ShaderFile = twin_file!("rng.wgsl", precip_model::wgsl::RNG);
+/// Flakes, drops, drag, rotation.
+pub const PHYSICS: ShaderFile = twin_file!("physics.wgsl", precip_model::wgsl::PHYSICS);
+/// The wind sampler.
+pub const WIND: ShaderFile = twin_file!("wind.wgsl", precip_wind::wgsl::WIND);
+/// The ground height map.
+pub const GROUND_MAP: ShaderFile = twin_file!("ground_map.wgsl", precip_model::wgsl::GROUND_MAP);
+/// How the ground turns the particles' wind.
+pub const GROUND: ShaderFile = twin_file!("ground.wgsl", precip_model::wgsl::GROUND);
+/// LiDAR beams: kernel `query_beams` (Rust twin: `lidar`).
+pub const LIDAR: ShaderFile = twin_file!("lidar.wgsl", precip_model::wgsl::LIDAR);
+/// Fixed-point deposits.
+pub const DEPOSIT: ShaderFile = twin_file!("deposit.wgsl", precip_cover::wgsl::DEPOSIT);
+/// Birth and re-birth.
+pub const BIRTH: ShaderFile = twin_file!("birth.wgsl", precip_model::wgsl::BIRTH);
+/// The snow cover model.
+pub const COVER: ShaderFile = twin_file!("cover.wgsl", precip_cover::wgsl::COVER);
+/// Kernels `step_particles`, `birth_particles` and `init_particles`.
+pub const STEP_PARTICLES: ShaderFile =
+    twin_file!("step_particles.wgsl", precip_model::wgsl::STEP_PARTICLES);
+/// How water looks (Rust twin: `water_look`).
+pub const WATER_LOOK: ShaderFile = twin_file!("water_look.wgsl", precip_model::wgsl::WATER_LOOK);
+/// Water's constants, the Weber number and the ripples' phase speed.
+pub const WATER_PHYSICS: ShaderFile =
+    twin_file!("water_physics.wgsl", precip_model::wgsl::WATER_PHYSICS);
+/// Waves on water bodies (Rust twin: `water_waves`).
+pub const WATER_WAVES: ShaderFile = twin_file!("water_waves.wgsl", precip_model::wgsl::WATER_WAVES);
+/// Splash droplets (Rust twin: `splash`).
+pub const SPLASH: ShaderFile = twin_file!("splash.wgsl", precip_model::wgsl::SPLASH);
+/// Kernel `cover_update`.
+/// When the wind lifts snow and how much it carries (Rust twin:
+/// `precip_cover::blowing`).
+pub const BLOWING: ShaderFile = twin_file!("blowing.wgsl", precip_cover::wgsl::BLOWING);
+/// Kernels `cover_update`, `snow_wind`, `snow_outflow`, `snow_inflow`,
+/// `water_outflow`, `water_inflow`.
+pub const COVER_UPDATE: ShaderFile =
+    twin_file!("cover_update.wgsl", precip_cover::wgsl::COVER_UPDATE);
+/// Test kernel `probe_rng`.
+pub const PROBE_RNG: ShaderFile = shader_file!("probe_rng.wgsl");
+/// The renderer's structs.
+pub const RENDER_LAYOUT: ShaderFile = shader_file!("render_layout.wgsl");
+/// Sprite, tetrahedron, view cone, lighting, fog.
+pub const DRAWING: ShaderFile = twin_file!("drawing.wgsl", precip_model::wgsl::DRAWING);
+/// The cover as a surface sees it.
+pub const SHADING: ShaderFile = twin_file!("shading.wgsl", precip_cover::wgsl::SHADING);
+/// The render bindings, shadow map and scene passes.
+pub const RENDER_SCENE: ShaderFile = shader_file!("render_scene.wgsl");
+/// Snow sprites and rain tetrahedra.
+pub const RENDER_PARTICLES: ShaderFile = shader_file!("render_particles.wgsl");
+/// Kernel `cover_texture`: the cover texels into the surfaces' filtered textures.
+pub const COVER_TEXTURE: ShaderFile = shader_file!("cover_texture.wgsl");
+/// How each particle is drawn this frame (`drawn_as`), for the cull and splat kernels.
+pub const PARTICLE_LISTS: ShaderFile = shader_file!("particle_lists.wgsl");
+/// Sub-pixel particles: kernel `splat_particles` and its resolve draw.
+pub const RENDER_SPLAT: ShaderFile = shader_file!("render_splat.wgsl");
+/// Kernels `cull_count`, `cull_scan`, `cull_write`.
+pub const CULL_PARTICLES: ShaderFile = shader_file!("cull_particles.wgsl");
+/// Test kernel `probe_drawing`.
+pub const PROBE_DRAWING: ShaderFile = shader_file!("probe_drawing.wgsl");
+
+/// A GPU program: the files it is joined from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Program {
+    /// Particle initialisation and step.
+    StepParticles,
+    /// The cover update.
+    CoverUpdate,
+    /// A test probe of the RNG.
+    ProbeRng,
+    /// The scene and precipitation draws (vertex and fragment entry points), and the
+    /// splat of sub-pixel particles (a compute kernel and its resolve draw).
+    Render,
+    /// View-cone culling and compaction of the particles.
+    CullParticles,
+    /// A test probe of the drawing formulas.
+    ProbeDrawing,
+    /// LiDAR beams against the particles and the ground.
+    QueryBeams,
+}
+
+impl Program {
+    /// Every program.
+    pub const ALL: [Self; 7] = [
+        Self::StepParticles,
+        Self::CoverUpdate,
+        Self::ProbeRng,
+        Self::Render,
+        Self::CullParticles,
+        Self::ProbeDrawing,
+        Self::QueryBeams,
+    ];
+
+    /// The files, in the order they are joined.
+    #[must_use]
+    pub const fn files(self) -> &'static [ShaderFile] {
+        match self {
+            Self::StepParticles => &[
+                LAYOUT,
+                RNG,
+                PHYSICS,
+                WIND,
+                GROUND_MAP,
+                GROUND,
+                DEPOSIT,
+                BIRTH,
+                WATER_PHYSICS,
+                SPLASH,
+                STEP_PARTICLES,
+                WATER_WAVES,
+            ],
+            Self::CoverUpdate => &[LAYOUT, DEPOSIT, WATER_PHYSICS, COVER, BLOWING, COVER_UPDATE],
+            Self::ProbeRng => &[RNG, PROBE_RNG],
+            Self::Render => &[
+                LAYOUT,
+                RNG,
+                WATER_PHYSICS,
+                COVER,
+                RENDER_LAYOUT,
+                DRAWING,
+                SHADING,
+                WATER_LOOK,
+                RENDER_SCENE,
+                PARTICLE_LISTS,
+                RENDER_PARTICLES,
+                RENDER_SPLAT,
+                COVER_TEXTURE,
+            ],
+            Self::CullParticles => &[
+                LAYOUT,
+                RENDER_LAYOUT,
+                DRAWING,
+                PARTICLE_LISTS,
+                CULL_PARTICLES,
+            ],
+            Self::ProbeDrawing => &[DRAWING, PROBE_DRAWING],
+            Self::QueryBeams => &[LAYOUT, GROUND_MAP, LIDAR],
+        }
+    }
+
+    /// Its entry points.
+    #[must_use]
+    pub const fn entry_points(self) -> &'static [&'static str] {
+        match self {
+            Self::StepParticles => &[
+                "reset_births",
+                "step_particles",
+                "birth_particles",
+                "init_particles",
+                "wave_excite",
+                "wave_step",
+                "wave_shift",
+            ],
+            Self::CoverUpdate => &[
+                "cover_update",
+                "snow_wind",
+                "snow_outflow",
+                "snow_inflow",
+                "water_outflow",
+                "water_inflow",
+            ],
+            Self::ProbeRng => &["probe_rng"],
+            Self::Render => &[
+                "vs_shadow",
+                "vs_scene",
+                "fs_scene",
+                "vs_snow",
+                "fs_snow",
+                "vs_rain",
+                "fs_rain",
+                "splat_particles",
+                "vs_splat_resolve",
+                "fs_splat_resolve",
+                "cover_texture",
+            ],
+            Self::CullParticles => &["cull_count", "cull_scan", "cull_write"],
+            Self::ProbeDrawing => &["probe_drawing"],
+            Self::QueryBeams => &["query_beams"],
+        }
+    }
+
+    /// A label for debuggers.
+    #[must_use]
+    pub const fn label(self) -> &'static str {
+        match self {
+            Self::StepParticles => "precip step_particles",
+            Self::CoverUpdate => "precip cover_update",
+            Self::ProbeRng => "precip probe_rng",
+            Self::Render => "precip render",
+            Self::CullParticles => "precip cull_particles",
+            Self::ProbeDrawing => "precip probe_drawing",
+            Self::QueryBeams => "precip query_beams",
+        }
+    }
+
+    /// The joined WGSL text, each file headed by a comment naming it.
+    #[must_use]
+    pub fn source(self) -> String {
+        let mut text = String::new();
+        for file in self.files() {
+            text.push_str("// ---- ");
+            text.push_str(file.name);
+            text.push_str(" ----\n");
+            text.push_str(file.source);
+            text.push('\n');
+        }
+        text
+    }
+}

@@ -1,0 +1,403 @@
+//! Every GPU program parses and validates with naga, has its entry points, and every
+//! struct that crosses to the GPU has the same size and member offsets in WGSL as its
+//! `#[repr(C)]` Rust twin.
+
+use std::collections::HashMap;
+use std::mem::{offset_of, size_of};
+
+use naga::valid::{Capabilities, ValidationFlags, Validator};
+use precip_gpu::bind_groups::{BindingKind, Stages, TextureSample, groups_of};
+use precip_gpu::recipe::{DrawArgs, FrameDraws, Frames, ProbeDrawing};
+use precip_gpu::shaders::Program;
+use precip_model::Particle;
+use precip_model::cover::{CoverStepParams, CoverTexel, GridFrame};
+use precip_model::drawing::render::RenderParams;
+use precip_model::particles::step::StepParams;
+use precip_model::sensors::lidar::{Beam, BeamHit, BeamParams};
+use precip_model::wind::WindParams;
+
+fn parse(program: Program) -> naga::Module {
+    let source = program.source();
+    naga::front::wgsl::parse_str(&source)
+        .unwrap_or_else(|e| panic!("{program:?} does not parse:\n{}", e.emit_to_string(&source)))
+}
+
+#[test]
+fn every_program_validates_with_all_its_entry_points() {
+    for program in Program::ALL {
+        let module = parse(program);
+        Validator::new(ValidationFlags::all(), Capabilities::default())
+            .validate(&module)
+            .unwrap_or_else(|e| {
+                panic!(
+                    "{program:?} is invalid:\n{}",
+                    e.emit_to_string(&program.source())
+                )
+            });
+        for name in program.entry_points() {
+            assert!(
+                module.entry_points.iter().any(|ep| ep.name == *name),
+                "{program:?} lacks {name}"
+            );
+        }
+        assert_eq!(
+            module.entry_points.len(),
+            program.entry_points().len(),
+            "{program:?}"
+        );
+    }
+}
+
+/// WGSL struct name → (size, member name → offset).
+fn wgsl_layouts() -> HashMap<String, (u32, HashMap<String, u32>)> {
+    let mut out = HashMap::new();
+    for program in [
+        Program::StepParticles,
+        Program::CoverUpdate,
+        Program::Render,
+        Program::CullParticles,
+        Program::ProbeDrawing,
+        Program::QueryBeams,
+    ] {
+        let module = parse(program);
+        for (_, ty) in module.types.iter() {
+            if let naga::TypeInner::Struct { members, span } = &ty.inner {
+                let offsets = members
+                    .iter()
+                    .filter_map(|m| Some((m.name.clone()?, m.offset)))
+                    .collect();
+                out.insert(ty.name.clone().unwrap_or_default(), (*span, offsets));
+            }
+        }
+    }
+    out
+}
+
+macro_rules! rust_layout {
+    ($ty:ty { $($field:ident),* $(,)? }) => {
+        (stringify!($ty), size_of::<$ty>(), vec![$((stringify!($field), offset_of!($ty, $field))),*])
+    };
+}
+
+#[test]
+fn rust_and_wgsl_layouts_match() {
+    let wgsl = wgsl_layouts();
+    let rust = [
+        rust_layout!(Particle {
+            position_m,
+            age_s,
+            velocity_mps,
+            terminal_speed_mps,
+            rotation_rad,
+            flags,
+            diameter_m,
+            water_kg,
+            generation,
+            rotation0
+        }),
+        rust_layout!(StepParams {
+            emitter_model,
+            emitter_size_m,
+            emitter_life_time_s,
+            emitter_velocity_spread_mps,
+            emitter_velocity_mps,
+            water_per_particle_kg_per_s,
+            camera_centre_m,
+            dt_s,
+            camera_half_extent_m,
+            time_s,
+            mean_wind_mps,
+            snow_fraction,
+            world_rotation,
+            camera_rotation,
+            seed,
+            world_count,
+            particle_count,
+            snow_is_wet,
+            air_temperature_c,
+            rain_slope_per_mm,
+            deposit_scale_mm_per_kg,
+            ground_floor_m,
+            grain_diameter_m,
+            grain_density_kg_m3,
+            lift_from,
+            lift_per_particle_kg_per_s,
+            friction_velocity_mps,
+            lift_layer_top_m,
+            grain_suspended,
+            flow_ceiling_m,
+            lift_area_min_m,
+            lift_area_max_m,
+            wall_rebound_speed_mps,
+            reserved0,
+            reserved1,
+            reserved2
+        }),
+        rust_layout!(Beam {
+            origin_m,
+            divergence_rad,
+            direction,
+            max_range_m
+        }),
+        rust_layout!(BeamHit {
+            particle_range_m,
+            particle_diameter_m,
+            particle_flags,
+            target_range_m
+        }),
+        rust_layout!(BeamParams {
+            beam_count,
+            particle_count,
+            aperture_radius_m,
+            march_step_m
+        }),
+        rust_layout!(GridFrame {
+            origin_m,
+            size_m,
+            texels,
+            reserved
+        }),
+        rust_layout!(Frames {
+            ground,
+            cover,
+            waves
+        }),
+        rust_layout!(WindParams {
+            mean_wind_mps,
+            gust_factor,
+            extent_m,
+            reserved0,
+            texels,
+            reserved1
+        }),
+        rust_layout!(CoverStepParams {
+            melt_threshold_c,
+            melt_proportionality_mm_per_c_day,
+            solar_irradiance_factor,
+            vegetation_density,
+            albedo_decay_per_day,
+            refreeze_factor_mm_per_c_day,
+            water_holding_fraction,
+            full_cover_depth_mm,
+            settled_density_kg_m3,
+            compaction_time_days,
+            wet_darkening,
+            wetting_mm,
+            mask_edge,
+            snow_rate_mm_per_day,
+            rain_rate_mm_per_day,
+            air_temperature_c,
+            relative_humidity,
+            wind_speed_mps,
+            dt_days,
+            flow_iteration_s,
+            cell_x_m,
+            cell_z_m,
+            texel_count,
+            texels_x,
+            wind_x_mps,
+            wind_z_mps,
+            snow_repose_tan,
+            drift_iteration_s,
+            origin_x_m,
+            origin_z_m,
+            reserved
+        }),
+        rust_layout!(CoverTexel {
+            swe_mm,
+            liquid_mm,
+            depth_mm,
+            age_days,
+            peak_swe_mm,
+            wetness,
+            runoff_mm,
+            deposited_mm,
+            eligibility,
+            accumulation_mask,
+            melt_mask,
+            feed,
+            film_mm,
+            standing_mm,
+            infiltrated_mm,
+            evaporated_mm,
+            net_inflow_mm,
+            ground_m,
+            surface,
+            moving_density_kg_m3,
+            outflow_mm,
+            drifted_mm,
+            wind_factor,
+            saltation_kg_per_m_s,
+            edge_drifted_mm,
+            dust_kg_m2,
+            reserved1
+        }),
+        rust_layout!(RenderParams {
+            view_proj,
+            sun_view_proj,
+            camera_m_cone_cos,
+            view_dir_pixel_angle,
+            to_sun_extinction,
+            sky_colour_time,
+            light,
+            shadow,
+            sizing,
+            cover_look,
+            cover_look2,
+            water_look,
+            ground,
+            cover,
+            waves,
+            counts
+        }),
+        rust_layout!(DrawArgs {
+            vertex_count,
+            instance_count,
+            first_vertex,
+            first_instance
+        }),
+        rust_layout!(FrameDraws {
+            snow,
+            rain,
+            splatted
+        }),
+        rust_layout!(ProbeDrawing {
+            centre_m,
+            side_m,
+            camera_m,
+            spin_rad,
+            velocity_mps,
+            tumble,
+            h_m,
+            a_m,
+            reserved
+        }),
+    ];
+    for (name, size, fields) in rust {
+        let (span, offsets) = wgsl
+            .get(name)
+            .unwrap_or_else(|| panic!("no WGSL struct {name}"));
+        assert_eq!(
+            *span as usize, size,
+            "{name}: WGSL size {span} vs Rust {size}"
+        );
+        for (field, offset) in fields {
+            let wgsl_offset = offsets
+                .get(field)
+                .unwrap_or_else(|| panic!("WGSL {name} has no member {field}"));
+            assert_eq!(*wgsl_offset as usize, offset, "{name}.{field}");
+        }
+        assert!(offsets.len() >= 2, "{name}");
+    }
+}
+
+/// Whether `kind` can hold the WGSL global `var` of `module`.
+fn kind_matches(module: &naga::Module, var: &naga::GlobalVariable, kind: BindingKind) -> bool {
+    use naga::{AddressSpace, ImageClass, ImageDimension, StorageAccess, TypeInner};
+    match (var.space, kind) {
+        (AddressSpace::Uniform, BindingKind::Uniform { .. }) => true,
+        (AddressSpace::Storage { access }, BindingKind::Storage { read_only, .. }) => {
+            read_only != access.contains(StorageAccess::STORE)
+        }
+        (AddressSpace::Handle, kind) => match (&module.types[var.ty].inner, kind) {
+            (TypeInner::Sampler { comparison }, BindingKind::Sampler { comparison: c }) => {
+                *comparison == c
+            }
+            (TypeInner::Image { dim, class, .. }, BindingKind::Texture { sample, volume }) => {
+                (*dim == ImageDimension::D3) == volume
+                    && matches!(
+                        (class, sample),
+                        (ImageClass::Sampled { .. }, TextureSample::Float { .. })
+                            | (ImageClass::Depth { .. }, TextureSample::Depth)
+                    )
+            }
+            (
+                TypeInner::Image {
+                    dim: ImageDimension::D2,
+                    class: ImageClass::Storage { format, .. },
+                    ..
+                },
+                BindingKind::StorageTextureRgba16Float,
+            ) => *format == naga::StorageFormat::Rgba16Float,
+            _ => false,
+        },
+        _ => false,
+    }
+}
+
+fn stage_sees(stages: Stages, stage: naga::ShaderStage) -> bool {
+    use naga::ShaderStage as S;
+    match stages {
+        Stages::Compute => stage == S::Compute,
+        Stages::Draw => matches!(stage, S::Vertex | S::Fragment),
+        Stages::Fragment => stage == S::Fragment,
+        Stages::DrawAndCompute => matches!(stage, S::Vertex | S::Fragment | S::Compute),
+    }
+}
+
+/// The binding tables both backends build their layouts from
+/// (`precip_gpu::bind_groups`) against naga's reflection of the WGSL: every resource
+/// an entry point uses is in its group's table, of the same kind, visible to its stage.
+#[test]
+fn the_binding_tables_match_the_wgsl() {
+    let mut checked = 0;
+    for program in [
+        Program::StepParticles,
+        Program::CoverUpdate,
+        Program::CullParticles,
+        Program::Render,
+    ] {
+        let module = parse(program);
+        let info = Validator::new(ValidationFlags::all(), Capabilities::default())
+            .validate(&module)
+            .expect("valid");
+        for (index, ep) in module.entry_points.iter().enumerate() {
+            let groups = groups_of(program, &ep.name)
+                .unwrap_or_else(|| panic!("{program:?} {} has no groups", ep.name));
+            let uses = info.get_entry_point(index);
+            let mut used = 0;
+            for (handle, var) in module.global_variables.iter() {
+                let Some(rb) = &var.binding else {
+                    continue;
+                };
+                if uses[handle].is_empty() {
+                    continue;
+                }
+                used += 1;
+                let name = var.name.as_deref().unwrap_or("?");
+                let group = groups.get(rb.group as usize).unwrap_or_else(|| {
+                    panic!(
+                        "{} uses {name} in group {}, which it is not given",
+                        ep.name, rb.group
+                    )
+                });
+                let entry = group
+                    .bindings
+                    .iter()
+                    .find(|b| b.binding == rb.binding)
+                    .unwrap_or_else(|| {
+                        panic!(
+                            "{}: {name} (binding {}) is not in {}",
+                            ep.name, rb.binding, group.name
+                        )
+                    });
+                assert!(
+                    kind_matches(&module, var, entry.kind),
+                    "{}: {name} does not match {:?} in {}",
+                    ep.name,
+                    entry.kind,
+                    group.name
+                );
+                assert!(
+                    stage_sees(entry.stages, ep.stage),
+                    "{}: {name} is not visible to {:?} in {}",
+                    ep.name,
+                    ep.stage,
+                    group.name
+                );
+            }
+            checked += used;
+        }
+    }
+    assert!(checked > 40, "only {checked} resources checked");
+}

@@ -1,0 +1,614 @@
+//! Drawing formulas of seeds 000/001 (MODEL.md §5), CPU forms: the snow sprite, the
+//! raindrop tetrahedron, view-cone culling, the seed's Blinn–Phong lighting and fog.
+//!
+//! These are the Rust halves of the renderer's WGSL (drawing.wgsl); tests pin them to
+//! hand-computed cases so the shaders can be checked against them.
+//!
+//! ## Sub-pixel particles
+//!
+//! A particle whose sprite (flake side × snow scale) or streak (length `k·s·|v|`) is
+//! shorter than `min_px` pixels ([`sub_pixel`]) is not rasterised: the splat kernel
+//! adds its ink — the opacity × px² its enlarged sprite or streak would have covered,
+//! [`splat_ink`] — to the pixels around its centre. At the hand-over the sprite is
+//! exactly `min_px` wide at full opacity, so its ink and the splat's are equal: a
+//! particle crossing the threshold does not pop.
+
+pub mod render;
+pub mod shadow_cache;
+pub mod shadow_fit;
+pub mod water_look;
+
+use glam::Vec3;
+
+/// The four corners of a camera-facing snow sprite of side `side_m` centred at
+/// `centre_m`, seen from `camera_m`, in strip order V0 V1 V2 V3 (texture coordinates
+/// T0 (1,0), T1 (1,1), T2 (0,0), T3 (0,1)).
+///
+/// `N = n(O − P)`, `A = n(Y × N)`, `B = n(N × A)`, `V0 = P + ½s(A − B)`,
+/// `V1 = V0 + sB`, `V2 = V0 − sA`, `V3 = V1 − sA`. Where the camera looks straight
+/// down or up (`Y ∥ N`), Z stands in for Y. `None` when the camera is at the centre.
+#[must_use]
+pub fn snow_sprite_corners(centre_m: Vec3, camera_m: Vec3, side_m: f32) -> Option<[Vec3; 4]> {
+    snow_sprite_corners_turned(centre_m, camera_m, side_m, 0.0, 1.0)
+}
+
+/// The sprite of [`snow_sprite_corners`] turned by `spin_rad` in its plane and with its
+/// `B` side foreshortened by `tumble ∈ (0, 1]`: how a tumbling flake's silhouette
+/// changes (the seeds' r0/r rotation, which seed 003 names as missing). `A' = cos·A +
+/// sin·B`, `B' = tumble·(cos·B − sin·A)`, then the seed's corners with `A'`, `B'`.
+///
+/// WGSL twin: `snow_sprite_corner` in drawing.wgsl.
+#[must_use]
+pub fn snow_sprite_corners_turned(
+    centre_m: Vec3,
+    camera_m: Vec3,
+    side_m: f32,
+    spin_rad: f32,
+    tumble: f32,
+) -> Option<[Vec3; 4]> {
+    let n = (camera_m - centre_m).try_normalize()?;
+    let a = Vec3::Y
+        .cross(n)
+        .try_normalize()
+        .or_else(|| Vec3::Z.cross(n).try_normalize())?;
+    let b = n.cross(a).normalize();
+    let (sin, cos) = spin_rad.sin_cos();
+    let (a, b) = (cos * a + sin * b, tumble * (cos * b - sin * a));
+    let v0 = centre_m + 0.5 * side_m * (a - b);
+    let v1 = v0 + side_m * b;
+    let v2 = v0 - side_m * a;
+    let v3 = v1 - side_m * a;
+    Some([v0, v1, v2, v3])
+}
+
+/// A flake's in-plane spin and tumble from its rotation state: orientation
+/// `o = r0 + r`, spin `o.y + o.z`, tumble `max(|cos o.x|, 0.3)`.
+///
+/// WGSL twin: `flake_spin_tumble` in drawing.wgsl.
+#[must_use]
+pub fn flake_spin_tumble(rotation0_rad: Vec3, rotation_rad: Vec3) -> (f32, f32) {
+    let o = rotation0_rad + rotation_rad;
+    (o.y + o.z, o.x.cos().abs().max(MIN_TUMBLE))
+}
+
+/// The narrowest a tumbling flake's sprite gets, relative to its side.
+pub const MIN_TUMBLE: f32 = 0.3;
+
+/// How big a sprite is drawn: the flake's diameter times `scale` (the seed's designer
+/// size), but never under `min_px` pixels; a sprite enlarged to `min_px` keeps the
+/// light of the flake it stands for (opacity × area ratio), not less than
+/// `min_opacity`. `pixel_angle_rad` is the angle one pixel spans at the image centre.
+/// Returns `(side_m, opacity)`.
+///
+/// WGSL twin: `snow_sprite_sizing` in drawing.wgsl.
+#[must_use]
+pub fn snow_sprite_sizing(
+    diameter_m: f32,
+    distance_m: f32,
+    pixel_angle_rad: f32,
+    sizing: &SpriteSizing,
+) -> (f32, f32) {
+    let side = diameter_m * sizing.snow_scale;
+    let min_side = sizing.min_px * pixel_angle_rad * distance_m;
+    if side >= min_side {
+        (side, 1.0)
+    } else {
+        let ratio = side / min_side;
+        (min_side, (ratio * ratio).max(sizing.min_opacity))
+    }
+}
+
+/// How particles are sized on screen.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpriteSizing {
+    /// Sprite side per flake diameter (the seed's designer size s).
+    pub snow_scale: f32,
+    /// Smallest sprite or streak width, px.
+    pub min_px: f32,
+    /// Lowest opacity of an enlarged sprite or streak.
+    pub min_opacity: f32,
+    /// The seed's k·s for rain: streak length per speed, s (an exposure time).
+    pub rain_streak_s: f32,
+}
+
+impl Default for SpriteSizing {
+    fn default() -> Self {
+        Self {
+            snow_scale: 3.0,
+            min_px: 1.5,
+            min_opacity: 0.15,
+            rain_streak_s: 1.0 / 40.0,
+        }
+    }
+}
+
+/// A raindrop streak's height and base: `h = k·s·|v|`, base `a = 0.1·h` but never
+/// under `min_px` pixels, opacity scaled by `0.1·h / a` (not under `min_opacity`).
+/// Returns `(h_m, a_m, opacity_factor)`.
+///
+/// WGSL twin: `raindrop_sizing` in drawing.wgsl.
+#[must_use]
+pub fn raindrop_sizing(
+    speed_mps: f32,
+    distance_m: f32,
+    pixel_angle_rad: f32,
+    sizing: &SpriteSizing,
+) -> (f32, f32, f32) {
+    let h = sizing.rain_streak_s * speed_mps;
+    let a = 0.1 * h;
+    let min_a = sizing.min_px * pixel_angle_rad * distance_m;
+    if a >= min_a {
+        (h, a, 1.0)
+    } else {
+        (h, min_a, (a / min_a).max(sizing.min_opacity))
+    }
+}
+
+/// Particles nearer the camera than this are not drawn, m (a flake or drop at the
+/// lens would fill the view as a blur a real camera does not focus).
+pub const NEAR_FADE_START_M: f32 = 0.5;
+/// From here on particles are drawn at full opacity, m.
+pub const NEAR_FADE_END_M: f32 = 1.5;
+
+/// Opacity factor of a sprite or streak `distance_m` from the camera: 0 before
+/// [`NEAR_FADE_START_M`], 1 after [`NEAR_FADE_END_M`], smooth between.
+///
+/// WGSL twin: `near_fade` in drawing.wgsl.
+#[must_use]
+pub fn near_fade(distance_m: f32) -> f32 {
+    smoothstep(NEAR_FADE_START_M, NEAR_FADE_END_M, distance_m)
+}
+
+/// Whether a particle `length_m` long at `distance_m` is drawn below `min_px` pixels
+/// (and so is splatted, not rasterised).
+///
+/// WGSL twin: `sub_pixel` in drawing.wgsl.
+#[must_use]
+pub fn sub_pixel(length_m: f32, distance_m: f32, pixel_angle_rad: f32, min_px: f32) -> bool {
+    length_m < min_px * pixel_angle_rad * distance_m
+}
+
+/// What a splatted particle looks like: a sprite of `(side_m, opacity)` from
+/// [`snow_sprite_sizing`], or a streak of `(h_m, a_m, opacity)` from
+/// [`raindrop_sizing`] (its opacity already times the rain's).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SplatShape {
+    /// A snow sprite.
+    Sprite {
+        /// Side, m.
+        side_m: f32,
+        /// Opacity.
+        opacity: f32,
+    },
+    /// A rain tetrahedron.
+    Streak {
+        /// Height, m.
+        h_m: f32,
+        /// Base, m.
+        a_m: f32,
+        /// Opacity.
+        opacity: f32,
+    },
+}
+
+/// The ink (opacity × px²) of a sprite or streak seen from `distance_m`: a sprite
+/// covers side² px at its opacity times the flake texture's mean; a tetrahedron's
+/// silhouette about h·a/2.
+///
+/// WGSL twin: `splat_ink` in drawing.wgsl.
+#[must_use]
+pub fn splat_ink(shape: SplatShape, distance_m: f32, pixel_angle_rad: f32) -> f32 {
+    let px = 1.0 / (pixel_angle_rad * distance_m).max(1.0e-12);
+    match shape {
+        SplatShape::Sprite { side_m, opacity } => {
+            let side_px = side_m * px;
+            side_px * side_px * opacity * flake_mean_opacity()
+        }
+        SplatShape::Streak { h_m, a_m, opacity } => 0.5 * h_m * px * a_m * px * opacity,
+    }
+}
+
+/// Side of the flake opacity texture both GPU backends make, px.
+pub const FLAKE_TEXTURE_PX: u32 = 64;
+
+/// Mean opacity of the flake texture ([`snowflake_opacity`] at
+/// [`FLAKE_TEXTURE_PX`]): what a sprite's area is worth in ink.
+#[must_use]
+pub fn flake_mean_opacity() -> f32 {
+    static MEAN: std::sync::OnceLock<f32> = std::sync::OnceLock::new();
+    *MEAN.get_or_init(|| {
+        let texture = snowflake_opacity(FLAKE_TEXTURE_PX);
+        let sum: u64 = texture.iter().map(|&v| u64::from(v)).sum();
+        sum as f32 / (255.0 * texture.len() as f32)
+    })
+}
+
+/// A grey-scale opacity texture of a six-armed dendritic flake, `side_px²` bytes
+/// (white opaque, black transparent, rows top to bottom): a soft core, six arms with
+/// side branches, fading toward the rim.
+#[must_use]
+pub fn snowflake_opacity(side_px: u32) -> Vec<u8> {
+    let side = side_px.max(2);
+    let mut out = Vec::with_capacity((side * side) as usize);
+    for y in 0..side {
+        for x in 0..side {
+            let p = (glam::Vec2::new(x as f32, y as f32) + 0.5) / side as f32 * 2.0 - 1.0;
+            let r = p.length();
+            let core = 1.0 - smoothstep(0.12, 0.3, r);
+            // Distance to the nearest of six arms (angle folded into one 60° sector).
+            let sector = std::f32::consts::PI / 3.0;
+            let angle = p.y.atan2(p.x).rem_euclid(sector) - 0.5 * sector;
+            let along = r * angle.cos();
+            let across = (r * angle.sin()).abs();
+            let arm = 1.0 - smoothstep(0.03, 0.09, across);
+            // Side branches: at 0.45 and 0.7 of the radius, 60° off the arm.
+            let branch = [0.45f32, 0.7]
+                .iter()
+                .map(|&at| {
+                    let d = along - at;
+                    let off = (d * 0.5 - across * 0.866).abs();
+                    if d > 0.0 && d < 0.2 {
+                        1.0 - smoothstep(0.02, 0.06, off)
+                    } else {
+                        0.0
+                    }
+                })
+                .fold(0.0f32, f32::max);
+            let rim = 1.0 - smoothstep(0.8, 1.0, r);
+            let value = core.max(arm.max(branch) * rim);
+            out.push((value.clamp(0.0, 1.0) * 255.0).round() as u8);
+        }
+    }
+    out
+}
+
+fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
+    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// Texture coordinates of the sprite's strip V0 V1 V2 V3.
+pub const SNOW_SPRITE_UV: [[f32; 2]; 4] = [[1.0, 0.0], [1.0, 1.0], [0.0, 0.0], [0.0, 1.0]];
+
+/// A raindrop's tetrahedron: vertices V0..V3 and the seed's vertex normals N0..N3.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RainTetrahedron {
+    /// V0 (apex, trailing the drop) and the base V1, V2, V3.
+    pub vertices: [Vec3; 4],
+    /// N0..N3 (not normalised, as the seed writes them).
+    pub normals: [Vec3; 4],
+}
+
+/// The tetrahedron of a drop at `centre_m` moving at `velocity_mps` with designer
+/// size `size` and speed factor `speed_factor`: height `h = k·s·|v|`, base side
+/// `a = 0.1·h`, axis along the velocity (MODEL.md §5). Where the velocity is parallel
+/// to X, Z stands in for X. `None` for a drop at rest.
+#[must_use]
+pub fn raindrop_tetrahedron(
+    centre_m: Vec3,
+    velocity_mps: Vec3,
+    size: f32,
+    speed_factor: f32,
+) -> Option<RainTetrahedron> {
+    let h = speed_factor * size * velocity_mps.length();
+    raindrop_tetrahedron_sized(centre_m, velocity_mps, h, 0.1 * h)
+}
+
+/// The tetrahedron with height `h_m` and base side `a_m` given (the renderer widens
+/// the base of distant drops to a pixel, [`raindrop_sizing`]). `None` for a drop at
+/// rest.
+///
+/// WGSL twin: `raindrop_vertex` in drawing.wgsl.
+#[must_use]
+pub fn raindrop_tetrahedron_sized(
+    centre_m: Vec3,
+    velocity_mps: Vec3,
+    h: f32,
+    a: f32,
+) -> Option<RainTetrahedron> {
+    let e_y = (-velocity_mps).try_normalize()?;
+    let e_z = Vec3::X
+        .cross(e_y)
+        .try_normalize()
+        .or_else(|| Vec3::Z.cross(e_y).try_normalize())?;
+    let e_x = e_y.cross(e_z).normalize();
+    let r = 3f32.sqrt() / 3.0 * a;
+    let v0 = centre_m + h * e_y;
+    let v1 = centre_m - 0.5 * r * e_x - 0.5 * a * e_z;
+    let v2 = centre_m + r * e_x;
+    let v3 = v1 + a * e_z;
+    let n = |v: Vec3| v.normalize_or_zero();
+    Some(RainTetrahedron {
+        vertices: [v0, v1, v2, v3],
+        normals: [
+            e_y,
+            n(v1 - centre_m) + n(v1 - v0),
+            e_x + n(v2 - v0),
+            n(v3 - centre_m) + n(v3 - v0),
+        ],
+    })
+}
+
+/// The tetrahedron's four faces as vertex numbers, outward-facing order irrelevant
+/// (drawn two-sided): triangle list of 12 vertices.
+pub const RAIN_TETRAHEDRON_FACES: [u32; 12] = [0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2];
+
+/// The right side of the view-cone test, computed once per frame:
+/// `(1 + tan²(α/2) + tan²(β/2))^(−1/2)` for horizontal and vertical fields of view.
+#[must_use]
+pub fn view_cone_cos(horizontal_fov_rad: f32, vertical_fov_rad: f32) -> f32 {
+    let (th, tv) = (
+        (0.5 * horizontal_fov_rad).tan(),
+        (0.5 * vertical_fov_rad).tan(),
+    );
+    1.0 / (1.0 + th * th + tv * tv).sqrt()
+}
+
+/// Whether a particle at `position_m` is drawn: `dot(n(P − C), view_dir) ≥ cone_cos`.
+/// The cone circumscribes the frustum, so nothing visible is culled.
+#[must_use]
+pub fn in_view_cone(position_m: Vec3, camera_m: Vec3, view_dir: Vec3, cone_cos: f32) -> bool {
+    (position_m - camera_m)
+        .try_normalize()
+        .is_some_and(|d| d.dot(view_dir) >= cone_cos)
+}
+
+/// The material and light terms of the seed's lighting.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lighting {
+    /// k_A·I_A.
+    pub ambient: f32,
+    /// k_D·I_D.
+    pub diffuse: f32,
+    /// k_S·I_S.
+    pub specular: f32,
+    /// Shininess s ∈ [0, 128].
+    pub shininess: f32,
+    /// Shadow colour sc.
+    pub shadow_colour: f32,
+    /// Shadow density ∈ [0, 1].
+    pub shadow_density: f32,
+    /// Light attenuation λ.
+    pub attenuation: f32,
+}
+
+/// Blinn–Phong with a shadow-map visibility `lit ∈ [0, 1]` (MODEL.md §5):
+/// `I = λ(k_A I_A + (1 − sh) k_D I_D max(0, L·N) + sh·sc + lit·k_S I_S max(0, H·N)^s)`,
+/// `sh = density·(1 − lit)`, `H = n(L + V)`. `normal`, `to_light` and `to_viewer`
+/// are unit vectors.
+#[must_use]
+pub fn blinn_phong(l: &Lighting, normal: Vec3, to_light: Vec3, to_viewer: Vec3, lit: f32) -> f32 {
+    let sh = l.shadow_density * (1.0 - lit);
+    let half = (to_light + to_viewer).normalize_or_zero();
+    l.attenuation
+        * (l.ambient
+            + (1.0 - sh) * l.diffuse * to_light.dot(normal).max(0.0)
+            + sh * l.shadow_colour
+            + lit * l.specular * half.dot(normal).max(0.0).powf(l.shininess))
+}
+
+/// Fraction of light that crosses `distance_m` of precipitation of extinction
+/// `extinction_per_m` (Beer–Lambert; at the Koschmieder visibility it is 2 %).
+#[must_use]
+pub fn fog_transmittance(distance_m: f32, extinction_per_m: f32) -> f32 {
+    (-extinction_per_m * distance_m.max(0.0)).exp()
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::weather::visibility::koschmieder_visibility_m;
+
+    fn close(a: Vec3, b: Vec3) -> bool {
+        (a - b).length() < 1e-5
+    }
+
+    #[test]
+    fn sprite_faces_the_camera_with_side_s() {
+        // Camera on +Z: N = Z, A = Y × Z = X, B = Z × X = Y.
+        let c = snow_sprite_corners(Vec3::ZERO, Vec3::new(0.0, 0.0, 10.0), 2.0)
+            .expect("not degenerate");
+        assert!(close(c[0], Vec3::new(1.0, -1.0, 0.0)));
+        assert!(close(c[1], Vec3::new(1.0, 1.0, 0.0)));
+        assert!(close(c[2], Vec3::new(-1.0, -1.0, 0.0)));
+        assert!(close(c[3], Vec3::new(-1.0, 1.0, 0.0)));
+        let from_above =
+            snow_sprite_corners(Vec3::ZERO, Vec3::new(0.0, 5.0, 0.0), 1.0).expect("fallback axis");
+        assert!(
+            from_above.iter().all(|v| v.y.abs() < 1e-6),
+            "lies flat under a camera straight above"
+        );
+        assert!(snow_sprite_corners(Vec3::ONE, Vec3::ONE, 1.0).is_none());
+    }
+
+    #[test]
+    fn tetrahedron_trails_the_velocity_with_an_equilateral_base() {
+        let t = raindrop_tetrahedron(Vec3::ZERO, Vec3::new(0.0, -8.0, 0.0), 0.01, 10.0)
+            .expect("moving");
+        let h = 10.0 * 0.01 * 8.0;
+        assert!(
+            close(t.vertices[0], Vec3::new(0.0, h, 0.0)),
+            "apex above a falling drop"
+        );
+        let a = 0.1 * h;
+        for (i, j) in [(1, 2), (2, 3), (3, 1)] {
+            assert!(
+                ((t.vertices[i] - t.vertices[j]).length() - a).abs() < 1e-5,
+                "base side {i}{j}"
+            );
+        }
+        let centroid = (t.vertices[1] + t.vertices[2] + t.vertices[3]) / 3.0;
+        assert!(close(centroid, Vec3::ZERO));
+        assert!(close(t.normals[0], Vec3::Y));
+        assert!(
+            raindrop_tetrahedron(Vec3::ZERO, Vec3::X * 3.0, 0.01, 10.0).is_some(),
+            "parallel to X"
+        );
+        assert!(raindrop_tetrahedron(Vec3::ZERO, Vec3::ZERO, 0.01, 10.0).is_none());
+    }
+
+    proptest! {
+        #[test]
+        fn nothing_inside_the_frustum_is_culled(u in -1.0f32..1.0, v in -1.0f32..1.0, depth in 0.1f32..500.0, hfov in 0.2f32..2.5, vfov in 0.2f32..2.5) {
+            let cone = view_cone_cos(hfov, vfov);
+            let point = Vec3::new(u * (0.5 * hfov).tan(), v * (0.5 * vfov).tan(), -1.0) * depth;
+            prop_assert!(in_view_cone(point, Vec3::ZERO, Vec3::NEG_Z, cone - 1e-6));
+            prop_assert!(!in_view_cone(-point, Vec3::ZERO, Vec3::NEG_Z, cone), "behind the camera");
+        }
+    }
+
+    #[test]
+    fn lighting_terms() {
+        let l = Lighting {
+            ambient: 0.2,
+            diffuse: 0.6,
+            specular: 0.5,
+            shininess: 16.0,
+            shadow_colour: 0.05,
+            shadow_density: 1.0,
+            attenuation: 1.0,
+        };
+        let up = Vec3::Y;
+        let lit = blinn_phong(&l, up, up, up, 1.0);
+        assert!((lit - (0.2 + 0.6 + 0.5)).abs() < 1e-6);
+        let shadowed = blinn_phong(&l, up, up, up, 0.0);
+        assert!((shadowed - (0.2 + 0.05)).abs() < 1e-6);
+        let grazing = blinn_phong(&l, up, Vec3::X, Vec3::X, 1.0);
+        assert!((grazing - 0.2).abs() < 1e-6);
+    }
+
+    #[test]
+    fn fog_leaves_two_percent_at_the_visibility() {
+        let sigma = 0.005;
+        let v = koschmieder_visibility_m(sigma);
+        assert!((fog_transmittance(v, sigma) - 0.02).abs() < 1e-3);
+        assert!((fog_transmittance(0.0, sigma) - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_turned_sprite_stays_facing_the_camera_and_keeps_its_size() {
+        let (centre, camera) = (Vec3::new(1.0, 2.0, 3.0), Vec3::new(4.0, 6.0, 15.0));
+        let seed = snow_sprite_corners(centre, camera, 0.5).expect("not degenerate");
+        let same = snow_sprite_corners_turned(centre, camera, 0.5, 0.0, 1.0).expect("ok");
+        assert_eq!(seed, same);
+        let turned = snow_sprite_corners_turned(centre, camera, 0.5, 0.7, 1.0).expect("ok");
+        let n = (camera - centre).normalize();
+        for v in turned {
+            assert!(
+                (v - centre).dot(n).abs() < 1e-5,
+                "in the plane facing the camera"
+            );
+            assert!(((v - centre).length() - 0.5 / 2f32.sqrt()).abs() < 1e-5);
+        }
+        assert!(!close(turned[0], seed[0]), "spin moves the corners");
+        let flat = snow_sprite_corners_turned(centre, camera, 0.5, 0.0, 0.3).expect("ok");
+        assert!(
+            ((flat[1] - flat[0]).length() - 0.15).abs() < 1e-5,
+            "B side × tumble"
+        );
+        assert!(
+            ((flat[0] - flat[2]).length() - 0.5).abs() < 1e-5,
+            "A side kept"
+        );
+        let (spin, tumble) = flake_spin_tumble(Vec3::new(3.0, 0.1, 0.2), Vec3::new(0.0, 0.3, 0.4));
+        assert!((spin - 1.0).abs() < 1e-6);
+        assert!((tumble - 3f32.cos().abs()).abs() < 1e-6);
+        let (_, edge_on) =
+            flake_spin_tumble(Vec3::new(std::f32::consts::FRAC_PI_2, 0.0, 0.0), Vec3::ZERO);
+        assert!((edge_on - MIN_TUMBLE).abs() < 1e-6);
+    }
+
+    #[test]
+    fn sprites_and_streaks_never_shrink_under_the_minimum_and_keep_their_light() {
+        let sizing = SpriteSizing::default();
+        let pixel = 0.01;
+        // A 5 mm flake at 1 m: 1.5 cm sprite, more than 1.5 px (1.5 cm)? equal: full.
+        let (side, opacity) = snow_sprite_sizing(0.005, 1.0, pixel, &sizing);
+        assert!((side - 0.015).abs() < 1e-6 && (opacity - 1.0).abs() < 1e-6);
+        // At 4 m the minimum (6 cm) binds: opacity = (1.5/6)² = 1/16, floored at 0.15.
+        let (side, opacity) = snow_sprite_sizing(0.005, 4.0, pixel, &sizing);
+        assert!((side - 0.06).abs() < 1e-6);
+        assert!((opacity - sizing.min_opacity).abs() < 1e-6);
+        let (_, opacity) = snow_sprite_sizing(0.005, 2.0, pixel, &sizing);
+        assert!((opacity - 0.25).abs() < 1e-6, "(1.5/3)²");
+        // Rain at 8 m/s: h = 0.2 m, a = 2 cm; at 1 m the base is wide enough.
+        let (h, a, o) = raindrop_sizing(8.0, 1.0, pixel, &sizing);
+        assert!((h - 0.2).abs() < 1e-6 && (a - 0.02).abs() < 1e-6 && (o - 1.0).abs() < 1e-6);
+        let (_, a, o) = raindrop_sizing(8.0, 2.0, pixel, &sizing);
+        assert!((a - 0.03).abs() < 1e-6 && (o - 2.0 / 3.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn particles_at_the_lens_fade_out() {
+        assert!(near_fade(0.0).abs() < 1e-6 && near_fade(NEAR_FADE_START_M).abs() < 1e-6);
+        assert!((near_fade(1.0) - 0.5).abs() < 1e-6);
+        assert!((near_fade(NEAR_FADE_END_M) - 1.0).abs() < 1e-6);
+        assert!((near_fade(30.0) - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_particle_crossing_the_splat_threshold_keeps_its_ink() {
+        let sizing = SpriteSizing::default();
+        let pixel = 1.0e-3;
+        let diameter = 0.004;
+        let side = diameter * sizing.snow_scale;
+        // The distance where the sprite is exactly min_px wide.
+        let hand_over = side / (sizing.min_px * pixel);
+        let ink_at = |d: f32| {
+            let (side_m, opacity) = snow_sprite_sizing(diameter, d, pixel, &sizing);
+            splat_ink(SplatShape::Sprite { side_m, opacity }, d, pixel)
+        };
+        assert!(!sub_pixel(side, hand_over * 0.999, pixel, sizing.min_px));
+        assert!(sub_pixel(side, hand_over * 1.001, pixel, sizing.min_px));
+        // Just before: the sprite, min_px² × mean texture; just after: the same.
+        let before = ink_at(hand_over * 0.999);
+        let after = ink_at(hand_over * 1.001);
+        let expected = sizing.min_px * sizing.min_px * flake_mean_opacity();
+        assert!(
+            (before - expected).abs() < 0.01 * expected,
+            "{before} {expected}"
+        );
+        assert!((after - before).abs() < 0.01 * before, "{after} {before}");
+        // Farther, the ink falls as 1/d² (the flake's own area) until the floor.
+        let far = ink_at(hand_over * 2.0);
+        assert!((far - 0.25 * expected).abs() < 0.01 * expected, "{far}");
+        // Rain: a streak of min_px length (h) at its hand-over, base min_px.
+        let (h, a, o) = raindrop_sizing(8.0, 200.0, pixel, &sizing);
+        let ink = splat_ink(
+            SplatShape::Streak {
+                h_m: h,
+                a_m: a,
+                opacity: o,
+            },
+            200.0,
+            pixel,
+        );
+        assert!(
+            (ink - 0.5 * (h / 0.2) * (a / 0.2) * o).abs() < 1e-4,
+            "{ink}"
+        );
+    }
+
+    #[test]
+    fn the_flake_texture_is_opaque_at_the_core_clear_at_the_corners_and_six_fold() {
+        let n = 64u32;
+        let t = snowflake_opacity(n);
+        assert_eq!(t.len(), 64 * 64);
+        let at = |x: f32, y: f32| {
+            let (i, j) = (
+                ((x + 1.0) / 2.0 * n as f32) as u32,
+                ((y + 1.0) / 2.0 * n as f32) as u32,
+            );
+            t[(j.min(n - 1) * n + i.min(n - 1)) as usize]
+        };
+        assert_eq!(at(0.0, 0.0), 255);
+        assert_eq!(at(-0.99, -0.99), 0);
+        // Arms at 30° + k·60° (one points straight up the sprite); clear between them.
+        let r = 0.6f32;
+        let arm = |deg: f32| at(r * deg.to_radians().cos(), r * deg.to_radians().sin());
+        assert!(arm(30.0) > 200 && arm(90.0) > 200 && arm(150.0) > 200);
+        assert!(arm(0.0) < 40 && arm(60.0) < 40);
+    }
+}

@@ -1,0 +1,511 @@
+//! What the renderer needs besides the simulation: [`RenderSettings`] (the look,
+//! validated with the setup) and [`RenderParams`], the per-frame uniform block both
+//! GPU backends fill the same way from a [`View`], the weather and the setup.
+//!
+//! Matrices follow wgpu's conventions (glam's `rh::proj::directx`): right-handed world
+//! (Y up), clip depth in `[0, 1]`, NDC Y up. The image's aspect ratio is the target's (`width / height`); the camera's
+//! `aspect` field is not used for drawing. The sun's shadow map is an orthographic view
+//! along the sunlight that encloses the scene's bounds.
+
+use bytemuck::{Pod, Zeroable};
+use glam::camera::rh::proj::directx;
+use glam::camera::rh::view::look_to_mat4;
+use glam::{Mat4, UVec4, Vec3, Vec4};
+use precip_cover::{CoverParams, GridFrame};
+
+use crate::backend::camera::{Camera, View};
+use crate::backend::error::BackendError;
+use crate::drawing::{Lighting, SpriteSizing, view_cone_cos};
+use crate::weather::Weather;
+
+/// The largest render target side accepted before asking the device, px.
+pub const MAX_TARGET_SIDE_PX: u32 = 16_384;
+
+/// The look of a frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderSettings {
+    /// Cull particles outside the view cone on the GPU before drawing (MODEL.md §5);
+    /// off draws every particle (the images must not differ).
+    pub view_cone_culling: bool,
+    /// Direction toward the sun (need not be normalised; must point above the horizon).
+    pub to_sun: Vec3,
+    /// The seed's lighting terms.
+    pub lighting: Lighting,
+    /// Colour of the sky and of the fog, linear RGB.
+    pub sky_colour: Vec3,
+    /// Extinction of the air without precipitation, per m (haze).
+    pub clear_air_extinction_per_m: f32,
+    /// Sprite and streak sizes.
+    pub sizing: SpriteSizing,
+    /// Draw particles smaller than `sizing.min_px` by a compute splat (same light,
+    /// order-independent) instead of enlarged sprites and streaks; off draws every
+    /// particle as geometry (the reference the splat is tested against).
+    pub splat_sub_pixel: bool,
+    /// Opacity of a rain streak, `[0, 1]`.
+    pub rain_opacity: f32,
+    /// Raise upward surfaces by the snow depth.
+    pub snow_displacement: bool,
+    /// Shadow map side, px.
+    pub shadow_map_px: u32,
+    /// Longest triangle edge after tessellation for the displacement, m.
+    pub tessellation_edge_m: f32,
+    /// Most triangles the tessellated scene may have.
+    pub max_scene_triangles: u64,
+    /// Depth of the scene's water bodies, m (how much of their bottom shows through:
+    /// [`crate::drawing::water_look::water_body_colour`]).
+    pub water_body_depth_m: f32,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            view_cone_culling: true,
+            to_sun: Vec3::new(0.4, 0.8, 0.3),
+            lighting: Lighting {
+                ambient: 0.45,
+                diffuse: 0.65,
+                specular: 0.25,
+                shininess: 24.0,
+                shadow_colour: 0.0,
+                shadow_density: 0.6,
+                attenuation: 1.0,
+            },
+            sky_colour: Vec3::new(0.62, 0.66, 0.72),
+            clear_air_extinction_per_m: 3.912 / 30_000.0,
+            sizing: SpriteSizing::default(),
+            splat_sub_pixel: true,
+            rain_opacity: 0.35,
+            snow_displacement: true,
+            shadow_map_px: 2048,
+            tessellation_edge_m: 0.5,
+            max_scene_triangles: 2_000_000,
+            water_body_depth_m: 1.5,
+        }
+    }
+}
+
+fn bad(field: &'static str, problem: String) -> BackendError {
+    BackendError::Setup { field, problem }
+}
+
+impl RenderSettings {
+    /// Checks every field.
+    pub fn validate(&self) -> Result<(), BackendError> {
+        let sun = self.to_sun.normalize_or_zero();
+        if !(sun.is_finite() && sun.y > 0.01) {
+            return Err(bad(
+                "render.to_sun",
+                format!(
+                    "= {} must be a finite direction above the horizon",
+                    self.to_sun
+                ),
+            ));
+        }
+        let l = &self.lighting;
+        for (field, value, lo, hi) in [
+            ("render.lighting.ambient", l.ambient, 0.0, 10.0),
+            ("render.lighting.diffuse", l.diffuse, 0.0, 10.0),
+            ("render.lighting.specular", l.specular, 0.0, 10.0),
+            ("render.lighting.shininess", l.shininess, 0.0, 128.0),
+            ("render.lighting.shadow_colour", l.shadow_colour, 0.0, 10.0),
+            ("render.lighting.shadow_density", l.shadow_density, 0.0, 1.0),
+            ("render.lighting.attenuation", l.attenuation, 0.0, 10.0),
+            (
+                "render.clear_air_extinction_per_m",
+                self.clear_air_extinction_per_m,
+                0.0,
+                10.0,
+            ),
+            (
+                "render.sizing.snow_scale",
+                self.sizing.snow_scale,
+                0.01,
+                1000.0,
+            ),
+            ("render.sizing.min_px", self.sizing.min_px, 0.0, 64.0),
+            (
+                "render.sizing.min_opacity",
+                self.sizing.min_opacity,
+                0.0,
+                1.0,
+            ),
+            (
+                "render.sizing.rain_streak_s",
+                self.sizing.rain_streak_s,
+                0.0,
+                1.0,
+            ),
+            ("render.rain_opacity", self.rain_opacity, 0.0, 1.0),
+            (
+                "render.water_body_depth_m",
+                self.water_body_depth_m,
+                0.0,
+                1.0e4,
+            ),
+            (
+                "render.tessellation_edge_m",
+                self.tessellation_edge_m,
+                0.01,
+                1.0e6,
+            ),
+        ] {
+            if !(value.is_finite() && (lo..=hi).contains(&value)) {
+                return Err(bad(field, format!("= {value} must be in [{lo}, {hi}]")));
+            }
+        }
+        if !(self.sky_colour.is_finite() && self.sky_colour.min_element() >= 0.0) {
+            return Err(bad(
+                "render.sky_colour",
+                format!("= {} must be finite and non-negative", self.sky_colour),
+            ));
+        }
+        if !(16..=8192).contains(&self.shadow_map_px) {
+            return Err(bad(
+                "render.shadow_map_px",
+                format!("= {} must be in [16, 8192]", self.shadow_map_px),
+            ));
+        }
+        if self.max_scene_triangles == 0 {
+            return Err(bad(
+                "render.max_scene_triangles",
+                "must be at least 1".into(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The per-frame uniform block of the render program.
+///
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (400 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct RenderParams {
+    /// World → clip of the camera.
+    pub view_proj: Mat4,
+    /// World → clip of the sun's shadow map.
+    pub sun_view_proj: Mat4,
+    /// Camera position, m; w: the view cone's cosine.
+    pub camera_m_cone_cos: Vec4,
+    /// Unit viewing direction; w: the angle one pixel spans, rad.
+    pub view_dir_pixel_angle: Vec4,
+    /// Unit direction to the sun; w: fog extinction, per m.
+    pub to_sun_extinction: Vec4,
+    /// Sky/fog colour (linear); w: time, s.
+    pub sky_colour_time: Vec4,
+    /// k_A·I_A, k_D·I_D, k_S·I_S, shininess.
+    pub light: Vec4,
+    /// Shadow colour, shadow density, attenuation λ, shadow-map texel size (uv).
+    pub shadow: Vec4,
+    /// Snow scale, min px, min opacity, rain streak s.
+    pub sizing: Vec4,
+    /// Rain opacity, displacement on (1/0), full-cover depth mm, mask edge.
+    pub cover_look: Vec4,
+    /// Wet darkening R_d, albedo decay per day, exposure tolerance m, the flake
+    /// texture's mean opacity.
+    pub cover_look2: Vec4,
+    /// Rain rings struck per m² and s, 0, water bodies' depth m, 0
+    /// ([`crate::drawing::water_look`]).
+    pub water_look: Vec4,
+    /// The ground map's grid.
+    pub ground: GridFrame,
+    /// The cover grid.
+    pub cover: GridFrame,
+    /// The water bodies' wave grid ([`crate::physics::water_waves`]).
+    pub waves: GridFrame,
+    /// Particle count, culling on (1/0), cull workgroups, the splat target's width in
+    /// px (0: splat off).
+    pub counts: UVec4,
+}
+const _: () = assert!(size_of::<RenderParams>() == 400);
+
+/// The camera's world → clip matrix for a target of `aspect` (width / height).
+#[must_use]
+pub fn view_projection(camera: &Camera, aspect: f32) -> Mat4 {
+    let proj = directx::perspective(camera.vertical_fov_rad, aspect, camera.near_m, camera.far_m);
+    // The lens shift moves clip space by −shift·w: what was at NDC `u` is drawn at
+    // `u − shift`.
+    let shift = Mat4::from_translation(Vec3::new(-camera.lens_shift.x, -camera.lens_shift.y, 0.0));
+    let view = look_to_mat4(camera.position_m, camera.forward.normalize(), camera.up);
+    shift * proj * view
+}
+
+/// The sun's view of the box `(lo, hi)`: world → light space, looking along the
+/// sunlight from `2·radius` sunward of the box's centre, and that radius (the box's
+/// bounding sphere, at least 1 m). Depths `0 … 4·radius` hold the whole box.
+#[must_use]
+pub fn sun_view(to_sun: Vec3, lo: Vec3, hi: Vec3) -> (Mat4, f32) {
+    let sun = to_sun.normalize();
+    let centre = 0.5 * (lo + hi);
+    let radius = (0.5 * (hi - lo).length()).max(1.0);
+    let up = if sun.cross(Vec3::Y).length_squared() > 1e-6 {
+        Vec3::Y
+    } else {
+        Vec3::Z
+    };
+    (look_to_mat4(centre + sun * 2.0 * radius, -sun, up), radius)
+}
+
+/// An orthographic view along the sunlight enclosing the box `(lo, hi)`.
+#[must_use]
+pub fn sun_view_projection(to_sun: Vec3, lo: Vec3, hi: Vec3) -> Mat4 {
+    let (view, radius) = sun_view(to_sun, lo, hi);
+    let proj = directx::orthographic(-radius, radius, -radius, radius, 0.0, 4.0 * radius);
+    proj * view
+}
+
+/// The horizontal field of view of `camera` on a target of `aspect`.
+#[must_use]
+pub fn horizontal_fov_rad(camera: &Camera, aspect: f32) -> f32 {
+    2.0 * ((0.5 * camera.vertical_fov_rad).tan() * aspect).atan()
+}
+
+/// Checks a view: its camera and a target of `1..=MAX_TARGET_SIDE_PX` pixels a side.
+pub fn validate_view(view: &View) -> Result<(), BackendError> {
+    view.camera.validate()?;
+    for (what, px) in [("width_px", view.width_px), ("height_px", view.height_px)] {
+        if !(1..=MAX_TARGET_SIDE_PX).contains(&px) {
+            return Err(BackendError::InvalidView(format!(
+                "{what} = {px}: a target needs 1 to {MAX_TARGET_SIDE_PX} pixels a side"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Everything a frame's uniform block is made from.
+#[derive(Debug, Clone, Copy)]
+pub struct FrameInputs<'a> {
+    /// Camera and target.
+    pub view: &'a View,
+    /// The current weather (fog).
+    pub weather: &'a Weather,
+    /// The look.
+    pub settings: &'a RenderSettings,
+    /// Cover constants (patches, darkening).
+    pub cover_params: &'a CoverParams,
+    /// Ground map grid.
+    pub ground: GridFrame,
+    /// Cover grid.
+    pub cover: GridFrame,
+    /// The water bodies' wave grid.
+    pub waves: GridFrame,
+    /// The scene's bounds `(lo, hi)`, m: the shadow map keeps every caster in them
+    /// and spreads its texels over the part in view ([`crate::drawing::shadow_fit`]).
+    pub shadow_bounds_m: (Vec3, Vec3),
+    /// Simulated time, s.
+    pub time_s: f32,
+    /// Particles.
+    pub particle_count: u32,
+    /// Workgroups of the cull kernels.
+    pub cull_groups: u32,
+}
+
+impl crate::Setup {
+    /// The frame's uniform block for `view` under `weather` at `time_s`, the shadow map
+    /// enclosing `shadow_bounds_m`, for `particle_count` particles and the wave grid
+    /// `waves` (the one [`crate::Setup::frames`] gave at configure): what every GPU
+    /// backend draws a frame of this setup with.
+    #[must_use]
+    pub fn render_params(
+        &self,
+        view: &View,
+        weather: &Weather,
+        shadow_bounds_m: (Vec3, Vec3),
+        time_s: f64,
+        particle_count: u32,
+        waves: GridFrame,
+    ) -> RenderParams {
+        RenderParams::new(&FrameInputs {
+            view,
+            weather,
+            settings: &self.render,
+            cover_params: &self.cover.params,
+            ground: self.ground.frame,
+            cover: self.cover.frame,
+            waves,
+            shadow_bounds_m,
+            time_s: time_s as f32,
+            particle_count,
+            cull_groups: crate::host::cull_groups(particle_count),
+        })
+    }
+}
+
+/// The colour of air thick with sand or dust (a brown-orange haze, as photographed
+/// in haboobs and Saharan dust events).
+pub const DUST_HAZE_COLOUR: Vec3 = Vec3::new(0.66, 0.5, 0.33);
+
+/// The colour of the sky and the fog in `weather`: sand and dust scatter the
+/// daylight warm, so the haze takes their colour in proportion to their share of
+/// the extinction (the backends clear the frame to it, too).
+#[must_use]
+pub fn haze_colour(settings: &RenderSettings, weather: &Weather) -> Vec3 {
+    let extinction_per_m = settings.clear_air_extinction_per_m + weather.extinction_per_m();
+    let grain_share = (weather.grain_extinction_per_m() / extinction_per_m.max(f32::MIN_POSITIVE))
+        .clamp(0.0, 1.0);
+    settings.sky_colour.lerp(DUST_HAZE_COLOUR, grain_share)
+}
+
+impl RenderParams {
+    /// The block for one frame.
+    #[must_use]
+    pub fn new(f: &FrameInputs<'_>) -> Self {
+        let camera = &f.view.camera;
+        let aspect = f.view.width_px as f32 / f.view.height_px as f32;
+        // Culling and the shadow map see the on-axis frustum enclosing a shifted one.
+        let (enclosing_fov, enclosing_aspect) = camera.enclosing_frustum(aspect);
+        let enclosing = Camera {
+            vertical_fov_rad: enclosing_fov,
+            lens_shift: glam::Vec2::ZERO,
+            ..*camera
+        };
+        let hfov = horizontal_fov_rad(&enclosing, enclosing_aspect);
+        let cone_cos = view_cone_cos(hfov, enclosing_fov);
+        let pixel_angle = 2.0 * (0.5 * camera.vertical_fov_rad).tan() / f.view.height_px as f32;
+        let s = f.settings;
+        let l = &s.lighting;
+        let ground_cell = f.ground.cell_m();
+        let extinction_per_m = s.clear_air_extinction_per_m + f.weather.extinction_per_m();
+        let haze = haze_colour(s, f.weather);
+        Self {
+            view_proj: view_projection(camera, aspect),
+            sun_view_proj: crate::drawing::shadow_fit::fitted_sun_view_projection(
+                s.to_sun,
+                f.shadow_bounds_m,
+                &enclosing,
+                enclosing_aspect,
+                crate::drawing::shadow_fit::shadow_distance_m(camera, extinction_per_m),
+            ),
+            camera_m_cone_cos: camera.position_m.extend(cone_cos),
+            view_dir_pixel_angle: camera.forward.normalize().extend(pixel_angle),
+            to_sun_extinction: s.to_sun.normalize().extend(extinction_per_m),
+            sky_colour_time: haze.extend(f.time_s),
+            light: Vec4::new(l.ambient, l.diffuse, l.specular, l.shininess),
+            shadow: Vec4::new(
+                l.shadow_colour,
+                l.shadow_density,
+                l.attenuation,
+                1.0 / s.shadow_map_px as f32,
+            ),
+            sizing: Vec4::new(
+                s.sizing.snow_scale,
+                s.sizing.min_px,
+                s.sizing.min_opacity,
+                s.sizing.rain_streak_s,
+            ),
+            cover_look: Vec4::new(
+                s.rain_opacity,
+                if s.snow_displacement { 1.0 } else { 0.0 },
+                f.cover_params.full_cover_depth_mm,
+                f.cover_params.mask_edge,
+            ),
+            cover_look2: Vec4::new(
+                f.cover_params.wet_darkening,
+                f.cover_params.albedo_decay_per_day,
+                crate::scene::displacement::exposure_tolerance_m(ground_cell),
+                crate::drawing::flake_mean_opacity(),
+            ),
+            water_look: Vec4::new(
+                crate::drawing::water_look::ring_rate_per_m2_s(f.weather.rain_rate_mm_per_h()),
+                0.0,
+                s.water_body_depth_m,
+                0.0,
+            ),
+            ground: f.ground,
+            cover: f.cover,
+            waves: f.waves,
+            counts: UVec4::new(
+                f.particle_count,
+                u32::from(s.view_cone_culling),
+                f.cull_groups,
+                if s.splat_sub_pixel {
+                    f.view.width_px
+                } else {
+                    0
+                },
+            ),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_camera_matrix_puts_the_view_direction_at_the_centre() {
+        let camera = Camera::default();
+        let m = view_projection(&camera, 1.5);
+        let ahead = camera.position_m + camera.forward * 10.0;
+        let clip = m * ahead.extend(1.0);
+        let ndc = clip.truncate() / clip.w;
+        assert!(ndc.x.abs() < 1e-5 && ndc.y.abs() < 1e-5);
+        assert!((0.0..=1.0).contains(&ndc.z));
+        // The top edge of the vertical field of view maps to y = 1.
+        let up = (0.5 * camera.vertical_fov_rad).tan() * 10.0;
+        let top = m * (ahead + Vec3::Y * up).extend(1.0);
+        assert!((top.y / top.w - 1.0).abs() < 1e-4);
+        // Shifted half a height up, the top edge is the image's centre.
+        let shifted = Camera {
+            lens_shift: glam::Vec2::new(0.0, 1.0),
+            ..camera
+        };
+        let top = view_projection(&shifted, 1.5) * (ahead + Vec3::Y * up).extend(1.0);
+        assert!((top.y / top.w).abs() < 1e-4);
+    }
+
+    #[test]
+    fn the_sun_view_encloses_the_box() {
+        let (lo, hi) = (Vec3::new(-20.0, 0.0, -20.0), Vec3::new(20.0, 6.0, 20.0));
+        let m = sun_view_projection(Vec3::new(0.4, 0.8, 0.3), lo, hi);
+        for i in 0..8 {
+            let c = Vec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            );
+            let p = m * c.extend(1.0);
+            assert!(
+                p.x.abs() <= 1.0 && p.y.abs() <= 1.0 && (0.0..=1.0).contains(&p.z),
+                "{c}"
+            );
+        }
+        // Straight overhead sun: the fallback up axis.
+        let m = sun_view_projection(Vec3::Y, lo, hi);
+        assert!(m.is_finite());
+    }
+
+    #[test]
+    fn bad_settings_and_views_are_refused() {
+        assert!(RenderSettings::default().validate().is_ok());
+        for bad in [
+            RenderSettings {
+                to_sun: Vec3::NEG_Y,
+                ..RenderSettings::default()
+            },
+            RenderSettings {
+                shadow_map_px: 0,
+                ..RenderSettings::default()
+            },
+            RenderSettings {
+                rain_opacity: f32::NAN,
+                ..RenderSettings::default()
+            },
+        ] {
+            assert!(matches!(bad.validate(), Err(BackendError::Setup { .. })));
+        }
+        let view = |w, h| View {
+            camera: Camera::default(),
+            width_px: w,
+            height_px: h,
+        };
+        assert!(validate_view(&view(64, 48)).is_ok());
+        for (w, h) in [(0, 10), (10, 0), (100_000, 10)] {
+            assert!(matches!(
+                validate_view(&view(w, h)),
+                Err(BackendError::InvalidView(_))
+            ));
+        }
+    }
+}

@@ -1,0 +1,176 @@
+//! When the sun's depth map is drawn again (DESIGN.md §2 step 4): the shadow pass
+//! re-renders the displaced scene from the sun, which changes only when the sun's
+//! projection changes (configuration: sun direction, scene bounds), the displacement
+//! is switched, or the snow surface has moved by more than [`SHADOW_REFRESH_RISE_M`].
+//!
+//! The snow's movement is not read back from the GPU: it is bounded from the weather.
+//! New snow raises a surface at most at the snowfall rate over the lightest new-snow
+//! density, times [`LANDING_LUMP_FACTOR`] for the grain of particle landings and
+//! drift; melt lowers it at most at the degree-day rate of the oldest (darkest) snow
+//! over the same density. Settling is slower than both and is caught by the
+//! [`SHADOW_MAX_AGE_COVER_S`] refresh. At the viewer's default time scale (0.05
+//! days a second) the map is redrawn nearly every frame while it snows; in a
+//! real-time simulator under 2 mm/h it is redrawn about every 7 minutes.
+
+use glam::Mat4;
+use precip_cover::{CoverParams, new_snow_density, snow_albedo};
+
+use crate::backend::setup::Setup;
+use crate::drawing::render::RenderParams;
+use crate::weather::Weather;
+
+/// How far the snow surface may move before the map is redrawn, m (a texel of a
+/// 2048² map over 40 m is 2 cm).
+pub const SHADOW_REFRESH_RISE_M: f32 = 0.01;
+
+/// Local landings exceed the mean rate by at most this factor (grain, drift).
+pub const LANDING_LUMP_FACTOR: f32 = 4.0;
+
+/// The map is redrawn at least this often in cover time, s (settling).
+pub const SHADOW_MAX_AGE_COVER_S: f64 = 900.0;
+
+/// Fastest the snow surface can move under `weather`, m per second of cover time.
+#[must_use]
+pub fn snow_surface_speed_bound_mps(weather: &Weather, cover: &CoverParams) -> f32 {
+    let density = new_snow_density(weather.air_temperature_c).max(1.0);
+    let mm_per_h_to_mps = 1.0e-3 / 3600.0;
+    let rise = weather.snow_rate_mm_per_h() * LANDING_LUMP_FACTOR * 1000.0 / density;
+    let excess = (weather.air_temperature_c - cover.melt_threshold_c).max(0.0);
+    let melt_per_day = cover.melt_proportionality_mm_per_c_day
+        * cover.solar_irradiance_factor.max(0.0)
+        * (1.0 - snow_albedo(f32::MAX, cover.albedo_decay_per_day).min(1.0))
+        * excess;
+    let fall = melt_per_day / 24.0 * 1000.0 / density;
+    (rise + fall) * mm_per_h_to_mps
+}
+
+/// What the last shadow map was drawn for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Drawn {
+    sun_view_proj: Mat4,
+    displacement: bool,
+    cover_time_s: f64,
+}
+
+/// Decides, frame by frame, whether the shadow pass runs.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ShadowCache {
+    drawn: Option<Drawn>,
+}
+
+impl ShadowCache {
+    /// Whether this frame must draw the shadow map, for the sun's projection, the
+    /// displacement switch, the cover's simulated time (s) and the surface's speed
+    /// bound ([`snow_surface_speed_bound_mps`]); records the draw when it says yes.
+    pub fn needs_drawing(
+        &mut self,
+        sun_view_proj: Mat4,
+        displacement: bool,
+        cover_time_s: f64,
+        surface_speed_bound_mps: f32,
+    ) -> bool {
+        let fresh = self.drawn.is_some_and(|d| {
+            let elapsed = (cover_time_s - d.cover_time_s).abs();
+            let moved = if displacement {
+                elapsed * f64::from(surface_speed_bound_mps.max(0.0))
+            } else {
+                0.0
+            };
+            d.sun_view_proj == sun_view_proj
+                && d.displacement == displacement
+                && moved < f64::from(SHADOW_REFRESH_RISE_M)
+                && elapsed < SHADOW_MAX_AGE_COVER_S
+        });
+        if !fresh {
+            self.drawn = Some(Drawn {
+                sun_view_proj,
+                displacement,
+                cover_time_s,
+            });
+        }
+        !fresh
+    }
+
+    /// [`ShadowCache::needs_drawing`] for a frame of `setup` under `weather` at
+    /// simulated time `time_s` (the cover's time is that times its time scale),
+    /// drawn with `params`.
+    pub fn for_frame(
+        &mut self,
+        setup: &Setup,
+        weather: &Weather,
+        params: &RenderParams,
+        time_s: f64,
+    ) -> bool {
+        self.needs_drawing(
+            params.sun_view_proj,
+            setup.render.snow_displacement,
+            time_s * f64::from(setup.cover.time_scale),
+            snow_surface_speed_bound_mps(weather, &setup.cover.params),
+        )
+    }
+
+    /// Forgets the map (its contents are lost or stale).
+    pub fn invalidate(&mut self) {
+        self.drawn = None;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_map_is_redrawn_only_when_the_sun_the_switch_or_the_snow_moved() {
+        let sun = Mat4::from_scale(glam::Vec3::splat(0.1));
+        let mut cache = ShadowCache::default();
+        let speed = 1.0e-5; // 1 cm in 1 000 s
+        assert!(cache.needs_drawing(sun, true, 0.0, speed), "first frame");
+        assert!(
+            !cache.needs_drawing(sun, true, 10.0, speed),
+            "nothing changed"
+        );
+        assert!(
+            !cache.needs_drawing(sun, true, 899.0, speed),
+            "9 mm at most"
+        );
+        assert!(cache.needs_drawing(sun, true, 1_001.0, speed), "1 cm");
+        assert!(!cache.needs_drawing(sun, true, 1_002.0, speed));
+        assert!(
+            cache.needs_drawing(sun * 2.0, true, 1_002.0, speed),
+            "the sun"
+        );
+        assert!(
+            cache.needs_drawing(sun * 2.0, false, 1_002.0, speed),
+            "the switch"
+        );
+        // Without displacement the snow does not move the map; age still does.
+        assert!(!cache.needs_drawing(sun * 2.0, false, 1_800.0, 1.0));
+        assert!(cache.needs_drawing(sun * 2.0, false, 1_002.0 + SHADOW_MAX_AGE_COVER_S, 1.0));
+        cache.invalidate();
+        assert!(cache.needs_drawing(sun * 2.0, false, 1_902.0, 1.0));
+    }
+
+    #[test]
+    fn snowfall_and_melt_bound_the_surface_speed() {
+        let cover = CoverParams::default();
+        let cold = Weather {
+            intensity_mm_per_h: 2.0,
+            air_temperature_c: -5.0,
+            ..Weather::default()
+        };
+        // 2 mm/h at ~100 kg/m³: 2 cm/h of snow, ×4: 8 cm/h.
+        let v = snow_surface_speed_bound_mps(&cold, &cover) * 3600.0;
+        assert!((0.06..0.1).contains(&v), "{v} m/h");
+        let dry = Weather {
+            intensity_mm_per_h: 0.0,
+            ..cold
+        };
+        assert!(snow_surface_speed_bound_mps(&dry, &cover).abs() < f32::EPSILON);
+        let thaw = Weather {
+            intensity_mm_per_h: 0.0,
+            air_temperature_c: 8.0,
+            ..cold
+        };
+        assert!(snow_surface_speed_bound_mps(&thaw, &cover) > 0.0);
+    }
+}

@@ -1,0 +1,276 @@
+//! [`HostState`]: what a configured backend knows on the host — the setup, the
+//! weather, the baked wind volume, the camera and the clock — and every uniform
+//! block computed from them, once, for the CPU reference and every GPU backend.
+
+use glam::Vec3;
+use precip_cover::{CoverStepParams, GridFrame};
+use precip_wind::{WindParams, WindVolume};
+
+use crate::backend::camera::{Camera, View};
+use crate::backend::error::BackendError;
+use crate::backend::setup::Setup;
+use crate::backend::substeps;
+use crate::drawing::render::RenderParams;
+use crate::host::layout::Frames;
+use crate::particles::step::StepParams;
+use crate::physics::drag::MAX_SUBSTEP_S;
+use crate::sensors::lidar::UnresolvedAir;
+use crate::weather::Weather;
+
+/// The host side of a configured simulation.
+///
+/// Every backend holds one: `configure` makes it ([`HostState::configure`]),
+/// `set_weather` and `set_camera` change it, and `step` asks it for the sub-steps'
+/// blocks ([`HostState::substeps`]) and then advances its clock
+/// ([`HostState::advance`]). What a backend uploads is what this returns, so the
+/// backends cannot disagree on a uniform.
+#[derive(Debug, Clone)]
+pub struct HostState {
+    setup: Setup,
+    weather: Weather,
+    wind: WindVolume,
+    camera: Camera,
+    /// The step block of the current weather; each sub-step sets the camera, its
+    /// length and its time ([`StepParams::at`]). Computing it scans the ground map,
+    /// so it is made once per weather change.
+    step_template: StepParams,
+    time_s: f64,
+}
+
+/// The uniform blocks of one sub-step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SubStepBlocks {
+    /// The particle kernels' block.
+    pub step: StepParams,
+    /// The cover kernels' block.
+    pub cover: CoverStepParams,
+}
+
+/// A step split into sub-steps ([`substeps`]), each with its blocks, and the clock
+/// after the last.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SubSteps {
+    /// Length of each sub-step, s.
+    pub dt_s: f32,
+    /// The blocks, in order.
+    pub blocks: Vec<SubStepBlocks>,
+    /// The simulated time after the last sub-step, s.
+    end_time_s: f64,
+}
+
+/// What a weather change asks of a backend's device.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[must_use]
+pub struct WeatherChange {
+    /// The wind volume was baked again: upload its texels
+    /// ([`HostState::wind`]`.as_bytes()`). Otherwise only the wind's block changed.
+    pub wind_rebaked: bool,
+}
+
+impl HostState {
+    /// The host state of `setup`: its wind baked, its blocks computed, the clock at 0.
+    /// The caller has checked `setup` against its device's limits.
+    pub fn configure(setup: &Setup) -> Result<Self, BackendError> {
+        let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume)?;
+        Ok(Self {
+            step_template: setup.step_params(&setup.weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0),
+            setup: setup.clone(),
+            weather: setup.weather,
+            wind,
+            camera: setup.camera,
+            time_s: 0.0,
+        })
+    }
+
+    /// Takes a new weather: validated, the wind re-baked only if its gusts changed.
+    pub fn set_weather(&mut self, weather: &Weather) -> Result<WeatherChange, BackendError> {
+        weather.validate()?;
+        let (wind, wind_rebaked) = self.wind.for_field(&weather.wind)?;
+        self.wind = wind;
+        self.step_template = self
+            .setup
+            .step_params(weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
+        self.weather = *weather;
+        Ok(WeatherChange { wind_rebaked })
+    }
+
+    /// Moves the camera (validated).
+    pub fn set_camera(&mut self, camera: &Camera) -> Result<(), BackendError> {
+        camera.validate()?;
+        self.camera = *camera;
+        Ok(())
+    }
+
+    /// The blocks of a step of `dt_s` (validated), from the clock now; the clock
+    /// moves only with [`HostState::advance`], once the backend has the step under way.
+    pub fn substeps(&self, dt_s: f32) -> Result<SubSteps, BackendError> {
+        let (count, h) = substeps(dt_s)?;
+        let cover = self.setup.cover_step_params(&self.weather, h);
+        let mut time_s = self.time_s;
+        let blocks = (0..count)
+            .map(|_| {
+                let step = self
+                    .step_template
+                    .at(self.camera.position_m, h, time_s as f32);
+                time_s += f64::from(h);
+                SubStepBlocks { step, cover }
+            })
+            .collect();
+        Ok(SubSteps {
+            dt_s: h,
+            blocks,
+            end_time_s: time_s,
+        })
+    }
+
+    /// The clock after `steps`.
+    pub fn advance(&mut self, steps: &SubSteps) {
+        self.time_s = steps.end_time_s;
+    }
+
+    /// The block `init_particles` runs with at configure (the particles born warm
+    /// around the configured camera).
+    #[must_use]
+    pub fn init_block(&self) -> StepParams {
+        self.step_template
+            .at(self.camera.position_m, MAX_SUBSTEP_S, 0.0)
+    }
+
+    /// The wind sampler's block.
+    #[must_use]
+    pub fn wind_params(&self) -> WindParams {
+        self.wind.gpu_params()
+    }
+
+    /// The grids the particle kernels read.
+    #[must_use]
+    pub fn frames(&self) -> Frames {
+        self.setup.frames()
+    }
+
+    /// The frame's block for `view`, with the shadow map over `shadow_bounds_m`, for
+    /// `particle_count` particles and the water bodies' wave grid `waves`.
+    #[must_use]
+    pub fn render_params(
+        &self,
+        view: &View,
+        shadow_bounds_m: (Vec3, Vec3),
+        particle_count: u32,
+        waves: GridFrame,
+    ) -> RenderParams {
+        self.setup.render_params(
+            view,
+            &self.weather,
+            shadow_bounds_m,
+            self.time_s,
+            particle_count,
+            waves,
+        )
+    }
+
+    /// The air beyond the simulated particles, for LiDAR beams now.
+    #[must_use]
+    pub fn unresolved_air(&self) -> UnresolvedAir {
+        UnresolvedAir::of_configuration(
+            &self.setup,
+            &self.weather,
+            self.step_template,
+            self.camera.position_m,
+            self.time_s,
+        )
+    }
+
+    /// The setup it was configured with.
+    #[must_use]
+    pub fn setup(&self) -> &Setup {
+        &self.setup
+    }
+
+    /// The weather now.
+    #[must_use]
+    pub fn weather(&self) -> &Weather {
+        &self.weather
+    }
+
+    /// The baked wind volume (its texels are the wind texture's).
+    #[must_use]
+    pub fn wind(&self) -> &WindVolume {
+        &self.wind
+    }
+
+    /// The camera now.
+    #[must_use]
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// Simulated time since configure, s.
+    #[must_use]
+    pub fn time_s(&self) -> f64 {
+        self.time_s
+    }
+
+    /// The step block of the current weather, before a sub-step's camera, length and
+    /// time are set.
+    #[must_use]
+    pub fn step_template(&self) -> StepParams {
+        self.step_template
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::backend::MAX_STEP_S;
+
+    fn host() -> HostState {
+        HostState::configure(&Setup::over_flat_ground(20.0, 8, 10.0, 256)).expect("a valid setup")
+    }
+
+    #[test]
+    fn sub_steps_carry_the_clock_and_the_camera() {
+        let mut host = host();
+        let steps = host.substeps(0.05).expect("a valid step");
+        let n = steps.blocks.len();
+        assert!(n >= 1 && steps.dt_s <= MAX_SUBSTEP_S);
+        for (k, b) in steps.blocks.iter().enumerate() {
+            let expected = (k as f64 * f64::from(steps.dt_s)) as f32;
+            assert!((b.step.time_s - expected).abs() < 1e-6, "{k}");
+            assert_eq!(b.step.camera_centre_m, host.camera().position_m);
+            assert!((b.step.dt_s - steps.dt_s).abs() < f32::EPSILON);
+        }
+        assert!(
+            host.time_s().abs() < f64::EPSILON,
+            "substeps alone moves no clock"
+        );
+        host.advance(&steps);
+        assert!((host.time_s() - f64::from(steps.dt_s) * n as f64).abs() < 1e-9);
+    }
+
+    #[test]
+    fn bad_steps_and_weather_leave_the_state_as_it_was() {
+        let mut host = host();
+        assert!(host.substeps(0.0).is_err());
+        assert!(host.substeps(MAX_STEP_S * 2.0).is_err());
+        let before = *host.weather();
+        let mut bad = before;
+        bad.air_temperature_c = f32::NAN;
+        assert!(host.set_weather(&bad).is_err());
+        assert_eq!(*host.weather(), before);
+    }
+
+    #[test]
+    fn the_mean_wind_has_one_source() {
+        let mut host = host();
+        let mut weather = *host.weather();
+        weather.wind.mean_wind_mps = Vec3::new(3.0, 0.0, -4.0);
+        let change = host.set_weather(&weather).expect("a valid weather");
+        assert!(!change.wind_rebaked, "a mean wind alone needs no bake");
+        let steps = host.substeps(0.01).expect("a valid step");
+        let blocks = steps.blocks[0];
+        assert_eq!(blocks.step.mean_wind_mps, weather.wind.mean_wind_mps);
+        assert_eq!(host.wind_params().mean_wind_mps, weather.wind.mean_wind_mps);
+        let [x, z] = blocks.cover.air().wind_mps;
+        assert!((x - 3.0).abs() < f32::EPSILON && (z + 4.0).abs() < f32::EPSILON);
+    }
+}

@@ -1,0 +1,155 @@
+//! [`GroundMap`]: the scene seen from above, which particles land on.
+//!
+//! A height per texel (the top-most surface) and the snow eligibility of that surface.
+//! The rendering issue renders it from the scene; here it is any grid. Particles land
+//! against the nearest texel (no interpolation: an eave must not catch particles in
+//! mid-air beside it).
+
+use glam::Vec2;
+use precip_cover::{GridFrame, Surface};
+
+use crate::backend::error::BackendError;
+
+/// Heights and eligibility of the top-most surface on a grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroundMap {
+    /// Where the grid lies.
+    pub frame: GridFrame,
+    /// World height of the top-most surface per texel, m.
+    pub height_m: Vec<f32>,
+    /// Snow eligibility of that surface per texel, `[0, 1]`.
+    pub eligibility: Vec<f32>,
+    /// What that surface is made of, per texel; empty: from the eligibility
+    /// ([`Surface::from_eligibility`]).
+    pub surface: Vec<Surface>,
+}
+
+impl GroundMap {
+    /// Flat ground at `height_m`, uniformly eligible.
+    #[must_use]
+    pub fn flat(frame: GridFrame, height_m: f32, eligibility: f32) -> Self {
+        let n = frame.texel_count();
+        Self {
+            frame,
+            height_m: vec![height_m; n],
+            eligibility: vec![eligibility; n],
+            surface: Vec::new(),
+        }
+    }
+
+    /// Checks the frame, sizes and values.
+    pub fn validate(&self) -> Result<(), BackendError> {
+        self.frame.validate("ground.frame")?;
+        let n = self.frame.texel_count();
+        for (field, len) in [
+            ("ground.height_m", self.height_m.len()),
+            ("ground.eligibility", self.eligibility.len()),
+        ] {
+            if len != n {
+                return Err(BackendError::Setup {
+                    field,
+                    problem: format!("has {len} values but the ground frame has {n} texels"),
+                });
+            }
+        }
+        if !self.surface.is_empty() && self.surface.len() != n {
+            return Err(BackendError::Setup {
+                field: "ground.surface",
+                problem: format!(
+                    "has {} values but the ground frame has {n} texels: give one a texel, or none to derive them from the eligibility",
+                    self.surface.len()
+                ),
+            });
+        }
+        if let Some(i) = self
+            .height_m
+            .iter()
+            .position(|h| !(h.is_finite() && h.abs() <= 1.0e5))
+        {
+            return Err(BackendError::Setup {
+                field: "ground.height_m",
+                problem: format!(
+                    "texel {i} is {} : heights must be finite, within ±100 km",
+                    self.height_m[i]
+                ),
+            });
+        }
+        if let Some(i) = self
+            .eligibility
+            .iter()
+            .position(|e| !(e.is_finite() && (0.0..=1.0).contains(e)))
+        {
+            return Err(BackendError::Setup {
+                field: "ground.eligibility",
+                problem: format!(
+                    "texel {i} is {}: eligibility must be in [0, 1]",
+                    self.eligibility[i]
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Height of the top-most surface under world `(x, z)`, or `None` off the map.
+    #[must_use]
+    pub fn height_at(&self, xz_m: Vec2) -> Option<f32> {
+        self.frame
+            .texel_index(xz_m)
+            .and_then(|i| self.height_m.get(i).copied())
+    }
+
+    /// Eligibility under world `(x, z)`; 0 off the map.
+    #[must_use]
+    pub fn eligibility_at(&self, xz_m: Vec2) -> f32 {
+        self.frame
+            .texel_index(xz_m)
+            .and_then(|i| self.eligibility.get(i).copied())
+            .unwrap_or(0.0)
+    }
+
+    /// The surface under world `(x, z)` (off the map: from its eligibility, 0).
+    #[must_use]
+    pub fn surface_at(&self, xz_m: Vec2) -> Surface {
+        self.frame
+            .texel_index(xz_m)
+            .and_then(|i| self.surface.get(i).copied())
+            .unwrap_or_else(|| Surface::from_eligibility(self.eligibility_at(xz_m)))
+    }
+
+    /// The share of the surface under world `(x, z)` whose grains the wind lifts
+    /// ([`Surface::erodibility`]); 0 off the map.
+    #[must_use]
+    pub fn erodibility_at(&self, xz_m: Vec2) -> f32 {
+        if self.frame.texel_index(xz_m).is_none() {
+            return 0.0;
+        }
+        self.surface_at(xz_m).erodibility()
+    }
+
+    /// The erodible area of the map, m² (texel area × erodibility, summed).
+    #[must_use]
+    pub fn erodible_area_m2(&self) -> f32 {
+        let n = self.frame.texel_count();
+        let sum: f32 = (0..n)
+            .map(|i| self.erodibility_at(self.frame.texel_centre(i)))
+            .sum();
+        sum * self.frame.texel_area_m2()
+    }
+
+    /// The map as the GPU reads it (`ground_height` in `shaders/ground.wgsl`): the
+    /// heights of all texels, then the erodibility of each.
+    #[must_use]
+    pub fn gpu_words(&self) -> Vec<f32> {
+        let n = self.frame.texel_count();
+        let mut words = Vec::with_capacity(2 * n);
+        words.extend_from_slice(&self.height_m);
+        words.extend((0..n).map(|i| self.erodibility_at(self.frame.texel_centre(i))));
+        words
+    }
+
+    /// The lowest ground height: below it a particle off the map has left the scene.
+    #[must_use]
+    pub fn floor_m(&self) -> f32 {
+        self.height_m.iter().copied().fold(f32::INFINITY, f32::min)
+    }
+}

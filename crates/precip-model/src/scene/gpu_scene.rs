@@ -1,0 +1,298 @@
+//! The scene packed for a GPU backend: tessellated for the snow's displacement, every
+//! mesh's vertices in one [`SceneVertex`] list, indices offset by each mesh's first
+//! vertex, and each mesh's index range — the same bytes for the wgpu and Vulkan
+//! backends, which only upload them — with the displacement's level of detail
+//! ([`SceneLod`]): the split triangles grouped in square tiles of [`LOD_TILE_M`], each
+//! tile's fine triangles and its coarse ones (the input triangles) side by side in
+//! the index buffer, so a frame draws the fine ones only near the camera
+//! ([`SceneLod::ranges`], within [`crate::scene::displacement::detail_distance_m`]).
+//!
+//! Where a fine tile meets a coarse one the shared edge has the fine side's extra
+//! vertices raised by the snow and the coarse side's not: a hairline may open there
+//! where the depth changes along the edge, at the detail distance (an edge spans 4 px
+//! there) and beyond.
+
+use std::collections::BTreeMap;
+use std::ops::Range;
+
+use glam::Vec3;
+
+use crate::backend::error::BackendError;
+use crate::drawing::render::RenderSettings;
+use crate::host::SceneVertex;
+use crate::particles::ground::GroundMap;
+use crate::scene::Scene;
+
+/// A scene ready to upload.
+#[derive(Debug, Clone)]
+pub struct PackedScene {
+    /// The tessellated scene (its meshes' materials go with `ranges`).
+    pub scene: Scene,
+    /// Every mesh's vertices.
+    pub vertices: Vec<SceneVertex>,
+    /// `u32` indices into `vertices`.
+    pub indices: Vec<u32>,
+    /// Each mesh's range of `indices`, in mesh order.
+    pub ranges: Vec<Range<u32>>,
+    /// What to draw of each mesh, by distance.
+    pub lod: SceneLod,
+}
+
+/// Side of the square tiles the level of detail chooses by, m.
+pub const LOD_TILE_M: f32 = 8.0;
+
+/// A tile of a mesh's split triangles.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LodTile {
+    /// Its vertices' box, m.
+    pub bounds_m: (Vec3, Vec3),
+    /// Its fine triangles' indices.
+    pub fine: Range<u32>,
+    /// Its coarse triangles' indices.
+    pub coarse: Range<u32>,
+}
+
+/// One mesh's level of detail.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct MeshLod {
+    /// The triangles never split (drawn always).
+    pub always: Range<u32>,
+    /// The tiles of split triangles.
+    pub tiles: Vec<LodTile>,
+}
+
+/// The scene's level of detail for the snow's displacement.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SceneLod {
+    /// Per mesh, in mesh order.
+    pub meshes: Vec<MeshLod>,
+    /// The fine triangles' edge limit, m.
+    pub edge_m: f32,
+}
+
+impl SceneLod {
+    /// How far the fine triangles are drawn in `view`
+    /// ([`crate::scene::displacement::detail_distance_m`] at its centre pixel's angle), m.
+    #[must_use]
+    pub fn detail_distance_m(&self, view: &crate::backend::camera::View) -> f32 {
+        let pixel_angle =
+            2.0 * (0.5 * view.camera.vertical_fov_rad).tan() / view.height_px.max(1) as f32;
+        crate::scene::displacement::detail_distance_m(self.edge_m, pixel_angle)
+    }
+
+    /// The index ranges to draw of mesh `mesh` seen from `camera_m`: its kept
+    /// triangles, and each tile's fine triangles when the tile's box is within
+    /// `detail_distance_m` of the camera, else its coarse ones.
+    pub fn ranges(
+        &self,
+        mesh: usize,
+        camera_m: Vec3,
+        detail_distance_m: f32,
+    ) -> impl Iterator<Item = Range<u32>> + '_ {
+        let lod = self.meshes.get(mesh);
+        lod.map(|m| m.always.clone())
+            .into_iter()
+            .chain(lod.into_iter().flat_map(move |m| {
+                m.tiles.iter().map(move |t| {
+                    let nearest = camera_m.clamp(t.bounds_m.0, t.bounds_m.1);
+                    if nearest.distance(camera_m) <= detail_distance_m {
+                        t.fine.clone()
+                    } else {
+                        t.coarse.clone()
+                    }
+                })
+            }))
+            .filter(|r| !r.is_empty())
+    }
+}
+
+/// Index position as `u32`.
+fn at(len: usize) -> Result<u32, BackendError> {
+    u32::try_from(len).map_err(|_| too_big("indices"))
+}
+
+fn too_big(what: &str) -> BackendError {
+    BackendError::Setup {
+        field: "scene",
+        problem: format!(
+            "its {what} exceed what 32-bit indices address: raise render.tessellation_edge_m or lower render.max_scene_triangles"
+        ),
+    }
+}
+
+/// The eligibility a water body's vertices carry: no snow lies on it, and the
+/// scene's fragment shader draws it as open water (`fs_scene`).
+pub const WATER_BODY_ELIGIBILITY: f32 = -1.0;
+
+impl PackedScene {
+    /// Tessellates `scene` (prepared: complete attributes) where the snow over
+    /// `ground` raises it, as `settings` say, and packs it.
+    pub fn new(
+        scene: &Scene,
+        settings: &RenderSettings,
+        ground: &GroundMap,
+    ) -> Result<Self, BackendError> {
+        let tessellation = scene.tessellated(
+            settings.tessellation_edge_m,
+            settings.max_scene_triangles,
+            ground,
+        );
+        let scene = tessellation.scene;
+        let mut lod = SceneLod {
+            meshes: Vec::with_capacity(scene.meshes.len()),
+            edge_m: tessellation.edge_m,
+        };
+        let mut vertices: Vec<SceneVertex> = Vec::new();
+        let mut indices: Vec<u32> = Vec::new();
+        let mut ranges = Vec::with_capacity(scene.meshes.len());
+        for (mesh, pieces) in scene.meshes.iter().zip(&tessellation.pieces) {
+            let base = u32::try_from(vertices.len()).map_err(|_| too_big("vertices"))?;
+            let water_body = mesh.surface == Some(precip_cover::Surface::Water);
+            for (i, p) in mesh.positions_m.iter().enumerate() {
+                vertices.push(SceneVertex {
+                    position_m: p.to_array(),
+                    normal: mesh.normals[i].to_array(),
+                    uv: mesh.uvs[i].to_array(),
+                    eligibility: if water_body {
+                        WATER_BODY_ELIGIBILITY
+                    } else {
+                        mesh.snow_eligibility[i]
+                    },
+                });
+            }
+            let start = at(indices.len())?;
+            // Kept triangles first, then each tile's fine and coarse triangles.
+            for piece in pieces.iter().filter(|p| !p.split) {
+                indices.extend(piece.coarse.iter().map(|i| i + base));
+            }
+            let always = start..at(indices.len())?;
+            let mut by_tile: BTreeMap<(i64, i64), Vec<&crate::scene::tessellate::Piece>> =
+                BTreeMap::new();
+            for piece in pieces.iter().filter(|p| p.split) {
+                let [a, b, c] = piece.coarse.map(|i| mesh.positions_m[i as usize]);
+                let centre = (a + b + c) / 3.0;
+                let key = (
+                    (centre.x / LOD_TILE_M).floor() as i64,
+                    (centre.z / LOD_TILE_M).floor() as i64,
+                );
+                by_tile.entry(key).or_default().push(piece);
+            }
+            let mut tiles = Vec::with_capacity(by_tile.len());
+            for tile in by_tile.values() {
+                let fine_start = at(indices.len())?;
+                let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+                for piece in tile {
+                    for &i in &mesh.indices[piece.fine.clone()] {
+                        indices.push(i + base);
+                        lo = lo.min(mesh.positions_m[i as usize]);
+                        hi = hi.max(mesh.positions_m[i as usize]);
+                    }
+                }
+                let coarse_start = at(indices.len())?;
+                for piece in tile {
+                    indices.extend(piece.coarse.iter().map(|i| i + base));
+                }
+                tiles.push(LodTile {
+                    bounds_m: (lo, hi),
+                    fine: fine_start..coarse_start,
+                    coarse: coarse_start..at(indices.len())?,
+                });
+            }
+            let end = at(indices.len())?;
+            ranges.push(start..end);
+            lod.meshes.push(MeshLod { always, tiles });
+        }
+        Ok(Self {
+            scene,
+            vertices,
+            indices,
+            ranges,
+            lod,
+        })
+    }
+
+    /// Triangles in the index buffer (fine and coarse).
+    #[must_use]
+    pub fn triangles(&self) -> u64 {
+        self.indices.len() as u64 / 3
+    }
+
+    /// Triangles drawn from `camera_m` with `detail_distance_m`.
+    #[must_use]
+    pub fn triangles_drawn(&self, camera_m: Vec3, detail_distance_m: f32) -> u64 {
+        (0..self.lod.meshes.len())
+            .flat_map(|m| self.lod.ranges(m, camera_m, detail_distance_m))
+            .map(|r| u64::from(r.end - r.start) / 3)
+            .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::builtin::house_on_plane;
+
+    #[test]
+    fn every_mesh_indexes_its_own_vertices() {
+        let scene = house_on_plane().prepare().expect("valid").0;
+        let ground = crate::backend::setup::Setup::over_flat_ground(60.0, 64, 10.0, 1).ground;
+        let packed = PackedScene::new(&scene, &RenderSettings::default(), &ground).expect("packs");
+        assert_eq!(packed.ranges.len(), packed.scene.meshes.len());
+        let mut first = 0u32;
+        for (mesh, range) in packed.scene.meshes.iter().zip(&packed.ranges) {
+            let count = mesh.positions_m.len() as u32;
+            for &i in &packed.indices[range.start as usize..range.end as usize] {
+                assert!((first..first + count).contains(&i), "{i} outside its mesh");
+            }
+            first += count;
+        }
+        assert_eq!(first as usize, packed.vertices.len());
+        assert!(packed.triangles() > 0);
+    }
+
+    #[test]
+    fn near_tiles_draw_fine_far_tiles_coarse_and_every_triangle_once() {
+        let scene = house_on_plane().prepare().expect("valid").0;
+        let (lo, hi) = scene.bounds_m().expect("not empty");
+        let ground = GroundMap::from_scene(
+            &scene,
+            precip_cover::GridFrame::centred(
+                glam::Vec2::new(0.5 * (lo.x + hi.x), 0.5 * (lo.z + hi.z)),
+                glam::Vec2::new(hi.x - lo.x, hi.z - lo.z),
+                glam::UVec2::splat(128),
+            ),
+        );
+        let packed = PackedScene::new(&scene, &RenderSettings::default(), &ground).expect("packs");
+        let fine: u64 = packed
+            .scene
+            .meshes
+            .iter()
+            .map(|m| m.indices.len() as u64 / 3)
+            .sum();
+        let coarse: u64 = scene
+            .meshes
+            .iter()
+            .map(|m| m.indices.len() as u64 / 3)
+            .sum();
+        let centre = 0.5 * (lo + hi);
+        // Everything near: the fine scene; everything far: the input scene.
+        assert_eq!(packed.triangles_drawn(centre, 1.0e6), fine);
+        assert_eq!(
+            packed.triangles_drawn(centre + Vec3::Y * 1.0e5, 10.0),
+            coarse
+        );
+        // Between: some tiles fine, the rest coarse.
+        let corner = Vec3::new(lo.x, 1.7, lo.z);
+        let mixed = packed.triangles_drawn(corner, 12.0);
+        assert!(
+            coarse < mixed && mixed < fine,
+            "{coarse} < {mixed} < {fine}"
+        );
+        // Each mesh's ranges lie in its own range.
+        for (m, range) in packed.ranges.iter().enumerate() {
+            for r in packed.lod.ranges(m, corner, 12.0) {
+                assert!(range.start <= r.start && r.end <= range.end);
+            }
+        }
+    }
+}

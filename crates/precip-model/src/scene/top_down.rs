@@ -1,0 +1,133 @@
+//! The ground map rendered from a [`Scene`]: an orthographic view straight down
+//! (DESIGN.md §2, "the ground"), rasterised on the CPU.
+//!
+//! Each texel takes the top-most surface under its centre: every triangle whose XZ
+//! projection holds the centre offers its interpolated height, the highest wins, and
+//! its interpolated snow eligibility and its mesh's surface come with it. Walls (zero XZ area) never win; a
+//! roof hides the floor and the ground beneath it, so particles land on the roof and
+//! the cover under the eaves belongs to the roof. Texels no triangle covers take the
+//! scene's lowest height with no eligibility.
+//!
+//! Why on the CPU: the map is built once per scene, is an exact point sample (the
+//! same test a GPU rasteriser makes at pixel centres), and every backend — the CPU
+//! reference included — then lands particles on the very same heights (DESIGN.md §5).
+
+use glam::{Vec2, Vec3};
+use precip_cover::{GridFrame, Surface};
+
+use crate::particles::ground::GroundMap;
+use crate::scene::Scene;
+
+/// Barycentric weights of `p` in the XZ triangle `(a, b, c)`, or `None` outside it
+/// (edges included, so abutting triangles leave no gap).
+fn barycentric_xz(p: Vec2, a: Vec2, b: Vec2, c: Vec2) -> Option<Vec3> {
+    let area = (b - a).perp_dot(c - a);
+    if area.abs() < 1e-12 {
+        return None;
+    }
+    let w_a = (b - p).perp_dot(c - p) / area;
+    let w_b = (c - p).perp_dot(a - p) / area;
+    let w_c = 1.0 - w_a - w_b;
+    let tolerance = -1e-6;
+    (w_a >= tolerance && w_b >= tolerance && w_c >= tolerance).then_some(Vec3::new(w_a, w_b, w_c))
+}
+
+impl GroundMap {
+    /// The top-most surface of a prepared `scene` over `frame` (see the module docs).
+    /// `scene` must have been through [`Scene::prepare`] (complete attributes).
+    #[must_use]
+    pub fn from_scene(scene: &Scene, frame: GridFrame) -> Self {
+        let floor = scene.bounds_m().map_or(0.0, |(lo, _)| lo.y);
+        let n = frame.texel_count();
+        let mut height_m = vec![f32::NEG_INFINITY; n];
+        let mut eligibility = vec![0.0; n];
+        let mut surface = vec![Surface::default(); n];
+        let cell = frame.cell_m();
+        let (nx, nz) = (i64::from(frame.texels.x), i64::from(frame.texels.y));
+        for mesh in &scene.meshes {
+            for t in mesh.indices.chunks_exact(3) {
+                let [ia, ib, ic] = [t[0], t[1], t[2]].map(|i| i as usize);
+                let [a, b, c] = [ia, ib, ic].map(|i| mesh.positions_m[i]);
+                let elig =
+                    [ia, ib, ic].map(|i| mesh.snow_eligibility.get(i).copied().unwrap_or(0.0));
+                let [a2, b2, c2] = [a, b, c].map(|v| Vec2::new(v.x, v.z));
+                let lo = (a2.min(b2).min(c2) - frame.origin_m) / cell;
+                let hi = (a2.max(b2).max(c2) - frame.origin_m) / cell;
+                // Texel centres (i + ½) inside [lo, hi].
+                let i0 = ((lo.x - 0.5).ceil() as i64).max(0);
+                let i1 = ((hi.x - 0.5).floor() as i64).min(nx - 1);
+                let j0 = ((lo.y - 0.5).ceil() as i64).max(0);
+                let j1 = ((hi.y - 0.5).floor() as i64).min(nz - 1);
+                for j in j0..=j1 {
+                    for i in i0..=i1 {
+                        let centre = frame.origin_m + (Vec2::new(i as f32, j as f32) + 0.5) * cell;
+                        let Some(w) = barycentric_xz(centre, a2, b2, c2) else {
+                            continue;
+                        };
+                        let h = w.x * a.y + w.y * b.y + w.z * c.y;
+                        let k = (i + nx * j) as usize;
+                        if h > height_m[k] {
+                            height_m[k] = h;
+                            eligibility[k] =
+                                (w.x * elig[0] + w.y * elig[1] + w.z * elig[2]).clamp(0.0, 1.0);
+                            surface[k] = mesh
+                                .surface
+                                .unwrap_or_else(|| Surface::from_eligibility(eligibility[k]));
+                        }
+                    }
+                }
+            }
+        }
+        for (h, s) in height_m.iter_mut().zip(&mut surface) {
+            if !h.is_finite() {
+                *h = floor;
+                *s = Surface::Soil;
+            }
+        }
+        Self {
+            frame,
+            height_m,
+            eligibility,
+            surface,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::UVec2;
+
+    use super::*;
+    use crate::scene::builtin::house_on_plane;
+
+    #[test]
+    fn a_roof_hides_the_ground_and_walls_never_win() {
+        let (scene, _) = house_on_plane().prepare().expect("valid");
+        let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(40.0), UVec2::splat(80));
+        let map = GroundMap::from_scene(&scene, frame);
+        map.validate().expect("a valid map");
+        let plan = crate::scene::builtin::HousePlan::default();
+        // Open ground: height 0, eligible.
+        let open = Vec2::new(15.0, 15.0);
+        assert!(map.height_at(open).expect("on the map").abs() < 1e-4);
+        assert!(map.eligibility_at(open) > 0.99);
+        // Under the ridge: the roof's top.
+        let ridge = map.height_at(Vec2::new(0.0, 0.1)).expect("on the map");
+        assert!((ridge - plan.ridge_height_m()).abs() < 0.2, "ridge {ridge}");
+        // Under the eaves (outside the walls, inside the overhang): the roof, not the ground.
+        let eave = Vec2::new(0.0, plan.depth_m / 2.0 + plan.overhang_m * 0.5);
+        let h = map.height_at(eave).expect("on the map");
+        assert!(h > plan.wall_height_m - 0.5, "eave texel at {h} m");
+        assert!(map.eligibility_at(eave) > 0.5, "a 30° roof holds snow");
+    }
+
+    #[test]
+    fn uncovered_texels_take_the_floor_with_no_eligibility() {
+        let (scene, _) = house_on_plane().prepare().expect("valid");
+        let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(400.0), UVec2::splat(40));
+        let map = GroundMap::from_scene(&scene, frame);
+        let far = Vec2::new(190.0, 190.0);
+        assert!(map.eligibility_at(far).abs() < f32::MIN_POSITIVE);
+        assert!(map.height_at(far).expect("on the map").is_finite());
+    }
+}

@@ -1,0 +1,452 @@
+//! What a camera or a LiDAR sees through the precipitation: extinction and
+//! backscatter coefficients at 550, 905 and 1550 nm, and the meteorological optical
+//! range, for a weather (its size spectra) or from the particles in the air now.
+//!
+//! ## Extinction
+//!
+//! A particle of diameter `D` removes `Q_ext·πD²/4` of a beam. Its efficiency is van
+//! de Hulst's (1957, *Light Scattering by Small Particles*, §11.22) anomalous
+//! diffraction `Q_ext(ρ) = 2 − (4/ρ)·sin ρ + (4/ρ²)·(1 − cos ρ)`, `ρ = 2x·(n − 1)`,
+//! `x = πD/λ` ([`extinction_efficiency`]): drops, flakes and sand are thousands of
+//! wavelengths across, so `Q_ext = 2` (the extinction paradox) and their extinction
+//! does not depend on the wavelength; 10 µm dust is not, and sees 7 % less at 1550
+//! nm than at 550. Sums over the size spectra of [`crate::physics::raindrop`] (Marshall–Palmer)
+//! and [`crate::physics::snowfall`] (Gunn–Marshall in melted diameter, the flake's diameter
+//! from the seed's `ρ = C/D`), grains at their one diameter.
+//!
+//! ## Backscatter
+//!
+//! - **Drops** are spheres far larger than the wavelength: geometric optics (van de
+//!   Hulst ch. 12). Straight back come the ray reflected at the front (`p = 0`:
+//!   `a²·R₀/4` per steradian) and the axial ray reflected once inside (`p = 2`:
+//!   `a²·(1 − R₀)²·R₀/(4/n − 2)²`, attenuated by `e^(−2αD)` on its way through the
+//!   drop, `α = 4πk/λ`), with `R₀ = ((n − 1)/(n + 1))²` ([`drop_backscatter_m2_sr`]).
+//!   Water's index is Hale & Querry's (1973, *Appl. Opt.* 12(3)); water absorbs
+//!   strongly at 1550 nm (a 1.2 mm e-folding length), so a rain of millimetre drops
+//!   returns mostly its front reflection there. Rain's lidar ratio comes out near
+//!   250 sr at 550 nm. The glory (a wave effect of exact spheres) is left out: real
+//!   drops of a millimetre and more are flattened by their fall, which spoils it.
+//! - **Snowflakes** are aggregates of thin ice crystals whose faces, not the flake's
+//!   outline, send light back: their backscatter is that of ice crystals, whose
+//!   measured lidar ratio (extinction over backscatter) is 29 ± 12 sr (Chen, Chiang &
+//!   Nee 2002, *Appl. Opt.* 41(30), cirrus at 532 nm) — [`ICE_LIDAR_RATIO_SR`]; so
+//!   snow sends back about nine times what rain does for the same extinction, as
+//!   LiDARs in snow find. Ice's absorption at 1550 nm over a crystal's few tens of µm
+//!   is neglected.
+//! - **Sand and dust** are irregular mineral grains: the measured lidar ratio of
+//!   Saharan dust, 55 ± 5 sr (Tesche et al. 2009, *J. Geophys. Res.* 114, SAMUM,
+//!   532 nm; it changes little to 1064 nm) — [`DUST_LIDAR_RATIO_SR`].
+//!
+//! ## Meteorological optical range
+//!
+//! The length of air that lets through 5 % of a beam of white light (WMO-No. 8):
+//! `MOR = ln 20/σ(550 nm)` ([`meteorological_optical_range_m`]), capped at
+//! [`crate::weather::visibility::CLEAR_AIR_VISIBILITY_M`]. (The fog of the renderer keeps
+//! Koschmieder's 2 % contrast, `3.912/σ`.)
+//!
+//! ## From the particles in the air
+//!
+//! [`Optics::live`] takes the particles a backend holds now: the camera volume's
+//! particles are the spectrum's sizes simulated one by one
+//! ([`crate::weather::visibility`]'s module docs), a sample of the air around the camera, so
+//! their mean cross-sections times the weather's number density of those sizes give
+//! the resolved part; the sizes too small to simulate keep their spectrum's part.
+//! After the weather changes, the particles not yet re-born keep their old kind and
+//! size, and the optics follow them.
+
+use crate::particles::particle::{Particle, ParticleKind, ParticleSource};
+use crate::physics::raindrop::{
+    MARSHALL_PALMER_N0, RAIN_DIAMETER_MAX_MM, RAIN_DIAMETER_MIN_MM, marshall_palmer_slope_per_mm,
+};
+use crate::physics::snowfall::{gunn_marshall_intercept, gunn_marshall_slope_per_mm};
+use crate::physics::snowflake::{mean_snowflake_diameter_m, snowflake_diameter_from_melted_m};
+use crate::weather::Weather;
+use crate::weather::visibility::{CLEAR_AIR_VISIBILITY_M, melted_diameter_mm};
+
+/// A LiDAR's or camera's band.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Band {
+    /// Green light, 550 nm: the eye and the meteorological optical range.
+    Visible,
+    /// 905 nm: most automotive LiDARs (silicon detectors).
+    NearInfrared,
+    /// 1550 nm: eye-safe fibre-laser LiDARs.
+    ShortwaveInfrared,
+}
+
+impl Band {
+    /// Every band, shortest first.
+    pub const ALL: [Self; 3] = [Self::Visible, Self::NearInfrared, Self::ShortwaveInfrared];
+
+    /// The wavelength, nm.
+    #[must_use]
+    pub const fn wavelength_nm(self) -> f32 {
+        match self {
+            Self::Visible => 550.0,
+            Self::NearInfrared => 905.0,
+            Self::ShortwaveInfrared => 1550.0,
+        }
+    }
+
+    /// The band of a wavelength in nm, if it is one of [`Band::ALL`].
+    #[must_use]
+    pub fn of_wavelength_nm(nm: f32) -> Option<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|b| (b.wavelength_nm() - nm).abs() < 0.5)
+    }
+
+    /// Its position in [`Band::ALL`].
+    #[must_use]
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// What a particle is made of, for its optics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Material {
+    /// Liquid water.
+    Water,
+    /// Ice.
+    Ice,
+    /// Quartz-like mineral.
+    Mineral,
+}
+
+/// Complex refractive index `n + i·k`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RefractiveIndex {
+    /// Real part.
+    pub n: f32,
+    /// Imaginary part (absorption).
+    pub k: f32,
+}
+
+impl Material {
+    /// The material of a particle kind.
+    #[must_use]
+    pub const fn of(kind: ParticleKind) -> Self {
+        match kind {
+            ParticleKind::DrySnow | ParticleKind::WetSnow => Self::Ice,
+            ParticleKind::Rain => Self::Water,
+            ParticleKind::Grain => Self::Mineral,
+        }
+    }
+
+    /// The refractive index in `band`: water from Hale & Querry (1973), ice from
+    /// Warren & Brandt (2008, *J. Geophys. Res.* 113), quartz's ordinary ray from
+    /// Ghosh (1999, *Opt. Commun.* 163) (its absorption is not used: mineral
+    /// backscatter is measured, [`DUST_LIDAR_RATIO_SR`]).
+    #[must_use]
+    pub const fn refractive_index(self, band: Band) -> RefractiveIndex {
+        let (n, k) = match (self, band) {
+            (Self::Water, Band::Visible) => (1.333, 1.96e-9),
+            (Self::Water, Band::NearInfrared) => (1.328, 4.86e-7),
+            (Self::Water, Band::ShortwaveInfrared) => (1.318, 9.9e-5),
+            (Self::Ice, Band::Visible) => (1.311, 2.9e-9),
+            (Self::Ice, Band::NearInfrared) => (1.303, 3.3e-7),
+            (Self::Ice, Band::ShortwaveInfrared) => (1.296, 5.6e-4),
+            (Self::Mineral, Band::Visible) => (1.546, 0.0),
+            (Self::Mineral, Band::NearInfrared) => (1.536, 0.0),
+            (Self::Mineral, Band::ShortwaveInfrared) => (1.528, 0.0),
+        };
+        RefractiveIndex { n, k }
+    }
+}
+
+/// Measured lidar ratio of ice crystals, sr (Chen, Chiang & Nee 2002).
+pub const ICE_LIDAR_RATIO_SR: f32 = 29.0;
+
+/// Measured lidar ratio of mineral dust, sr (Tesche et al. 2009).
+pub const DUST_LIDAR_RATIO_SR: f32 = 55.0;
+
+/// `ln 20`: the 5 % transmission of the meteorological optical range.
+pub const MOR_LOG_CONTRAST: f32 = 2.995_732_3;
+
+/// Van de Hulst's anomalous-diffraction extinction efficiency of a sphere of
+/// diameter `diameter_m` and real index `n` at `wavelength_nm`.
+#[must_use]
+pub fn extinction_efficiency(diameter_m: f32, n: f32, wavelength_nm: f32) -> f32 {
+    let x = std::f32::consts::PI * diameter_m / (wavelength_nm * 1.0e-9);
+    let rho = 2.0 * x * (n - 1.0);
+    if rho < 1.0e-3 {
+        // The series: ρ²/2 (Rayleigh-like limit of the approximation).
+        return 0.5 * rho * rho;
+    }
+    2.0 - 4.0 / rho * rho.sin() + 4.0 / (rho * rho) * (1.0 - rho.cos())
+}
+
+/// Extinction cross-section of a particle, m².
+#[must_use]
+pub fn extinction_cross_section_m2(kind: ParticleKind, diameter_m: f32, band: Band) -> f32 {
+    let index = Material::of(kind).refractive_index(band);
+    extinction_efficiency(diameter_m, index.n, band.wavelength_nm())
+        * std::f32::consts::FRAC_PI_4
+        * diameter_m
+        * diameter_m
+}
+
+/// Geometric-optics backscatter of a water drop, m²/sr: the front reflection and
+/// the once-reflected axial ray (module docs).
+#[must_use]
+pub fn drop_backscatter_m2_sr(diameter_m: f32, band: Band) -> f32 {
+    let RefractiveIndex { n, k } = Material::Water.refractive_index(band);
+    let r0 = ((n - 1.0) / (n + 1.0)).powi(2);
+    let a2 = 0.25 * diameter_m * diameter_m;
+    let absorption_per_m = 4.0 * std::f32::consts::PI * k / (band.wavelength_nm() * 1.0e-9);
+    let front = a2 * r0 / 4.0;
+    let axial = a2 * (1.0 - r0).powi(2) * r0 / (4.0 / n - 2.0).powi(2)
+        * (-2.0 * absorption_per_m * diameter_m).exp();
+    front + axial
+}
+
+/// Backscatter cross-section of a particle, m²/sr.
+#[must_use]
+pub fn backscatter_cross_section_m2_sr(kind: ParticleKind, diameter_m: f32, band: Band) -> f32 {
+    match kind {
+        ParticleKind::Rain => drop_backscatter_m2_sr(diameter_m, band),
+        ParticleKind::DrySnow | ParticleKind::WetSnow => {
+            extinction_cross_section_m2(kind, diameter_m, band) / ICE_LIDAR_RATIO_SR
+        }
+        ParticleKind::Grain => {
+            extinction_cross_section_m2(kind, diameter_m, band) / DUST_LIDAR_RATIO_SR
+        }
+    }
+}
+
+/// `ln 20/σ`, m, capped at the clear air's range.
+#[must_use]
+pub fn meteorological_optical_range_m(extinction_per_m: f32) -> f32 {
+    if extinction_per_m > MOR_LOG_CONTRAST / CLEAR_AIR_VISIBILITY_M {
+        MOR_LOG_CONTRAST / extinction_per_m
+    } else {
+        CLEAR_AIR_VISIBILITY_M
+    }
+}
+
+/// The optics of the air in one band.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BandOptics {
+    /// Extinction coefficient, per m.
+    pub extinction_per_m: f32,
+    /// Backscatter coefficient, per m per sr.
+    pub backscatter_per_m_sr: f32,
+}
+
+impl BandOptics {
+    /// Extinction over backscatter, sr (`None` where nothing scatters).
+    #[must_use]
+    pub fn lidar_ratio_sr(&self) -> Option<f32> {
+        (self.backscatter_per_m_sr > 0.0).then(|| self.extinction_per_m / self.backscatter_per_m_sr)
+    }
+
+    /// The fraction of a beam that goes out `range_m` and comes back: `e^(−2σr)`
+    /// (two-way Beer–Lambert).
+    #[must_use]
+    pub fn two_way_transmittance(&self, range_m: f32) -> f32 {
+        (-2.0 * self.extinction_per_m * range_m.max(0.0)).exp()
+    }
+
+    fn add(&mut self, other: Self, weight: f32) {
+        self.extinction_per_m += weight * other.extinction_per_m;
+        self.backscatter_per_m_sr += weight * other.backscatter_per_m_sr;
+    }
+}
+
+/// Where an [`Optics`] comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OpticsSource {
+    /// The weather's size spectra.
+    Spectra,
+    /// The particles in the camera volume now (this many), plus the spectra's sizes
+    /// too small to simulate.
+    LiveParticles {
+        /// Camera-volume particles counted.
+        sampled: u32,
+    },
+}
+
+/// Extinction and backscatter in every band, and the meteorological optical range.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Optics {
+    /// Per band, in [`Band::ALL`]'s order.
+    pub bands: [BandOptics; 3],
+    /// Where the numbers come from.
+    pub source: OpticsSource,
+}
+
+impl Optics {
+    /// One band.
+    #[must_use]
+    pub const fn band(&self, band: Band) -> BandOptics {
+        self.bands[band.index()]
+    }
+
+    /// The meteorological optical range, m (from 550 nm).
+    #[must_use]
+    pub fn meteorological_optical_range_m(&self) -> f32 {
+        meteorological_optical_range_m(self.band(Band::Visible).extinction_per_m)
+    }
+
+    /// The optics of `weather`'s size spectra (all sizes).
+    #[must_use]
+    pub fn of_weather(weather: &Weather) -> Self {
+        let parts = SpectrumParts::of(weather);
+        Self {
+            bands: parts.total,
+            source: OpticsSource::Spectra,
+        }
+    }
+
+    /// The optics from the particles a backend holds (module docs): the camera
+    /// volume's particles stand for the sizes simulated one by one at `weather`'s
+    /// density of them; the sizes below keep the spectra's part. Without camera-volume
+    /// particles, the spectra's.
+    #[must_use]
+    pub fn live(weather: &Weather, particles: &[Particle]) -> Self {
+        let parts = SpectrumParts::of(weather);
+        let mut sums = [BandOptics::default(); 3];
+        let mut sampled = 0u32;
+        for p in particles
+            .iter()
+            .filter(|p| p.source() == ParticleSource::CameraVolume && p.diameter_m > 0.0)
+        {
+            sampled += 1;
+            for band in Band::ALL {
+                sums[band.index()].add(
+                    BandOptics {
+                        extinction_per_m: extinction_cross_section_m2(p.kind(), p.diameter_m, band),
+                        backscatter_per_m_sr: backscatter_cross_section_m2_sr(
+                            p.kind(),
+                            p.diameter_m,
+                            band,
+                        ),
+                    },
+                    1.0,
+                );
+            }
+        }
+        if sampled == 0 {
+            return Self {
+                bands: parts.total,
+                source: OpticsSource::Spectra,
+            };
+        }
+        let per_particle = weather.simulated_number_density_per_m3() / sampled as f32;
+        let mut bands = parts.unresolved;
+        for (band, sum) in bands.iter_mut().zip(sums) {
+            band.add(sum, per_particle);
+        }
+        Self {
+            bands,
+            source: OpticsSource::LiveParticles { sampled },
+        }
+    }
+}
+
+/// A weather's spectra summed: all of it, and the part below the sizes simulated.
+struct SpectrumParts {
+    total: [BandOptics; 3],
+    unresolved: [BandOptics; 3],
+}
+
+/// Bins of the numerical sums over a spectrum.
+const SPECTRUM_BINS: u32 = 2000;
+/// The sums run to this many mean sizes (`1/Λ`): the rest is `e^(−30)` of the count.
+const SPECTRUM_REACH: f32 = 30.0;
+
+impl SpectrumParts {
+    fn of(weather: &Weather) -> Self {
+        let mut parts = Self {
+            total: [BandOptics::default(); 3],
+            unresolved: [BandOptics::default(); 3],
+        };
+        let snow_rate = weather.snow_rate_mm_per_h();
+        if snow_rate > 0.0 {
+            let wet = weather.snow_is_wet();
+            let kind = if wet {
+                ParticleKind::WetSnow
+            } else {
+                ParticleKind::DrySnow
+            };
+            let smallest_melted_mm = melted_diameter_mm(
+                0.5 * mean_snowflake_diameter_m(weather.air_temperature_c),
+                wet,
+            );
+            // Gunn–Marshall counts melted diameters; the flake is larger.
+            parts.add_spectrum(
+                kind,
+                gunn_marshall_intercept(snow_rate),
+                gunn_marshall_slope_per_mm(snow_rate),
+                |melted_mm| snowflake_diameter_from_melted_m(melted_mm * 1.0e-3, wet),
+                |melted_mm| melted_mm < smallest_melted_mm,
+            );
+        }
+        let rain_rate = weather.rain_rate_mm_per_h();
+        if rain_rate > 0.0 {
+            parts.add_spectrum(
+                ParticleKind::Rain,
+                MARSHALL_PALMER_N0,
+                marshall_palmer_slope_per_mm(rain_rate),
+                |d_mm| d_mm * 1.0e-3,
+                |d_mm| !(RAIN_DIAMETER_MIN_MM..=RAIN_DIAMETER_MAX_MM).contains(&d_mm),
+            );
+        }
+        if let Some(grain) = weather.grains() {
+            let n = weather.grain_number_density_per_m3();
+            for band in Band::ALL {
+                parts.total[band.index()].add(
+                    BandOptics {
+                        extinction_per_m: extinction_cross_section_m2(
+                            ParticleKind::Grain,
+                            grain.diameter_m,
+                            band,
+                        ),
+                        backscatter_per_m_sr: backscatter_cross_section_m2_sr(
+                            ParticleKind::Grain,
+                            grain.diameter_m,
+                            band,
+                        ),
+                    },
+                    n,
+                );
+            }
+        }
+        parts
+    }
+
+    /// Adds `∫ N0·e^(−Λd)·C(D(d)) dd` (d in mm, N0 per m³ per mm) by the midpoint
+    /// rule, to the total and, where `unresolved(d)`, to the unresolved part.
+    fn add_spectrum(
+        &mut self,
+        kind: ParticleKind,
+        n0_per_m3_mm: f32,
+        slope_per_mm: f32,
+        diameter_m: impl Fn(f32) -> f32,
+        unresolved: impl Fn(f32) -> bool,
+    ) {
+        if slope_per_mm <= 0.0 || !slope_per_mm.is_finite() {
+            return;
+        }
+        let step_mm = SPECTRUM_REACH / slope_per_mm / SPECTRUM_BINS as f32;
+        for i in 0..SPECTRUM_BINS {
+            let d_mm = (i as f32 + 0.5) * step_mm;
+            let count_per_m3 = n0_per_m3_mm * (-slope_per_mm * d_mm).exp() * step_mm;
+            let size_m = diameter_m(d_mm);
+            for band in Band::ALL {
+                let one = BandOptics {
+                    extinction_per_m: extinction_cross_section_m2(kind, size_m, band),
+                    backscatter_per_m_sr: backscatter_cross_section_m2_sr(kind, size_m, band),
+                };
+                self.total[band.index()].add(one, count_per_m3);
+                if unresolved(d_mm) {
+                    self.unresolved[band.index()].add(one, count_per_m3);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;
