@@ -1,4 +1,4 @@
-//! Compiles precip-gpu's WGSL programs to SPIR-V with naga (DESIGN.md §4: WGSL is the
+//! Compiles precip-gpu's WGSL programs to SPIR-V with naga (docs/architecture.md §4: WGSL is the
 //! single source). One `.spv` per program in OUT_DIR, all entry points in each.
 //!
 //! Bounds checks: those wgpu compiles in ([`BOUNDS_CHECKS`]).

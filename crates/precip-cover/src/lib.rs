@@ -1,4 +1,4 @@
-//! Snow that accumulates and melts on a scene (MODEL.md §4, seed 003), and the
+//! Snow that accumulates and melts on a scene (docs/model.md §4, seed 003), and the
 //! water on its surfaces: films, puddles, infiltration, evaporation and overland
 //! flow ([`water`], [`Surface`]).
 //!
@@ -11,7 +11,7 @@
 //! masks. The layout is the GPU's: one `#[repr(C)]` struct per texel in a storage
 //! buffer, twin of `CoverTexel` in `shaders/cover.wgsl`.
 //!
-//! Snow arrives two ways (DESIGN.md §2), never both for one texel:
+//! Snow arrives two ways (docs/architecture.md §2), never both for one texel:
 //! deposits from landed particles ([`DepositBuffer`], fixed-point, summed atomically,
 //! so the sum is independent of order), or the weather's rate applied directly.
 //! [`update_texel`] is the CPU form of the cover kernel: it adds the input, ages the

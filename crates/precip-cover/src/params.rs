@@ -2,8 +2,8 @@
 
 use crate::error::{CoverError, check_range};
 
-/// Constants of the cover model (MODEL.md §4), with defaults that reproduce the
-/// measured degree-day factors of seasonal snow (MODEL.md §7).
+/// Constants of the cover model (docs/model.md §4), with defaults that reproduce the
+/// measured degree-day factors of seasonal snow (docs/model.md §7).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CoverParams {
     /// T_m: the air temperature above which snow melts, °C (normally 0).

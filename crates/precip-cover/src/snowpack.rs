@@ -4,7 +4,7 @@
 ///
 /// Anderson (1976), as used by the SNOW-17 model:
 /// `ρ = 50 + 1.7·(T + 15)^1.5` for `T > −15 °C`, `50` below, clamped to the
-/// 50–250 kg/m³ of MODEL.md §7: ~70 at −10 °C, ~104 at −5 °C, ~149 at 0 °C,
+/// 50–250 kg/m³ of docs/model.md §7: ~70 at −10 °C, ~104 at −5 °C, ~149 at 0 °C,
 /// ~214 at +6 °C (wet snow). So 1 mm/h of water is about 1 cm/h of snow.
 #[must_use]
 pub fn new_snow_density(air_temperature_c: f32) -> f32 {

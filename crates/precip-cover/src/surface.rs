@@ -1,6 +1,6 @@
 //! [`Surface`]: what a cover texel's ground is made of, and how water behaves on it.
 //!
-//! The kind comes from the asset (glTF `extras.surface`, DESIGN.md §6) or, where the
+//! The kind comes from the asset (glTF `extras.surface`, docs/architecture.md §6) or, where the
 //! asset says nothing, from the snow conventions: ground that may not hold snow
 //! (`"snow": false`: roads, heated paving) is paved, the rest is soil.
 //!

@@ -2,7 +2,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
-/// Where a texel's snow comes from (DESIGN.md §2): never both.
+/// Where a texel's snow comes from (docs/architecture.md §2): never both.
 #[repr(u32)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum CoverFeed {

@@ -237,7 +237,7 @@ mod tests {
     #[test]
     fn default_degree_day_factor_is_that_of_seasonal_snow() {
         // A deep fresh pack melting for two weeks at +3 °C (a spring melt period):
-        // the melt per degree-day must lie in 2.5–4 mm/(°C·day) (MODEL.md §7).
+        // the melt per degree-day must lie in 2.5–4 mm/(°C·day) (docs/model.md §7).
         let params = CoverParams::default();
         let mut t = CoverTexel {
             swe_mm: 500.0,

@@ -1,4 +1,4 @@
-//! Water on surfaces: evaporation and overland flow (MODEL.md §6; WGSL twins in
+//! Water on surfaces: evaporation and overland flow (docs/model.md §6; WGSL twins in
 //! `shaders/cover.wgsl`: `saturation_vapour_pressure_hpa`, `evaporation_mm_per_day`,
 //! `water_outflow_of`, `water_inflow_of`).
 //!

@@ -1,5 +1,5 @@
 // cull_particles.wgsl: view-cone culling and stable compaction of the particles into
-// the lists the draws read (MODEL.md §5), in three kernels over 64-particle groups:
+// the lists the draws read (docs/model.md §5), in three kernels over 64-particle groups:
 //   cull_count  — classifies each particle (drawn_kinds) and each group counts its
 //                 drawn sprites, streaks and splats;
 //   cull_scan   — one workgroup turns the counts into each group's offsets and writes

@@ -1,4 +1,4 @@
-// render_splat.wgsl: sub-pixel particles drawn by compute (MODEL.md §5 sizing, DESIGN.md
+// render_splat.wgsl: sub-pixel particles drawn by compute (docs/model.md §5 sizing, docs/architecture.md
 // §2 step 4). A particle whose sprite or streak would be drawn below `min px` (so the
 // sprite would be enlarged to it, its opacity scaled down) is not rasterised: the
 // kernel `splat_particles` projects its centre, tests it against the scene's depth at

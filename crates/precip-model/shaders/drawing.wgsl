@@ -1,4 +1,4 @@
-// drawing.wgsl: the drawing formulas of MODEL.md §5. Rust twins: precip_model::drawing.
+// drawing.wgsl: the drawing formulas of docs/model.md §5. Rust twins: precip_model::drawing.
 
 // snow_sprite_corners_turned: corner `corner` (0..3, strip order V0 V1 V2 V3).
 fn snow_sprite_corner(centre_m: vec3<f32>, camera_m: vec3<f32>, side_m: f32, spin_rad: f32, tumble: f32, corner: u32) -> vec3<f32> {

@@ -1,4 +1,4 @@
-// water_look.wgsl: how water on the scene looks (MODEL.md §6, seed 004). Rust twins:
+// water_look.wgsl: how water on the scene looks (docs/model.md §6, seed 004). Rust twins:
 // precip_model::drawing::water_look, function by function.
 
 const WATER_REFRACTIVE_INDEX: f32 = 1.333;

@@ -4,7 +4,7 @@ use glam::Vec3;
 
 use crate::error::{WindError, check_range};
 
-/// The wind: mean wind plus Perlin gusts (MODEL.md §3).
+/// The wind: mean wind plus Perlin gusts (docs/model.md §3).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WindField {
     /// Mean wind V̄_w in m/s, world frame (Y up).

@@ -1,4 +1,4 @@
-//! The wind that carries precip's snowflakes and raindrops (MODEL.md §3, seed 003).
+//! The wind that carries precip's snowflakes and raindrops (docs/model.md §3, seed 003).
 //!
 //! ## Design
 //!

@@ -53,7 +53,7 @@ impl WindVolume {
         }
     }
 
-    /// The wind velocity `V̄_w + μ·V̄_w·sin α + (0, w, 0)` in m/s (MODEL.md §3).
+    /// The wind velocity `V̄_w + μ·V̄_w·sin α + (0, w, 0)` in m/s (docs/model.md §3).
     #[must_use]
     pub fn velocity_mps(&self, position_m: Vec3, time_s: f32) -> Vec3 {
         let s = self.sample(position_m, time_s);

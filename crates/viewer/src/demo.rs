@@ -3,7 +3,7 @@
 //! carrying a `_SNOW_MASK` (a heated patio stays bare), the gabled house of
 //! `precip_model::scene::builtin` (its walls' material says `"snow": false`; the ground under
 //! its eaves is sheltered), a road whose node says `"snow": false`, and fence posts
-//! whose tops hold snow by slope. It shows every mask convention of DESIGN.md §6,
+//! whose tops hold snow by slope. It shows every mask convention of docs/architecture.md §6,
 //! and every surface: grass terrain, an asphalt road with a 2 % camber and a sag
 //! that holds a puddle in rain, roofing, a pond (`"water": true`) in a hollow, and a
 //! patch of loose sand up-wind of the house (`"surface": "sand"`) that the wind

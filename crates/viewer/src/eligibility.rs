@@ -1,4 +1,4 @@
-//! Snow eligibility from glTF `extras` (DESIGN.md §6, rule 2): `{"snow": false}`,
+//! Snow eligibility from glTF `extras` (docs/architecture.md §6, rule 2): `{"snow": false}`,
 //! `{"snow": true}` or `{"snow": 0.0..1.0}` on a material, mesh or node; and the
 //! surface a mesh is made of: `{"surface": "asphalt" | "soil" | "grass" | "roof" |
 //! "water"}` or `{"water": true}`, with the same precedence (material, then mesh,

@@ -1,6 +1,6 @@
 //! glTF 2.0 → [`Scene`]: any valid file (.gltf with external .bin or data URIs, .glb),
 //! indexed or not, the node hierarchy with its transforms, base colour factor and
-//! texture, snow eligibility by DESIGN.md §6 (`_SNOW_MASK`, then `extras.snow` on the
+//! texture, snow eligibility by docs/architecture.md §6 (`_SNOW_MASK`, then `extras.snow` on the
 //! material, mesh or node (nearest ancestor first), then the slope).
 //!
 //! Quantized and compressed geometry loads as real pipelines write it:

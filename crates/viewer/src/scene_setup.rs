@@ -1,4 +1,4 @@
-//! From a loaded scene and the user's choices to a [`Setup`] (DESIGN.md §2):
+//! From a loaded scene and the user's choices to a [`Setup`] (docs/architecture.md §2):
 //! the ground map and cover grid fit the scene's bounds at a chosen resolution; the
 //! camera volume always holds precipitation around the camera; a world emitter covers
 //! the scene (aimed: its particles land on it in any wind) when the scene is small enough

@@ -1,5 +1,5 @@
 //! Drawing on wgpu: the scene with its snow cover, then the precipitation, built on
-//! the GPU from the particle buffer (MODEL.md §5, DESIGN.md §2 step 4).
+//! the GPU from the particle buffer (docs/model.md §5, docs/architecture.md §2 step 4).
 //!
 //! ## A frame
 //!

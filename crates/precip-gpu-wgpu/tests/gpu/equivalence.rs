@@ -4,7 +4,7 @@
 //! 3e-6 m/s, other fields within 1e-6 relative, no flipped decisions; the bounds below
 //! are about 20 times that.
 //!
-//! Tolerances (DESIGN.md §5): WGSL's `pow`, `exp`, `log` and `sqrt` may differ from
+//! Tolerances (docs/architecture.md §5): WGSL's `pow`, `exp`, `log` and `sqrt` may differ from
 //! Rust's by a few ULP, so continuous values are compared with a relative tolerance;
 //! a particle whose discrete decision (landing or re-birth) flipped between the two
 //! shows as a different generation and is counted, and must stay at most 0.1 %.

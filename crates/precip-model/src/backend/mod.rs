@@ -1,6 +1,6 @@
-//! The [`Backend`] trait (DESIGN.md §3): one contract, implemented by the CPU
+//! The [`Backend`] trait (docs/architecture.md §3): one contract, implemented by the CPU
 //! reference and the GPU crates. The same inputs give the same outputs on every
-//! backend, within the tolerances of DESIGN.md §5.
+//! backend, within the tolerances of docs/architecture.md §5.
 
 pub mod camera;
 pub mod error;

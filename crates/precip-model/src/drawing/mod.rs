@@ -1,4 +1,4 @@
-//! Drawing formulas of seeds 000/001 (MODEL.md §5), CPU forms: the snow sprite, the
+//! Drawing formulas of seeds 000/001 (docs/model.md §5), CPU forms: the snow sprite, the
 //! raindrop tetrahedron, view-cone culling, the seed's Blinn–Phong lighting and fog.
 //!
 //! These are the Rust halves of the renderer's WGSL (drawing.wgsl); tests pin them to
@@ -281,7 +281,7 @@ pub struct RainTetrahedron {
 
 /// The tetrahedron of a drop at `centre_m` moving at `velocity_mps` with designer
 /// size `size` and speed factor `speed_factor`: height `h = k·s·|v|`, base side
-/// `a = 0.1·h`, axis along the velocity (MODEL.md §5). Where the velocity is parallel
+/// `a = 0.1·h`, axis along the velocity (docs/model.md §5). Where the velocity is parallel
 /// to X, Z stands in for X. `None` for a drop at rest.
 #[must_use]
 pub fn raindrop_tetrahedron(
@@ -372,7 +372,7 @@ pub struct Lighting {
     pub attenuation: f32,
 }
 
-/// Blinn–Phong with a shadow-map visibility `lit ∈ [0, 1]` (MODEL.md §5):
+/// Blinn–Phong with a shadow-map visibility `lit ∈ [0, 1]` (docs/model.md §5):
 /// `I = λ(k_A I_A + (1 − sh) k_D I_D max(0, L·N) + sh·sc + lit·k_S I_S max(0, H·N)^s)`,
 /// `sh = density·(1 − lit)`, `H = n(L + V)`. `normal`, `to_light` and `to_viewer`
 /// are unit vectors.

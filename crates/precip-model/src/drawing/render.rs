@@ -24,7 +24,7 @@ pub const MAX_TARGET_SIDE_PX: u32 = 16_384;
 /// The look of a frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RenderSettings {
-    /// Cull particles outside the view cone on the GPU before drawing (MODEL.md §5);
+    /// Cull particles outside the view cone on the GPU before drawing (docs/model.md §5);
     /// off draws every particle (the images must not differ).
     pub view_cone_culling: bool,
     /// Direction toward the sun (need not be normalised; must point above the horizon).

@@ -1,4 +1,4 @@
-//! When the sun's depth map is drawn again (DESIGN.md §2 step 4): the shadow pass
+//! When the sun's depth map is drawn again (docs/architecture.md §2 step 4): the shadow pass
 //! re-renders the displaced scene from the sun, which changes only when the sun's
 //! projection changes (configuration: sun direction, scene bounds), the displacement
 //! is switched, or the snow surface has moved by more than [`SHADOW_REFRESH_RISE_M`].

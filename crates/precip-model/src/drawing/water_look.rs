@@ -1,4 +1,4 @@
-//! How water on the scene looks (MODEL.md §6, seed 004): wet surfaces, puddles,
+//! How water on the scene looks (docs/model.md §6, seed 004): wet surfaces, puddles,
 //! rain rings and water bodies. WGSL twins, function by function, in
 //! `shaders/water_look.wgsl`; `fs_scene` composes them.
 //!

@@ -1,4 +1,4 @@
-//! Birth and re-birth of particles (MODEL.md §1): every property drawn from the
+//! Birth and re-birth of particles (docs/model.md §1): every property drawn from the
 //! counter-based RNG, keyed by (seed, index, generation). WGSL twin: `shaders/birth.wgsl`.
 
 use glam::{Vec2, Vec3};
@@ -378,7 +378,7 @@ pub fn birth_in_world(
     }
 }
 
-/// A particle born on the world emitter (MODEL.md §1):
+/// A particle born on the world emitter (docs/model.md §1):
 /// `P = M_model·(W(f − ½), H(f − ½), 0, 1) − Δ`, `v = v0 + 2·k_v·V_rand`.
 ///
 /// The emitter's rectangle is aimed: its footprint is where its particles *land*.

@@ -1,4 +1,4 @@
-//! The two particle volumes (DESIGN.md §2): the seeds' world emitter rectangle, and
+//! The two particle volumes (docs/architecture.md §2): the seeds' world emitter rectangle, and
 //! a camera volume that particles wrap through.
 
 use glam::{Mat4, Vec2, Vec3};
@@ -6,7 +6,7 @@ use glam::{Mat4, Vec2, Vec3};
 use crate::backend::error::BackendError;
 
 /// The seeds' emitter: a `W × H` rectangle in its own frame (OCS: X and Y along the
-/// sides, Z its normal) placed in the world by `model` (MODEL.md §1).
+/// sides, Z its normal) placed in the world by `model` (docs/model.md §1).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WorldEmitter {
     /// OCS → world.

@@ -1,4 +1,4 @@
-//! Gravity and drag toward the wind (MODEL.md §2), integrated so that any step up to
+//! Gravity and drag toward the wind (docs/model.md §2), integrated so that any step up to
 //! 0.05 s and any terminal speed from 0.3 m/s settles without overshoot.
 //! WGSL twin: `drag_velocity` in `shaders/physics.wgsl`.
 //!

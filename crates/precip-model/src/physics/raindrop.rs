@@ -1,4 +1,4 @@
-//! Raindrops (MODEL.md §2): measured terminal speeds and the Marshall–Palmer size
+//! Raindrops (docs/model.md §2): measured terminal speeds and the Marshall–Palmer size
 //! distribution. WGSL twins in `shaders/physics.wgsl`.
 
 use crate::particles::rng::{draw, random_unit};
@@ -39,7 +39,7 @@ pub fn rain_number_density_per_m3(rain_rate_mm_per_h: f32) -> f32 {
 
 /// The rain rate that the Marshall–Palmer spectrum for `R` carries at the Atlas
 /// speeds, mm/h: `3.6·10⁻³ · π/6 · ∫ N(D)·D³·v(D) dD` over 0.1–8 mm (Simpson's rule).
-/// MODEL.md §7: it recovers `R` within +20 %.
+/// docs/model.md §7: it recovers `R` within +20 %.
 #[must_use]
 pub fn rain_rate_from_spectrum_mm_per_h(rain_rate_mm_per_h: f32) -> f64 {
     let slope = f64::from(marshall_palmer_slope_per_mm(rain_rate_mm_per_h));
@@ -97,7 +97,7 @@ mod tests {
 
     #[test]
     fn terminal_speed_matches_gunn_and_kinzer() {
-        // Gunn & Kinzer 1949 (MODEL.md §7), within 0.2 m/s for D ≥ 0.6 mm.
+        // Gunn & Kinzer 1949 (docs/model.md §7), within 0.2 m/s for D ≥ 0.6 mm.
         for (d, v) in [
             (1.0, 4.03),
             (2.0, 6.49),

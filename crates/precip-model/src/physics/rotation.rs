@@ -1,4 +1,4 @@
-//! The rotation oscillation of seeds 000/001 (MODEL.md §1), with a direction that
+//! The rotation oscillation of seeds 000/001 (docs/model.md §1), with a direction that
 //! survives 0. WGSL twin: `advance_rotation` in `shaders/physics.wgsl`.
 //!
 //! Each offset component moves `|r| ← |r| ± k_vel·dt`; leaving `[0, 2·k_rot]` it is

@@ -1,4 +1,4 @@
-//! Snowflakes (seed 003, MODEL.md §2): size from temperature, density, mass, terminal
+//! Snowflakes (seed 003, docs/model.md §2): size from temperature, density, mass, terminal
 //! speed. WGSL twins in `shaders/physics.wgsl`.
 
 /// Density of liquid water, kg/m³.

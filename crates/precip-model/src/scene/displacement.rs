@@ -1,4 +1,4 @@
-//! Where the snow's displacement raises a surface (MODEL.md §4, beyond seed 003): the
+//! Where the snow's displacement raises a surface (docs/model.md §4, beyond seed 003): the
 //! vertex shader's rule, and from it which triangles need vertices to move.
 //!
 //! A vertex rises by the cover's depth × its eligibility × [`upward`] × [`exposed`]:

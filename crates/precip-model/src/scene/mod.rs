@@ -1,12 +1,12 @@
 //! [`Scene`]: the neutral triangle scene every backend draws and the ground map is
-//! rendered from (DESIGN.md §1, §6). The viewer fills it from glTF; tests and the
+//! rendered from (docs/architecture.md §1, §6). The viewer fills it from glTF; tests and the
 //! built-in demo build it in code.
 //!
 //! [`Scene::prepare`] validates at the boundary, once: non-finite vertices, indices
 //! beyond the vertex count, attribute arrays of the wrong length and broken textures
 //! are typed errors naming the mesh; degenerate (zero-area) triangles are dropped and
 //! counted in the [`SceneReport`]; missing normals are computed (area-weighted);
-//! missing snow eligibility comes from the slope (DESIGN.md §6, rule 3).
+//! missing snow eligibility comes from the slope (docs/architecture.md §6, rule 3).
 
 pub mod builtin;
 pub mod displacement;

@@ -1,7 +1,7 @@
 //! Subdivision of a scene's triangles so the snow displacement has vertices to move.
 //!
 //! The vertex shader raises upward surfaces by the cover's depth at each vertex
-//! (MODEL.md §4 goes beyond seed 003 here); a ground plane of two triangles would rise
+//! (docs/model.md §4 goes beyond seed 003 here); a ground plane of two triangles would rise
 //! as a whole. A triangle the displacement raises somewhere
 //! ([`crate::scene::displacement::raised`] at any point of a lattice of up to
 //! [`PROBE_SPLITS`]² pieces over it: eligible, facing up, top-most under the sky) is

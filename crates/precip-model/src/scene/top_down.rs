@@ -1,5 +1,5 @@
 //! The ground map rendered from a [`Scene`]: an orthographic view straight down
-//! (DESIGN.md §2, "the ground"), rasterised on the CPU.
+//! (docs/architecture.md §2, "the ground"), rasterised on the CPU.
 //!
 //! Each texel takes the top-most surface under its centre: every triangle whose XZ
 //! projection holds the centre offers its interpolated height, the highest wins, and
@@ -10,7 +10,7 @@
 //!
 //! Why on the CPU: the map is built once per scene, is an exact point sample (the
 //! same test a GPU rasteriser makes at pixel centres), and every backend — the CPU
-//! reference included — then lands particles on the very same heights (DESIGN.md §5).
+//! reference included — then lands particles on the very same heights (docs/architecture.md §5).
 
 use glam::{Vec2, Vec3};
 use precip_cover::{GridFrame, Surface};

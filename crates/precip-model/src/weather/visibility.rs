@@ -196,7 +196,7 @@ mod tests {
 
     #[test]
     fn one_mm_per_hour_of_dry_snow_hides_things_beyond_half_a_kilometre_or_so() {
-        // MODEL.md §7: 0.4–1.2 km.
+        // docs/model.md §7: 0.4–1.2 km.
         let w = Weather {
             intensity_mm_per_h: 1.0,
             ..Weather::default()

@@ -82,7 +82,7 @@ fn rain_extinction_is_within_half_again_of_carbonneaus_relation() {
 
 #[test]
 fn one_millimetre_an_hour_of_dry_snow_has_a_mor_of_a_few_hundred_metres() {
-    // MODEL.md §7: Koschmieder's visibility 0.4–1.2 km; the MOR is ln 20/3.912 of it.
+    // docs/model.md §7: Koschmieder's visibility 0.4–1.2 km; the MOR is ln 20/3.912 of it.
     let mor = Optics::of_weather(&dry_snow(1.0)).meteorological_optical_range_m();
     let ratio = MOR_LOG_CONTRAST / 3.912;
     assert!((400.0 * ratio..=1200.0 * ratio).contains(&mor), "{mor} m");
