@@ -86,6 +86,15 @@ impl Buffer {
     }
 
     /// The first `len` bytes of a host-visible buffer.
+    /// Whether the host writes it directly (host-visible, mapped memory).
+    #[must_use]
+    pub fn is_mapped(&self) -> bool {
+        self.allocation
+            .as_ref()
+            .and_then(Allocation::mapped_ptr)
+            .is_some()
+    }
+
     pub fn read(&self, len: usize) -> Result<Vec<u8>, BackendError> {
         self.allocation
             .as_ref()

@@ -3,9 +3,11 @@
 //!
 //! ## Design
 //!
-//! The same WGSL as every backend: the build script compiles precip-model's programs
-//! to SPIR-V with naga; the kernels, their order, bindings and dispatch sizes come
-//! from `precip_gpu::recipe`, so this backend and the wgpu one cannot drift apart.
+//! The same WGSL as every backend: the build script compiles precip-gpu's programs
+//! to SPIR-V with naga. What a configuration allocates, how it is bound and what
+//! configure, a weather change, a step and a beam query run is the executor's
+//! (`precip_gpu::Simulation`), over this crate's [`gpu`] calls, as on wgpu; the
+//! frame's passes come from `precip_gpu::frame`, so the two cannot drift apart.
 //! One file per Vulkan concept, in the spirit of wgpu-hal's `vulkan/` and kajiya:
 //!
 //! - [`instance`] — loader, validation layer, debug messenger (messages kept).
@@ -14,9 +16,10 @@
 //! - [`commands`] — submissions behind fences (with semaphores for a swapchain);
 //!   barriers.
 //! - [`descriptors`] — pools sized for their sets, allocation, write infos.
-//! - [`spirv`], [`programs`] — modules, set and pipeline layouts, compute pipelines.
-//! - [`beams`] — LiDAR beams: the `query_beams` kernel and its read-back.
-//! - [`resources`] — one configuration's buffers, wind volume, descriptor sets, uploads.
+//! - [`spirv`], [`programs`] — modules, pipeline layouts, compute pipelines.
+//! - [`gpu`] — `Hal`, the device calls of `precip_gpu::Gpu` (wgpu twin:
+//!   `precip_gpu_wgpu::gpu`), and the submissions in flight.
+//! - [`transfer`] — uploads, read-backs, image fills and layout changes.
 //! - [`query`] — timestamps per kernel.
 //! - [`render`] — drawing: layouts, render passes, pipelines, samplers, the scene,
 //!   the frame's resources, offscreen targets, timestamps per pass, the frame's
@@ -49,22 +52,22 @@
 )]
 
 mod backend;
-mod beams;
 mod bind_groups;
 mod buffer;
 mod commands;
 mod descriptors;
 mod device;
 mod error;
+mod gpu;
 mod image;
 mod instance;
 mod programs;
 mod query;
 mod render;
-mod resources;
 mod retire;
 mod spirv;
 mod swapchain;
+mod transfer;
 
 pub use backend::{Presented, SwapchainFrame, VkBackend};
 pub use device::ExternalDevice;

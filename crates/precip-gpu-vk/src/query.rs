@@ -1,9 +1,9 @@
 //! Timestamp queries around each kernel of a step (as the wgpu backend names them).
 
 use ash::vk;
-use precip_gpu::recipe::{SUBSTEP_KERNELS, substep_timings};
+use precip_gpu::recipe::SUBSTEP_KERNELS;
+use precip_model::BackendError;
 use precip_model::backend::MAX_SUBSTEPS;
-use precip_model::{BackendError, TimingSource, Timings};
 
 use crate::device::Device;
 use crate::error::map_vk;
@@ -30,7 +30,7 @@ impl Timestamps {
         }
         let info = vk::QueryPoolCreateInfo::default()
             .query_type(vk::QueryType::TIMESTAMP)
-            .query_count(QUERY_COUNT * crate::resources::FRAMES_IN_FLIGHT as u32);
+            .query_count(QUERY_COUNT * crate::transfer::FRAMES_IN_FLIGHT as u32);
         // SAFETY: a valid device and create info.
         let pool = unsafe { device.raw.create_query_pool(&info, None) }
             .map_err(|e| map_vk("creating a query pool", e))?;
@@ -41,14 +41,11 @@ impl Timestamps {
         }))
     }
 
-    /// Time per kernel of the last step (the step must be finished).
-    pub fn read(&self, device: &Device) -> Result<Timings, BackendError> {
-        let kernels = SUBSTEP_KERNELS;
-        if (self.written as usize) < 1 + kernels {
-            return Ok(Timings {
-                source: TimingSource::GpuTimestamps,
-                passes: Vec::new(),
-            });
+    /// The milliseconds between consecutive timestamps of the last timed
+    /// submission (finished): one per dispatch, in order.
+    pub fn elapsed_ms(&self, device: &Device) -> Result<Vec<f64>, BackendError> {
+        if self.written < 2 {
+            return Ok(Vec::new());
         }
         let mut ticks = vec![0u64; self.written as usize];
         let first = self.slot as u32 * QUERY_COUNT;
@@ -63,15 +60,10 @@ impl Timestamps {
         }
         .map_err(|e| map_vk("reading timestamps", e))?;
         let period = f64::from(device.properties.limits.timestamp_period);
-        let passes = substep_timings(
-            ticks
-                .windows(2)
-                .map(|pair| pair[1].saturating_sub(pair[0]) as f64 * period * 1e-6),
-        );
-        Ok(Timings {
-            source: TimingSource::GpuTimestamps,
-            passes,
-        })
+        Ok(ticks
+            .windows(2)
+            .map(|pair| pair[1].saturating_sub(pair[0]) as f64 * period * 1e-6)
+            .collect())
     }
 
     /// Destroys the pool (the device must be idle).

@@ -1,10 +1,9 @@
 //! [`WgpuBackend`]: the [`Backend`] over wgpu: configure, weather, step, render (see
 //! [`crate::render`]), read-back and timings.
 
-use precip_gpu::recipe::{FrameDraws, INIT_PASS, dispatch_size};
-use precip_gpu::shaders::Program;
-use precip_model::cover::{CoverGrid, CoverTexel};
-use precip_model::host::HostState;
+use precip_gpu::recipe::FrameDraws;
+use precip_gpu::{Kernels, Simulation};
+use precip_model::cover::CoverGrid;
 use precip_model::sensors::lidar::{BeamQuery, BeamReturn};
 use precip_model::{
     Backend, BackendError, BackendInfo, Camera, DeviceMemory, DrawnCounts, Image, Particle, Setup,
@@ -12,26 +11,20 @@ use precip_model::{
 };
 
 use crate::device::GpuDevice;
-use crate::error::{NAME, map_scope_error};
-use crate::programs::Programs;
-use crate::query::Timestamps;
-use crate::readback::read_buffer;
+use crate::error::NAME;
+use crate::gpu::{Hal, scoped};
 use crate::render::frame::FrameResources;
 use crate::render::scene::SceneGpu;
 use crate::render::stamps::RenderStamps;
 use crate::render::target::{ColourTarget, DepthBuffer, OFFSCREEN_FORMAT, read_texture};
 use crate::render::{FrameTarget, RenderState, Renderer, encode_frame};
-use crate::resources::{Resources, upload_wind};
+use crate::transfer::read_buffer;
 use precip_model::drawing::shadow_cache::ShadowCache;
-
-/// Bytes of one particle on the GPU.
-const PARTICLE_BYTES: u64 = size_of::<Particle>() as u64;
 
 /// A configured simulation: the host state every backend shares, and the device's.
 #[derive(Debug)]
 struct State {
-    host: HostState,
-    resources: Resources,
+    sim: Simulation<Hal>,
     /// Drawing's resources, made on the first render.
     render: Option<RenderState>,
 }
@@ -40,52 +33,37 @@ struct State {
 #[derive(Debug)]
 pub struct WgpuBackend {
     gpu: GpuDevice,
-    programs: Programs,
-    timestamps: Option<Timestamps>,
+    hal: Hal,
+    kernels: Kernels<Hal>,
     render_stamps: Option<RenderStamps>,
     renderer: Option<Renderer>,
     state: Option<State>,
 }
 
-/// Runs `f` inside out-of-memory and validation error scopes; any captured error
-/// becomes a [`BackendError`].
-fn scoped<T>(gpu: &GpuDevice, operation: &str, f: impl FnOnce() -> T) -> Result<T, BackendError> {
-    let memory = gpu.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-    let validation = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let value = f();
-    let validation_error = pollster::block_on(validation.pop());
-    let memory_error = pollster::block_on(memory.pop());
-    match memory_error.or(validation_error) {
-        Some(error) => Err(map_scope_error(operation, &error)),
-        None => Ok(value),
-    }
-}
-
 impl WgpuBackend {
     /// Opens a device on the default adapter.
     pub fn new() -> Result<Self, BackendError> {
-        Ok(Self::with_device(GpuDevice::new_headless()?))
+        Self::with_device(GpuDevice::new_headless()?)
     }
 
     /// Opens a device on `adapter`.
     pub fn on_adapter(adapter: &wgpu::Adapter) -> Result<Self, BackendError> {
-        Ok(Self::with_device(GpuDevice::open(adapter)?))
+        Self::with_device(GpuDevice::open(adapter)?)
     }
 
-    /// Runs on a device the caller owns.
-    #[must_use]
-    pub fn with_device(gpu: GpuDevice) -> Self {
-        let programs = Programs::new(&gpu.device);
-        let timestamps = Timestamps::new(&gpu);
+    /// Runs on a device the caller owns (its compute programs are compiled here).
+    pub fn with_device(gpu: GpuDevice) -> Result<Self, BackendError> {
+        let mut hal = Hal::new(gpu.clone());
+        let kernels = Kernels::new(&mut hal)?;
         let render_stamps = RenderStamps::new(&gpu);
-        Self {
+        Ok(Self {
             gpu,
-            programs,
-            timestamps,
+            hal,
+            kernels,
             render_stamps,
             renderer: None,
             state: None,
-        }
+        })
     }
 
     /// The device.
@@ -188,7 +166,7 @@ impl WgpuBackend {
             renderer.prepare_format(&gpu.device, format);
         })?;
         if state.render.is_none() {
-            let setup = state.host.setup();
+            let setup = state.sim.host().setup();
             let settings = &setup.render;
             let scene = match &setup.scene {
                 Some(scene) => Some(scoped(&gpu, "uploading the scene", || {
@@ -197,7 +175,7 @@ impl WgpuBackend {
                 None => None,
             };
             let frame = scoped(&gpu, "preparing to render", || {
-                FrameResources::new(&gpu, &renderer.layouts, &state.resources, setup)
+                FrameResources::new(&gpu, &renderer.layouts, &state.sim, setup)
             })?;
             state.render = Some(RenderState {
                 scene,
@@ -226,13 +204,13 @@ impl WgpuBackend {
                 &render.frame.draws,
             ));
         }
-        let host = &state.host;
+        let host = state.sim.host();
         let setup = host.setup();
         let params = host.render_params(
             view,
             render.shadow_bounds_m,
-            state.resources.particle_count,
-            state.resources.wave_frame,
+            state.sim.particle_count(),
+            state.sim.wave_frame(),
         );
         let draw_shadow =
             render
@@ -281,7 +259,7 @@ impl WgpuBackend {
                     detail,
                 },
                 stamps,
-                state.resources.particle_count,
+                state.sim.particle_count(),
             );
             if let Some(s) = stamps {
                 s.resolve(&mut encoder);
@@ -310,55 +288,16 @@ impl Backend for WgpuBackend {
     }
 
     fn configure(&mut self, setup: &Setup) -> Result<(), BackendError> {
-        self.gpu.limits().check_setup(setup)?;
-        let host = HostState::configure(setup)?;
-        let cover = setup.initial_cover()?;
-        let (world, camera) = setup.particle_counts();
-        let count = world + camera;
-        let gpu = &self.gpu;
-        let programs = &self.programs;
-        let resources = scoped(gpu, "configure", || {
-            let resources = Resources::new(
-                gpu,
-                programs,
-                count,
-                &setup.ground,
-                &cover,
-                &host.frames(),
-                host.wind(),
-            );
-            gpu.queue.write_buffer(
-                &resources.step_uniforms,
-                0,
-                bytemuck::bytes_of(&host.init_block()),
-            );
-            let mut encoder = gpu
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("precip init"),
-                });
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some(INIT_PASS.entry_point),
-                    timestamp_writes: None,
-                });
-                pass.set_pipeline(&programs.init);
-                pass.set_bind_group(0, &resources.step_bind_group, &[0]);
-                let (x, y) = dispatch_size(count);
-                pass.dispatch_workgroups(x, y, 1);
-            }
-            gpu.queue.submit([encoder.finish()]);
-            resources
-        })?;
+        let prepared = Simulation::prepare(&self.hal, setup)?;
+        if let Some(old) = self.state.take() {
+            old.sim.destroy(&mut self.hal);
+        }
+        let sim = Simulation::configure(&mut self.hal, &self.kernels, prepared)?;
         self.gpu.wait()?;
-        if let Some(t) = self.timestamps.as_mut() {
+        if let Some(t) = self.hal.timestamps.as_mut() {
             t.written = 0;
         }
-        self.state = Some(State {
-            host,
-            resources,
-            render: None,
-        });
+        self.state = Some(State { sim, render: None });
         if let Some(s) = self.render_stamps.as_mut() {
             s.written = false;
         }
@@ -366,96 +305,22 @@ impl Backend for WgpuBackend {
     }
 
     fn set_weather(&mut self, weather: &Weather) -> Result<(), BackendError> {
-        let gpu = self.gpu.clone();
-        let state = self.state_mut("set_weather")?;
-        let change = state.host.set_weather(weather)?;
-        if change.wind_rebaked {
-            upload_wind(&gpu, &state.resources.wind_texture, state.host.wind());
-        }
-        state
-            .resources
-            .write_wind_params(&gpu, &state.host.wind_params());
-        Ok(())
+        let state = self.state.as_mut().ok_or(BackendError::NotConfigured {
+            operation: "set_weather",
+        })?;
+        state.sim.set_weather(&mut self.hal, weather)
     }
 
     fn set_camera(&mut self, camera: &Camera) -> Result<(), BackendError> {
-        self.state_mut("set_camera")?.host.set_camera(camera)
+        self.state_mut("set_camera")?.sim.set_camera(camera)
     }
 
     fn step(&mut self, dt_s: f32) -> Result<(), BackendError> {
-        let gpu = self.gpu.clone();
-        let programs = &self.programs;
-        let timestamps = self.timestamps.as_mut();
         let state = self
             .state
             .as_mut()
             .ok_or(BackendError::NotConfigured { operation: "step" })?;
-        let steps = state.host.substeps(dt_s)?;
-        let count = steps.blocks.len() as u32;
-        let resources = &state.resources;
-        let stride = resources.uniform_stride;
-
-        // One uniform block per sub-step, each at its dynamic offset.
-        let mut step_blocks = vec![0u8; (stride * u64::from(count)) as usize];
-        let mut cover_blocks = step_blocks.clone();
-        for (k, blocks) in steps.blocks.iter().enumerate() {
-            let at = k * stride as usize;
-            let (step, cover) = (&blocks.step, &blocks.cover);
-            step_blocks[at..at + size_of_val(step)].copy_from_slice(bytemuck::bytes_of(step));
-            cover_blocks[at..at + size_of_val(cover)].copy_from_slice(bytemuck::bytes_of(cover));
-        }
-        let written = scoped(&gpu, "step", || {
-            gpu.queue
-                .write_buffer(&resources.step_uniforms, 0, &step_blocks);
-            gpu.queue
-                .write_buffer(&resources.cover_uniforms, 0, &cover_blocks);
-            let mut encoder = gpu
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("precip step"),
-                });
-            let mut written = 0;
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("precip step"),
-                    timestamp_writes: None,
-                });
-                let mut stamp = |pass: &mut wgpu::ComputePass<'_>| {
-                    if let Some(t) = &timestamps {
-                        pass.write_timestamp(&t.set, written);
-                        written += 1;
-                    }
-                };
-                stamp(&mut pass);
-                let counts = resources.dispatch_counts();
-                for k in 0..count {
-                    let offset = (u64::from(k) * stride) as u32;
-                    for (kernel, pipeline) in &programs.substep {
-                        pass.set_pipeline(pipeline);
-                        let bind_group = match kernel.program {
-                            Program::CoverUpdate => &resources.cover_bind_group,
-                            _ => &resources.step_bind_group,
-                        };
-                        pass.set_bind_group(0, bind_group, &[offset]);
-                        let (x, y) = dispatch_size(kernel.over.invocations(counts));
-                        pass.dispatch_workgroups(x, y, 1);
-                        stamp(&mut pass);
-                    }
-                }
-            }
-            if let Some(t) = &timestamps {
-                encoder.resolve_query_set(&t.set, 0..written, t.resolve_buffer(), 0);
-            }
-            gpu.queue.submit([encoder.finish()]);
-            written
-        })?;
-        if let Some(t) = timestamps {
-            t.written = written;
-        }
-        state.host.advance(&steps);
-        // Free finished work without waiting for the GPU.
-        let _ = gpu.device.poll(wgpu::PollType::Poll);
-        Ok(())
+        state.sim.step(&mut self.hal, &self.kernels, dt_s)
     }
 
     fn render(&mut self, view: &View) -> Result<(), BackendError> {
@@ -465,54 +330,33 @@ impl Backend for WgpuBackend {
     fn weather(&self) -> Result<Weather, BackendError> {
         self.state
             .as_ref()
-            .map(|s| *s.host.weather())
+            .map(|s| *s.sim.host().weather())
             .ok_or(BackendError::NotConfigured {
                 operation: "weather",
             })
     }
 
     fn query_beams(&mut self, query: &BeamQuery) -> Result<Vec<BeamReturn>, BackendError> {
-        let beams = query.validate()?;
         let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
             operation: "query_beams",
         })?;
-        let r = &state.resources;
-        let params = query.params(&beams, r.particle_count, &state.host.setup().ground);
-        let (gpu, programs) = (&self.gpu, &self.programs);
-        let hits = scoped(gpu, "query_beams", || {
-            crate::beams::query_beams(gpu, programs, r, &params, &beams)
-        })??;
-        let air = state.host.unresolved_air();
-        query.answer(NAME, &beams, &hits, state.host.weather(), &air)
+        state
+            .sim
+            .query_beams(&mut self.hal, &self.kernels, NAME, query)
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {
         let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
             operation: "read_particles",
         })?;
-        let r = &state.resources;
-        let bytes = read_buffer(
-            &self.gpu,
-            &r.particles,
-            u64::from(r.particle_count) * PARTICLE_BYTES,
-        )?;
-        Ok(bytemuck::pod_collect_to_vec(&bytes))
+        state.sim.read_particles(&mut self.hal)
     }
 
     fn read_cover(&mut self) -> Result<CoverGrid, BackendError> {
         let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
             operation: "read_cover",
         })?;
-        let r = &state.resources;
-        let bytes = read_buffer(
-            &self.gpu,
-            &r.cover,
-            u64::from(r.cover_texel_count) * size_of::<CoverTexel>() as u64,
-        )?;
-        Ok(CoverGrid {
-            frame: state.host.setup().cover.frame,
-            texels: bytemuck::pod_collect_to_vec(&bytes),
-        })
+        state.sim.read_cover(&mut self.hal)
     }
 
     fn read_image(&mut self) -> Result<Image, BackendError> {
@@ -530,12 +374,13 @@ impl Backend for WgpuBackend {
     }
 
     fn timings(&mut self) -> Result<Timings, BackendError> {
-        let mut timings = match &self.timestamps {
-            Some(t) => t.read(&self.gpu)?,
-            None => Timings {
-                source: TimingSource::Unavailable,
-                passes: Vec::new(),
+        let mut timings = Timings {
+            source: if self.hal.timestamps.is_some() {
+                TimingSource::GpuTimestamps
+            } else {
+                TimingSource::Unavailable
             },
+            passes: Simulation::step_timings(&mut self.hal)?,
         };
         if let Some(stamps) = &self.render_stamps {
             timings.passes.extend(stamps.read(&self.gpu)?);

@@ -2,15 +2,15 @@
 //!
 //! Where the device has `TIMESTAMP_QUERY_INSIDE_PASSES`, a timestamp is written
 //! before the first kernel and after every kernel of every sub-step; `timings()`
-//! resolves and reads them (on demand only) and sums the time per kernel, named by
-//! its entry point.
+//! resolves and reads them (on demand only); the executor sums the time per
+//! kernel, named by its entry point.
 
-use precip_gpu::recipe::{SUBSTEP_KERNELS, substep_timings};
+use precip_gpu::recipe::SUBSTEP_KERNELS;
+use precip_model::BackendError;
 use precip_model::backend::MAX_SUBSTEPS;
-use precip_model::{BackendError, TimingSource, Timings};
 
 use crate::device::GpuDevice;
-use crate::readback::read_buffer;
+use crate::transfer::read_buffer;
 
 /// Kernels of one sub-step.
 const KERNELS: usize = SUBSTEP_KERNELS;
@@ -61,13 +61,17 @@ impl Timestamps {
         &self.resolve
     }
 
-    /// Reads the resolved queries: time per kernel, summed over sub-steps.
-    pub fn read(&self, gpu: &GpuDevice) -> Result<Timings, BackendError> {
-        if (self.written as usize) < 1 + KERNELS {
-            return Ok(Timings {
-                source: TimingSource::GpuTimestamps,
-                passes: Vec::new(),
-            });
+    /// The most timestamps one submission writes.
+    #[must_use]
+    pub fn capacity(&self) -> u32 {
+        QUERY_COUNT
+    }
+
+    /// The milliseconds between consecutive timestamps of the last timed
+    /// submission: one per dispatch, in order (empty before one).
+    pub fn elapsed_ms(&self, gpu: &GpuDevice) -> Result<Vec<f64>, BackendError> {
+        if self.written < 2 {
+            return Ok(Vec::new());
         }
         let bytes = read_buffer(gpu, &self.resolve, u64::from(self.written) * 8)?;
         let ticks: Vec<u64> = bytes
@@ -75,14 +79,9 @@ impl Timestamps {
             .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
             .collect();
         let period_ns = f64::from(self.period_ns);
-        let passes = substep_timings(
-            ticks
-                .windows(2)
-                .map(|pair| pair[1].saturating_sub(pair[0]) as f64 * period_ns * 1.0e-6),
-        );
-        Ok(Timings {
-            source: TimingSource::GpuTimestamps,
-            passes,
-        })
+        Ok(ticks
+            .windows(2)
+            .map(|pair| pair[1].saturating_sub(pair[0]) as f64 * period_ns * 1.0e-6)
+            .collect())
     }
 }

@@ -14,6 +14,13 @@
 //!   (`SUBSTEP_PASSES`) and of the frame's compute passes, what each is dispatched
 //!   over, the bindings' numbers, the buffers' byte sizes and the blocks the kernels
 //!   write (`FrameDraws`).
+//! - [`resources`]: the resources table of a configuration (every buffer with its
+//!   size rule, usage and initial contents) and what fills each binding.
+//! - [`gpu`]: [`Gpu`], the device calls a backend implements (buffers, textures,
+//!   layouts, kernels, bind groups, dispatch, read-back, timestamps).
+//! - [`executor`]: the plan run over a [`Gpu`], once for every backend:
+//!   [`Kernels`] (a device's compute programs) and [`Simulation`] (configure,
+//!   weather change, step, beam query, read-backs).
 //! - [`frame`]: the frame as data: its passes in order, each a list of kernels or a
 //!   render pass (attachments, draws and their pipeline state), and when it runs.
 //!
@@ -22,8 +29,13 @@
 //! walkthroughs for a new kernel, render pass or precipitation kind.
 
 pub mod bind_groups;
+pub mod executor;
 pub mod frame;
+pub mod gpu;
 pub mod recipe;
+pub mod resources;
 pub mod shaders;
 
+pub use executor::{Kernels, Prepared, Simulation};
+pub use gpu::{BindingResource, Dispatch, Gpu};
 pub use shaders::Program;

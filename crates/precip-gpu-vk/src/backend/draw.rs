@@ -10,7 +10,7 @@ use crate::render::passes::CameraPasses;
 use crate::render::scene::SceneGpu;
 use crate::render::target::{OFFSCREEN_FORMAT, OffscreenTarget};
 use crate::render::{FrameTarget, RenderState, Renderer, record_frame};
-use crate::resources::{FRAMES_IN_FLIGHT, download};
+use crate::transfer::{FRAMES_IN_FLIGHT, download};
 use precip_gpu::recipe::FrameDraws;
 use precip_model::{BackendError, DrawnCounts, View};
 
@@ -39,14 +39,14 @@ impl VkBackend {
         final_layout: vk::ImageLayout,
     ) -> Result<CameraPasses, BackendError> {
         if self.renderer.is_none() {
-            self.renderer = Some(Renderer::new(&self.device)?);
+            self.renderer = Some(Renderer::new(&self.hal.device)?);
         }
         let Some(renderer) = self.renderer.as_mut() else {
             return Err(BackendError::NotConfigured {
                 operation: "render",
             });
         };
-        renderer.prepare(&self.device, format, final_layout)
+        renderer.prepare(&self.hal.device, format, final_layout)
     }
 
     /// What the last frame drew: reads the cull's counts back (`Backend::drawn`).
@@ -56,7 +56,7 @@ impl VkBackend {
         let Some(render) = &state.render else {
             return Ok(DrawnCounts::default());
         };
-        let bytes = download(&self.device, &render.frame.draws, FrameDraws::BYTES)?;
+        let bytes = download(&self.hal.device, &render.frame.draws, FrameDraws::BYTES)?;
         Ok(FrameDraws::counts(&bytes))
     }
 
@@ -67,23 +67,23 @@ impl VkBackend {
         view: &View,
         swapchain: Option<SwapchainFrame>,
     ) -> Result<(), BackendError> {
-        self.device.limits().check_view(view)?;
+        self.hal.device.limits().check_view(view)?;
         self.state("render")?;
         // This frame's uniform block was last used FRAMES_IN_FLIGHT submissions ago.
-        self.wait_until(FRAMES_IN_FLIGHT - 1)?;
+        self.hal.wait_until(FRAMES_IN_FLIGHT - 1)?;
         let (format, final_layout) = match swapchain {
             Some(s) => (s.format, vk::ImageLayout::PRESENT_SRC_KHR),
             None => (OFFSCREEN_FORMAT, vk::ImageLayout::TRANSFER_SRC_OPTIMAL),
         };
         let passes = self.prepare_renderer(format, final_layout)?;
-        let device = &self.device;
+        let device = &self.hal.device;
         let (Some(renderer), Some(state)) = (self.renderer.as_ref(), self.state.as_mut()) else {
             return Err(BackendError::NotConfigured {
                 operation: "render",
             });
         };
         if state.render.is_none() {
-            let setup = state.host.setup();
+            let setup = state.sim.host().setup();
             let settings = &setup.render;
             let scene = match &setup.scene {
                 Some(scene) => Some(SceneGpu::upload(
@@ -95,7 +95,7 @@ impl VkBackend {
                 )?),
                 None => None,
             };
-            let frame = match FrameResources::new(device, renderer, &state.resources, setup) {
+            let frame = match FrameResources::new(device, renderer, &state.sim, setup) {
                 Ok(f) => f,
                 Err(e) => {
                     if let Some(s) = scene {
@@ -124,7 +124,9 @@ impl VkBackend {
         if swapchain.is_none() && render.offscreen.as_ref().is_none_or(|t| t.size() != size) {
             let new = OffscreenTarget::new(device, passes.scene, size)?;
             if let Some(old) = render.offscreen.replace(new) {
-                self.retired.retire(self.submitted, move |d| old.destroy(d));
+                self.hal
+                    .retired
+                    .retire(self.hal.submitted, move |d| old.destroy(d));
             }
             render.rendered = false;
         }
@@ -136,8 +138,9 @@ impl VkBackend {
         if render.splat_sums.as_ref().is_none_or(|s| s.size != size) {
             let new = SplatSums::new(device, size)?;
             if let Some(old) = render.splat_sums.replace(new) {
-                self.retired
-                    .retire(self.submitted, move |d| old.buffer.destroy(d));
+                self.hal
+                    .retired
+                    .retire(self.hal.submitted, move |d| old.buffer.destroy(d));
             }
         }
         let Some(sums) = render.splat_sums.as_mut() else {
@@ -145,13 +148,13 @@ impl VkBackend {
         };
         let zero_splat_sums = (!sums.zeroed).then_some(sums.buffer.raw);
         sums.zeroed = true;
-        let host = &state.host;
+        let host = state.sim.host();
         let setup = host.setup();
         let params = host.render_params(
             view,
             render.shadow_bounds_m,
-            state.resources.particle_count,
-            state.resources.wave_frame,
+            state.sim.particle_count(),
+            state.sim.wave_frame(),
         );
         let draw_shadow =
             render
@@ -191,7 +194,7 @@ impl VkBackend {
                     .map_or(0.0, |s| s.lod.detail_distance_m(view)),
             ),
         };
-        let particle_count = state.resources.particle_count;
+        let particle_count = state.sim.particle_count();
         if renderer.draws_for_pass(passes.scene).is_none() {
             return Err(cannot_draw(format));
         }
@@ -223,7 +226,7 @@ impl VkBackend {
         if swapchain.is_none() {
             render.rendered = true;
         }
-        self.track(in_flight);
+        self.hal.track(in_flight);
         if let Some(s) = self.renderer.as_mut().and_then(|r| r.stamps.as_mut()) {
             s.written = true;
             s.shadow_drawn = draw_shadow;

@@ -15,8 +15,8 @@ use crate::commands::{Semaphores, submit_synced};
 use crate::device::Device;
 use crate::error::{NAME, map_vk};
 use crate::instance::Instance;
-use crate::resources::FRAMES_IN_FLIGHT;
 use crate::swapchain::WindowSurface;
+use crate::transfer::FRAMES_IN_FLIGHT;
 
 /// What [`VkBackend::present`] did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -59,11 +59,11 @@ impl VkBackend {
     where
         W: HasWindowHandle + HasDisplayHandle + Send + Sync + 'static,
     {
-        let surface = WindowSurface::new(&self.device, window)?;
+        let surface = WindowSurface::new(&self.hal.device, window)?;
         if let Some(old) = self.window.replace(surface) {
             self.settle()?;
-            self.device.wait_idle()?;
-            old.destroy(&self.device);
+            self.hal.device.wait_idle()?;
+            old.destroy(&self.hal.device);
         }
         Ok(())
     }
@@ -87,7 +87,7 @@ impl VkBackend {
         precip_model::drawing::render::validate_view(view)?;
         // The acquire semaphore about to be reused was waited on by a frame that is
         // not the latest submission, so this wait finishes it.
-        self.wait_until(FRAMES_IN_FLIGHT - 1)?;
+        self.hal.wait_until(FRAMES_IN_FLIGHT - 1)?;
         let pass = self
             .prepare_renderer(format, vk::ImageLayout::PRESENT_SRC_KHR)?
             .scene;
@@ -98,11 +98,11 @@ impl VkBackend {
             };
             if window.needs_rebuild(wanted) {
                 window.rebuild(
-                    &self.device,
+                    &self.hal.device,
                     pass,
                     wanted,
-                    &mut self.retired,
-                    self.submitted,
+                    &mut self.hal.retired,
+                    self.hal.submitted,
                 )?;
             }
             let Some(frame) = window.acquire()? else {
@@ -133,8 +133,8 @@ impl VkBackend {
                     wait: &waits,
                     signal: &[],
                 };
-                if let Ok(f) = submit_synced(&self.device, semaphores, |_| {}) {
-                    self.track(f);
+                if let Ok(f) = submit_synced(&self.hal.device, semaphores, |_| {}) {
+                    self.hal.track(f);
                 }
                 if let Some(window) = self.window.as_mut() {
                     window.stale = true;
@@ -142,7 +142,7 @@ impl VkBackend {
                 return Err(e);
             }
             if let Some(window) = self.window.as_mut() {
-                window.present(&self.device, &frame)?;
+                window.present(&self.hal.device, &frame)?;
             }
             return Ok(Presented::Frame {
                 width_px,

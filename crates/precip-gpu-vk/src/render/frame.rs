@@ -21,7 +21,10 @@ use crate::image::{DEPTH_FORMAT, Image, ImageSpec};
 
 /// The cover textures' format (`precip_gpu::recipe::COVER_TEXTURE_FORMAT_NAME`).
 pub const COVER_TEXTURE_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
-use crate::resources::{FRAMES_IN_FLIGHT, Resources, to_general};
+use crate::gpu::Hal;
+use crate::transfer::{FRAMES_IN_FLIGHT, to_general};
+use precip_gpu::Simulation;
+use precip_gpu::resources::SimBuffer;
 
 /// What drawing adds to a configuration.
 #[derive(Debug)]
@@ -150,7 +153,7 @@ impl FrameResources {
     pub fn new(
         device: &Device,
         renderer: &Renderer,
-        sim: &Resources,
+        sim: &Simulation<Hal>,
         setup: &Setup,
     ) -> Result<Self, BackendError> {
         let mut made = Made::default();
@@ -164,12 +167,12 @@ impl FrameResources {
     fn make(
         device: &Device,
         renderer: &Renderer,
-        sim: &Resources,
+        sim: &Simulation<Hal>,
         setup: &Setup,
         made: &mut Made,
     ) -> Result<Self, BackendError> {
         let shadow_map_px = setup.render.shadow_map_px;
-        let count = sim.particle_count;
+        let count = sim.particle_count();
         let groups = cull_groups(count);
         let limits = &device.properties.limits;
         // The block is bound as a uniform and as storage: both alignments (powers of two).
@@ -293,9 +296,12 @@ impl FrameResources {
         let [params, group_counts, drawn, drawn_kinds, draws] =
             [0, 1, 2, 3, 4].map(|i| &made.buffers[i]);
         let params_info = buffer_info(params, size_of::<RenderParams>() as u64);
-        let (cover, ground, particles) =
-            (whole(&sim.cover), whole(&sim.ground), whole(&sim.particles));
-        let waves = whole(&sim.waves);
+        let (cover, ground, particles) = (
+            whole(sim.buffer(SimBuffer::Cover)),
+            whole(sim.buffer(SimBuffer::Ground)),
+            whole(sim.buffer(SimBuffer::Particles)),
+        );
+        let waves = whole(sim.buffer(SimBuffer::Waves));
         let (drawn_info, groups_info, draws_info, kinds_info) = (
             whole(drawn),
             whole(group_counts),

@@ -59,7 +59,7 @@ use crate::commands::memory_barrier;
 use crate::device::Device;
 use crate::image::{Image, ImageSpec};
 use crate::programs::module;
-use crate::resources::upload_image;
+use crate::transfer::upload_image;
 
 /// The camera passes of one colour format and final layout.
 #[derive(Debug)]

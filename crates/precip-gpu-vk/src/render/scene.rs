@@ -17,7 +17,7 @@ use crate::buffer::Buffer;
 use crate::descriptors::{self, image_info, sampler_info, write};
 use crate::device::Device;
 use crate::image::{Image, ImageSpec};
-use crate::resources::{upload, upload_image};
+use crate::transfer::{upload, upload_image};
 
 /// One mesh's draw.
 #[derive(Debug)]

@@ -15,7 +15,9 @@ use super::layouts::RenderLayouts;
 use super::pipelines::DEPTH_FORMAT;
 use crate::bind_groups::COVER_TEXTURE_FORMAT;
 use crate::device::GpuDevice;
-use crate::resources::Resources;
+use crate::gpu::Hal;
+use precip_gpu::Simulation;
+use precip_gpu::resources::SimBuffer;
 
 /// What drawing adds to a configuration.
 #[derive(Debug)]
@@ -61,10 +63,15 @@ fn bind(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
 impl FrameResources {
     /// Allocates drawing's resources beside the simulation's `sim`.
     #[must_use]
-    pub fn new(gpu: &GpuDevice, layouts: &RenderLayouts, sim: &Resources, setup: &Setup) -> Self {
+    pub fn new(
+        gpu: &GpuDevice,
+        layouts: &RenderLayouts,
+        sim: &Simulation<Hal>,
+        setup: &Setup,
+    ) -> Self {
         let shadow_map_px = setup.render.shadow_map_px;
         let device = &gpu.device;
-        let count = sim.particle_count;
+        let count = sim.particle_count();
         let groups = cull_groups(count);
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("precip render params"),
@@ -190,9 +197,9 @@ impl FrameResources {
             entries: &[
                 bind(rb::PARAMS, &params),
                 bind(rb::PARAMS_SWITCHES, &params),
-                bind(rb::GROUND_HEIGHT, &sim.ground),
-                bind(rb::WAVES, &sim.waves),
-                bind(rb::PARTICLES, &sim.particles),
+                bind(rb::GROUND_HEIGHT, sim.buffer(SimBuffer::Ground)),
+                bind(rb::WAVES, sim.buffer(SimBuffer::Waves)),
+                bind(rb::PARTICLES, sim.buffer(SimBuffer::Particles)),
                 bind(rb::DRAWN, &drawn),
                 view(rb::COVER_A, &cover_a),
                 view(rb::COVER_B, &cover_b),
@@ -207,7 +214,7 @@ impl FrameResources {
             label: Some("precip cover texture"),
             layout: &layouts.cover_texture,
             entries: &[
-                bind(rb::COVER, &sim.cover),
+                bind(rb::COVER, sim.buffer(SimBuffer::Cover)),
                 view(rb::COVER_A_OUT, &cover_a),
                 view(rb::COVER_B_OUT, &cover_b),
                 view(rb::COVER_C_OUT, &cover_c),
@@ -240,7 +247,7 @@ impl FrameResources {
             layout: &layouts.cull,
             entries: &[
                 bind(cb::PARAMS, &params),
-                bind(cb::PARTICLES, &sim.particles),
+                bind(cb::PARTICLES, sim.buffer(SimBuffer::Particles)),
                 bind(cb::GROUP_COUNTS, &group_counts),
                 bind(cb::DRAWN, &drawn),
                 bind(cb::DRAWS, &draws),

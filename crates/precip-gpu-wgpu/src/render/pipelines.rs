@@ -10,7 +10,7 @@ use precip_gpu::recipe::SceneVertex;
 use precip_gpu::shaders::Program;
 
 use super::layouts::RenderLayouts;
-use crate::programs::shader_module;
+use crate::gpu::shader_module;
 
 /// The depth format of the shadow map and of the camera's depth buffer.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;

@@ -4,7 +4,7 @@
 use precip_model::{BackendError, PassTiming};
 
 use crate::device::GpuDevice;
-use crate::readback::read_buffer;
+use crate::transfer::read_buffer;
 
 /// The passes of a frame, in order; pass `i` writes queries `2i` and `2i + 1`.
 pub const RENDER_PASSES: [&str; precip_gpu::recipe::TIMED_RENDER_PASSES.len()] =

@@ -8,7 +8,7 @@ use precip_gpu::recipe::{SPLAT_BYTES_PER_PIXEL, render_bindings as rb};
 use super::layouts::RenderLayouts;
 use super::pipelines::DEPTH_FORMAT;
 use crate::device::GpuDevice;
-use crate::readback::read_buffer;
+use crate::transfer::read_buffer;
 
 /// The offscreen colour format: what `read_image` returns (RGBA8, sRGB).
 pub const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;

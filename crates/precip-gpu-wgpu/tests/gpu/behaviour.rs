@@ -182,7 +182,8 @@ fn runs_on_a_device_the_caller_owns() {
             device.queue.clone(),
             device.info.clone(),
         );
-        let mut backend = WgpuBackend::with_device(shared);
+        let mut backend =
+            WgpuBackend::with_device(shared).expect("the shared device compiles the kernels");
         common::run(&mut backend, &small(), 4, 0.05);
         assert_eq!(backend.read_particles().expect("ok").len(), 3_000, "{name}");
         assert!(backend.info().device.contains(&device.info.name));

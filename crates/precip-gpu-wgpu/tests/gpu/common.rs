@@ -57,7 +57,7 @@ pub fn run_probe(
 ) -> Vec<u8> {
     use wgpu::util::DeviceExt;
     let device = &gpu.device;
-    let module = precip_gpu_wgpu::programs::shader_module(device, program);
+    let module = precip_gpu_wgpu::gpu::shader_module(device, program);
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(program.label()),
         layout: None,
@@ -99,7 +99,7 @@ pub fn run_probe(
         pass.dispatch_workgroups(items.div_ceil(64), 1, 1);
     }
     gpu.queue.submit([encoder.finish()]);
-    precip_gpu_wgpu::readback::read_buffer(gpu, &output, output_bytes).expect("read back")
+    precip_gpu_wgpu::transfer::read_buffer(gpu, &output, output_bytes).expect("read back")
 }
 
 /// Particles as bytes.

@@ -1,0 +1,219 @@
+//! Copies between the host and the device: uploads (through a staging buffer),
+//! read-backs, image fills and layout changes, each waited for.
+
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+use precip_model::BackendError;
+
+use crate::buffer::Buffer;
+use crate::commands::{compute_barrier, submit};
+use crate::device::Device;
+use crate::image::{COLOUR, Image};
+
+/// Steps recorded ahead of the GPU: each has its own ring of uniform blocks and
+/// queries, so the host writes step n + 1's while step n runs.
+pub const FRAMES_IN_FLIGHT: usize = 2;
+
+/// Copies `bytes` into `target` through a staging buffer (waits).
+pub fn upload(device: &Device, target: &Buffer, bytes: &[u8]) -> Result<(), BackendError> {
+    upload_at(device, target, 0, bytes)
+}
+
+/// Copies `bytes` into `target` at `offset` through a staging buffer (waits).
+pub fn upload_at(
+    device: &Device,
+    target: &Buffer,
+    offset: u64,
+    bytes: &[u8],
+) -> Result<(), BackendError> {
+    if bytes.is_empty() {
+        return Ok(());
+    }
+    let mut staging = Buffer::new(
+        device,
+        "staging",
+        bytes.len() as u64,
+        vk::BufferUsageFlags::TRANSFER_SRC,
+        MemoryLocation::CpuToGpu,
+    )?;
+    staging.write(0, bytes)?;
+    let result = submit(device, |cb| {
+        let region = vk::BufferCopy {
+            src_offset: 0,
+            dst_offset: offset,
+            size: bytes.len() as u64,
+        };
+        // SAFETY: both buffers are live and large enough; `cb` is recording.
+        unsafe {
+            device
+                .raw
+                .cmd_copy_buffer(cb, staging.raw, target.raw, &[region])
+        };
+        // SAFETY: `cb` is recording, outside a render pass (inside `submit`).
+        unsafe { compute_barrier(device, cb) };
+    })
+    .and_then(|f| f.wait(device));
+    staging.destroy(device);
+    result
+}
+
+/// Copies the first `size` bytes of `source` back (waits).
+pub fn download(device: &Device, source: &Buffer, size: u64) -> Result<Vec<u8>, BackendError> {
+    if size == 0 {
+        return Ok(Vec::new());
+    }
+    let staging = Buffer::new(
+        device,
+        "read-back",
+        size,
+        vk::BufferUsageFlags::TRANSFER_DST,
+        MemoryLocation::GpuToCpu,
+    )?;
+    let result = submit(device, |cb| {
+        let region = vk::BufferCopy {
+            src_offset: 0,
+            dst_offset: 0,
+            size,
+        };
+        // SAFETY: both buffers are live and large enough; `cb` is recording.
+        unsafe {
+            device
+                .raw
+                .cmd_copy_buffer(cb, source.raw, staging.raw, &[region])
+        };
+    })
+    .and_then(|f| f.wait(device))
+    .and_then(|()| staging.read(size as usize));
+    staging.destroy(device);
+    result
+}
+
+/// A barrier moving all of colour `image` from layout `old` (after accesses `src`)
+/// to `new` (before accesses `dst`).
+fn layout_barrier(
+    image: &Image,
+    (old, src): (vk::ImageLayout, vk::AccessFlags),
+    (new, dst): (vk::ImageLayout, vk::AccessFlags),
+) -> vk::ImageMemoryBarrier<'static> {
+    vk::ImageMemoryBarrier::default()
+        .old_layout(old)
+        .new_layout(new)
+        .src_access_mask(src)
+        .dst_access_mask(dst)
+        .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .image(image.raw)
+        .subresource_range(COLOUR)
+}
+
+/// Fills a sampled image's texels (`bytes` tightly packed) and leaves it in
+/// `SHADER_READ_ONLY_OPTIMAL` for every shader stage (waits).
+pub fn upload_image(device: &Device, image: &Image, bytes: &[u8]) -> Result<(), BackendError> {
+    let mut staging = Buffer::new(
+        device,
+        "image staging",
+        bytes.len() as u64,
+        vk::BufferUsageFlags::TRANSFER_SRC,
+        MemoryLocation::CpuToGpu,
+    )?;
+    staging.write(0, bytes)?;
+    let e = image.extent;
+    let result = submit(device, |cb| {
+        let barrier = |old, new, src, dst| layout_barrier(image, (old, src), (new, dst));
+        let to_transfer = barrier(
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            vk::AccessFlags::empty(),
+            vk::AccessFlags::TRANSFER_WRITE,
+        );
+        let to_shader = barrier(
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+            vk::AccessFlags::TRANSFER_WRITE,
+            vk::AccessFlags::SHADER_READ,
+        );
+        let region = vk::BufferImageCopy::default()
+            .image_subresource(vk::ImageSubresourceLayers {
+                aspect_mask: vk::ImageAspectFlags::COLOR,
+                mip_level: 0,
+                base_array_layer: 0,
+                layer_count: 1,
+            })
+            .image_extent(vk::Extent3D {
+                width: e.x,
+                height: e.y,
+                depth: e.z,
+            });
+        // SAFETY: `cb` is recording; the image and staging buffer are live; the
+        // barriers move the whole image through the layouts the copy and the shaders
+        // need (the earlier contents are discarded: UNDEFINED), after any earlier
+        // work that read it.
+        unsafe {
+            device.raw.cmd_pipeline_barrier(
+                cb,
+                vk::PipelineStageFlags::ALL_COMMANDS,
+                vk::PipelineStageFlags::TRANSFER,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &[to_transfer],
+            );
+            device.raw.cmd_copy_buffer_to_image(
+                cb,
+                staging.raw,
+                image.raw,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &[region],
+            );
+            device.raw.cmd_pipeline_barrier(
+                cb,
+                vk::PipelineStageFlags::TRANSFER,
+                vk::PipelineStageFlags::COMPUTE_SHADER
+                    | vk::PipelineStageFlags::VERTEX_SHADER
+                    | vk::PipelineStageFlags::FRAGMENT_SHADER,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &[to_shader],
+            );
+        }
+    })
+    .and_then(|f| f.wait(device));
+    staging.destroy(device);
+    result
+}
+
+/// Moves `images` (colour, just made) to `GENERAL`, where shaders both write them as
+/// storage images and sample them; waits.
+pub fn to_general(device: &Device, images: &[&Image]) -> Result<(), BackendError> {
+    let barriers: Vec<vk::ImageMemoryBarrier<'_>> = images
+        .iter()
+        .map(|image| {
+            layout_barrier(
+                image,
+                (vk::ImageLayout::UNDEFINED, vk::AccessFlags::empty()),
+                (
+                    vk::ImageLayout::GENERAL,
+                    vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
+                ),
+            )
+        })
+        .collect();
+    submit(device, |cb| {
+        // SAFETY: `cb` is recording; the images are live and unused (just made).
+        unsafe {
+            device.raw.cmd_pipeline_barrier(
+                cb,
+                vk::PipelineStageFlags::TOP_OF_PIPE,
+                vk::PipelineStageFlags::COMPUTE_SHADER
+                    | vk::PipelineStageFlags::VERTEX_SHADER
+                    | vk::PipelineStageFlags::FRAGMENT_SHADER,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &barriers,
+            );
+        }
+    })
+    .and_then(|f| f.wait(device))
+}

@@ -1,0 +1,624 @@
+//! The executor: the simulation's part of the plan run over any [`Gpu`], written
+//! once. [`Kernels`] are a device's compute programs (made once per device);
+//! [`Simulation`] is one configuration: its buffers and wind volume made from the
+//! resources table ([`crate::resources`]), its bind groups filled from the group
+//! tables, and the recipes of configure (`init_particles`), a weather change (the
+//! wind's block and volume), a step (every sub-step's blocks at their dynamic
+//! offsets, then [`SUBSTEP_PASSES`] once per sub-step in one submission), a beam
+//! query and the read-backs. Every resource goes back to the device through
+//! [`Simulation::destroy`] / [`Kernels::destroy`], and on every error path.
+//!
+//! The frame's passes are still recorded by each backend (`render/`) from
+//! [`crate::frame`]; they read the simulation's buffers through
+//! [`Simulation::buffer`].
+
+use precip_cover::{CoverGrid, GridFrame};
+use precip_model::host::HostState;
+use precip_model::sensors::lidar::{Beam, BeamHit, BeamParams, BeamQuery, BeamReturn};
+use precip_model::{BackendError, Camera, Particle, PassTiming, Setup, Weather};
+
+use crate::bind_groups::GroupLayout;
+use crate::gpu::{BindingResource, Dispatch, Gpu};
+use crate::recipe::{
+    DispatchCounts, INIT_PASS, KernelPass, SUBSTEP_PASSES, dispatch_size, substep_timings,
+};
+use crate::resources::{
+    BEAM_GROUP, Bound, BufferUsage, COVER_GROUP, Contents, GroupFill, STEP_GROUP, SimBuffer,
+    simulation_buffers, uniform_stride,
+};
+use crate::shaders::Program;
+
+/// A device's compute programs and their group layouts.
+#[derive(Debug)]
+pub struct Kernels<G: Gpu> {
+    step_layout: G::GroupLayout,
+    cover_layout: G::GroupLayout,
+    beams_layout: G::GroupLayout,
+    init: G::Kernel,
+    substep: Vec<(KernelPass, G::Kernel)>,
+    query_beams: G::Kernel,
+}
+
+/// Hands everything in `made` back to `gpu` (the error path of a constructor).
+fn give_back<G: Gpu>(gpu: &mut G, layouts: Vec<G::GroupLayout>, kernels: Vec<G::Kernel>) {
+    for k in kernels {
+        gpu.destroy_kernel(k);
+    }
+    for l in layouts {
+        gpu.destroy_group_layout(l);
+    }
+}
+
+impl<G: Gpu> Kernels<G> {
+    /// Compiles the init, sub-step and beam kernels on `gpu`.
+    pub fn new(gpu: &mut G) -> Result<Self, BackendError> {
+        let mut layouts = Vec::new();
+        for table in [STEP_GROUP.layout, COVER_GROUP.layout, BEAM_GROUP.layout] {
+            match gpu.group_layout(table) {
+                Ok(l) => layouts.push(l),
+                Err(e) => {
+                    give_back(gpu, layouts, Vec::new());
+                    return Err(e);
+                }
+            }
+        }
+        let mut kernels = Vec::new();
+        let wanted = std::iter::once(INIT_PASS)
+            .chain(SUBSTEP_PASSES)
+            .chain(std::iter::once(KernelPass {
+                program: Program::QueryBeams,
+                entry_point: "query_beams",
+                over: crate::recipe::DispatchOver::OneWorkgroup,
+            }));
+        for kernel in wanted {
+            let layout = match kernel.program {
+                Program::CoverUpdate => &layouts[1],
+                Program::QueryBeams => &layouts[2],
+                _ => &layouts[0],
+            };
+            match gpu.kernel(kernel.program, kernel.entry_point, layout) {
+                Ok(k) => kernels.push(k),
+                Err(e) => {
+                    give_back(gpu, layouts, kernels);
+                    return Err(e);
+                }
+            }
+        }
+        let query_beams = kernels.pop();
+        let mut kernels = kernels.into_iter();
+        let init = kernels.next();
+        let substep: Vec<_> = SUBSTEP_PASSES.iter().copied().zip(kernels).collect();
+        let mut layouts = layouts.into_iter();
+        match (
+            layouts.next(),
+            layouts.next(),
+            layouts.next(),
+            init,
+            query_beams,
+        ) {
+            (Some(step_layout), Some(cover_layout), Some(beams_layout), Some(init), Some(q))
+                if substep.len() == SUBSTEP_PASSES.len() =>
+            {
+                Ok(Self {
+                    step_layout,
+                    cover_layout,
+                    beams_layout,
+                    init,
+                    substep,
+                    query_beams: q,
+                })
+            }
+            _ => Err(BackendError::Device {
+                backend: "precip-gpu",
+                message:
+                    "a kernel went missing while compiling (a bug in precip: please report it)"
+                        .into(),
+            }),
+        }
+    }
+
+    /// Hands every kernel and layout back to `gpu`.
+    pub fn destroy(self, gpu: &mut G) {
+        let kernels = [self.init, self.query_beams]
+            .into_iter()
+            .chain(self.substep.into_iter().map(|(_, k)| k))
+            .collect();
+        give_back(
+            gpu,
+            vec![self.step_layout, self.cover_layout, self.beams_layout],
+            kernels,
+        );
+    }
+
+    fn layout_of(&self, fill: &GroupFill) -> &G::GroupLayout {
+        if fill.layout.name == COVER_GROUP.layout.name {
+            &self.cover_layout
+        } else if fill.layout.name == BEAM_GROUP.layout.name {
+            &self.beams_layout
+        } else {
+            &self.step_layout
+        }
+    }
+}
+
+/// The buffers of a beam query.
+struct QueryBuffers<'a, G: Gpu> {
+    params: &'a G::Buffer,
+    beams: &'a G::Buffer,
+    hits: &'a G::Buffer,
+}
+
+/// One configuration on a device: its host state and its device resources.
+#[derive(Debug)]
+pub struct Simulation<G: Gpu> {
+    host: HostState,
+    /// In the order of [`SimBuffer::ALL`].
+    buffers: Vec<G::Buffer>,
+    wind: G::Volume,
+    step_group: G::BindGroup,
+    cover_group: G::BindGroup,
+    particle_count: u32,
+    cover_texel_count: u32,
+    wave_frame: GridFrame,
+    uniform_stride: u64,
+    steps_submitted: u64,
+}
+
+/// A setup checked and computed on the host ([`Simulation::prepare`]).
+#[derive(Debug)]
+pub struct Prepared {
+    host: HostState,
+    cover: CoverGrid,
+}
+
+/// A configuration's resources while they are being made: handed back on an error.
+struct Made<G: Gpu> {
+    buffers: Vec<G::Buffer>,
+    wind: Option<G::Volume>,
+    groups: Vec<G::BindGroup>,
+}
+
+impl<G: Gpu> Made<G> {
+    fn give_back(self, gpu: &mut G) {
+        for g in self.groups {
+            gpu.destroy_bind_group(g);
+        }
+        for b in self.buffers {
+            gpu.destroy_buffer(b);
+        }
+        if let Some(w) = self.wind {
+            gpu.destroy_volume(w);
+        }
+    }
+}
+
+impl<G: Gpu> Simulation<G> {
+    /// Checks `setup` against the device's limits and computes its host state and
+    /// initial cover, before anything of the last configuration is let go: a refused
+    /// setup leaves the backend as it was.
+    pub fn prepare(gpu: &G, setup: &Setup) -> Result<Prepared, BackendError> {
+        gpu.limits().check_setup(setup)?;
+        Ok(Prepared {
+            host: HostState::configure(setup)?,
+            cover: setup.initial_cover()?,
+        })
+    }
+
+    /// Makes the configuration `prepared` describes and runs `init_particles`.
+    pub fn configure(
+        gpu: &mut G,
+        kernels: &Kernels<G>,
+        prepared: Prepared,
+    ) -> Result<Self, BackendError> {
+        let (host, cover) = (&prepared.host, &prepared.cover);
+        let mut made = Made::<G> {
+            buffers: Vec::new(),
+            wind: None,
+            groups: Vec::new(),
+        };
+        match Self::make(gpu, kernels, host, cover, &mut made) {
+            Ok(parts) => {
+                let (buffers, wind, mut groups) = match made {
+                    Made {
+                        buffers,
+                        wind: Some(wind),
+                        groups,
+                    } if groups.len() == 2 => (buffers, wind, groups),
+                    incomplete => {
+                        incomplete.give_back(gpu);
+                        return Err(BackendError::Device {
+                            backend: "precip-gpu",
+                            message: "a resource went missing while configuring (a bug in precip: please report it)".into(),
+                        });
+                    }
+                };
+                let (cover_group, step_group) = (groups.remove(1), groups.remove(0));
+                let mut sim = Self {
+                    host: host.clone(),
+                    buffers,
+                    wind,
+                    step_group,
+                    cover_group,
+                    particle_count: parts.0,
+                    cover_texel_count: cover.texels.len() as u32,
+                    wave_frame: host.frames().waves,
+                    uniform_stride: parts.1,
+                    steps_submitted: 0,
+                };
+                match sim.init(gpu, kernels) {
+                    Ok(()) => Ok(sim),
+                    Err(e) => {
+                        sim.destroy(gpu);
+                        Err(e)
+                    }
+                }
+            }
+            Err(e) => {
+                made.give_back(gpu);
+                Err(e)
+            }
+        }
+    }
+
+    /// Fills `made` with the buffers, the volume and the two groups (step, cover);
+    /// returns the particle count and the uniform stride.
+    fn make(
+        gpu: &mut G,
+        kernels: &Kernels<G>,
+        host: &HostState,
+        cover: &CoverGrid,
+        made: &mut Made<G>,
+    ) -> Result<(u32, u64), BackendError> {
+        let stride = uniform_stride(gpu.uniform_alignment());
+        let specs = simulation_buffers(host, cover, stride, gpu.slots());
+        for spec in &specs {
+            let zeros;
+            let contents = match &spec.contents {
+                Contents::Bytes(b) => Some(b.as_slice()),
+                Contents::Zeroed => {
+                    zeros = vec![0u8; spec.bytes as usize];
+                    Some(zeros.as_slice())
+                }
+                Contents::Undefined => None,
+            };
+            made.buffers.push(gpu.create_buffer(
+                spec.buffer.label(),
+                spec.bytes,
+                spec.usage,
+                contents,
+            )?);
+        }
+        let wind = host.wind();
+        let n = wind.spec.texels;
+        made.wind =
+            Some(gpu.create_volume("precip wind volume", [n.x, n.y, n.z], wind.as_bytes())?);
+        for fill in [&STEP_GROUP, &COVER_GROUP] {
+            let group =
+                Self::fill_group(gpu, kernels, fill, &made.buffers, made.wind.as_ref(), None)?;
+            made.groups.push(group);
+        }
+        let (world, camera) = host.setup().particle_counts();
+        Ok((world + camera, stride))
+    }
+
+    /// The bind group `fill` describes, from `buffers` (in [`SimBuffer::ALL`]'s order),
+    /// the wind volume and a beam query's buffers.
+    fn fill_group(
+        gpu: &mut G,
+        kernels: &Kernels<G>,
+        fill: &GroupFill,
+        buffers: &[G::Buffer],
+        wind: Option<&G::Volume>,
+        query: Option<&QueryBuffers<'_, G>>,
+    ) -> Result<G::BindGroup, BackendError> {
+        let missing = |what: &str| BackendError::Device {
+            backend: "precip-gpu",
+            message: format!(
+                "{}: {what} is not made yet (a bug in precip: please report it)",
+                fill.layout.name
+            ),
+        };
+        let mut entries = Vec::with_capacity(fill.bound.len());
+        for &(binding, bound) in fill.bound {
+            let resource = match bound {
+                Bound::Buffer(b) => BindingResource::Buffer(
+                    buffers.get(index_of(b)).ok_or_else(|| missing(b.label()))?,
+                ),
+                Bound::WindVolume => {
+                    BindingResource::Volume(wind.ok_or_else(|| missing("the wind volume"))?)
+                }
+                Bound::BeamParams => {
+                    BindingResource::Buffer(query.ok_or_else(|| missing("the beam query"))?.params)
+                }
+                Bound::Beams => {
+                    BindingResource::Buffer(query.ok_or_else(|| missing("the beam query"))?.beams)
+                }
+                Bound::BeamHits => {
+                    BindingResource::Buffer(query.ok_or_else(|| missing("the beam query"))?.hits)
+                }
+            };
+            entries.push((binding, resource));
+        }
+        gpu.bind_group(kernels.layout_of(fill), fill.layout, &entries)
+    }
+
+    /// `init_particles` over every particle, with the host's init block; the first
+    /// step writes the same blocks, so this is waited for.
+    fn init(&mut self, gpu: &mut G, kernels: &Kernels<G>) -> Result<(), BackendError> {
+        gpu.free_slot(0)?;
+        let block = self.host.init_block();
+        gpu.write_buffer(
+            self.buffer_mut(SimBuffer::StepBlocks),
+            0,
+            bytemuck::bytes_of(&block),
+        )?;
+        gpu.dispatch(
+            &[Dispatch {
+                kernel: &kernels.init,
+                group: &self.step_group,
+                offset: Some(0),
+                workgroups: dispatch_size(self.particle_count),
+            }],
+            false,
+        )?;
+        gpu.settle()
+    }
+
+    /// Takes a new weather (validated) and uploads what it changed: the wind's
+    /// block, and its volume when it was baked again. A refused weather changes
+    /// nothing.
+    pub fn set_weather(&mut self, gpu: &mut G, weather: &Weather) -> Result<(), BackendError> {
+        let mut host = self.host.clone();
+        let change = host.set_weather(weather)?;
+        gpu.settle()?;
+        if change.wind_rebaked {
+            gpu.write_volume(&self.wind, host.wind().as_bytes())?;
+        }
+        let params = host.wind_params();
+        gpu.write_buffer(
+            self.buffer_mut(SimBuffer::WindParams),
+            0,
+            bytemuck::bytes_of(&params),
+        )?;
+        self.host = host;
+        Ok(())
+    }
+
+    /// Moves the camera (validated).
+    pub fn set_camera(&mut self, camera: &Camera) -> Result<(), BackendError> {
+        self.host.set_camera(camera)
+    }
+
+    /// A step of `dt_s` (validated): every sub-step's blocks uploaded into the next
+    /// slot's ring, the sub-steps' kernels submitted at once (timed where the device
+    /// can), and the host's clock moved.
+    pub fn step(
+        &mut self,
+        gpu: &mut G,
+        kernels: &Kernels<G>,
+        dt_s: f32,
+    ) -> Result<(), BackendError> {
+        let steps = self.host.substeps(dt_s)?;
+        let slots = u64::from(gpu.slots().max(1));
+        let slot = (self.steps_submitted % slots) as u32;
+        gpu.free_slot(slot)?;
+        let stride = self.uniform_stride;
+        let base = u64::from(slot) * stride * u64::from(precip_model::backend::MAX_SUBSTEPS);
+        let mut step_bytes = vec![0u8; (stride as usize) * steps.blocks.len()];
+        let mut cover_bytes = step_bytes.clone();
+        for (k, blocks) in steps.blocks.iter().enumerate() {
+            let at = k * stride as usize;
+            let (step, cover) = (
+                bytemuck::bytes_of(&blocks.step),
+                bytemuck::bytes_of(&blocks.cover),
+            );
+            step_bytes[at..at + step.len()].copy_from_slice(step);
+            cover_bytes[at..at + cover.len()].copy_from_slice(cover);
+        }
+        gpu.write_buffer(self.buffer_mut(SimBuffer::StepBlocks), base, &step_bytes)?;
+        gpu.write_buffer(self.buffer_mut(SimBuffer::CoverBlocks), base, &cover_bytes)?;
+        let counts = self.dispatch_counts();
+        let mut dispatches = Vec::with_capacity(steps.blocks.len() * kernels.substep.len());
+        for k in 0..steps.blocks.len() as u64 {
+            let offset = u32::try_from(base + k * stride).map_err(|_| BackendError::Device {
+                backend: "precip-gpu",
+                message: "a uniform offset beyond 4 GiB (a bug in precip: please report it)".into(),
+            })?;
+            for (pass, kernel) in &kernels.substep {
+                let group = match pass.program {
+                    Program::CoverUpdate => &self.cover_group,
+                    _ => &self.step_group,
+                };
+                dispatches.push(Dispatch {
+                    kernel,
+                    group,
+                    offset: Some(offset),
+                    workgroups: dispatch_size(pass.over.invocations(counts)),
+                });
+            }
+        }
+        gpu.dispatch(&dispatches, true)?;
+        self.steps_submitted += 1;
+        self.host.advance(&steps);
+        Ok(())
+    }
+
+    /// The last step's time per kernel, from the device's timestamps.
+    pub fn step_timings(gpu: &mut G) -> Result<Vec<PassTiming>, BackendError> {
+        Ok(match gpu.kernel_times_ms()? {
+            Some(ms) if ms.len() >= SUBSTEP_PASSES.len() => substep_timings(ms),
+            _ => Vec::new(),
+        })
+    }
+
+    /// The returns of `query` (validated) on the backend named `backend`: each
+    /// beam's first strike among the particles and the ground (`query_beams`), and
+    /// what the air beyond the simulated particles returns.
+    pub fn query_beams(
+        &self,
+        gpu: &mut G,
+        kernels: &Kernels<G>,
+        backend: &'static str,
+        query: &BeamQuery,
+    ) -> Result<Vec<BeamReturn>, BackendError> {
+        let beams = query.validate()?;
+        let params = query.params(&beams, self.particle_count, &self.host.setup().ground);
+        let hits = self.first_strikes(gpu, kernels, &params, &beams)?;
+        query.answer(
+            backend,
+            &beams,
+            &hits,
+            self.host.weather(),
+            &self.host.unresolved_air(),
+        )
+    }
+
+    /// Each beam's first strike: `query_beams` over the particles and the ground.
+    fn first_strikes(
+        &self,
+        gpu: &mut G,
+        kernels: &Kernels<G>,
+        params: &BeamParams,
+        beams: &[Beam],
+    ) -> Result<Vec<BeamHit>, BackendError> {
+        let beam_bytes: &[u8] = bytemuck::cast_slice(beams);
+        let hits_bytes = (beams.len() * size_of::<BeamHit>()) as u64;
+        // Filled with UNWRITTEN: a hit the kernel never wrote is found, not read as one.
+        let unwritten = BeamQuery::unwritten_hits(beams.len());
+        let mut made: Vec<G::Buffer> = Vec::with_capacity(3);
+        let result = (|| {
+            made.push(gpu.create_buffer(
+                "precip beam params",
+                size_of::<BeamParams>() as u64,
+                BufferUsage::Uniform,
+                Some(bytemuck::bytes_of(params)),
+            )?);
+            made.push(gpu.create_buffer(
+                "precip beams",
+                beam_bytes.len() as u64,
+                BufferUsage::Storage,
+                Some(beam_bytes),
+            )?);
+            made.push(gpu.create_buffer(
+                "precip beam hits",
+                hits_bytes,
+                BufferUsage::Storage,
+                Some(bytemuck::cast_slice(&unwritten)),
+            )?);
+            let [p, b, h] = &made[..] else {
+                return Err(BackendError::Device {
+                    backend: "precip-gpu",
+                    message: "the beam query lost a buffer (a bug in precip: please report it)"
+                        .into(),
+                });
+            };
+            let query = QueryBuffers {
+                params: p,
+                beams: b,
+                hits: h,
+            };
+            let group =
+                Self::fill_group(gpu, kernels, &BEAM_GROUP, &self.buffers, None, Some(&query))?;
+            let ran = gpu.dispatch(
+                &[Dispatch {
+                    kernel: &kernels.query_beams,
+                    group: &group,
+                    offset: None,
+                    workgroups: dispatch_size(params.beam_count),
+                }],
+                false,
+            );
+            let read = ran.and_then(|()| gpu.read_buffer(h, hits_bytes));
+            gpu.destroy_bind_group(group);
+            Ok(bytemuck::pod_collect_to_vec(&read?))
+        })();
+        for b in made {
+            gpu.destroy_buffer(b);
+        }
+        result
+    }
+
+    /// Every particle, read back.
+    pub fn read_particles(&self, gpu: &mut G) -> Result<Vec<Particle>, BackendError> {
+        let bytes = gpu.read_buffer(
+            self.buffer(SimBuffer::Particles),
+            u64::from(self.particle_count) * size_of::<Particle>() as u64,
+        )?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
+    }
+
+    /// The cover, read back.
+    pub fn read_cover(&self, gpu: &mut G) -> Result<CoverGrid, BackendError> {
+        let bytes = gpu.read_buffer(
+            self.buffer(SimBuffer::Cover),
+            u64::from(self.cover_texel_count) * size_of::<precip_cover::CoverTexel>() as u64,
+        )?;
+        Ok(CoverGrid {
+            frame: self.host.setup().cover.frame,
+            texels: bytemuck::pod_collect_to_vec(&bytes),
+        })
+    }
+
+    /// The host state (setup, weather, camera, clock, blocks).
+    #[must_use]
+    pub fn host(&self) -> &HostState {
+        &self.host
+    }
+
+    /// A buffer of the configuration (for the frame's bindings).
+    #[must_use]
+    pub fn buffer(&self, buffer: SimBuffer) -> &G::Buffer {
+        &self.buffers[index_of(buffer)]
+    }
+
+    fn buffer_mut(&mut self, buffer: SimBuffer) -> &mut G::Buffer {
+        &mut self.buffers[index_of(buffer)]
+    }
+
+    /// Particles.
+    #[must_use]
+    pub fn particle_count(&self) -> u32 {
+        self.particle_count
+    }
+
+    /// The water bodies' wave grid.
+    #[must_use]
+    pub fn wave_frame(&self) -> GridFrame {
+        self.wave_frame
+    }
+
+    /// What the dispatches run over.
+    #[must_use]
+    pub fn dispatch_counts(&self) -> DispatchCounts {
+        DispatchCounts::of(
+            self.particle_count,
+            self.cover_texel_count,
+            &self.wave_frame,
+        )
+    }
+
+    /// Hands every resource back to `gpu`.
+    pub fn destroy(self, gpu: &mut G) {
+        Made::<G> {
+            buffers: self.buffers,
+            wind: Some(self.wind),
+            groups: vec![self.step_group, self.cover_group],
+        }
+        .give_back(gpu);
+    }
+}
+
+/// Where `buffer` is in [`SimBuffer::ALL`].
+fn index_of(buffer: SimBuffer) -> usize {
+    SimBuffer::ALL
+        .iter()
+        .position(|&b| b == buffer)
+        .unwrap_or_default()
+}
+
+/// The table a group of the simulation was made from (for backends that look a
+/// layout up by its table).
+#[must_use]
+pub fn simulation_tables() -> [&'static GroupLayout; 3] {
+    [STEP_GROUP.layout, COVER_GROUP.layout, BEAM_GROUP.layout]
+}
