@@ -24,7 +24,7 @@ const BOUNDS_CHECKS: naga::proc::BoundsCheckPolicies = naga::proc::BoundsCheckPo
 
 fn main() {
     let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-    let compiled: [Program; 6] = include!("src/compiled_programs.in");
+    let compiled: [Program; 7] = include!("src/compiled_programs.in");
     for program in compiled {
         let source = program.source();
         let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| {

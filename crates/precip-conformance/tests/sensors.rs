@@ -188,15 +188,58 @@ fn optics_from_the_particles_in_the_air_follow_the_weather_on_every_backend() {
         match &first {
             None => first = Some(live),
             Some(reference) => {
-                let (a, b) = (live.band(Band::Visible), reference.band(Band::Visible));
-                assert!(
-                    (a.extinction_per_m / b.extinction_per_m - 1.0).abs() < 1e-3,
-                    "{}: {a:?} vs the CPU's {b:?}",
-                    s.name
-                );
+                // The GPU sums the same particles' cross-sections on the device
+                // (`optics_sums`): the CPU's within the sums' rounding, every band.
+                for band in Band::ALL {
+                    let (a, b) = (live.band(band), reference.band(band));
+                    assert!(
+                        (a.extinction_per_m / b.extinction_per_m - 1.0).abs() < 1e-3
+                            && (a.backscatter_per_m_sr / b.backscatter_per_m_sr - 1.0).abs() < 1e-3,
+                        "{} {band:?}: {a:?} vs the CPU's {b:?}",
+                        s.name
+                    );
+                }
             }
         }
         s.check_clean("optics");
+    }
+}
+
+#[test]
+fn optics_of_snow_and_dust_are_the_cpus_on_every_backend() {
+    // The GPU's cross-sections (optics.wgsl) for ice and mineral grains, every band:
+    // the CPU reference's sums of the same particles, within the sums' rounding.
+    for (kind, temperature_c) in [
+        (PrecipitationKind::DrySnow, -5.0),
+        (PrecipitationKind::Dust, 25.0),
+    ] {
+        let mut setup = snow_before_a_wall();
+        setup.weather.kind = kind;
+        setup.weather.air_temperature_c = temperature_c;
+        let mut reference: Option<Optics> = None;
+        for mut s in all_subjects("optics of snow and dust") {
+            s.backend.configure(&setup).expect("configure");
+            s.backend.step(0.05).expect("step");
+            let live = s.backend.optics().expect("optics");
+            assert!(matches!(live.source, OpticsSource::LiveParticles { .. }));
+            match &reference {
+                None => reference = Some(live),
+                Some(cpu) => {
+                    assert_eq!(live.source, cpu.source, "{} {kind:?}", s.name);
+                    for band in Band::ALL {
+                        let (a, b) = (live.band(band), cpu.band(band));
+                        let close = |x: f32, y: f32| (x / y - 1.0).abs() < 1e-3;
+                        assert!(
+                            close(a.extinction_per_m, b.extinction_per_m)
+                                && close(a.backscatter_per_m_sr, b.backscatter_per_m_sr),
+                            "{} {kind:?} {band:?}: {a:?} vs the CPU's {b:?}",
+                            s.name
+                        );
+                    }
+                }
+            }
+            s.check_clean("optics of snow and dust");
+        }
     }
 }
 

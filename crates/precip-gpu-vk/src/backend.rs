@@ -11,6 +11,7 @@
 use precip_gpu::{Gpu, Kernels, Simulation};
 use precip_model::cover::CoverGrid;
 use precip_model::sensors::lidar::{BeamQuery, BeamReturn};
+use precip_model::sensors::optics::Optics;
 use precip_model::{
     Backend, BackendError, BackendInfo, Camera, DeviceMemory, DrawnCounts, Image, Particle, Setup,
     TimingSource, Timings, View, Weather,
@@ -243,6 +244,16 @@ impl Backend for VkBackend {
         })?;
         let kernels = self.kernels.as_ref().ok_or_else(kernels_gone)?;
         state.sim.query_beams(&mut self.hal, kernels, NAME, query)
+    }
+
+    /// The camera volume's cross-sections summed on the device (`optics_sums`):
+    /// a few hundred bytes read back instead of every particle.
+    fn optics(&mut self) -> Result<Optics, BackendError> {
+        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
+            operation: "optics",
+        })?;
+        let kernels = self.kernels.as_ref().ok_or_else(kernels_gone)?;
+        state.sim.optics(&mut self.hal, kernels)
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {

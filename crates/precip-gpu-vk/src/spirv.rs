@@ -1,11 +1,11 @@
-//! The SPIR-V the build script compiled from precip-model's WGSL (one module per
+//! The SPIR-V the build script compiled from precip-gpu's WGSL programs (one module per
 //! program, every entry point in it).
 
 use precip_gpu::shaders::Program;
 
 /// The programs the build script compiles.
 #[cfg(test)]
-pub const COMPILED: [Program; 6] = include!("compiled_programs.in");
+pub const COMPILED: [Program; 7] = include!("compiled_programs.in");
 
 /// The SPIR-V words of `program`, or `None` for programs this backend does not run.
 #[must_use]
@@ -17,6 +17,7 @@ pub fn words(program: Program) -> Option<Vec<u32>> {
         Program::Render => include_bytes!(concat!(env!("OUT_DIR"), "/Render.spv")),
         Program::CullParticles => include_bytes!(concat!(env!("OUT_DIR"), "/CullParticles.spv")),
         Program::QueryBeams => include_bytes!(concat!(env!("OUT_DIR"), "/QueryBeams.spv")),
+        Program::OpticsSums => include_bytes!(concat!(env!("OUT_DIR"), "/OpticsSums.spv")),
         Program::ProbeDrawing => return None,
     };
     Some(

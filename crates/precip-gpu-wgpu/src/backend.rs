@@ -1,10 +1,12 @@
 //! [`WgpuBackend`]: the [`Backend`] over wgpu: configure, weather, step, render (see
 //! [`crate::render`]), read-back and timings.
 
+use precip_gpu::frame_resources::{FrameBuffer, FrameTexture};
 use precip_gpu::recipe::FrameDraws;
 use precip_gpu::{Kernels, Simulation};
 use precip_model::cover::CoverGrid;
 use precip_model::sensors::lidar::{BeamQuery, BeamReturn};
+use precip_model::sensors::optics::Optics;
 use precip_model::{
     Backend, BackendError, BackendInfo, Camera, DeviceMemory, DrawnCounts, Image, Particle, Setup,
     TimingSource, Timings, View, Weather,
@@ -132,8 +134,13 @@ impl WgpuBackend {
                 .map(|h| f16_to_f32(u16::from_le_bytes([h[0], h[1]])))
                 .collect())
         };
-        let [a, b, c] = &render.frame.cover_textures;
-        let (a, b, c) = (halves(a)?, halves(b)?, halves(c)?);
+        let [a, b, c] = [
+            FrameTexture::CoverA,
+            FrameTexture::CoverB,
+            FrameTexture::CoverC,
+        ]
+        .map(|t| render.frame.texture(t));
+        let (a, b, c) = (halves(a?)?, halves(b?)?, halves(c?)?);
         Ok(Some(
             a.chunks_exact(4)
                 .zip(b.chunks_exact(4))
@@ -176,7 +183,7 @@ impl WgpuBackend {
             };
             let frame = scoped(&gpu, "preparing to render", || {
                 FrameResources::new(&gpu, &renderer.layouts, &state.sim, setup)
-            })?;
+            })??;
             state.render = Some(RenderState {
                 scene,
                 frame,
@@ -197,12 +204,10 @@ impl WgpuBackend {
             render.offscreen = Some(ColourTarget::new(&gpu, size.0, size.1));
         }
         if render.depth.as_ref().is_none_or(|d| d.size != size) {
-            render.depth = Some(DepthBuffer::new(
-                &gpu,
-                &renderer.layouts,
-                size,
-                &render.frame.draws,
-            ));
+            let depth = scoped(&gpu, "preparing the target", || {
+                DepthBuffer::new(&gpu, &renderer.layouts, size, &render.frame, &state.sim)
+            })??;
+            render.depth = Some(depth);
         }
         let host = state.sim.host();
         let setup = host.setup();
@@ -235,12 +240,13 @@ impl WgpuBackend {
         };
         let (Some(draws), Some(depth)) = (renderer.draws(format), render_ref.depth.as_ref()) else {
             return Err(cannot_draw(&format!(
-                "no draw programs or depth buffer for the target format {format:?}"
+                "no draw pipelines or depth buffer for the target format {format:?}"
             )));
         };
+        let params_buffer = render_ref.frame.buffer(FrameBuffer::RenderParams)?;
         scoped(&gpu, "render", || {
             gpu.queue
-                .write_buffer(&render_ref.frame.params, 0, bytemuck::bytes_of(&params));
+                .write_buffer(params_buffer, 0, bytemuck::bytes_of(&params));
             let mut encoder = gpu
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -345,6 +351,15 @@ impl Backend for WgpuBackend {
             .query_beams(&mut self.hal, &self.kernels, NAME, query)
     }
 
+    /// The camera volume's cross-sections summed on the device (`optics_sums`):
+    /// a few hundred bytes read back instead of every particle.
+    fn optics(&mut self) -> Result<Optics, BackendError> {
+        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
+            operation: "optics",
+        })?;
+        state.sim.optics(&mut self.hal, &self.kernels)
+    }
+
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {
         let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
             operation: "read_particles",
@@ -399,7 +414,11 @@ impl Backend for WgpuBackend {
         let Some(render) = &state.render else {
             return Ok(Some(DrawnCounts::default()));
         };
-        let bytes = read_buffer(&self.gpu, &render.frame.draws, FrameDraws::BYTES)?;
+        let bytes = read_buffer(
+            &self.gpu,
+            render.frame.buffer(FrameBuffer::Draws)?,
+            FrameDraws::BYTES,
+        )?;
         Ok(Some(FrameDraws::counts(&bytes)))
     }
 

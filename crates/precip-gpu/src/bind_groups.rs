@@ -9,6 +9,7 @@
 use precip_cover::CoverStepParams;
 
 use crate::recipe::{Frames, cover_bindings as cv, cull_bindings as cb, render_bindings as rb};
+use crate::recipe::{OpticsParams, optics_bindings as ob};
 use crate::recipe::{beam_bindings as bb, render_passes, step_bindings as sb};
 use crate::shaders::Program;
 use precip_model::drawing::render::RenderParams;
@@ -343,6 +344,20 @@ pub const BEAMS: GroupLayout = GroupLayout {
     ],
 };
 
+/// Group 0 of `optics_sums`.
+pub const OPTICS: GroupLayout = GroupLayout {
+    name: "precip optics_sums",
+    bindings: &[
+        binding(
+            ob::PARAMS,
+            uniform(size_of::<OpticsParams>(), false),
+            Stages::Compute,
+        ),
+        binding(ob::PARTICLES, storage(true), Stages::Compute),
+        binding(ob::PARTIALS, storage(false), Stages::Compute),
+    ],
+};
+
 /// The groups (0, 1, …) an entry point of `program` runs with; `None` for a test
 /// probe's or an unknown entry point.
 #[must_use]
@@ -352,6 +367,7 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::CoverUpdate, _) => &[COVER_UPDATE],
         (Program::CullParticles, _) => &[CULL],
         (Program::QueryBeams, _) => &[BEAMS],
+        (Program::OpticsSums, _) => &[OPTICS],
         (Program::Render, "cover_texture") => &[COVER_TEXTURE],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
@@ -380,6 +396,7 @@ mod tests {
             Program::CullParticles,
             Program::Render,
             Program::QueryBeams,
+            Program::OpticsSums,
         ] {
             for entry in program.entry_points() {
                 let groups = groups_of(program, entry)

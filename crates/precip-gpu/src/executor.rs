@@ -15,16 +15,18 @@
 use precip_cover::{CoverGrid, GridFrame};
 use precip_model::host::HostState;
 use precip_model::sensors::lidar::{Beam, BeamHit, BeamParams, BeamQuery, BeamReturn};
+use precip_model::sensors::optics::{CrossSectionSums, Optics, OpticsPartial};
 use precip_model::{BackendError, Camera, Particle, PassTiming, Setup, Weather};
 
 use crate::bind_groups::GroupLayout;
 use crate::gpu::{BindingResource, Dispatch, Gpu};
 use crate::recipe::{
-    DispatchCounts, INIT_PASS, KernelPass, SUBSTEP_PASSES, dispatch_size, substep_timings,
+    DispatchCounts, INIT_PASS, KernelPass, OPTICS_PASS, OpticsParams, SUBSTEP_PASSES,
+    dispatch_size, substep_timings,
 };
 use crate::resources::{
-    BEAM_GROUP, Bound, BufferUsage, COVER_GROUP, Contents, GroupFill, STEP_GROUP, SimBuffer,
-    simulation_buffers, uniform_stride,
+    BEAM_GROUP, Bound, BufferUsage, COVER_GROUP, Contents, GroupFill, OPTICS_GROUP, STEP_GROUP,
+    SimBuffer, simulation_buffers, uniform_stride,
 };
 use crate::shaders::Program;
 
@@ -34,9 +36,11 @@ pub struct Kernels<G: Gpu> {
     step_layout: G::GroupLayout,
     cover_layout: G::GroupLayout,
     beams_layout: G::GroupLayout,
+    optics_layout: G::GroupLayout,
     init: G::Kernel,
     substep: Vec<(KernelPass, G::Kernel)>,
     query_beams: G::Kernel,
+    optics_sums: G::Kernel,
 }
 
 /// Hands everything in `made` back to `gpu` (the error path of a constructor).
@@ -53,7 +57,12 @@ impl<G: Gpu> Kernels<G> {
     /// Compiles the init, sub-step and beam kernels on `gpu`.
     pub fn new(gpu: &mut G) -> Result<Self, BackendError> {
         let mut layouts = Vec::new();
-        for table in [STEP_GROUP.layout, COVER_GROUP.layout, BEAM_GROUP.layout] {
+        for table in [
+            STEP_GROUP.layout,
+            COVER_GROUP.layout,
+            BEAM_GROUP.layout,
+            OPTICS_GROUP.layout,
+        ] {
             match gpu.group_layout(table) {
                 Ok(l) => layouts.push(l),
                 Err(e) => {
@@ -63,17 +72,19 @@ impl<G: Gpu> Kernels<G> {
             }
         }
         let mut kernels = Vec::new();
-        let wanted = std::iter::once(INIT_PASS)
-            .chain(SUBSTEP_PASSES)
-            .chain(std::iter::once(KernelPass {
+        let wanted = std::iter::once(INIT_PASS).chain(SUBSTEP_PASSES).chain([
+            KernelPass {
                 program: Program::QueryBeams,
                 entry_point: "query_beams",
                 over: crate::recipe::DispatchOver::OneWorkgroup,
-            }));
+            },
+            OPTICS_PASS,
+        ]);
         for kernel in wanted {
             let layout = match kernel.program {
                 Program::CoverUpdate => &layouts[1],
                 Program::QueryBeams => &layouts[2],
+                Program::OpticsSums => &layouts[3],
                 _ => &layouts[0],
             };
             match gpu.kernel(kernel.program, kernel.entry_point, layout) {
@@ -84,6 +95,7 @@ impl<G: Gpu> Kernels<G> {
                 }
             }
         }
+        let optics_sums = kernels.pop();
         let query_beams = kernels.pop();
         let mut kernels = kernels.into_iter();
         let init = kernels.next();
@@ -93,21 +105,29 @@ impl<G: Gpu> Kernels<G> {
             layouts.next(),
             layouts.next(),
             layouts.next(),
+            layouts.next(),
             init,
             query_beams,
+            optics_sums,
         ) {
-            (Some(step_layout), Some(cover_layout), Some(beams_layout), Some(init), Some(q))
-                if substep.len() == SUBSTEP_PASSES.len() =>
-            {
-                Ok(Self {
-                    step_layout,
-                    cover_layout,
-                    beams_layout,
-                    init,
-                    substep,
-                    query_beams: q,
-                })
-            }
+            (
+                Some(step_layout),
+                Some(cover_layout),
+                Some(beams_layout),
+                Some(optics_layout),
+                Some(init),
+                Some(query_beams),
+                Some(optics_sums),
+            ) if substep.len() == SUBSTEP_PASSES.len() => Ok(Self {
+                step_layout,
+                cover_layout,
+                beams_layout,
+                optics_layout,
+                init,
+                substep,
+                query_beams,
+                optics_sums,
+            }),
             _ => Err(BackendError::Device {
                 backend: "precip-gpu",
                 message:
@@ -119,13 +139,18 @@ impl<G: Gpu> Kernels<G> {
 
     /// Hands every kernel and layout back to `gpu`.
     pub fn destroy(self, gpu: &mut G) {
-        let kernels = [self.init, self.query_beams]
+        let kernels = [self.init, self.query_beams, self.optics_sums]
             .into_iter()
             .chain(self.substep.into_iter().map(|(_, k)| k))
             .collect();
         give_back(
             gpu,
-            vec![self.step_layout, self.cover_layout, self.beams_layout],
+            vec![
+                self.step_layout,
+                self.cover_layout,
+                self.beams_layout,
+                self.optics_layout,
+            ],
             kernels,
         );
     }
@@ -135,17 +160,20 @@ impl<G: Gpu> Kernels<G> {
             &self.cover_layout
         } else if fill.layout.name == BEAM_GROUP.layout.name {
             &self.beams_layout
+        } else if fill.layout.name == OPTICS_GROUP.layout.name {
+            &self.optics_layout
         } else {
             &self.step_layout
         }
     }
 }
 
-/// The buffers of a beam query.
+/// The buffers of an on-demand query (a beam query's params, beams and hits; an
+/// optics query's params and partials).
 struct QueryBuffers<'a, G: Gpu> {
     params: &'a G::Buffer,
-    beams: &'a G::Buffer,
-    hits: &'a G::Buffer,
+    input: Option<&'a G::Buffer>,
+    output: &'a G::Buffer,
 }
 
 /// One configuration on a device: its host state and its device resources.
@@ -327,14 +355,16 @@ impl<G: Gpu> Simulation<G> {
                 Bound::WindVolume => {
                     BindingResource::Volume(wind.ok_or_else(|| missing("the wind volume"))?)
                 }
-                Bound::BeamParams => {
-                    BindingResource::Buffer(query.ok_or_else(|| missing("the beam query"))?.params)
+                Bound::BeamParams | Bound::OpticsParams => {
+                    BindingResource::Buffer(query.ok_or_else(|| missing("the query"))?.params)
                 }
-                Bound::Beams => {
-                    BindingResource::Buffer(query.ok_or_else(|| missing("the beam query"))?.beams)
-                }
-                Bound::BeamHits => {
-                    BindingResource::Buffer(query.ok_or_else(|| missing("the beam query"))?.hits)
+                Bound::Beams => BindingResource::Buffer(
+                    query
+                        .and_then(|q| q.input)
+                        .ok_or_else(|| missing("the beams"))?,
+                ),
+                Bound::BeamHits | Bound::OpticsPartials => {
+                    BindingResource::Buffer(query.ok_or_else(|| missing("the query"))?.output)
                 }
             };
             entries.push((binding, resource));
@@ -514,8 +544,8 @@ impl<G: Gpu> Simulation<G> {
             };
             let query = QueryBuffers {
                 params: p,
-                beams: b,
-                hits: h,
+                input: Some(b),
+                output: h,
             };
             let group =
                 Self::fill_group(gpu, kernels, &BEAM_GROUP, &self.buffers, None, Some(&query))?;
@@ -531,6 +561,75 @@ impl<G: Gpu> Simulation<G> {
             let read = ran.and_then(|()| gpu.read_buffer(h, hits_bytes));
             gpu.destroy_bind_group(group);
             Ok(bytemuck::pod_collect_to_vec(&read?))
+        })();
+        for b in made {
+            gpu.destroy_buffer(b);
+        }
+        result
+    }
+
+    /// The optics of the air now ([`Optics::from_sums`]): the camera volume's
+    /// cross-sections summed on the device by `optics_sums` (one partial per
+    /// workgroup, 32 bytes, read back and added in order), in place of reading every
+    /// particle back.
+    pub fn optics(&self, gpu: &mut G, kernels: &Kernels<G>) -> Result<Optics, BackendError> {
+        let (x, y) = dispatch_size(self.particle_count);
+        let groups = u64::from(x) * u64::from(y);
+        let partial_bytes = groups * size_of::<OpticsPartial>() as u64;
+        let params = OpticsParams {
+            particle_count: self.particle_count,
+            ..OpticsParams::default()
+        };
+        let mut made: Vec<G::Buffer> = Vec::with_capacity(2);
+        let result = (|| {
+            made.push(gpu.create_buffer(
+                "precip optics params",
+                size_of::<OpticsParams>() as u64,
+                BufferUsage::Uniform,
+                Some(bytemuck::bytes_of(&params)),
+            )?);
+            made.push(gpu.create_buffer(
+                "precip optics partials",
+                partial_bytes,
+                BufferUsage::Storage,
+                None,
+            )?);
+            let [p, partials] = &made[..] else {
+                return Err(BackendError::Device {
+                    backend: "precip-gpu",
+                    message: "the optics query lost a buffer (a bug in precip: please report it)"
+                        .into(),
+                });
+            };
+            let query = QueryBuffers {
+                params: p,
+                input: None,
+                output: partials,
+            };
+            let group = Self::fill_group(
+                gpu,
+                kernels,
+                &OPTICS_GROUP,
+                &self.buffers,
+                None,
+                Some(&query),
+            )?;
+            let ran = gpu.dispatch(
+                &[Dispatch {
+                    kernel: &kernels.optics_sums,
+                    group: &group,
+                    offset: None,
+                    workgroups: (x, y),
+                }],
+                false,
+            );
+            let read = ran.and_then(|()| gpu.read_buffer(partials, partial_bytes));
+            gpu.destroy_bind_group(group);
+            let partials: Vec<OpticsPartial> = bytemuck::pod_collect_to_vec(&read?);
+            Ok(Optics::from_sums(
+                self.host.weather(),
+                &CrossSectionSums::of_partials(&partials),
+            ))
         })();
         for b in made {
             gpu.destroy_buffer(b);

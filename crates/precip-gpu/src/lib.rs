@@ -31,6 +31,7 @@
 pub mod bind_groups;
 pub mod executor;
 pub mod frame;
+pub mod frame_resources;
 pub mod gpu;
 pub mod recipe;
 pub mod resources;

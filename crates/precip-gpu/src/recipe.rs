@@ -629,6 +629,41 @@ pub mod beam_bindings {
     pub const HITS: u32 = 5;
 }
 
+/// Bindings of [`Program::OpticsSums`], group 0 (`shaders/optics_sums.wgsl`).
+pub mod optics_bindings {
+    /// [`super::OpticsParams`], uniform.
+    pub const PARAMS: u32 = 0;
+    /// The particles, read only.
+    pub const PARTICLES: u32 = 1;
+    /// One `precip_model::sensors::optics::OpticsPartial` per workgroup, written.
+    pub const PARTIALS: u32 = 2;
+}
+
+/// The `optics_sums` kernel's block.
+///
+/// WGSL twin: `OpticsParams` in `shaders/optics_sums.wgsl` (16 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct OpticsParams {
+    /// Particles.
+    pub particle_count: u32,
+    /// Unused.
+    pub reserved0: u32,
+    /// Unused.
+    pub reserved1: u32,
+    /// Unused.
+    pub reserved2: u32,
+}
+const _: () = assert!(size_of::<OpticsParams>() == 16);
+
+/// The on-demand query of `Backend::optics`: the camera volume's cross-sections
+/// summed per workgroup (one `OpticsPartial` each), over every particle.
+pub const OPTICS_PASS: KernelPass = KernelPass {
+    program: Program::OpticsSums,
+    entry_point: "optics_sums",
+    over: DispatchOver::Particles,
+};
+
 /// Bindings of [`Program::StepParticles`], group 0.
 pub mod step_bindings {
     /// `StepParams`, uniform, dynamic offset.

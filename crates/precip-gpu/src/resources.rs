@@ -12,9 +12,9 @@ use precip_model::particles::step::StepParams;
 use precip_model::physics::water_waves::initial_waves;
 use precip_model::{GroundMap, Particle};
 
-use crate::bind_groups::{BEAMS, COVER_UPDATE, GroupLayout, STEP};
-use crate::recipe::step_bindings as sb;
+use crate::bind_groups::{BEAMS, COVER_UPDATE, GroupLayout, OPTICS, STEP};
 use crate::recipe::{beam_bindings as bb, cover_bindings as cv, pending_births_bytes};
+use crate::recipe::{optics_bindings as ob, step_bindings as sb};
 
 /// A buffer of a configuration.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -198,6 +198,10 @@ pub enum Bound {
     Beams,
     /// A beam query's hits.
     BeamHits,
+    /// An optics query's [`crate::recipe::OpticsParams`].
+    OpticsParams,
+    /// An optics query's per-workgroup partials.
+    OpticsPartials,
 }
 
 /// A bind group as data: its layout's table and what fills each binding.
@@ -249,13 +253,23 @@ pub const BEAM_GROUP: GroupFill = GroupFill {
     ],
 };
 
+/// Group 0 of the `optics_sums` kernel.
+pub const OPTICS_GROUP: GroupFill = GroupFill {
+    layout: &OPTICS,
+    bound: &[
+        (ob::PARAMS, Bound::OpticsParams),
+        (ob::PARTICLES, Bound::Buffer(SimBuffer::Particles)),
+        (ob::PARTIALS, Bound::OpticsPartials),
+    ],
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn every_binding_of_each_group_is_filled_once() {
-        for fill in [STEP_GROUP, COVER_GROUP, BEAM_GROUP] {
+        for fill in [STEP_GROUP, COVER_GROUP, BEAM_GROUP, OPTICS_GROUP] {
             assert_eq!(
                 fill.bound.len(),
                 fill.layout.bindings.len(),

@@ -95,6 +95,10 @@ pub const PARTICLE_LISTS: ShaderFile = shader_file!("particle_lists.wgsl");
 pub const RENDER_SPLAT: ShaderFile = shader_file!("render_splat.wgsl");
 /// Kernels `cull_count`, `cull_scan`, `cull_write`.
 pub const CULL_PARTICLES: ShaderFile = shader_file!("cull_particles.wgsl");
+/// Particles' cross-sections (Rust twin: `sensors::optics`).
+pub const OPTICS: ShaderFile = twin_file!("optics.wgsl", precip_model::wgsl::OPTICS);
+/// Kernel `optics_sums`: the camera volume's cross-sections per workgroup.
+pub const OPTICS_SUMS: ShaderFile = shader_file!("optics_sums.wgsl");
 /// Test kernel `probe_drawing`.
 pub const PROBE_DRAWING: ShaderFile = shader_file!("probe_drawing.wgsl");
 
@@ -116,11 +120,13 @@ pub enum Program {
     ProbeDrawing,
     /// LiDAR beams against the particles and the ground.
     QueryBeams,
+    /// The camera volume's cross-sections summed per workgroup (`Backend::optics`).
+    OpticsSums,
 }
 
 impl Program {
     /// Every program.
-    pub const ALL: [Self; 7] = [
+    pub const ALL: [Self; 8] = [
         Self::StepParticles,
         Self::CoverUpdate,
         Self::ProbeRng,
@@ -128,6 +134,7 @@ impl Program {
         Self::CullParticles,
         Self::ProbeDrawing,
         Self::QueryBeams,
+        Self::OpticsSums,
     ];
 
     /// The files, in the order they are joined.
@@ -174,6 +181,7 @@ impl Program {
             ],
             Self::ProbeDrawing => &[DRAWING, PROBE_DRAWING],
             Self::QueryBeams => &[LAYOUT, GROUND_MAP, LIDAR],
+            Self::OpticsSums => &[LAYOUT, OPTICS, OPTICS_SUMS],
         }
     }
 
@@ -215,6 +223,7 @@ impl Program {
             Self::CullParticles => &["cull_count", "cull_scan", "cull_write"],
             Self::ProbeDrawing => &["probe_drawing"],
             Self::QueryBeams => &["query_beams"],
+            Self::OpticsSums => &["optics_sums"],
         }
     }
 
@@ -229,6 +238,7 @@ impl Program {
             Self::CullParticles => "precip cull_particles",
             Self::ProbeDrawing => "precip probe_drawing",
             Self::QueryBeams => "precip query_beams",
+            Self::OpticsSums => "precip optics_sums",
         }
     }
 

@@ -7,6 +7,7 @@ use std::mem::{offset_of, size_of};
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use precip_gpu::bind_groups::{BindingKind, Stages, TextureSample, groups_of};
+use precip_gpu::recipe::OpticsParams;
 use precip_gpu::recipe::{DrawArgs, FrameDraws, Frames, ProbeDrawing};
 use precip_gpu::shaders::Program;
 use precip_model::Particle;
@@ -14,6 +15,7 @@ use precip_model::cover::{CoverStepParams, CoverTexel, GridFrame};
 use precip_model::drawing::render::RenderParams;
 use precip_model::particles::step::StepParams;
 use precip_model::sensors::lidar::{Beam, BeamHit, BeamParams};
+use precip_model::sensors::optics::OpticsPartial;
 use precip_model::wind::WindParams;
 
 fn parse(program: Program) -> naga::Module {
@@ -58,6 +60,7 @@ fn wgsl_layouts() -> HashMap<String, (u32, HashMap<String, u32>)> {
         Program::CullParticles,
         Program::ProbeDrawing,
         Program::QueryBeams,
+        Program::OpticsSums,
     ] {
         let module = parse(program);
         for (_, ty) in module.types.iter() {
@@ -144,6 +147,18 @@ fn rust_and_wgsl_layouts_match() {
             particle_diameter_m,
             particle_flags,
             target_range_m
+        }),
+        rust_layout!(OpticsPartial {
+            extinction_m2,
+            sampled,
+            backscatter_m2_sr,
+            reserved
+        }),
+        rust_layout!(OpticsParams {
+            particle_count,
+            reserved0,
+            reserved1,
+            reserved2
         }),
         rust_layout!(BeamParams {
             beam_count,

@@ -35,5 +35,8 @@ pub const WATER_LOOK: &str = include_str!("../shaders/water_look.wgsl");
 /// `drawing.wgsl`: sprite, tetrahedron, view cone, lighting and fog, twins of
 /// [`crate::drawing`].
 pub const DRAWING: &str = include_str!("../shaders/drawing.wgsl");
+/// `optics.wgsl`: a particle's extinction and backscatter cross-sections, twins of
+/// [`crate::sensors::optics`].
+pub const OPTICS: &str = include_str!("../shaders/optics.wgsl");
 /// `lidar.wgsl`: kernel `query_beams`, twin of [`crate::sensors::lidar`].
 pub const LIDAR: &str = include_str!("../shaders/lidar.wgsl");

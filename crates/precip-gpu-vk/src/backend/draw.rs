@@ -11,6 +11,7 @@ use crate::render::scene::SceneGpu;
 use crate::render::target::{OFFSCREEN_FORMAT, OffscreenTarget};
 use crate::render::{FrameTarget, RenderState, Renderer, record_frame};
 use crate::transfer::{FRAMES_IN_FLIGHT, download};
+use precip_gpu::frame_resources::FrameBuffer;
 use precip_gpu::recipe::FrameDraws;
 use precip_model::{BackendError, DrawnCounts, View};
 
@@ -56,7 +57,11 @@ impl VkBackend {
         let Some(render) = &state.render else {
             return Ok(DrawnCounts::default());
         };
-        let bytes = download(&self.hal.device, &render.frame.draws, FrameDraws::BYTES)?;
+        let bytes = download(
+            &self.hal.device,
+            render.frame.buffer(FrameBuffer::Draws)?,
+            FrameDraws::BYTES,
+        )?;
         Ok(FrameDraws::counts(&bytes))
     }
 
@@ -166,14 +171,18 @@ impl VkBackend {
             // SAFETY: the slot's last frame finished (waited for above); the depth
             // view is the live target's.
             unsafe {
-                render
-                    .frame
-                    .write_splat_sets(device, slot as usize, depth, &sums.buffer);
+                render.frame.write_splat_sets(
+                    device,
+                    renderer,
+                    &state.sim,
+                    slot as usize,
+                    (depth, &sums.buffer),
+                )?;
             }
         }
         render
             .frame
-            .params
+            .buffer_mut(FrameBuffer::RenderParams)?
             .write(offset as usize, bytemuck::bytes_of(&params))?;
         let target = FrameTarget {
             passes,

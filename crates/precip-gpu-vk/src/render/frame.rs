@@ -1,70 +1,55 @@
-//! The per-configuration resources of drawing: the frame's uniform blocks (one per
-//! frame in flight), the cull lists and indirect draws, the shadow map with its
-//! framebuffer, and the descriptor sets of the draws and the cull kernels.
+//! The per-configuration resources of drawing on Vulkan, made from the frame's
+//! resources table (`precip_gpu::frame_resources`): its buffers (the frame's
+//! uniform block, one per frame in flight), images and descriptor sets filled as the
+//! table says, the shadow map's framebuffer, and per frame in flight the target's
+//! sets (`TARGET_GROUPS`), written when the target changes. wgpu twin:
+//! `precip_gpu_wgpu::render::frame`.
 
 use ash::vk;
 use glam::UVec3;
 use gpu_allocator::MemoryLocation;
-use precip_gpu::recipe::{
-    DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
-    cull_bindings as cb, cull_groups, render_bindings as rb,
+use precip_gpu::Simulation;
+use precip_gpu::bind_groups::{BindingKind, GroupLayout};
+use precip_gpu::frame_resources::{
+    FRAME_GROUPS, FrameBound, FrameBuffer, FrameBufferUsage, FrameGroupFill, FrameTexture, Sampler,
+    TARGET_GROUPS, TargetResource, TexelFormat, TextureUsage, frame_buffers, frame_textures,
+    splat_sums_bytes,
 };
-use precip_model::drawing::render::RenderParams;
 use precip_model::{BackendError, Setup};
 
 use super::Renderer;
+use crate::bind_groups::descriptor_type;
 use crate::buffer::Buffer;
-use crate::descriptors::{self, buffer_info, image_info, sampler_info, write};
+use crate::descriptors::{self, write};
 use crate::device::Device;
 use crate::error::map_vk;
+use crate::gpu::Hal;
 use crate::image::{DEPTH_FORMAT, Image, ImageSpec};
+use crate::transfer::{FRAMES_IN_FLIGHT, to_general, upload_image};
 
 /// The cover textures' format (`precip_gpu::recipe::COVER_TEXTURE_FORMAT_NAME`).
 pub const COVER_TEXTURE_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
-use crate::gpu::Hal;
-use crate::transfer::{FRAMES_IN_FLIGHT, to_general};
-use precip_gpu::Simulation;
-use precip_gpu::resources::SimBuffer;
 
 /// What drawing adds to a configuration.
 #[derive(Debug)]
 pub struct FrameResources {
-    /// `RenderParams`, one block per frame in flight at `params_stride`.
-    pub params: Buffer,
-    /// Bytes between the blocks.
+    buffers: Vec<(FrameBuffer, Buffer)>,
+    images: Vec<(FrameTexture, Image, TextureUsage)>,
+    /// Bytes between two frames' `RenderParams` blocks.
     pub params_stride: u64,
-    group_counts: Buffer,
-    drawn: Buffer,
-    /// Each particle's class this frame (`cull_count` writes it).
-    drawn_kinds: Buffer,
-    /// [`FrameDraws`]: the two indirect draws and the splat count.
-    pub draws: Buffer,
-    /// The sun's depth.
-    pub shadow_map: Image,
-    /// The cover's two filtered textures (`GENERAL`: written by `cover_texture`,
-    /// sampled by the draws).
-    cover_images: [Image; 3],
-    /// Set 0 of the `cover_texture` kernel.
-    pub cover_texture_set: vk::DescriptorSet,
-    /// Cover texels (the kernel's dispatch).
-    pub cover_texels: u32,
-    /// Its framebuffer (the shadow pass).
+    /// The shadow map as the shadow pass's attachment.
     pub shadow_framebuffer: vk::Framebuffer,
     pool: vk::DescriptorPool,
-    /// Set 0 of the draws.
-    pub frame_set: vk::DescriptorSet,
-    /// Set 1 of the draws.
-    pub light_set: vk::DescriptorSet,
-    /// Set 0 of the cull kernels.
-    pub cull_set: vk::DescriptorSet,
-    /// Set 2 of the splat kernel, one per frame in flight (written by
-    /// [`FrameResources::write_splat_sets`] with the frame's target).
+    sets: Vec<(&'static str, vk::DescriptorSet)>,
+    /// The splat kernel's set, one per frame in flight.
     pub splat_sets: [vk::DescriptorSet; FRAMES_IN_FLIGHT],
-    /// Set 2 of the resolve draw, one per frame in flight.
+    /// The resolve draw's set, one per frame in flight.
     pub resolve_sets: [vk::DescriptorSet; FRAMES_IN_FLIGHT],
+    /// Cover texels (the `cover_texture` kernel's dispatch).
+    pub cover_texels: u32,
 }
 
-/// The splat's sums for one target size ([`SPLAT_BYTES_PER_PIXEL`] per pixel).
+/// The splat's sums for one target size (`precip_gpu::frame_resources::splat_sums_bytes`).
 #[derive(Debug)]
 pub struct SplatSums {
     /// The buffer.
@@ -79,13 +64,12 @@ pub struct SplatSums {
 impl SplatSums {
     /// Sums for a `size` target (filled with zeros by the first frame).
     pub fn new(device: &Device, size: (u32, u32)) -> Result<Self, BackendError> {
-        let bytes = u64::from(size.0) * u64::from(size.1) * SPLAT_BYTES_PER_PIXEL;
         Ok(Self {
             buffer: Buffer::new(
                 device,
                 "splat sums",
-                bytes,
-                STORAGE | vk::BufferUsageFlags::TRANSFER_DST,
+                splat_sums_bytes(size),
+                vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
                 MemoryLocation::GpuOnly,
             )?,
             size,
@@ -93,8 +77,6 @@ impl SplatSums {
         })
     }
 }
-
-const STORAGE: vk::BufferUsageFlags = vk::BufferUsageFlags::STORAGE_BUFFER;
 
 /// A framebuffer of `views` for `pass`, `size` px.
 pub fn framebuffer(
@@ -114,19 +96,38 @@ pub fn framebuffer(
         .map_err(|e| map_vk("creating a framebuffer", e))
 }
 
-/// A resource made above not found below: a bug.
+/// A resource the tables name that was not made (a bug in precip).
 fn missing(what: &str) -> BackendError {
     BackendError::Device {
         backend: crate::error::NAME,
-        message: format!("a {what} of the frame is missing (a bug in precip: please report it)"),
+        message: format!("{what} of the frame is missing (a bug in precip: please report it)"),
     }
 }
 
-/// What [`FrameResources::new`] has made so far, freed when a later step fails.
+/// The Vulkan format of `format`.
+fn texel_format(format: TexelFormat) -> vk::Format {
+    match format {
+        TexelFormat::Depth32Float => DEPTH_FORMAT,
+        TexelFormat::Rgba16Float => COVER_TEXTURE_FORMAT,
+        TexelFormat::R8Unorm => vk::Format::R8_UNORM,
+    }
+}
+
+/// The layout an image of `usage` is in when a shader reads it.
+fn read_layout(usage: TextureUsage) -> vk::ImageLayout {
+    match usage {
+        TextureUsage::StorageAndSampled => vk::ImageLayout::GENERAL,
+        TextureUsage::DepthAttachment | TextureUsage::Sampled => {
+            vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL
+        }
+    }
+}
+
+/// What a frame's resources hold while they are made, freed when a later step fails.
 #[derive(Default)]
 struct Made {
-    buffers: Vec<Buffer>,
-    images: Vec<Image>,
+    buffers: Vec<(FrameBuffer, Buffer)>,
+    images: Vec<(FrameTexture, Image, TextureUsage)>,
     framebuffer: Option<vk::Framebuffer>,
     pool: Option<vk::DescriptorPool>,
 }
@@ -142,14 +143,136 @@ impl Made {
                 device.raw.destroy_framebuffer(framebuffer, None);
             }
         }
-        self.images.into_iter().for_each(|i| i.destroy(device));
-        self.buffers.into_iter().for_each(|b| b.destroy(device));
+        self.images
+            .into_iter()
+            .for_each(|(_, i, _)| i.destroy(device));
+        self.buffers
+            .into_iter()
+            .for_each(|(_, b)| b.destroy(device));
+    }
+}
+
+/// One descriptor's info, kept alive while the writes that point at it are made.
+enum Info {
+    Buffer([vk::DescriptorBufferInfo; 1]),
+    Image([vk::DescriptorImageInfo; 1]),
+}
+
+/// What the groups' entries resolve against.
+struct Bindable<'a> {
+    buffers: &'a [(FrameBuffer, Buffer)],
+    images: &'a [(FrameTexture, Image, TextureUsage)],
+    sim: &'a Simulation<Hal>,
+    renderer: &'a Renderer,
+    /// The target's depth view and splat sums, for the target's groups.
+    target: Option<(vk::ImageView, &'a Buffer)>,
+}
+
+impl Bindable<'_> {
+    /// The info of `bound` for a binding of `kind`.
+    fn info(&self, kind: BindingKind, bound: FrameBound) -> Result<Info, BackendError> {
+        let range = match kind {
+            BindingKind::Uniform { min_bytes, .. }
+            | BindingKind::Storage {
+                min_bytes,
+                dynamic: true,
+                ..
+            } => min_bytes,
+            _ => vk::WHOLE_SIZE,
+        };
+        let buffer = |b: &Buffer| {
+            Info::Buffer([vk::DescriptorBufferInfo {
+                buffer: b.raw,
+                offset: 0,
+                range,
+            }])
+        };
+        let image = |view, layout| {
+            Info::Image([vk::DescriptorImageInfo {
+                sampler: vk::Sampler::null(),
+                image_view: view,
+                image_layout: layout,
+            }])
+        };
+        let of = |texture| {
+            self.images
+                .iter()
+                .find(|(t, ..)| *t == texture)
+                .ok_or_else(|| missing("a texture"))
+        };
+        Ok(match bound {
+            FrameBound::Sim(b) => buffer(self.sim.buffer(b)),
+            FrameBound::Buffer(b) => buffer(
+                self.buffers
+                    .iter()
+                    .find(|(k, _)| *k == b)
+                    .map(|(_, b)| b)
+                    .ok_or_else(|| missing("a buffer"))?,
+            ),
+            FrameBound::Texture(t) => {
+                let (_, i, usage) = of(t)?;
+                image(i.view, read_layout(*usage))
+            }
+            FrameBound::StorageTexture(t) => image(of(t)?.1.view, vk::ImageLayout::GENERAL),
+            FrameBound::Sampler(s) => Info::Image([vk::DescriptorImageInfo {
+                sampler: match s {
+                    Sampler::LinearClamp => self.renderer.samplers.flake,
+                    Sampler::ShadowComparison => self.renderer.samplers.shadow,
+                },
+                image_view: vk::ImageView::null(),
+                image_layout: vk::ImageLayout::UNDEFINED,
+            }]),
+            FrameBound::Target(TargetResource::CameraDepth) => image(
+                self.target.ok_or_else(|| missing("the depth buffer"))?.0,
+                vk::ImageLayout::DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+            ),
+            FrameBound::Target(TargetResource::SplatSums) => {
+                buffer(self.target.ok_or_else(|| missing("the splat sums"))?.1)
+            }
+        })
+    }
+
+    /// Writes `set` as `fill` says.
+    ///
+    /// # Safety
+    /// `set` was allocated with `fill`'s layout and no pending work uses it.
+    unsafe fn write(
+        &self,
+        device: &Device,
+        set: vk::DescriptorSet,
+        fill: &FrameGroupFill,
+    ) -> Result<(), BackendError> {
+        let mut infos = Vec::with_capacity(fill.bound.len());
+        for &(binding, bound) in fill.bound {
+            let kind = fill
+                .layout
+                .bindings
+                .iter()
+                .find(|b| b.binding == binding)
+                .map(|b| b.kind)
+                .ok_or_else(|| missing(fill.layout.name))?;
+            infos.push((binding, kind, self.info(kind, bound)?));
+        }
+        let writes: Vec<vk::WriteDescriptorSet<'_>> = infos
+            .iter()
+            .map(|(binding, kind, info)| {
+                let w = write(set, *binding, descriptor_type(*kind));
+                match info {
+                    Info::Buffer(b) => w.buffer_info(b),
+                    Info::Image(i) => w.image_info(i),
+                }
+            })
+            .collect();
+        // SAFETY: every write names a live buffer, view or sampler of its binding's
+        // type (checked against the table); the set is unused (the caller's guarantee).
+        unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
+        Ok(())
     }
 }
 
 impl FrameResources {
-    /// Allocates drawing's resources beside the simulation's `sim`; on an error,
-    /// frees what it made.
+    /// Allocates drawing's resources beside the simulation's `sim`, from the table;
+    /// on an error, frees what it made.
     pub fn new(
         device: &Device,
         renderer: &Renderer,
@@ -162,8 +285,6 @@ impl FrameResources {
         result
     }
 
-    /// Makes everything, each object kept in `made` until the last step moves them
-    /// into the result (so `made` ends empty on success).
     fn make(
         device: &Device,
         renderer: &Renderer,
@@ -171,282 +292,219 @@ impl FrameResources {
         setup: &Setup,
         made: &mut Made,
     ) -> Result<Self, BackendError> {
-        let shadow_map_px = setup.render.shadow_map_px;
         let count = sim.particle_count();
-        let groups = cull_groups(count);
         let limits = &device.properties.limits;
         // The block is bound as a uniform and as storage: both alignments (powers of two).
         let align = limits
             .min_storage_buffer_offset_alignment
             .max(limits.min_uniform_buffer_offset_alignment)
             .max(16);
-        let params_stride = (size_of::<RenderParams>() as u64).div_ceil(align) * align;
-        // params, group counts, drawn, drawn kinds, draws.
-        let buffers = [
-            (
-                "render params",
-                params_stride * FRAMES_IN_FLIGHT as u64,
-                vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_BUFFER,
-                MemoryLocation::CpuToGpu,
-            ),
-            (
-                "cull groups",
-                u64::from(groups) * GROUP_COUNT_BYTES,
-                STORAGE,
-                MemoryLocation::GpuOnly,
-            ),
-            (
-                "drawn",
-                u64::from(count) * DRAWN_LIST_BYTES_PER_PARTICLE,
-                STORAGE,
-                MemoryLocation::GpuOnly,
-            ),
-            (
-                "drawn kinds",
-                u64::from(count) * 4,
-                STORAGE,
-                MemoryLocation::GpuOnly,
-            ),
-            (
-                "draws",
-                FrameDraws::BYTES,
-                STORAGE
-                    | vk::BufferUsageFlags::INDIRECT_BUFFER
-                    | vk::BufferUsageFlags::TRANSFER_SRC,
-                MemoryLocation::GpuOnly,
-            ),
-        ];
-        for (name, size, usage, location) in buffers {
-            made.buffers
-                .push(Buffer::new(device, name, size, usage, location)?);
+        let mut params_stride = 0;
+        for spec in frame_buffers(count) {
+            use vk::BufferUsageFlags as U;
+            let (bytes, usage, location) = match spec.usage {
+                FrameBufferUsage::Params => {
+                    params_stride = spec.bytes.div_ceil(align) * align;
+                    (
+                        params_stride * FRAMES_IN_FLIGHT as u64,
+                        U::STORAGE_BUFFER | U::UNIFORM_BUFFER,
+                        MemoryLocation::CpuToGpu,
+                    )
+                }
+                FrameBufferUsage::Storage => {
+                    (spec.bytes, U::STORAGE_BUFFER, MemoryLocation::GpuOnly)
+                }
+                FrameBufferUsage::Indirect => (
+                    spec.bytes,
+                    U::STORAGE_BUFFER | U::INDIRECT_BUFFER | U::TRANSFER_SRC,
+                    MemoryLocation::GpuOnly,
+                ),
+            };
+            let name = spec.label.trim_start_matches("precip ");
+            made.buffers.push((
+                spec.buffer,
+                Buffer::new(device, name, bytes, usage, location)?,
+            ));
         }
-        made.images.push(Image::new(
-            device,
-            &ImageSpec {
-                name: "shadow map",
-                extent: UVec3::new(shadow_map_px, shadow_map_px, 1),
-                format: DEPTH_FORMAT,
-                usage: vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
-            },
-        )?);
-        let shadow_view = made.images[0].view;
-        let shadow_size = made.images[0].size();
+        for spec in frame_textures(setup) {
+            use vk::ImageUsageFlags as U;
+            let usage = match spec.usage {
+                TextureUsage::DepthAttachment => U::DEPTH_STENCIL_ATTACHMENT | U::SAMPLED,
+                TextureUsage::StorageAndSampled => U::STORAGE | U::SAMPLED,
+                TextureUsage::Sampled => U::SAMPLED | U::TRANSFER_DST,
+            };
+            let image = Image::new(
+                device,
+                &ImageSpec {
+                    name: spec.label.trim_start_matches("precip "),
+                    extent: UVec3::new(spec.size[0], spec.size[1], 1),
+                    format: texel_format(spec.format),
+                    usage,
+                },
+            )?;
+            made.images.push((spec.texture, image, spec.usage));
+            if let (Some(texels), Some((_, image, _))) = (&spec.contents, made.images.last()) {
+                upload_image(device, image, texels)?;
+            }
+        }
+        let general: Vec<&Image> = made
+            .images
+            .iter()
+            .filter(|(.., usage)| *usage == TextureUsage::StorageAndSampled)
+            .map(|(_, i, _)| i)
+            .collect();
+        to_general(device, &general)?;
+        let (shadow_view, shadow_size) = made
+            .images
+            .iter()
+            .find(|(t, ..)| *t == FrameTexture::ShadowMap)
+            .map(|(_, i, _)| (i.view, i.size()))
+            .ok_or_else(|| missing("the shadow map"))?;
         let shadow_framebuffer =
             framebuffer(device, renderer.shadow_pass, &[shadow_view], shadow_size)?;
         made.framebuffer = Some(shadow_framebuffer);
         device.name(shadow_framebuffer, "precip shadow framebuffer");
-        let texels = setup.cover.frame.texels;
-        for name in ["cover a", "cover b", "cover c"] {
-            made.images.push(Image::new(
-                device,
-                &ImageSpec {
-                    name,
-                    extent: UVec3::new(texels.x, texels.y, 1),
-                    format: COVER_TEXTURE_FORMAT,
-                    usage: vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::SAMPLED,
-                },
-            )?);
-        }
-        to_general(device, &[&made.images[1], &made.images[2], &made.images[3]])?;
 
-        use vk::DescriptorType as T;
-        let pool = descriptors::pool(
-            device,
-            "frame",
-            &[
-                (T::UNIFORM_BUFFER_DYNAMIC, 1),
-                (T::STORAGE_BUFFER_DYNAMIC, 2),
-                (T::STORAGE_BUFFER, 11 + 2 * FRAMES_IN_FLIGHT as u32),
-                (T::SAMPLED_IMAGE, 5 + FRAMES_IN_FLIGHT as u32),
-                (T::SAMPLER, 3),
-                (T::STORAGE_IMAGE, 3),
-            ],
-            4 + 2 * FRAMES_IN_FLIGHT as u32,
-        )?;
+        // One pool for the configuration's sets and the target's, per frame in flight.
+        let fills: Vec<&FrameGroupFill> = FRAME_GROUPS
+            .iter()
+            .chain((0..FRAMES_IN_FLIGHT).flat_map(|_| TARGET_GROUPS.iter()))
+            .collect();
+        let mut sizes: Vec<(vk::DescriptorType, u32)> = Vec::new();
+        for fill in &fills {
+            for b in fill.layout.bindings {
+                let ty = descriptor_type(b.kind);
+                match sizes.iter_mut().find(|(t, _)| *t == ty) {
+                    Some((_, n)) => *n += 1,
+                    None => sizes.push((ty, 1)),
+                }
+            }
+        }
+        let pool = descriptors::pool(device, "frame", &sizes, fills.len() as u32)?;
         made.pool = Some(pool);
-        let mut layouts = vec![
-            renderer.layouts.frame,
-            renderer.layouts.light,
-            renderer.layouts.cull,
-            renderer.layouts.cover_texture,
-        ];
-        layouts.extend([renderer.layouts.splat; FRAMES_IN_FLIGHT]);
-        layouts.extend([renderer.layouts.splat_resolve; FRAMES_IN_FLIGHT]);
-        let sets = descriptors::allocate(device, pool, &layouts)?;
-        let (frame_set, light_set, cull_set, cover_texture_set) =
-            (sets[0], sets[1], sets[2], sets[3]);
-        let splat_sets: [vk::DescriptorSet; FRAMES_IN_FLIGHT] =
-            std::array::from_fn(|i| sets[4 + i]);
-        let resolve_sets: [vk::DescriptorSet; FRAMES_IN_FLIGHT] =
-            std::array::from_fn(|i| sets[4 + FRAMES_IN_FLIGHT + i]);
-        let general = |view| {
-            [vk::DescriptorImageInfo {
-                sampler: vk::Sampler::null(),
-                image_view: view,
-                image_layout: vk::ImageLayout::GENERAL,
-            }]
+        let layouts = fills
+            .iter()
+            .map(|fill| {
+                renderer
+                    .layouts
+                    .set_layout_of(fill.layout)
+                    .ok_or_else(|| missing(fill.layout.name))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let all = descriptors::allocate(device, pool, &layouts)?;
+        let bindable = Bindable {
+            buffers: &made.buffers,
+            images: &made.images,
+            sim,
+            renderer,
+            target: None,
         };
-        let (cover_a, cover_b, cover_c) = (
-            general(made.images[1].view),
-            general(made.images[2].view),
-            general(made.images[3].view),
-        );
-        let cover_sampler = sampler_info(renderer.samplers.flake);
-        let whole = |b: &Buffer| buffer_info(b, vk::WHOLE_SIZE);
-        let [params, group_counts, drawn, drawn_kinds, draws] =
-            [0, 1, 2, 3, 4].map(|i| &made.buffers[i]);
-        let params_info = buffer_info(params, size_of::<RenderParams>() as u64);
-        let (cover, ground, particles) = (
-            whole(sim.buffer(SimBuffer::Cover)),
-            whole(sim.buffer(SimBuffer::Ground)),
-            whole(sim.buffer(SimBuffer::Particles)),
-        );
-        let waves = whole(sim.buffer(SimBuffer::Waves));
-        let (drawn_info, groups_info, draws_info, kinds_info) = (
-            whole(drawn),
-            whole(group_counts),
-            whole(draws),
-            whole(drawn_kinds),
-        );
-        let (shadow_image, flake_image) =
-            (image_info(shadow_view), image_info(renderer.flake.view));
-        let (shadow_sampler, flake_sampler) = (
-            sampler_info(renderer.samplers.shadow),
-            sampler_info(renderer.samplers.flake),
-        );
-        let writes = [
-            write(frame_set, rb::PARAMS, T::UNIFORM_BUFFER_DYNAMIC).buffer_info(&params_info),
-            write(frame_set, rb::PARAMS_SWITCHES, T::STORAGE_BUFFER_DYNAMIC)
-                .buffer_info(&params_info),
-            write(frame_set, rb::COVER_A, T::SAMPLED_IMAGE).image_info(&cover_a),
-            write(frame_set, rb::COVER_B, T::SAMPLED_IMAGE).image_info(&cover_b),
-            write(frame_set, rb::COVER_C, T::SAMPLED_IMAGE).image_info(&cover_c),
-            write(frame_set, rb::COVER_SAMPLER, T::SAMPLER).image_info(&cover_sampler),
-            write(cover_texture_set, rb::COVER, T::STORAGE_BUFFER).buffer_info(&cover),
-            write(cover_texture_set, rb::COVER_A_OUT, T::STORAGE_IMAGE).image_info(&cover_a),
-            write(cover_texture_set, rb::COVER_B_OUT, T::STORAGE_IMAGE).image_info(&cover_b),
-            write(cover_texture_set, rb::COVER_C_OUT, T::STORAGE_IMAGE).image_info(&cover_c),
-            write(frame_set, rb::GROUND_HEIGHT, T::STORAGE_BUFFER).buffer_info(&ground),
-            write(frame_set, rb::WAVES, T::STORAGE_BUFFER).buffer_info(&waves),
-            write(frame_set, rb::PARTICLES, T::STORAGE_BUFFER).buffer_info(&particles),
-            write(frame_set, rb::DRAWN, T::STORAGE_BUFFER).buffer_info(&drawn_info),
-            write(light_set, rb::SHADOW_MAP, T::SAMPLED_IMAGE).image_info(&shadow_image),
-            write(light_set, rb::SHADOW_SAMPLER, T::SAMPLER).image_info(&shadow_sampler),
-            write(light_set, rb::FLAKE_OPACITY, T::SAMPLED_IMAGE).image_info(&flake_image),
-            write(light_set, rb::FLAKE_SAMPLER, T::SAMPLER).image_info(&flake_sampler),
-            write(cull_set, cb::PARAMS, T::STORAGE_BUFFER_DYNAMIC).buffer_info(&params_info),
-            write(cull_set, cb::PARTICLES, T::STORAGE_BUFFER).buffer_info(&particles),
-            write(cull_set, cb::GROUP_COUNTS, T::STORAGE_BUFFER).buffer_info(&groups_info),
-            write(cull_set, cb::DRAWN, T::STORAGE_BUFFER).buffer_info(&drawn_info),
-            write(cull_set, cb::DRAWS, T::STORAGE_BUFFER).buffer_info(&draws_info),
-            write(cull_set, cb::DRAWN_KINDS, T::STORAGE_BUFFER).buffer_info(&kinds_info),
-        ];
-        // SAFETY: every write names a live buffer, view or sampler of the binding's
-        // type and usage.
-        unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
-        let mut buffers = std::mem::take(&mut made.buffers).into_iter();
-        let mut images = std::mem::take(&mut made.images).into_iter();
+        let mut sets = Vec::with_capacity(FRAME_GROUPS.len());
+        for (fill, set) in FRAME_GROUPS.iter().zip(&all) {
+            // SAFETY: the set was just allocated with the fill's layout.
+            unsafe { bindable.write(device, *set, fill)? };
+            sets.push((fill.layout.name, *set));
+        }
+        let target_sets = &all[FRAME_GROUPS.len()..];
+        let per_slot = |k: usize| -> [vk::DescriptorSet; FRAMES_IN_FLIGHT] {
+            std::array::from_fn(|slot| {
+                target_sets
+                    .get(slot * TARGET_GROUPS.len() + k)
+                    .copied()
+                    .unwrap_or_default()
+            })
+        };
+        let (splat_sets, resolve_sets) = (per_slot(0), per_slot(1));
+        let texels = setup.cover.frame.texels;
         made.framebuffer = None;
         made.pool = None;
-        let (Some(params), Some(group_counts), Some(drawn), Some(drawn_kinds), Some(draws)) = (
-            buffers.next(),
-            buffers.next(),
-            buffers.next(),
-            buffers.next(),
-            buffers.next(),
-        ) else {
-            return Err(missing("buffer"));
-        };
-        let (Some(shadow_map), Some(cover_a), Some(cover_b), Some(cover_c)) =
-            (images.next(), images.next(), images.next(), images.next())
-        else {
-            return Err(missing("image"));
-        };
         Ok(Self {
-            params,
+            buffers: std::mem::take(&mut made.buffers),
+            images: std::mem::take(&mut made.images),
             params_stride,
-            group_counts,
-            drawn,
-            drawn_kinds,
-            draws,
-            shadow_map,
             shadow_framebuffer,
-            cover_images: [cover_a, cover_b, cover_c],
-            cover_texture_set,
-            cover_texels: texels.x * texels.y,
             pool,
-            frame_set,
-            light_set,
-            cull_set,
+            sets,
             splat_sets,
             resolve_sets,
+            cover_texels: texels.x * texels.y,
         })
     }
 
-    /// Points frame slot `slot`'s splat and resolve sets at `depth` (the target's
-    /// depth view, read-only) and `sums`.
+    /// Points `slot`'s splat and resolve sets at the target's depth view and `sums`.
     ///
     /// # Safety
-    /// No pending work uses the slot's sets (its last frame has finished); `depth`
-    /// is a live depth view of `device`.
+    /// No pending work uses the slot's sets; the view and buffer are live.
     pub unsafe fn write_splat_sets(
         &self,
         device: &Device,
+        renderer: &Renderer,
+        sim: &Simulation<Hal>,
         slot: usize,
-        depth: vk::ImageView,
-        sums: &Buffer,
-    ) {
-        use vk::DescriptorType as T;
-        let depth_info = [vk::DescriptorImageInfo {
-            sampler: vk::Sampler::null(),
-            image_view: depth,
-            image_layout: vk::ImageLayout::DEPTH_STENCIL_READ_ONLY_OPTIMAL,
-        }];
-        let sums_info = buffer_info(sums, vk::WHOLE_SIZE);
-        let draws_info = buffer_info(&self.draws, vk::WHOLE_SIZE);
-        let writes = [
-            write(
-                self.splat_sets[slot],
-                rb::SPLAT_SCENE_DEPTH,
-                T::SAMPLED_IMAGE,
-            )
-            .image_info(&depth_info),
-            write(self.splat_sets[slot], rb::SPLAT_SUMS, T::STORAGE_BUFFER).buffer_info(&sums_info),
-            write(self.splat_sets[slot], rb::SPLAT_DRAWS, T::STORAGE_BUFFER)
-                .buffer_info(&draws_info),
-            write(
-                self.resolve_sets[slot],
-                rb::RESOLVED_SUMS,
-                T::STORAGE_BUFFER,
-            )
-            .buffer_info(&sums_info),
-        ];
-        // SAFETY: the view and buffer are live, of the bindings' types and usages;
-        // the sets are not in use by pending work (the caller's guarantee).
-        unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
+        (depth, sums): (vk::ImageView, &Buffer),
+    ) -> Result<(), BackendError> {
+        let bindable = Bindable {
+            buffers: &self.buffers,
+            images: &self.images,
+            sim,
+            renderer,
+            target: Some((depth, sums)),
+        };
+        for (fill, set) in TARGET_GROUPS
+            .iter()
+            .zip([self.splat_sets[slot], self.resolve_sets[slot]])
+        {
+            // SAFETY: the set was allocated with the fill's layout; the caller
+            // guarantees no pending work uses it.
+            unsafe { bindable.write(device, set, fill)? };
+        }
+        Ok(())
+    }
+
+    /// A buffer of the frame.
+    pub fn buffer(&self, buffer: FrameBuffer) -> Result<&Buffer, BackendError> {
+        self.buffers
+            .iter()
+            .find(|(b, _)| *b == buffer)
+            .map(|(_, b)| b)
+            .ok_or_else(|| missing("a buffer"))
+    }
+
+    /// A buffer of the frame, to write.
+    pub fn buffer_mut(&mut self, buffer: FrameBuffer) -> Result<&mut Buffer, BackendError> {
+        self.buffers
+            .iter_mut()
+            .find(|(b, _)| *b == buffer)
+            .map(|(_, b)| b)
+            .ok_or_else(|| missing("a buffer"))
+    }
+
+    /// An image of the frame.
+    pub fn image(&self, texture: FrameTexture) -> Result<&Image, BackendError> {
+        self.images
+            .iter()
+            .find(|(t, ..)| *t == texture)
+            .map(|(_, i, _)| i)
+            .ok_or_else(|| missing("a texture"))
+    }
+
+    /// The set made for `table`, if it is one of the configuration's.
+    #[must_use]
+    pub fn set(&self, table: &GroupLayout) -> Option<vk::DescriptorSet> {
+        self.sets
+            .iter()
+            .find(|(name, _)| *name == table.name)
+            .map(|(_, s)| *s)
     }
 
     /// Frees everything (no pending work may use it).
     pub fn destroy(self, device: &Device) {
-        // SAFETY: no pending work uses these; each is destroyed once.
-        unsafe {
-            device.raw.destroy_descriptor_pool(self.pool, None);
-            device
-                .raw
-                .destroy_framebuffer(self.shadow_framebuffer, None);
+        Made {
+            buffers: self.buffers,
+            images: self.images,
+            framebuffer: Some(self.shadow_framebuffer),
+            pool: Some(self.pool),
         }
-        self.shadow_map.destroy(device);
-        for image in self.cover_images {
-            image.destroy(device);
-        }
-        for b in [
-            self.params,
-            self.group_counts,
-            self.drawn,
-            self.drawn_kinds,
-            self.draws,
-        ] {
-            b.destroy(device);
-        }
+        .destroy(device);
     }
 }

@@ -39,13 +39,13 @@ pub mod stamps;
 pub mod target;
 
 use ash::vk;
-use glam::{UVec3, Vec3};
+use glam::Vec3;
 use precip_gpu::bind_groups::{self as bg, GroupLayout, groups_of};
 use precip_gpu::frame::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
+use precip_gpu::frame_resources::{FrameBuffer, FrameTexture};
 use precip_gpu::recipe::{DispatchCounts, FRAME_PASSES, dispatch_size};
 use precip_gpu::shaders::Program;
 use precip_model::BackendError;
-use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 
 use self::frame::FrameResources;
 use self::layouts::RenderLayouts;
@@ -57,9 +57,7 @@ use self::stamps::RenderStamps;
 use self::target::OffscreenTarget;
 use crate::commands::memory_barrier;
 use crate::device::Device;
-use crate::image::{Image, ImageSpec};
 use crate::programs::module;
-use crate::transfer::upload_image;
 
 /// The camera passes of one colour format and final layout.
 #[derive(Debug)]
@@ -76,8 +74,6 @@ pub struct Renderer {
     pub layouts: RenderLayouts,
     /// The samplers.
     pub samplers: Samplers,
-    /// The flake's opacity (R8).
-    pub flake: Image,
     /// The sun's depth pass.
     pub shadow_pass: vk::RenderPass,
     /// The frame's kernels.
@@ -95,16 +91,6 @@ impl Renderer {
     pub fn new(device: &Device) -> Result<Self, BackendError> {
         let layouts = RenderLayouts::new(device)?;
         let samplers = Samplers::new(device)?;
-        let flake = Image::new(
-            device,
-            &ImageSpec {
-                name: "flake opacity",
-                extent: UVec3::new(FLAKE_TEXTURE_PX, FLAKE_TEXTURE_PX, 1),
-                format: vk::Format::R8_UNORM,
-                usage: vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
-            },
-        )?;
-        upload_image(device, &flake, &snowflake_opacity(FLAKE_TEXTURE_PX))?;
         let render_module = module(device, Program::Render)?;
         let cull_module = module(device, Program::CullParticles)?;
         let shadow_pass = passes::shadow(device)?;
@@ -121,7 +107,6 @@ impl Renderer {
             stamps: RenderStamps::new(device)?,
             layouts,
             samplers,
-            flake,
             shadow_pass,
             kernels,
             render_module,
@@ -197,7 +182,6 @@ impl Renderer {
             device.raw.destroy_shader_module(self.cull_module, None);
         }
         self.samplers.destroy(device);
-        self.flake.destroy(device);
         self.layouts.destroy(device);
     }
 }
@@ -289,17 +273,15 @@ fn set_of(
     target: &FrameTarget,
     group: &GroupLayout,
 ) -> Option<vk::DescriptorSet> {
-    bg::lookup(
-        group,
-        [
-            (&bg::RENDER_FRAME, frame.frame_set),
-            (&bg::RENDER_LIGHT, frame.light_set),
-            (&bg::CULL, frame.cull_set),
-            (&bg::COVER_TEXTURE, frame.cover_texture_set),
-            (&bg::SPLAT, target.splat_sets.0),
-            (&bg::SPLAT_RESOLVE, target.splat_sets.1),
-        ],
-    )
+    frame.set(group).or_else(|| {
+        bg::lookup(
+            group,
+            [
+                (&bg::SPLAT, target.splat_sets.0),
+                (&bg::SPLAT_RESOLVE, target.splat_sets.1),
+            ],
+        )
+    })
 }
 
 /// Records one frame into `cb`: [`FRAME_PASSES`] in order (see the module docs),
@@ -327,6 +309,12 @@ pub unsafe fn record_frame(
         return;
     };
     let frame = &state.frame;
+    let (Ok(shadow_map), Ok(draws_buffer)) = (
+        frame.image(FrameTexture::ShadowMap),
+        frame.buffer(FrameBuffer::Draws),
+    ) else {
+        return;
+    };
     let stamps = renderer.stamps.as_ref();
     let stamp = |i, stage| {
         if let Some(s) = stamps {
@@ -458,7 +446,7 @@ pub unsafe fn record_frame(
                         (DepthTarget::ShadowMap, _) => (
                             renderer.shadow_pass,
                             frame.shadow_framebuffer,
-                            frame.shadow_map.size(),
+                            shadow_map.size(),
                             &[depth_clear],
                         ),
                         (DepthTarget::Camera, Some(AttachmentLoad::Clear)) => (
@@ -524,7 +512,7 @@ pub unsafe fn record_frame(
                         DrawOf::Indirect { offset } => unsafe {
                             device
                                 .raw
-                                .cmd_draw_indirect(cb, frame.draws.raw, offset, 1, 16)
+                                .cmd_draw_indirect(cb, draws_buffer.raw, offset, 1, 16)
                         },
                     }
                 }

@@ -50,8 +50,9 @@ use self::pipelines::{DrawPipelines, KernelPipelines};
 use self::scene::SceneGpu;
 use self::stamps::RenderStamps;
 use self::target::{ColourTarget, DepthBuffer};
-use precip_gpu::bind_groups::{self as bg, GroupLayout, groups_of};
+use precip_gpu::bind_groups::{GroupLayout, groups_of};
 use precip_gpu::frame::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
+use precip_gpu::frame_resources::{FrameBuffer, FrameTexture};
 use precip_gpu::recipe::{DispatchCounts, FRAME_PASSES, dispatch_size};
 use precip_gpu::shaders::Program;
 use precip_model::drawing::shadow_cache::ShadowCache;
@@ -164,17 +165,7 @@ fn bind_group_of<'a>(
     depth: &'a DepthBuffer,
     group: &GroupLayout,
 ) -> Option<&'a wgpu::BindGroup> {
-    bg::lookup(
-        group,
-        [
-            (&bg::RENDER_FRAME, &frame.frame_group),
-            (&bg::RENDER_LIGHT, &frame.light_group),
-            (&bg::CULL, &frame.cull_group),
-            (&bg::COVER_TEXTURE, &frame.cover_texture_group),
-            (&bg::SPLAT, &depth.splat_group),
-            (&bg::SPLAT_RESOLVE, &depth.resolve_group),
-        ],
-    )
+    frame.group(group).or_else(|| depth.group(group))
 }
 
 /// The dynamic offsets of `group`: the frame's block, at 0, for each dynamic binding
@@ -218,6 +209,12 @@ pub fn encode_frame(
 ) {
     let frame = &state.frame;
     let depth = target.depth;
+    let (Ok(shadow_view), Ok(draws_buffer)) = (
+        frame.view(FrameTexture::ShadowMap),
+        frame.buffer(FrameBuffer::Draws),
+    ) else {
+        return;
+    };
     for (index, pass) in FRAME_PASSES.iter().enumerate() {
         if pass.when == PassWhen::ShadowRedrawn && !target.draw_shadow {
             continue;
@@ -263,7 +260,7 @@ pub fn encode_frame(
                     })
                 });
                 let depth_view = match recipe.depth {
-                    DepthTarget::ShadowMap => &frame.shadow_view,
+                    DepthTarget::ShadowMap => shadow_view,
                     DepthTarget::Camera => &depth.view,
                 };
                 let mut render = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -303,7 +300,7 @@ pub fn encode_frame(
                             }
                         }
                         DrawOf::FullScreenTriangle => render.draw(0..3, 0..1),
-                        DrawOf::Indirect { offset } => render.draw_indirect(&frame.draws, offset),
+                        DrawOf::Indirect { offset } => render.draw_indirect(draws_buffer, offset),
                     }
                 }
             }

@@ -3,11 +3,15 @@
 
 use precip_model::{BackendError, Image};
 
-use precip_gpu::recipe::{SPLAT_BYTES_PER_PIXEL, render_bindings as rb};
+use precip_gpu::Simulation;
+use precip_gpu::bind_groups::GroupLayout;
+use precip_gpu::frame_resources::{TARGET_GROUPS, splat_sums_bytes};
 
+use super::frame::{Bindable, FrameResources, missing};
 use super::layouts::RenderLayouts;
 use super::pipelines::DEPTH_FORMAT;
 use crate::device::GpuDevice;
+use crate::gpu::Hal;
 use crate::transfer::read_buffer;
 
 /// The offscreen colour format: what `read_image` returns (RGBA8, sRGB).
@@ -45,22 +49,21 @@ pub struct DepthBuffer {
     pub size: (u32, u32),
     /// Its view.
     pub view: wgpu::TextureView,
-    /// Group 2 of the splat kernel: this depth and the sums.
-    pub splat_group: wgpu::BindGroup,
-    /// Group 2 of the resolve draw: the sums.
-    pub resolve_group: wgpu::BindGroup,
+    /// The splat kernel's group (this depth and the sums) and the resolve draw's
+    /// (the sums), by table name.
+    groups: Vec<(&'static str, wgpu::BindGroup)>,
 }
 
 impl DepthBuffer {
-    /// A depth buffer of `width × height` and zeroed splat sums; the splat reads the
-    /// splat list's count from `draws` (the frame's `FrameDraws`).
-    #[must_use]
+    /// A depth buffer of `(width, height)` with its splat sums and the target's groups
+    /// (`precip_gpu::frame_resources::TARGET_GROUPS`), beside `frame`.
     pub fn new(
         gpu: &GpuDevice,
         layouts: &RenderLayouts,
         (width, height): (u32, u32),
-        draws: &wgpu::Buffer,
-    ) -> Self {
+        frame: &FrameResources,
+        sim: &Simulation<Hal>,
+    ) -> Result<Self, BackendError> {
         let texture = texture_2d(
             gpu,
             "precip depth",
@@ -72,42 +75,38 @@ impl DepthBuffer {
         // Zeroed at creation; the resolve zeroes what it reads.
         let sums = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("precip splat sums"),
-            size: u64::from(width) * u64::from(height) * SPLAT_BYTES_PER_PIXEL,
+            size: splat_sums_bytes((width, height)),
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
-        let splat_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("precip splat"),
-            layout: &layouts.splat,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: rb::SPLAT_SCENE_DEPTH,
-                    resource: wgpu::BindingResource::TextureView(&view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: rb::SPLAT_SUMS,
-                    resource: sums.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: rb::SPLAT_DRAWS,
-                    resource: draws.as_entire_binding(),
-                },
-            ],
-        });
-        let resolve_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("precip splat resolve"),
-            layout: &layouts.splat_resolve,
-            entries: &[wgpu::BindGroupEntry {
-                binding: rb::RESOLVED_SUMS,
-                resource: sums.as_entire_binding(),
-            }],
-        });
-        Self {
+        let with = Bindable {
+            sim,
+            target: Some((&view, &sums)),
+        };
+        let mut groups = Vec::with_capacity(TARGET_GROUPS.len());
+        for fill in &TARGET_GROUPS {
+            let layout = layouts
+                .of(fill.layout)
+                .ok_or_else(|| missing(fill.layout.name))?;
+            groups.push((
+                fill.layout.name,
+                frame.bind_group(&gpu.device, layout, fill, &with)?,
+            ));
+        }
+        Ok(Self {
             size: (width, height),
             view,
-            splat_group,
-            resolve_group,
-        }
+            groups,
+        })
+    }
+
+    /// The group made for `table`, if it is one of the target's.
+    #[must_use]
+    pub fn group(&self, table: &GroupLayout) -> Option<&wgpu::BindGroup> {
+        self.groups
+            .iter()
+            .find(|(name, _)| *name == table.name)
+            .map(|(_, g)| g)
     }
 }
 

@@ -305,16 +305,57 @@ impl Optics {
     /// particles, the spectra's.
     #[must_use]
     pub fn live(weather: &Weather, particles: &[Particle]) -> Self {
+        Self::from_sums(weather, &CrossSectionSums::of_particles(particles))
+    }
+
+    /// [`Optics::live`] from the camera volume's cross-sections summed (on the host,
+    /// or on the GPU by `optics_sums`: [`CrossSectionSums::of_partials`]).
+    #[must_use]
+    pub fn from_sums(weather: &Weather, sums: &CrossSectionSums) -> Self {
         let parts = SpectrumParts::of(weather);
-        let mut sums = [BandOptics::default(); 3];
-        let mut sampled = 0u32;
+        if sums.sampled == 0 {
+            return Self {
+                bands: parts.total,
+                source: OpticsSource::Spectra,
+            };
+        }
+        let per_particle = weather.simulated_number_density_per_m3() / sums.sampled as f32;
+        let mut bands = parts.unresolved;
+        for (band, sum) in bands.iter_mut().zip(sums.bands) {
+            band.add(sum, per_particle);
+        }
+        Self {
+            bands,
+            source: OpticsSource::LiveParticles {
+                sampled: sums.sampled,
+            },
+        }
+    }
+}
+
+/// The cross-sections of the camera volume's particles summed per band (m², m²/sr,
+/// in [`BandOptics`]' fields), and how many were counted: what [`Optics::from_sums`]
+/// needs of the particles.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CrossSectionSums {
+    /// Per band, in [`Band::ALL`]'s order.
+    pub bands: [BandOptics; 3],
+    /// Camera-volume particles counted.
+    pub sampled: u32,
+}
+
+impl CrossSectionSums {
+    /// The sums over `particles`, in order (the CPU reference).
+    #[must_use]
+    pub fn of_particles(particles: &[Particle]) -> Self {
+        let mut sums = Self::default();
         for p in particles
             .iter()
             .filter(|p| p.source() == ParticleSource::CameraVolume && p.diameter_m > 0.0)
         {
-            sampled += 1;
+            sums.sampled += 1;
             for band in Band::ALL {
-                sums[band.index()].add(
+                sums.bands[band.index()].add(
                     BandOptics {
                         extinction_per_m: extinction_cross_section_m2(p.kind(), p.diameter_m, band),
                         backscatter_per_m_sr: backscatter_cross_section_m2_sr(
@@ -327,23 +368,50 @@ impl Optics {
                 );
             }
         }
-        if sampled == 0 {
-            return Self {
-                bands: parts.total,
-                source: OpticsSource::Spectra,
-            };
-        }
-        let per_particle = weather.simulated_number_density_per_m3() / sampled as f32;
-        let mut bands = parts.unresolved;
-        for (band, sum) in bands.iter_mut().zip(sums) {
-            band.add(sum, per_particle);
+        sums
+    }
+
+    /// The sums of the GPU's per-workgroup partials (`optics_sums`), added in order
+    /// in double precision, so a backend's answer does not depend on its scheduling.
+    #[must_use]
+    pub fn of_partials(partials: &[OpticsPartial]) -> Self {
+        let mut extinction = [0f64; 3];
+        let mut backscatter = [0f64; 3];
+        let mut sampled = 0u32;
+        for p in partials {
+            for b in 0..3 {
+                extinction[b] += f64::from(p.extinction_m2[b]);
+                backscatter[b] += f64::from(p.backscatter_m2_sr[b]);
+            }
+            sampled = sampled.saturating_add(p.sampled);
         }
         Self {
-            bands,
-            source: OpticsSource::LiveParticles { sampled },
+            bands: std::array::from_fn(|b| BandOptics {
+                extinction_per_m: extinction[b] as f32,
+                backscatter_per_m_sr: backscatter[b] as f32,
+            }),
+            sampled,
         }
     }
 }
+
+/// One workgroup's sums of `optics_sums` (64 particles): the cross-sections of its
+/// camera-volume particles per band, and their count.
+///
+/// WGSL twin: `OpticsPartial` in `shaders/optics.wgsl` (32 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct OpticsPartial {
+    /// Extinction cross-sections per band, m².
+    pub extinction_m2: [f32; 3],
+    /// Particles counted.
+    pub sampled: u32,
+    /// Backscatter cross-sections per band, m²/sr.
+    pub backscatter_m2_sr: [f32; 3],
+    /// Unused.
+    pub reserved: u32,
+}
+const _: () = assert!(size_of::<OpticsPartial>() == 32);
 
 /// A weather's spectra summed: all of it, and the part below the sizes simulated.
 struct SpectrumParts {

@@ -1,0 +1,407 @@
+//! The resources table of the frame: every buffer, texture and sampler drawing adds
+//! to a configuration ([`frame_buffers`], [`frame_textures`], [`Sampler`]), the two
+//! a target of a given size adds ([`TargetResource`]), and which one fills each
+//! binding of the frame's groups ([`FRAME_GROUPS`], [`TARGET_GROUPS`]). Each GPU
+//! backend makes them from these tables (`render/frame.rs`), mapping a kind to its
+//! API's object; what exists, how large, with what contents and bound where is
+//! decided here, once.
+
+use precip_model::Setup;
+use precip_model::drawing::render::RenderParams;
+use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
+
+use crate::bind_groups::{
+    COVER_TEXTURE, CULL, GroupLayout, RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
+};
+use crate::recipe::{
+    DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
+    cull_bindings as cb, cull_groups, render_bindings as rb,
+};
+use crate::resources::SimBuffer;
+
+/// A buffer drawing adds to a configuration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FrameBuffer {
+    /// The frame's [`RenderParams`], written by the host every frame, bound as a
+    /// uniform block and as read-only storage at a dynamic offset (a ring of them
+    /// where frames are in flight).
+    RenderParams,
+    /// The cull kernels' per-workgroup counts.
+    GroupCounts,
+    /// The drawn lists (sprites, streaks, splats).
+    Drawn,
+    /// How each particle is drawn this frame.
+    DrawnKinds,
+    /// [`FrameDraws`]: the two indirect draws and the splat count.
+    Draws,
+}
+
+/// How a frame buffer is used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrameBufferUsage {
+    /// Written by the host each frame; read as a uniform block and as storage.
+    Params,
+    /// Read and written by kernels and draws.
+    Storage,
+    /// Storage that is also read as indirect draw arguments and copied back.
+    Indirect,
+}
+
+/// A row of the frame's buffers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FrameBufferSpec {
+    /// Which.
+    pub buffer: FrameBuffer,
+    /// A label for debuggers.
+    pub label: &'static str,
+    /// Bytes (of one block for [`FrameBufferUsage::Params`]).
+    pub bytes: u64,
+    /// Usage.
+    pub usage: FrameBufferUsage,
+}
+
+/// The frame's buffers for `particle_count` particles.
+#[must_use]
+pub fn frame_buffers(particle_count: u32) -> [FrameBufferSpec; 5] {
+    let count = u64::from(particle_count);
+    let spec = |buffer, label, bytes: u64, usage| FrameBufferSpec {
+        buffer,
+        label,
+        bytes: bytes.max(16),
+        usage,
+    };
+    [
+        spec(
+            FrameBuffer::RenderParams,
+            "precip render params",
+            size_of::<RenderParams>() as u64,
+            FrameBufferUsage::Params,
+        ),
+        spec(
+            FrameBuffer::GroupCounts,
+            "precip cull groups",
+            u64::from(cull_groups(particle_count)) * GROUP_COUNT_BYTES,
+            FrameBufferUsage::Storage,
+        ),
+        spec(
+            FrameBuffer::Drawn,
+            "precip drawn",
+            count * DRAWN_LIST_BYTES_PER_PARTICLE,
+            FrameBufferUsage::Storage,
+        ),
+        spec(
+            FrameBuffer::DrawnKinds,
+            "precip drawn kinds",
+            count * 4,
+            FrameBufferUsage::Storage,
+        ),
+        spec(
+            FrameBuffer::Draws,
+            "precip draws",
+            FrameDraws::BYTES,
+            FrameBufferUsage::Indirect,
+        ),
+    ]
+}
+
+/// A texture drawing adds to a configuration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FrameTexture {
+    /// The sun's depth map: drawn by the shadow pass, sampled by the scene.
+    ShadowMap,
+    /// The cover's first filtered texture (depth mm, SWE mm, peak SWE mm, wetness).
+    CoverA,
+    /// The second (accumulation mask, melt mask, age days, puddle ratio).
+    CoverB,
+    /// The third (sand and dust settled, kg/m²).
+    CoverC,
+    /// The flake's opacity.
+    Flake,
+}
+
+/// A texel format of the frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TexelFormat {
+    /// 32-bit float depth.
+    Depth32Float,
+    /// Four 16-bit floats (filterable, a storage format).
+    Rgba16Float,
+    /// One 8-bit unsigned normalised channel.
+    R8Unorm,
+}
+
+/// How a frame texture is used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TextureUsage {
+    /// A depth attachment, then sampled.
+    DepthAttachment,
+    /// Written by a kernel as a storage texture and sampled by the draws (and copied
+    /// back by tools): kept in one layout for both.
+    StorageAndSampled,
+    /// Filled once from the host, then sampled.
+    Sampled,
+}
+
+/// A row of the frame's textures.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TextureSpec {
+    /// Which.
+    pub texture: FrameTexture,
+    /// A label for debuggers.
+    pub label: &'static str,
+    /// Width and height, texels.
+    pub size: [u32; 2],
+    /// Format.
+    pub format: TexelFormat,
+    /// Usage.
+    pub usage: TextureUsage,
+    /// Texels to fill it with (tightly packed rows), if any.
+    pub contents: Option<Vec<u8>>,
+}
+
+/// The frame's textures for `setup`: the shadow map at its resolution, the cover's
+/// three textures over its grid, the flake's opacity.
+#[must_use]
+pub fn frame_textures(setup: &Setup) -> Vec<TextureSpec> {
+    let shadow = setup.render.shadow_map_px;
+    let texels = setup.cover.frame.texels;
+    let cover = |texture, label| TextureSpec {
+        texture,
+        label,
+        size: [texels.x, texels.y],
+        format: TexelFormat::Rgba16Float,
+        usage: TextureUsage::StorageAndSampled,
+        contents: None,
+    };
+    vec![
+        TextureSpec {
+            texture: FrameTexture::ShadowMap,
+            label: "precip shadow map",
+            size: [shadow, shadow],
+            format: TexelFormat::Depth32Float,
+            usage: TextureUsage::DepthAttachment,
+            contents: None,
+        },
+        cover(FrameTexture::CoverA, "precip cover a"),
+        cover(FrameTexture::CoverB, "precip cover b"),
+        cover(FrameTexture::CoverC, "precip cover c"),
+        TextureSpec {
+            texture: FrameTexture::Flake,
+            label: "precip flake opacity",
+            size: [FLAKE_TEXTURE_PX, FLAKE_TEXTURE_PX],
+            format: TexelFormat::R8Unorm,
+            usage: TextureUsage::Sampled,
+            contents: Some(snowflake_opacity(FLAKE_TEXTURE_PX)),
+        },
+    ]
+}
+
+/// A sampler of the frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Sampler {
+    /// Linear, clamped to the edge.
+    LinearClamp,
+    /// The shadow map's: a less-or-equal comparison, linear.
+    ShadowComparison,
+}
+
+/// What a target of a given size adds (made again when the size changes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum TargetResource {
+    /// The camera's depth buffer (an attachment, read by the splat kernel).
+    CameraDepth,
+    /// The splat's sums, [`SPLAT_BYTES_PER_PIXEL`] a pixel, zero at first (the
+    /// resolve zeroes what it reads).
+    SplatSums,
+}
+
+/// Bytes of the splat sums of a `width × height` target.
+#[must_use]
+pub fn splat_sums_bytes((width, height): (u32, u32)) -> u64 {
+    u64::from(width) * u64::from(height) * SPLAT_BYTES_PER_PIXEL
+}
+
+/// What fills a binding of the frame's groups.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrameBound {
+    /// A buffer of the simulation.
+    Sim(SimBuffer),
+    /// A buffer of the frame.
+    Buffer(FrameBuffer),
+    /// A texture, sampled.
+    Texture(FrameTexture),
+    /// A texture, written by a kernel.
+    StorageTexture(FrameTexture),
+    /// A sampler.
+    Sampler(Sampler),
+    /// A resource of the target.
+    Target(TargetResource),
+}
+
+/// A group of the frame as data: its layout's table and what fills each binding.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FrameGroupFill {
+    /// The layout.
+    pub layout: &'static GroupLayout,
+    /// Binding number and what fills it, one per binding of the layout.
+    pub bound: &'static [(u32, FrameBound)],
+}
+
+/// The groups made once per configuration (the material group is the scene's).
+pub const FRAME_GROUPS: [FrameGroupFill; 4] = [
+    FrameGroupFill {
+        layout: &RENDER_FRAME,
+        bound: &[
+            (rb::PARAMS, FrameBound::Buffer(FrameBuffer::RenderParams)),
+            (
+                rb::PARAMS_SWITCHES,
+                FrameBound::Buffer(FrameBuffer::RenderParams),
+            ),
+            (rb::GROUND_HEIGHT, FrameBound::Sim(SimBuffer::Ground)),
+            (rb::WAVES, FrameBound::Sim(SimBuffer::Waves)),
+            (rb::PARTICLES, FrameBound::Sim(SimBuffer::Particles)),
+            (rb::DRAWN, FrameBound::Buffer(FrameBuffer::Drawn)),
+            (rb::COVER_A, FrameBound::Texture(FrameTexture::CoverA)),
+            (rb::COVER_B, FrameBound::Texture(FrameTexture::CoverB)),
+            (rb::COVER_C, FrameBound::Texture(FrameTexture::CoverC)),
+            (rb::COVER_SAMPLER, FrameBound::Sampler(Sampler::LinearClamp)),
+        ],
+    },
+    FrameGroupFill {
+        layout: &RENDER_LIGHT,
+        bound: &[
+            (rb::SHADOW_MAP, FrameBound::Texture(FrameTexture::ShadowMap)),
+            (
+                rb::SHADOW_SAMPLER,
+                FrameBound::Sampler(Sampler::ShadowComparison),
+            ),
+            (rb::FLAKE_OPACITY, FrameBound::Texture(FrameTexture::Flake)),
+            (rb::FLAKE_SAMPLER, FrameBound::Sampler(Sampler::LinearClamp)),
+        ],
+    },
+    FrameGroupFill {
+        layout: &CULL,
+        bound: &[
+            (cb::PARAMS, FrameBound::Buffer(FrameBuffer::RenderParams)),
+            (cb::PARTICLES, FrameBound::Sim(SimBuffer::Particles)),
+            (
+                cb::GROUP_COUNTS,
+                FrameBound::Buffer(FrameBuffer::GroupCounts),
+            ),
+            (cb::DRAWN, FrameBound::Buffer(FrameBuffer::Drawn)),
+            (cb::DRAWS, FrameBound::Buffer(FrameBuffer::Draws)),
+            (cb::DRAWN_KINDS, FrameBound::Buffer(FrameBuffer::DrawnKinds)),
+        ],
+    },
+    FrameGroupFill {
+        layout: &COVER_TEXTURE,
+        bound: &[
+            (rb::COVER, FrameBound::Sim(SimBuffer::Cover)),
+            (
+                rb::COVER_A_OUT,
+                FrameBound::StorageTexture(FrameTexture::CoverA),
+            ),
+            (
+                rb::COVER_B_OUT,
+                FrameBound::StorageTexture(FrameTexture::CoverB),
+            ),
+            (
+                rb::COVER_C_OUT,
+                FrameBound::StorageTexture(FrameTexture::CoverC),
+            ),
+        ],
+    },
+];
+
+/// The groups made for a target's size (the splat kernel's and its resolve's).
+pub const TARGET_GROUPS: [FrameGroupFill; 2] = [
+    FrameGroupFill {
+        layout: &SPLAT,
+        bound: &[
+            (
+                rb::SPLAT_SCENE_DEPTH,
+                FrameBound::Target(TargetResource::CameraDepth),
+            ),
+            (
+                rb::SPLAT_SUMS,
+                FrameBound::Target(TargetResource::SplatSums),
+            ),
+            (rb::SPLAT_DRAWS, FrameBound::Buffer(FrameBuffer::Draws)),
+        ],
+    },
+    FrameGroupFill {
+        layout: &SPLAT_RESOLVE,
+        bound: &[(
+            rb::RESOLVED_SUMS,
+            FrameBound::Target(TargetResource::SplatSums),
+        )],
+    },
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bind_groups::BindingKind;
+
+    #[test]
+    fn every_binding_of_each_frame_group_is_filled_once_by_its_kind() {
+        for fill in FRAME_GROUPS.iter().chain(&TARGET_GROUPS) {
+            assert_eq!(
+                fill.bound.len(),
+                fill.layout.bindings.len(),
+                "{}",
+                fill.layout.name
+            );
+            for b in fill.layout.bindings {
+                let bound: Vec<_> = fill
+                    .bound
+                    .iter()
+                    .filter(|(k, _)| *k == b.binding)
+                    .map(|(_, r)| *r)
+                    .collect();
+                assert_eq!(bound.len(), 1, "{} binding {}", fill.layout.name, b.binding);
+                let fits = matches!(
+                    (b.kind, bound[0]),
+                    (
+                        BindingKind::Uniform { .. } | BindingKind::Storage { .. },
+                        FrameBound::Sim(_) | FrameBound::Buffer(_),
+                    ) | (
+                        BindingKind::Storage { .. },
+                        FrameBound::Target(TargetResource::SplatSums),
+                    ) | (
+                        BindingKind::Texture { .. },
+                        FrameBound::Texture(_) | FrameBound::Target(TargetResource::CameraDepth),
+                    ) | (
+                        BindingKind::StorageTextureRgba16Float,
+                        FrameBound::StorageTexture(_)
+                    ) | (BindingKind::Sampler { .. }, FrameBound::Sampler(_))
+                );
+                assert!(
+                    fits,
+                    "{} binding {}: {:?}",
+                    fill.layout.name, b.binding, bound[0]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_frame_is_sized_from_the_configuration() {
+        let setup = Setup::over_flat_ground(20.0, 8, 10.0, 300);
+        let buffers = frame_buffers(300);
+        let drawn = buffers.iter().find(|b| b.buffer == FrameBuffer::Drawn);
+        assert_eq!(
+            drawn.map(|b| b.bytes),
+            Some(300 * DRAWN_LIST_BYTES_PER_PARTICLE)
+        );
+        let textures = frame_textures(&setup);
+        for t in &textures {
+            if let Some(c) = &t.contents {
+                assert_eq!(c.len() as u32, t.size[0] * t.size[1], "{:?}", t.texture);
+            }
+        }
+        let cover = textures.iter().find(|t| t.texture == FrameTexture::CoverA);
+        assert_eq!(cover.map(|t| t.size), Some([8, 8]));
+        assert_eq!(splat_sums_bytes((4, 2)), 8 * SPLAT_BYTES_PER_PIXEL);
+    }
+}
