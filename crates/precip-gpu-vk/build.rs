@@ -22,10 +22,25 @@ const BOUNDS_CHECKS: naga::proc::BoundsCheckPolicies = naga::proc::BoundsCheckPo
     binding_array: naga::proc::BoundsCheckPolicy::Unchecked,
 };
 
+/// Programs this backend never runs: the drawing probe is a wgpu test kernel.
+const NOT_ON_VULKAN: [Program; 1] = [Program::ProbeDrawing];
+
 fn main() {
     let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-    let compiled: [Program; 7] = include!("src/compiled_programs.in");
-    for program in compiled {
+    // Every program of precip-gpu's plan but those this backend never runs, and a
+    // table from each to its SPIR-V for `src/spirv.rs`: a new program needs nothing
+    // here.
+    let mut table = String::from(
+        "// Written by build.rs: each program this backend runs, and its SPIR-V.\n\
+         fn spirv_bytes(program: Program) -> Option<&'static [u8]> {\n    match program {\n",
+    );
+    for program in Program::ALL
+        .into_iter()
+        .filter(|p| !NOT_ON_VULKAN.contains(p))
+    {
+        table.push_str(&format!(
+            "        Program::{program:?} => Some(include_bytes!(concat!(env!(\"OUT_DIR\"), \"/{program:?}.spv\"))),\n"
+        ));
         let source = program.source();
         let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| {
             panic!("{program:?}: {}", e.emit_to_string(&source));
@@ -44,6 +59,8 @@ fn main() {
         let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
         std::fs::write(out.join(format!("{program:?}.spv")), bytes).expect("write SPIR-V");
     }
+    table.push_str("        _ => None,\n    }\n}\n");
+    std::fs::write(out.join("spirv_table.rs"), table).expect("write the SPIR-V table");
     for shaders in [
         "../precip-model/shaders",
         "../precip-wind/shaders",
@@ -52,5 +69,4 @@ fn main() {
     ] {
         println!("cargo:rerun-if-changed={shaders}");
     }
-    println!("cargo:rerun-if-changed=src/compiled_programs.in");
 }
