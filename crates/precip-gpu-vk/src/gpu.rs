@@ -280,11 +280,7 @@ impl Gpu for Hal {
         let mut buffers = Vec::new();
         let mut images = Vec::new();
         for (binding, resource) in entries {
-            let kind = table
-                .bindings
-                .iter()
-                .find(|b| b.binding == *binding)
-                .map(|b| b.kind);
+            let kind = table.kind_of(*binding);
             match (resource, kind) {
                 (BindingResource::Buffer(b), Some(k @ BindingKind::Uniform { min_bytes, .. })) => {
                     buffers.push((*binding, k, buffer_info(b, min_bytes)));

@@ -235,11 +235,7 @@ impl Gpu for Hal {
     ) -> Result<wgpu::BindGroup, BackendError> {
         let mut bound = Vec::with_capacity(entries.len());
         for (binding, resource) in entries {
-            let kind = table
-                .bindings
-                .iter()
-                .find(|b| b.binding == *binding)
-                .map(|b| b.kind);
+            let kind = table.kind_of(*binding);
             let resource = match (resource, kind) {
                 (BindingResource::Buffer(buffer), Some(BindingKind::Uniform { min_bytes, .. })) => {
                     wgpu::BindingResource::Buffer(wgpu::BufferBinding {

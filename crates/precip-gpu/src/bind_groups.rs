@@ -77,6 +77,24 @@ pub enum BindingKind {
     },
 }
 
+impl BindingKind {
+    /// The bytes a buffer bound here sees from its offset: the block, for a uniform
+    /// or a binding with a dynamic offset (which moves it through a ring of blocks);
+    /// `None` (the whole buffer) for other storage.
+    #[must_use]
+    pub const fn block_bytes(self) -> Option<u64> {
+        match self {
+            Self::Uniform { min_bytes, .. }
+            | Self::Storage {
+                min_bytes,
+                dynamic: true,
+                ..
+            } if min_bytes > 0 => Some(min_bytes),
+            _ => None,
+        }
+    }
+}
+
 /// One binding of a group.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Binding {
@@ -98,6 +116,15 @@ pub struct GroupLayout {
 }
 
 impl GroupLayout {
+    /// The kind of binding `binding`, if the group has it.
+    #[must_use]
+    pub fn kind_of(&self, binding: u32) -> Option<BindingKind> {
+        self.bindings
+            .iter()
+            .find(|b| b.binding == binding)
+            .map(|b| b.kind)
+    }
+
     /// How many bindings take a dynamic offset (each the frame's `RenderParams`
     /// block, or a sub-step's uniform block).
     #[must_use]

@@ -171,15 +171,7 @@ struct Bindable<'a> {
 impl Bindable<'_> {
     /// The info of `bound` for a binding of `kind`.
     fn info(&self, kind: BindingKind, bound: FrameBound) -> Result<Info, BackendError> {
-        let range = match kind {
-            BindingKind::Uniform { min_bytes, .. }
-            | BindingKind::Storage {
-                min_bytes,
-                dynamic: true,
-                ..
-            } => min_bytes,
-            _ => vk::WHOLE_SIZE,
-        };
+        let range = kind.block_bytes().unwrap_or(vk::WHOLE_SIZE);
         let buffer = |b: &Buffer| {
             Info::Buffer([vk::DescriptorBufferInfo {
                 buffer: b.raw,
@@ -246,10 +238,7 @@ impl Bindable<'_> {
         for &(binding, bound) in fill.bound {
             let kind = fill
                 .layout
-                .bindings
-                .iter()
-                .find(|b| b.binding == binding)
-                .map(|b| b.kind)
+                .kind_of(binding)
                 .ok_or_else(|| missing(fill.layout.name))?;
             infos.push((binding, kind, self.info(kind, bound)?));
         }

@@ -161,19 +161,35 @@ impl FrameResources {
             cull_groups: cull_groups(count),
             cover_texels: texels.x * texels.y,
         };
-        let bindable = Bindable { sim, target: None };
-        let mut groups = Vec::with_capacity(FRAME_GROUPS.len());
-        for fill in &FRAME_GROUPS {
-            let layout = layouts
-                .of(fill.layout)
-                .ok_or_else(|| missing(fill.layout.name))?;
-            groups.push((
-                fill.layout.name,
-                frame.bind_group(device, layout, fill, &bindable)?,
-            ));
-        }
-        frame.groups = groups;
+        frame.groups = frame.bind_groups(
+            device,
+            layouts,
+            &FRAME_GROUPS,
+            &Bindable { sim, target: None },
+        )?;
         Ok(frame)
+    }
+
+    /// The groups `fills` describe, by table name.
+    pub fn bind_groups(
+        &self,
+        device: &wgpu::Device,
+        layouts: &RenderLayouts,
+        fills: &[FrameGroupFill],
+        with: &Bindable<'_>,
+    ) -> Result<Vec<(&'static str, wgpu::BindGroup)>, BackendError> {
+        fills
+            .iter()
+            .map(|fill| {
+                let layout = layouts
+                    .of(fill.layout)
+                    .ok_or_else(|| missing(fill.layout.name))?;
+                Ok((
+                    fill.layout.name,
+                    self.bind_group(device, layout, fill, with)?,
+                ))
+            })
+            .collect()
     }
 
     /// The group `fill` describes, on `layout`.
@@ -186,23 +202,11 @@ impl FrameResources {
     ) -> Result<wgpu::BindGroup, BackendError> {
         let mut entries = Vec::with_capacity(fill.bound.len());
         for &(binding, bound) in fill.bound {
-            let kind = fill
+            let block = fill
                 .layout
-                .bindings
-                .iter()
-                .find(|b| b.binding == binding)
-                .map(|b| b.kind);
-            let block = match kind {
-                Some(
-                    BindingKind::Uniform { min_bytes, .. }
-                    | BindingKind::Storage {
-                        min_bytes,
-                        dynamic: true,
-                        ..
-                    },
-                ) => wgpu::BufferSize::new(min_bytes),
-                _ => None,
-            };
+                .kind_of(binding)
+                .and_then(BindingKind::block_bytes)
+                .and_then(wgpu::BufferSize::new);
             let buffer = |buffer| {
                 wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                     buffer,

@@ -7,7 +7,7 @@ use precip_gpu::Simulation;
 use precip_gpu::bind_groups::GroupLayout;
 use precip_gpu::frame_resources::{TARGET_GROUPS, splat_sums_bytes};
 
-use super::frame::{Bindable, FrameResources, missing};
+use super::frame::{Bindable, FrameResources};
 use super::layouts::RenderLayouts;
 use super::pipelines::DEPTH_FORMAT;
 use crate::device::GpuDevice;
@@ -83,16 +83,7 @@ impl DepthBuffer {
             sim,
             target: Some((&view, &sums)),
         };
-        let mut groups = Vec::with_capacity(TARGET_GROUPS.len());
-        for fill in &TARGET_GROUPS {
-            let layout = layouts
-                .of(fill.layout)
-                .ok_or_else(|| missing(fill.layout.name))?;
-            groups.push((
-                fill.layout.name,
-                frame.bind_group(&gpu.device, layout, fill, &with)?,
-            ));
-        }
+        let groups = frame.bind_groups(&gpu.device, layouts, &TARGET_GROUPS, &with)?;
         Ok(Self {
             size: (width, height),
             view,
