@@ -1,18 +1,22 @@
 //! A frame as data: its passes in order, each a list of compute kernels or a render
 //! pass (attachments, how they load and store, draws with their pipeline state),
-//! when it runs, and its timestamps. Both GPU backends execute [`FRAME_PASSES`]
-//! with the same loop (`render/mod.rs`'s `encode_frame` on wgpu, `record_frame` on
-//! Vulkan) and build the draws' pipelines from [`Draw`]; what stays per backend is
-//! how a kind of attachment, group or draw maps to its objects. A new pass is WGSL
-//! plus an entry here.
+//! when it runs, and its timestamps. [`frame_plan`] is the frame as both GPU
+//! backends walk it (`render/mod.rs`'s `encode_frame` on wgpu, `record_frame` on
+//! Vulkan): which passes run under this frame's [`FrameConditions`], each kernel
+//! with its groups and workgroups, each draw with its groups; they build the draws'
+//! pipelines from [`Draw`]. What stays per backend is how a kind of attachment,
+//! group or draw maps to its objects. A new pass is WGSL plus an entry here.
 //!
 //! Timestamps: each pass is bracketed by two, at its start and its end, on both
 //! backends (`2·i`, `2·i + 1` for pass `i`), so per-pass times compare; a pass that
 //! does not run (the shadow map kept by [`precip_model::drawing::shadow_cache`]) is not reported.
 
+use crate::bind_groups::{GroupLayout, groups_of};
 use crate::recipe::{
-    COVER_TEXTURE_PASS, CULL_PASSES, FrameDraws, KernelPass, SPLAT_PASS, render_passes,
+    COVER_TEXTURE_PASS, CULL_PASSES, DispatchCounts, FrameDraws, KernelPass, SPLAT_PASS,
+    dispatch_size, render_passes,
 };
+use crate::shaders::Program;
 
 /// How a render pass starts with an attachment.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -272,6 +276,98 @@ pub fn kernels() -> impl Iterator<Item = &'static KernelPass> {
     })
 }
 
+/// What decides whether a pass runs this frame ([`PassWhen`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FrameConditions {
+    /// The shadow map is to be drawn again
+    /// (`precip_model::drawing::shadow_cache::ShadowCache`).
+    pub shadow_redrawn: bool,
+}
+
+impl PassWhen {
+    /// Whether a pass with this condition runs in a frame of `conditions`.
+    #[must_use]
+    pub const fn holds(self, conditions: FrameConditions) -> bool {
+        match self {
+            Self::Always => true,
+            Self::ShadowRedrawn => conditions.shadow_redrawn,
+        }
+    }
+}
+
+/// A pass of this frame: its place in [`FRAME_PASSES`] (its timestamps are
+/// `2·index` and `2·index + 1`) and whether it runs.
+#[derive(Debug, Clone, Copy)]
+pub struct PlannedPass {
+    /// Its index in [`FRAME_PASSES`].
+    pub index: u32,
+    /// The pass.
+    pub pass: &'static FramePass,
+    /// Whether it runs this frame (a skipped pass is not reported).
+    pub runs: bool,
+}
+
+/// A kernel as this frame dispatches it.
+#[derive(Debug, Clone, Copy)]
+pub struct PlannedKernel {
+    /// The kernel.
+    pub kernel: &'static KernelPass,
+    /// The groups it binds, at 0, 1, ….
+    pub groups: &'static [GroupLayout],
+    /// Workgroups `(x, y)`.
+    pub workgroups: (u32, u32),
+}
+
+/// A draw of a render pass with the groups it binds.
+#[derive(Debug, Clone, Copy)]
+pub struct PlannedDraw {
+    /// The draw.
+    pub draw: &'static Draw,
+    /// The groups its vertex entry point binds, at 0, 1, ….
+    pub groups: &'static [GroupLayout],
+}
+
+/// The frame's passes in order, each with whether it runs under `conditions`: what
+/// both backends walk when they record a frame.
+pub fn frame_plan(conditions: FrameConditions) -> impl Iterator<Item = PlannedPass> {
+    FRAME_PASSES
+        .iter()
+        .zip(0u32..)
+        .map(move |(pass, index)| PlannedPass {
+            index,
+            pass,
+            runs: pass.when.holds(conditions),
+        })
+}
+
+impl PlannedPass {
+    /// Its kernels with their groups and workgroups over `counts` (none for a render
+    /// pass).
+    pub fn kernels(&self, counts: DispatchCounts) -> impl Iterator<Item = PlannedKernel> {
+        let list: &'static [KernelPass] = match &self.pass.work {
+            PassWork::Kernels(list) => list,
+            PassWork::Render(_) => &[],
+        };
+        list.iter().map(move |kernel| PlannedKernel {
+            kernel,
+            groups: groups_of(kernel.program, kernel.entry_point).unwrap_or(&[]),
+            workgroups: dispatch_size(kernel.over.invocations(counts)),
+        })
+    }
+
+    /// Its draws with their groups (none for a pass of kernels).
+    pub fn draws(&self) -> impl Iterator<Item = PlannedDraw> {
+        let list: &'static [Draw] = match &self.pass.work {
+            PassWork::Render(recipe) => recipe.draws,
+            PassWork::Kernels(_) => &[],
+        };
+        list.iter().map(|draw| PlannedDraw {
+            draw,
+            groups: groups_of(Program::Render, draw.entry_points.0).unwrap_or(&[]),
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -309,6 +405,22 @@ mod tests {
             assert!(!d.depth_write || r.depth_stored, "{}", pass.name);
             // Only the fragment-less draw has no fragment stage.
             assert_eq!(d.entry_points.1.is_none(), d.blend == Blend::None);
+        }
+    }
+
+    #[test]
+    fn the_plan_skips_the_shadow_only_when_it_is_kept() {
+        for shadow_redrawn in [false, true] {
+            let plan: Vec<_> = frame_plan(FrameConditions { shadow_redrawn }).collect();
+            assert_eq!(plan.len(), FRAME_PASSES.len());
+            for p in &plan {
+                let expected = p.pass.name != "shadow" || shadow_redrawn;
+                assert_eq!(p.runs, expected, "{}", p.pass.name);
+                assert_eq!(FRAME_PASSES[p.index as usize].name, p.pass.name);
+                for d in p.draws() {
+                    assert!(!d.groups.is_empty(), "{}", p.pass.name);
+                }
+            }
         }
     }
 

@@ -1,6 +1,6 @@
 //! Drawing on Vulkan: the same frame as the wgpu backend's (`precip_gpu_wgpu::render`),
 //! from the same WGSL and the same data: [`record_frame`] executes
-//! `precip_gpu::recipe::FRAME_PASSES` (`precip_gpu::frame`) as wgpu's
+//! `precip_gpu::frame::frame_plan` (`FRAME_PASSES`) as wgpu's
 //! `encode_frame` does, binding each entry point's groups from
 //! `precip_gpu::bind_groups::groups_of`.
 //!
@@ -40,10 +40,12 @@ pub mod target;
 
 use ash::vk;
 use glam::Vec3;
-use precip_gpu::bind_groups::{self as bg, GroupLayout, groups_of};
-use precip_gpu::frame::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
+use precip_gpu::bind_groups::{self as bg, GroupLayout};
+use precip_gpu::frame::{
+    AttachmentLoad, DepthTarget, DrawOf, FrameConditions, PassWork, frame_plan,
+};
 use precip_gpu::frame_resources::{FrameBuffer, FrameTexture};
-use precip_gpu::recipe::{DispatchCounts, FRAME_PASSES, dispatch_size};
+use precip_gpu::recipe::DispatchCounts;
 use precip_gpu::shaders::Program;
 use precip_model::BackendError;
 
@@ -284,7 +286,7 @@ fn set_of(
     })
 }
 
-/// Records one frame into `cb`: [`FRAME_PASSES`] in order (see the module docs),
+/// Records one frame into `cb`: `precip_gpu::frame::frame_plan` in order (see the module docs),
 /// each bracketed by its timestamps; `params_offset` is the frame's `RenderParams`
 /// block.
 ///
@@ -360,10 +362,10 @@ pub unsafe fn record_frame(
             float32: [sky.x, sky.y, sky.z, 1.0],
         },
     };
-    // Binds the sets of `program`'s `entry`, each at its index, the frame's block at
-    // its dynamic offset.
-    let bind_sets = |bind_point, program, entry: &str, layout| {
-        for (index, group) in groups_of(program, entry).unwrap_or(&[]).iter().enumerate() {
+    // Binds the sets of `groups`, each at its index, the frame's block at its dynamic
+    // offset.
+    let bind_sets = |bind_point, groups: &[GroupLayout], layout| {
+        for (index, group) in groups.iter().enumerate() {
             let Some(set) = set_of(frame, &target, group) else {
                 continue;
             };
@@ -385,36 +387,35 @@ pub unsafe fn record_frame(
             }
         }
     };
-    for (index, pass) in FRAME_PASSES.iter().enumerate() {
-        let (start, end) = (2 * index as u32, 2 * index as u32 + 1);
-        if pass.when == PassWhen::ShadowRedrawn && !target.draw_shadow {
+    let counts = DispatchCounts {
+        particles: particle_count,
+        cover_texels: frame.cover_texels,
+        wave_cells: 0,
+    };
+    let conditions = FrameConditions {
+        shadow_redrawn: target.draw_shadow,
+    };
+    for planned in frame_plan(conditions) {
+        let (start, end) = (2 * planned.index, 2 * planned.index + 1);
+        if !planned.runs {
             // Written, so the pool's results are available; not reported.
             stamp(start, S::TOP_OF_PIPE);
             stamp(end, S::BOTTOM_OF_PIPE);
             continue;
         }
         stamp(start, S::TOP_OF_PIPE);
-        match &pass.work {
-            PassWork::Kernels(list) => {
-                for kernel in *list {
-                    let entry = kernel.entry_point;
+        match &planned.pass.work {
+            PassWork::Kernels(_) => {
+                for k in planned.kernels(counts) {
+                    let entry = k.kernel.entry_point;
                     let (Some(pipeline), Some(layout)) = (
                         renderer.kernels.get(entry),
                         renderer.layouts.pipeline_layout(entry),
                     ) else {
                         continue;
                     };
-                    bind_sets(
-                        vk::PipelineBindPoint::COMPUTE,
-                        kernel.program,
-                        entry,
-                        layout,
-                    );
-                    let (x, y) = dispatch_size(kernel.over.invocations(DispatchCounts {
-                        particles: particle_count,
-                        cover_texels: frame.cover_texels,
-                        wave_cells: 0,
-                    }));
+                    bind_sets(vk::PipelineBindPoint::COMPUTE, k.groups, layout);
+                    let (x, y) = k.workgroups;
                     // SAFETY: `cb` is recording outside a render pass; the
                     // pipeline's sets are bound. Then its writes, to every later
                     // kernel, draw and indirect read of the frame.
@@ -481,8 +482,8 @@ pub unsafe fn record_frame(
                         .cmd_begin_render_pass(cb, &info, vk::SubpassContents::INLINE)
                 };
                 viewport(device, cb, size);
-                for draw in recipe.draws {
-                    let vs = draw.entry_points.0;
+                for d in planned.draws() {
+                    let vs = d.draw.entry_points.0;
                     let (Some(pipeline), Some(layout)) =
                         (draws.get(vs), renderer.layouts.pipeline_layout(vs))
                     else {
@@ -495,8 +496,8 @@ pub unsafe fn record_frame(
                             .raw
                             .cmd_bind_pipeline(cb, vk::PipelineBindPoint::GRAPHICS, pipeline)
                     };
-                    bind_sets(vk::PipelineBindPoint::GRAPHICS, Program::Render, vs, layout);
-                    match draw.of {
+                    bind_sets(vk::PipelineBindPoint::GRAPHICS, d.groups, layout);
+                    match d.draw.of {
                         DrawOf::SceneMeshes { materials } => {
                             if let Some(scene) = &state.scene {
                                 scene.draw(device, cb, layout, materials, target.detail);

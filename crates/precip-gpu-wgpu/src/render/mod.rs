@@ -3,7 +3,7 @@
 //!
 //! ## A frame
 //!
-//! [`encode_frame`] executes `precip_gpu::recipe::FRAME_PASSES`
+//! [`encode_frame`] walks `precip_gpu::frame::frame_plan` (`FRAME_PASSES`)
 //! (`precip_gpu::frame`): each pass a compute pass or a render pass with its
 //! two timestamps, each kernel and draw with the pipeline made from its recipe entry
 //! and the groups of its entry point (`precip_gpu::bind_groups::groups_of`).
@@ -50,11 +50,12 @@ use self::pipelines::{DrawPipelines, KernelPipelines};
 use self::scene::SceneGpu;
 use self::stamps::RenderStamps;
 use self::target::{ColourTarget, DepthBuffer};
-use precip_gpu::bind_groups::{GroupLayout, groups_of};
-use precip_gpu::frame::{AttachmentLoad, DepthTarget, DrawOf, PassWhen, PassWork};
+use precip_gpu::bind_groups::GroupLayout;
+use precip_gpu::frame::{
+    AttachmentLoad, DepthTarget, DrawOf, FrameConditions, PassWork, frame_plan,
+};
 use precip_gpu::frame_resources::{FrameBuffer, FrameTexture};
-use precip_gpu::recipe::{DispatchCounts, FRAME_PASSES, dispatch_size};
-use precip_gpu::shaders::Program;
+use precip_gpu::recipe::DispatchCounts;
 use precip_model::drawing::shadow_cache::ShadowCache;
 
 /// Layouts and pipelines of one device.
@@ -174,14 +175,10 @@ fn dynamic_offsets(group: &GroupLayout) -> &'static [u32] {
     &[0, 0][..group.dynamic_bindings().min(2)]
 }
 
-/// Binds every group of `program`'s `entry_point` that the frame holds.
+/// Binds each of `groups` that the frame holds at its index.
 macro_rules! bind_groups {
-    ($pass:expr, $frame:expr, $depth:expr, $program:expr, $entry:expr) => {
-        for (index, group) in groups_of($program, $entry)
-            .unwrap_or(&[])
-            .iter()
-            .enumerate()
-        {
+    ($pass:expr, $frame:expr, $depth:expr, $groups:expr) => {
+        for (index, group) in $groups.iter().enumerate() {
             if let Some(bind_group) = bind_group_of($frame, $depth, group) {
                 $pass.set_bind_group(index as u32, bind_group, dynamic_offsets(group));
             }
@@ -196,7 +193,7 @@ fn load_op<V>(load: AttachmentLoad, clear: V) -> wgpu::LoadOp<V> {
     }
 }
 
-/// Records one frame into `encoder`: [`FRAME_PASSES`] in order (see the module
+/// Records one frame into `encoder`: `precip_gpu::frame::frame_plan` in order (see the module
 /// docs), each bracketed by its timestamps.
 pub fn encode_frame(
     encoder: &mut wgpu::CommandEncoder,
@@ -215,29 +212,29 @@ pub fn encode_frame(
     ) else {
         return;
     };
-    for (index, pass) in FRAME_PASSES.iter().enumerate() {
-        if pass.when == PassWhen::ShadowRedrawn && !target.draw_shadow {
-            continue;
-        }
-        let index = index as u32;
+    let counts = DispatchCounts {
+        particles: particle_count,
+        cover_texels: frame.cover_texels,
+        wave_cells: 0,
+    };
+    let conditions = FrameConditions {
+        shadow_redrawn: target.draw_shadow,
+    };
+    for planned in frame_plan(conditions).filter(|p| p.runs) {
+        let (pass, index) = (planned.pass, planned.index);
         match &pass.work {
-            PassWork::Kernels(list) => {
+            PassWork::Kernels(_) => {
                 let mut compute = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some(pass.name),
                     timestamp_writes: compute_stamps(stamps, index),
                 });
-                for kernel in *list {
-                    let Some(pipeline) = kernels.get(kernel.entry_point) else {
+                for k in planned.kernels(counts) {
+                    let Some(pipeline) = kernels.get(k.kernel.entry_point) else {
                         continue;
                     };
                     compute.set_pipeline(pipeline);
-                    bind_groups!(compute, frame, depth, kernel.program, kernel.entry_point);
-                    let (x, y) = dispatch_size(kernel.over.invocations(DispatchCounts {
-                        particles: particle_count,
-                        cover_texels: frame.cover_texels,
-                        wave_cells: 0,
-                    }));
-                    compute.dispatch_workgroups(x, y, 1);
+                    bind_groups!(compute, frame, depth, k.groups);
+                    compute.dispatch_workgroups(k.workgroups.0, k.workgroups.1, 1);
                 }
             }
             PassWork::Render(recipe) => {
@@ -285,14 +282,13 @@ pub fn encode_frame(
                     occlusion_query_set: None,
                     multiview_mask: None,
                 });
-                for draw in recipe.draws {
-                    let vs = draw.entry_points.0;
-                    let Some(pipeline) = draws.get(vs) else {
+                for d in planned.draws() {
+                    let Some(pipeline) = draws.get(d.draw.entry_points.0) else {
                         continue;
                     };
                     render.set_pipeline(pipeline);
-                    bind_groups!(render, frame, depth, Program::Render, vs);
-                    match draw.of {
+                    bind_groups!(render, frame, depth, d.groups);
+                    match d.draw.of {
                         DrawOf::SceneMeshes { materials } => {
                             if let Some(scene) = &state.scene {
                                 let (camera_m, distance_m) = target.detail;
