@@ -1,6 +1,7 @@
 //! [`WgpuBackend`]: the [`Backend`] over wgpu: configure, weather, step, render (see
 //! [`crate::render`]), read-back and timings.
 
+use precip_gpu::frame::FrameHost;
 use precip_gpu::frame_resources::{FrameBuffer, FrameTexture};
 use precip_gpu::recipe::FrameDraws;
 use precip_gpu::{Kernels, Simulation};
@@ -21,7 +22,6 @@ use crate::render::stamps::RenderStamps;
 use crate::render::target::{ColourTarget, DepthBuffer, OFFSCREEN_FORMAT, read_texture};
 use crate::render::{FrameTarget, RenderState, Renderer, encode_frame};
 use crate::transfer::read_buffer;
-use precip_model::drawing::shadow_cache::ShadowCache;
 
 /// A configured simulation: the host state every backend shares, and the device's.
 #[derive(Debug)]
@@ -190,8 +190,7 @@ impl WgpuBackend {
                 offscreen: None,
                 depth: None,
                 rendered: false,
-                shadow_bounds_m: setup.scene_bounds_m(),
-                shadow_cache: ShadowCache::default(),
+                host: FrameHost::new(setup),
             });
         }
         let Some(render) = state.render.as_mut() else {
@@ -209,18 +208,8 @@ impl WgpuBackend {
             })??;
             render.depth = Some(depth);
         }
-        let host = state.sim.host();
-        let setup = host.setup();
-        let params = host.render_params(
-            view,
-            render.shadow_bounds_m,
-            state.sim.particle_count(),
-            state.sim.wave_frame(),
-        );
-        let draw_shadow =
-            render
-                .shadow_cache
-                .for_frame(setup, host.weather(), &params, host.time_s());
+        let decision = render.host.decide(&state.sim, view);
+        let (params, draw_shadow) = (decision.params, decision.conditions.shadow_redrawn);
         if let Some(s) = self.render_stamps.as_mut() {
             s.shadow_drawn = draw_shadow;
         }
@@ -260,7 +249,7 @@ impl WgpuBackend {
                 FrameTarget {
                     colour,
                     depth,
-                    sky: precip_model::drawing::render::haze_colour(&setup.render, host.weather()),
+                    sky: decision.sky_colour,
                     draw_shadow,
                     detail,
                 },

@@ -11,7 +11,14 @@
 //! backends (`2·i`, `2·i + 1` for pass `i`), so per-pass times compare; a pass that
 //! does not run (the shadow map kept by [`precip_model::drawing::shadow_cache`]) is not reported.
 
+use glam::Vec3;
+use precip_model::drawing::render::{RenderParams, haze_colour};
+use precip_model::drawing::shadow_cache::ShadowCache;
+use precip_model::{Setup, View};
+
 use crate::bind_groups::{GroupLayout, groups_of};
+use crate::executor::Simulation;
+use crate::gpu::Gpu;
 use crate::recipe::{
     COVER_TEXTURE_PASS, CULL_PASSES, DispatchCounts, FrameDraws, KernelPass, SPLAT_PASS,
     dispatch_size, render_passes,
@@ -365,6 +372,57 @@ impl PlannedPass {
             draw,
             groups: groups_of(Program::Render, draw.entry_points.0).unwrap_or(&[]),
         })
+    }
+}
+
+/// What the host decides for one frame, the same on every backend.
+#[derive(Debug, Clone, Copy)]
+pub struct FrameDecision {
+    /// The frame's uniform block.
+    pub params: RenderParams,
+    /// Which conditional passes run.
+    pub conditions: FrameConditions,
+    /// The sky's colour (linear): the colour targets are cleared to it.
+    pub sky_colour: Vec3,
+}
+
+/// The host's side of drawing one configuration: the box the sun's shadow map
+/// encloses (the scene's bounds, computed once) and when the map is drawn again.
+#[derive(Debug)]
+pub struct FrameHost {
+    shadow_bounds_m: (Vec3, Vec3),
+    shadow_cache: ShadowCache,
+}
+
+impl FrameHost {
+    /// For `setup`'s scene; the first frame draws the shadow map.
+    #[must_use]
+    pub fn new(setup: &Setup) -> Self {
+        Self {
+            shadow_bounds_m: setup.scene_bounds_m(),
+            shadow_cache: ShadowCache::default(),
+        }
+    }
+
+    /// The next frame of `sim` for `view`: its block (from the host state), whether
+    /// the shadow map is drawn again, the sky's colour.
+    pub fn decide<G: Gpu>(&mut self, sim: &Simulation<G>, view: &View) -> FrameDecision {
+        let host = sim.host();
+        let setup = host.setup();
+        let params = host.render_params(
+            view,
+            self.shadow_bounds_m,
+            sim.particle_count(),
+            sim.wave_frame(),
+        );
+        let shadow_redrawn =
+            self.shadow_cache
+                .for_frame(setup, host.weather(), &params, host.time_s());
+        FrameDecision {
+            params,
+            conditions: FrameConditions { shadow_redrawn },
+            sky_colour: haze_colour(&setup.render, host.weather()),
+        }
     }
 }
 

@@ -11,6 +11,7 @@ use crate::render::scene::SceneGpu;
 use crate::render::target::{OFFSCREEN_FORMAT, OffscreenTarget};
 use crate::render::{FrameTarget, RenderState, Renderer, record_frame};
 use crate::transfer::{FRAMES_IN_FLIGHT, download};
+use precip_gpu::frame::FrameHost;
 use precip_gpu::frame_resources::FrameBuffer;
 use precip_gpu::recipe::FrameDraws;
 use precip_model::{BackendError, DrawnCounts, View};
@@ -114,10 +115,9 @@ impl VkBackend {
                 frame,
                 offscreen: None,
                 rendered: false,
-                shadow_bounds_m: setup.scene_bounds_m(),
+                host: FrameHost::new(setup),
                 frames_drawn: 0,
                 splat_sums: None,
-                shadow_cache: precip_model::drawing::shadow_cache::ShadowCache::default(),
             });
         }
         let Some(render) = state.render.as_mut() else {
@@ -153,18 +153,8 @@ impl VkBackend {
         };
         let zero_splat_sums = (!sums.zeroed).then_some(sums.buffer.raw);
         sums.zeroed = true;
-        let host = state.sim.host();
-        let setup = host.setup();
-        let params = host.render_params(
-            view,
-            render.shadow_bounds_m,
-            state.sim.particle_count(),
-            state.sim.wave_frame(),
-        );
-        let draw_shadow =
-            render
-                .shadow_cache
-                .for_frame(setup, host.weather(), &params, host.time_s());
+        let decision = render.host.decide(&state.sim, view);
+        let (params, draw_shadow) = (decision.params, decision.conditions.shadow_redrawn);
         let slot = render.frames_drawn % FRAMES_IN_FLIGHT as u64;
         let offset = slot * render.frame.params_stride;
         if let Some(sums) = &render.splat_sums {
@@ -188,7 +178,7 @@ impl VkBackend {
             passes,
             framebuffer,
             size,
-            sky: precip_model::drawing::render::haze_colour(&setup.render, host.weather()),
+            sky: decision.sky_colour,
             splat_sets: (
                 render.frame.splat_sets[slot as usize],
                 render.frame.resolve_sets[slot as usize],

@@ -42,7 +42,7 @@ use ash::vk;
 use glam::Vec3;
 use precip_gpu::bind_groups::{self as bg, GroupLayout};
 use precip_gpu::frame::{
-    AttachmentLoad, DepthTarget, DrawOf, FrameConditions, PassWork, frame_plan,
+    AttachmentLoad, DepthTarget, DrawOf, FrameConditions, FrameHost, PassWork, frame_plan,
 };
 use precip_gpu::frame_resources::{FrameBuffer, FrameTexture};
 use precip_gpu::recipe::DispatchCounts;
@@ -199,12 +199,10 @@ pub struct RenderState {
     pub offscreen: Option<OffscreenTarget>,
     /// Whether `offscreen` holds a frame.
     pub rendered: bool,
-    /// The box the shadow map encloses (the scene's bounds, computed once), m.
-    pub shadow_bounds_m: (Vec3, Vec3),
+    /// The host's side: the shadow map's box and when it is drawn again.
+    pub host: FrameHost,
     /// Frames drawn since configure (picks the uniform block).
     pub frames_drawn: u64,
-    /// Whether a frame redraws the shadow map.
-    pub shadow_cache: precip_model::drawing::shadow_cache::ShadowCache,
     /// The splat's sums, for the last frame's size.
     pub splat_sums: Option<frame::SplatSums>,
 }

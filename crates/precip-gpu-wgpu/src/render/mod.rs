@@ -52,11 +52,10 @@ use self::stamps::RenderStamps;
 use self::target::{ColourTarget, DepthBuffer};
 use precip_gpu::bind_groups::GroupLayout;
 use precip_gpu::frame::{
-    AttachmentLoad, DepthTarget, DrawOf, FrameConditions, PassWork, frame_plan,
+    AttachmentLoad, DepthTarget, DrawOf, FrameConditions, FrameHost, PassWork, frame_plan,
 };
 use precip_gpu::frame_resources::{FrameBuffer, FrameTexture};
 use precip_gpu::recipe::DispatchCounts;
-use precip_model::drawing::shadow_cache::ShadowCache;
 
 /// Layouts and pipelines of one device.
 #[derive(Debug)]
@@ -109,10 +108,8 @@ pub struct RenderState {
     pub depth: Option<DepthBuffer>,
     /// Whether `offscreen` holds a frame.
     pub rendered: bool,
-    /// The box the shadow map encloses (the scene's bounds, computed once), m.
-    pub shadow_bounds_m: (Vec3, Vec3),
-    /// Whether a frame redraws the shadow map.
-    pub shadow_cache: ShadowCache,
+    /// The host's side: the shadow map's box and when it is drawn again.
+    pub host: FrameHost,
 }
 
 /// Where a frame goes.
