@@ -1,0 +1,264 @@
+//! The executor over a recording `Gpu`: what a configuration makes comes from the
+//! resources table, every object goes back to the device on every path (a failure
+//! injected at each call in turn leaves nothing alive), a step dispatches every
+//! sub-step's kernels at its own block, and a refused step or weather changes
+//! nothing.
+
+use precip_gpu::bind_groups::GroupLayout;
+use precip_gpu::gpu::{BindingResource, Dispatch, Gpu};
+use precip_gpu::recipe::SUBSTEP_PASSES;
+use precip_gpu::resources::{BufferUsage, SimBuffer};
+use precip_gpu::shaders::Program;
+use precip_gpu::{Kernels, Simulation};
+use precip_model::backend::MAX_STEP_S;
+use precip_model::{BackendError, DeviceLimits, Setup, Weather};
+
+/// A device that records calls, counts live objects and fails the `fail_at`-th
+/// call that makes something.
+#[derive(Debug, Default)]
+struct Recording {
+    made: usize,
+    fail_at: Option<usize>,
+    live: i64,
+    buffers: Vec<(&'static str, u64)>,
+    dispatches: Vec<(u32, Option<u32>)>,
+    writes: Vec<(u64, usize)>,
+}
+
+impl Recording {
+    fn make(&mut self) -> Result<u32, BackendError> {
+        self.made += 1;
+        if self.fail_at == Some(self.made) {
+            return Err(BackendError::Device {
+                backend: "recording",
+                message: format!("call {} fails on purpose", self.made),
+            });
+        }
+        self.live += 1;
+        Ok(self.made as u32)
+    }
+}
+
+impl Gpu for Recording {
+    type Buffer = (u32, u64);
+    type Volume = u32;
+    type GroupLayout = u32;
+    type BindGroup = u32;
+    type Kernel = u32;
+
+    fn limits(&self) -> DeviceLimits {
+        DeviceLimits {
+            device: "recording".into(),
+            max_storage_binding_bytes: 1 << 27,
+            max_buffer_bytes: 1 << 30,
+            max_texture_side_px: 8192,
+        }
+    }
+    fn uniform_alignment(&self) -> u64 {
+        256
+    }
+    fn slots(&self) -> u32 {
+        2
+    }
+    fn create_buffer(
+        &mut self,
+        label: &'static str,
+        bytes: u64,
+        _usage: BufferUsage,
+        contents: Option<&[u8]>,
+    ) -> Result<(u32, u64), BackendError> {
+        if let Some(c) = contents {
+            assert_eq!(
+                c.len() as u64,
+                bytes,
+                "{label}: contents as long as the buffer"
+            );
+        }
+        let id = self.make()?;
+        self.buffers.push((label, bytes));
+        Ok((id, bytes))
+    }
+    fn write_buffer(
+        &mut self,
+        buffer: &mut (u32, u64),
+        offset: u64,
+        bytes: &[u8],
+    ) -> Result<(), BackendError> {
+        assert!(
+            offset + bytes.len() as u64 <= buffer.1,
+            "a write past the end"
+        );
+        self.writes.push((offset, bytes.len()));
+        Ok(())
+    }
+    fn read_buffer(&mut self, buffer: &(u32, u64), bytes: u64) -> Result<Vec<u8>, BackendError> {
+        assert!(bytes <= buffer.1, "a read past the end");
+        Ok(vec![0; bytes as usize])
+    }
+    fn create_volume(
+        &mut self,
+        _label: &'static str,
+        size: [u32; 3],
+        texels: &[u8],
+    ) -> Result<u32, BackendError> {
+        assert_eq!(texels.len(), 16 * size.iter().product::<u32>() as usize);
+        self.make()
+    }
+    fn write_volume(&mut self, _volume: &u32, _texels: &[u8]) -> Result<(), BackendError> {
+        Ok(())
+    }
+    fn group_layout(&mut self, _table: &GroupLayout) -> Result<u32, BackendError> {
+        self.make()
+    }
+    fn kernel(
+        &mut self,
+        program: Program,
+        entry_point: &'static str,
+        _layout: &u32,
+    ) -> Result<u32, BackendError> {
+        assert!(
+            program.entry_points().contains(&entry_point),
+            "{entry_point}"
+        );
+        self.make()
+    }
+    fn bind_group(
+        &mut self,
+        _layout: &u32,
+        table: &GroupLayout,
+        entries: &[(u32, BindingResource<'_, Self>)],
+    ) -> Result<u32, BackendError> {
+        assert_eq!(entries.len(), table.bindings.len(), "{}", table.name);
+        self.make()
+    }
+    fn free_slot(&mut self, slot: u32) -> Result<(), BackendError> {
+        assert!(slot < self.slots());
+        Ok(())
+    }
+    fn settle(&mut self) -> Result<(), BackendError> {
+        Ok(())
+    }
+    fn dispatch(
+        &mut self,
+        dispatches: &[Dispatch<'_, Self>],
+        _timed: bool,
+    ) -> Result<(), BackendError> {
+        self.dispatches
+            .extend(dispatches.iter().map(|d| (*d.kernel, d.offset)));
+        Ok(())
+    }
+    fn kernel_times_ms(&mut self) -> Result<Option<Vec<f64>>, BackendError> {
+        Ok(None)
+    }
+    fn destroy_buffer(&mut self, _buffer: (u32, u64)) {
+        self.live -= 1;
+    }
+    fn destroy_volume(&mut self, _volume: u32) {
+        self.live -= 1;
+    }
+    fn destroy_bind_group(&mut self, _group: u32) {
+        self.live -= 1;
+    }
+    fn destroy_kernel(&mut self, _kernel: u32) {
+        self.live -= 1;
+    }
+    fn destroy_group_layout(&mut self, _layout: u32) {
+        self.live -= 1;
+    }
+}
+
+fn setup() -> Setup {
+    Setup::over_flat_ground(20.0, 8, 10.0, 500)
+}
+
+#[test]
+fn a_failure_at_any_call_leaves_nothing_alive() {
+    let mut calls = 0;
+    // Count the calls of a whole run, then fail each in turn.
+    for fail_at in std::iter::once(None).chain((1..).map(Some)) {
+        let mut gpu = Recording {
+            fail_at,
+            ..Recording::default()
+        };
+        let result = (|| -> Result<(), BackendError> {
+            let kernels = Kernels::new(&mut gpu)?;
+            let sim = Simulation::prepare(&gpu, &setup())
+                .and_then(|p| Simulation::configure(&mut gpu, &kernels, p));
+            let sim = match sim {
+                Ok(s) => s,
+                Err(e) => {
+                    kernels.destroy(&mut gpu);
+                    return Err(e);
+                }
+            };
+            let queried = sim.optics(&mut gpu, &kernels).map(drop);
+            sim.destroy(&mut gpu);
+            kernels.destroy(&mut gpu);
+            queried
+        })();
+        assert_eq!(gpu.live, 0, "fail at {fail_at:?}: {result:?}");
+        match fail_at {
+            None => {
+                assert!(result.is_ok());
+                calls = gpu.made;
+            }
+            Some(n) => {
+                assert!(result.is_err(), "call {n} of {calls} was to fail");
+                if n == calls {
+                    break;
+                }
+            }
+        }
+    }
+    assert!(
+        calls > 30,
+        "kernels, layouts, buffers, groups: {calls} calls"
+    );
+}
+
+#[test]
+fn the_table_makes_every_buffer_and_a_step_dispatches_every_sub_step() {
+    let mut gpu = Recording::default();
+    let kernels = Kernels::new(&mut gpu).expect("kernels");
+    let prepared = Simulation::prepare(&gpu, &setup()).expect("a valid setup");
+    let mut sim = Simulation::configure(&mut gpu, &kernels, prepared).expect("configure");
+    for b in SimBuffer::ALL {
+        assert!(
+            gpu.buffers.iter().any(|(label, _)| *label == b.label()),
+            "{b:?}"
+        );
+    }
+    let particles = gpu
+        .buffers
+        .iter()
+        .find(|(l, _)| *l == SimBuffer::Particles.label())
+        .map(|(_, bytes)| *bytes);
+    assert_eq!(particles, Some(500 * 64));
+    // init_particles, once, at the first block.
+    assert_eq!(gpu.dispatches.len(), 1);
+    gpu.dispatches.clear();
+    sim.step(&mut gpu, &kernels, 0.1).expect("a step");
+    let substeps = gpu.dispatches.len() / SUBSTEP_PASSES.len();
+    assert!(substeps >= 2 && gpu.dispatches.len() % SUBSTEP_PASSES.len() == 0);
+    let mut offsets: Vec<u32> = gpu.dispatches.iter().filter_map(|d| d.1).collect();
+    offsets.dedup();
+    assert_eq!(offsets.len(), substeps, "one block per sub-step");
+    assert!(offsets.iter().all(|o| o % 256 == 0));
+    // The next step writes the other slot's ring.
+    gpu.dispatches.clear();
+    sim.step(&mut gpu, &kernels, 0.1).expect("a step");
+    let second: Vec<u32> = gpu.dispatches.iter().filter_map(|d| d.1).collect();
+    assert!(second.iter().all(|o| !offsets.contains(o)), "another slot");
+    let time = sim.host().time_s();
+    assert!(sim.step(&mut gpu, &kernels, MAX_STEP_S * 2.0).is_err());
+    let bad = Weather {
+        air_temperature_c: f32::NAN,
+        ..*sim.host().weather()
+    };
+    assert!(sim.set_weather(&mut gpu, &bad).is_err());
+    assert!((sim.host().time_s() - time).abs() < f64::EPSILON);
+    assert!(sim.host().weather().air_temperature_c.is_finite());
+    sim.destroy(&mut gpu);
+    kernels.destroy(&mut gpu);
+    assert_eq!(gpu.live, 0);
+}
