@@ -1,6 +1,6 @@
 //! Snow moved on the ground: by the wind (drifts) and by gravity (slides) (WGSL
-//! twins in `shaders/cover_update.wgsl`: `snow_wind_factor_of`, `snow_outflow_of`,
-//! `snow_inflow`).
+//! twins in `shaders/cover_update.wgsl`: `snow_wind_factor_of`, and the
+//! `snow_outflow` and `snow_inflow` kernels, where the outflow is written inline).
 //!
 //! ## The wind over the ground
 //!
@@ -159,7 +159,7 @@ pub struct SnowOutflow {
 
 /// The drift iteration's outflows of texel `index`, for a mean wind `wind_mps` at
 /// 10 m, air at `air_temperature_c`, an iteration of `tau_s` seconds and a repose
-/// tangent `repose_tan` (WGSL twin: `snow_outflow_of`).
+/// tangent `repose_tan` (WGSL twin: inline in the `snow_outflow` kernel).
 #[must_use]
 pub fn snow_outflow_of(
     texels: &[CoverTexel],

@@ -1,6 +1,8 @@
-//! Water on surfaces: evaporation and overland flow (docs/model.md §6; WGSL twins in
-//! `shaders/cover.wgsl`: `saturation_vapour_pressure_hpa`, `evaporation_mm_per_day`,
-//! `water_outflow_of`, `water_inflow_of`).
+//! Water on surfaces: evaporation and overland flow (docs/model.md §6; WGSL twins:
+//! `saturation_vapour_pressure_hpa` and `evaporation_mm_per_day` in
+//! `shaders/cover.wgsl`, `water_outflow_of` and the `water_outflow`/`water_inflow`
+//! kernels in `shaders/cover_update.wgsl`, where the inflow and its application are
+//! written inline).
 //!
 //! ## Evaporation
 //!
@@ -158,7 +160,7 @@ pub fn water_outflow_of(
 
 /// What texel `index` sends away and takes in over one iteration, mm, from the
 /// outflows every texel computed: `(out to neighbours, out over the grid's edge, in)`
-/// (WGSL twin: `water_inflow_of`).
+/// (WGSL twin: inline in the `water_inflow` kernel).
 #[must_use]
 pub fn water_inflow_of(texels: &[CoverTexel], frame: &GridFrame, index: usize) -> (f32, f32, f32) {
     let Some(mine) = texels.get(index).map(|t| t.outflow_mm) else {

@@ -24,7 +24,7 @@
 //!
 //! `step(dt)` writes one uniform block per sub-step (a dynamic offset each), records
 //! every sub-step's kernels in one compute pass and submits once (the executor's
-//! recipe; [`gpu::Hal::dispatch`] records it). Nothing is read back while stepping.
+//! recipe; `precip_gpu::Gpu::dispatch` on [`gpu::Hal`] records it). Nothing is read back while stepping.
 
 pub mod backend;
 pub mod bind_groups;

@@ -499,7 +499,7 @@ pub mod cull_bindings {
     /// `array<vec4<u32>>`, one per cull workgroup.
     pub const GROUP_COUNTS: u32 = 2;
     /// The drawn lists: `array<u32>` of 3 × particle count (N): sprites from 0,
-    /// streaks from N, splats from 2N ([`DRAWN_LIST_BYTES_PER_PARTICLE`]).
+    /// streaks from N, splats from 2N ([`super::DRAWN_LIST_BYTES_PER_PARTICLE`]).
     pub const DRAWN: u32 = 3;
     /// The two indirect draws and the splat count, [`super::FrameDraws`].
     pub const DRAWS: u32 = 4;

@@ -1,6 +1,6 @@
 //! One particle's step: the seeds' kinematics with physical acceleration, rotation,
 //! landing and deposit, re-birth, and the camera volume's wrap.
-//! WGSL twin: the `step_particles` kernel in `shaders/step.wgsl`.
+//! WGSL twin: the `step_particles` kernel in `shaders/step_particles.wgsl`.
 //!
 //! ## Order within a step
 //!

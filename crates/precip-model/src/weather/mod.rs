@@ -63,7 +63,8 @@ pub const SLEET_ALL_RAIN_C: f32 = 3.0;
 
 /// Fraction of sleet's water that falls as (wet) snow: 1 at ≤ −1 °C, 0 at ≥ +3 °C,
 /// linear between (the threshold-range rain/snow partition of hydrological models
-/// such as HBV, centred at +1 °C). WGSL twin: `sleet_snow_fraction`.
+/// such as HBV, centred at +1 °C). Host-side only: the GPU reads the result as
+/// `StepParams::snow_fraction`.
 #[must_use]
 pub fn sleet_snow_fraction(air_temperature_c: f32) -> f32 {
     ((SLEET_ALL_RAIN_C - air_temperature_c) / (SLEET_ALL_RAIN_C - SLEET_ALL_SNOW_C)).clamp(0.0, 1.0)
