@@ -4,7 +4,7 @@
 #   tools/rss-soak.sh VIEWER FRAMES OUT_DIR [viewer options...]
 #
 # Starts VIEWER (e.g. target/release/precip) headless for FRAMES frames writing PNGs
-# into OUT_DIR, samples its VmRSS twice a second, and prints the growth in KiB per
+# into OUT_DIR, samples its VmRSS ten times a second, and prints the growth in KiB per
 # frame between the samples taken once a fifth and 95 % of the frames are written
 # (start-up and shut-down left out). A flat run prints about 0.
 set -euo pipefail
@@ -21,7 +21,8 @@ first_frame=$((frames / 5))
 last_frame=$((frames * 95 / 100))
 start_kib="" start_at=0 end_kib="" end_at=0
 while kill -0 "$pid" 2>/dev/null; do
-  written=$(find "$out" -name '*.png' 2>/dev/null | wc -l)
+  # The folder appears with the first frame: count nothing until then.
+  written=$({ find "$out" -name '*.png' 2>/dev/null || true; } | wc -l)
   kib=$(awk '$1 == "VmRSS:" { print $2 }' "/proc/$pid/status" 2>/dev/null || true)
   if [ -n "$kib" ]; then
     if [ -z "$start_kib" ] && [ "$written" -ge "$first_frame" ]; then
@@ -31,7 +32,7 @@ while kill -0 "$pid" 2>/dev/null; do
       end_kib=$kib end_at=$written
     fi
   fi
-  sleep 0.5
+  sleep 0.1
 done
 status=0
 wait "$pid" || status=$?
