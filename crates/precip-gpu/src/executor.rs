@@ -261,15 +261,17 @@ impl<G: Gpu> Simulation<G> {
                     }
                 };
                 let (cover_group, step_group) = (groups.remove(1), groups.remove(0));
+                let cover_texel_count = cover.texels.len() as u32;
+                let wave_frame = host.frames().waves;
                 let mut sim = Self {
-                    host: host.clone(),
+                    host: prepared.host,
                     buffers,
                     wind,
                     step_group,
                     cover_group,
                     particle_count: parts.0,
-                    cover_texel_count: cover.texels.len() as u32,
-                    wave_frame: host.frames().waves,
+                    cover_texel_count,
+                    wave_frame,
                     uniform_stride: parts.1,
                     steps_submitted: 0,
                 };
@@ -398,20 +400,19 @@ impl<G: Gpu> Simulation<G> {
     /// block, and its volume when it was baked again. A refused weather changes
     /// nothing.
     pub fn set_weather(&mut self, gpu: &mut G, weather: &Weather) -> Result<(), BackendError> {
-        let mut host = self.host.clone();
-        let change = host.set_weather(weather)?;
+        // Validated and applied on the host first (a refused weather changes nothing),
+        // without copying the host state: hosts send a weather every frame.
+        let change = self.host.set_weather(weather)?;
         gpu.settle()?;
         if change.wind_rebaked {
-            gpu.write_volume(&self.wind, host.wind().as_bytes())?;
+            gpu.write_volume(&self.wind, self.host.wind().as_bytes())?;
         }
-        let params = host.wind_params();
+        let params = self.host.wind_params();
         gpu.write_buffer(
             self.buffer_mut(SimBuffer::WindParams),
             0,
             bytemuck::bytes_of(&params),
-        )?;
-        self.host = host;
-        Ok(())
+        )
     }
 
     /// Moves the camera (validated).
