@@ -1,6 +1,13 @@
-//! An X server for window tests: Xvfb on a free display, killed on drop.
+//! An X server for window tests: Xvfb on a display it picks itself, killed on drop.
+//!
+//! Two tests of this binary run at once, each with its own server. Xvfb chooses a free
+//! display and writes its number to us (`-displayfd`), so two servers never race for the
+//! same one (a server that lost that race used to leave its test on the winner's
+//! display, which vanished when the winner's test ended). `-noreset` keeps the server up
+//! between the clients a test starts one after another.
 
-use std::process::Command;
+use std::io::BufRead;
+use std::process::{Command, Stdio};
 
 /// An X server for a window test: Xvfb on a free display, killed on drop.
 pub struct Xvfb {
@@ -10,39 +17,40 @@ pub struct Xvfb {
 }
 
 impl Xvfb {
-    /// Starts one, or `None` when Xvfb is not installed.
+    /// Starts one, or `None` when Xvfb is not installed; panics when it is installed
+    /// but does not start (a window test must not pass by doing nothing).
     pub fn start() -> Option<Self> {
-        for n in 0..40 {
-            let number = 60 + (std::process::id() as usize + n) % 400;
-            if std::path::Path::new(&format!("/tmp/.X11-unix/X{number}")).exists() {
-                continue;
+        let mut child = Command::new("Xvfb")
+            .args([
+                "-displayfd",
+                "1",
+                "-screen",
+                "0",
+                "640x480x24",
+                "-nolisten",
+                "tcp",
+                "-noreset",
+            ])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .ok()?;
+        // Xvfb writes the display's number once it accepts connections; a server that
+        // fails exits, and the read ends empty.
+        let mut line = String::new();
+        let stdout = child.stdout.take()?;
+        let read = std::io::BufReader::new(stdout).read_line(&mut line);
+        match (read, line.trim().parse::<u32>()) {
+            (Ok(_), Ok(number)) => Some(Self {
+                child,
+                display: format!(":{number}"),
+            }),
+            (read, _) => {
+                let _ = child.kill();
+                let status = child.wait();
+                panic!("Xvfb did not start (read {read:?}, said {line:?}, exit {status:?})");
             }
-            let display = format!(":{number}");
-            let child = Command::new("Xvfb")
-                .args([
-                    display.as_str(),
-                    "-screen",
-                    "0",
-                    "640x480x24",
-                    "-nolisten",
-                    "tcp",
-                ])
-                .stdout(std::process::Stdio::null())
-                .stderr(std::process::Stdio::null())
-                .spawn()
-                .ok()?;
-            let socket = format!("/tmp/.X11-unix/X{number}");
-            for _ in 0..100 {
-                if std::path::Path::new(&socket).exists() {
-                    return Some(Self { child, display });
-                }
-                std::thread::sleep(std::time::Duration::from_millis(50));
-            }
-            let mut child = child;
-            let _ = child.kill();
-            let _ = child.wait();
         }
-        None
     }
 }
 
