@@ -9,7 +9,7 @@ struct CoverStepParams {
     albedo_decay_per_day: f32,
     refreeze_factor_mm_per_c_day: f32,
     water_holding_fraction: f32,
-    full_cover_depth_mm: f32,
+    cover_depletion_exponent: f32,
     settled_density_kg_m3: f32,
     compaction_time_days: f32,
     wet_darkening: f32,

@@ -1,6 +1,7 @@
 // shading.wgsl: the cover as a surface shader sees it. Rust twins:
-// precip_cover::shading::{accumulated_fraction, melted_fraction, shade_with_masks,
-// settled_grain_cover}.
+// precip_cover::shading::{snow_cover_fraction, accumulated_fraction, value_noise,
+// sub_texel_threshold, melted_fraction, shade_with_masks, settled_grain_cover} and
+// precip_cover::Surface::snow_roughness_m.
 
 // Rust: precip_cover::shading::GRAINS_COVERING_KG_M2.
 const GRAINS_COVERING_KG_M2: f32 = 0.1;
@@ -17,8 +18,70 @@ struct CoverShading {
     depth_m: f32,
 }
 
-fn accumulated_fraction(texel: CoverTexel, full_cover_depth_mm: f32) -> f32 {
-    return clamp(texel.depth_mm / full_cover_depth_mm, 0.0, 1.0);
+// Rust: precip_cover::shading::NEW_SNOW_DENSITY_KG_M3.
+const NEW_SNOW_DENSITY_KG_M3: f32 = 100.0;
+
+fn surface_snow_roughness_m(surface: u32) -> f32 {
+    switch surface {
+        case 0u: { return 0.01; }
+        case 2u: { return 0.03; }
+        default: { return 0.005; }
+    }
+}
+
+// Niu & Yang 2007: tanh(h / (2.5·z0·(ρ/ρ_new)^m)).
+fn snow_cover_fraction(depth_m: f32, density_kg_m3: f32, roughness_m: f32, exponent: f32) -> f32 {
+    if (!(depth_m > 0.0)) {
+        return 0.0;
+    }
+    let density = clamp(density_kg_m3, 30.0, 917.0);
+    let scale_m = 2.5 * max(roughness_m, 1.0e-4) * pow(density / NEW_SNOW_DENSITY_KG_M3, exponent);
+    return tanh(depth_m / scale_m);
+}
+
+fn accumulated_fraction(texel: CoverTexel, roughness_m: f32, exponent: f32) -> f32 {
+    var density = NEW_SNOW_DENSITY_KG_M3;
+    if (texel.depth_mm > 0.0) {
+        density = 1000.0 * texel.swe_mm / texel.depth_mm;
+    }
+    return snow_cover_fraction(texel.depth_mm * 1.0e-3, density, roughness_m, exponent);
+}
+
+// Rust: precip_cover::shading::{THRESHOLD_NOISE_WAVELENGTHS_M, THRESHOLD_NOISE_AMPLITUDE}.
+const THRESHOLD_NOISE_COARSE_M: f32 = 0.6;
+const THRESHOLD_NOISE_FINE_M: f32 = 0.15;
+const THRESHOLD_NOISE_AMPLITUDE: f32 = 0.2;
+
+fn lattice_value(i: i32, j: i32) -> f32 {
+    var h = (bitcast<u32>(i) * 0x8da6b343u) ^ (bitcast<u32>(j) * 0xd8163841u);
+    h ^= h >> 15u;
+    h *= 0x2c1b3c6du;
+    h ^= h >> 12u;
+    h *= 0x297a2d39u;
+    h ^= h >> 15u;
+    return f32(h >> 8u) / 16777216.0;
+}
+
+fn noise_fade(t: f32) -> f32 {
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+fn value_noise(x: f32, z: f32) -> f32 {
+    let fx = floor(x);
+    let fz = floor(z);
+    let i = i32(fx);
+    let j = i32(fz);
+    let u = noise_fade(x - fx);
+    let v = noise_fade(z - fz);
+    let a = lattice_value(i, j) + (lattice_value(i + 1, j) - lattice_value(i, j)) * u;
+    let b = lattice_value(i, j + 1) + (lattice_value(i + 1, j + 1) - lattice_value(i, j + 1)) * u;
+    return a + (b - a) * v;
+}
+
+fn sub_texel_threshold(mask: f32, xz_m: vec2<f32>) -> f32 {
+    let n = (2.0 * value_noise(xz_m.x / THRESHOLD_NOISE_COARSE_M, xz_m.y / THRESHOLD_NOISE_COARSE_M)
+        + value_noise(xz_m.x / THRESHOLD_NOISE_FINE_M + 17.0, xz_m.y / THRESHOLD_NOISE_FINE_M + 31.0)) / 3.0;
+    return mask + THRESHOLD_NOISE_AMPLITUDE * 2.0 * (n - 0.5);
 }
 
 fn melted_fraction(texel: CoverTexel) -> f32 {
@@ -29,8 +92,8 @@ fn melted_fraction(texel: CoverTexel) -> f32 {
 }
 
 // shade_with_masks: masks (T_M.g, T_M.r) given per fragment.
-fn cover_shading(texel: CoverTexel, mask_g: f32, mask_r: f32, full_cover_depth_mm: f32, edge: f32, wet_darkening: f32) -> CoverShading {
-    let a_s = accumulated_fraction(texel, full_cover_depth_mm);
+fn cover_shading(texel: CoverTexel, mask_g: f32, mask_r: f32, roughness_m: f32, cover_depletion_exponent: f32, edge: f32, wet_darkening: f32) -> CoverShading {
+    let a_s = accumulated_fraction(texel, roughness_m, cover_depletion_exponent);
     let m_s = melted_fraction(texel);
     let covered = clamp((a_s * (1.0 + edge) - mask_g) / edge, 0.0, 1.0);
     let remaining = clamp((mask_r + edge - m_s * (1.0 + edge)) / edge, 0.0, 1.0);

@@ -45,8 +45,8 @@ pub struct CoverStepParams {
     pub refreeze_factor_mm_per_c_day: f32,
     /// [`CoverParams::water_holding_fraction`].
     pub water_holding_fraction: f32,
-    /// [`CoverParams::full_cover_depth_mm`].
-    pub full_cover_depth_mm: f32,
+    /// [`CoverParams::cover_depletion_exponent`].
+    pub cover_depletion_exponent: f32,
     /// [`CoverParams::settled_density_kg_m3`].
     pub settled_density_kg_m3: f32,
     /// [`CoverParams::compaction_time_days`].
@@ -111,7 +111,7 @@ impl CoverStepParams {
             albedo_decay_per_day: params.albedo_decay_per_day,
             refreeze_factor_mm_per_c_day: params.refreeze_factor_mm_per_c_day,
             water_holding_fraction: params.water_holding_fraction,
-            full_cover_depth_mm: params.full_cover_depth_mm,
+            cover_depletion_exponent: params.cover_depletion_exponent,
             settled_density_kg_m3: params.settled_density_kg_m3,
             compaction_time_days: params.compaction_time_days,
             wet_darkening: params.wet_darkening,

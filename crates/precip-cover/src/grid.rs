@@ -421,13 +421,18 @@ mod tests {
         let alpha: Vec<f32> = g.shading(&params).iter().map(|s| s.snow_alpha).collect();
         let covered = alpha.iter().filter(|&&a| a > 0.99).count() as f32 / alpha.len() as f32;
         let bare = alpha.iter().filter(|&&a| a < 0.01).count() as f32 / alpha.len() as f32;
+        // The soft borders (ε = 0.2 of the mask's range) keep the covered share: the
+        // mean opacity is A_S.
+        let mean = alpha.iter().sum::<f32>() / alpha.len() as f32;
         assert!(
-            (covered - a_s).abs() < 0.08,
-            "covered {covered} vs A_S {a_s}"
+            (mean - a_s).abs() < 0.05,
+            "mean opacity {mean} vs A_S {a_s}"
         );
+        // Patches, not a uniform veil: most texels are covered or bare, a fifth or
+        // so on a border.
         assert!(
-            covered + bare > 0.85,
-            "patches are either covered or bare: {covered} + {bare}"
+            covered + bare > 0.7,
+            "patches are mostly covered or bare: {covered} + {bare}"
         );
         // Coherent: a covered texel's right neighbour is mostly covered too.
         let nx = 64;

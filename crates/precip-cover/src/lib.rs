@@ -52,8 +52,9 @@ pub use masks::{ThresholdMasks, generate_threshold_masks};
 pub use melt::{degree_day_melt_mm, melt_factor, snow_albedo, vegetation_transmission};
 pub use params::CoverParams;
 pub use shading::{
-    CoverShading, GRAINS_COVERING_KG_M2, accumulated_fraction, melted_fraction,
-    settled_grain_cover, shade_texel, shade_with_masks,
+    CoverShading, GRAINS_COVERING_KG_M2, NEW_SNOW_DENSITY_KG_M3, THRESHOLD_NOISE_AMPLITUDE,
+    THRESHOLD_NOISE_WAVELENGTHS_M, accumulated_fraction, melted_fraction, settled_grain_cover,
+    shade_texel, shade_with_masks, snow_cover_fraction, sub_texel_threshold, value_noise,
 };
 pub use snowpack::{compacted_density, new_snow_density};
 pub use surface::{Surface, SurfaceWater};

@@ -25,8 +25,10 @@ pub struct CoverParams {
     pub refreeze_factor_mm_per_c_day: f32,
     /// Liquid water the pack holds, as a fraction of its SWE; the rest drains away.
     pub water_holding_fraction: f32,
-    /// Snow depth at which a texel counts as fully covered (A_S = 1), mm.
-    pub full_cover_depth_mm: f32,
+    /// `m` of the snow-cover depletion curve (Niu & Yang 2007,
+    /// [`crate::shading::snow_cover_fraction`]): how much a denser (older, melting)
+    /// pack of the same depth covers less. 1.0 as in the Community Land Model.
+    pub cover_depletion_exponent: f32,
     /// Density the pack settles toward, kg/m³.
     pub settled_density_kg_m3: f32,
     /// Time constant of settling, days.
@@ -54,12 +56,12 @@ impl Default for CoverParams {
             albedo_decay_per_day: 0.2,
             refreeze_factor_mm_per_c_day: 0.5,
             water_holding_fraction: 0.1,
-            full_cover_depth_mm: 30.0,
+            cover_depletion_exponent: 1.0,
             settled_density_kg_m3: 350.0,
             compaction_time_days: 4.0,
             wet_darkening: 0.4,
             wetting_mm: 1.0,
-            mask_edge: 0.05,
+            mask_edge: 0.2,
             snow_repose_angle_deg: 38.0,
         }
     }
@@ -118,11 +120,11 @@ impl CoverParams {
             "[0, 1]",
         )?;
         check_range(
-            "full_cover_depth_mm",
-            self.full_cover_depth_mm,
+            "cover_depletion_exponent",
+            self.cover_depletion_exponent,
             0.1,
-            1.0e4,
-            "[0.1, 10000] mm",
+            5.0,
+            "[0.1, 5]",
         )?;
         check_range(
             "settled_density_kg_m3",

@@ -1,5 +1,5 @@
 //! [`shade_texel`]: coverage, masks and wet darkening composed for a surface shader
-//! (seed 003, equations 15–17; WGSL twin `cover_shading` in cover.wgsl).
+//! (seed 003, equations 15–17; WGSL twin `cover_shading` in shading.wgsl).
 //!
 //! ## Reading of the seed
 //!
@@ -10,6 +10,17 @@
 //! `1 + edge` so that `A_S = 0` shows no snow anywhere and `A_S = 1` shows it
 //! everywhere. Wet darkening multiplies the ground by `1 − R_d·wetness`.
 //!
+//! ## Beyond the seed: a natural cover
+//!
+//! The seed's `A_S` grows linearly with depth to full cover at 30 mm; we take Niu &
+//! Yang's (2007) depletion curve instead ([`snow_cover_fraction`]), which knows the
+//! surface's roughness (grass shows through thin snow, a roof does not) and the
+//! pack's density (melt opens the cover as the pack densifies). A surface point
+//! compares it not with its texel's mask alone but with the mask moved by value
+//! noise finer than a texel ([`sub_texel_threshold`]), so patch borders follow
+//! neither texels nor triangles; the edge is 0.2 of the mask's range, so thin snow
+//! at a border lets the surface show through.
+//!
 //! Sand and dust that settled ([`CoverTexel::dust_kg_m2`]) tint the bare surface
 //! under the snow: grains scattered at random hide `1 − e^(−m/m₀)` of it
 //! ([`settled_grain_cover`]; a layer of mass `m` of grains of diameter `d` projects
@@ -17,6 +28,7 @@
 //! for 10 µm dust; [`GRAINS_COVERING_KG_M2`] takes 0.1, between them).
 
 use crate::params::CoverParams;
+use crate::surface::Surface;
 use crate::texel::CoverTexel;
 
 /// What a surface shader needs from the cover at one point.
@@ -44,10 +56,94 @@ pub fn settled_grain_cover(dust_kg_m2: f32) -> f32 {
     1.0 - (-dust_kg_m2.max(0.0) / GRAINS_COVERING_KG_M2).exp()
 }
 
-/// `A_S`: the fraction of the area the accumulated snow covers, from its depth.
+/// Density of new snow in the depletion curve, kg/m³ (Niu & Yang 2007).
+pub const NEW_SNOW_DENSITY_KG_M3: f32 = 100.0;
+
+/// The fraction of a surface of roughness length `roughness_m` that snow of
+/// `depth_m` and `density_kg_m3` covers (Niu & Yang 2007, *J. Geophys. Res.* 112,
+/// D21101, eq. 4): `f = tanh(h / (2.5·z₀·(ρ/ρ_new)^m))`, `ρ_new` =
+/// [`NEW_SNOW_DENSITY_KG_M3`], `m` the depletion exponent. Continuous and increasing
+/// in depth from 0 at no snow towards 1; a denser pack of the same depth (older or
+/// melting snow) covers less, so melt opens the cover before the last snow goes.
+/// The density is clamped to `[30, 917]` kg/m³. WGSL twin: same name
+/// (shading.wgsl).
+#[must_use]
+pub fn snow_cover_fraction(
+    depth_m: f32,
+    density_kg_m3: f32,
+    roughness_m: f32,
+    exponent: f32,
+) -> f32 {
+    // Not above zero, or NaN: no snow.
+    if depth_m.is_nan() || depth_m <= 0.0 {
+        return 0.0;
+    }
+    let density = density_kg_m3.clamp(30.0, 917.0);
+    let scale_m = 2.5 * roughness_m.max(1.0e-4) * (density / NEW_SNOW_DENSITY_KG_M3).powf(exponent);
+    (depth_m / scale_m).tanh()
+}
+
+/// `A_S`: the fraction of the area the accumulated snow covers
+/// ([`snow_cover_fraction`] with the texel's depth, its pack's density and its
+/// surface's roughness length).
 #[must_use]
 pub fn accumulated_fraction(texel: &CoverTexel, params: &CoverParams) -> f32 {
-    (texel.depth_mm / params.full_cover_depth_mm).clamp(0.0, 1.0)
+    let density = if texel.depth_mm > 0.0 {
+        1000.0 * texel.swe_mm / texel.depth_mm
+    } else {
+        NEW_SNOW_DENSITY_KG_M3
+    };
+    snow_cover_fraction(
+        texel.depth_mm * 1.0e-3,
+        density,
+        Surface::from_raw(texel.surface).snow_roughness_m(),
+        params.cover_depletion_exponent,
+    )
+}
+
+/// Wavelengths of the two octaves of [`sub_texel_threshold`]'s noise, m.
+pub const THRESHOLD_NOISE_WAVELENGTHS_M: [f32; 2] = [0.6, 0.15];
+/// How far [`sub_texel_threshold`] moves a mask value, at most (each way).
+pub const THRESHOLD_NOISE_AMPLITUDE: f32 = 0.2;
+
+/// An integer hash of a lattice point to `[0, 1)` (the same bits in WGSL).
+#[must_use]
+fn lattice_value(i: i32, j: i32) -> f32 {
+    let mut h = (i as u32).wrapping_mul(0x8da6_b343) ^ (j as u32).wrapping_mul(0xd816_3841);
+    h ^= h >> 15;
+    h = h.wrapping_mul(0x2c1b_3c6d);
+    h ^= h >> 12;
+    h = h.wrapping_mul(0x297a_2d39);
+    h ^= h >> 15;
+    (h >> 8) as f32 / 16_777_216.0
+}
+
+/// Value noise in `[0, 1]` at `(x, z)` in lattice units: the lattice's values
+/// blended with the quintic fade, so it is continuous with continuous slope.
+/// WGSL twin: same name (shading.wgsl).
+#[must_use]
+pub fn value_noise(x: f32, z: f32) -> f32 {
+    let (fx, fz) = (x.floor(), z.floor());
+    let (i, j) = (fx as i32, fz as i32);
+    let fade = |t: f32| t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+    let (u, v) = (fade(x - fx), fade(z - fz));
+    let a = lattice_value(i, j) + (lattice_value(i + 1, j) - lattice_value(i, j)) * u;
+    let b = lattice_value(i, j + 1) + (lattice_value(i + 1, j + 1) - lattice_value(i, j + 1)) * u;
+    a + (b - a) * v
+}
+
+/// The accumulation threshold a surface point compares its coverage with: the
+/// texel's mask (interpolated between texels) moved by two octaves of value noise
+/// finer than a texel ([`THRESHOLD_NOISE_WAVELENGTHS_M`]), so a patch's border wanders
+/// within and across texels and triangles instead of following them. Continuous in
+/// `xz_m`. WGSL twin: same name (shading.wgsl).
+#[must_use]
+pub fn sub_texel_threshold(mask: f32, xz_m: [f32; 2]) -> f32 {
+    let [coarse, fine] = THRESHOLD_NOISE_WAVELENGTHS_M;
+    let n = (2.0 * value_noise(xz_m[0] / coarse, xz_m[1] / coarse)
+        + value_noise(xz_m[0] / fine + 17.0, xz_m[1] / fine + 31.0))
+        / 3.0;
+    mask + THRESHOLD_NOISE_AMPLITUDE * 2.0 * (n - 0.5)
 }
 
 /// `M_S`: the fraction of the pack's peak that has melted.
@@ -135,18 +231,82 @@ mod tests {
             peak_swe_mm: 10.0,
             ..CoverTexel::default()
         };
-        let at = |depth_frac: f32, melted: f32| {
+        // Fresh snow (100 kg/m³) on soil: A_S = tanh(h / 25 mm).
+        let at = |depth_mm: f32, melted: f32| {
             let x = CoverTexel {
-                depth_mm: depth_frac * p.full_cover_depth_mm,
-                swe_mm: 10.0 * (1.0 - melted),
+                depth_mm,
+                swe_mm: 0.1 * depth_mm * (1.0 - melted),
+                peak_swe_mm: 0.1 * depth_mm,
                 ..t
             };
             shade_texel(&x, &p).snow_alpha
         };
-        assert!(at(0.2, 0.0) < 0.01);
-        assert!(at(0.4, 0.0) > 0.99);
-        assert!(at(1.0, 0.5) > 0.99);
-        assert!(at(1.0, 0.7) < 0.01);
+        // A_S·(1 + ε) below the mask: bare; ε above it: covered.
+        assert!(at(2.0, 0.0) < 0.01);
+        assert!(at(25.0, 0.0) > 0.99);
+        assert!(at(100.0, 0.3) > 0.99);
+        assert!(at(100.0, 0.8) < 0.01);
+    }
+
+    #[test]
+    fn the_depletion_curve_is_niu_and_yang_s() {
+        // tanh(h / (2.5·z₀·(ρ/100)^m)) at the table's values.
+        let f = snow_cover_fraction(0.025, 100.0, 0.01, 1.0);
+        assert!((f - 1.0f32.tanh()).abs() < 1e-6, "{f}");
+        let dense = snow_cover_fraction(0.025, 300.0, 0.01, 1.0);
+        assert!((dense - (1.0f32 / 3.0).tanh()).abs() < 1e-6, "{dense}");
+        assert!(snow_cover_fraction(0.0, 100.0, 0.01, 1.0).abs() < f32::MIN_POSITIVE);
+        assert!(snow_cover_fraction(-1.0, 100.0, 0.01, 1.0).abs() < f32::MIN_POSITIVE);
+        assert!(snow_cover_fraction(1.0, 100.0, 0.01, 1.0) > 0.999);
+        // Grass shows through 5 cm of fresh snow; a roof does not.
+        let grass = snow_cover_fraction(0.05, 100.0, Surface::Grass.snow_roughness_m(), 1.0);
+        let roof = snow_cover_fraction(0.05, 100.0, Surface::Roof.snow_roughness_m(), 1.0);
+        assert!(grass < 0.6 && roof > 0.99, "{grass} {roof}");
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn coverage_is_continuous_and_monotonic_in_depth(
+            depth_mm in 0.0f32..500.0,
+            step_mm in 0.0f32..1.0,
+            density in 50.0f32..600.0,
+            surface in 0u32..6,
+        ) {
+            let z0 = Surface::from_raw(surface).snow_roughness_m();
+            let a = snow_cover_fraction(depth_mm * 1e-3, density, z0, 1.0);
+            let b = snow_cover_fraction((depth_mm + step_mm) * 1e-3, density, z0, 1.0);
+            proptest::prop_assert!((0.0..=1.0).contains(&a));
+            proptest::prop_assert!(b >= a);
+            // Slope at most 1/(2.5·z₀·ρ/ρ_new) per metre: 1 mm moves it at most 0.08.
+            proptest::prop_assert!(b - a <= step_mm * 1e-3 / (2.5 * z0 * density.clamp(30.0, 917.0) / 100.0) + 1e-6);
+        }
+
+        #[test]
+        fn the_threshold_is_continuous_across_texels_and_lattice_lines(
+            x in -500.0f32..500.0,
+            z in -500.0f32..500.0,
+            dx in -0.001f32..0.001,
+            dz in -0.001f32..0.001,
+            mask in 0.0f32..1.0,
+        ) {
+            let a = sub_texel_threshold(mask, [x, z]);
+            let b = sub_texel_threshold(mask, [x + dx, z + dz]);
+            // The fade's slope is at most 15/8 per lattice unit; the fine octave's
+            // lattice is 0.15 m: at most 2·0.2·(1/3)·(15/8)/0.15·|d|·√2 + the coarse.
+            proptest::prop_assert!((a - b).abs() <= 3.0 * (dx.abs() + dz.abs()) + 1e-4, "{a} {b}");
+            proptest::prop_assert!((a - mask).abs() <= THRESHOLD_NOISE_AMPLITUDE + 1e-6);
+        }
+    }
+
+    #[test]
+    fn the_noise_spreads_over_its_range() {
+        let values: Vec<f32> = (0..10_000)
+            .map(|i| value_noise(i as f32 * 0.37, (i / 100) as f32 * 0.53))
+            .collect();
+        let mean = values.iter().sum::<f32>() / values.len() as f32;
+        assert!((mean - 0.5).abs() < 0.05, "{mean}");
+        assert!(values.iter().all(|v| (0.0..=1.0).contains(v)));
+        assert!(values.iter().any(|v| *v < 0.1) && values.iter().any(|v| *v > 0.9));
     }
 
     #[test]

@@ -182,6 +182,22 @@ impl Surface {
             Self::Soil | Self::Asphalt | Self::Grass | Self::Roof | Self::Water => 0.0,
         }
     }
+
+    /// The roughness length `z₀` that snow must bury before it covers the surface
+    /// (the snow-cover depletion curve, `crate::shading::snow_cover_fraction`), m.
+    /// Bare soil 0.01 m, Niu & Yang's (2007) ground value; turf 0.03 m and paving,
+    /// roofs, sand and water 0.005 m, the "open" and "smooth" classes of the
+    /// Davenport–Wieringa roughness classification (Wieringa et al. 2001, WMO-No. 8
+    /// annex). A smooth roof is white under 1 cm of fresh snow; grass shows through
+    /// until about 15 cm. WGSL twin: `surface_snow_roughness_m` (shading.wgsl).
+    #[must_use]
+    pub const fn snow_roughness_m(self) -> f32 {
+        match self {
+            Self::Soil => 0.01,
+            Self::Grass => 0.03,
+            Self::Asphalt | Self::Roof | Self::Sand | Self::Water => 0.005,
+        }
+    }
 }
 
 #[cfg(test)]

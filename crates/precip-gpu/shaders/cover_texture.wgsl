@@ -27,5 +27,7 @@ fn cover_texture(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_i
         puddle_ratio = t.standing_mm / roughness_mm;
     }
     textureStore(cover_b_out, xy, vec4<f32>(t.accumulation_mask, t.melt_mask, t.age_days, puddle_ratio));
-    textureStore(cover_c_out, xy, vec4<f32>(t.dust_kg_m2, 0.0, 0.0, 0.0));
+    // The surface's roughness length under snow (shading.wgsl), interpolated between
+    // texels like the rest so coverage has no texel edges where surfaces meet.
+    textureStore(cover_c_out, xy, vec4<f32>(t.dust_kg_m2, surface_snow_roughness_m(t.surface), 0.0, 0.0));
 }

@@ -1,6 +1,7 @@
-// probe_drawing.wgsl: a test kernel that builds sprite corners and tetrahedron vertices
-// for a list of inputs, so tests compare the WGSL drawing with the Rust one.
-// Program: drawing, this file.
+// probe_drawing.wgsl: a test kernel that builds sprite corners and tetrahedron vertices,
+// and evaluates the snow cover's depletion curve and sub-texel threshold, for a list of
+// inputs, so tests compare the WGSL drawing and cover shading with the Rust ones.
+// Program: drawing, cover, shading, this file.
 
 struct ProbeDrawing {
     centre_m: vec3<f32>,
@@ -11,11 +12,12 @@ struct ProbeDrawing {
     tumble: f32,
     h_m: f32,
     a_m: f32,
-    reserved: vec2<f32>,
+    cover: vec2<f32>,
 }
 
 @group(0) @binding(0) var<storage, read> probe_drawing_in: array<ProbeDrawing>;
-// Per input: 4 sprite corners, 4 tetrahedron vertices, 4 normals (xyz; w = 0).
+// Per input: 4 sprite corners, 4 tetrahedron vertices, 4 normals (xyz; w = 0), then
+// (cover fraction, threshold, value noise, 0).
 @group(0) @binding(1) var<storage, read_write> probe_drawing_out: array<vec4<f32>>;
 
 @compute @workgroup_size(64)
@@ -26,9 +28,15 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let q = probe_drawing_in[i];
     for (var k = 0u; k < 4u; k++) {
-        probe_drawing_out[12u * i + k] = vec4<f32>(snow_sprite_corner(q.centre_m, q.camera_m, q.side_m, q.spin_rad, q.tumble, k), 0.0);
+        probe_drawing_out[13u * i + k] = vec4<f32>(snow_sprite_corner(q.centre_m, q.camera_m, q.side_m, q.spin_rad, q.tumble, k), 0.0);
         let v = raindrop_vertex(q.centre_m, q.velocity_mps, q.h_m, q.a_m, k);
-        probe_drawing_out[12u * i + 4u + k] = vec4<f32>(v.position_m, 0.0);
-        probe_drawing_out[12u * i + 8u + k] = vec4<f32>(v.normal, 0.0);
+        probe_drawing_out[13u * i + 4u + k] = vec4<f32>(v.position_m, 0.0);
+        probe_drawing_out[13u * i + 8u + k] = vec4<f32>(v.normal, 0.0);
     }
+    probe_drawing_out[13u * i + 12u] = vec4<f32>(
+        snow_cover_fraction(q.h_m, q.cover.x, q.a_m, q.cover.y),
+        sub_texel_threshold(q.tumble, q.centre_m.xz),
+        value_noise(q.centre_m.x, q.centre_m.z),
+        0.0,
+    );
 }

@@ -23,7 +23,8 @@ fn frame_counts() -> vec4<u32> {
 // The cover as three filtered textures (cover_texture.wgsl writes them from the cover
 // texels each frame): A = (depth mm, SWE mm, peak SWE mm, wetness),
 // B = (accumulation mask, melt mask, age days, standing water over the surface's
-// roughness), C = (sand and dust settled kg/m², 0, 0, 0);
+// roughness), C = (sand and dust settled kg/m², the surface's roughness length under
+// snow m, 0, 0);
 // linear, clamped to the edge.
 @group(0) @binding(5) var cover_a: texture_2d<f32>;
 @group(0) @binding(6) var cover_b: texture_2d<f32>;
@@ -101,6 +102,12 @@ fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
     // The puddle ratio rides in the standing-water field (fs_scene reads it so).
     t.standing_mm = b.w;
     return t;
+}
+
+// The roughness length the snow buries at (x, z), m (cover_texture.wgsl).
+fn snow_roughness_at(xz_m: vec2<f32>) -> f32 {
+    let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
+    return textureSampleLevel(cover_c, cover_sampler, uv, 0.0).y;
 }
 
 // A water body's wave height at cell `cell` of the wave grid, m (0 off the grid).
@@ -199,7 +206,10 @@ fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
     let i = grid_texel_index(params.cover, in.surface_m.xz);
     if (i >= 0) {
         let texel = cover_at(in.surface_m.xz);
-        let s = cover_shading(texel, texel.accumulation_mask, texel.melt_mask, params.cover_look.z, params.cover_look.w, params.cover_look2.x);
+        // The texel's threshold moved by noise finer than a texel, so patch borders
+        // and thin snow follow neither texels nor triangles.
+        let threshold = sub_texel_threshold(texel.accumulation_mask, in.surface_m.xz);
+        let s = cover_shading(texel, threshold, texel.melt_mask, snow_roughness_at(in.surface_m.xz), params.cover_look.z, params.cover_look.w, params.cover_look2.x);
         let sky_facing = exposure(in.surface_m, n) * upward(n);
         let snow = s.snow_alpha * clamp(in.eligibility, 0.0, 1.0) * sky_facing;
         let darkening = mix(1.0, s.ground_darkening, sky_facing);

@@ -608,8 +608,10 @@ pub struct ProbeDrawing {
     pub h_m: f32,
     /// Tetrahedron base side, m.
     pub a_m: f32,
-    /// Unused.
-    pub reserved: [f32; 2],
+    /// The cover probe's snow density, kg/m³, and depletion exponent (with `h_m` as
+    /// the depth, `a_m` as the roughness length, `tumble` as the mask and the
+    /// centre's x, z as the place: `precip_cover::shading`).
+    pub cover: [f32; 2],
 }
 const _: () = assert!(size_of::<ProbeDrawing>() == 64);
 

@@ -179,7 +179,14 @@ impl Program {
                 PARTICLE_LISTS,
                 CULL_PARTICLES,
             ],
-            Self::ProbeDrawing => &[DRAWING, PROBE_DRAWING],
+            Self::ProbeDrawing => &[
+                LAYOUT,
+                DRAWING,
+                WATER_PHYSICS,
+                COVER,
+                SHADING,
+                PROBE_DRAWING,
+            ],
             Self::QueryBeams => &[LAYOUT, GROUND_MAP, LIDAR],
             Self::OpticsSums => &[LAYOUT, OPTICS, OPTICS_SUMS],
         }

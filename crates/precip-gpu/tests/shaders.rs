@@ -193,7 +193,7 @@ fn rust_and_wgsl_layouts_match() {
             albedo_decay_per_day,
             refreeze_factor_mm_per_c_day,
             water_holding_fraction,
-            full_cover_depth_mm,
+            cover_depletion_exponent,
             settled_density_kg_m3,
             compaction_time_days,
             wet_darkening,
@@ -285,7 +285,7 @@ fn rust_and_wgsl_layouts_match() {
             tumble,
             h_m,
             a_m,
-            reserved
+            cover
         }),
     ];
     for (name, size, fields) in rust {

@@ -1,9 +1,11 @@
 //! The WGSL drawing formulas equal the Rust ones (sprite corners, tetrahedron vertices
-//! and normals), read back through the `probe_drawing` test kernel.
+//! and normals; the snow cover's depletion curve and sub-texel threshold), read back
+//! through the `probe_drawing` test kernel.
 
 use glam::Vec3;
 use precip_gpu::recipe::ProbeDrawing;
 use precip_gpu::shaders::Program;
+use precip_model::cover::{snow_cover_fraction, sub_texel_threshold, value_noise};
 use precip_model::drawing::{raindrop_tetrahedron_sized, snow_sprite_corners_turned};
 use precip_model::particles::rng::{particle_key, random_unit};
 
@@ -24,7 +26,7 @@ fn inputs() -> Vec<ProbeDrawing> {
             tumble: 0.3 + 0.7 * r(i, 11),
             h_m: r(i, 12) * 2.0,
             a_m: r(i, 13) * 0.2,
-            reserved: [0.0; 2],
+            cover: [30.0 + r(i, 14) * 600.0, 0.5 + 2.0 * r(i, 15)],
         })
         .collect();
     // The fallbacks: a camera straight above, a velocity along X.
@@ -47,7 +49,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             Program::ProbeDrawing,
             bytemuck::cast_slice(&inputs),
             inputs.len() as u32,
-            (inputs.len() * 12 * 16) as u64,
+            (inputs.len() * 13 * 16) as u64,
         );
         let got: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
         for (i, q) in inputs.iter().enumerate() {
@@ -69,12 +71,25 @@ fn wgsl_drawing_equals_rust_drawing() {
                 .chain(&tetra.normals)
                 .copied();
             for (k, want) in expected.enumerate() {
-                let g = got[12 * i + k];
+                let g = got[13 * i + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 let tolerance = 1e-5 * (1.0 + want.abs().max_element());
                 assert!(
                     (have - want).abs().max_element() <= tolerance,
                     "{name}: input {i} value {k}: WGSL {have} vs Rust {want}"
+                );
+            }
+            let cover = got[13 * i + 12];
+            let want = [
+                snow_cover_fraction(q.h_m, q.cover[0], q.a_m, q.cover[1]),
+                sub_texel_threshold(q.tumble, [centre.x, centre.z]),
+                value_noise(centre.x, centre.z),
+            ];
+            for (k, want) in want.into_iter().enumerate() {
+                assert!(
+                    (cover[k] - want).abs() <= 2e-5,
+                    "{name}: input {i} cover value {k}: WGSL {} vs Rust {want}",
+                    cover[k]
                 );
             }
         }

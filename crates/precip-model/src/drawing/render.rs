@@ -397,7 +397,7 @@ impl RenderParams {
             cover_look: Vec4::new(
                 s.rain_opacity,
                 if s.snow_displacement { 1.0 } else { 0.0 },
-                f.cover_params.full_cover_depth_mm,
+                f.cover_params.cover_depletion_exponent,
                 f.cover_params.mask_edge,
             ),
             cover_look2: Vec4::new(
