@@ -53,13 +53,9 @@ const THRESHOLD_NOISE_FINE_M: f32 = 0.15;
 const THRESHOLD_NOISE_AMPLITUDE: f32 = 0.2;
 
 fn lattice_value(i: i32, j: i32) -> f32 {
-    var h = (bitcast<u32>(i) * 0x8da6b343u) ^ (bitcast<u32>(j) * 0xd8163841u);
-    h ^= h >> 15u;
-    h *= 0x2c1b3c6du;
-    h ^= h >> 12u;
-    h *= 0x297a2d39u;
-    h ^= h >> 15u;
-    return f32(h >> 8u) / 16777216.0;
+    let state = ((bitcast<u32>(i) * 0x8da6b343u) ^ (bitcast<u32>(j) * 0xd8163841u)) * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return f32(((word >> 22u) ^ word) >> 8u) / 16777216.0;
 }
 
 fn noise_fade(t: f32) -> f32 {

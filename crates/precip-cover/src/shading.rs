@@ -106,16 +106,15 @@ pub const THRESHOLD_NOISE_WAVELENGTHS_M: [f32; 2] = [0.6, 0.15];
 /// How far [`sub_texel_threshold`] moves a mask value, at most (each way).
 pub const THRESHOLD_NOISE_AMPLITUDE: f32 = 0.2;
 
-/// An integer hash of a lattice point to `[0, 1)` (the same bits in WGSL).
+/// An integer hash of a lattice point to `[0, 1)`: the point's two words mixed, then
+/// the PCG output permutation (O'Neill 2014, RXS-M-XS); the same bits in WGSL.
 #[must_use]
 fn lattice_value(i: i32, j: i32) -> f32 {
-    let mut h = (i as u32).wrapping_mul(0x8da6_b343) ^ (j as u32).wrapping_mul(0xd816_3841);
-    h ^= h >> 15;
-    h = h.wrapping_mul(0x2c1b_3c6d);
-    h ^= h >> 12;
-    h = h.wrapping_mul(0x297a_2d39);
-    h ^= h >> 15;
-    (h >> 8) as f32 / 16_777_216.0
+    let state = ((i as u32).wrapping_mul(0x8da6_b343) ^ (j as u32).wrapping_mul(0xd816_3841))
+        .wrapping_mul(747_796_405)
+        .wrapping_add(2_891_336_453);
+    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+    (((word >> 22) ^ word) >> 8) as f32 / 16_777_216.0
 }
 
 /// Value noise in `[0, 1]` at `(x, z)` in lattice units: the lattice's values

@@ -117,7 +117,8 @@ impl WgpuBackend {
 
     /// The cover's three filtered textures as the last frame wrote them (tests and
     /// tools): per texel `[depth mm, SWE mm, peak SWE mm, wetness, accumulation mask,
-    /// melt mask, age days, puddle ratio, sand and dust kg/m², 0, 0, 0]`, rows of the
+    /// melt mask, age days, puddle ratio, sand and dust kg/m², the surface's roughness
+    /// length under snow m, 0, 0]`, rows of the
     /// cover grid in order; `None` before a frame.
     pub fn read_cover_textures(&mut self) -> Result<Option<Vec<[f32; 12]>>, BackendError> {
         let state = self.state.as_ref().ok_or(BackendError::NotConfigured {

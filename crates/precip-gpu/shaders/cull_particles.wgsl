@@ -17,6 +17,9 @@
 fn frame_counts() -> vec4<u32> {
     return params.counts;
 }
+fn frame_pools() -> vec4<u32> {
+    return params.pools;
+}
 @group(0) @binding(1) var<storage, read> particles: array<Particle>;
 // (sprites, streaks, splats, 0) per group; the scan turns them into offsets.
 @group(0) @binding(2) var<storage, read_write> group_counts: array<vec4<u32>>;
@@ -75,10 +78,11 @@ fn cull_scan(@builtin(local_invocation_index) lid: u32) {
             partial[k] = total;
             total += s;
         }
+        // Each sprite drawn as its copies (snow_copies in particle_lists.wgsl).
         draws = FrameDraws(
-            DrawArgs(SNOW_SPRITE_VERTICES, total.x, 0u, 0u),
+            DrawArgs(SNOW_SPRITE_VERTICES, total.x * snow_copies(), 0u, 0u),
             DrawArgs(RAIN_TETRAHEDRON_VERTICES, total.y, 0u, 0u),
-            total.z, 0u, 0u, 0u,
+            total.z, total.x, 0u, 0u,
         );
     }
     workgroupBarrier();

@@ -17,7 +17,8 @@ struct ProbeDrawing {
 
 @group(0) @binding(0) var<storage, read> probe_drawing_in: array<ProbeDrawing>;
 // Per input: 4 sprite corners, 4 tetrahedron vertices, 4 normals (xyz; w = 0), then
-// (cover fraction, threshold, value noise, 0).
+// (cover fraction, threshold, value noise, drawn weight of input i at m = 2·side), then
+// 4 snow streak corners at a 1/60 s exposure (xyz; w = uv.y).
 @group(0) @binding(1) var<storage, read_write> probe_drawing_out: array<vec4<f32>>;
 
 @compute @workgroup_size(64)
@@ -28,15 +29,19 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let q = probe_drawing_in[i];
     for (var k = 0u; k < 4u; k++) {
-        probe_drawing_out[13u * i + k] = vec4<f32>(snow_sprite_corner(q.centre_m, q.camera_m, q.side_m, q.spin_rad, q.tumble, k), 0.0);
+        probe_drawing_out[17u * i + k] = vec4<f32>(snow_sprite_corner(q.centre_m, q.camera_m, q.side_m, q.spin_rad, q.tumble, k), 0.0);
         let v = raindrop_vertex(q.centre_m, q.velocity_mps, q.h_m, q.a_m, k);
-        probe_drawing_out[13u * i + 4u + k] = vec4<f32>(v.position_m, 0.0);
-        probe_drawing_out[13u * i + 8u + k] = vec4<f32>(v.normal, 0.0);
+        probe_drawing_out[17u * i + 4u + k] = vec4<f32>(v.position_m, 0.0);
+        probe_drawing_out[17u * i + 8u + k] = vec4<f32>(v.normal, 0.0);
     }
-    probe_drawing_out[13u * i + 12u] = vec4<f32>(
+    probe_drawing_out[17u * i + 12u] = vec4<f32>(
         snow_cover_fraction(q.h_m, q.cover.x, q.a_m, q.cover.y),
         sub_texel_threshold(q.tumble, q.centre_m.xz),
         value_noise(q.centre_m.x, q.centre_m.z),
-        0.0,
+        drawn_weight(i, 2.0 * q.side_m),
     );
+    for (var k = 0u; k < 4u; k++) {
+        let s = snow_streak_corner(q.centre_m, q.camera_m, q.side_m, vec2<f32>(q.spin_rad, q.tumble), q.velocity_mps, 1.0 / 60.0, k);
+        probe_drawing_out[17u * i + 13u + k] = vec4<f32>(s.position_m, s.uv.y);
+    }
 }

@@ -12,9 +12,9 @@ struct RenderParams {
     light: vec4<f32>,
     // shadow colour, shadow density, attenuation, shadow-map texel (uv)
     shadow: vec4<f32>,
-    // snow scale, min px, min opacity, rain streak s
+    // snow scale, min px, min opacity, exposure s
     sizing: vec4<f32>,
-    // rain opacity, displacement on, full-cover depth mm, mask edge
+    // rain opacity, displacement on, cover depletion exponent, mask edge
     cover_look: vec4<f32>,
     // wet darkening, albedo decay per day, exposure tolerance m, flake mean opacity
     cover_look2: vec4<f32>,
@@ -25,6 +25,12 @@ struct RenderParams {
     waves: GridFrame,
     // particle count, culling on, cull workgroups, splat target width px (0: no splat)
     counts: vec4<u32>,
+    // world particle count, first lifted world particle, camera volume present, snow copies
+    pools: vec4<u32>,
+    // the camera volume's centre m, the world emitter's multiplicity
+    camera_box_centre_m: vec4<f32>,
+    // the camera volume's half extent m, its multiplicity
+    camera_box_half_m: vec4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).
@@ -40,7 +46,7 @@ struct FrameDraws {
     snow: DrawArgs,
     rain: DrawArgs,
     splatted: u32,
-    reserved0: u32,
+    sprite_particles: u32,
     reserved1: u32,
     reserved2: u32,
 }

@@ -9,6 +9,8 @@ struct ParticleVarying {
     @location(1) shade: vec4<f32>,
     @location(2) normal: vec3<f32>,
     @location(3) world_m: vec3<f32>,
+    // A snow streak's length over its width (1: a sprite; snow_streak_corner).
+    @location(4) stretch: f32,
 }
 
 // Quartz sand and mineral dust in daylight (sRGB ~ #c8a878, linear).
@@ -32,25 +34,51 @@ fn snow_colour(p: Particle, distance_m: f32) -> vec3<f32> {
     return mix(params.sky_colour_time.xyz, albedo * light, fog);
 }
 
-// The light of a drop's face of normal `n` toward `to_viewer`, fogged by `fog`.
+// The light of a drop's face of normal `n` toward `to_viewer`, fogged by `fog`. A drop
+// is a wide-angle lens: it shows the environment over some 165° around the viewing
+// direction, mostly the overcast sky, at about 94 % of its radiance (Garg & Nayar,
+// *Vision and rain*, IJCV 2007), plus the sun's glint off its surface; so a streak is
+// bright against a dark background and all but vanishes against the sky.
 fn rain_colour(n: vec3<f32>, to_viewer: vec3<f32>, lit: f32, fog: f32) -> vec3<f32> {
     let light = blinn_phong(params.light, params.shadow, n, params.to_sun_extinction.xyz, to_viewer, lit);
-    let water = vec3<f32>(0.75, 0.8, 0.85) * light;
+    let environment = 0.94 * params.sky_colour_time.xyz;
+    let water = mix(environment, vec3<f32>(0.75, 0.8, 0.85) * light, 0.2);
     return mix(params.sky_colour_time.xyz, water, fog);
 }
 
 @vertex
 fn vs_snow(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance: u32) -> ParticleVarying {
-    let p = particles[drawn[instance]];
+    // Instance = drawn flake × its copies (snow_copy_position): a camera-volume flake
+    // stands for `m` of the air's, drawn as `copies` flakes of `m/copies` ink each.
+    let copies = snow_copies();
+    let i = drawn[instance / copies];
+    let copy = instance % copies;
+    var p = particles[i];
+    var out: ParticleVarying;
+    let in_camera_volume = i >= frame_pools().x;
+    let original = particles[i];
+    let is_resolved = resolved(original);
+    if (copy != 0u && !(in_camera_volume && is_resolved)) {
+        // A world or sub-pixel particle has no copies: a degenerate triangle, clipped.
+        out.clip = vec4<f32>(0.0, 0.0, -1.0, 1.0);
+        return out;
+    }
+    p.position_m = snow_copy_position(i, copy, p.position_m);
     let camera = params.camera_m_cone_cos.xyz;
     let distance_m = distance(p.position_m, camera);
     let size = snow_sprite_sizing(p.diameter_m, distance_m, params.view_dir_pixel_angle.w, params.sizing);
     let turn = flake_spin_tumble(rotation0_rad(p.rotation0), p.rotation_rad);
-    let world = snow_sprite_corner(p.position_m, camera, size.x, turn.x, turn.y, corner);
-    var out: ParticleVarying;
+    // Swept over the exposure (sizing.w): a streak when it moves half its side.
+    let streak = snow_streak_corner(p.position_m, camera, size.x, turn, p.velocity_mps, params.sizing.w, corner);
+    let world = streak.position_m;
     out.clip = params.view_proj * vec4<f32>(world, 1.0);
-    out.uv = snow_sprite_uv(corner);
-    out.shade = vec4<f32>(snow_colour(p, distance_m), size.y * near_fade(distance_m));
+    out.uv = streak.uv;
+    out.stretch = streak.stretch;
+    // Its multiplicity's ink, up to opaque (precip_model::drawing::multiplicity): a
+    // resolved flake's over its copies, a sub-pixel one's its own.
+    let weight = resolved_weight(i, original) / select(1.0, f32(copies), in_camera_volume && is_resolved);
+    // The ink spreads over the streak: opacity over the stretch.
+    out.shade = vec4<f32>(snow_colour(p, distance_m), min(1.0, weight * size.y * near_fade(distance_m) / streak.stretch));
     out.normal = normalize_or_zero(camera - p.position_m);
     out.world_m = world;
     return out;
@@ -58,16 +86,18 @@ fn vs_snow(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance
 
 @fragment
 fn fs_snow(in: ParticleVarying) -> @location(0) vec4<f32> {
-    let opacity = textureSample(flake_opacity, flake_sampler, in.uv).r * in.shade.a;
+    let uv = vec2<f32>(in.uv.x, snow_streak_texture_v(in.uv.y, in.stretch));
+    let opacity = textureSample(flake_opacity, flake_sampler, uv).r * in.shade.a;
     return vec4<f32>(in.shade.rgb, opacity);
 }
 
 @vertex
 fn vs_rain(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> ParticleVarying {
-    let p = particles[drawn[params.counts.x + instance]];
+    let i = drawn[params.counts.x + instance];
+    let p = particles[i];
     let camera = params.camera_m_cone_cos.xyz;
     let distance_m = distance(p.position_m, camera);
-    let size = raindrop_sizing(length(p.velocity_mps), distance_m, params.view_dir_pixel_angle.w, params.sizing);
+    let size = raindrop_sizing(length(p.velocity_mps), p.diameter_m, distance_m, params.view_dir_pixel_angle.w, params.sizing);
     let v = raindrop_vertex(p.position_m, p.velocity_mps, size.x, size.y, rain_tetrahedron_face_vertex(vertex));
     var out: ParticleVarying;
     out.clip = params.view_proj * vec4<f32>(v.position_m, 1.0);
@@ -76,10 +106,11 @@ fn vs_rain(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
         shadow_lit(p.position_m),
         fog_transmittance(distance_m, params.to_sun_extinction.w),
         0.0,
-        params.cover_look.x * size.z * near_fade(distance_m),
+        min(1.0, resolved_weight(i, p) * params.cover_look.x * size.z * near_fade(distance_m)),
     );
     out.normal = v.normal;
     out.world_m = v.position_m;
+    out.stretch = 1.0;
     return out;
 }
 

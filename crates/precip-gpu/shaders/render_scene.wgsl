@@ -16,6 +16,9 @@
 fn frame_counts() -> vec4<u32> {
     return switches.counts;
 }
+fn frame_pools() -> vec4<u32> {
+    return switches.pools;
+}
 @group(0) @binding(2) var<storage, read> ground_height: array<f32>;
 @group(0) @binding(3) var<storage, read> particles: array<Particle>;
 // Drawn particles: sprites at [0, N), streaks at [N, 2N) (N = particle count).

@@ -30,7 +30,7 @@ fn splat_look(p: Particle, distance_m: f32) -> vec4<f32> {
     let pixel_angle = params.view_dir_pixel_angle.w;
     let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
     if (kind == KIND_RAIN) {
-        let size = raindrop_sizing(length(p.velocity_mps), distance_m, pixel_angle, params.sizing);
+        let size = raindrop_sizing(length(p.velocity_mps), p.diameter_m, distance_m, pixel_angle, params.sizing);
         let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - p.position_m);
         let fog = fog_transmittance(distance_m, params.to_sun_extinction.w);
         let colour = rain_colour(to_viewer, to_viewer, shadow_lit(p.position_m), fog);
@@ -74,7 +74,11 @@ fn splat_particle(i: u32) {
     }
     let base = vec2<i32>(floor(at));
     let f = at - floor(at);
-    let look = splat_look(p, distance(p.position_m, params.camera_m_cone_cos.xyz));
+    var look = splat_look(p, distance(p.position_m, params.camera_m_cone_cos.xyz));
+    // Drawn or not by its pool's multiplicity, but with its own ink only: what a
+    // sub-pixel particle stands for beyond itself is already in the haze, whose
+    // extinction is the whole air's (precip_model::drawing::multiplicity).
+    look.a *= resolved_weight(i, p);
     for (var k = 0; k < 4; k++) {
         let xy = base + vec2<i32>(k & 1, k >> 1u);
         if (any(xy < vec2<i32>(0)) || any(xy >= size)) {

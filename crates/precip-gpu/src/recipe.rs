@@ -44,8 +44,12 @@ pub struct FrameDraws {
     pub rain: DrawArgs,
     /// Particles splatted (sub-pixel, in the view cone).
     pub splatted: u32,
+    /// Particles drawn as sprites (the snow draw's instances are this times the
+    /// copies each camera-volume flake is drawn with,
+    /// `precip_model::drawing::multiplicity::snow_copies`).
+    pub sprite_particles: u32,
     /// Unused.
-    pub reserved: [u32; 3],
+    pub reserved: [u32; 2],
 }
 const _: () = assert!(size_of::<FrameDraws>() == 48);
 
@@ -64,7 +68,7 @@ impl FrameDraws {
         let n = bytes.len().min(size_of::<Self>());
         bytemuck::bytes_of_mut(&mut draws)[..n].copy_from_slice(&bytes[..n]);
         precip_model::DrawnCounts {
-            sprites: draws.snow.instance_count,
+            sprites: draws.sprite_particles,
             streaks: draws.rain.instance_count,
             splats: draws.splatted,
         }

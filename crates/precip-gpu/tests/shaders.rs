@@ -263,7 +263,10 @@ fn rust_and_wgsl_layouts_match() {
             ground,
             cover,
             waves,
-            counts
+            counts,
+            pools,
+            camera_box_centre_m,
+            camera_box_half_m
         }),
         rust_layout!(DrawArgs {
             vertex_count,
@@ -274,7 +277,8 @@ fn rust_and_wgsl_layouts_match() {
         rust_layout!(FrameDraws {
             snow,
             rain,
-            splatted
+            splatted,
+            sprite_particles
         }),
         rust_layout!(ProbeDrawing {
             centre_m,

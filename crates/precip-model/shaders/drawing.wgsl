@@ -26,6 +26,45 @@ fn snow_sprite_corner(centre_m: vec3<f32>, camera_m: vec3<f32>, side_m: f32, spi
     }
 }
 
+struct StreakCorner {
+    position_m: vec3<f32>,
+    uv: vec2<f32>,
+    stretch: f32,
+}
+
+// snow_streak_corners: corner `corner` of a flake swept over the exposure.
+fn snow_streak_corner(centre_m: vec3<f32>, camera_m: vec3<f32>, side_m: f32, spin_tumble: vec2<f32>, velocity_mps: vec3<f32>, exposure_s: f32, corner: u32) -> StreakCorner {
+    let to_camera = camera_m - centre_m;
+    if (dot(to_camera, to_camera) <= 0.0) {
+        return StreakCorner(centre_m, snow_sprite_uv(corner), 1.0);
+    }
+    let n = normalize(to_camera);
+    let sweep = exposure_s * (velocity_mps - n * dot(n, velocity_mps));
+    let length = sqrt(dot(sweep, sweep));
+    if (!(length >= 0.5 * side_m)) {
+        let p = snow_sprite_corner(centre_m, camera_m, side_m, spin_tumble.x, spin_tumble.y, corner);
+        return StreakCorner(p, snow_sprite_uv(corner), 1.0);
+    }
+    let along = sweep / length;
+    let across = normalize(cross(n, along));
+    let stretch = (side_m + length) / side_m;
+    let uv = snow_sprite_uv(corner);
+    let v = uv.y * stretch;
+    let p = centre_m + (uv.x - 0.5) * side_m * across + (v - 0.5 * stretch) * side_m * along;
+    return StreakCorner(p, vec2<f32>(uv.x, v), stretch);
+}
+
+// snow_streak_texture_v
+fn snow_streak_texture_v(v: f32, stretch: f32) -> f32 {
+    if (v < 0.5) {
+        return v;
+    }
+    if (v > stretch - 0.5) {
+        return v - (stretch - 1.0);
+    }
+    return 0.5;
+}
+
 // SNOW_SPRITE_UV
 fn snow_sprite_uv(corner: u32) -> vec2<f32> {
     switch corner {
@@ -81,15 +120,16 @@ fn near_fade(distance_m: f32) -> f32 {
     return smoothstep(NEAR_FADE_START_M, NEAR_FADE_END_M, distance_m);
 }
 
-// raindrop_sizing: (h_m, a_m, opacity factor). sizing.w = rain streak s.
-fn raindrop_sizing(speed_mps: f32, distance_m: f32, pixel_angle_rad: f32, sizing: vec4<f32>) -> vec3<f32> {
-    let h = sizing.w * speed_mps;
-    let a = 0.1 * h;
+// raindrop_sizing: (h_m, a_m, opacity). sizing.w = the exposure, s.
+fn raindrop_sizing(speed_mps: f32, diameter_m: f32, distance_m: f32, pixel_angle_rad: f32, sizing: vec4<f32>) -> vec3<f32> {
+    let d = max(diameter_m, 1.0e-5);
+    let h = max(sizing.w * speed_mps, d);
+    let opacity = min(1.5707964 * d / h, 1.0);
     let min_a = sizing.y * pixel_angle_rad * distance_m;
-    if (a >= min_a) {
-        return vec3<f32>(h, a, 1.0);
+    if (d >= min_a) {
+        return vec3<f32>(h, d, opacity);
     }
-    return vec3<f32>(h, min_a, max(a / min_a, sizing.z));
+    return vec3<f32>(h, min_a, opacity * d / min_a);
 }
 
 struct TetrahedronVertex {
@@ -164,4 +204,20 @@ fn blinn_phong(light: vec4<f32>, shadow: vec4<f32>, normal: vec3<f32>, to_light:
 // fog_transmittance
 fn fog_transmittance(distance_m: f32, extinction_per_m: f32) -> f32 {
     return exp(-extinction_per_m * max(distance_m, 0.0));
+}
+
+// multiplicity_rank (precip_model::drawing::multiplicity): a particle's rank in [0, 1).
+fn multiplicity_rank(index: u32) -> f32 {
+    var h = index * 0x9e3779b9u;
+    h ^= h >> 16u;
+    h *= 0x85ebca6bu;
+    h ^= h >> 13u;
+    h *= 0xc2b2ae35u;
+    h ^= h >> 16u;
+    return f32(h >> 8u) / 16777216.0;
+}
+
+// drawn_weight: 0 (not drawn) when the rank is at or above m < 1, else max(m, 1).
+fn drawn_weight(index: u32, multiplicity: f32) -> f32 {
+    return select(0.0, max(multiplicity, 1.0), multiplicity_rank(index) < multiplicity);
 }

@@ -120,14 +120,7 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
         wind_volume: precip_model::wind::WindVolumeSpec::default(),
         camera,
         scene: Some(std::sync::Arc::new(scene)),
-        render: precip_model::RenderSettings {
-            // Distant flakes enlarged to 1.5 px keep at least this opacity on screen.
-            sizing: precip_model::drawing::SpriteSizing {
-                min_opacity: 0.3,
-                ..precip_model::drawing::SpriteSizing::default()
-            },
-            ..precip_model::RenderSettings::default()
-        },
+        render: precip_model::RenderSettings::default(),
     };
     setup.validate(u64::MAX, "the viewer's budget")?;
     Ok(setup)

@@ -1,12 +1,15 @@
 //! The WGSL drawing formulas equal the Rust ones (sprite corners, tetrahedron vertices
-//! and normals; the snow cover's depletion curve and sub-texel threshold), read back
+//! and normals; snow streaks; the snow cover's depletion curve and sub-texel threshold), read back
 //! through the `probe_drawing` test kernel.
 
 use glam::Vec3;
 use precip_gpu::recipe::ProbeDrawing;
 use precip_gpu::shaders::Program;
 use precip_model::cover::{snow_cover_fraction, sub_texel_threshold, value_noise};
-use precip_model::drawing::{raindrop_tetrahedron_sized, snow_sprite_corners_turned};
+use precip_model::drawing::multiplicity::drawn_weight;
+use precip_model::drawing::{
+    raindrop_tetrahedron_sized, snow_sprite_corners_turned, snow_streak_corners,
+};
 use precip_model::particles::rng::{particle_key, random_unit};
 
 use crate::common;
@@ -49,7 +52,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             Program::ProbeDrawing,
             bytemuck::cast_slice(&inputs),
             inputs.len() as u32,
-            (inputs.len() * 13 * 16) as u64,
+            (inputs.len() * 17 * 16) as u64,
         );
         let got: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
         for (i, q) in inputs.iter().enumerate() {
@@ -71,7 +74,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 .chain(&tetra.normals)
                 .copied();
             for (k, want) in expected.enumerate() {
-                let g = got[13 * i + k];
+                let g = got[17 * i + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 let tolerance = 1e-5 * (1.0 + want.abs().max_element());
                 assert!(
@@ -79,17 +82,36 @@ fn wgsl_drawing_equals_rust_drawing() {
                     "{name}: input {i} value {k}: WGSL {have} vs Rust {want}"
                 );
             }
-            let cover = got[13 * i + 12];
+            let cover = got[17 * i + 12];
             let want = [
                 snow_cover_fraction(q.h_m, q.cover[0], q.a_m, q.cover[1]),
                 sub_texel_threshold(q.tumble, [centre.x, centre.z]),
                 value_noise(centre.x, centre.z),
+                drawn_weight(i as u32, 2.0 * q.side_m),
             ];
             for (k, want) in want.into_iter().enumerate() {
                 assert!(
                     (cover[k] - want).abs() <= 2e-5,
                     "{name}: input {i} cover value {k}: WGSL {} vs Rust {want}",
                     cover[k]
+                );
+            }
+            let (streak, _) = snow_streak_corners(
+                centre,
+                Vec3::from(q.camera_m),
+                q.side_m,
+                (q.spin_rad, q.tumble),
+                Vec3::from(q.velocity_mps),
+                1.0 / 60.0,
+            )
+            .expect("camera away from the centre");
+            for (k, (want, uv)) in streak.iter().enumerate() {
+                let g = got[17 * i + 13 + k];
+                let have = Vec3::new(g[0], g[1], g[2]);
+                let tolerance = 1e-5 * (1.0 + want.abs().max_element());
+                assert!(
+                    (have - *want).abs().max_element() <= tolerance && (g[3] - uv[1]).abs() <= 1e-3,
+                    "{name}: input {i} streak corner {k}: WGSL {g:?} vs Rust {want} {uv:?}"
                 );
             }
         }

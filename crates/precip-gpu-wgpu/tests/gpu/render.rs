@@ -255,7 +255,7 @@ fn rain_frames_show_streaks_along_the_velocity() {
         forward: Vec3::NEG_Z,
         ..Camera::default()
     };
-    let view = view(camera, 128, 96);
+    let view = view(camera, 256, 192);
     for (name, mut gpu) in common::gpu_backends("rain_frames_show_streaks_along_the_velocity") {
         let mut angles = Vec::new();
         for wind_x in [0.0, 9.0] {
@@ -277,19 +277,21 @@ fn rain_frames_show_streaks_along_the_velocity() {
                 ..WindField::calm()
             };
             dark_sky(&mut setup);
-            setup.render.rain_opacity = 0.8;
-            setup.render.sizing.rain_streak_s = 0.05;
+            // A short exposure: streaks of 20 cm, each drop's ink on fewer pixels.
+            setup.render.sizing.exposure_s = 0.02;
             // Let the drops reach the wind's speed.
             common::run(&mut gpu, &setup, 30, 0.1);
             gpu.render(&view).expect("renders");
             let image = gpu.read_image().expect("an image");
             keep(&image, &format!("rain_wind_{wind_x}"));
             let particles = gpu.read_particles().expect("particles");
-            let mean_velocity = particles
-                .iter()
-                .map(|p| p.velocity_mps)
-                .fold(Vec3::ZERO, |a, v| a + v)
-                / particles.len() as f32;
+            // Weighted by each drop's ink, its projected area: big drops (falling
+            // fastest, so steepest in the wind) show most.
+            let (sum, weight) = particles.iter().fold((Vec3::ZERO, 0.0), |(a, w), p| {
+                let ink = p.diameter_m * p.diameter_m;
+                (a + p.velocity_mps * ink, w + ink)
+            });
+            let mean_velocity = sum / weight;
             // The velocity's direction on screen at the image centre.
             let ahead = camera.position_m + camera.forward * 5.0;
             let a = project(&view, ahead).expect("in front");
@@ -718,7 +720,7 @@ fn the_cover_textures_match_the_cover_texels() {
                 c.age_days,
                 c.puddle_ratio(),
                 c.dust_kg_m2,
-                0.0,
+                precip_model::cover::Surface::from_raw(c.surface).snow_roughness_m(),
                 0.0,
                 0.0,
             ];

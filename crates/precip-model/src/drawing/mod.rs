@@ -13,6 +13,7 @@
 //! exactly `min_px` wide at full opacity, so its ink and the splat's are equal: a
 //! particle crossing the threshold does not pop.
 
+pub mod multiplicity;
 pub mod render;
 pub mod shadow_cache;
 pub mod shadow_fit;
@@ -61,6 +62,69 @@ pub fn snow_sprite_corners_turned(
     Some([v0, v1, v2, v3])
 }
 
+/// A snow streak's corners in strip order, each with its `uv`.
+pub type StreakCorners = [(Vec3, [f32; 2]); 4];
+
+/// A flake as a camera exposing for `exposure_s` records it: the sprite of side
+/// `side_m` swept along its motion across the view during the exposure,
+/// `M = T·(v − n(n·v))` (`n` toward the camera). When the sweep is at least half a
+/// side the sprite becomes a streak: a quad `side` wide and `side + |M|` long along
+/// `M`, whose ends are the flake's halves and whose middle is the flake's centre line
+/// smeared (the fragment reads `uv.y` through [`snow_streak_texture_v`]); its opacity
+/// is divided by the stretch `(side + |M|)/side`, so its ink stays the flake's.
+/// Below that the turned sprite stands (stretch 1). Returns the four corners in strip
+/// order with their `uv` (`uv.y ∈ [0, stretch]`) and the stretch, or `None` for a
+/// flake at the camera.
+///
+/// WGSL twin: `snow_streak_corner` in drawing.wgsl.
+#[must_use]
+pub fn snow_streak_corners(
+    centre_m: Vec3,
+    camera_m: Vec3,
+    side_m: f32,
+    (spin_rad, tumble): (f32, f32),
+    velocity_mps: Vec3,
+    exposure_s: f32,
+) -> Option<(StreakCorners, f32)> {
+    let n = (camera_m - centre_m).try_normalize()?;
+    let sweep = exposure_s * (velocity_mps - n * n.dot(velocity_mps));
+    let length = sweep.length();
+    // Short (or NaN): the turned sprite.
+    if length.is_nan() || length < 0.5 * side_m {
+        let corners = snow_sprite_corners_turned(centre_m, camera_m, side_m, spin_rad, tumble)?;
+        let mut out = [(Vec3::ZERO, [0.0; 2]); 4];
+        for k in 0..4 {
+            out[k] = (corners[k], SNOW_SPRITE_UV[k]);
+        }
+        return Some((out, 1.0));
+    }
+    let along = sweep / length;
+    let across = n.cross(along).normalize();
+    let stretch = (side_m + length) / side_m;
+    let mut out = [(Vec3::ZERO, [0.0; 2]); 4];
+    for (k, uv) in SNOW_SPRITE_UV.iter().enumerate() {
+        let v = uv[1] * stretch;
+        let position =
+            centre_m + (uv[0] - 0.5) * side_m * across + (v - 0.5 * stretch) * side_m * along;
+        out[k] = (position, [uv[0], v]);
+    }
+    Some((out, stretch))
+}
+
+/// The flake texture's `v` for a streak's `v ∈ [0, stretch]`: the first half side
+/// as it is, the last half side as the texture's last half, the middle its centre
+/// line. WGSL twin: `snow_streak_texture_v` (drawing.wgsl).
+#[must_use]
+pub fn snow_streak_texture_v(v: f32, stretch: f32) -> f32 {
+    if v < 0.5 {
+        v
+    } else if v > stretch - 0.5 {
+        v - (stretch - 1.0)
+    } else {
+        0.5
+    }
+}
+
 /// A flake's in-plane spin and tumble from its rotation state: orientation
 /// `o = r0 + r`, spin `o.y + o.z`, tumble `max(|cos o.x|, 0.3)`.
 ///
@@ -105,10 +169,12 @@ pub struct SpriteSizing {
     pub snow_scale: f32,
     /// Smallest sprite or streak width, px.
     pub min_px: f32,
-    /// Lowest opacity of an enlarged sprite or streak.
+    /// Lowest opacity of an enlarged sprite (a look, not physics: 0, the default,
+    /// keeps each sub-pixel flake's own ink).
     pub min_opacity: f32,
-    /// The seed's k·s for rain: streak length per speed, s (an exposure time).
-    pub rain_streak_s: f32,
+    /// The camera's exposure (shutter) time, s: a drop draws the streak it moves
+    /// during it ([`raindrop_sizing`]; the seed's k·s).
+    pub exposure_s: f32,
 }
 
 impl Default for SpriteSizing {
@@ -116,31 +182,39 @@ impl Default for SpriteSizing {
         Self {
             snow_scale: 3.0,
             min_px: 1.5,
-            min_opacity: 0.15,
-            rain_streak_s: 1.0 / 40.0,
+            min_opacity: 0.0,
+            exposure_s: 1.0 / 60.0,
         }
     }
 }
 
-/// A raindrop streak's height and base: `h = k·s·|v|`, base `a = 0.1·h` but never
-/// under `min_px` pixels, opacity scaled by `0.1·h / a` (not under `min_opacity`).
-/// Returns `(h_m, a_m, opacity_factor)`.
+/// A raindrop's streak as a camera exposing for `sizing.exposure_s` records it
+/// (Garg & Nayar 2007, *Vision and rain*, IJCV 75(1)): the drop moves
+/// `h = max(T·|v|, D)` during the exposure and is `D` wide, and it lies over each point
+/// of its streak for `D/|v|` of the exposure, so the streak's opacity is
+/// `(π/2)·D/h` on the tetrahedron's silhouette (`h·a/2`): its ink is the drop's
+/// projected area `π·D²/4` however long the exposure (energy-conserving; capped at
+/// opaque). A base under `min_px` pixels is widened to it with the opacity scaled
+/// down by the same factor, so the ink stays (no floor: a sub-pixel drop adds its
+/// area, not a pixel). Returns `(h_m, a_m, opacity)`.
 ///
 /// WGSL twin: `raindrop_sizing` in drawing.wgsl.
 #[must_use]
 pub fn raindrop_sizing(
     speed_mps: f32,
+    diameter_m: f32,
     distance_m: f32,
     pixel_angle_rad: f32,
     sizing: &SpriteSizing,
 ) -> (f32, f32, f32) {
-    let h = sizing.rain_streak_s * speed_mps;
-    let a = 0.1 * h;
+    let d = diameter_m.max(1.0e-5);
+    let h = (sizing.exposure_s * speed_mps).max(d);
+    let opacity = (std::f32::consts::FRAC_PI_2 * d / h).min(1.0);
     let min_a = sizing.min_px * pixel_angle_rad * distance_m;
-    if a >= min_a {
-        (h, a, 1.0)
+    if d >= min_a {
+        (h, d, opacity)
     } else {
-        (h, min_a, (a / min_a).max(sizing.min_opacity))
+        (h, min_a, opacity * d / min_a)
     }
 }
 
@@ -522,7 +596,10 @@ mod tests {
 
     #[test]
     fn sprites_and_streaks_never_shrink_under_the_minimum_and_keep_their_light() {
-        let sizing = SpriteSizing::default();
+        let sizing = SpriteSizing {
+            min_opacity: 0.15,
+            ..SpriteSizing::default()
+        };
         let pixel = 0.01;
         // A 5 mm flake at 1 m: 1.5 cm sprite, more than 1.5 px (1.5 cm)? equal: full.
         let (side, opacity) = snow_sprite_sizing(0.005, 1.0, pixel, &sizing);
@@ -533,11 +610,14 @@ mod tests {
         assert!((opacity - sizing.min_opacity).abs() < 1e-6);
         let (_, opacity) = snow_sprite_sizing(0.005, 2.0, pixel, &sizing);
         assert!((opacity - 0.25).abs() < 1e-6, "(1.5/3)²");
-        // Rain at 8 m/s: h = 0.2 m, a = 2 cm; at 1 m the base is wide enough.
-        let (h, a, o) = raindrop_sizing(8.0, 1.0, pixel, &sizing);
-        assert!((h - 0.2).abs() < 1e-6 && (a - 0.02).abs() < 1e-6 && (o - 1.0).abs() < 1e-6);
-        let (_, a, o) = raindrop_sizing(8.0, 2.0, pixel, &sizing);
-        assert!((a - 0.03).abs() < 1e-6 && (o - 2.0 / 3.0).abs() < 1e-6);
+        // A 3 mm drop at 8 m/s, 1/60 s: h = 13.3 cm, a = 3 mm, opacity (π/2)·3/133.
+        let (h, a, o) = raindrop_sizing(8.0, 0.003, 0.1, pixel, &sizing);
+        let expected = std::f32::consts::FRAC_PI_2 * 0.003 / h;
+        assert!((h - 8.0 / 60.0).abs() < 1e-6 && (a - 0.003).abs() < 1e-6);
+        assert!((o - expected).abs() < 1e-6, "{o}");
+        // At 1 m the base (1.5 cm) is widened five times, the opacity cut by five.
+        let (_, a, o1) = raindrop_sizing(8.0, 0.003, 1.0, pixel, &sizing);
+        assert!((a - 0.015).abs() < 1e-6 && (o1 - expected / 5.0).abs() < 1e-7);
     }
 
     #[test]
@@ -575,7 +655,7 @@ mod tests {
         let far = ink_at(hand_over * 2.0);
         assert!((far - 0.25 * expected).abs() < 0.01 * expected, "{far}");
         // Rain: a streak of min_px length (h) at its hand-over, base min_px.
-        let (h, a, o) = raindrop_sizing(8.0, 200.0, pixel, &sizing);
+        let (h, a, o) = raindrop_sizing(8.0, 0.002, 200.0, pixel, &sizing);
         let ink = splat_ink(
             SplatShape::Streak {
                 h_m: h,
@@ -589,6 +669,83 @@ mod tests {
             (ink - 0.5 * (h / 0.2) * (a / 0.2) * o).abs() < 1e-4,
             "{ink}"
         );
+    }
+
+    #[test]
+    fn a_flake_is_swept_as_long_as_its_motion_during_the_exposure() {
+        let camera = Vec3::new(0.0, 1.7, 0.0);
+        let centre = Vec3::new(0.0, 1.7, -2.0);
+        let side = 0.01;
+        // A blizzard's flake 2 m away crossing the view at 14 m/s for 1/60 s: 23 cm.
+        let v = Vec3::new(14.0, -1.0, 0.0);
+        let (corners, stretch) =
+            snow_streak_corners(centre, camera, side, (0.3, 0.8), v, 1.0 / 60.0).expect("away");
+        let sweep = Vec3::new(14.0, -1.0, 0.0) / 60.0;
+        assert!(
+            (stretch - (side + sweep.length()) / side).abs() < 1e-3,
+            "{stretch}"
+        );
+        // Its length along the sweep is side + |sweep| (10 %), its width a side.
+        let length = (corners[1].0 - corners[0].0).length();
+        let width = (corners[2].0 - corners[0].0).length();
+        assert!(
+            (length / (side + sweep.length()) - 1.0).abs() < 0.1,
+            "{length}"
+        );
+        assert!((width - side).abs() < 1e-5);
+        // In pixels of 1 mrad: 23 cm at 2 m is about 117 px.
+        let px = (length - side) / (2.0 * 1.0e-3);
+        let want_px = sweep.length() / (2.0 * 1.0e-3);
+        assert!((px / want_px - 1.0).abs() < 0.1, "{px} {want_px}");
+        // A flake moving along the line of sight, or barely, is the turned sprite.
+        let (_, still) = snow_streak_corners(
+            centre,
+            camera,
+            side,
+            (0.3, 0.8),
+            Vec3::new(0.0, 0.0, 3.0),
+            1.0 / 60.0,
+        )
+        .expect("away");
+        assert!((still - 1.0).abs() < f32::EPSILON);
+        // The texture's v: halves at the ends, the centre line between.
+        assert!((snow_streak_texture_v(0.2, 5.0) - 0.2).abs() < 1e-6);
+        assert!((snow_streak_texture_v(2.5, 5.0) - 0.5).abs() < 1e-6);
+        assert!((snow_streak_texture_v(4.8, 5.0) - 0.8).abs() < 1e-6);
+        assert!((snow_streak_texture_v(0.7, 1.0) - 0.7).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_streak_is_as_long_as_the_exposure_and_holds_the_drop_s_area() {
+        let pixel = 1.0e-3;
+        for exposure_s in [1.0 / 250.0, 1.0 / 60.0, 1.0 / 15.0] {
+            let sizing = SpriteSizing {
+                exposure_s,
+                ..SpriteSizing::default()
+            };
+            for distance_m in [1.0f32, 3.0, 10.0, 40.0] {
+                for (diameter_m, speed_mps) in [(0.0005, 2.0), (0.002, 6.5), (0.005, 9.1)] {
+                    let (h, a, o) =
+                        raindrop_sizing(speed_mps, diameter_m, distance_m, pixel, &sizing);
+                    let px = 1.0 / (pixel * distance_m);
+                    // Streak length = speed × exposure, in pixels (10 %).
+                    let want_px = speed_mps * exposure_s * px;
+                    assert!(((h * px) / want_px - 1.0).abs() < 0.1, "{h} {want_px}");
+                    // Ink = the drop's projected area, px² (1 %), at any size on screen.
+                    let ink = splat_ink(
+                        SplatShape::Streak {
+                            h_m: h,
+                            a_m: a,
+                            opacity: o,
+                        },
+                        distance_m,
+                        pixel,
+                    );
+                    let area = std::f32::consts::FRAC_PI_4 * (diameter_m * px).powi(2);
+                    assert!((ink / area - 1.0).abs() < 0.01, "{ink} vs {area}");
+                }
+            }
+        }
     }
 
     #[test]

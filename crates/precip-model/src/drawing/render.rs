@@ -15,6 +15,7 @@ use precip_cover::{CoverParams, GridFrame};
 
 use crate::backend::camera::{Camera, View};
 use crate::backend::error::BackendError;
+use crate::drawing::multiplicity::PoolDrawing;
 use crate::drawing::{Lighting, SpriteSizing, view_cone_cos};
 use crate::weather::Weather;
 
@@ -41,7 +42,8 @@ pub struct RenderSettings {
     /// order-independent) instead of enlarged sprites and streaks; off draws every
     /// particle as geometry (the reference the splat is tested against).
     pub splat_sub_pixel: bool,
-    /// Opacity of a rain streak, `[0, 1]`.
+    /// A factor on a rain streak's physical opacity (`crate::drawing::raindrop_sizing`),
+    /// `[0, 1]`: 1 draws each drop's projected area.
     pub rain_opacity: f32,
     /// Raise upward surfaces by the snow depth.
     pub snow_displacement: bool,
@@ -74,7 +76,7 @@ impl Default for RenderSettings {
             clear_air_extinction_per_m: 3.912 / 30_000.0,
             sizing: SpriteSizing::default(),
             splat_sub_pixel: true,
-            rain_opacity: 0.35,
+            rain_opacity: 1.0,
             snow_displacement: true,
             shadow_map_px: 2048,
             tessellation_edge_m: 0.5,
@@ -129,12 +131,7 @@ impl RenderSettings {
                 0.0,
                 1.0,
             ),
-            (
-                "render.sizing.rain_streak_s",
-                self.sizing.rain_streak_s,
-                0.0,
-                1.0,
-            ),
+            ("render.sizing.exposure_s", self.sizing.exposure_s, 0.0, 1.0),
             ("render.rain_opacity", self.rain_opacity, 0.0, 1.0),
             (
                 "render.water_body_depth_m",
@@ -177,7 +174,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (400 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (448 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -197,9 +194,9 @@ pub struct RenderParams {
     pub light: Vec4,
     /// Shadow colour, shadow density, attenuation λ, shadow-map texel size (uv).
     pub shadow: Vec4,
-    /// Snow scale, min px, min opacity, rain streak s.
+    /// Snow scale, min px, min opacity, exposure s.
     pub sizing: Vec4,
-    /// Rain opacity, displacement on (1/0), full-cover depth mm, mask edge.
+    /// Rain opacity, displacement on (1/0), the cover's depletion exponent, mask edge.
     pub cover_look: Vec4,
     /// Wet darkening R_d, albedo decay per day, exposure tolerance m, the flake
     /// texture's mean opacity.
@@ -216,8 +213,15 @@ pub struct RenderParams {
     /// Particle count, culling on (1/0), cull workgroups, the splat target's width in
     /// px (0: splat off).
     pub counts: UVec4,
+    /// The pools ([`crate::drawing::multiplicity::PoolDrawing`]): world particle
+    /// count, first lifted world particle, camera volume present (1/0), copies of each camera-volume sprite.
+    pub pools: UVec4,
+    /// The camera volume's centre, m; w: the world emitter's multiplicity.
+    pub camera_box_centre_m: Vec4,
+    /// The camera volume's half extent, m; w: its multiplicity.
+    pub camera_box_half_m: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 400);
+const _: () = assert!(size_of::<RenderParams>() == 448);
 
 /// The camera's world → clip matrix for a target of `aspect` (width / height).
 #[must_use]
@@ -299,14 +303,21 @@ pub struct FrameInputs<'a> {
     pub particle_count: u32,
     /// Workgroups of the cull kernels.
     pub cull_groups: u32,
+    /// How each pool's particles are weighed ([`crate::drawing::multiplicity`]).
+    pub pools: PoolDrawing,
 }
 
 impl crate::Setup {
     /// The frame's uniform block for `view` under `weather` at `time_s`, the shadow map
     /// enclosing `shadow_bounds_m`, for `particle_count` particles and the wave grid
-    /// `waves` (the one [`crate::Setup::frames`] gave at configure): what every GPU
-    /// backend draws a frame of this setup with.
+    /// `waves` (the one [`crate::Setup::frames`] gave at configure), the camera volume
+    /// centred at `camera_centre_m`: what every GPU backend draws a frame of this
+    /// setup with.
     #[must_use]
+    #[expect(
+        clippy::too_many_arguments,
+        reason = "each is one input of the block; FrameInputs gathers them"
+    )]
     pub fn render_params(
         &self,
         view: &View,
@@ -315,6 +326,7 @@ impl crate::Setup {
         time_s: f64,
         particle_count: u32,
         waves: GridFrame,
+        camera_centre_m: Vec3,
     ) -> RenderParams {
         RenderParams::new(&FrameInputs {
             view,
@@ -328,6 +340,7 @@ impl crate::Setup {
             time_s: time_s as f32,
             particle_count,
             cull_groups: crate::host::cull_groups(particle_count),
+            pools: self.pool_drawing(weather, camera_centre_m),
         })
     }
 }
@@ -392,7 +405,7 @@ impl RenderParams {
                 s.sizing.snow_scale,
                 s.sizing.min_px,
                 s.sizing.min_opacity,
-                s.sizing.rain_streak_s,
+                s.sizing.exposure_s,
             ),
             cover_look: Vec4::new(
                 s.rain_opacity,
@@ -425,6 +438,22 @@ impl RenderParams {
                     0
                 },
             ),
+            pools: UVec4::new(
+                f.pools.world_count,
+                f.pools.lift_from,
+                u32::from(f.pools.camera_box_m.is_some()),
+                f.pools.snow_copies,
+            ),
+            camera_box_centre_m: f
+                .pools
+                .camera_box_m
+                .map_or(Vec3::ZERO, |b| b.0)
+                .extend(f.pools.world_multiplicity),
+            camera_box_half_m: f
+                .pools
+                .camera_box_m
+                .map_or(Vec3::ZERO, |b| b.1)
+                .extend(f.pools.camera_multiplicity),
         }
     }
 }

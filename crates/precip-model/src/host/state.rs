@@ -165,6 +165,7 @@ impl HostState {
             self.time_s,
             particle_count,
             waves,
+            self.camera.position_m,
         )
     }
 
