@@ -24,7 +24,7 @@ const NEW_SNOW_DENSITY_KG_M3: f32 = 100.0;
 fn surface_snow_roughness_m(surface: u32) -> f32 {
     switch surface {
         case 0u: { return 0.01; }
-        case 2u: { return 0.03; }
+        case 2u: { return 0.015; }
         default: { return 0.005; }
     }
 }
@@ -72,6 +72,19 @@ fn value_noise(x: f32, z: f32) -> f32 {
     let a = lattice_value(i, j) + (lattice_value(i + 1, j) - lattice_value(i, j)) * u;
     let b = lattice_value(i, j + 1) + (lattice_value(i + 1, j + 1) - lattice_value(i, j + 1)) * u;
     return a + (b - a) * v;
+}
+
+// Rust: precip_cover::shading::COVER_WARP_WAVELENGTH_TEXELS.
+const COVER_WARP_WAVELENGTH_TEXELS: f32 = 1.5;
+
+fn cover_warp_m(xz_m: vec2<f32>, cell_m: vec2<f32>) -> vec2<f32> {
+    let scale = cell_m * COVER_WARP_WAVELENGTH_TEXELS;
+    let u = xz_m.x / max(scale.x, 1.0e-3);
+    let v = xz_m.y / max(scale.y, 1.0e-3);
+    return vec2<f32>(
+        (value_noise(u, v) - 0.5) * cell_m.x,
+        (value_noise(u + 53.0, v + 91.0) - 0.5) * cell_m.y,
+    );
 }
 
 fn sub_texel_threshold(mask: f32, xz_m: vec2<f32>) -> f32 {

@@ -52,9 +52,10 @@ pub use masks::{ThresholdMasks, generate_threshold_masks};
 pub use melt::{degree_day_melt_mm, melt_factor, snow_albedo, vegetation_transmission};
 pub use params::CoverParams;
 pub use shading::{
-    CoverShading, GRAINS_COVERING_KG_M2, NEW_SNOW_DENSITY_KG_M3, THRESHOLD_NOISE_AMPLITUDE,
-    THRESHOLD_NOISE_WAVELENGTHS_M, accumulated_fraction, melted_fraction, settled_grain_cover,
-    shade_texel, shade_with_masks, snow_cover_fraction, sub_texel_threshold, value_noise,
+    COVER_WARP_WAVELENGTH_TEXELS, CoverShading, GRAINS_COVERING_KG_M2, NEW_SNOW_DENSITY_KG_M3,
+    THRESHOLD_NOISE_AMPLITUDE, THRESHOLD_NOISE_WAVELENGTHS_M, accumulated_fraction, cover_warp_m,
+    melted_fraction, settled_grain_cover, shade_texel, shade_with_masks, snow_cover_fraction,
+    sub_texel_threshold, value_noise,
 };
 pub use snowpack::{compacted_density, new_snow_density};
 pub use surface::{Surface, SurfaceWater};

@@ -131,6 +131,30 @@ pub fn value_noise(x: f32, z: f32) -> f32 {
     a + (b - a) * v
 }
 
+/// Wavelength of [`cover_warp_m`]'s noise, in texels of the cover grid.
+pub const COVER_WARP_WAVELENGTH_TEXELS: f32 = 1.5;
+
+/// How far a surface point moves the place it reads the cover at, m: two value
+/// noises (one per axis) over `COVER_WARP_WAVELENGTH_TEXELS` texels, each in
+/// `±½` texel, so the interpolated depth's contours — where a drift or a bare
+/// patch ends — wander off the grid's lines instead of tracing its texels.
+/// Continuous. WGSL twin: same name (shading.wgsl).
+#[must_use]
+pub fn cover_warp_m(xz_m: [f32; 2], cell_m: [f32; 2]) -> [f32; 2] {
+    let scale = [
+        cell_m[0] * COVER_WARP_WAVELENGTH_TEXELS,
+        cell_m[1] * COVER_WARP_WAVELENGTH_TEXELS,
+    ];
+    let (u, v) = (
+        xz_m[0] / scale[0].max(1.0e-3),
+        xz_m[1] / scale[1].max(1.0e-3),
+    );
+    [
+        (value_noise(u, v) - 0.5) * cell_m[0],
+        (value_noise(u + 53.0, v + 91.0) - 0.5) * cell_m[1],
+    ]
+}
+
 /// The accumulation threshold a surface point compares its coverage with: the
 /// texel's mask (interpolated between texels) moved by two octaves of value noise
 /// finer than a texel ([`THRESHOLD_NOISE_WAVELENGTHS_M`]), so a patch's border wanders
@@ -257,10 +281,10 @@ mod tests {
         assert!(snow_cover_fraction(0.0, 100.0, 0.01, 1.0).abs() < f32::MIN_POSITIVE);
         assert!(snow_cover_fraction(-1.0, 100.0, 0.01, 1.0).abs() < f32::MIN_POSITIVE);
         assert!(snow_cover_fraction(1.0, 100.0, 0.01, 1.0) > 0.999);
-        // Grass shows through 5 cm of fresh snow; a roof does not.
-        let grass = snow_cover_fraction(0.05, 100.0, Surface::Grass.snow_roughness_m(), 1.0);
-        let roof = snow_cover_fraction(0.05, 100.0, Surface::Roof.snow_roughness_m(), 1.0);
-        assert!(grass < 0.6 && roof > 0.99, "{grass} {roof}");
+        // Half a lawn shows through 2 cm of fresh snow; a roof is white.
+        let grass = snow_cover_fraction(0.02, 100.0, Surface::Grass.snow_roughness_m(), 1.0);
+        let roof = snow_cover_fraction(0.02, 100.0, Surface::Roof.snow_roughness_m(), 1.0);
+        assert!(grass < 0.6 && roof > 0.9, "{grass} {roof}");
     }
 
     proptest::proptest! {
@@ -294,6 +318,25 @@ mod tests {
             // lattice is 0.15 m: at most 2·0.2·(1/3)·(15/8)/0.15·|d|·√2 + the coarse.
             proptest::prop_assert!((a - b).abs() <= 3.0 * (dx.abs() + dz.abs()) + 1e-4, "{a} {b}");
             proptest::prop_assert!((a - mask).abs() <= THRESHOLD_NOISE_AMPLITUDE + 1e-6);
+        }
+    }
+
+    #[test]
+    fn the_warp_stays_within_half_a_texel_and_is_continuous() {
+        let cell = [1.0, 0.5];
+        for i in 0..5_000 {
+            let x = i as f32 * 0.173 - 400.0;
+            let z = (i / 70) as f32 * 0.311 - 10.0;
+            let w = cover_warp_m([x, z], cell);
+            assert!(
+                w[0].abs() <= 0.5 * cell[0] && w[1].abs() <= 0.5 * cell[1],
+                "{w:?}"
+            );
+            let n = cover_warp_m([x + 1.0e-3, z - 1.0e-3], cell);
+            assert!(
+                (n[0] - w[0]).abs() + (n[1] - w[1]).abs() < 1.0e-2,
+                "{w:?} {n:?}"
+            );
         }
     }
 

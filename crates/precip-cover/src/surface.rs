@@ -185,16 +185,17 @@ impl Surface {
 
     /// The roughness length `z₀` that snow must bury before it covers the surface
     /// (the snow-cover depletion curve, `crate::shading::snow_cover_fraction`), m.
-    /// Bare soil 0.01 m, Niu & Yang's (2007) ground value; turf 0.03 m and paving,
-    /// roofs, sand and water 0.005 m, the "open" and "smooth" classes of the
-    /// Davenport–Wieringa roughness classification (Wieringa et al. 2001, WMO-No. 8
-    /// annex). A smooth roof is white under 1 cm of fresh snow; grass shows through
-    /// until about 15 cm. WGSL twin: `surface_snow_roughness_m` (shading.wgsl).
+    /// Bare soil 0.01 m, Niu & Yang's (2007) ground value; turf 0.015 m, a tenth of
+    /// a 15 cm lawn's height (the usual `z₀ ≈ h/10` of a canopy); paving, roofs, sand
+    /// and water 0.005 m, the "smooth" class of the Davenport–Wieringa roughness
+    /// classification (Wieringa et al. 2001, WMO-No. 8 annex). 2 cm of fresh snow
+    /// whitens a roof (0.92) while half the lawn shows through (0.49). WGSL twin:
+    /// `surface_snow_roughness_m` (shading.wgsl).
     #[must_use]
     pub const fn snow_roughness_m(self) -> f32 {
         match self {
             Self::Soil => 0.01,
-            Self::Grass => 0.03,
+            Self::Grass => 0.015,
             Self::Asphalt | Self::Roof | Self::Sand | Self::Water => 0.005,
         }
     }

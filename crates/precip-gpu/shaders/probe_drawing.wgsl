@@ -18,7 +18,10 @@ struct ProbeDrawing {
 @group(0) @binding(0) var<storage, read> probe_drawing_in: array<ProbeDrawing>;
 // Per input: 4 sprite corners, 4 tetrahedron vertices, 4 normals (xyz; w = 0), then
 // (cover fraction, threshold, value noise, drawn weight of input i at m = 2·side), then
-// 4 snow streak corners at a 1/60 s exposure (xyz; w = uv.y).
+// 4 snow streak corners at a 1/60 s exposure (xyz; w = uv.y), then (the blur at
+// 50·h of an aperture a focused at 10 m, a sprite of side `side` at 0.8 defocused by
+// it, a streak's opacity), then (the cover warp at the centre's x, z over cells
+// (a + 0.1, side + 0.1), 0, 0).
 @group(0) @binding(1) var<storage, read_write> probe_drawing_out: array<vec4<f32>>;
 
 @compute @workgroup_size(64)
@@ -29,12 +32,12 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let q = probe_drawing_in[i];
     for (var k = 0u; k < 4u; k++) {
-        probe_drawing_out[17u * i + k] = vec4<f32>(snow_sprite_corner(q.centre_m, q.camera_m, q.side_m, q.spin_rad, q.tumble, k), 0.0);
+        probe_drawing_out[19u * i + k] = vec4<f32>(snow_sprite_corner(q.centre_m, q.camera_m, q.side_m, q.spin_rad, q.tumble, k), 0.0);
         let v = raindrop_vertex(q.centre_m, q.velocity_mps, q.h_m, q.a_m, k);
-        probe_drawing_out[17u * i + 4u + k] = vec4<f32>(v.position_m, 0.0);
-        probe_drawing_out[17u * i + 8u + k] = vec4<f32>(v.normal, 0.0);
+        probe_drawing_out[19u * i + 4u + k] = vec4<f32>(v.position_m, 0.0);
+        probe_drawing_out[19u * i + 8u + k] = vec4<f32>(v.normal, 0.0);
     }
-    probe_drawing_out[17u * i + 12u] = vec4<f32>(
+    probe_drawing_out[19u * i + 12u] = vec4<f32>(
         snow_cover_fraction(q.h_m, q.cover.x, q.a_m, q.cover.y),
         sub_texel_threshold(q.tumble, q.centre_m.xz),
         value_noise(q.centre_m.x, q.centre_m.z),
@@ -42,6 +45,13 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
     );
     for (var k = 0u; k < 4u; k++) {
         let s = snow_streak_corner(q.centre_m, q.camera_m, q.side_m, vec2<f32>(q.spin_rad, q.tumble), q.velocity_mps, 1.0 / 60.0, k);
-        probe_drawing_out[17u * i + 13u + k] = vec4<f32>(s.position_m, s.uv.y);
+        probe_drawing_out[19u * i + 13u + k] = vec4<f32>(s.position_m, s.uv.y);
     }
+    let blur = defocus_blur_m(q.a_m, 10.0, 50.0 * q.h_m);
+    probe_drawing_out[19u * i + 17u] = vec4<f32>(
+        blur,
+        defocused(q.side_m, 0.8, blur, 2),
+        defocused(q.side_m, 0.8, blur, 1).y,
+    );
+    probe_drawing_out[19u * i + 18u] = vec4<f32>(cover_warp_m(q.centre_m.xz, vec2<f32>(q.a_m + 0.1, q.side_m + 0.1)), 0.0, 0.0);
 }

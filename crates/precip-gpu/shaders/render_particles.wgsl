@@ -66,7 +66,9 @@ fn vs_snow(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance
     p.position_m = snow_copy_position(i, copy, p.position_m);
     let camera = params.camera_m_cone_cos.xyz;
     let distance_m = distance(p.position_m, camera);
-    let size = snow_sprite_sizing(p.diameter_m, distance_m, params.view_dir_pixel_angle.w, params.sizing);
+    let sharp = snow_sprite_sizing(p.diameter_m, distance_m, params.view_dir_pixel_angle.w, params.sizing);
+    // Out of focus: spread over the lens's blur circle, the ink kept.
+    let size = defocused(sharp.x, sharp.y, defocus_blur_m(params.lens.x, params.lens.y, distance_m), 2);
     let turn = flake_spin_tumble(rotation0_rad(p.rotation0), p.rotation_rad);
     // Swept over the exposure (sizing.w): a streak when it moves half its side.
     let streak = snow_streak_corner(p.position_m, camera, size.x, turn, p.velocity_mps, params.sizing.w, corner);
@@ -97,7 +99,10 @@ fn vs_rain(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     let p = particles[i];
     let camera = params.camera_m_cone_cos.xyz;
     let distance_m = distance(p.position_m, camera);
-    let size = raindrop_sizing(length(p.velocity_mps), p.diameter_m, distance_m, params.view_dir_pixel_angle.w, params.sizing);
+    let sharp = raindrop_sizing(length(p.velocity_mps), p.diameter_m, distance_m, params.view_dir_pixel_angle.w, params.sizing);
+    // Out of focus: the streak widened by the lens's blur circle, the ink kept.
+    let wide = defocused(sharp.y, sharp.z, defocus_blur_m(params.lens.x, params.lens.y, distance_m), 1);
+    let size = vec3<f32>(sharp.x, wide.x, wide.y);
     let v = raindrop_vertex(p.position_m, p.velocity_mps, size.x, size.y, rain_tetrahedron_face_vertex(vertex));
     var out: ParticleVarying;
     out.clip = params.view_proj * vec4<f32>(v.position_m, 1.0);

@@ -88,6 +88,11 @@ fn upward(normal: vec3<f32>) -> f32 {
 // reads a smoothed pack, and the threshold masks give patches with smooth borders
 // finer than the grid. Each field is interpolated on its own, as texels were mixed
 // before (the fields the surface does not read are zero).
+// The roughness length the snow buries at the point cover_at last read, m (texture
+// C.y, cover_texture.wgsl): kept here from the same sample, as CoverTexel has no
+// field for it.
+var<private> cover_roughness_m: f32;
+
 fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
     let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
     let a = textureSampleLevel(cover_a, cover_sampler, uv, 0.0);
@@ -95,6 +100,7 @@ fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
     let c = textureSampleLevel(cover_c, cover_sampler, uv, 0.0);
     var t: CoverTexel;
     t.dust_kg_m2 = c.x;
+    cover_roughness_m = c.y;
     t.depth_mm = a.x;
     t.swe_mm = a.y;
     t.peak_swe_mm = a.z;
@@ -105,12 +111,6 @@ fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
     // The puddle ratio rides in the standing-water field (fs_scene reads it so).
     t.standing_mm = b.w;
     return t;
-}
-
-// The roughness length the snow buries at (x, z), m (cover_texture.wgsl).
-fn snow_roughness_at(xz_m: vec2<f32>) -> f32 {
-    let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
-    return textureSampleLevel(cover_c, cover_sampler, uv, 0.0).y;
 }
 
 // A water body's wave height at cell `cell` of the wave grid, m (0 off the grid).
@@ -208,11 +208,17 @@ fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
     let body = select(0.0, 1.0, in.eligibility < -0.5);
     let i = grid_texel_index(params.cover, in.surface_m.xz);
     if (i >= 0) {
-        let texel = cover_at(in.surface_m.xz);
+        // Read the cover a little off the point (under half a texel), so where a
+        // drift or a bare patch ends follows no texel's edge.
+        let cell = params.cover.size_m / vec2<f32>(params.cover.texels);
+        let texel = cover_at(in.surface_m.xz + cover_warp_m(in.surface_m.xz, cell));
         // The texel's threshold moved by noise finer than a texel, so patch borders
         // and thin snow follow neither texels nor triangles.
-        let threshold = sub_texel_threshold(texel.accumulation_mask, in.surface_m.xz);
-        let s = cover_shading(texel, threshold, texel.melt_mask, snow_roughness_at(in.surface_m.xz), params.cover_look.z, params.cover_look.w, params.cover_look2.x);
+        var threshold = texel.accumulation_mask;
+        if (texel.depth_mm > 0.0) {
+            threshold = sub_texel_threshold(threshold, in.surface_m.xz);
+        }
+        let s = cover_shading(texel, threshold, texel.melt_mask, cover_roughness_m, params.cover_look.z, params.cover_look.w, params.cover_look2.x);
         let sky_facing = exposure(in.surface_m, n) * upward(n);
         let snow = s.snow_alpha * clamp(in.eligibility, 0.0, 1.0) * sky_facing;
         let darkening = mix(1.0, s.ground_darkening, sky_facing);

@@ -266,7 +266,8 @@ fn rust_and_wgsl_layouts_match() {
             counts,
             pools,
             camera_box_centre_m,
-            camera_box_half_m
+            camera_box_half_m,
+            lens
         }),
         rust_layout!(DrawArgs {
             vertex_count,

@@ -111,6 +111,21 @@ fn splat_ink(is_rain: bool, size: vec3<f32>, distance_m: f32, pixel_angle_rad: f
     return side_px * side_px * size.y * flake_mean_opacity;
 }
 
+// defocus_blur_m: the thin lens's blur circle at `distance_m`, m across.
+fn defocus_blur_m(aperture_m: f32, focus_distance_m: f32, distance_m: f32) -> f32 {
+    return aperture_m * abs(1.0 - distance_m / max(focus_distance_m, 1.0e-3));
+}
+
+// defocused: (width, opacity) spread by `blur_m`, the ink kept (power 2: a sprite).
+fn defocused(width_m: f32, opacity: f32, blur_m: f32, power: i32) -> vec2<f32> {
+    let wide = width_m + max(blur_m, 0.0);
+    if (wide <= 0.0) {
+        return vec2<f32>(width_m, opacity);
+    }
+    let r = width_m / wide;
+    return vec2<f32>(wide, opacity * select(r, r * r, power == 2));
+}
+
 // NEAR_FADE_START_M, NEAR_FADE_END_M
 const NEAR_FADE_START_M: f32 = 0.5;
 const NEAR_FADE_END_M: f32 = 1.5;

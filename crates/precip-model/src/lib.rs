@@ -44,7 +44,7 @@ pub mod sensors;
 pub mod weather;
 pub mod wgsl;
 
-pub use backend::camera::{Camera, Image, View};
+pub use backend::camera::{Camera, Image, Lens, View};
 pub use backend::error::{BackendError, WeatherError};
 pub use backend::limits::DeviceLimits;
 pub use backend::setup::{CameraVolumeSetup, CoverSetup, EmitterSetup, GrainLift, Setup};

@@ -112,6 +112,16 @@ struct RunArgs {
     /// Point the camera looks at x,y,z (m).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     look_at: Option<Vec3>,
+    /// The camera's exposure (shutter) time, s: rain and snow are drawn over their
+    /// motion during it (0: frozen).
+    #[arg(long, default_value_t = 1.0 / 60.0)]
+    shutter: f32,
+    /// The lens's f-number: near flakes out of focus blur (`inf`: a pinhole).
+    #[arg(long, default_value_t = 4.0)]
+    f_number: f32,
+    /// Distance in focus, m.
+    #[arg(long, default_value_t = 10.0)]
+    focus: f32,
     /// Headless: render this many frames into --out instead of opening a window.
     #[arg(long)]
     frames: Option<u32>,
@@ -325,6 +335,16 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     if let Some(shift) = args.channel_shift {
         setup.camera.lens_shift = shift;
     }
+    setup.camera.lens = precip_model::Lens {
+        exposure_s: args.shutter,
+        f_number: args.f_number,
+        focus_distance_m: args.focus,
+    };
+    setup
+        .camera
+        .lens
+        .validate()
+        .context("--shutter, --f-number and --focus")?;
     let frames = match args.frames {
         Some(n) => n,
         None if display_available() => {

@@ -5,10 +5,11 @@
 use glam::Vec3;
 use precip_gpu::recipe::ProbeDrawing;
 use precip_gpu::shaders::Program;
-use precip_model::cover::{snow_cover_fraction, sub_texel_threshold, value_noise};
+use precip_model::cover::{cover_warp_m, snow_cover_fraction, sub_texel_threshold, value_noise};
 use precip_model::drawing::multiplicity::drawn_weight;
 use precip_model::drawing::{
-    raindrop_tetrahedron_sized, snow_sprite_corners_turned, snow_streak_corners,
+    defocus_blur_m, defocused, raindrop_tetrahedron_sized, snow_sprite_corners_turned,
+    snow_streak_corners,
 };
 use precip_model::particles::rng::{particle_key, random_unit};
 
@@ -52,7 +53,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             Program::ProbeDrawing,
             bytemuck::cast_slice(&inputs),
             inputs.len() as u32,
-            (inputs.len() * 17 * 16) as u64,
+            (inputs.len() * 19 * 16) as u64,
         );
         let got: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
         for (i, q) in inputs.iter().enumerate() {
@@ -74,7 +75,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 .chain(&tetra.normals)
                 .copied();
             for (k, want) in expected.enumerate() {
-                let g = got[17 * i + k];
+                let g = got[19 * i + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 let tolerance = 1e-5 * (1.0 + want.abs().max_element());
                 assert!(
@@ -82,7 +83,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                     "{name}: input {i} value {k}: WGSL {have} vs Rust {want}"
                 );
             }
-            let cover = got[17 * i + 12];
+            let cover = got[19 * i + 12];
             let want = [
                 snow_cover_fraction(q.h_m, q.cover[0], q.a_m, q.cover[1]),
                 sub_texel_threshold(q.tumble, [centre.x, centre.z]),
@@ -105,8 +106,28 @@ fn wgsl_drawing_equals_rust_drawing() {
                 1.0 / 60.0,
             )
             .expect("camera away from the centre");
+            let blur = defocus_blur_m(q.a_m, 10.0, 50.0 * q.h_m);
+            let sprite = defocused(q.side_m, 0.8, blur, 2);
+            let streak_opacity = defocused(q.side_m, 0.8, blur, 1).1;
+            let g = got[19 * i + 17];
+            for (k, want) in [blur, sprite.0, sprite.1, streak_opacity]
+                .into_iter()
+                .enumerate()
+            {
+                assert!(
+                    (g[k] - want).abs() <= 1e-5 * (1.0 + want.abs()),
+                    "{name}: input {i} defocus value {k}: WGSL {} vs Rust {want}",
+                    g[k]
+                );
+            }
+            let warp = cover_warp_m([centre.x, centre.z], [q.a_m + 0.1, q.side_m + 0.1]);
+            let g = got[19 * i + 18];
+            assert!(
+                (g[0] - warp[0]).abs() <= 2e-5 && (g[1] - warp[1]).abs() <= 2e-5,
+                "{name}: input {i} cover warp: WGSL {g:?} vs Rust {warp:?}"
+            );
             for (k, (want, uv)) in streak.iter().enumerate() {
-                let g = got[17 * i + 13 + k];
+                let g = got[19 * i + 13 + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 let tolerance = 1e-5 * (1.0 + want.abs().max_element());
                 assert!(

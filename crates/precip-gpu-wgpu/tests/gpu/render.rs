@@ -253,6 +253,11 @@ fn rain_frames_show_streaks_along_the_velocity() {
     let camera = Camera {
         position_m: Vec3::new(0.0, 20.0, 0.0),
         forward: Vec3::NEG_Z,
+        // A short exposure: streaks of 20 cm, each drop's ink on fewer pixels.
+        lens: precip_model::Lens {
+            exposure_s: 0.02,
+            ..precip_model::Lens::default()
+        },
         ..Camera::default()
     };
     let view = view(camera, 256, 192);
@@ -277,8 +282,6 @@ fn rain_frames_show_streaks_along_the_velocity() {
                 ..WindField::calm()
             };
             dark_sky(&mut setup);
-            // A short exposure: streaks of 20 cm, each drop's ink on fewer pixels.
-            setup.render.sizing.exposure_s = 0.02;
             // Let the drops reach the wind's speed.
             common::run(&mut gpu, &setup, 30, 0.1);
             gpu.render(&view).expect("renders");

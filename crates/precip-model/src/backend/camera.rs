@@ -26,6 +26,71 @@ pub struct Camera {
     /// on axis). The channels of a tiled display rig share one image plane: each
     /// shows its window of it, and where windows overlap they draw the same rays.
     pub lens_shift: Vec2,
+    /// Shutter, aperture and focus: how long a frame exposes (the streaks) and
+    /// what is sharp (the near flakes' blur).
+    pub lens: Lens,
+}
+
+/// A camera's exposure and thin lens (docs/model.md (5.4), (5.14), (5.16)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lens {
+    /// Exposure (shutter) time, s, in `[0, 1]`: a particle is drawn over its motion
+    /// during it (0: frozen).
+    pub exposure_s: f32,
+    /// f-number `N` (focal length over aperture diameter), `≥ 0.5`; infinite: a
+    /// pinhole, everything sharp.
+    pub f_number: f32,
+    /// Distance in focus, m, in `[0.1, 10⁶]`.
+    pub focus_distance_m: f32,
+}
+
+impl Default for Lens {
+    /// 1/60 s at f/4, focused at 10 m: a video camera's everyday setting.
+    fn default() -> Self {
+        Self {
+            exposure_s: 1.0 / 60.0,
+            f_number: 4.0,
+            focus_distance_m: 10.0,
+        }
+    }
+}
+
+/// Height of the sensor the lens images onto, m (full frame, 24 × 36 mm): with the
+/// field of view it sets the focal length, and with the f-number the aperture.
+pub const SENSOR_HEIGHT_M: f32 = 0.024;
+
+impl Lens {
+    /// Checks every field.
+    pub fn validate(&self) -> Result<(), BackendError> {
+        if !(self.exposure_s.is_finite() && (0.0..=1.0).contains(&self.exposure_s)) {
+            return Err(BackendError::InvalidCamera(
+                "lens.exposure_s must be in [0, 1] s",
+            ));
+        }
+        if self.f_number.is_nan() || self.f_number < 0.5 {
+            return Err(BackendError::InvalidCamera(
+                "lens.f_number must be at least 0.5 (infinite for a pinhole)",
+            ));
+        }
+        if !(self.focus_distance_m.is_finite() && (0.1..=1.0e6).contains(&self.focus_distance_m)) {
+            return Err(BackendError::InvalidCamera(
+                "lens.focus_distance_m must be in [0.1, 1000000] m",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The aperture's diameter, m, for a vertical field of view `vertical_fov_rad`:
+    /// focal length `f = (h_sensor/2)/tan(fov/2)` over the f-number (0 for a pinhole).
+    #[must_use]
+    pub fn aperture_m(&self, vertical_fov_rad: f32) -> f32 {
+        let focal_m = 0.5 * SENSOR_HEIGHT_M / (0.5 * vertical_fov_rad).tan().max(1.0e-6);
+        if self.f_number.is_finite() {
+            focal_m / self.f_number
+        } else {
+            0.0
+        }
+    }
 }
 
 impl Default for Camera {
@@ -39,6 +104,7 @@ impl Default for Camera {
             near_m: 0.1,
             far_m: 2000.0,
             lens_shift: Vec2::ZERO,
+            lens: Lens::default(),
         }
     }
 }
@@ -89,7 +155,7 @@ impl Camera {
                 "lens_shift must be finite, each within ±4 half-widths",
             ));
         }
-        Ok(())
+        self.lens.validate()
     }
 
     /// The on-axis frustum enclosing this one on a target of `aspect`: its vertical

@@ -172,9 +172,6 @@ pub struct SpriteSizing {
     /// Lowest opacity of an enlarged sprite (a look, not physics: 0, the default,
     /// keeps each sub-pixel flake's own ink).
     pub min_opacity: f32,
-    /// The camera's exposure (shutter) time, s: a drop draws the streak it moves
-    /// during it ([`raindrop_sizing`]; the seed's k·s).
-    pub exposure_s: f32,
 }
 
 impl Default for SpriteSizing {
@@ -183,12 +180,11 @@ impl Default for SpriteSizing {
             snow_scale: 3.0,
             min_px: 1.5,
             min_opacity: 0.0,
-            exposure_s: 1.0 / 60.0,
         }
     }
 }
 
-/// A raindrop's streak as a camera exposing for `sizing.exposure_s` records it
+/// A raindrop's streak as a camera exposing for `exposure_s` records it
 /// (Garg & Nayar 2007, *Vision and rain*, IJCV 75(1)): the drop moves
 /// `h = max(T·|v|, D)` during the exposure and is `D` wide, and it lies over each point
 /// of its streak for `D/|v|` of the exposure, so the streak's opacity is
@@ -206,9 +202,10 @@ pub fn raindrop_sizing(
     distance_m: f32,
     pixel_angle_rad: f32,
     sizing: &SpriteSizing,
+    exposure_s: f32,
 ) -> (f32, f32, f32) {
     let d = diameter_m.max(1.0e-5);
-    let h = (sizing.exposure_s * speed_mps).max(d);
+    let h = (exposure_s * speed_mps).max(d);
     let opacity = (std::f32::consts::FRAC_PI_2 * d / h).min(1.0);
     let min_a = sizing.min_px * pixel_angle_rad * distance_m;
     if d >= min_a {
@@ -216,6 +213,28 @@ pub fn raindrop_sizing(
     } else {
         (h, min_a, opacity * d / min_a)
     }
+}
+
+/// The blur circle of a thin lens of aperture `aperture_m` focused at
+/// `focus_distance_m`, measured at `distance_m` (m across at the particle): the
+/// blur angle `A·|1/d − 1/d_f|` times `d`. 0 in focus and for a pinhole.
+/// WGSL twin: `defocus_blur_m` (drawing.wgsl).
+#[must_use]
+pub fn defocus_blur_m(aperture_m: f32, focus_distance_m: f32, distance_m: f32) -> f32 {
+    aperture_m * (1.0 - distance_m / focus_distance_m.max(1.0e-3)).abs()
+}
+
+/// A sprite or streak width `width_m` at `opacity` spread by a blur circle
+/// `blur_m`: `width + blur` wide at `opacity·(width/(width + blur))^power`
+/// (power 2 for a sprite, which spreads both ways; 1 for a streak's width), so
+/// its ink stays. WGSL twin: `defocused` (drawing.wgsl).
+#[must_use]
+pub fn defocused(width_m: f32, opacity: f32, blur_m: f32, power: i32) -> (f32, f32) {
+    let wide = width_m + blur_m.max(0.0);
+    if wide <= 0.0 {
+        return (width_m, opacity);
+    }
+    (wide, opacity * (width_m / wide).powi(power))
 }
 
 /// Particles nearer the camera than this are not drawn, m (a flake or drop at the
@@ -611,12 +630,12 @@ mod tests {
         let (_, opacity) = snow_sprite_sizing(0.005, 2.0, pixel, &sizing);
         assert!((opacity - 0.25).abs() < 1e-6, "(1.5/3)²");
         // A 3 mm drop at 8 m/s, 1/60 s: h = 13.3 cm, a = 3 mm, opacity (π/2)·3/133.
-        let (h, a, o) = raindrop_sizing(8.0, 0.003, 0.1, pixel, &sizing);
+        let (h, a, o) = raindrop_sizing(8.0, 0.003, 0.1, pixel, &sizing, 1.0 / 60.0);
         let expected = std::f32::consts::FRAC_PI_2 * 0.003 / h;
         assert!((h - 8.0 / 60.0).abs() < 1e-6 && (a - 0.003).abs() < 1e-6);
         assert!((o - expected).abs() < 1e-6, "{o}");
         // At 1 m the base (1.5 cm) is widened five times, the opacity cut by five.
-        let (_, a, o1) = raindrop_sizing(8.0, 0.003, 1.0, pixel, &sizing);
+        let (_, a, o1) = raindrop_sizing(8.0, 0.003, 1.0, pixel, &sizing, 1.0 / 60.0);
         assert!((a - 0.015).abs() < 1e-6 && (o1 - expected / 5.0).abs() < 1e-7);
     }
 
@@ -655,7 +674,7 @@ mod tests {
         let far = ink_at(hand_over * 2.0);
         assert!((far - 0.25 * expected).abs() < 0.01 * expected, "{far}");
         // Rain: a streak of min_px length (h) at its hand-over, base min_px.
-        let (h, a, o) = raindrop_sizing(8.0, 0.002, 200.0, pixel, &sizing);
+        let (h, a, o) = raindrop_sizing(8.0, 0.002, 200.0, pixel, &sizing, 1.0 / 60.0);
         let ink = splat_ink(
             SplatShape::Streak {
                 h_m: h,
@@ -716,17 +735,42 @@ mod tests {
     }
 
     #[test]
+    fn defocus_spreads_a_flake_without_changing_its_ink() {
+        // f/4 on a 60° lens: f = 20.8 mm, A = 5.2 mm; focused at 10 m.
+        let lens = crate::backend::camera::Lens::default();
+        let a = lens.aperture_m(60f32.to_radians());
+        assert!(
+            (a - 0.012 / (30f32.to_radians().tan()) / 4.0).abs() < 1e-6,
+            "{a}"
+        );
+        assert!(defocus_blur_m(a, 10.0, 10.0).abs() < 1e-9, "in focus");
+        // At 1 m: A·0.9, 4.7 mm (3 px at 1.6 mrad per px).
+        let near = defocus_blur_m(a, 10.0, 1.0);
+        assert!((near - 0.9 * a).abs() < 1e-6, "{near}");
+        // A pinhole is sharp everywhere.
+        let pinhole = crate::backend::camera::Lens {
+            f_number: f32::INFINITY,
+            ..lens
+        };
+        assert!(pinhole.aperture_m(1.0).abs() < f32::MIN_POSITIVE);
+        for power in [2, 1] {
+            let (wide, o) = defocused(0.01, 0.8, near, power);
+            assert!((wide - (0.01 + near)).abs() < 1e-7);
+            let ink = |w: f32| w.powi(power);
+            assert!((ink(wide) * o - ink(0.01) * 0.8).abs() < 1e-6, "ink kept");
+        }
+    }
+
+    #[test]
     fn a_streak_is_as_long_as_the_exposure_and_holds_the_drop_s_area() {
         let pixel = 1.0e-3;
         for exposure_s in [1.0 / 250.0, 1.0 / 60.0, 1.0 / 15.0] {
-            let sizing = SpriteSizing {
-                exposure_s,
-                ..SpriteSizing::default()
-            };
+            let sizing = SpriteSizing::default();
             for distance_m in [1.0f32, 3.0, 10.0, 40.0] {
                 for (diameter_m, speed_mps) in [(0.0005, 2.0), (0.002, 6.5), (0.005, 9.1)] {
-                    let (h, a, o) =
-                        raindrop_sizing(speed_mps, diameter_m, distance_m, pixel, &sizing);
+                    let (h, a, o) = raindrop_sizing(
+                        speed_mps, diameter_m, distance_m, pixel, &sizing, exposure_s,
+                    );
                     let px = 1.0 / (pixel * distance_m);
                     // Streak length = speed × exposure, in pixels (10 %).
                     let want_px = speed_mps * exposure_s * px;

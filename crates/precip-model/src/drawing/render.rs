@@ -131,7 +131,6 @@ impl RenderSettings {
                 0.0,
                 1.0,
             ),
-            ("render.sizing.exposure_s", self.sizing.exposure_s, 0.0, 1.0),
             ("render.rain_opacity", self.rain_opacity, 0.0, 1.0),
             (
                 "render.water_body_depth_m",
@@ -174,7 +173,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (448 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (464 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -194,7 +193,7 @@ pub struct RenderParams {
     pub light: Vec4,
     /// Shadow colour, shadow density, attenuation λ, shadow-map texel size (uv).
     pub shadow: Vec4,
-    /// Snow scale, min px, min opacity, exposure s.
+    /// Snow scale, min px, min opacity, the lens's exposure s.
     pub sizing: Vec4,
     /// Rain opacity, displacement on (1/0), the cover's depletion exponent, mask edge.
     pub cover_look: Vec4,
@@ -220,8 +219,10 @@ pub struct RenderParams {
     pub camera_box_centre_m: Vec4,
     /// The camera volume's half extent, m; w: its multiplicity.
     pub camera_box_half_m: Vec4,
+    /// The lens: aperture m, focus distance m, 0, 0 ([`crate::backend::camera::Lens`]).
+    pub lens: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 448);
+const _: () = assert!(size_of::<RenderParams>() == 464);
 
 /// The camera's world → clip matrix for a target of `aspect` (width / height).
 #[must_use]
@@ -405,7 +406,7 @@ impl RenderParams {
                 s.sizing.snow_scale,
                 s.sizing.min_px,
                 s.sizing.min_opacity,
-                s.sizing.exposure_s,
+                f.view.camera.lens.exposure_s,
             ),
             cover_look: Vec4::new(
                 s.rain_opacity,
@@ -454,6 +455,15 @@ impl RenderParams {
                 .camera_box_m
                 .map_or(Vec3::ZERO, |b| b.1)
                 .extend(f.pools.camera_multiplicity),
+            lens: Vec4::new(
+                f.view
+                    .camera
+                    .lens
+                    .aperture_m(f.view.camera.vertical_fov_rad),
+                f.view.camera.lens.focus_distance_m,
+                0.0,
+                0.0,
+            ),
         }
     }
 }
