@@ -33,6 +33,8 @@ struct RenderParams {
     camera_box_half_m: vec4<f32>,
     // the lens: aperture m, focus distance m, 0, 0
     lens: vec4<f32>,
+    // clip → world of the camera
+    inverse_view_proj: mat4x4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

@@ -64,6 +64,32 @@ fn shadow_lit(world_m: vec3<f32>) -> f32 {
     return textureSampleCompareLevel(shadow_map, shadow_sampler, uv, ndc.z - SHADOW_BIAS);
 }
 
+struct SkyVarying {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) ndc: vec2<f32>,
+}
+
+// The sky behind everything: a triangle covering the target at the far plane, drawn
+// after the meshes where nothing stands (depth less-equal 1).
+@vertex
+fn vs_sky(@builtin(vertex_index) v: u32) -> SkyVarying {
+    let uv = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
+    let ndc = uv * 2.0 - 1.0;
+    var out: SkyVarying;
+    out.clip = vec4<f32>(ndc, 1.0, 1.0);
+    out.ndc = ndc;
+    return out;
+}
+
+// The CIE overcast sky in this pixel's direction (water_look.wgsl's overcast_sky, what
+// puddles reflect), its horizon the haze's colour.
+@fragment
+fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
+    let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
+    let ray = normalize_or_zero(far.xyz / far.w - params.camera_m_cone_cos.xyz);
+    return vec4<f32>(overcast_sky(params.sky_colour_time.xyz, ray), 1.0);
+}
+
 // Whether a surface point is the top-most at its (x, z): within a tolerance (texel
 // size, slope) of the ground map's height there. Off the map: exposed.
 fn exposure(world_m: vec3<f32>, normal: vec3<f32>) -> f32 {

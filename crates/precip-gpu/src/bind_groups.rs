@@ -398,6 +398,7 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::Render, "cover_texture") => &[COVER_TEXTURE],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
+        (Program::Render, "vs_sky" | "fs_sky") => &[RENDER_FRAME],
         (Program::Render, "vs_scene" | "fs_scene") => {
             &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL]
         }

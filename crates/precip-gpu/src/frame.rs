@@ -165,6 +165,17 @@ const SCENE_DRAW: Draw = Draw {
     blend: Blend::Opaque,
 };
 
+// At the far plane (depth 1), less-or-equal: only where no mesh stands.
+const SKY_DRAW: Draw = Draw {
+    entry_points: render_passes::SKY,
+    of: DrawOf::FullScreenTriangle,
+    scene_vertices: false,
+    topology: Topology::TriangleList,
+    depth_write: false,
+    depth_bias: None,
+    blend: Blend::Opaque,
+};
+
 const PARTICLE_DRAWS: [Draw; 3] = [
     // At depth 0 it passes the less-equal test everywhere: no depth test.
     Draw {
@@ -225,7 +236,7 @@ pub const FRAME_PASSES: [FramePass; 6] = [
             depth_load: AttachmentLoad::Clear,
             depth_stored: true,
             colour: Some(AttachmentLoad::Clear),
-            draws: &[SCENE_DRAW],
+            draws: &[SCENE_DRAW, SKY_DRAW],
         }),
         when: PassWhen::Always,
     },

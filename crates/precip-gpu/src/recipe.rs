@@ -455,6 +455,9 @@ pub mod render_passes {
     pub const SNOW: (&str, Option<&str>) = ("vs_snow", Some("fs_snow"));
     /// Rain tetrahedra: triangle list of 12 vertices per drawn particle, indirect draw 1.
     pub const RAIN: (&str, Option<&str>) = ("vs_rain", Some("fs_rain"));
+    /// The overcast sky behind the scene: one triangle of 3 vertices at the far plane,
+    /// after the meshes, where nothing stands.
+    pub const SKY: (&str, Option<&str>) = ("vs_sky", Some("fs_sky"));
     /// The splat sums blended over the frame: one triangle of 3 vertices covering the
     /// target, no depth test (the splat kernel tested each particle), alpha blending;
     /// first in the particles' pass.

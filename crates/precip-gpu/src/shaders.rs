@@ -218,6 +218,8 @@ impl Program {
                 "vs_shadow",
                 "vs_scene",
                 "fs_scene",
+                "vs_sky",
+                "fs_sky",
                 "vs_snow",
                 "fs_snow",
                 "vs_rain",

@@ -267,7 +267,8 @@ fn rust_and_wgsl_layouts_match() {
             pools,
             camera_box_centre_m,
             camera_box_half_m,
-            lens
+            lens,
+            inverse_view_proj
         }),
         rust_layout!(DrawArgs {
             vertex_count,

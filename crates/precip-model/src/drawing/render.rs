@@ -173,7 +173,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (464 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (528 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -221,8 +221,10 @@ pub struct RenderParams {
     pub camera_box_half_m: Vec4,
     /// The lens: aperture m, focus distance m, 0, 0 ([`crate::backend::camera::Lens`]).
     pub lens: Vec4,
+    /// Clip → world of the camera (the sky's rays).
+    pub inverse_view_proj: Mat4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 464);
+const _: () = assert!(size_of::<RenderParams>() == 528);
 
 /// The camera's world → clip matrix for a target of `aspect` (width / height).
 #[must_use]
@@ -464,6 +466,7 @@ impl RenderParams {
                 0.0,
                 0.0,
             ),
+            inverse_view_proj: view_projection(camera, aspect).inverse(),
         }
     }
 }
