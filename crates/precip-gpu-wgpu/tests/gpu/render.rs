@@ -901,3 +901,65 @@ fn adjacent_channels_of_a_rig_draw_the_same_pixels_where_they_overlap() {
         .collect();
     assert!(distinct.len() > 50, "{name}: {} colours", distinct.len());
 }
+
+/// What is drawn follows the air's density (docs/model.md (5.15)): a camera volume
+/// holding more particles than the air at every intensity draws a share `m` of them
+/// — the air's count over its own — so the drawn count is the physical count, in
+/// proportion across intensities and kinds, and at 0 mm/h nothing.
+#[test]
+fn the_drawn_density_is_the_air_s_at_every_intensity() {
+    let camera = Camera {
+        position_m: Vec3::new(0.0, 20.0, 0.0),
+        forward: Vec3::NEG_Z,
+        ..Camera::default()
+    };
+    let view = view(camera, 32, 32);
+    let count = 120_000u32;
+    let box_m3 = 64.0;
+    for (name, mut gpu) in common::gpu_backends("the_drawn_density_is_the_air_s_at_every_intensity")
+    {
+        for (kind, temperature_c) in [
+            (PrecipitationKind::Rain, 10.0),
+            (PrecipitationKind::DrySnow, -5.0),
+        ] {
+            for intensity in [0.0, 0.01, 0.1, 1.0, 10.0] {
+                let mut setup = Setup::over_flat_ground(60.0, 16, 40.0, 1);
+                setup.world_emitter = None;
+                setup.camera_volume = Some(CameraVolumeSetup {
+                    volume: CameraVolume {
+                        half_extent_m: Vec3::splat(2.0),
+                        ..CameraVolume::default()
+                    },
+                    particle_count: count,
+                });
+                setup.camera = camera;
+                setup.render.view_cone_culling = false;
+                setup.weather.kind = kind;
+                setup.weather.air_temperature_c = temperature_c;
+                setup.weather.intensity_mm_per_h = intensity;
+                common::run(&mut gpu, &setup, 1, 0.02);
+                gpu.render(&view).expect("renders");
+                let drawn = gpu
+                    .drawn()
+                    .expect("counts")
+                    .expect("a drawing backend")
+                    .total() as f64;
+                let physical = f64::from(setup.weather.simulated_number_density_per_m3()) * box_m3;
+                assert!(
+                    physical < f64::from(count),
+                    "{kind:?} {intensity}: the pool holds the air"
+                );
+                // Binomial: 4.5 standard deviations, plus one.
+                let share = physical / f64::from(count);
+                let sd = (f64::from(count) * share * (1.0 - share)).sqrt();
+                assert!(
+                    (drawn - physical).abs() <= 4.5 * sd + 1.0,
+                    "{name}: {kind:?} at {intensity} mm/h: {drawn} drawn, the air holds {physical:.0}"
+                );
+                if intensity == 0.0 {
+                    assert!(drawn == 0.0, "{name}: {kind:?}: nothing in dry air");
+                }
+            }
+        }
+    }
+}
