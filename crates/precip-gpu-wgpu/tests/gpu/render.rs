@@ -54,8 +54,15 @@ fn sprites_are_bright_where_particles_project_and_the_empty_sky_is_untouched() {
         let image = gpu.read_image().expect("an image");
         keep(&image, "snow_column");
         assert_eq!((image.width_px, image.height_px), (96, 64));
-        let sky = luma(&image, 0, 0);
         let particles = gpu.read_particles().expect("particles");
+        // The same frame with no snow in the air: the sky (brighter toward the
+        // zenith) and the ground alone.
+        let mut dry = setup.clone();
+        dry.weather.intensity_mm_per_h = 0.0;
+        common::run(&mut gpu, &dry, 1, 0.05);
+        gpu.render(&view).expect("renders");
+        let clear = gpu.read_image().expect("an image");
+        let sky = |x, y| luma(&clear, x, y);
         let mut seen = 0;
         let mut projected = 0;
         let mut columns = [false; 96];
@@ -76,9 +83,9 @@ fn sprites_are_bright_where_particles_project_and_the_empty_sky_is_untouched() {
             let (x, y) = (s.x as u32, s.y as u32);
             let brightest = (x - 1..=x + 1)
                 .flat_map(|x| (y - 1..=y + 1).map(move |y| (x, y)))
-                .map(|(x, y)| luma(&image, x, y))
-                .fold(0.0, f32::max);
-            if brightest > sky + 10.0 {
+                .map(|(x, y)| luma(&image, x, y) - sky(x, y))
+                .fold(f32::MIN, f32::max);
+            if brightest > 10.0 {
                 seen += 1;
             }
         }
@@ -90,13 +97,13 @@ fn sprites_are_bright_where_particles_project_and_the_empty_sky_is_untouched() {
             seen as f32 >= 0.95 * projected as f32,
             "{name}: {seen} of {projected} particles show a bright sprite"
         );
-        // Columns no particle projects near stay exactly the sky.
+        // Columns no particle projects near stay exactly the clear frame.
         let mut empty = 0;
         for x in (0..96).filter(|&x| !columns[x as usize]) {
             empty += 1;
             for y in 0..64 {
                 assert!(
-                    (luma(&image, x, y) - sky).abs() <= 1.0,
+                    (luma(&image, x, y) - sky(x, y)).abs() <= 1.0,
                     "{name}: pixel ({x}, {y}) lit with no particle near"
                 );
             }
@@ -372,7 +379,9 @@ fn fog_lowers_contrast_with_distance_and_with_the_precipitation() {
             gpu.render(&view).expect("renders");
             let image = gpu.read_image().expect("an image");
             keep(&image, &format!("fog_{intensity}"));
-            let sky = linear(image.rgba8[0]);
+            // The haze's colour, the sky's at the horizon (above it the overcast sky
+            // brightens).
+            let sky = precip_model::drawing::render::haze_colour(&setup.render, &setup.weather).x;
             let extinction =
                 setup.render.clear_air_extinction_per_m + setup.weather.extinction_per_m();
             for (i, &d) in distances.iter().enumerate() {
