@@ -90,18 +90,37 @@ fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
     return vec4<f32>(overcast_sky(params.sky_colour_time.xyz, ray), 1.0);
 }
 
-// Whether a surface point is the top-most at its (x, z): within a tolerance (texel
-// size, slope) of the ground map's height there. Off the map: exposed.
+// The ground map's height at (x, z) between texel centres (bilinear, clamped at
+// the edges). Rust: GroundMap::height_between_texels_at.
+fn ground_top_m(xz_m: vec2<f32>) -> f32 {
+    let n = vec2<i32>(params.ground.texels);
+    let cell = params.ground.size_m / vec2<f32>(params.ground.texels);
+    let t = (xz_m - params.ground.origin_m) / cell - 0.5;
+    let base = floor(t);
+    let w = t - base;
+    let c0 = clamp(vec2<i32>(base), vec2<i32>(0), n - 1);
+    let c1 = clamp(vec2<i32>(base) + 1, vec2<i32>(0), n - 1);
+    let h00 = ground_height[c0.x + n.x * c0.y];
+    let h10 = ground_height[c1.x + n.x * c0.y];
+    let h01 = ground_height[c0.x + n.x * c1.y];
+    let h11 = ground_height[c1.x + n.x * c1.y];
+    let low = h00 + (h10 - h00) * w.x;
+    let high = h01 + (h11 - h01) * w.x;
+    return low + (high - low) * w.y;
+}
+
+// How much a surface point is the top-most at its (x, z), [0, 1]: 1 within a
+// tolerance (texel size, slope) of the ground map's height there, fading to 0 over
+// one more tolerance below. Off the map: 1. Rust: displacement::exposure.
 fn exposure(world_m: vec3<f32>, normal: vec3<f32>) -> f32 {
-    let i = grid_texel_index(params.ground, world_m.xz);
-    if (i < 0) {
+    if (grid_texel_index(params.ground, world_m.xz) < 0) {
         return 1.0;
     }
-    let top = ground_height[i];
+    let top = ground_top_m(world_m.xz);
     let cell = params.ground.size_m / vec2<f32>(params.ground.texels);
     let slope = length(normal.xz) / max(abs(normal.y), 0.05);
     let tolerance = params.cover_look2.z + max(cell.x, cell.y) * min(slope, 4.0);
-    return select(0.0, 1.0, world_m.y >= top - tolerance);
+    return smoothstep(top - 2.0 * tolerance, top - tolerance, world_m.y);
 }
 
 // How much a surface faces up for snow: none below 0.2, full from 0.6.

@@ -98,6 +98,30 @@ impl GroundMap {
             .and_then(|i| self.height_m.get(i).copied())
     }
 
+    /// Height of the top-most surface at world `(x, z)` interpolated between texel
+    /// centres (bilinear, clamped at the grid's edges), or `None` off the map: where a
+    /// roof's edge or a wall's foot lies between two texels, the height passes from
+    /// one to the other along a line that follows no texel. WGSL twin:
+    /// `ground_top_m` (render_scene.wgsl).
+    #[must_use]
+    pub fn height_between_texels_at(&self, xz_m: Vec2) -> Option<f32> {
+        self.frame.texel_index(xz_m)?;
+        let n = self.frame.texels.as_ivec2();
+        let t = (xz_m - self.frame.origin_m) / self.frame.cell_m() - Vec2::splat(0.5);
+        let base = t.floor();
+        let w = t - base;
+        let at = |dx: i32, dz: i32| {
+            let c = (base.as_ivec2() + glam::IVec2::new(dx, dz)).clamp(glam::IVec2::ZERO, n - 1);
+            self.height_m
+                .get((c.x + n.x * c.y) as usize)
+                .copied()
+                .unwrap_or(0.0)
+        };
+        let low = at(0, 0) + (at(1, 0) - at(0, 0)) * w.x;
+        let high = at(0, 1) + (at(1, 1) - at(0, 1)) * w.x;
+        Some(low + (high - low) * w.y)
+    }
+
     /// Eligibility under world `(x, z)`; 0 off the map.
     #[must_use]
     pub fn eligibility_at(&self, xz_m: Vec2) -> f32 {

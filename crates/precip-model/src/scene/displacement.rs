@@ -1,7 +1,7 @@
 //! Where the snow's displacement raises a surface (docs/model.md §4, beyond seed 003): the
 //! vertex shader's rule, and from it which triangles need vertices to move.
 //!
-//! A vertex rises by the cover's depth × its eligibility × [`upward`] × [`exposed`]:
+//! A vertex rises by the cover's depth × its eligibility × [`upward`] × [`exposure`]:
 //! only eligible, sky-facing surfaces that are the top-most at their `(x, z)` (no
 //! roof above) carry snow. [`Scene::tessellated`](crate::scene::Scene) splits only
 //! the triangles where some point rises; walls, ceilings, sheltered floors and
@@ -30,18 +30,28 @@ pub fn exposure_tolerance_m(ground_cell_m: Vec2) -> f32 {
     0.05 + 0.5 * ground_cell_m.max_element().min(1.0e3)
 }
 
-/// Whether the point `world_m` on a surface of `normal` is the top-most surface
-/// under the sky (off the ground map: yes). A sloped surface gets more tolerance, up
-/// to four texels, as its height changes across a texel.
+/// How much the point `world_m` on a surface of `normal` is the top-most surface
+/// under the sky, `[0, 1]` (off the ground map: 1): 1 within a tolerance of the
+/// ground map's height there (interpolated between texels), fading to 0 over one
+/// more tolerance below, so snow ends under an eave along a soft line that follows
+/// no texel. A sloped surface gets more tolerance, up to four texels, as its height
+/// changes across a texel. WGSL twin: `exposure` (render_scene.wgsl).
 #[must_use]
-pub fn exposed(ground: &GroundMap, world_m: Vec3, normal: Vec3, tolerance_m: f32) -> bool {
-    let Some(top_m) = ground.height_at(Vec2::new(world_m.x, world_m.z)) else {
-        return true;
+pub fn exposure(ground: &GroundMap, world_m: Vec3, normal: Vec3, tolerance_m: f32) -> f32 {
+    let Some(top_m) = ground.height_between_texels_at(Vec2::new(world_m.x, world_m.z)) else {
+        return 1.0;
     };
     let cell = ground.frame.cell_m();
     let slope = Vec2::new(normal.x, normal.z).length() / normal.y.abs().max(0.05);
     let tolerance = tolerance_m + cell.max_element() * slope.min(4.0);
-    world_m.y >= top_m - tolerance
+    let t = ((world_m.y - (top_m - 2.0 * tolerance)) / tolerance).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// Whether [`exposure`] is above 0: the surface carries some snow.
+#[must_use]
+pub fn exposed(ground: &GroundMap, world_m: Vec3, normal: Vec3, tolerance_m: f32) -> bool {
+    exposure(ground, world_m, normal, tolerance_m) > 0.0
 }
 
 /// Whether the displacement raises a vertex at `position_m` of `normal` and
@@ -101,6 +111,31 @@ mod tests {
             raised(&roofed, Vec3::new(50.0, 0.0, 0.0), Vec3::Y, 1.0),
             "off the map"
         );
+    }
+
+    #[test]
+    fn snow_ends_under_an_eave_along_a_soft_line_that_follows_no_texel() {
+        // A 1 m grid, a roof 3 m up over x < 0, open ground beyond.
+        let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(16.0), glam::UVec2::splat(16));
+        let mut ground = GroundMap::flat(frame, 0.0, 1.0);
+        for (i, h) in ground.height_m.iter_mut().enumerate() {
+            if frame.texel_centre(i).x < 0.0 {
+                *h = 3.0;
+            }
+        }
+        let tolerance = exposure_tolerance_m(frame.cell_m());
+        let at = |x: f32| exposure(&ground, Vec3::new(x, 0.0, 0.3), Vec3::Y, tolerance);
+        assert!(at(-3.0).abs() < 1e-6, "under the roof");
+        assert!((at(3.0) - 1.0).abs() < 1e-6, "in the open");
+        // Across the eave in 1 cm steps: no jump (the old test stepped at the texel).
+        let mut last = at(-3.0);
+        for k in 1..=600 {
+            let e = at(-3.0 + 0.01 * k as f32);
+            assert!((e - last).abs() < 0.1, "{e} after {last} at step {k}");
+            last = e;
+        }
+        // The roof itself is exposed right to its edge.
+        assert!(exposure(&ground, Vec3::new(-0.2, 3.0, 0.3), Vec3::Y, tolerance) > 0.99);
     }
 
     #[test]
