@@ -313,9 +313,9 @@ pub struct FrameInputs<'a> {
 impl crate::Setup {
     /// The frame's uniform block for `view` under `weather` at `time_s`, the shadow map
     /// enclosing `shadow_bounds_m`, for `particle_count` particles and the wave grid
-    /// `waves` (the one [`crate::Setup::frames`] gave at configure), the camera volume
-    /// centred at `camera_centre_m`: what every GPU backend draws a frame of this
-    /// setup with.
+    /// `waves` (the one [`crate::Setup::frames`] gave at configure), the pools weighed
+    /// as `pools` says ([`crate::Setup::pool_drawing`], made once per weather change):
+    /// what every GPU backend draws a frame of this setup with.
     #[must_use]
     #[expect(
         clippy::too_many_arguments,
@@ -329,7 +329,7 @@ impl crate::Setup {
         time_s: f64,
         particle_count: u32,
         waves: GridFrame,
-        camera_centre_m: Vec3,
+        pools: PoolDrawing,
     ) -> RenderParams {
         RenderParams::new(&FrameInputs {
             view,
@@ -343,7 +343,7 @@ impl crate::Setup {
             time_s: time_s as f32,
             particle_count,
             cull_groups: crate::host::cull_groups(particle_count),
-            pools: self.pool_drawing(weather, camera_centre_m),
+            pools,
         })
     }
 }

@@ -10,6 +10,7 @@ use crate::backend::camera::{Camera, View};
 use crate::backend::error::BackendError;
 use crate::backend::setup::Setup;
 use crate::backend::substeps;
+use crate::drawing::multiplicity::PoolDrawing;
 use crate::drawing::render::RenderParams;
 use crate::host::layout::Frames;
 use crate::particles::step::StepParams;
@@ -34,6 +35,10 @@ pub struct HostState {
     /// length and its time ([`StepParams::at`]). Computing it scans the ground map,
     /// so it is made once per weather change.
     step_template: StepParams,
+    /// How the pools are drawn under the current weather (their multiplicities); it
+    /// scans the ground map too, so it is made once per weather change and each frame
+    /// only moves the camera box to the camera.
+    pools: PoolDrawing,
     time_s: f64,
 }
 
@@ -74,6 +79,7 @@ impl HostState {
         let wind = WindVolume::bake(&setup.weather.wind, &setup.wind_volume)?;
         Ok(Self {
             step_template: setup.step_params(&setup.weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0),
+            pools: setup.pool_drawing(&setup.weather, Vec3::ZERO),
             setup: setup.clone(),
             weather: setup.weather,
             wind,
@@ -90,6 +96,7 @@ impl HostState {
         self.step_template = self
             .setup
             .step_params(weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
+        self.pools = self.setup.pool_drawing(weather, Vec3::ZERO);
         self.weather = *weather;
         Ok(WeatherChange { wind_rebaked })
     }
@@ -165,7 +172,13 @@ impl HostState {
             self.time_s,
             particle_count,
             waves,
-            self.camera.position_m,
+            PoolDrawing {
+                camera_box_m: self
+                    .pools
+                    .camera_box_m
+                    .map(|(_, half)| (self.camera.position_m, half)),
+                ..self.pools
+            },
         )
     }
 
@@ -258,6 +271,55 @@ mod tests {
         bad.air_temperature_c = f32::NAN;
         assert!(host.set_weather(&bad).is_err());
         assert_eq!(*host.weather(), before);
+    }
+
+    #[test]
+    fn the_frame_weighs_the_pools_of_the_weather_now_around_the_camera_now() {
+        let mut setup = Setup::over_flat_ground(20.0, 8, 10.0, 256);
+        setup.camera_volume = Some(crate::CameraVolumeSetup {
+            volume: crate::CameraVolume::default(),
+            particle_count: 128,
+        });
+        let mut host = HostState::configure(&setup).expect("a valid setup");
+        let view = |camera| View {
+            camera,
+            width_px: 16,
+            height_px: 16,
+        };
+        let frame = |host: &HostState| {
+            host.render_params(
+                &view(*host.camera()),
+                (Vec3::ZERO, Vec3::ONE),
+                384,
+                GridFrame::centred(glam::Vec2::ZERO, glam::Vec2::ONE, glam::UVec2::ONE),
+            )
+        };
+        let first = frame(&host);
+        assert!(first.camera_box_half_m.w > 0.0 && first.camera_box_centre_m.w > 0.0);
+        assert_eq!(
+            first.camera_box_centre_m.truncate(),
+            host.camera().position_m
+        );
+        let moved = Camera {
+            position_m: Vec3::new(3.0, 4.0, 5.0),
+            ..*host.camera()
+        };
+        host.set_camera(&moved).expect("a valid camera");
+        assert_eq!(
+            frame(&host).camera_box_centre_m.truncate(),
+            moved.position_m
+        );
+        let dry = Weather {
+            intensity_mm_per_h: 0.0,
+            ..*host.weather()
+        };
+        let change = host.set_weather(&dry).expect("a valid weather");
+        assert!(!change.wind_rebaked, "the same wind");
+        let after = frame(&host);
+        assert_eq!(
+            (after.camera_box_centre_m.w, after.camera_box_half_m.w),
+            (0.0, 0.0)
+        );
     }
 
     #[test]
