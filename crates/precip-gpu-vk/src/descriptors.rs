@@ -69,12 +69,12 @@ pub fn buffer_info(buffer: &Buffer, range: u64) -> [vk::DescriptorBufferInfo; 1]
     }]
 }
 
-/// A sampled image view in `SHADER_READ_ONLY_OPTIMAL`.
-pub fn image_info(view: vk::ImageView) -> [vk::DescriptorImageInfo; 1] {
+/// An image view read or written in `layout`.
+pub fn image_info(view: vk::ImageView, layout: vk::ImageLayout) -> [vk::DescriptorImageInfo; 1] {
     [vk::DescriptorImageInfo {
         sampler: vk::Sampler::null(),
         image_view: view,
-        image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+        image_layout: layout,
     }]
 }
 

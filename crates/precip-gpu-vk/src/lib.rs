@@ -4,10 +4,10 @@
 //! ## Design
 //!
 //! The same WGSL as every backend: the build script compiles precip-gpu's programs
-//! to SPIR-V with naga. What a configuration allocates, how it is bound and what
-//! configure, a weather change, a step and a beam query run is the executor's
-//! (`precip_gpu::Simulation`), over this crate's [`gpu`] calls, as on wgpu; the
-//! frame's passes come from `precip_gpu::frame`, so the two cannot drift apart.
+//! to SPIR-V with naga. What a configuration allocates, how it is bound, what
+//! configure, a weather change, a step, a beam query and a frame run is
+//! `precip_gpu::GpuBackend`'s, over this crate's [`gpu`] calls, as on wgpu, so the
+//! two cannot drift apart.
 //! One file per Vulkan concept, in the spirit of wgpu-hal's `vulkan/` and kajiya:
 //!
 //! - [`instance`] — loader, validation layer, debug messenger (messages kept).
@@ -17,13 +17,13 @@
 //!   barriers.
 //! - [`descriptors`] — pools sized for their sets, allocation, write infos.
 //! - [`spirv`], [`programs`] — modules, pipeline layouts, compute pipelines.
+//! - [`pipelines`] — graphics pipelines from the frame's draws.
 //! - [`gpu`] — `Hal`, the device calls of `precip_gpu::Gpu` (wgpu twin:
 //!   `precip_gpu_wgpu::gpu`), and the submissions in flight.
 //! - [`transfer`] — uploads, read-backs, image fills and layout changes.
-//! - [`query`] — timestamps per kernel.
-//! - [`render`] — drawing: layouts, render passes, pipelines, samplers, the scene,
-//!   the frame's resources, offscreen targets, timestamps per pass, the frame's
-//!   command recording.
+//! - [`query`] — timestamps per kernel and per pass.
+//! - [`frame`] — a frame's commands into a command buffer: render passes,
+//!   framebuffers, layouts, barriers.
 //! - [`swapchain`] — a window's surface and swapchain (raw-window-handle, ash-window).
 //! - [`retire`] — deferred release of objects in-flight work may still use.
 //! - [`error`] — pure `vk::Result` → `BackendError` conversions.
@@ -32,7 +32,7 @@
 //! ## Public surface
 //!
 //! The modules are the crate's own: what a caller gets is [`VkBackend`] (the
-//! `Backend`, presentation into a window: [`Presented`], [`SwapchainFrame`]), the
+//! `Backend`, presentation into a window: [`Presented`]), the
 //! external-device handshake ([`ExternalDevice`], `VkBackend::on_external_device`),
 //! and [`Instance`] with its validation [`Messages`]. No raw handle of precip's own
 //! device leaves the crate.
@@ -58,17 +58,18 @@ mod commands;
 mod descriptors;
 mod device;
 mod error;
+mod frame;
 mod gpu;
 mod image;
 mod instance;
+mod pipelines;
 mod programs;
 mod query;
-mod render;
 mod retire;
 mod spirv;
 mod swapchain;
 mod transfer;
 
-pub use backend::{Presented, SwapchainFrame, VkBackend};
+pub use backend::{Presented, VkBackend};
 pub use device::ExternalDevice;
 pub use instance::{Instance, Messages};

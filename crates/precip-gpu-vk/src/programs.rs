@@ -15,11 +15,10 @@ use crate::spirv::words;
 /// A pipeline layout of one descriptor set.
 pub fn pipeline_layout(
     device: &Device,
-    set: vk::DescriptorSetLayout,
+    sets: &[vk::DescriptorSetLayout],
 ) -> Result<vk::PipelineLayout, BackendError> {
-    let sets = [set];
-    let info = vk::PipelineLayoutCreateInfo::default().set_layouts(&sets);
-    // SAFETY: a valid device; the set layout is live.
+    let info = vk::PipelineLayoutCreateInfo::default().set_layouts(sets);
+    // SAFETY: a valid device; the set layouts are live.
     unsafe { device.raw.create_pipeline_layout(&info, None) }
         .map_err(|e| map_vk("creating a pipeline layout", e))
 }

@@ -1,6 +1,6 @@
 //! A window's surface and swapchain (through raw-window-handle and ash-window): the
-//! images with their framebuffers and a shared depth buffer, the semaphores of
-//! acquire and present, and re-creation when the window's size changes or the
+//! images and their views (the renderer draws into one with its own depth buffer),
+//! the semaphores of acquire and present, and re-creation when the window's size changes or the
 //! surface goes out of date. Replaced objects are retired, not waited for.
 //!
 //! Semaphores: acquire uses a ring of [`ACQUIRE_SEMAPHORES`] (a frame is submitted
@@ -17,9 +17,6 @@ use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 
 use crate::device::Device;
 use crate::error::{NAME, map_vk};
-use crate::image::Image;
-use crate::render::frame::framebuffer;
-use crate::render::target::depth_buffer;
 use crate::retire::Retired;
 
 /// Acquire semaphores in the ring.
@@ -29,9 +26,7 @@ pub const ACQUIRE_SEMAPHORES: usize = 3;
 struct Chain {
     raw: vk::SwapchainKHR,
     views: Vec<vk::ImageView>,
-    framebuffers: Vec<vk::Framebuffer>,
     drawn: Vec<vk::Semaphore>,
-    depth: Image,
     extent: (u32, u32),
 }
 
@@ -40,9 +35,6 @@ impl Chain {
         // SAFETY: no pending work uses these (the caller waited or retired them);
         // each is destroyed once, the swapchain after its views.
         unsafe {
-            for f in self.framebuffers {
-                device.raw.destroy_framebuffer(f, None);
-            }
             for v in self.views {
                 device.raw.destroy_image_view(v, None);
             }
@@ -51,7 +43,6 @@ impl Chain {
             }
             loader.destroy_swapchain(self.raw, None);
         }
-        self.depth.destroy(device);
     }
 }
 
@@ -91,10 +82,8 @@ impl std::fmt::Debug for WindowSurface {
 pub struct Acquired {
     /// The image's index.
     pub index: u32,
-    /// Its framebuffer.
-    pub framebuffer: vk::Framebuffer,
-    /// The framebuffer's depth view (the splat kernel reads it).
-    pub depth: vk::ImageView,
+    /// Its view.
+    pub view: vk::ImageView,
     /// Signalled when it is ready to draw into.
     pub acquired: vk::Semaphore,
     /// To signal when it is drawn (present waits on it).
@@ -254,12 +243,11 @@ impl WindowSurface {
         self.stale || self.chain.is_none() || self.requested != Some(wanted)
     }
 
-    /// (Re-)creates the swapchain of `wanted` px for the camera pass `pass`; the old
-    /// one is retired after the `submitted` submissions so far.
+    /// (Re-)creates the swapchain of `wanted` px; the old one is retired after the
+    /// `submitted` submissions so far.
     pub fn rebuild(
         &mut self,
         device: &Device,
-        pass: vk::RenderPass,
         wanted: (u32, u32),
         retired: &mut Retired,
         submitted: u64,
@@ -316,23 +304,13 @@ impl WindowSurface {
             retired.retire(submitted, move |d| old.destroy(d, &loader));
         }
         let raw = raw.map_err(|e| map_vk("creating the swapchain", e))?;
-        let depth = match depth_buffer(device, extent) {
-            Ok(d) => d,
-            Err(e) => {
-                // SAFETY: the new swapchain is unused.
-                unsafe { self.loader.destroy_swapchain(raw, None) };
-                return Err(e);
-            }
-        };
         let mut chain = Chain {
             raw,
             views: Vec::new(),
-            framebuffers: Vec::new(),
             drawn: Vec::new(),
-            depth,
             extent,
         };
-        match self.fill(device, pass, &mut chain) {
+        match self.fill(device, &mut chain) {
             Ok(()) => {
                 device.name(raw, "precip swapchain");
                 self.chain = Some(chain);
@@ -346,12 +324,7 @@ impl WindowSurface {
         }
     }
 
-    fn fill(
-        &self,
-        device: &Device,
-        pass: vk::RenderPass,
-        chain: &mut Chain,
-    ) -> Result<(), BackendError> {
+    fn fill(&self, device: &Device, chain: &mut Chain) -> Result<(), BackendError> {
         // SAFETY: the swapchain is live.
         let images = unsafe { self.loader.get_swapchain_images(chain.raw) }
             .map_err(|e| map_vk("listing the swapchain's images", e))?;
@@ -365,12 +338,6 @@ impl WindowSurface {
             let view = unsafe { device.raw.create_image_view(&info, None) }
                 .map_err(|e| map_vk("creating a swapchain image view", e))?;
             chain.views.push(view);
-            chain.framebuffers.push(framebuffer(
-                device,
-                pass,
-                &[view, chain.depth.view],
-                chain.extent,
-            )?);
             chain.drawn.push(semaphore(device)?);
         }
         Ok(())
@@ -397,8 +364,7 @@ impl WindowSurface {
                 let i = index as usize;
                 Ok(Some(Acquired {
                     index,
-                    framebuffer: chain.framebuffers[i],
-                    depth: chain.depth.view,
+                    view: chain.views[i],
                     acquired: semaphore,
                     drawn: chain.drawn[i],
                 }))

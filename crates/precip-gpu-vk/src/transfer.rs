@@ -8,16 +8,11 @@ use precip_model::BackendError;
 use crate::buffer::Buffer;
 use crate::commands::{compute_barrier, submit};
 use crate::device::Device;
-use crate::image::{COLOUR, Image};
+use crate::image::Image;
 
 /// Steps recorded ahead of the GPU: each has its own ring of uniform blocks and
 /// queries, so the host writes step n + 1's while step n runs.
 pub const FRAMES_IN_FLIGHT: usize = 2;
-
-/// Copies `bytes` into `target` through a staging buffer (waits).
-pub fn upload(device: &Device, target: &Buffer, bytes: &[u8]) -> Result<(), BackendError> {
-    upload_at(device, target, 0, bytes)
-}
 
 /// Copies `bytes` into `target` at `offset` through a staging buffer (waits).
 pub fn upload_at(
@@ -103,7 +98,7 @@ fn layout_barrier(
         .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
         .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
         .image(image.raw)
-        .subresource_range(COLOUR)
+        .subresource_range(image.range())
 }
 
 /// Fills a sampled image's texels (`bytes` tightly packed) and leaves it in
@@ -183,9 +178,13 @@ pub fn upload_image(device: &Device, image: &Image, bytes: &[u8]) -> Result<(), 
     result
 }
 
-/// Moves `images` (colour, just made) to `GENERAL`, where shaders both write them as
-/// storage images and sample them; waits.
-pub fn to_general(device: &Device, images: &[&Image]) -> Result<(), BackendError> {
+/// Moves `images` (just made) to `layout` (`GENERAL`, where shaders both write
+/// storage images and sample them; a depth buffer's read-only layout); waits.
+pub fn to_layout(
+    device: &Device,
+    images: &[&Image],
+    layout: vk::ImageLayout,
+) -> Result<(), BackendError> {
     let barriers: Vec<vk::ImageMemoryBarrier<'_>> = images
         .iter()
         .map(|image| {
@@ -193,7 +192,7 @@ pub fn to_general(device: &Device, images: &[&Image]) -> Result<(), BackendError
                 image,
                 (vk::ImageLayout::UNDEFINED, vk::AccessFlags::empty()),
                 (
-                    vk::ImageLayout::GENERAL,
+                    layout,
                     vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
                 ),
             )
@@ -216,4 +215,48 @@ pub fn to_general(device: &Device, images: &[&Image]) -> Result<(), BackendError
         }
     })
     .and_then(|f| f.wait(device))
+}
+
+/// Every texel of the 2D colour `image` (resting in `layout`, made with
+/// `TRANSFER_SRC`), `texel_bytes` each, rows tightly packed (waits).
+pub fn download_image(
+    device: &Device,
+    image: &Image,
+    layout: vk::ImageLayout,
+    texel_bytes: u32,
+) -> Result<Vec<u8>, BackendError> {
+    let (width, height) = image.size();
+    let bytes = u64::from(width) * u64::from(height) * u64::from(texel_bytes);
+    let staging = Buffer::new(
+        device,
+        "image read-back",
+        bytes,
+        vk::BufferUsageFlags::TRANSFER_DST,
+        MemoryLocation::GpuToCpu,
+    )?;
+    let region = vk::BufferImageCopy::default()
+        .image_subresource(vk::ImageSubresourceLayers {
+            aspect_mask: vk::ImageAspectFlags::COLOR,
+            mip_level: 0,
+            base_array_layer: 0,
+            layer_count: 1,
+        })
+        .image_extent(vk::Extent3D {
+            width,
+            height,
+            depth: 1,
+        });
+    let result = submit(device, |cb| {
+        // SAFETY: `cb` is recording; the image rests in `layout` (a layout copies
+        // read from) and the staging buffer is live and large enough.
+        unsafe {
+            device
+                .raw
+                .cmd_copy_image_to_buffer(cb, image.raw, layout, staging.raw, &[region]);
+        }
+    })
+    .and_then(|f| f.wait(device))
+    .and_then(|()| staging.read(bytes as usize));
+    staging.destroy(device);
+    result
 }

@@ -1,21 +1,32 @@
 //! [`Hal`]: the device calls of [`precip_gpu::Gpu`] on wgpu (Vulkan twin:
-//! `precip_gpu_vk::gpu`). Nothing here knows what the buffers hold or which kernels
-//! run: the executor of `precip-gpu` decides.
+//! `precip_gpu_vk::gpu`). Nothing here knows what the buffers hold, which kernels
+//! run or what a frame draws: the executor and renderer of `precip-gpu` decide;
+//! [`Gpu::submit_frame`] turns their commands into wgpu passes ([`crate::frame`]).
 
 use std::collections::HashMap;
 
 use precip_gpu::bind_groups::{BindingKind, GroupLayout};
-use precip_gpu::gpu::{BindingResource, Dispatch, Gpu};
+use precip_gpu::frame::{Draw, RenderPassRecipe};
+use precip_gpu::frame_resources::{Sampler, TexelFormat, TextureUsage};
+use precip_gpu::gpu::{BindingResource, Dispatch, FrameWork, Gpu, Target, TextureDesc};
 use precip_gpu::resources::BufferUsage;
 use precip_gpu::shaders::Program;
-use precip_model::BackendError;
+use precip_model::{BackendError, DeviceMemory};
 use wgpu::util::DeviceExt;
 
 use crate::bind_groups::bind_group_layout;
 use crate::device::GpuDevice;
-use crate::error::map_scope_error;
+use crate::error::{NAME, map_scope_error};
+use crate::frame::encode_pass;
+use crate::pipelines::draw_pipeline;
 use crate::query::Timestamps;
-use crate::transfer::read_buffer;
+use crate::transfer::{read_buffer, read_texture};
+
+/// The depth format of the shadow map and of the camera's depth buffer.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// How wgpu names the buffers of its indirect-call validation pool.
+const WGPU_INDIRECT_VALIDATION_POOL: &str = "(wgpu internal) Indirect";
 
 /// Runs `f` inside out-of-memory and validation error scopes; any captured error
 /// becomes a [`BackendError`].
@@ -44,9 +55,9 @@ pub fn shader_module(device: &wgpu::Device, program: Program) -> wgpu::ShaderMod
     })
 }
 
-/// A 3D texture and its view.
+/// A texture and its view (3D: the wind volume; 2D: the frame's textures).
 #[derive(Debug)]
-pub struct Volume {
+pub struct Texture {
     /// The texture.
     pub texture: wgpu::Texture,
     /// Its view.
@@ -58,8 +69,10 @@ pub struct Volume {
 pub struct Hal {
     /// The device and queue.
     pub gpu: GpuDevice,
-    /// Timestamp queries, where the adapter has them.
+    /// A step's timestamp queries, where the adapter has them.
     pub timestamps: Option<Timestamps>,
+    /// A frame's timestamp queries, where the adapter has them.
+    pub frame_stamps: Option<Timestamps>,
     modules: HashMap<Program, wgpu::ShaderModule>,
 }
 
@@ -68,10 +81,35 @@ impl Hal {
     #[must_use]
     pub fn new(gpu: GpuDevice) -> Self {
         Self {
-            timestamps: Timestamps::new(&gpu),
+            timestamps: Timestamps::for_steps(&gpu),
+            frame_stamps: Timestamps::for_frames(&gpu),
             gpu,
             modules: HashMap::new(),
         }
+    }
+
+    fn module(&mut self, program: Program) -> &wgpu::ShaderModule {
+        let device = &self.gpu.device;
+        self.modules
+            .entry(program)
+            .or_insert_with(|| shader_module(device, program))
+    }
+
+    /// The layout of `layouts`' groups at 0, 1, ….
+    fn pipeline_layout(
+        &self,
+        label: &str,
+        layouts: &[&wgpu::BindGroupLayout],
+    ) -> wgpu::PipelineLayout {
+        let groups: Vec<Option<&wgpu::BindGroupLayout>> =
+            layouts.iter().map(|l| Some(*l)).collect();
+        self.gpu
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(label),
+                bind_group_layouts: &groups,
+                immediate_size: 0,
+            })
     }
 
     fn write_volume_texels(&self, texture: &wgpu::Texture, texels: &[u8]) {
@@ -96,17 +134,54 @@ impl Hal {
 
 impl Gpu for Hal {
     type Buffer = wgpu::Buffer;
-    type Volume = Volume;
+    type Volume = Texture;
     type GroupLayout = wgpu::BindGroupLayout;
     type BindGroup = wgpu::BindGroup;
     type Kernel = wgpu::ComputePipeline;
+    type Texture = Texture;
+    type Sampler = wgpu::Sampler;
+    type DrawPipeline = wgpu::RenderPipeline;
+    type Surface = wgpu::TextureView;
+    type ColourFormat = wgpu::TextureFormat;
+
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn describe(&self) -> String {
+        self.gpu.describe()
+    }
+
+    /// Precip's allocations and wgpu's fixed ones; not wgpu's indirect-call
+    /// validation pool, whose 1 MiB buffers wgpu adds while more frames are in flight
+    /// than it has buffers for and keeps for reuse (bounded by the frames in flight,
+    /// freed with the device): its size follows the host's timing, not our frames.
+    fn device_memory(&self) -> Option<DeviceMemory> {
+        self.gpu.device.generate_allocator_report().map(|r| {
+            let (allocations, allocated_bytes) = r
+                .allocations
+                .iter()
+                .filter(|a| !a.name.starts_with(WGPU_INDIRECT_VALIDATION_POOL))
+                .fold((0, 0), |(n, bytes), a| (n + 1, bytes + a.size));
+            DeviceMemory {
+                allocations,
+                allocated_bytes,
+                reserved_bytes: r.total_reserved_bytes,
+            }
+        })
+    }
 
     fn limits(&self) -> precip_model::DeviceLimits {
         self.gpu.limits()
     }
 
     fn uniform_alignment(&self) -> u64 {
-        u64::from(self.gpu.device.limits().min_uniform_buffer_offset_alignment)
+        let limits = self.gpu.device.limits();
+        u64::from(
+            limits
+                .min_uniform_buffer_offset_alignment
+                .max(limits.min_storage_buffer_offset_alignment),
+        )
     }
 
     fn slots(&self) -> u32 {
@@ -127,6 +202,19 @@ impl Gpu for Hal {
                     | wgpu::BufferUsages::COPY_SRC
             }
             BufferUsage::Uniform => wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            BufferUsage::FrameBlocks => {
+                wgpu::BufferUsages::UNIFORM
+                    | wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_DST
+            }
+            BufferUsage::Indirect => {
+                wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::INDIRECT
+                    | wgpu::BufferUsages::COPY_SRC
+                    | wgpu::BufferUsages::COPY_DST
+            }
+            BufferUsage::Vertices => wgpu::BufferUsages::VERTEX,
+            BufferUsage::Indices => wgpu::BufferUsages::INDEX,
         };
         let device = &self.gpu.device;
         scoped(&self.gpu, label, || match contents {
@@ -164,7 +252,7 @@ impl Gpu for Hal {
         label: &'static str,
         [x, y, z]: [u32; 3],
         texels: &[u8],
-    ) -> Result<Volume, BackendError> {
+    ) -> Result<Texture, BackendError> {
         let device = &self.gpu.device;
         let texture = scoped(&self.gpu, label, || {
             device.create_texture(&wgpu::TextureDescriptor {
@@ -184,10 +272,10 @@ impl Gpu for Hal {
         })?;
         self.write_volume_texels(&texture, texels);
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        Ok(Volume { texture, view })
+        Ok(Texture { texture, view })
     }
 
-    fn write_volume(&mut self, volume: &Volume, texels: &[u8]) -> Result<(), BackendError> {
+    fn write_volume(&mut self, volume: &Texture, texels: &[u8]) -> Result<(), BackendError> {
         scoped(&self.gpu, "writing the wind volume", || {
             self.write_volume_texels(&volume.texture, texels);
         })
@@ -203,28 +291,115 @@ impl Gpu for Hal {
         &mut self,
         program: Program,
         entry_point: &'static str,
-        layout: &wgpu::BindGroupLayout,
+        layouts: &[&wgpu::BindGroupLayout],
     ) -> Result<wgpu::ComputePipeline, BackendError> {
-        let device = &self.gpu.device;
-        let module = self
-            .modules
-            .entry(program)
-            .or_insert_with(|| shader_module(device, program));
+        let layout = self.pipeline_layout(entry_point, layouts);
+        let module = self.module(program).clone();
         scoped(&self.gpu, entry_point, || {
-            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some(entry_point),
-                bind_group_layouts: &[Some(layout)],
-                immediate_size: 0,
-            });
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry_point),
-                layout: Some(&pipeline_layout),
-                module,
-                entry_point: Some(entry_point),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                cache: None,
+            self.gpu
+                .device
+                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(entry_point),
+                    layout: Some(&layout),
+                    module: &module,
+                    entry_point: Some(entry_point),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    cache: None,
+                })
+        })
+    }
+
+    fn create_texture(&mut self, desc: &TextureDesc<'_>) -> Result<Texture, BackendError> {
+        let usage = match desc.usage {
+            TextureUsage::DepthAttachment => {
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING
+            }
+            TextureUsage::StorageAndSampled => {
+                wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC
+            }
+            TextureUsage::Sampled => {
+                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST
+            }
+            TextureUsage::ColourTarget => {
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC
+            }
+        };
+        let descriptor = wgpu::TextureDescriptor {
+            label: Some(desc.label),
+            size: wgpu::Extent3d {
+                width: desc.size.0,
+                height: desc.size.1,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: texel_format(desc.format),
+            usage,
+            view_formats: &[],
+        };
+        let (device, queue) = (&self.gpu.device, &self.gpu.queue);
+        let texture = scoped(&self.gpu, desc.label, || match desc.contents {
+            Some(texels) => device.create_texture_with_data(
+                queue,
+                &descriptor,
+                wgpu::util::TextureDataOrder::LayerMajor,
+                texels,
+            ),
+            None => device.create_texture(&descriptor),
+        })?;
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        Ok(Texture { texture, view })
+    }
+
+    fn read_texture(&mut self, texture: &Texture) -> Result<Vec<u8>, BackendError> {
+        read_texture(&self.gpu, &texture.texture)
+    }
+
+    fn create_sampler(&mut self, sampler: Sampler) -> Result<wgpu::Sampler, BackendError> {
+        let address = match sampler {
+            Sampler::LinearRepeat => wgpu::AddressMode::Repeat,
+            Sampler::LinearClamp | Sampler::ShadowComparison => wgpu::AddressMode::ClampToEdge,
+        };
+        scoped(&self.gpu, "a sampler", || {
+            self.gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("precip sampler"),
+                address_mode_u: address,
+                address_mode_v: address,
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                compare: (sampler == Sampler::ShadowComparison)
+                    .then_some(wgpu::CompareFunction::LessEqual),
+                ..Default::default()
             })
         })
+    }
+
+    fn draw_pipeline(
+        &mut self,
+        draw: &Draw,
+        _pass: &RenderPassRecipe,
+        layouts: &[&wgpu::BindGroupLayout],
+        colour: Option<wgpu::TextureFormat>,
+    ) -> Result<wgpu::RenderPipeline, BackendError> {
+        let layout = self.pipeline_layout(draw.entry_points.0, layouts);
+        let module = self.module(Program::Render).clone();
+        scoped(&self.gpu, draw.entry_points.0, || {
+            draw_pipeline(&self.gpu.device, &module, &layout, draw, colour)
+        })
+    }
+
+    fn colour_format(&self, target: Target<'_, Self>) -> wgpu::TextureFormat {
+        match target {
+            Target::Texture(t) => t.texture.format(),
+            Target::Surface(view) => view.texture().format(),
+        }
+    }
+
+    fn texture_size(&self, texture: &Texture) -> (u32, u32) {
+        (texture.texture.width(), texture.texture.height())
     }
 
     fn bind_group(
@@ -237,22 +412,28 @@ impl Gpu for Hal {
         for (binding, resource) in entries {
             let kind = table.kind_of(*binding);
             let resource = match (resource, kind) {
-                (BindingResource::Buffer(buffer), Some(BindingKind::Uniform { min_bytes, .. })) => {
-                    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer,
-                        offset: 0,
-                        size: wgpu::BufferSize::new(min_bytes),
-                    })
-                }
-                (BindingResource::Buffer(buffer), Some(BindingKind::Storage { .. })) => {
-                    buffer.as_entire_binding()
-                }
-                (BindingResource::Volume(volume), Some(BindingKind::Texture { .. })) => {
-                    wgpu::BindingResource::TextureView(&volume.view)
+                (
+                    BindingResource::Buffer(buffer),
+                    Some(k @ (BindingKind::Uniform { .. } | BindingKind::Storage { .. })),
+                ) => wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer,
+                    offset: 0,
+                    size: k.block_bytes().and_then(wgpu::BufferSize::new),
+                }),
+                (
+                    BindingResource::Volume(texture) | BindingResource::Texture(texture),
+                    Some(BindingKind::Texture { .. }),
+                )
+                | (
+                    BindingResource::StorageTexture(texture),
+                    Some(BindingKind::StorageTextureRgba16Float),
+                ) => wgpu::BindingResource::TextureView(&texture.view),
+                (BindingResource::Sampler(sampler), Some(BindingKind::Sampler { .. })) => {
+                    wgpu::BindingResource::Sampler(sampler)
                 }
                 _ => {
                     return Err(BackendError::Device {
-                        backend: crate::error::NAME,
+                        backend: NAME,
                         message: format!(
                             "{} binding {binding}: the resource does not fit its kind {kind:?} (a bug in precip: please report it)",
                             table.name
@@ -346,17 +527,97 @@ impl Gpu for Hal {
         }
     }
 
+    fn submit_frame(
+        &mut self,
+        frame: &FrameWork<'_, Self>,
+        target: Target<'_, Self>,
+    ) -> Result<(), BackendError> {
+        let gpu = &self.gpu;
+        let stamps = self.frame_stamps.as_ref();
+        let colour = match target {
+            Target::Texture(t) => &t.view,
+            Target::Surface(view) => view,
+        };
+        scoped(gpu, "drawing a frame", || {
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("precip frame"),
+                });
+            for (index, pass) in (0u32..).zip(&frame.passes) {
+                if pass.runs {
+                    encode_pass(
+                        &mut encoder,
+                        pass,
+                        index,
+                        stamps,
+                        colour,
+                        frame.clear_colour,
+                    );
+                }
+            }
+            if let Some(s) = stamps {
+                encoder.resolve_query_set(&s.set, 0..s.capacity(), s.resolve_buffer(), 0);
+            }
+            gpu.queue.submit([encoder.finish()]);
+        })?;
+        if let Some(s) = self.frame_stamps.as_mut() {
+            s.written = s.capacity();
+        }
+        // Free finished work without waiting for the GPU.
+        let _ = self.gpu.device.poll(wgpu::PollType::Poll);
+        Ok(())
+    }
+
+    fn frame_times_ms(&mut self) -> Result<Option<Vec<f64>>, BackendError> {
+        match &self.frame_stamps {
+            Some(s) if s.written > 0 => s.pairs_ms(&self.gpu).map(Some),
+            _ => Ok(None),
+        }
+    }
+
+    fn forget_times(&mut self) {
+        for s in [&mut self.timestamps, &mut self.frame_stamps]
+            .into_iter()
+            .flatten()
+        {
+            s.written = 0;
+        }
+    }
+
+    fn has_timestamps(&self) -> bool {
+        self.timestamps.is_some() || self.frame_stamps.is_some()
+    }
+
     fn destroy_buffer(&mut self, buffer: wgpu::Buffer) {
         buffer.destroy();
     }
 
-    fn destroy_volume(&mut self, volume: Volume) {
+    fn destroy_volume(&mut self, volume: Texture) {
         volume.texture.destroy();
     }
+
+    fn destroy_texture(&mut self, texture: Texture) {
+        texture.texture.destroy();
+    }
+
+    fn destroy_sampler(&mut self, _sampler: wgpu::Sampler) {}
 
     fn destroy_bind_group(&mut self, _group: wgpu::BindGroup) {}
 
     fn destroy_kernel(&mut self, _kernel: wgpu::ComputePipeline) {}
 
+    fn destroy_draw_pipeline(&mut self, _pipeline: wgpu::RenderPipeline) {}
+
     fn destroy_group_layout(&mut self, _layout: wgpu::BindGroupLayout) {}
+}
+
+/// The wgpu format of `format`.
+fn texel_format(format: TexelFormat) -> wgpu::TextureFormat {
+    match format {
+        TexelFormat::Depth32Float => DEPTH_FORMAT,
+        TexelFormat::Rgba16Float => wgpu::TextureFormat::Rgba16Float,
+        TexelFormat::R8Unorm => wgpu::TextureFormat::R8Unorm,
+        TexelFormat::Rgba8UnormSrgb => wgpu::TextureFormat::Rgba8UnormSrgb,
+    }
 }

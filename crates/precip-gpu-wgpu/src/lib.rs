@@ -2,37 +2,39 @@
 //!
 //! ## Design
 //!
-//! This crate holds no physics and no plan: the executor of `precip-gpu`
-//! (`precip_gpu::Simulation`) makes a configuration's resources from its tables and
-//! runs configure, weather changes, steps and beam queries over [`gpu::Hal`]; the
-//! frame's passes ([`precip_gpu::frame`]) are recorded by [`render`]. The uniform
-//! blocks come from `precip_model::host::HostState`.
+//! This crate holds no physics, no plan and no frame: `precip_gpu::GpuBackend`
+//! runs configure, weather changes, steps, beam queries and frames over
+//! [`gpu::Hal`], the device calls of `precip_gpu::Gpu` on wgpu. The Vulkan backend
+//! (`precip-gpu-vk`) has the same files with the same jobs.
 //!
 //! - [`device`] — finding adapters and opening a device (or adopting the caller's).
 //! - [`bind_groups`] — bind group layouts from `precip_gpu::bind_groups`' tables.
-//! - [`gpu`] — [`gpu::Hal`], the device calls of `precip_gpu::Gpu`: buffers, the
-//!   wind volume, layouts, kernels, bind groups, dispatches, read-back; the
-//!   executor of `precip-gpu` runs configure, weather, step and beam queries over it.
-//! - [`query`] — GPU timestamp queries per kernel, where the adapter has them.
-//! - [`transfer`] — copying a buffer back (tests and tools; never the frame loop).
+//! - [`gpu`] — [`gpu::Hal`]: buffers, textures, samplers, layouts, kernels, draw
+//!   pipelines, bind groups, dispatches, frames, read-back.
+//! - [`frame`] — a frame's commands into wgpu compute and render passes.
+//! - [`pipelines`] — render pipelines from the frame's draws.
+//! - [`query`] — GPU timestamp queries per kernel and per pass, where the adapter
+//!   has them.
+//! - [`transfer`] — copying a buffer or texture back (read-backs, tests and tools;
+//!   never the frame loop).
 //! - [`error`] — pure conversions of wgpu errors into [`BackendError`](precip_model::BackendError).
-//! - [`render`] — drawing: scene with cover, culling, sprites and tetrahedra, shadows,
-//!   fog; offscreen targets and read-back.
-//! - [`backend`] — [`WgpuBackend`].
+//! - [`backend`] — [`WgpuBackend`]: opening a device, drawing into a window surface.
 //!
 //! ## Frames
 //!
 //! `step(dt)` writes one uniform block per sub-step (a dynamic offset each), records
-//! every sub-step's kernels in one compute pass and submits once (the executor's
-//! recipe; `precip_gpu::Gpu::dispatch` on [`gpu::Hal`] records it). Nothing is read back while stepping.
+//! every sub-step's kernels in one compute pass and submits once; `render` writes
+//! the frame's block and submits the frame's passes in one command buffer, each
+//! pass timed where the adapter can. Nothing is read back while stepping or drawing.
 
 pub mod backend;
 pub mod bind_groups;
 pub mod device;
 pub mod error;
+pub mod frame;
 pub mod gpu;
+pub mod pipelines;
 pub mod query;
-pub mod render;
 pub mod transfer;
 
 pub use backend::WgpuBackend;

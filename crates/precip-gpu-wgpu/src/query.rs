@@ -1,10 +1,8 @@
-//! GPU timestamp queries around each kernel of a step.
-//!
-//! Where the device has `TIMESTAMP_QUERY_INSIDE_PASSES`, a timestamp is written
-//! before the first kernel and after every kernel of every sub-step; `timings()`
-//! resolves and reads them (on demand only); the executor sums the time per
-//! kernel, named by its entry point.
+//! Timestamp queries on wgpu (Vulkan twin: `precip_gpu_vk::query`): one set for a
+//! step's kernels (one before the first and one after each, needs timestamps inside
+//! passes) and one for a frame's passes (two a pass, at its start and its end).
 
+use precip_gpu::frame::FRAME_PASSES;
 use precip_gpu::recipe::SUBSTEP_KERNELS;
 use precip_model::BackendError;
 use precip_model::backend::MAX_SUBSTEPS;
@@ -12,76 +10,116 @@ use precip_model::backend::MAX_SUBSTEPS;
 use crate::device::GpuDevice;
 use crate::transfer::read_buffer;
 
-/// Kernels of one sub-step.
-const KERNELS: usize = SUBSTEP_KERNELS;
+/// Queries of a step: one before the first kernel and one after each.
+pub const QUERY_COUNT: u32 = 1 + SUBSTEP_KERNELS as u32 * MAX_SUBSTEPS;
 
-/// Queries: one at the start, one after each kernel of each sub-step.
-pub const QUERY_COUNT: u32 = 1 + KERNELS as u32 * MAX_SUBSTEPS;
+/// Queries of a frame: two a pass.
+pub const FRAME_QUERY_COUNT: u32 = 2 * FRAME_PASSES.len() as u32;
 
-/// The query set and its resolve buffer.
+/// A query set, its resolve buffer and how many of its queries the last submission
+/// wrote.
 #[derive(Debug)]
 pub struct Timestamps {
-    /// The queries.
+    /// The set.
     pub set: wgpu::QuerySet,
     resolve: wgpu::Buffer,
-    /// Queries written by the last step (0: none yet).
+    /// Queries written by the last submission that wrote any.
     pub written: u32,
+    count: u32,
     period_ns: f32,
 }
 
 impl Timestamps {
-    /// Creates the queries, or `None` when the device cannot time inside passes.
+    /// `count` queries, or `None` when the device lacks `needs`.
     #[must_use]
-    pub fn new(gpu: &GpuDevice) -> Option<Self> {
-        if !gpu.has_timestamps() {
+    pub fn new(
+        gpu: &GpuDevice,
+        label: &'static str,
+        count: u32,
+        needs: wgpu::Features,
+    ) -> Option<Self> {
+        if !gpu.device.features().contains(needs) {
             return None;
         }
-        let set = gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
-            label: Some("precip timestamps"),
-            ty: wgpu::QueryType::Timestamp,
-            count: QUERY_COUNT,
-        });
-        let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("precip timestamps resolve"),
-            size: u64::from(QUERY_COUNT) * 8,
-            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
         Some(Self {
-            set,
-            resolve,
+            set: gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some(label),
+                ty: wgpu::QueryType::Timestamp,
+                count,
+            }),
+            resolve: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: u64::from(count) * 8,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
             written: 0,
+            count,
             period_ns: gpu.queue.get_timestamp_period(),
         })
     }
 
-    /// The buffer queries are resolved into.
+    /// The step's set (timestamps between dispatches of one pass).
+    #[must_use]
+    pub fn for_steps(gpu: &GpuDevice) -> Option<Self> {
+        Self::new(
+            gpu,
+            "precip timestamps",
+            QUERY_COUNT,
+            wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_PASSES,
+        )
+    }
+
+    /// The frame's set (timestamps at passes' starts and ends).
+    #[must_use]
+    pub fn for_frames(gpu: &GpuDevice) -> Option<Self> {
+        Self::new(
+            gpu,
+            "precip frame timestamps",
+            FRAME_QUERY_COUNT,
+            wgpu::Features::TIMESTAMP_QUERY,
+        )
+    }
+
+    /// The buffer the set is resolved into.
     #[must_use]
     pub fn resolve_buffer(&self) -> &wgpu::Buffer {
         &self.resolve
     }
 
-    /// The most timestamps one submission writes.
+    /// How many queries the set holds.
     #[must_use]
     pub fn capacity(&self) -> u32 {
-        QUERY_COUNT
+        self.count
     }
 
-    /// The milliseconds between consecutive timestamps of the last timed
-    /// submission: one per dispatch, in order (empty before one).
+    fn ticks(&self, gpu: &GpuDevice) -> Result<Vec<u64>, BackendError> {
+        let bytes = read_buffer(gpu, &self.resolve, u64::from(self.written) * 8)?;
+        Ok(bytes
+            .chunks_exact(8)
+            .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
+            .collect())
+    }
+
+    fn ms(&self, from: u64, to: u64) -> f64 {
+        to.saturating_sub(from) as f64 * f64::from(self.period_ns) * 1.0e-6
+    }
+
+    /// The milliseconds between consecutive timestamps (waits for the GPU).
     pub fn elapsed_ms(&self, gpu: &GpuDevice) -> Result<Vec<f64>, BackendError> {
         if self.written < 2 {
             return Ok(Vec::new());
         }
-        let bytes = read_buffer(gpu, &self.resolve, u64::from(self.written) * 8)?;
-        let ticks: Vec<u64> = bytes
-            .chunks_exact(8)
-            .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
-            .collect();
-        let period_ns = f64::from(self.period_ns);
-        Ok(ticks
-            .windows(2)
-            .map(|pair| pair[1].saturating_sub(pair[0]) as f64 * period_ns * 1.0e-6)
-            .collect())
+        let ticks = self.ticks(gpu)?;
+        Ok(ticks.windows(2).map(|p| self.ms(p[0], p[1])).collect())
+    }
+
+    /// The milliseconds between the two timestamps of each pair (waits).
+    pub fn pairs_ms(&self, gpu: &GpuDevice) -> Result<Vec<f64>, BackendError> {
+        if self.written < 2 {
+            return Ok(Vec::new());
+        }
+        let ticks = self.ticks(gpu)?;
+        Ok(ticks.chunks_exact(2).map(|p| self.ms(p[0], p[1])).collect())
     }
 }

@@ -8,8 +8,7 @@
 //! query and the read-backs. Every resource goes back to the device through
 //! [`Simulation::destroy`] / [`Kernels::destroy`], and on every error path.
 //!
-//! The frame's passes are still recorded by each backend (`render/`) from
-//! [`crate::frame`]; they read the simulation's buffers through
+//! The frame ([`crate::renderer`]) reads the simulation's buffers through
 //! [`Simulation::buffer`].
 
 use precip_cover::{CoverGrid, GridFrame};
@@ -87,7 +86,7 @@ impl<G: Gpu> Kernels<G> {
                 Program::OpticsSums => &layouts[3],
                 _ => &layouts[0],
             };
-            match gpu.kernel(kernel.program, kernel.entry_point, layout) {
+            match gpu.kernel(kernel.program, kernel.entry_point, &[layout]) {
                 Ok(k) => kernels.push(k),
                 Err(e) => {
                     give_back(gpu, layouts, kernels);

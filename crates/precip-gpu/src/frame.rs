@@ -1,11 +1,10 @@
 //! A frame as data: its passes in order, each a list of compute kernels or a render
 //! pass (attachments, how they load and store, draws with their pipeline state),
-//! when it runs, and its timestamps. [`frame_plan`] is the frame as both GPU
-//! backends walk it (`render/mod.rs`'s `encode_frame` on wgpu, `record_frame` on
-//! Vulkan): which passes run under this frame's [`FrameConditions`], each kernel
-//! with its groups and workgroups, each draw with its groups; they build the draws'
-//! pipelines from [`Draw`]. What stays per backend is how a kind of attachment,
-//! group or draw maps to its objects. A new pass is WGSL plus an entry here.
+//! when it runs, and its timestamps. [`frame_plan`] is the frame as the renderer
+//! ([`crate::renderer`]) walks it into commands for every backend: which passes run
+//! under this frame's [`FrameConditions`], each kernel with its groups and
+//! workgroups, each draw with its groups; the draws' pipelines are made from
+//! [`Draw`]. A new pass is WGSL plus an entry here.
 //!
 //! Timestamps: each pass is bracketed by two, at its start and its end, on both
 //! backends (`2·i`, `2·i + 1` for pass `i`), so per-pass times compare; a pass that
@@ -211,7 +210,7 @@ const PARTICLE_DRAWS: [Draw; 3] = [
     },
 ];
 
-/// The frame, in order (see the module docs and `precip_gpu_wgpu::render`).
+/// The frame, in order (see the module docs and [`crate::renderer`]).
 pub const FRAME_PASSES: [FramePass; 6] = [
     FramePass {
         name: "cover_texture",

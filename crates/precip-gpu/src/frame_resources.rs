@@ -1,10 +1,10 @@
 //! The resources table of the frame: every buffer, texture and sampler drawing adds
 //! to a configuration ([`frame_buffers`], [`frame_textures`], [`Sampler`]), the two
 //! a target of a given size adds ([`TargetResource`]), and which one fills each
-//! binding of the frame's groups ([`FRAME_GROUPS`], [`TARGET_GROUPS`]). Each GPU
-//! backend makes them from these tables (`render/frame.rs`), mapping a kind to its
-//! API's object; what exists, how large, with what contents and bound where is
-//! decided here, once.
+//! binding of the frame's groups ([`FRAME_GROUPS`], [`TARGET_GROUPS`]). The
+//! renderer ([`crate::renderer`]) makes them from these tables through the device
+//! calls ([`crate::Gpu`]); what exists, how large, with what contents and bound
+//! where is decided here, once.
 
 use precip_model::Setup;
 use precip_model::drawing::render::RenderParams;
@@ -17,7 +17,7 @@ use crate::recipe::{
     DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
     cull_bindings as cb, cull_groups, render_bindings as rb,
 };
-use crate::resources::SimBuffer;
+use crate::resources::{BufferUsage, SimBuffer};
 
 /// A buffer drawing adds to a configuration.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -36,17 +36,6 @@ pub enum FrameBuffer {
     Draws,
 }
 
-/// How a frame buffer is used.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FrameBufferUsage {
-    /// Written by the host each frame; read as a uniform block and as storage.
-    Params,
-    /// Read and written by kernels and draws.
-    Storage,
-    /// Storage that is also read as indirect draw arguments and copied back.
-    Indirect,
-}
-
 /// A row of the frame's buffers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FrameBufferSpec {
@@ -54,10 +43,10 @@ pub struct FrameBufferSpec {
     pub buffer: FrameBuffer,
     /// A label for debuggers.
     pub label: &'static str,
-    /// Bytes (of one block for [`FrameBufferUsage::Params`]).
+    /// Bytes (of one block for [`BufferUsage::FrameBlocks`]: one per slot).
     pub bytes: u64,
     /// Usage.
-    pub usage: FrameBufferUsage,
+    pub usage: BufferUsage,
 }
 
 /// The frame's buffers for `particle_count` particles.
@@ -75,31 +64,31 @@ pub fn frame_buffers(particle_count: u32) -> [FrameBufferSpec; 5] {
             FrameBuffer::RenderParams,
             "precip render params",
             size_of::<RenderParams>() as u64,
-            FrameBufferUsage::Params,
+            BufferUsage::FrameBlocks,
         ),
         spec(
             FrameBuffer::GroupCounts,
             "precip cull groups",
             u64::from(cull_groups(particle_count)) * GROUP_COUNT_BYTES,
-            FrameBufferUsage::Storage,
+            BufferUsage::Storage,
         ),
         spec(
             FrameBuffer::Drawn,
             "precip drawn",
             count * DRAWN_LIST_BYTES_PER_PARTICLE,
-            FrameBufferUsage::Storage,
+            BufferUsage::Storage,
         ),
         spec(
             FrameBuffer::DrawnKinds,
             "precip drawn kinds",
             count * 4,
-            FrameBufferUsage::Storage,
+            BufferUsage::Storage,
         ),
         spec(
             FrameBuffer::Draws,
             "precip draws",
             FrameDraws::BYTES,
-            FrameBufferUsage::Indirect,
+            BufferUsage::Indirect,
         ),
     ]
 }
@@ -128,6 +117,20 @@ pub enum TexelFormat {
     Rgba16Float,
     /// One 8-bit unsigned normalised channel.
     R8Unorm,
+    /// Four 8-bit sRGB channels (base colour textures, the offscreen image).
+    Rgba8UnormSrgb,
+}
+
+impl TexelFormat {
+    /// Bytes of a texel.
+    #[must_use]
+    pub const fn texel_bytes(self) -> u32 {
+        match self {
+            Self::Depth32Float | Self::Rgba8UnormSrgb => 4,
+            Self::Rgba16Float => 8,
+            Self::R8Unorm => 1,
+        }
+    }
 }
 
 /// How a frame texture is used.
@@ -140,6 +143,8 @@ pub enum TextureUsage {
     StorageAndSampled,
     /// Filled once from the host, then sampled.
     Sampled,
+    /// The frame's colour target (drawn into, then copied back).
+    ColourTarget,
 }
 
 /// A row of the frame's textures.
@@ -203,6 +208,8 @@ pub enum Sampler {
     LinearClamp,
     /// The shadow map's: a less-or-equal comparison, linear.
     ShadowComparison,
+    /// Linear, repeating (the materials' base colour).
+    LinearRepeat,
 }
 
 /// What a target of a given size adds (made again when the size changes).

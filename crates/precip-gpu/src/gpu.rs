@@ -5,12 +5,22 @@
 //! `precip-gpu-vk` each implement these calls in a file of the same name
 //! (`gpu.rs`), in the spirit of wgpu-hal's `Device` and `CommandEncoder`.
 //!
+//! The frame is recorded once too ([`crate::renderer`]): as a [`FrameWork`], the
+//! frame plan's passes as plain commands (set a kernel or a pipeline, bind a group,
+//! dispatch, draw), which [`Gpu::submit_frame`] translates into one command buffer:
+//! the backend adds only what its API needs besides (Vulkan's render passes,
+//! framebuffers, barriers and image layouts; wgpu's passes).
+//!
 //! Resources are owned by the executor and handed back with the `destroy_*` calls
 //! (a no-op where the API frees on drop), on every path, errors included.
 
-use precip_model::BackendError;
+use std::ops::Range;
+
+use precip_model::{BackendError, DeviceMemory};
 
 use crate::bind_groups::GroupLayout;
+use crate::frame::{Draw, RenderPassRecipe};
+use crate::frame_resources::{Sampler, TexelFormat, TextureUsage};
 use crate::resources::BufferUsage;
 use crate::shaders::Program;
 
@@ -22,6 +32,12 @@ pub enum BindingResource<'a, G: Gpu + ?Sized> {
     Buffer(&'a G::Buffer),
     /// A 3D texture.
     Volume(&'a G::Volume),
+    /// A 2D texture, sampled or loaded.
+    Texture(&'a G::Texture),
+    /// A 2D texture written by a kernel.
+    StorageTexture(&'a G::Texture),
+    /// A sampler.
+    Sampler(&'a G::Sampler),
 }
 
 /// One compute dispatch of a submission.
@@ -37,28 +53,162 @@ pub struct Dispatch<'a, G: Gpu + ?Sized> {
     pub workgroups: (u32, u32),
 }
 
+/// A 2D texture to make.
+#[derive(Debug, Clone, Copy)]
+pub struct TextureDesc<'a> {
+    /// A label for debuggers.
+    pub label: &'static str,
+    /// Width and height, texels.
+    pub size: (u32, u32),
+    /// Format.
+    pub format: TexelFormat,
+    /// Usage (which also fixes the layout it rests in between passes).
+    pub usage: TextureUsage,
+    /// Texels to fill it with (tightly packed rows), if any.
+    pub contents: Option<&'a [u8]>,
+}
+
+/// Where a frame is drawn.
+#[derive(Debug)]
+pub enum Target<'a, G: Gpu + ?Sized> {
+    /// A texture of [`TextureUsage::ColourTarget`], read back afterwards.
+    Texture(&'a G::Texture),
+    /// The backend's window image (a wgpu surface texture, a swapchain image): the
+    /// caller presents it.
+    Surface(&'a G::Surface),
+}
+
+impl<G: Gpu + ?Sized> Clone for Target<'_, G> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<G: Gpu + ?Sized> Copy for Target<'_, G> {}
+
+/// One command of a pass, in order. Groups stay bound until replaced; a draw or a
+/// dispatch sees the last pipeline and groups set.
+#[derive(Debug)]
+pub enum Command<'a, G: Gpu + ?Sized> {
+    /// Sets a compute kernel (a pass of kernels).
+    Kernel(&'a G::Kernel),
+    /// Sets a draw pipeline (a render pass).
+    Pipeline(&'a G::DrawPipeline),
+    /// Binds `group` at `index`, with one offset per dynamic binding.
+    Group {
+        /// Its index in the pipeline's layout.
+        index: u32,
+        /// The group.
+        group: &'a G::BindGroup,
+        /// Its dynamic offsets, in binding order.
+        offsets: &'a [u32],
+    },
+    /// Dispatches `(x, y)` workgroups of the kernel; its writes are seen by every
+    /// later command of the frame.
+    Dispatch(u32, u32),
+    /// Sets the scene's vertex (`SceneVertex`) and `u32` index buffers.
+    Meshes {
+        /// Vertices.
+        vertices: &'a G::Buffer,
+        /// Indices.
+        indices: &'a G::Buffer,
+    },
+    /// Draws `n` vertices, one instance.
+    Draw(u32),
+    /// Draws this range of indices, one instance.
+    DrawIndexed(Range<u32>),
+    /// Draws with the arguments at this byte offset of the buffer.
+    DrawIndirect(&'a G::Buffer, u64),
+}
+
+/// The attachments of a render pass.
+#[derive(Debug)]
+pub struct Attachments<'a, G: Gpu + ?Sized> {
+    /// Its depth texture (its size is the pass's).
+    pub depth: &'a G::Texture,
+    /// What the pass recipe says of them.
+    pub recipe: &'static RenderPassRecipe,
+    /// Whether a draw of the pass writes depth.
+    pub depth_written: bool,
+    /// Whether this is the frame's last pass on the colour target (it leaves the
+    /// target ready to be read or presented).
+    pub colour_last: bool,
+}
+
+/// What a pass of the frame is.
+#[derive(Debug)]
+pub enum PassKind<'a, G: Gpu + ?Sized> {
+    /// Compute kernels.
+    Compute,
+    /// A render pass into these attachments (and the target, if the recipe has
+    /// colour).
+    Render(Attachments<'a, G>),
+}
+
+/// One pass of a frame as commands.
+#[derive(Debug)]
+pub struct RecordedPass<'a, G: Gpu + ?Sized> {
+    /// Its name.
+    pub name: &'static str,
+    /// Whether it runs (a skipped pass keeps its place: its timestamps are written
+    /// and not reported).
+    pub runs: bool,
+    /// Compute or render.
+    pub kind: PassKind<'a, G>,
+    /// Its commands.
+    pub commands: Vec<Command<'a, G>>,
+}
+
+/// A frame as the executor records it: every pass of the frame plan in order, each
+/// timed by two timestamps (`2·i`, `2·i + 1`) where the device has them.
+#[derive(Debug)]
+pub struct FrameWork<'a, G: Gpu + ?Sized> {
+    /// The passes.
+    pub passes: Vec<RecordedPass<'a, G>>,
+    /// The colour a clearing pass clears the target to (linear RGBA).
+    pub clear_colour: [f32; 4],
+}
+
 /// The device calls of a GPU backend.
 pub trait Gpu {
     /// A buffer.
     type Buffer: std::fmt::Debug;
     /// A 3D `Rgba32Float` texture read with `textureLoad`.
     type Volume: std::fmt::Debug;
+    /// A 2D texture with its view.
+    type Texture: std::fmt::Debug;
+    /// A sampler.
+    type Sampler: std::fmt::Debug;
     /// A bind group's layout (a descriptor set layout).
     type GroupLayout: std::fmt::Debug;
     /// A bind group (a descriptor set).
     type BindGroup: std::fmt::Debug;
     /// A compute pipeline with its layout.
     type Kernel: std::fmt::Debug;
+    /// A render pipeline with its layout.
+    type DrawPipeline: std::fmt::Debug;
+    /// A window's image to draw into.
+    type Surface: std::fmt::Debug;
+    /// A colour target's format (pipelines are made per format).
+    type ColourFormat: std::fmt::Debug + Copy + PartialEq;
+
+    /// The backend's name (`BackendInfo::name`).
+    fn name(&self) -> &'static str;
+
+    /// The device, in words.
+    fn describe(&self) -> String;
 
     /// What the device allows (checked at configure).
     fn limits(&self) -> precip_model::DeviceLimits;
 
-    /// Bytes a dynamic uniform offset is a multiple of.
+    /// Bytes a dynamic offset (uniform or storage) is a multiple of.
     fn uniform_alignment(&self) -> u64;
 
     /// How many submissions may be in flight at once, each with its own ring of
     /// uniform blocks (1 where writes are ordered with submissions, as on wgpu).
     fn slots(&self) -> u32;
+
+    /// The device memory precip holds, where the allocator tells.
+    fn device_memory(&self) -> Option<DeviceMemory>;
 
     /// A buffer of `bytes` bytes holding `contents` (`None`: undefined; the bytes
     /// given are as long as the buffer).
@@ -94,16 +244,43 @@ pub trait Gpu {
     /// Replaces every texel of `volume`.
     fn write_volume(&mut self, volume: &Self::Volume, texels: &[u8]) -> Result<(), BackendError>;
 
+    /// A 2D texture as `desc` says.
+    fn create_texture(&mut self, desc: &TextureDesc<'_>) -> Result<Self::Texture, BackendError>;
+
+    /// Every texel of `texture` (rows tightly packed), after every submission so far
+    /// has finished.
+    fn read_texture(&mut self, texture: &Self::Texture) -> Result<Vec<u8>, BackendError>;
+
+    /// A sampler of this kind.
+    fn create_sampler(&mut self, sampler: Sampler) -> Result<Self::Sampler, BackendError>;
+
     /// The layout of `table`.
     fn group_layout(&mut self, table: &GroupLayout) -> Result<Self::GroupLayout, BackendError>;
 
-    /// The kernel `entry_point` of `program`, with one group of `layout`.
+    /// The kernel `entry_point` of `program`, with groups of `layouts` at 0, 1, ….
     fn kernel(
         &mut self,
         program: Program,
         entry_point: &'static str,
-        layout: &Self::GroupLayout,
+        layouts: &[&Self::GroupLayout],
     ) -> Result<Self::Kernel, BackendError>;
+
+    /// The pipeline of `draw` (entry points of [`Program::Render`]) in a pass of
+    /// `pass`, with groups of `layouts`, drawing into targets of `colour` (`None`
+    /// where the pass has no colour).
+    fn draw_pipeline(
+        &mut self,
+        draw: &Draw,
+        pass: &RenderPassRecipe,
+        layouts: &[&Self::GroupLayout],
+        colour: Option<Self::ColourFormat>,
+    ) -> Result<Self::DrawPipeline, BackendError>;
+
+    /// The format of `target`.
+    fn colour_format(&self, target: Target<'_, Self>) -> Self::ColourFormat;
+
+    /// The size of a texture, px.
+    fn texture_size(&self, texture: &Self::Texture) -> (u32, u32);
 
     /// A bind group of `layout` (made from `table`), each binding filled by its entry.
     fn bind_group(
@@ -134,14 +311,40 @@ pub trait Gpu {
     /// `None` where the device has no timestamps or nothing was timed.
     fn kernel_times_ms(&mut self) -> Result<Option<Vec<f64>>, BackendError>;
 
+    /// Records `frame` into `target` and submits it without waiting: the step's
+    /// writes are seen by the frame, each dispatch's by every later command, each
+    /// pass's attachments by what reads them next, and the next submission waits for
+    /// what the frame reads.
+    fn submit_frame(
+        &mut self,
+        frame: &FrameWork<'_, Self>,
+        target: Target<'_, Self>,
+    ) -> Result<(), BackendError>;
+
+    /// The milliseconds each pass of the last frame took (`2·i + 1` minus `2·i`),
+    /// in order; `None` where the device has no timestamps or no frame was drawn.
+    fn frame_times_ms(&mut self) -> Result<Option<Vec<f64>>, BackendError>;
+
+    /// Forgets the timestamps written so far (a new configuration).
+    fn forget_times(&mut self);
+
+    /// Whether the device writes timestamps.
+    fn has_timestamps(&self) -> bool;
+
     /// Hands back a buffer once nothing submitted uses it.
     fn destroy_buffer(&mut self, buffer: Self::Buffer);
     /// Hands back a volume.
     fn destroy_volume(&mut self, volume: Self::Volume);
+    /// Hands back a texture.
+    fn destroy_texture(&mut self, texture: Self::Texture);
+    /// Hands back a sampler.
+    fn destroy_sampler(&mut self, sampler: Self::Sampler);
     /// Hands back a bind group.
     fn destroy_bind_group(&mut self, group: Self::BindGroup);
     /// Hands back a kernel.
     fn destroy_kernel(&mut self, kernel: Self::Kernel);
+    /// Hands back a draw pipeline.
+    fn destroy_draw_pipeline(&mut self, pipeline: Self::DrawPipeline);
     /// Hands back a layout.
     fn destroy_group_layout(&mut self, layout: Self::GroupLayout);
 }

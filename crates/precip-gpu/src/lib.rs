@@ -28,15 +28,19 @@
 //! `docs/architecture.md` describes how a backend executes this plan, and the
 //! walkthroughs for a new kernel, render pass or precipitation kind.
 
+pub mod backend;
 pub mod bind_groups;
 pub mod executor;
 pub mod frame;
 pub mod frame_resources;
 pub mod gpu;
 pub mod recipe;
+pub mod renderer;
 pub mod resources;
+pub mod scene;
 pub mod shaders;
 
+pub use backend::GpuBackend;
 pub use executor::{Kernels, Prepared, Simulation};
 pub use gpu::{BindingResource, Dispatch, Gpu};
 pub use shaders::Program;

@@ -83,6 +83,15 @@ pub enum BufferUsage {
     /// Uniform blocks the host writes between submissions: kept where the host can
     /// write them.
     Uniform,
+    /// Blocks the host writes each frame, read as uniform blocks and as storage
+    /// (the frame's `RenderParams`).
+    FrameBlocks,
+    /// Storage also read as indirect draw arguments (and copied back).
+    Indirect,
+    /// The scene's vertices, filled once.
+    Vertices,
+    /// The scene's `u32` indices, filled once.
+    Indices,
 }
 
 /// What a new buffer holds.

@@ -2,16 +2,28 @@
 //! resources table, every object goes back to the device on every path (a failure
 //! injected at each call in turn leaves nothing alive), a step dispatches every
 //! sub-step's kernels at its own block, and a refused step or weather changes
-//! nothing.
+//! nothing; and the frame over the same device: every pass of the plan recorded in
+//! order, each draw after its pipeline and groups, and nothing left alive after a
+//! backend drawn at two sizes is dropped, wherever a call fails.
 
+use std::cell::Cell;
+use std::rc::Rc;
+
+use precip_gpu::GpuBackend;
 use precip_gpu::bind_groups::GroupLayout;
-use precip_gpu::gpu::{BindingResource, Dispatch, Gpu};
+use precip_gpu::frame::{Draw, FRAME_PASSES, RenderPassRecipe};
+use precip_gpu::frame_resources::Sampler;
+use precip_gpu::gpu::{
+    BindingResource, Command, Dispatch, FrameWork, Gpu, PassKind, Target, TextureDesc,
+};
 use precip_gpu::recipe::SUBSTEP_PASSES;
 use precip_gpu::resources::{BufferUsage, SimBuffer};
 use precip_gpu::shaders::Program;
 use precip_gpu::{Kernels, Simulation};
 use precip_model::backend::MAX_STEP_S;
-use precip_model::{BackendError, DeviceLimits, Setup, Weather};
+use precip_model::{
+    Backend, BackendError, Camera, DeviceLimits, DeviceMemory, Setup, View, Weather,
+};
 
 /// A device that records calls, counts live objects and fails the `fail_at`-th
 /// call that makes something.
@@ -20,6 +32,10 @@ struct Recording {
     made: usize,
     fail_at: Option<usize>,
     live: i64,
+    /// Shared, to be read after a backend owning the device is dropped.
+    alive: Rc<Cell<i64>>,
+    /// Each frame's passes: name, whether it ran, its commands.
+    frames: Vec<Vec<(&'static str, bool, usize)>>,
     buffers: Vec<(&'static str, u64)>,
     dispatches: Vec<(u32, Option<u32>)>,
     writes: Vec<(u64, usize)>,
@@ -35,7 +51,13 @@ impl Recording {
             });
         }
         self.live += 1;
+        self.alive.set(self.live);
         Ok(self.made as u32)
+    }
+
+    fn free(&mut self) {
+        self.live -= 1;
+        self.alive.set(self.live);
     }
 }
 
@@ -45,7 +67,21 @@ impl Gpu for Recording {
     type GroupLayout = u32;
     type BindGroup = u32;
     type Kernel = u32;
+    type Texture = (u32, (u32, u32));
+    type Sampler = u32;
+    type DrawPipeline = u32;
+    type Surface = ();
+    type ColourFormat = u8;
 
+    fn name(&self) -> &'static str {
+        "recording"
+    }
+    fn describe(&self) -> String {
+        "a recording".into()
+    }
+    fn device_memory(&self) -> Option<DeviceMemory> {
+        None
+    }
     fn limits(&self) -> DeviceLimits {
         DeviceLimits {
             device: "recording".into(),
@@ -114,13 +150,84 @@ impl Gpu for Recording {
         &mut self,
         program: Program,
         entry_point: &'static str,
-        _layout: &u32,
+        layouts: &[&u32],
     ) -> Result<u32, BackendError> {
         assert!(
             program.entry_points().contains(&entry_point),
             "{entry_point}"
         );
+        assert!(!layouts.is_empty());
         self.make()
+    }
+    fn create_texture(
+        &mut self,
+        desc: &TextureDesc<'_>,
+    ) -> Result<(u32, (u32, u32)), BackendError> {
+        if let Some(c) = desc.contents {
+            let texels = desc.size.0 * desc.size.1;
+            assert_eq!(
+                c.len() as u32,
+                texels * desc.format.texel_bytes(),
+                "{}",
+                desc.label
+            );
+        }
+        Ok((self.make()?, desc.size))
+    }
+    fn read_texture(&mut self, texture: &(u32, (u32, u32))) -> Result<Vec<u8>, BackendError> {
+        Ok(vec![0; (texture.1.0 * texture.1.1 * 4) as usize])
+    }
+    fn create_sampler(&mut self, _sampler: Sampler) -> Result<u32, BackendError> {
+        self.make()
+    }
+    fn draw_pipeline(
+        &mut self,
+        draw: &Draw,
+        pass: &RenderPassRecipe,
+        layouts: &[&u32],
+        colour: Option<u8>,
+    ) -> Result<u32, BackendError> {
+        assert_eq!(pass.colour.is_some(), colour.is_some(), "{draw:?}");
+        assert!(!layouts.is_empty());
+        self.make()
+    }
+    fn colour_format(&self, _target: Target<'_, Self>) -> u8 {
+        1
+    }
+    fn texture_size(&self, texture: &(u32, (u32, u32))) -> (u32, u32) {
+        texture.1
+    }
+    fn submit_frame(
+        &mut self,
+        frame: &FrameWork<'_, Self>,
+        _target: Target<'_, Self>,
+    ) -> Result<(), BackendError> {
+        let mut passes = Vec::new();
+        for pass in &frame.passes {
+            let mut bound = false;
+            for c in &pass.commands {
+                match (c, &pass.kind) {
+                    (Command::Kernel(_), PassKind::Compute)
+                    | (Command::Pipeline(_), PassKind::Render(_)) => bound = true,
+                    (Command::Kernel(_) | Command::Dispatch(..), PassKind::Render(_))
+                    | (Command::Pipeline(_) | Command::Draw(_), PassKind::Compute) => {
+                        panic!("{}: {c:?} in the wrong kind of pass", pass.name)
+                    }
+                    (Command::Group { group, .. }, _) => assert!(**group > 0),
+                    _ => assert!(bound, "{}: {c:?} before a pipeline", pass.name),
+                }
+            }
+            passes.push((pass.name, pass.runs, pass.commands.len()));
+        }
+        self.frames.push(passes);
+        Ok(())
+    }
+    fn frame_times_ms(&mut self) -> Result<Option<Vec<f64>>, BackendError> {
+        Ok(None)
+    }
+    fn forget_times(&mut self) {}
+    fn has_timestamps(&self) -> bool {
+        false
     }
     fn bind_group(
         &mut self,
@@ -151,19 +258,28 @@ impl Gpu for Recording {
         Ok(None)
     }
     fn destroy_buffer(&mut self, _buffer: (u32, u64)) {
-        self.live -= 1;
+        self.free();
     }
     fn destroy_volume(&mut self, _volume: u32) {
-        self.live -= 1;
+        self.free();
+    }
+    fn destroy_texture(&mut self, _texture: (u32, (u32, u32))) {
+        self.free();
+    }
+    fn destroy_sampler(&mut self, _sampler: u32) {
+        self.free();
     }
     fn destroy_bind_group(&mut self, _group: u32) {
-        self.live -= 1;
+        self.free();
     }
     fn destroy_kernel(&mut self, _kernel: u32) {
-        self.live -= 1;
+        self.free();
+    }
+    fn destroy_draw_pipeline(&mut self, _pipeline: u32) {
+        self.free();
     }
     fn destroy_group_layout(&mut self, _layout: u32) {
-        self.live -= 1;
+        self.free();
     }
 }
 
@@ -261,4 +377,68 @@ fn the_table_makes_every_buffer_and_a_step_dispatches_every_sub_step() {
     sim.destroy(&mut gpu);
     kernels.destroy(&mut gpu);
     assert_eq!(gpu.live, 0);
+}
+
+fn view(width_px: u32, height_px: u32) -> View {
+    View {
+        camera: Camera {
+            aspect: width_px as f32 / height_px as f32,
+            ..Camera::default()
+        },
+        width_px,
+        height_px,
+    }
+}
+
+/// Configure, step, draw at two sizes, read the image back and drop.
+fn draw_twice(backend: &mut GpuBackend<Recording>) -> Result<(), BackendError> {
+    backend.configure(&setup())?;
+    backend.step(0.05)?;
+    backend.render(&view(64, 48))?;
+    backend.step(0.05)?;
+    backend.render(&view(32, 16))?;
+    let image = backend.read_image()?;
+    assert_eq!((image.width_px, image.height_px), (32, 16));
+    Ok(())
+}
+
+#[test]
+fn a_frame_records_the_plan_and_a_failure_anywhere_leaves_nothing_alive() {
+    let mut calls = 0;
+    for fail_at in std::iter::once(None).chain((1..).map(Some)) {
+        let alive = Rc::new(Cell::new(0));
+        let gpu = Recording {
+            fail_at,
+            alive: alive.clone(),
+            ..Recording::default()
+        };
+        let result = GpuBackend::new(gpu).and_then(|mut backend| {
+            let drawn = draw_twice(&mut backend);
+            if fail_at.is_none() {
+                let frames = &backend.gpu().frames;
+                assert_eq!(frames.len(), 2);
+                for frame in frames {
+                    let names: Vec<_> = frame.iter().map(|p| p.0).collect();
+                    let plan: Vec<_> = FRAME_PASSES.iter().map(|p| p.name).collect();
+                    assert_eq!(names, plan);
+                    for (name, runs, commands) in frame {
+                        assert!(*commands > 0 || !*runs, "{name} runs with no commands");
+                    }
+                }
+                calls = backend.gpu().made;
+            }
+            drawn
+        });
+        assert_eq!(alive.get(), 0, "fail at {fail_at:?}: {result:?}");
+        match fail_at {
+            None => assert!(result.is_ok(), "{result:?}"),
+            Some(n) => {
+                assert!(result.is_err(), "call {n} of {calls} was to fail");
+                if n == calls {
+                    break;
+                }
+            }
+        }
+    }
+    assert!(calls > 60, "{calls} calls");
 }

@@ -10,13 +10,15 @@ use precip_model::{BackendError, View};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 
 use super::VkBackend;
-use super::draw::SwapchainFrame;
 use crate::commands::{Semaphores, submit_synced};
 use crate::device::Device;
 use crate::error::{NAME, map_vk};
+use crate::gpu::SwapchainImage;
 use crate::instance::Instance;
 use crate::swapchain::WindowSurface;
 use crate::transfer::FRAMES_IN_FLIGHT;
+use precip_gpu::Gpu;
+use precip_model::Backend;
 
 /// What [`VkBackend::present`] did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -59,11 +61,12 @@ impl VkBackend {
     where
         W: HasWindowHandle + HasDisplayHandle + Send + Sync + 'static,
     {
-        let surface = WindowSurface::new(&self.hal.device, window)?;
-        if let Some(old) = self.window.replace(surface) {
-            self.settle()?;
-            self.hal.device.wait_idle()?;
-            old.destroy(&self.hal.device);
+        let surface = WindowSurface::new(&self.0.gpu().device, window)?;
+        if let Some(old) = self.1.replace(surface) {
+            let hal = self.0.gpu_mut();
+            hal.settle()?;
+            hal.device.wait_idle()?;
+            old.destroy(&hal.device);
         }
         Ok(())
     }
@@ -71,15 +74,17 @@ impl VkBackend {
     /// The attached window's swapchain format and present mode.
     #[must_use]
     pub fn window_format(&self) -> Option<(vk::Format, vk::PresentModeKHR)> {
-        self.window.as_ref().map(|w| (w.format, w.present_mode))
+        self.1.as_ref().map(|w| (w.format, w.present_mode))
     }
 
     /// Draws a frame for `view`'s camera into the attached window and presents it.
     /// The swapchain follows `view`'s size (re-created, the old one retired, when it
     /// changes); the frame has the swapchain's size, which the surface may impose.
     pub fn present(&mut self, view: &View) -> Result<Presented, BackendError> {
-        self.state("present")?;
-        let Some(format) = self.window.as_ref().map(|w| w.format) else {
+        self.weather().map_err(|_| BackendError::NotConfigured {
+            operation: "present",
+        })?;
+        let Some(format) = self.1.as_ref().map(|w| w.format) else {
             return Err(BackendError::NotConfigured {
                 operation: "present (attach a window first)",
             });
@@ -87,23 +92,14 @@ impl VkBackend {
         precip_model::drawing::render::validate_view(view)?;
         // The acquire semaphore about to be reused was waited on by a frame that is
         // not the latest submission, so this wait finishes it.
-        self.hal.wait_until(FRAMES_IN_FLIGHT - 1)?;
-        let pass = self
-            .prepare_renderer(format, vk::ImageLayout::PRESENT_SRC_KHR)?
-            .scene;
+        self.0.gpu_mut().wait_until(FRAMES_IN_FLIGHT - 1)?;
         let wanted = (view.width_px, view.height_px);
         for _attempt in 0..2 {
-            let Some(window) = self.window.as_mut() else {
+            let (Some(window), hal) = (self.1.as_mut(), self.0.gpu_mut()) else {
                 break;
             };
             if window.needs_rebuild(wanted) {
-                window.rebuild(
-                    &self.hal.device,
-                    pass,
-                    wanted,
-                    &mut self.hal.retired,
-                    self.hal.submitted,
-                )?;
+                window.rebuild(&hal.device, wanted, &mut hal.retired, hal.submitted)?;
             }
             let Some(frame) = window.acquire()? else {
                 continue;
@@ -114,16 +110,13 @@ impl VkBackend {
                 height_px,
                 ..*view
             };
-            let drawn = self.draw(
-                &sized,
-                Some(SwapchainFrame {
-                    format,
-                    framebuffer: frame.framebuffer,
-                    depth: frame.depth,
-                    acquired: frame.acquired,
-                    drawn: frame.drawn,
-                }),
-            );
+            let image = SwapchainImage {
+                view: frame.view,
+                format,
+                acquired: frame.acquired,
+                drawn: frame.drawn,
+            };
+            let drawn = self.0.draw(&sized, Some(&image));
             if let Err(e) = drawn {
                 // The image was acquired but not drawn: consume its acquire semaphore
                 // with an empty submission, so the ring can reuse it, and re-create
@@ -133,16 +126,17 @@ impl VkBackend {
                     wait: &waits,
                     signal: &[],
                 };
-                if let Ok(f) = submit_synced(&self.hal.device, semaphores, |_| {}) {
-                    self.hal.track(f);
+                let hal = self.0.gpu_mut();
+                if let Ok(f) = submit_synced(&hal.device, semaphores, |_| {}) {
+                    hal.track(f);
                 }
-                if let Some(window) = self.window.as_mut() {
+                if let Some(window) = self.1.as_mut() {
                     window.stale = true;
                 }
                 return Err(e);
             }
-            if let Some(window) = self.window.as_mut() {
-                window.present(&self.hal.device, &frame)?;
+            if let Some(window) = self.1.as_mut() {
+                window.present(&self.0.gpu().device, &frame)?;
             }
             return Ok(Presented::Frame {
                 width_px,

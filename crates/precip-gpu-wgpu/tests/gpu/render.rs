@@ -450,8 +450,8 @@ fn a_surface_format_renders_the_same_frame() {
             "{name}: a view of another size than the target"
         );
         // The same frame, channels swapped; read_image still returns the offscreen one.
-        let mut bgra = precip_gpu_wgpu::render::target::read_texture(gpu.device(), &texture)
-            .expect("read back");
+        let mut bgra =
+            precip_gpu_wgpu::transfer::read_image(gpu.device(), &texture).expect("read back");
         for px in bgra.rgba8.chunks_exact_mut(4) {
             px.swap(0, 2);
         }

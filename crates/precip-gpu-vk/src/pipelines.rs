@@ -1,35 +1,16 @@
-//! The frame's pipelines, made from the recipe (`precip_gpu::frame`): one
-//! graphics pipeline per [`Draw`] (per colour format, like the wgpu backend's; a draw
-//! of the depth-only shadow pass against the shadow pass) and one compute pipeline
-//! per kernel, each with its entry point's pipeline layout
-//! ([`RenderLayouts::pipeline_layout`]) — the same entry points, topologies, depth
-//! tests, bias and blending as wgpu, so the images agree. wgpu twin:
-//! `precip_gpu_wgpu::render::pipelines`.
+//! Graphics pipelines from the frame's recipe (`precip_gpu::frame::Draw`): the same
+//! entry points, topologies, depth tests, bias and blending as wgpu's, so the
+//! images agree (wgpu twin: `precip_gpu_wgpu::pipelines`).
 
 use std::ffi::CString;
 
 use ash::vk;
-use precip_gpu::frame::{self, Blend, DepthTarget, Draw, PassWork, Topology};
+use precip_gpu::frame::{Blend, Draw, Topology};
 use precip_gpu::recipe::SceneVertex;
-use precip_gpu::shaders::Program;
 use precip_model::BackendError;
 
-use super::layouts::RenderLayouts;
 use crate::device::Device;
 use crate::error::{NAME, map_vk};
-use crate::programs::compute;
-
-/// The draws of a frame for one colour format, by vertex entry point.
-#[derive(Debug)]
-pub struct DrawPipelines {
-    by_vertex_entry: Vec<(&'static str, vk::Pipeline)>,
-}
-
-/// The frame's compute kernels, by entry point.
-#[derive(Debug)]
-pub struct KernelPipelines {
-    by_entry: Vec<(&'static str, vk::Pipeline)>,
-}
 
 fn entry(name: &str) -> Result<CString, BackendError> {
     CString::new(name).map_err(|_| BackendError::Device {
@@ -54,7 +35,9 @@ fn scene_attributes() -> [vk::VertexInputAttributeDescription; 4] {
     ]
 }
 
-fn draw_pipeline(
+/// The graphics pipeline of `d` (the recipe's entry points, topology, depth test,
+/// bias and blending, as wgpu's) on `layout`, for passes compatible with `pass`.
+pub fn draw_pipeline(
     device: &Device,
     module: vk::ShaderModule,
     layout: vk::PipelineLayout,
@@ -160,119 +143,4 @@ fn draw_pipeline(
     .map_err(|(_, e)| map_vk(&format!("creating the {} pipeline", d.entry_points.0), e))?[0];
     device.name(pipeline, d.entry_points.0);
     Ok(pipeline)
-}
-
-impl DrawPipelines {
-    /// Every draw of the frame recipe: those of the camera's passes against
-    /// `camera_pass` (its colour format), the shadow pass's against `shadow_pass`.
-    pub fn new(
-        device: &Device,
-        module: vk::ShaderModule,
-        layouts: &RenderLayouts,
-        camera_pass: vk::RenderPass,
-        shadow_pass: vk::RenderPass,
-    ) -> Result<Self, BackendError> {
-        let mut made = Self {
-            by_vertex_entry: Vec::new(),
-        };
-        for (pass, draw) in frame::draws() {
-            let render_pass = match pass.work {
-                PassWork::Render(r) if r.depth == DepthTarget::ShadowMap => shadow_pass,
-                _ => camera_pass,
-            };
-            let vs = draw.entry_points.0;
-            let made_one = layouts
-                .pipeline_layout(vs)
-                .ok_or_else(|| BackendError::Device {
-                    backend: NAME,
-                    message: format!(
-                        "no pipeline layout for {vs} (a bug in precip: please report it)"
-                    ),
-                })
-                .and_then(|layout| draw_pipeline(device, module, layout, render_pass, draw));
-            match made_one {
-                Ok(p) => made.by_vertex_entry.push((vs, p)),
-                Err(e) => {
-                    made.destroy(device);
-                    return Err(e);
-                }
-            }
-        }
-        Ok(made)
-    }
-
-    /// The pipeline of the draw whose vertex entry point is `vertex_entry`.
-    #[must_use]
-    pub fn get(&self, vertex_entry: &str) -> Option<vk::Pipeline> {
-        self.by_vertex_entry
-            .iter()
-            .find(|(e, _)| *e == vertex_entry)
-            .map(|(_, p)| *p)
-    }
-
-    /// Destroys the pipelines (the device must be idle).
-    pub fn destroy(self, device: &Device) {
-        // SAFETY: the device is idle; destroyed once (by the renderer's destroy).
-        unsafe {
-            for (_, p) in self.by_vertex_entry {
-                device.raw.destroy_pipeline(p, None);
-            }
-        }
-    }
-}
-
-impl KernelPipelines {
-    /// Every kernel of the frame recipe, from the module of its program
-    /// (`module_of`).
-    pub fn new(
-        device: &Device,
-        module_of: impl Fn(Program) -> Option<vk::ShaderModule>,
-        layouts: &RenderLayouts,
-    ) -> Result<Self, BackendError> {
-        let mut made = Self {
-            by_entry: Vec::new(),
-        };
-        for kernel in frame::kernels() {
-            let entry = kernel.entry_point;
-            let made_one = match (module_of(kernel.program), layouts.pipeline_layout(entry)) {
-                (Some(module), Some(layout)) => compute(device, layout, module, entry),
-                _ => Err(BackendError::Device {
-                    backend: NAME,
-                    message: format!(
-                        "no module or layout for {entry} (a bug in precip: please report it)"
-                    ),
-                }),
-            };
-            match made_one {
-                Ok(p) => {
-                    device.name(p, entry);
-                    made.by_entry.push((entry, p));
-                }
-                Err(e) => {
-                    made.destroy(device);
-                    return Err(e);
-                }
-            }
-        }
-        Ok(made)
-    }
-
-    /// The pipeline of kernel `entry_point`.
-    #[must_use]
-    pub fn get(&self, entry_point: &str) -> Option<vk::Pipeline> {
-        self.by_entry
-            .iter()
-            .find(|(e, _)| *e == entry_point)
-            .map(|(_, p)| *p)
-    }
-
-    /// Destroys the pipelines (the device must be idle).
-    pub fn destroy(self, device: &Device) {
-        // SAFETY: the device is idle; destroyed once.
-        unsafe {
-            for (_, p) in self.by_entry {
-                device.raw.destroy_pipeline(p, None);
-            }
-        }
-    }
 }

@@ -1,0 +1,404 @@
+//! A frame's commands into one Vulkan command buffer (wgpu twin:
+//! `precip_gpu_wgpu::frame`): what `precip_gpu::renderer` recorded, plus what
+//! Vulkan needs besides.
+//!
+//! - **Render passes** are made from a pass's attachments ([`RenderPassKey`]: the
+//!   colour target's format, how each attachment loads and stores, whether depth
+//!   is written, the colour's final layout) and kept; **framebuffers** are made for
+//!   each frame and retired after it.
+//! - **Layouts**: between passes every texture rests in one layout fixed by its
+//!   usage — depth buffers `DEPTH_STENCIL_READ_ONLY_OPTIMAL` (sampled by the scene
+//!   and the splat kernel), storage textures `GENERAL`, sampled ones
+//!   `SHADER_READ_ONLY_OPTIMAL`; a render pass moves its attachments out of it and
+//!   back. The colour target ends the frame's last colour pass ready to copy
+//!   (offscreen) or to present (a swapchain image).
+//! - **Barriers**: the step's writes before the frame; after each dispatch, its
+//!   writes to every later kernel, draw and indirect read; each render pass's
+//!   subpass dependencies order it after the last use of its attachments (the
+//!   shadow map sampled by the last frame, the depth buffer shared by frames in
+//!   flight) and make its results visible to what reads them next; after the frame,
+//!   the next submission waits for what the frame's shaders read.
+//!
+//! Timestamps: two a pass (`TOP_OF_PIPE` at its start, `BOTTOM_OF_PIPE` at its
+//! end); a pass that does not run writes both at once and is not reported. Clip
+//! space is flipped with a negative viewport height, as wgpu-hal does, so the WGSL
+//! runs unchanged and the images agree.
+
+use ash::vk;
+use precip_gpu::frame::AttachmentLoad;
+use precip_gpu::gpu::{Command, FrameWork, PassKind};
+use precip_model::BackendError;
+
+use crate::commands::memory_barrier;
+use crate::device::Device;
+use crate::error::map_vk;
+use crate::gpu::Hal;
+use crate::image::DEPTH_FORMAT;
+use crate::query::{FRAME_QUERY_COUNT, QueryPool};
+
+/// What a render pass object is made from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RenderPassKey {
+    /// The colour target's format, how it loads and its layout after the pass.
+    pub colour: Option<(vk::Format, AttachmentLoad, vk::ImageLayout)>,
+    /// How the depth loads.
+    pub depth_load: AttachmentLoad,
+    /// Whether the depth is kept.
+    pub depth_stored: bool,
+    /// Whether a draw writes depth (else it is attached read-only).
+    pub depth_written: bool,
+}
+
+const FRAGMENT_TESTS: vk::PipelineStageFlags = vk::PipelineStageFlags::from_raw(
+    vk::PipelineStageFlags::EARLY_FRAGMENT_TESTS.as_raw()
+        | vk::PipelineStageFlags::LATE_FRAGMENT_TESTS.as_raw(),
+);
+
+fn load_op(load: AttachmentLoad) -> vk::AttachmentLoadOp {
+    match load {
+        AttachmentLoad::Clear => vk::AttachmentLoadOp::CLEAR,
+        AttachmentLoad::Load => vk::AttachmentLoadOp::LOAD,
+    }
+}
+
+/// The render pass of `key`.
+pub fn render_pass(device: &Device, key: &RenderPassKey) -> Result<vk::RenderPass, BackendError> {
+    use vk::ImageLayout as L;
+    let depth_rest = L::DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    let attachment = |format, load: AttachmentLoad, store: bool, rest, last| {
+        vk::AttachmentDescription::default()
+            .format(format)
+            .samples(vk::SampleCountFlags::TYPE_1)
+            .load_op(load_op(load))
+            .store_op(if store {
+                vk::AttachmentStoreOp::STORE
+            } else {
+                vk::AttachmentStoreOp::DONT_CARE
+            })
+            .stencil_load_op(vk::AttachmentLoadOp::DONT_CARE)
+            .stencil_store_op(vk::AttachmentStoreOp::DONT_CARE)
+            .initial_layout(match load {
+                AttachmentLoad::Clear => L::UNDEFINED,
+                AttachmentLoad::Load => rest,
+            })
+            .final_layout(last)
+    };
+    let mut attachments = Vec::with_capacity(2);
+    if let Some((format, load, last)) = key.colour {
+        let rest = L::COLOR_ATTACHMENT_OPTIMAL;
+        attachments.push(attachment(format, load, true, rest, last));
+    }
+    attachments.push(attachment(
+        DEPTH_FORMAT,
+        key.depth_load,
+        key.depth_stored,
+        depth_rest,
+        depth_rest,
+    ));
+    let colour = [vk::AttachmentReference {
+        attachment: 0,
+        layout: L::COLOR_ATTACHMENT_OPTIMAL,
+    }];
+    let depth = vk::AttachmentReference {
+        attachment: attachments.len() as u32 - 1,
+        layout: if key.depth_written {
+            L::DEPTH_STENCIL_ATTACHMENT_OPTIMAL
+        } else {
+            depth_rest
+        },
+    };
+    let colour: &[vk::AttachmentReference] = if key.colour.is_some() { &colour } else { &[] };
+    let subpass = [vk::SubpassDescription::default()
+        .pipeline_bind_point(vk::PipelineBindPoint::GRAPHICS)
+        .color_attachments(colour)
+        .depth_stencil_attachment(&depth)];
+    let attachment_stages = vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT | FRAGMENT_TESTS;
+    let attachment_writes =
+        vk::AccessFlags::COLOR_ATTACHMENT_WRITE | vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_WRITE;
+    let attachment_access = attachment_writes
+        | vk::AccessFlags::COLOR_ATTACHMENT_READ
+        | vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_READ;
+    let elsewhere = vk::PipelineStageFlags::TRANSFER
+        | vk::PipelineStageFlags::COMPUTE_SHADER
+        | vk::PipelineStageFlags::FRAGMENT_SHADER;
+    let dependencies = [
+        // Before: the last writes of its attachments, and the copies, kernels and
+        // fragments that read them (the last frame's image copy, splat, shadow test).
+        vk::SubpassDependency::default()
+            .src_subpass(vk::SUBPASS_EXTERNAL)
+            .dst_subpass(0)
+            .src_stage_mask(attachment_stages | elsewhere)
+            .dst_stage_mask(attachment_stages)
+            .src_access_mask(attachment_writes)
+            .dst_access_mask(attachment_access),
+        // After: to the attachments' next use, copies, kernels and fragments.
+        vk::SubpassDependency::default()
+            .src_subpass(0)
+            .dst_subpass(vk::SUBPASS_EXTERNAL)
+            .src_stage_mask(attachment_stages)
+            .dst_stage_mask(attachment_stages | elsewhere)
+            .src_access_mask(attachment_writes)
+            .dst_access_mask(
+                attachment_access | vk::AccessFlags::TRANSFER_READ | vk::AccessFlags::SHADER_READ,
+            ),
+    ];
+    let info = vk::RenderPassCreateInfo::default()
+        .attachments(&attachments)
+        .subpasses(&subpass)
+        .dependencies(&dependencies);
+    // SAFETY: a valid device; the create info and what it points to outlive the call.
+    let pass = unsafe { device.raw.create_render_pass(&info, None) }
+        .map_err(|e| map_vk("creating a render pass", e))?;
+    device.name(pass, "precip render pass");
+    Ok(pass)
+}
+
+/// A framebuffer of `views` for `pass`, `size` px.
+pub fn framebuffer(
+    device: &Device,
+    pass: vk::RenderPass,
+    views: &[vk::ImageView],
+    (width, height): (u32, u32),
+) -> Result<vk::Framebuffer, BackendError> {
+    let info = vk::FramebufferCreateInfo::default()
+        .render_pass(pass)
+        .attachments(views)
+        .width(width)
+        .height(height)
+        .layers(1);
+    // SAFETY: the views and the pass are live and compatible (formats match).
+    unsafe { device.raw.create_framebuffer(&info, None) }
+        .map_err(|e| map_vk("creating a framebuffer", e))
+}
+
+/// How a render pass of the frame begins.
+#[derive(Debug, Clone, Copy)]
+pub struct PassBegin {
+    /// The pass object.
+    pub pass: vk::RenderPass,
+    /// This frame's framebuffer.
+    pub framebuffer: vk::Framebuffer,
+    /// The render area, px.
+    pub size: (u32, u32),
+    /// Whether it has a colour attachment.
+    pub colour: bool,
+}
+
+/// The viewport of `size`, y flipped (WGSL's clip space, as wgpu-hal).
+///
+/// # Safety
+/// `cb` is a command buffer of `device` in the recording state.
+unsafe fn viewport(device: &Device, cb: vk::CommandBuffer, (width, height): (u32, u32)) {
+    let viewport = vk::Viewport {
+        x: 0.0,
+        y: height as f32,
+        width: width as f32,
+        height: -(height as f32),
+        min_depth: 0.0,
+        max_depth: 1.0,
+    };
+    let scissor = vk::Rect2D {
+        offset: vk::Offset2D { x: 0, y: 0 },
+        extent: vk::Extent2D { width, height },
+    };
+    // SAFETY: the caller guarantees `cb` is recording; negative heights are core
+    // since Vulkan 1.1.
+    unsafe {
+        device.raw.cmd_set_viewport(cb, 0, &[viewport]);
+        device.raw.cmd_set_scissor(cb, 0, &[scissor]);
+    }
+}
+
+/// Records `frame` into `cb` (see the module docs); `begins` holds, for each pass,
+/// how it begins if it is a render pass that runs.
+///
+/// # Safety
+/// - `cb` is a command buffer of `hal`'s device in the recording state, outside a
+///   render pass.
+/// - Every object `frame` and `begins` name is live, made on that device, and
+///   stays so until the submission of `cb` has finished; each pipeline was made
+///   for a pass compatible with the one it is used in, each group for the layout it
+///   is bound at, with one offset per dynamic binding.
+pub unsafe fn record_frame(
+    hal: &Hal,
+    cb: vk::CommandBuffer,
+    frame: &FrameWork<'_, Hal>,
+    begins: &[Option<PassBegin>],
+    stamps: Option<&QueryPool>,
+) {
+    use vk::AccessFlags as A;
+    use vk::PipelineStageFlags as S;
+    let device = &hal.device;
+    let stamp = |i, stage| {
+        if let Some(s) = stamps {
+            // SAFETY: `cb` is recording (the caller's guarantee); `i` is below the
+            // pool's count (two a pass), reset at the start of this recording.
+            unsafe { s.stamp(device, cb, i, stage) };
+        }
+    };
+    // SAFETY: `cb` is recording outside a render pass; every handle is live (the
+    // caller's guarantees).
+    unsafe {
+        if let Some(s) = stamps {
+            s.reset(device, cb, 0, FRAME_QUERY_COUNT);
+        }
+        // The step's compute writes (particles, cover) and any copy, to this frame.
+        memory_barrier(
+            device,
+            cb,
+            (
+                S::COMPUTE_SHADER | S::TRANSFER,
+                A::SHADER_WRITE | A::TRANSFER_WRITE,
+            ),
+            (
+                S::VERTEX_SHADER | S::FRAGMENT_SHADER | S::COMPUTE_SHADER | S::DRAW_INDIRECT,
+                A::SHADER_READ | A::SHADER_WRITE | A::INDIRECT_COMMAND_READ,
+            ),
+        );
+    }
+    let [r, g, b, a] = frame.clear_colour;
+    let clears = [
+        vk::ClearValue {
+            color: vk::ClearColorValue {
+                float32: [r, g, b, a],
+            },
+        },
+        vk::ClearValue {
+            depth_stencil: vk::ClearDepthStencilValue {
+                depth: 1.0,
+                stencil: 0,
+            },
+        },
+    ];
+    for ((index, pass), begin) in (0u32..).zip(&frame.passes).zip(begins) {
+        let (start, end) = (2 * index, 2 * index + 1);
+        stamp(start, S::TOP_OF_PIPE);
+        if pass.runs {
+            let (bind_point, begin) = match (&pass.kind, begin) {
+                (PassKind::Render(_), Some(begin)) => {
+                    let info = vk::RenderPassBeginInfo::default()
+                        .render_pass(begin.pass)
+                        .framebuffer(begin.framebuffer)
+                        .render_area(vk::Rect2D {
+                            offset: vk::Offset2D { x: 0, y: 0 },
+                            extent: vk::Extent2D {
+                                width: begin.size.0,
+                                height: begin.size.1,
+                            },
+                        })
+                        .clear_values(if begin.colour { &clears } else { &clears[1..] });
+                    // SAFETY: outside a render pass; the framebuffer was made for
+                    // this pass, of this size.
+                    unsafe {
+                        device
+                            .raw
+                            .cmd_begin_render_pass(cb, &info, vk::SubpassContents::INLINE);
+                        viewport(device, cb, begin.size);
+                    }
+                    (vk::PipelineBindPoint::GRAPHICS, Some(begin))
+                }
+                _ => (vk::PipelineBindPoint::COMPUTE, None),
+            };
+            let mut layout = vk::PipelineLayout::null();
+            for command in &pass.commands {
+                // SAFETY: see the block above; a group or draw follows its pipeline
+                // (the renderer's order), whose layout it is bound with.
+                unsafe { record(hal, cb, bind_point, &mut layout, command) };
+            }
+            if begin.is_some() {
+                // SAFETY: ends the pass begun above.
+                unsafe { device.raw.cmd_end_render_pass(cb) };
+            }
+        }
+        stamp(end, S::BOTTOM_OF_PIPE);
+    }
+    // The next frame's step and splat rewrite what these shaders read, and the
+    // resolve's zeroing writes must land before the next splat adds.
+    // SAFETY: outside a render pass.
+    unsafe {
+        memory_barrier(
+            device,
+            cb,
+            (
+                S::DRAW_INDIRECT | S::VERTEX_SHADER | S::FRAGMENT_SHADER | S::COMPUTE_SHADER,
+                A::SHADER_WRITE,
+            ),
+            (
+                S::COMPUTE_SHADER | S::TRANSFER,
+                A::SHADER_READ | A::SHADER_WRITE | A::TRANSFER_WRITE,
+            ),
+        );
+    }
+}
+
+/// Records one command.
+///
+/// # Safety
+/// As [`record_frame`]'s; `layout` is the last pipeline's layout.
+unsafe fn record(
+    hal: &Hal,
+    cb: vk::CommandBuffer,
+    bind_point: vk::PipelineBindPoint,
+    layout: &mut vk::PipelineLayout,
+    command: &Command<'_, Hal>,
+) {
+    use vk::AccessFlags as A;
+    use vk::PipelineStageFlags as S;
+    let device = &hal.device;
+    // SAFETY: the caller's guarantees.
+    unsafe {
+        match command {
+            Command::Kernel(p) | Command::Pipeline(p) => {
+                device.raw.cmd_bind_pipeline(cb, bind_point, p.pipeline);
+                *layout = p.layout;
+            }
+            Command::Group {
+                index,
+                group,
+                offsets,
+            } => device.raw.cmd_bind_descriptor_sets(
+                cb,
+                bind_point,
+                *layout,
+                *index,
+                &[group.set],
+                offsets,
+            ),
+            Command::Dispatch(x, y) => {
+                device.raw.cmd_dispatch(cb, *x, *y, 1);
+                memory_barrier(
+                    device,
+                    cb,
+                    (S::COMPUTE_SHADER, A::SHADER_WRITE),
+                    (
+                        S::COMPUTE_SHADER
+                            | S::DRAW_INDIRECT
+                            | S::VERTEX_SHADER
+                            | S::FRAGMENT_SHADER,
+                        A::SHADER_READ | A::SHADER_WRITE | A::INDIRECT_COMMAND_READ,
+                    ),
+                );
+            }
+            Command::Meshes { vertices, indices } => {
+                device
+                    .raw
+                    .cmd_bind_vertex_buffers(cb, 0, &[vertices.raw], &[0]);
+                device
+                    .raw
+                    .cmd_bind_index_buffer(cb, indices.raw, 0, vk::IndexType::UINT32);
+            }
+            Command::Draw(n) => device.raw.cmd_draw(cb, *n, 1, 0, 0),
+            Command::DrawIndexed(range) => device.raw.cmd_draw_indexed(
+                cb,
+                range.end.saturating_sub(range.start),
+                1,
+                range.start,
+                0,
+                0,
+            ),
+            Command::DrawIndirect(buffer, offset) => {
+                device.raw.cmd_draw_indirect(cb, buffer.raw, *offset, 1, 16);
+            }
+        }
+    }
+}

@@ -1,0 +1,721 @@
+//! The frame run over any [`Gpu`], written once: [`Drawing`] is a device's frame
+//! objects (the frame groups' layouts, the frame's kernels, and per colour format
+//! one pipeline per draw of [`crate::frame::FRAME_PASSES`]); [`FrameState`] is one
+//! configuration's (the buffers, textures, samplers and groups of
+//! [`crate::frame_resources`], the scene, the target's depth buffer and splat sums,
+//! the offscreen image, the ring of `RenderParams` blocks).
+//!
+//! A frame ([`FrameState::draw`]): the host decides it ([`FrameHost::decide`]: its
+//! block, whether the shadow map is redrawn, the sky's colour), its block goes into
+//! the next slot of the ring, and [`frame_plan`] is walked into a [`FrameWork`] —
+//! each kernel with its groups and workgroups, each draw with its pipeline, groups
+//! and draw call — which the backend submits ([`Gpu::submit_frame`]). What a pass
+//! binds comes from `bind_groups::groups_of` and the resources tables; nothing of
+//! it is written per backend.
+
+use precip_model::{BackendError, DrawnCounts, Image, PassTiming, View};
+
+use crate::bind_groups::{GroupLayout, RENDER_MATERIAL, groups_of};
+use crate::executor::Simulation;
+use crate::frame::{
+    self, DepthTarget, DrawOf, FRAME_PASSES, FrameDecision, FrameHost, PassWork, frame_plan,
+};
+use crate::frame_resources::{
+    FRAME_GROUPS, FrameBound, FrameBuffer, FrameGroupFill, FrameTexture, Sampler, TARGET_GROUPS,
+    TargetResource, TexelFormat, TextureUsage, frame_buffers, frame_textures, splat_sums_bytes,
+};
+use crate::gpu::{
+    Attachments, BindingResource, Command, FrameWork, Gpu, PassKind, RecordedPass, Target,
+    TextureDesc,
+};
+use crate::recipe::{DispatchCounts, FrameDraws};
+use crate::resources::BufferUsage;
+use crate::scene::SceneGpu;
+use crate::shaders::Program;
+
+/// A bug in precip: a resource the tables name was not made.
+fn missing(what: &str) -> BackendError {
+    BackendError::Device {
+        backend: "precip-gpu",
+        message: format!("{what} of the frame is missing (a bug in precip: please report it)"),
+    }
+}
+
+/// Finds the value paired with `key`.
+fn find<'a, K: PartialEq, V>(pairs: &'a [(K, V)], key: &K) -> Option<&'a V> {
+    pairs.iter().find(|(k, _)| k == key).map(|(_, v)| v)
+}
+
+/// Every group table the frame's kernels and draws bind, once each.
+fn frame_tables() -> Vec<&'static GroupLayout> {
+    let mut tables: Vec<&'static GroupLayout> = Vec::new();
+    let entries = frame::kernels()
+        .map(|k| (k.program, k.entry_point))
+        .chain(frame::draws().map(|(_, d)| (Program::Render, d.entry_points.0)));
+    for (program, entry) in entries {
+        for table in groups_of(program, entry).unwrap_or(&[]) {
+            if !tables.iter().any(|t| t.name == table.name) {
+                tables.push(table);
+            }
+        }
+    }
+    tables
+}
+
+/// The pipelines of every draw for one colour format, by vertex entry point.
+type Pipelines<G> = Vec<(&'static str, <G as Gpu>::DrawPipeline)>;
+
+/// A device's frame objects: layouts, kernels, and draw pipelines per colour format.
+#[derive(Debug)]
+pub struct Drawing<G: Gpu> {
+    layouts: Vec<(&'static str, G::GroupLayout)>,
+    kernels: Vec<(&'static str, G::Kernel)>,
+    pipelines: Vec<(G::ColourFormat, Pipelines<G>)>,
+}
+
+impl<G: Gpu> Drawing<G> {
+    /// The frame groups' layouts and the frame's kernels on `gpu`.
+    pub fn new(gpu: &mut G) -> Result<Self, BackendError> {
+        let mut made = Self {
+            layouts: Vec::new(),
+            kernels: Vec::new(),
+            pipelines: Vec::new(),
+        };
+        match made.fill(gpu) {
+            Ok(()) => Ok(made),
+            Err(e) => {
+                made.destroy(gpu);
+                Err(e)
+            }
+        }
+    }
+
+    fn fill(&mut self, gpu: &mut G) -> Result<(), BackendError> {
+        for table in frame_tables() {
+            let layout = gpu.group_layout(table)?;
+            self.layouts.push((table.name, layout));
+        }
+        for k in frame::kernels() {
+            let layouts = self.layouts_of(k.program, k.entry_point)?;
+            let kernel = gpu.kernel(k.program, k.entry_point, &layouts)?;
+            self.kernels.push((k.entry_point, kernel));
+        }
+        Ok(())
+    }
+
+    /// The layouts of `entry_point`'s groups, at 0, 1, ….
+    fn layouts_of(
+        &self,
+        program: Program,
+        entry_point: &str,
+    ) -> Result<Vec<&G::GroupLayout>, BackendError> {
+        groups_of(program, entry_point)
+            .unwrap_or(&[])
+            .iter()
+            .map(|t| find(&self.layouts, &t.name).ok_or_else(|| missing(t.name)))
+            .collect()
+    }
+
+    /// The layout of `table`.
+    fn layout(&self, table: &GroupLayout) -> Result<&G::GroupLayout, BackendError> {
+        find(&self.layouts, &table.name).ok_or_else(|| missing(table.name))
+    }
+
+    /// Makes the draws' pipelines for `format`, if not made yet.
+    pub fn prepare(&mut self, gpu: &mut G, format: G::ColourFormat) -> Result<(), BackendError> {
+        if self.pipelines.iter().any(|(f, _)| *f == format) {
+            return Ok(());
+        }
+        let mut made: Pipelines<G> = Vec::new();
+        for (pass, draw) in frame::draws() {
+            let PassWork::Render(recipe) = &pass.work else {
+                continue;
+            };
+            let pipeline = self
+                .layouts_of(Program::Render, draw.entry_points.0)
+                .and_then(|layouts| {
+                    gpu.draw_pipeline(draw, recipe, &layouts, recipe.colour.map(|_| format))
+                });
+            match pipeline {
+                Ok(p) => made.push((draw.entry_points.0, p)),
+                Err(e) => {
+                    for (_, p) in made {
+                        gpu.destroy_draw_pipeline(p);
+                    }
+                    return Err(e);
+                }
+            }
+        }
+        self.pipelines.push((format, made));
+        Ok(())
+    }
+
+    /// Hands everything back to `gpu`.
+    pub fn destroy(self, gpu: &mut G) {
+        for (_, pipelines) in self.pipelines {
+            for (_, p) in pipelines {
+                gpu.destroy_draw_pipeline(p);
+            }
+        }
+        for (_, k) in self.kernels {
+            gpu.destroy_kernel(k);
+        }
+        for (_, l) in self.layouts {
+            gpu.destroy_group_layout(l);
+        }
+    }
+}
+
+/// What a target of one size adds: the camera's depth buffer, the splat sums and
+/// the groups that bind them ([`TARGET_GROUPS`]).
+#[derive(Debug)]
+struct TargetState<G: Gpu> {
+    size: (u32, u32),
+    depth: G::Texture,
+    sums: G::Buffer,
+    groups: Vec<(&'static str, G::BindGroup)>,
+}
+
+impl<G: Gpu> TargetState<G> {
+    fn destroy(self, gpu: &mut G) {
+        for (_, g) in self.groups {
+            gpu.destroy_bind_group(g);
+        }
+        gpu.destroy_texture(self.depth);
+        gpu.destroy_buffer(self.sums);
+    }
+}
+
+/// What drawing holds for one configuration.
+#[derive(Debug)]
+pub struct FrameState<G: Gpu> {
+    buffers: Vec<(FrameBuffer, G::Buffer)>,
+    textures: Vec<(FrameTexture, G::Texture)>,
+    samplers: Vec<(Sampler, G::Sampler)>,
+    groups: Vec<(&'static str, G::BindGroup)>,
+    scene: Option<SceneGpu<G>>,
+    target: Option<TargetState<G>>,
+    offscreen: Option<G::Texture>,
+    rendered: bool,
+    host: FrameHost,
+    frames_drawn: u64,
+    params_stride: u64,
+    cover_texels: u32,
+    /// Which passes of [`FRAME_PASSES`] the last frame ran.
+    ran: [bool; FRAME_PASSES.len()],
+}
+
+/// What a frame group's entries resolve against.
+struct Bindable<'a, G: Gpu> {
+    state: &'a FrameState<G>,
+    sim: &'a Simulation<G>,
+    /// The target's depth buffer and splat sums (for [`TARGET_GROUPS`]).
+    target: Option<(&'a G::Texture, &'a G::Buffer)>,
+}
+
+impl<'a, G: Gpu> Bindable<'a, G> {
+    fn resource(&self, bound: FrameBound) -> Result<BindingResource<'a, G>, BackendError> {
+        let state = self.state;
+        let texture = |t| find(&state.textures, &t).ok_or_else(|| missing("a texture"));
+        Ok(match bound {
+            FrameBound::Sim(b) => BindingResource::Buffer(self.sim.buffer(b)),
+            FrameBound::Buffer(b) => BindingResource::Buffer(
+                find(&state.buffers, &b).ok_or_else(|| missing("a buffer"))?,
+            ),
+            FrameBound::Texture(t) => BindingResource::Texture(texture(t)?),
+            FrameBound::StorageTexture(t) => BindingResource::StorageTexture(texture(t)?),
+            FrameBound::Sampler(s) => BindingResource::Sampler(
+                find(&state.samplers, &s).ok_or_else(|| missing("a sampler"))?,
+            ),
+            FrameBound::Target(TargetResource::CameraDepth) => {
+                BindingResource::Texture(self.target.ok_or_else(|| missing("the depth buffer"))?.0)
+            }
+            FrameBound::Target(TargetResource::SplatSums) => {
+                BindingResource::Buffer(self.target.ok_or_else(|| missing("the splat sums"))?.1)
+            }
+        })
+    }
+
+    /// The groups `fills` describe, by table name; on an error, those made are
+    /// handed back.
+    fn groups(
+        &self,
+        gpu: &mut G,
+        drawing: &Drawing<G>,
+        fills: &[FrameGroupFill],
+    ) -> Result<Vec<(&'static str, G::BindGroup)>, BackendError> {
+        let mut made = Vec::with_capacity(fills.len());
+        for fill in fills {
+            let group = drawing.layout(fill.layout).and_then(|layout| {
+                let entries = fill
+                    .bound
+                    .iter()
+                    .map(|&(binding, bound)| Ok((binding, self.resource(bound)?)))
+                    .collect::<Result<Vec<_>, BackendError>>()?;
+                gpu.bind_group(layout, fill.layout, &entries)
+            });
+            match group {
+                Ok(g) => made.push((fill.layout.name, g)),
+                Err(e) => {
+                    for (_, g) in made {
+                        gpu.destroy_bind_group(g);
+                    }
+                    return Err(e);
+                }
+            }
+        }
+        Ok(made)
+    }
+}
+
+impl<G: Gpu> FrameState<G> {
+    /// Allocates drawing's resources beside `sim`'s, from the tables, and uploads
+    /// its scene; on an error, hands back what it made.
+    pub fn new(
+        gpu: &mut G,
+        drawing: &Drawing<G>,
+        sim: &Simulation<G>,
+    ) -> Result<Self, BackendError> {
+        let setup = sim.host().setup();
+        let texels = setup.cover.frame.texels;
+        let mut made = Self {
+            buffers: Vec::new(),
+            textures: Vec::new(),
+            samplers: Vec::new(),
+            groups: Vec::new(),
+            scene: None,
+            target: None,
+            offscreen: None,
+            rendered: false,
+            host: FrameHost::new(setup),
+            frames_drawn: 0,
+            params_stride: 0,
+            cover_texels: texels.x * texels.y,
+            ran: [false; FRAME_PASSES.len()],
+        };
+        match made.fill(gpu, drawing, sim) {
+            Ok(()) => Ok(made),
+            Err(e) => {
+                made.destroy(gpu);
+                Err(e)
+            }
+        }
+    }
+
+    fn fill(
+        &mut self,
+        gpu: &mut G,
+        drawing: &Drawing<G>,
+        sim: &Simulation<G>,
+    ) -> Result<(), BackendError> {
+        let setup = sim.host().setup();
+        for spec in frame_buffers(sim.particle_count()) {
+            let bytes = if spec.usage == BufferUsage::FrameBlocks {
+                let align = gpu.uniform_alignment().max(16);
+                self.params_stride = spec.bytes.div_ceil(align) * align;
+                self.params_stride * u64::from(gpu.slots().max(1))
+            } else {
+                spec.bytes
+            };
+            let buffer = gpu.create_buffer(spec.label, bytes, spec.usage, None)?;
+            self.buffers.push((spec.buffer, buffer));
+        }
+        for spec in frame_textures(setup) {
+            let texture = gpu.create_texture(&TextureDesc {
+                label: spec.label,
+                size: (spec.size[0], spec.size[1]),
+                format: spec.format,
+                usage: spec.usage,
+                contents: spec.contents.as_deref(),
+            })?;
+            self.textures.push((spec.texture, texture));
+        }
+        for kind in [
+            Sampler::LinearClamp,
+            Sampler::ShadowComparison,
+            Sampler::LinearRepeat,
+        ] {
+            let sampler = gpu.create_sampler(kind)?;
+            self.samplers.push((kind, sampler));
+        }
+        let groups = Bindable {
+            state: &*self,
+            sim,
+            target: None,
+        }
+        .groups(gpu, drawing, &FRAME_GROUPS)?;
+        self.groups = groups;
+        self.scene = SceneGpu::upload(gpu, setup, drawing.layout(&RENDER_MATERIAL)?)?;
+        Ok(())
+    }
+
+    /// Hands everything back to `gpu`.
+    pub fn destroy(self, gpu: &mut G) {
+        if let Some(t) = self.target {
+            t.destroy(gpu);
+        }
+        if let Some(s) = self.scene {
+            s.destroy(gpu);
+        }
+        if let Some(t) = self.offscreen {
+            gpu.destroy_texture(t);
+        }
+        for (_, g) in self.groups {
+            gpu.destroy_bind_group(g);
+        }
+        for (_, s) in self.samplers {
+            gpu.destroy_sampler(s);
+        }
+        for (_, t) in self.textures {
+            gpu.destroy_texture(t);
+        }
+        for (_, b) in self.buffers {
+            gpu.destroy_buffer(b);
+        }
+    }
+
+    /// Makes the offscreen image (when no surface is given) and the target's
+    /// resources for a `size` frame, replacing those of another size.
+    fn prepare_target(
+        &mut self,
+        gpu: &mut G,
+        drawing: &Drawing<G>,
+        sim: &Simulation<G>,
+        size: (u32, u32),
+        offscreen: bool,
+    ) -> Result<(), BackendError> {
+        if offscreen
+            && self
+                .offscreen
+                .as_ref()
+                .is_none_or(|t| gpu.texture_size(t) != size)
+        {
+            if let Some(old) = self.offscreen.take() {
+                gpu.destroy_texture(old);
+            }
+            self.rendered = false;
+            self.offscreen = Some(gpu.create_texture(&TextureDesc {
+                label: "precip image",
+                size,
+                format: TexelFormat::Rgba8UnormSrgb,
+                usage: TextureUsage::ColourTarget,
+                contents: None,
+            })?);
+        }
+        if self.target.as_ref().is_some_and(|t| t.size == size) {
+            return Ok(());
+        }
+        if let Some(old) = self.target.take() {
+            old.destroy(gpu);
+        }
+        let depth = gpu.create_texture(&TextureDesc {
+            label: "precip depth",
+            size,
+            format: TexelFormat::Depth32Float,
+            usage: TextureUsage::DepthAttachment,
+            contents: None,
+        })?;
+        let bytes = splat_sums_bytes(size);
+        // Zero at first: the resolve zeroes what it reads after that.
+        let zeros = vec![0u8; bytes as usize];
+        let sums = match gpu.create_buffer(
+            "precip splat sums",
+            bytes,
+            BufferUsage::Storage,
+            Some(&zeros),
+        ) {
+            Ok(s) => s,
+            Err(e) => {
+                gpu.destroy_texture(depth);
+                return Err(e);
+            }
+        };
+        let groups = Bindable {
+            state: &*self,
+            sim,
+            target: Some((&depth, &sums)),
+        }
+        .groups(gpu, drawing, &TARGET_GROUPS);
+        match groups {
+            Ok(groups) => {
+                self.target = Some(TargetState {
+                    size,
+                    depth,
+                    sums,
+                    groups,
+                });
+                Ok(())
+            }
+            Err(e) => {
+                gpu.destroy_texture(depth);
+                gpu.destroy_buffer(sums);
+                Err(e)
+            }
+        }
+    }
+
+    /// Draws a frame of `sim` for `view` into `surface`, or into the offscreen image
+    /// when `None`.
+    pub fn draw(
+        &mut self,
+        gpu: &mut G,
+        drawing: &mut Drawing<G>,
+        sim: &Simulation<G>,
+        view: &View,
+        surface: Option<&G::Surface>,
+    ) -> Result<(), BackendError> {
+        gpu.limits().check_view(view)?;
+        let size = (view.width_px, view.height_px);
+        self.prepare_target(gpu, drawing, sim, size, surface.is_none())?;
+        let decision = self.host.decide(sim, view);
+        let slot = (self.frames_drawn % u64::from(gpu.slots().max(1))) as u32;
+        gpu.free_slot(slot)?;
+        let offset = u64::from(slot) * self.params_stride;
+        let params = self
+            .buffers
+            .iter_mut()
+            .find(|(b, _)| *b == FrameBuffer::RenderParams)
+            .map(|(_, b)| b)
+            .ok_or_else(|| missing("the frame's block"))?;
+        gpu.write_buffer(params, offset, bytemuck::bytes_of(&decision.params))?;
+        let target = match (surface, &self.offscreen) {
+            (Some(s), _) => Target::Surface(s),
+            (None, Some(t)) => Target::Texture(t),
+            (None, None) => return Err(missing("the offscreen image")),
+        };
+        let format = gpu.colour_format(target);
+        drawing.prepare(gpu, format)?;
+        let offset = u32::try_from(offset).map_err(|_| missing("a frame block below 4 GiB"))?;
+        let offsets = [offset; 2];
+        let work = self.record(drawing, format, &decision, &offsets, view, sim)?;
+        gpu.submit_frame(&work, target)?;
+        let mut ran = [false; FRAME_PASSES.len()];
+        for (r, pass) in ran.iter_mut().zip(&work.passes) {
+            *r = pass.runs;
+        }
+        drop(work);
+        self.ran = ran;
+        self.frames_drawn += 1;
+        if surface.is_none() {
+            self.rendered = true;
+        }
+        Ok(())
+    }
+
+    /// The frame plan under `decision` as commands.
+    fn record<'a>(
+        &'a self,
+        drawing: &'a Drawing<G>,
+        format: G::ColourFormat,
+        decision: &FrameDecision,
+        offsets: &'a [u32; 2],
+        view: &View,
+        sim: &Simulation<G>,
+    ) -> Result<FrameWork<'a, G>, BackendError> {
+        let target = self.target.as_ref().ok_or_else(|| missing("the target"))?;
+        let pipelines =
+            find(&drawing.pipelines, &format).ok_or_else(|| missing("a draw pipeline"))?;
+        let draws = find(&self.buffers, &FrameBuffer::Draws).ok_or_else(|| missing("draws"))?;
+        let shadow_map = find(&self.textures, &FrameTexture::ShadowMap)
+            .ok_or_else(|| missing("the shadow map"))?;
+        let counts = DispatchCounts {
+            particles: sim.particle_count(),
+            cover_texels: self.cover_texels,
+            wave_cells: 0,
+        };
+        let detail = (
+            view.camera.position_m,
+            self.scene
+                .as_ref()
+                .map_or(0.0, |s| s.detail_distance_m(view)),
+        );
+        let last_colour = FRAME_PASSES
+            .iter()
+            .rposition(|p| matches!(p.work, PassWork::Render(r) if r.colour.is_some()));
+        // Binds each of `tables` at its index (a material group is bound per mesh).
+        let bind = |commands: &mut Vec<Command<'a, G>>,
+                    tables: &[GroupLayout]|
+         -> Result<(), BackendError> {
+            for (index, table) in tables.iter().enumerate() {
+                if table.name == RENDER_MATERIAL.name {
+                    continue;
+                }
+                let group = find(&self.groups, &table.name)
+                    .or_else(|| find(&target.groups, &table.name))
+                    .ok_or_else(|| missing(table.name))?;
+                commands.push(Command::Group {
+                    index: index as u32,
+                    group,
+                    offsets: &offsets[..table.dynamic_bindings().min(2)],
+                });
+            }
+            Ok(())
+        };
+        let mut passes = Vec::with_capacity(FRAME_PASSES.len());
+        for planned in frame_plan(decision.conditions) {
+            let mut commands = Vec::new();
+            let kind = match &planned.pass.work {
+                PassWork::Kernels(_) => {
+                    for k in planned.kernels(counts) {
+                        let kernel = find(&drawing.kernels, &k.kernel.entry_point)
+                            .ok_or_else(|| missing(k.kernel.entry_point))?;
+                        commands.push(Command::Kernel(kernel));
+                        bind(&mut commands, k.groups)?;
+                        commands.push(Command::Dispatch(k.workgroups.0, k.workgroups.1));
+                    }
+                    PassKind::Compute
+                }
+                PassWork::Render(recipe) => {
+                    for d in planned.draws() {
+                        let vs = d.draw.entry_points.0;
+                        let pipeline = find(pipelines, &vs).ok_or_else(|| missing(vs))?;
+                        commands.push(Command::Pipeline(pipeline));
+                        bind(&mut commands, d.groups)?;
+                        match d.draw.of {
+                            DrawOf::SceneMeshes { materials } => {
+                                if let Some(scene) = &self.scene {
+                                    scene.draw(&mut commands, materials, detail.0, detail.1);
+                                }
+                            }
+                            DrawOf::FullScreenTriangle => commands.push(Command::Draw(3)),
+                            DrawOf::Indirect { offset } => {
+                                commands.push(Command::DrawIndirect(draws, offset));
+                            }
+                        }
+                    }
+                    PassKind::Render(Attachments {
+                        depth: match recipe.depth {
+                            DepthTarget::ShadowMap => shadow_map,
+                            DepthTarget::Camera => &target.depth,
+                        },
+                        recipe,
+                        depth_written: recipe.draws.iter().any(|d| d.depth_write),
+                        colour_last: last_colour == Some(planned.index as usize),
+                    })
+                }
+            };
+            passes.push(RecordedPass {
+                name: planned.pass.name,
+                runs: planned.runs,
+                kind,
+                commands,
+            });
+        }
+        let sky = decision.sky_colour;
+        Ok(FrameWork {
+            passes,
+            clear_colour: [sky.x, sky.y, sky.z, 1.0],
+        })
+    }
+
+    /// The offscreen image of the last frame drawn into it.
+    pub fn read_image(&self, gpu: &mut G) -> Result<Image, BackendError> {
+        match &self.offscreen {
+            Some(t) if self.rendered => {
+                let (width_px, height_px) = gpu.texture_size(t);
+                Ok(Image {
+                    width_px,
+                    height_px,
+                    rgba8: gpu.read_texture(t)?,
+                })
+            }
+            _ => Err(BackendError::NothingRendered),
+        }
+    }
+
+    /// What the last frame drew (the cull's counts, read back).
+    pub fn drawn(&self, gpu: &mut G) -> Result<DrawnCounts, BackendError> {
+        let draws = find(&self.buffers, &FrameBuffer::Draws).ok_or_else(|| missing("draws"))?;
+        Ok(FrameDraws::counts(
+            &gpu.read_buffer(draws, FrameDraws::BYTES)?,
+        ))
+    }
+
+    /// The last frame's time per pass that ran.
+    pub fn timings(&self, gpu: &mut G) -> Result<Vec<PassTiming>, BackendError> {
+        let Some(ms) = gpu.frame_times_ms()? else {
+            return Ok(Vec::new());
+        };
+        Ok(FRAME_PASSES
+            .iter()
+            .zip(self.ran)
+            .zip(ms)
+            .filter(|((_, ran), _)| *ran)
+            .map(|((pass, _), milliseconds)| PassTiming {
+                pass: pass.name,
+                milliseconds,
+            })
+            .collect())
+    }
+
+    /// The cover's three filtered textures as the last frame wrote them: per texel
+    /// `[depth mm, SWE mm, peak SWE mm, wetness, accumulation mask, melt mask, age
+    /// days, puddle ratio, sand and dust kg/m², the surface's roughness length under
+    /// snow m, 0, 0]`, rows of the cover grid in order; `None` before a frame.
+    pub fn cover_textures(&self, gpu: &mut G) -> Result<Option<Vec<[f32; 12]>>, BackendError> {
+        if self.frames_drawn == 0 {
+            return Ok(None);
+        }
+        let mut halves = |t: FrameTexture| -> Result<Vec<f32>, BackendError> {
+            let texture = find(&self.textures, &t).ok_or_else(|| missing("a cover texture"))?;
+            Ok(gpu
+                .read_texture(texture)?
+                .chunks_exact(2)
+                .map(|h| f16_to_f32(u16::from_le_bytes([h[0], h[1]])))
+                .collect())
+        };
+        let a = halves(FrameTexture::CoverA)?;
+        let b = halves(FrameTexture::CoverB)?;
+        let c = halves(FrameTexture::CoverC)?;
+        Ok(Some(
+            a.chunks_exact(4)
+                .zip(b.chunks_exact(4))
+                .zip(c.chunks_exact(4))
+                .map(|((a, b), c)| {
+                    [
+                        a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3], c[0], c[1], c[2], c[3],
+                    ]
+                })
+                .collect(),
+        ))
+    }
+}
+
+/// An IEEE half (binary16) as `f32`.
+fn f16_to_f32(bits: u16) -> f32 {
+    let sign = if bits & 0x8000 == 0 { 1.0 } else { -1.0 };
+    let exponent = i32::from((bits >> 10) & 0x1f);
+    let mantissa = f32::from(bits & 0x3ff);
+    sign * match exponent {
+        0 => mantissa * 2f32.powi(-24),
+        31 if mantissa == 0.0 => f32::INFINITY,
+        31 => f32::NAN,
+        e => (1.0 + mantissa / 1024.0) * 2f32.powi(e - 15),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn halves_decode() {
+        assert!((f16_to_f32(0x3c00) - 1.0).abs() < f32::EPSILON);
+        assert!((f16_to_f32(0xc000) + 2.0).abs() < f32::EPSILON);
+        assert!((f16_to_f32(0x7bff) - 65504.0).abs() < f32::EPSILON);
+        assert!((f16_to_f32(0x0001) - 2f32.powi(-24)).abs() < f32::EPSILON);
+        assert!(f16_to_f32(0x7c00).is_infinite() && f16_to_f32(0x7e00).is_nan());
+    }
+
+    #[test]
+    fn every_frame_table_is_named_once_and_includes_the_material() {
+        let tables = frame_tables();
+        for (i, t) in tables.iter().enumerate() {
+            assert!(tables[..i].iter().all(|u| u.name != t.name), "{}", t.name);
+        }
+        assert!(tables.iter().any(|t| t.name == RENDER_MATERIAL.name));
+        for fill in FRAME_GROUPS.iter().chain(&TARGET_GROUPS) {
+            assert!(tables.iter().any(|t| t.name == fill.layout.name));
+        }
+    }
+}
