@@ -239,7 +239,10 @@ impl<G: Gpu> Backend for GpuBackend<G> {
     }
 
     fn timings(&mut self) -> Result<Timings, BackendError> {
-        let mut passes = Simulation::step_timings(&mut self.gpu)?;
+        let mut passes = match &self.state {
+            Some(state) => state.sim.step_timings(&mut self.gpu)?,
+            None => Vec::new(),
+        };
         if let Some(frame) = self.state.as_ref().and_then(|s| s.frame.as_ref()) {
             passes.extend(frame.timings(&mut self.gpu)?);
         }

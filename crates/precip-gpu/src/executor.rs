@@ -76,6 +76,7 @@ impl<G: Gpu> Kernels<G> {
                 program: Program::QueryBeams,
                 entry_point: "query_beams",
                 over: crate::recipe::DispatchOver::OneWorkgroup,
+                when: crate::recipe::KernelWhen::Always,
             },
             OPTICS_PASS,
         ]);
@@ -189,6 +190,8 @@ pub struct Simulation<G: Gpu> {
     wave_frame: GridFrame,
     uniform_stride: u64,
     steps_submitted: u64,
+    /// The kernels the last step dispatched, in order (its timings' names).
+    last_step: Vec<&'static str>,
 }
 
 /// A setup checked and computed on the host ([`Simulation::prepare`]).
@@ -273,6 +276,7 @@ impl<G: Gpu> Simulation<G> {
                     wave_frame,
                     uniform_stride: parts.1,
                     steps_submitted: 0,
+                    last_step: Vec::new(),
                 };
                 match sim.init(gpu, kernels) {
                     Ok(()) => Ok(sim),
@@ -448,13 +452,20 @@ impl<G: Gpu> Simulation<G> {
         gpu.write_buffer(self.buffer_mut(SimBuffer::StepBlocks), base, &step_bytes)?;
         gpu.write_buffer(self.buffer_mut(SimBuffer::CoverBlocks), base, &cover_bytes)?;
         let counts = self.dispatch_counts();
-        let mut dispatches = Vec::with_capacity(steps.blocks.len() * kernels.substep.len());
+        // An idle feature's kernels are not dispatched (`KernelWhen`).
+        let activity = self.host.activity();
+        let substep: Vec<_> = kernels
+            .substep
+            .iter()
+            .filter(|(pass, _)| pass.when.holds(activity))
+            .collect();
+        let mut dispatches = Vec::with_capacity(steps.blocks.len() * substep.len());
         for k in 0..steps.blocks.len() as u64 {
             let offset = u32::try_from(base + k * stride).map_err(|_| BackendError::Device {
                 backend: "precip-gpu",
                 message: "a uniform offset beyond 4 GiB (a bug in precip: please report it)".into(),
             })?;
-            for (pass, kernel) in &kernels.substep {
+            for (pass, kernel) in &substep {
                 let group = match pass.program {
                     Program::CoverUpdate => &self.cover_group,
                     _ => &self.step_group,
@@ -468,15 +479,18 @@ impl<G: Gpu> Simulation<G> {
             }
         }
         gpu.dispatch(&dispatches, true)?;
+        self.last_step = substep.iter().map(|(p, _)| p.entry_point).collect();
         self.steps_submitted += 1;
         self.host.advance(&steps);
         Ok(())
     }
 
-    /// The last step's time per kernel, from the device's timestamps.
-    pub fn step_timings(gpu: &mut G) -> Result<Vec<PassTiming>, BackendError> {
+    /// The last step's time per kernel it dispatched, from the device's timestamps.
+    pub fn step_timings(&self, gpu: &mut G) -> Result<Vec<PassTiming>, BackendError> {
         Ok(match gpu.kernel_times_ms()? {
-            Some(ms) if ms.len() >= SUBSTEP_PASSES.len() => substep_timings(ms),
+            Some(ms) if !self.last_step.is_empty() && ms.len() >= self.last_step.len() => {
+                substep_timings(&self.last_step, ms)
+            }
             _ => Vec::new(),
         })
     }

@@ -169,6 +169,33 @@ pub struct KernelPass {
     pub entry_point: &'static str,
     /// Its dispatch.
     pub over: DispatchOver,
+    /// When it is dispatched.
+    pub when: KernelWhen,
+}
+
+/// When a kernel of the step is dispatched: always, or only while the feature it
+/// serves may have work ([`precip_model::host::Activity`], decided on the host), so
+/// an idle feature costs nothing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KernelWhen {
+    /// Every time its pass runs.
+    Always,
+    /// While some texel may hold snow (the drift).
+    WhileSnowMayLie,
+    /// While some texel may hold standing water (the flow).
+    WhileWaterMayStand,
+}
+
+impl KernelWhen {
+    /// Whether a kernel with this condition runs under `activity`.
+    #[must_use]
+    pub const fn holds(self, activity: precip_model::host::Activity) -> bool {
+        match self {
+            Self::Always => true,
+            Self::WhileSnowMayLie => activity.snow_may_lie,
+            Self::WhileWaterMayStand => activity.water_may_stand,
+        }
+    }
 }
 
 /// Initialisation (configure): pre-warmed particles.
@@ -176,6 +203,7 @@ pub const INIT_PASS: KernelPass = KernelPass {
     program: Program::StepParticles,
     entry_point: "init_particles",
     over: DispatchOver::Particles,
+    when: KernelWhen::Always,
 };
 
 /// The kernels of one sub-step before the snow's drift.
@@ -184,31 +212,37 @@ const SUBSTEP_HEAD: [KernelPass; 6] = [
         program: Program::StepParticles,
         entry_point: "reset_births",
         over: DispatchOver::OneWorkgroup,
+        when: KernelWhen::Always,
     },
     KernelPass {
         program: Program::StepParticles,
         entry_point: "step_particles",
         over: DispatchOver::Particles,
+        when: KernelWhen::Always,
     },
     KernelPass {
         program: Program::StepParticles,
         entry_point: "wave_excite",
         over: DispatchOver::ParticleList,
+        when: KernelWhen::Always,
     },
     KernelPass {
         program: Program::StepParticles,
         entry_point: "birth_particles",
         over: DispatchOver::ParticleList,
+        when: KernelWhen::Always,
     },
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "cover_update",
         over: DispatchOver::CoverTexels,
+        when: KernelWhen::Always,
     },
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "snow_wind",
         over: DispatchOver::CoverTexels,
+        when: KernelWhen::WhileSnowMayLie,
     },
 ];
 
@@ -219,11 +253,13 @@ const DRIFT_ITERATION: [KernelPass; 2] = [
         program: Program::CoverUpdate,
         entry_point: "snow_outflow",
         over: DispatchOver::CoverTexels,
+        when: KernelWhen::WhileSnowMayLie,
     },
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "snow_inflow",
         over: DispatchOver::CoverTexels,
+        when: KernelWhen::WhileSnowMayLie,
     },
 ];
 
@@ -234,11 +270,13 @@ const FLOW_ITERATION: [KernelPass; 2] = [
         program: Program::CoverUpdate,
         entry_point: "water_outflow",
         over: DispatchOver::CoverTexels,
+        when: KernelWhen::WhileWaterMayStand,
     },
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "water_inflow",
         over: DispatchOver::CoverTexels,
+        when: KernelWhen::WhileWaterMayStand,
     },
 ];
 
@@ -248,11 +286,13 @@ const SUBSTEP_TAIL: [KernelPass; 2] = [
         program: Program::StepParticles,
         entry_point: "wave_step",
         over: DispatchOver::WaveCells,
+        when: KernelWhen::Always,
     },
     KernelPass {
         program: Program::StepParticles,
         entry_point: "wave_shift",
         over: DispatchOver::WaveCells,
+        when: KernelWhen::Always,
     },
 ];
 
@@ -295,21 +335,24 @@ pub const SUBSTEP_PASSES: [KernelPass; SUBSTEP_KERNELS] = {
 };
 
 /// Per-kernel timings of a step from the time each dispatch took, in dispatch order
-/// (sub-step after sub-step): summed per kernel entry point, in the order of
-/// [`SUBSTEP_PASSES`] (a kernel dispatched many times — the flow's — is one entry).
+/// (sub-step after sub-step, each dispatching `kernels` in order): summed per kernel
+/// entry point, in the order of `kernels` (a kernel dispatched many times — the
+/// flow's — is one entry). Kernels the step did not dispatch are not reported.
 #[must_use]
-pub fn substep_timings(elapsed_ms: impl IntoIterator<Item = f64>) -> Vec<precip_model::PassTiming> {
+pub fn substep_timings(
+    kernels: &[&'static str],
+    elapsed_ms: impl IntoIterator<Item = f64>,
+) -> Vec<precip_model::PassTiming> {
     let mut passes: Vec<precip_model::PassTiming> = Vec::new();
-    for kernel in SUBSTEP_PASSES {
-        if !passes.iter().any(|p| p.pass == kernel.entry_point) {
+    for &kernel in kernels {
+        if !passes.iter().any(|p| p.pass == kernel) {
             passes.push(precip_model::PassTiming {
-                pass: kernel.entry_point,
+                pass: kernel,
                 milliseconds: 0.0,
             });
         }
     }
-    for (i, ms) in elapsed_ms.into_iter().enumerate() {
-        let name = SUBSTEP_PASSES[i % SUBSTEP_KERNELS].entry_point;
+    for (&name, ms) in kernels.iter().cycle().zip(elapsed_ms) {
         if let Some(p) = passes.iter_mut().find(|p| p.pass == name) {
             p.milliseconds += ms;
         }
@@ -431,16 +474,19 @@ pub const CULL_PASSES: [KernelPass; 3] = [
         program: Program::CullParticles,
         entry_point: "cull_count",
         over: DispatchOver::Particles,
+        when: KernelWhen::Always,
     },
     KernelPass {
         program: Program::CullParticles,
         entry_point: "cull_scan",
         over: DispatchOver::OneWorkgroup,
+        when: KernelWhen::Always,
     },
     KernelPass {
         program: Program::CullParticles,
         entry_point: "cull_write",
         over: DispatchOver::Particles,
+        when: KernelWhen::Always,
     },
 ];
 
@@ -471,6 +517,7 @@ pub const COVER_TEXTURE_PASS: KernelPass = KernelPass {
     program: Program::Render,
     entry_point: "cover_texture",
     over: DispatchOver::CoverTexels,
+    when: KernelWhen::Always,
 };
 
 /// The format of the cover textures (filterable everywhere, a storage format in
@@ -484,6 +531,7 @@ pub const SPLAT_PASS: KernelPass = KernelPass {
     program: Program::Render,
     entry_point: "splat_particles",
     over: DispatchOver::ParticleList,
+    when: KernelWhen::Always,
 };
 
 /// The passes of a frame as data, and their timed names
@@ -671,6 +719,7 @@ pub const OPTICS_PASS: KernelPass = KernelPass {
     program: Program::OpticsSums,
     entry_point: "optics_sums",
     over: DispatchOver::Particles,
+    when: KernelWhen::Always,
 };
 
 /// Bindings of [`Program::StepParticles`], group 0.

@@ -36,6 +36,8 @@ struct Recording {
     alive: Rc<Cell<i64>>,
     /// Each frame's passes: name, whether it ran, its commands.
     frames: Vec<Vec<(&'static str, bool, usize)>>,
+    /// Each kernel's entry point, by id.
+    kernels: Vec<(u32, &'static str)>,
     buffers: Vec<(&'static str, u64)>,
     dispatches: Vec<(u32, Option<u32>)>,
     writes: Vec<(u64, usize)>,
@@ -157,7 +159,9 @@ impl Gpu for Recording {
             "{entry_point}"
         );
         assert!(!layouts.is_empty());
-        self.make()
+        let id = self.make()?;
+        self.kernels.push((id, entry_point));
+        Ok(id)
     }
     fn create_texture(
         &mut self,
@@ -441,4 +445,51 @@ fn a_frame_records_the_plan_and_a_failure_anywhere_leaves_nothing_alive() {
         }
     }
     assert!(calls > 60, "{calls} calls");
+}
+
+/// The entry points one step of `weather` dispatches.
+fn kernels_of_a_step(weather: Weather) -> Vec<&'static str> {
+    let mut gpu = Recording::default();
+    let kernels = Kernels::new(&mut gpu).expect("kernels");
+    let setup = Setup { weather, ..setup() };
+    let prepared = Simulation::prepare(&gpu, &setup).expect("a valid setup");
+    let mut sim = Simulation::configure(&mut gpu, &kernels, prepared).expect("configure");
+    gpu.dispatches.clear();
+    sim.step(&mut gpu, &kernels, 0.05).expect("a step");
+    let names = gpu
+        .dispatches
+        .iter()
+        .filter_map(|(id, _)| gpu.kernels.iter().find(|(k, _)| k == id).map(|(_, n)| *n))
+        .collect();
+    sim.destroy(&mut gpu);
+    kernels.destroy(&mut gpu);
+    names
+}
+
+#[test]
+fn an_idle_feature_dispatches_nothing() {
+    use precip_model::PrecipitationKind as Kind;
+    let drift = ["snow_wind", "snow_outflow", "snow_inflow"];
+    let flow = ["water_outflow", "water_inflow"];
+    let weather = |kind, intensity_mm_per_h, air_temperature_c| Weather {
+        kind,
+        intensity_mm_per_h,
+        air_temperature_c,
+        ..setup().weather
+    };
+    let snow = kernels_of_a_step(weather(Kind::DrySnow, 1.0, -5.0));
+    let rain = kernels_of_a_step(weather(Kind::Rain, 10.0, 12.0));
+    let sand = kernels_of_a_step(weather(Kind::Sand, 1.0, 30.0));
+    let clear = kernels_of_a_step(weather(Kind::Rain, 0.0, 12.0));
+    for k in drift.iter().chain(&flow) {
+        assert!(snow.contains(k), "snow runs {k}");
+        assert!(!sand.contains(k) && !clear.contains(k), "{k} idle");
+    }
+    for k in drift {
+        assert!(!rain.contains(&k), "rain leaves no snow to drift: {k}");
+    }
+    for k in flow {
+        assert!(rain.contains(&k), "rain runs {k}");
+    }
+    assert!(sand.contains(&"step_particles") && sand.contains(&"cover_update"));
 }

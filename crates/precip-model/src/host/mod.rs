@@ -8,10 +8,12 @@
 //! wind, for instance, reaches the particles' block, the cover's block and the wind
 //! sampler's block from the one [`crate::Weather`] the host state holds.
 
+mod activity;
 mod dispatch;
 mod layout;
 mod state;
 
+pub use activity::Activity;
 pub use dispatch::{MAX_WORKGROUPS_PER_DIMENSION, WORKGROUP_SIZE, cull_groups, dispatch_size};
 pub use layout::{Frames, SceneVertex};
 pub use state::{HostState, SubStepBlocks, SubSteps, WeatherChange};

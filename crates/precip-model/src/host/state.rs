@@ -12,6 +12,7 @@ use crate::backend::setup::Setup;
 use crate::backend::substeps;
 use crate::drawing::multiplicity::PoolDrawing;
 use crate::drawing::render::RenderParams;
+use crate::host::activity::Activity;
 use crate::host::layout::Frames;
 use crate::particles::step::StepParams;
 use crate::physics::drag::MAX_SUBSTEP_S;
@@ -39,6 +40,9 @@ pub struct HostState {
     /// scans the ground map too, so it is made once per weather change and each frame
     /// only moves the camera box to the camera.
     pools: PoolDrawing,
+    /// Which of the cover's features may have work, from every weather since
+    /// configure.
+    activity: Activity,
     time_s: f64,
 }
 
@@ -80,6 +84,7 @@ impl HostState {
         Ok(Self {
             step_template: setup.step_params(&setup.weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0),
             pools: setup.pool_drawing(&setup.weather, Vec3::ZERO),
+            activity: Activity::default().after(&setup.weather),
             setup: setup.clone(),
             weather: setup.weather,
             wind,
@@ -97,8 +102,15 @@ impl HostState {
             .setup
             .step_params(weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
         self.pools = self.setup.pool_drawing(weather, Vec3::ZERO);
+        self.activity = self.activity.after(weather);
         self.weather = *weather;
         Ok(WeatherChange { wind_rebaked })
+    }
+
+    /// Which of the cover's features may have work ([`Activity`]).
+    #[must_use]
+    pub fn activity(&self) -> Activity {
+        self.activity
     }
 
     /// Moves the camera (validated).
