@@ -369,9 +369,11 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
                 Ok(shown) => {
                     if shown.frames > 0 {
                         println!(
-                            "window: {} frames in {:.1} s; {} ({:?}, {}×{})",
+                            "window: {} frames in {:.1} s, {:.1} s simulated (×{:.2}: one sub-step a frame at most); {} ({:?}, {}×{})",
                             shown.frames,
                             shown.seconds,
+                            shown.simulated_s,
+                            shown.simulated_s / shown.seconds.max(1e-9),
                             shown.stats.describe(),
                             args.backend,
                             args.size.0,

@@ -132,6 +132,10 @@ struct Running {
     last_cursor: Option<(f64, f64)>,
     last_frame: Instant,
     frame_ms: f64,
+    /// Simulated seconds per real second, smoothed as `frame_ms` is.
+    sim_rate: f64,
+    /// Seconds simulated since the window opened.
+    simulated_s: f64,
     particles: u64,
     frames: u32,
     started: Instant,
@@ -149,13 +153,18 @@ struct App {
     quit_after: Option<u32>,
     running: Option<Running>,
     error: Option<WindowError>,
-    /// Frames shown, seconds open and their statistics, when the window closed.
-    shown: Option<(u32, f64, FrameStats)>,
+    /// Frames shown, seconds open, seconds simulated and their statistics, when the
+    /// window closed.
+    shown: Option<(u32, f64, f64, FrameStats)>,
     /// The Vulkan validation layer's log, when it runs.
     validation: Option<crate::backends::ValidationLog>,
     /// A CIGI host's messages, read before each frame.
     cigi: Option<precip_cigi::CigiReceiver>,
 }
+
+/// Simulated seconds a displayed frame may step: one sub-step
+/// ([`precip_model::physics::drag::MAX_SUBSTEP_S`]), whatever the frame took.
+const SIM_BUDGET_S: f32 = precip_model::physics::drag::MAX_SUBSTEP_S;
 
 fn title(r: &Running) -> String {
     let w = &r.weather;
@@ -170,8 +179,9 @@ fn title(r: &Running) -> String {
         .map(|s| format!(" — BLOWING SNOW over {:.0} m²", s.blowing_area_m2))
         .unwrap_or_default();
     format!(
-        "precip — {:.1} ms/frame, {} particles — {:?} {:.1} mm/h, {:.1} °C, wind {:.1} m/s, cover ×{:.0}{blowing}{water}",
+        "precip — {:.1} ms/frame, sim ×{:.2}, {} particles — {:?} {:.1} mm/h, {:.1} °C, wind {:.1} m/s, cover ×{:.0}{blowing}{water}",
         r.frame_ms,
+        r.sim_rate,
         r.particles,
         w.kind,
         w.intensity_mm_per_h,
@@ -218,6 +228,8 @@ impl App {
             last_cursor: None,
             last_frame: Instant::now(),
             frame_ms: 0.0,
+            sim_rate: 1.0,
+            simulated_s: 0.0,
             particles,
             frames: 0,
             started: Instant::now(),
@@ -329,12 +341,19 @@ fn weather_key(key: KeyCode, w: &Weather) -> Option<Weather> {
 impl Running {
     fn frame(&mut self) -> Result<(), WindowError> {
         let now = Instant::now();
-        // The time since the last frame began: what a user waits per frame (the
-        // simulation steps at most 0.1 s of it).
+        // The time since the last frame began: what a user waits per frame. The
+        // camera flies with it (at most 0.1 s of it); the simulation steps at most
+        // one sub-step of it (`SIM_BUDGET_S`): a slow frame slows the simulated clock
+        // (shown in the title and the summary) instead of adding sub-steps that make
+        // the next frame slower still.
         let elapsed_ms = now.duration_since(self.last_frame).as_secs_f64() * 1e3;
         let dt = (elapsed_ms * 1e-3).clamp(1e-4, 0.1) as f32;
+        let sim_dt = dt.min(SIM_BUDGET_S);
         self.last_frame = now;
         self.frame_ms = 0.9 * self.frame_ms + 0.1 * elapsed_ms;
+        self.sim_rate =
+            0.9 * self.sim_rate + 0.1 * f64::from(sim_dt) / (elapsed_ms * 1e-3).max(1e-4);
+        self.simulated_s += f64::from(sim_dt);
         let fast = if self.keys.contains(&KeyCode::ShiftLeft) {
             5.0
         } else {
@@ -358,7 +377,7 @@ impl Running {
         };
         let backend = self.presenter.backend();
         backend.set_camera(&view.camera)?;
-        backend.step(dt)?;
+        backend.step(sim_dt)?;
         self.presenter.present(&view)?;
         self.stats.record(elapsed_ms, self.presenter.backend())?;
         self.frames += 1;
@@ -467,7 +486,12 @@ impl ApplicationHandler for App {
                 if let Some(receiver) = self.cigi.as_mut() {
                     receiver.send_start_of_frame(r.frames, r.started.elapsed());
                 }
-                self.shown = Some((r.frames, r.started.elapsed().as_secs_f64(), r.stats.clone()));
+                self.shown = Some((
+                    r.frames,
+                    r.started.elapsed().as_secs_f64(),
+                    r.simulated_s,
+                    r.stats.clone(),
+                ));
                 if self.quit_after.is_some_and(|n| r.frames >= n) {
                     event_loop.exit();
                 }
@@ -490,6 +514,9 @@ pub struct WindowSummary {
     pub frames: u32,
     /// Seconds the window was open (from the first frame's setup).
     pub seconds: f64,
+    /// Seconds simulated: at most one sub-step a frame, so fewer than `seconds` when
+    /// frames take longer than a sub-step.
+    pub simulated_s: f64,
     /// Frame times and particles drawn.
     pub stats: FrameStats,
     /// What the Vulkan validation layer said (with `PRECIP_VK_VALIDATION=1`), leak
@@ -532,7 +559,7 @@ pub fn run_window(
     match app.error {
         Some(e) => Err(e),
         None => {
-            let (frames, seconds, stats) = app.shown.unwrap_or_default();
+            let (frames, seconds, simulated_s, stats) = app.shown.unwrap_or_default();
             let validation_messages = app
                 .validation
                 .and_then(|log| log.lock().map(|m| m.clone()).ok())
@@ -540,6 +567,7 @@ pub fn run_window(
             Ok(WindowSummary {
                 frames,
                 seconds,
+                simulated_s,
                 stats,
                 validation_messages,
             })

@@ -228,6 +228,17 @@ fn the_window_presents_frames_on_both_backends() {
             text.contains("window: 6 frames"),
             "{backend}: {text}\n{err}"
         );
+        // No spiral: a frame steps at most one 0.05 s sub-step, however slow it was.
+        let simulated: f64 = text
+            .split(" s simulated")
+            .next()
+            .and_then(|head| head.rsplit(", ").next())
+            .and_then(|n| n.trim().parse().ok())
+            .unwrap_or_else(|| panic!("{backend}: no simulated seconds in {text}"));
+        assert!(
+            simulated > 0.0 && simulated <= 6.0 * 0.05 + 1e-6,
+            "{backend}: {text}"
+        );
         assert!(!err.contains("validation layer"), "{backend}: {err}");
     }
 }
