@@ -192,48 +192,16 @@ impl Program {
         }
     }
 
-    /// Its entry points.
+    /// Its entry points, read from its files: every function after an
+    /// `@compute`, `@vertex` or `@fragment` attribute, in file order. A new kernel
+    /// in an existing file needs nothing here (tests check the list against naga's
+    /// reflection of the joined source).
     #[must_use]
-    pub const fn entry_points(self) -> &'static [&'static str] {
-        match self {
-            Self::StepParticles => &[
-                "reset_births",
-                "step_particles",
-                "birth_particles",
-                "init_particles",
-                "wave_excite",
-                "wave_step",
-                "wave_shift",
-            ],
-            Self::CoverUpdate => &[
-                "cover_update",
-                "snow_wind",
-                "snow_outflow",
-                "snow_inflow",
-                "water_outflow",
-                "water_inflow",
-            ],
-            Self::ProbeRng => &["probe_rng"],
-            Self::Render => &[
-                "vs_shadow",
-                "vs_scene",
-                "fs_scene",
-                "vs_sky",
-                "fs_sky",
-                "vs_snow",
-                "fs_snow",
-                "vs_rain",
-                "fs_rain",
-                "splat_particles",
-                "vs_splat_resolve",
-                "fs_splat_resolve",
-                "cover_texture",
-            ],
-            Self::CullParticles => &["cull_count", "cull_scan", "cull_write"],
-            Self::ProbeDrawing => &["probe_drawing"],
-            Self::QueryBeams => &["query_beams"],
-            Self::OpticsSums => &["optics_sums"],
-        }
+    pub fn entry_points(self) -> Vec<&'static str> {
+        self.files()
+            .iter()
+            .flat_map(|file| entry_points_of(file.source))
+            .collect()
     }
 
     /// A label for debuggers.
@@ -263,5 +231,51 @@ impl Program {
             text.push('\n');
         }
         text
+    }
+}
+
+/// The entry points of one WGSL text: each `fn` name after a stage attribute
+/// (`@compute`, `@vertex`, `@fragment`), outside `//` comments.
+fn entry_points_of(source: &'static str) -> impl Iterator<Item = &'static str> {
+    let mut staged = false;
+    source.lines().filter_map(move |line| {
+        let code = line.split("//").next().unwrap_or_default();
+        if ["@compute", "@vertex", "@fragment"]
+            .iter()
+            .any(|a| code.contains(a))
+        {
+            staged = true;
+        }
+        let name = code
+            .split_once("fn ")
+            .filter(|_| staged)
+            .and_then(|(_, rest)| rest.split('(').next())
+            .map(str::trim)
+            .filter(|n| !n.is_empty());
+        if name.is_some() {
+            staged = false;
+        }
+        name
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn entry_points_are_the_staged_functions_only() {
+        let wgsl: &'static str = "fn helper() {}\n// @compute fn commented() {}\n@compute @workgroup_size(64)\nfn first(@builtin(global_invocation_id) id: vec3<u32>) {}\n@vertex fn second() -> vec4<f32> { return vec4<f32>(0.0); }\nfn after() {}\n";
+        assert_eq!(
+            entry_points_of(wgsl).collect::<Vec<_>>(),
+            ["first", "second"]
+        );
+        assert!(
+            Program::StepParticles
+                .entry_points()
+                .contains(&"step_particles")
+        );
+        assert!(Program::Render.entry_points().contains(&"fs_sky"));
+        assert_eq!(Program::ProbeRng.entry_points(), ["probe_rng"]);
     }
 }
