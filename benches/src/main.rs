@@ -121,10 +121,16 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>) {
             if count == 1_000_000 {
                 println!("{name:>5} {count:>8}: bytes a particle and GB/s per pass: {traffic}");
             }
+            let shares = precip_gpu::recipe::feature_shares(&passes);
+            println!(
+                "{name:>5} {count:>8}: share of the GPU time: {}",
+                precip_gpu::recipe::feature_shares_text(&passes)
+            );
             rows.push(json!({
                 "backend": name, "particles": count, "frame_ms": ms,
                 "width_px": FRAME_SIZE.0, "height_px": FRAME_SIZE.1,
                 "passes_ms": passes.iter().map(|(n, ms)| json!({"pass": n, "ms": ms})).collect::<Vec<_>>(),
+                "features": shares.iter().map(|(f, ms, share)| json!({"feature": f, "ms": ms, "share": share})).collect::<Vec<_>>(),
                 "drawn": json!({"sprites": drawn.sprites, "streaks": drawn.streaks, "splats": drawn.splats}),
                 "traffic": traffic,
             }));

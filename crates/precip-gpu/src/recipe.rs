@@ -360,6 +360,84 @@ pub fn substep_timings(
     passes
 }
 
+/// The features a frame's GPU time goes to, each with the kernels and passes that
+/// serve it (every kernel of [`SUBSTEP_PASSES`] and pass of
+/// [`crate::frame::FRAME_PASSES`] is in exactly one): what the viewer's summary and
+/// the report add up into each feature's share of the frame.
+pub const FEATURES: [(&str, &[&str]); 6] = [
+    (
+        "particles",
+        &[
+            "reset_births",
+            "step_particles",
+            "birth_particles",
+            "cull_particles",
+            "splat_particles",
+            "particles",
+        ],
+    ),
+    ("cover", &["cover_update", "cover_texture"]),
+    ("drift", &["snow_wind", "snow_outflow", "snow_inflow"]),
+    (
+        "water",
+        &[
+            "water_outflow",
+            "water_inflow",
+            "wave_excite",
+            "wave_step",
+            "wave_shift",
+        ],
+    ),
+    ("scene", &["scene"]),
+    ("shadow", &["shadow"]),
+];
+
+/// Each feature's milliseconds and share of the total, from per-pass milliseconds
+/// (`(pass, ms)`; a pass of no feature counts in the total as `other`), in
+/// [`FEATURES`]' order, features that took no time left out.
+#[must_use]
+pub fn feature_shares(passes: &[(&str, f64)]) -> Vec<(&'static str, f64, f64)> {
+    let total: f64 = passes.iter().map(|(_, ms)| ms.max(0.0)).sum();
+    let mut shares: Vec<(&'static str, f64, f64)> = FEATURES
+        .iter()
+        .map(|(feature, names)| {
+            let ms = passes
+                .iter()
+                .filter(|(pass, _)| names.contains(pass))
+                .map(|(_, ms)| ms.max(0.0))
+                .sum();
+            (*feature, ms, 0.0)
+        })
+        .collect();
+    let other = passes
+        .iter()
+        .filter(|(pass, _)| !FEATURES.iter().any(|(_, names)| names.contains(pass)))
+        .map(|(_, ms)| ms.max(0.0))
+        .sum();
+    shares.push(("other", other, 0.0));
+    shares.retain(|(_, ms, _)| *ms > 0.0);
+    for s in &mut shares {
+        s.2 = if total > 0.0 { s.1 / total } else { 0.0 };
+    }
+    shares
+}
+
+/// [`feature_shares`] in words: `particles 50 %, scene 36 %, cover <1 %, …`.
+#[must_use]
+pub fn feature_shares_text(passes: &[(&str, f64)]) -> String {
+    feature_shares(passes)
+        .iter()
+        .map(|(feature, _, share)| {
+            if *share < 0.005 {
+                format!("{feature} <1 %")
+            } else {
+                format!("{feature} {:.0} %", 100.0 * share)
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// What a kernel's bytes are counted per.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BytesPer {
@@ -761,6 +839,30 @@ pub mod cover_bindings {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn every_kernel_and_pass_serves_one_feature_and_the_shares_add_up() {
+        let names = SUBSTEP_PASSES
+            .iter()
+            .map(|k| k.entry_point)
+            .chain(crate::frame::FRAME_PASSES.iter().map(|p| p.name));
+        for name in names {
+            let owners = FEATURES.iter().filter(|(_, n)| n.contains(&name)).count();
+            assert_eq!(owners, 1, "{name} serves {owners} features");
+        }
+        let shares = feature_shares(&[
+            ("step_particles", 30.0),
+            ("scene", 50.0),
+            ("snow_outflow", 5.0),
+            ("water_inflow", 0.0),
+            ("mystery", 15.0),
+        ]);
+        let names: Vec<_> = shares.iter().map(|s| s.0).collect();
+        assert_eq!(names, ["particles", "drift", "scene", "other"]);
+        let total: f64 = shares.iter().map(|s| s.2).sum();
+        assert!((total - 1.0).abs() < 1e-12);
+        assert!((shares[2].2 - 0.5).abs() < 1e-12);
+    }
+
     use super::*;
 
     #[test]

@@ -104,7 +104,11 @@ impl FrameStats {
                 .iter()
                 .map(|(name, ms)| format!("{name} {ms:.1}"))
                 .collect();
-            format!("GPU ms: {}", list.join(", "))
+            format!(
+                "GPU ms: {}; share of the GPU time: {}",
+                list.join(", "),
+                precip_gpu::recipe::feature_shares_text(&passes)
+            )
         })
     }
 }
