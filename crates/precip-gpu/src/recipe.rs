@@ -844,7 +844,7 @@ mod tests {
         let names = SUBSTEP_PASSES
             .iter()
             .map(|k| k.entry_point)
-            .chain(crate::frame::FRAME_PASSES.iter().map(|p| p.name));
+            .chain(FRAME_PASSES.iter().map(|p| p.name));
         for name in names {
             let owners = FEATURES.iter().filter(|(_, n)| n.contains(&name)).count();
             assert_eq!(owners, 1, "{name} serves {owners} features");
