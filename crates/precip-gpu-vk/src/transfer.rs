@@ -101,6 +101,22 @@ fn layout_barrier(
         .subresource_range(image.range())
 }
 
+/// A copy of every texel of a colour image of `extent`, tightly packed in the buffer.
+fn whole_image(extent: glam::UVec3) -> vk::BufferImageCopy {
+    vk::BufferImageCopy::default()
+        .image_subresource(vk::ImageSubresourceLayers {
+            aspect_mask: vk::ImageAspectFlags::COLOR,
+            mip_level: 0,
+            base_array_layer: 0,
+            layer_count: 1,
+        })
+        .image_extent(vk::Extent3D {
+            width: extent.x,
+            height: extent.y,
+            depth: extent.z,
+        })
+}
+
 /// Fills a sampled image's texels (`bytes` tightly packed) and leaves it in
 /// `SHADER_READ_ONLY_OPTIMAL` for every shader stage (waits).
 pub fn upload_image(device: &Device, image: &Image, bytes: &[u8]) -> Result<(), BackendError> {
@@ -127,18 +143,7 @@ pub fn upload_image(device: &Device, image: &Image, bytes: &[u8]) -> Result<(), 
             vk::AccessFlags::TRANSFER_WRITE,
             vk::AccessFlags::SHADER_READ,
         );
-        let region = vk::BufferImageCopy::default()
-            .image_subresource(vk::ImageSubresourceLayers {
-                aspect_mask: vk::ImageAspectFlags::COLOR,
-                mip_level: 0,
-                base_array_layer: 0,
-                layer_count: 1,
-            })
-            .image_extent(vk::Extent3D {
-                width: e.x,
-                height: e.y,
-                depth: e.z,
-            });
+        let region = whole_image(e);
         // SAFETY: `cb` is recording; the image and staging buffer are live; the
         // barriers move the whole image through the layouts the copy and the shaders
         // need (the earlier contents are discarded: UNDEFINED), after any earlier
@@ -234,18 +239,7 @@ pub fn download_image(
         vk::BufferUsageFlags::TRANSFER_DST,
         MemoryLocation::GpuToCpu,
     )?;
-    let region = vk::BufferImageCopy::default()
-        .image_subresource(vk::ImageSubresourceLayers {
-            aspect_mask: vk::ImageAspectFlags::COLOR,
-            mip_level: 0,
-            base_array_layer: 0,
-            layer_count: 1,
-        })
-        .image_extent(vk::Extent3D {
-            width,
-            height,
-            depth: 1,
-        });
+    let region = whole_image(image.extent);
     let result = submit(device, |cb| {
         // SAFETY: `cb` is recording; the image rests in `layout` (a layout copies
         // read from) and the staging buffer is live and large enough.
