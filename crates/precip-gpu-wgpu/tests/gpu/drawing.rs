@@ -77,7 +77,12 @@ fn wgsl_drawing_equals_rust_drawing() {
             for (k, want) in expected.enumerate() {
                 let g = got[19 * i + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
-                let tolerance = 1e-5 * (1.0 + want.abs().max_element());
+                // The four face normals (values 8–11) of a drop's thin tetrahedron are
+                // cross products of nearly parallel edges: a driver that fuses a
+                // multiply and an add (NVIDIA's does; lavapipe does not) moves them
+                // by up to 6·10⁻⁵ (H200: input 50, value 10), a hundredth of a degree.
+                let normal = (8..12).contains(&k);
+                let tolerance = if normal { 2e-4 } else { 1e-5 } * (1.0 + want.abs().max_element());
                 assert!(
                     (have - want).abs().max_element() <= tolerance,
                     "{name}: input {i} value {k}: WGSL {have} vs Rust {want}"
