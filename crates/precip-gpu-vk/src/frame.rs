@@ -33,6 +33,8 @@ use crate::commands::memory_barrier;
 use crate::device::Device;
 use crate::error::map_vk;
 use crate::gpu::Hal;
+use crate::gpu::Texture;
+use crate::transfer::image_barrier;
 use crate::image::DEPTH_FORMAT;
 use crate::query::{FRAME_QUERY_COUNT, QueryPool};
 
@@ -210,11 +212,14 @@ unsafe fn viewport(device: &Device, cb: vk::CommandBuffer, (width, height): (u32
 }
 
 /// Records `frame` into `cb` (see the module docs); `begins` holds, for each pass,
-/// how it begins if it is a render pass that runs.
+/// how it begins if it is a render pass that runs; `target` is the colour target's
+/// image.
 ///
 /// # Safety
 /// - `cb` is a command buffer of `hal`'s device in the recording state, outside a
 ///   render pass.
+/// - `target` is the image of the framebuffers' colour views, made with
+///   `TRANSFER_SRC` if the frame has a pass that copies it.
 /// - Every object `frame` and `begins` name is live, made on that device, and
 ///   stays so until the submission of `cb` has finished; each pipeline was made
 ///   for a pass compatible with the one it is used in, each group for the layout it
@@ -223,6 +228,7 @@ pub unsafe fn record_frame(
     hal: &Hal,
     cb: vk::CommandBuffer,
     frame: &FrameWork<'_, Hal>,
+    target: vk::Image,
     begins: &[Option<PassBegin>],
     stamps: Option<&QueryPool>,
 ) {
@@ -273,7 +279,13 @@ pub unsafe fn record_frame(
     for ((index, pass), begin) in (0u32..).zip(&frame.passes).zip(begins) {
         let (start, end) = (2 * index, 2 * index + 1);
         stamp(start, S::TOP_OF_PIPE);
-        if pass.runs {
+        if let (true, PassKind::CopyTarget { colour, depth }) = (pass.runs, &pass.kind) {
+            // SAFETY: outside a render pass; `target` rests in the colour
+            // attachment layout between render passes, the depth buffer in its
+            // resting layout, and the copies are live images of their sizes and
+            // formats (the caller's and the renderer's guarantees).
+            unsafe { copy_target(device, cb, target, colour, *depth) };
+        } else if pass.runs {
             let (bind_point, begin) = match (&pass.kind, begin) {
                 (PassKind::Render(_), Some(begin)) => {
                     let info = vk::RenderPassBeginInfo::default()
@@ -327,6 +339,146 @@ pub unsafe fn record_frame(
                 S::COMPUTE_SHADER | S::TRANSFER,
                 A::SHADER_READ | A::SHADER_WRITE | A::TRANSFER_WRITE,
             ),
+        );
+    }
+}
+
+/// Copies the colour target `target` (in `COLOR_ATTACHMENT_OPTIMAL`, as a render
+/// pass that is not the frame's last left it) into `colour`, and the depth buffer
+/// `depth.0` (resting in `DEPTH_STENCIL_READ_ONLY_OPTIMAL`) into `depth.1`; the
+/// copies' old contents are dropped. Leaves the target and the depth buffer as
+/// they were, and the copies in their resting layouts for the fragment shaders after.
+///
+/// # Safety
+/// `cb` is recording outside a render pass; all four images are live, each copy of
+/// its source's size and format, the sources made with `TRANSFER_SRC` and the
+/// copies with `TRANSFER_DST`.
+unsafe fn copy_target(
+    device: &Device,
+    cb: vk::CommandBuffer,
+    target: vk::Image,
+    colour: &Texture,
+    depth: (&Texture, &Texture),
+) {
+    use vk::AccessFlags as A;
+    use vk::ImageLayout as L;
+    use vk::PipelineStageFlags as S;
+    let barrier = image_barrier;
+    let colour_range = crate::image::COLOUR;
+    let depth_range = depth.0.image.range();
+    let rest = depth.0.layout;
+    let before = [
+        barrier(
+            target,
+            colour_range,
+            (L::COLOR_ATTACHMENT_OPTIMAL, A::COLOR_ATTACHMENT_WRITE),
+            (L::TRANSFER_SRC_OPTIMAL, A::TRANSFER_READ),
+        ),
+        barrier(
+            depth.0.image.raw,
+            depth_range,
+            (rest, A::DEPTH_STENCIL_ATTACHMENT_WRITE),
+            (L::TRANSFER_SRC_OPTIMAL, A::TRANSFER_READ),
+        ),
+        barrier(
+            colour.image.raw,
+            colour_range,
+            (L::UNDEFINED, A::empty()),
+            (L::TRANSFER_DST_OPTIMAL, A::TRANSFER_WRITE),
+        ),
+        barrier(
+            depth.1.image.raw,
+            depth_range,
+            (L::UNDEFINED, A::empty()),
+            (L::TRANSFER_DST_OPTIMAL, A::TRANSFER_WRITE),
+        ),
+    ];
+    let after = [
+        barrier(
+            target,
+            colour_range,
+            (L::TRANSFER_SRC_OPTIMAL, A::empty()),
+            (
+                L::COLOR_ATTACHMENT_OPTIMAL,
+                A::COLOR_ATTACHMENT_READ | A::COLOR_ATTACHMENT_WRITE,
+            ),
+        ),
+        barrier(
+            depth.0.image.raw,
+            depth_range,
+            (L::TRANSFER_SRC_OPTIMAL, A::empty()),
+            (rest, A::DEPTH_STENCIL_ATTACHMENT_READ | A::SHADER_READ),
+        ),
+        barrier(
+            colour.image.raw,
+            colour_range,
+            (L::TRANSFER_DST_OPTIMAL, A::TRANSFER_WRITE),
+            (colour.layout, A::SHADER_READ),
+        ),
+        barrier(
+            depth.1.image.raw,
+            depth_range,
+            (L::TRANSFER_DST_OPTIMAL, A::TRANSFER_WRITE),
+            (depth.1.layout, A::SHADER_READ),
+        ),
+    ];
+    let region = |aspect_mask| {
+        let layers = vk::ImageSubresourceLayers {
+            aspect_mask,
+            mip_level: 0,
+            base_array_layer: 0,
+            layer_count: 1,
+        };
+        vk::ImageCopy {
+            src_subresource: layers,
+            src_offset: vk::Offset3D::default(),
+            dst_subresource: layers,
+            dst_offset: vk::Offset3D::default(),
+            extent: vk::Extent3D {
+                width: colour.image.extent.x,
+                height: colour.image.extent.y,
+                depth: 1,
+            },
+        }
+    };
+    let fragment_tests = S::EARLY_FRAGMENT_TESTS | S::LATE_FRAGMENT_TESTS;
+    // SAFETY: the caller's guarantees; the last frame's reads of the copies
+    // (fragment shaders) are ordered before their overwrite by the first barrier's
+    // stages, and the copies' writes before the next frame's reads by the second.
+    unsafe {
+        device.raw.cmd_pipeline_barrier(
+            cb,
+            S::COLOR_ATTACHMENT_OUTPUT | fragment_tests | S::FRAGMENT_SHADER,
+            S::TRANSFER,
+            vk::DependencyFlags::empty(),
+            &[],
+            &[],
+            &before,
+        );
+        device.raw.cmd_copy_image(
+            cb,
+            target,
+            L::TRANSFER_SRC_OPTIMAL,
+            colour.image.raw,
+            L::TRANSFER_DST_OPTIMAL,
+            &[region(vk::ImageAspectFlags::COLOR)],
+        );
+        device.raw.cmd_copy_image(
+            cb,
+            depth.0.image.raw,
+            L::TRANSFER_SRC_OPTIMAL,
+            depth.1.image.raw,
+            L::TRANSFER_DST_OPTIMAL,
+            &[region(vk::ImageAspectFlags::DEPTH)],
+        );
+        device.raw.cmd_pipeline_barrier(
+            cb,
+            S::TRANSFER,
+            S::COLOR_ATTACHMENT_OUTPUT | fragment_tests | S::FRAGMENT_SHADER | S::COMPUTE_SHADER,
+            vk::DependencyFlags::empty(),
+            &[],
+            &[],
+            &after,
         );
     }
 }

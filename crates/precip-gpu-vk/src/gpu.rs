@@ -74,8 +74,12 @@ pub struct Texture {
 /// A swapchain image to draw into, and the semaphores of its acquire and present.
 #[derive(Debug, Clone, Copy)]
 pub struct SwapchainImage {
+    /// The image.
+    pub image: vk::Image,
     /// Its view.
     pub view: vk::ImageView,
+    /// It can be copied from (`TRANSFER_SRC`).
+    pub copyable: bool,
     /// The swapchain's format.
     pub format: vk::Format,
     /// Signalled when the image is acquired (the frame waits on it).
@@ -393,7 +397,7 @@ impl Gpu for Hal {
         use vk::ImageUsageFlags as U;
         let (usage, layout) = match desc.usage {
             TextureUsage::DepthAttachment => (
-                U::DEPTH_STENCIL_ATTACHMENT | U::SAMPLED,
+                U::DEPTH_STENCIL_ATTACHMENT | U::SAMPLED | U::TRANSFER_SRC,
                 L::DEPTH_STENCIL_READ_ONLY_OPTIMAL,
             ),
             TextureUsage::StorageAndSampled => {
@@ -404,6 +408,9 @@ impl Gpu for Hal {
                 U::COLOR_ATTACHMENT | U::TRANSFER_SRC,
                 L::TRANSFER_SRC_OPTIMAL,
             ),
+            TextureUsage::CopyOfTarget => {
+                (U::SAMPLED | U::TRANSFER_DST, L::SHADER_READ_ONLY_OPTIMAL)
+            }
         };
         let image = Image::new(
             &self.device,
@@ -416,9 +423,12 @@ impl Gpu for Hal {
         )?;
         let filled = match (desc.contents, desc.usage) {
             (Some(texels), _) => upload_image(&self.device, &image, texels),
-            (None, TextureUsage::DepthAttachment | TextureUsage::StorageAndSampled) => {
-                to_layout(&self.device, &[&image], layout)
-            }
+            (
+                None,
+                TextureUsage::DepthAttachment
+                | TextureUsage::StorageAndSampled
+                | TextureUsage::CopyOfTarget,
+            ) => to_layout(&self.device, &[&image], layout),
             (None, _) => Ok(()),
         };
         match filled {
@@ -500,6 +510,23 @@ impl Gpu for Hal {
         match target {
             Target::Texture(t) => t.image.format,
             Target::Surface(s) => s.format,
+        }
+    }
+
+    fn copy_format(&self, target: Target<'_, Self>) -> Option<TexelFormat> {
+        let (format, copyable) = match target {
+            // The offscreen image rests ready to be copied.
+            Target::Texture(t) => (
+                t.image.format,
+                t.layout == vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+            ),
+            Target::Surface(s) => (s.format, s.copyable),
+        };
+        match format {
+            _ if !copyable => None,
+            vk::Format::R8G8B8A8_SRGB => Some(TexelFormat::Rgba8UnormSrgb),
+            vk::Format::B8G8R8A8_SRGB => Some(TexelFormat::Bgra8UnormSrgb),
+            _ => None,
         }
     }
 
@@ -661,10 +688,11 @@ impl Gpu for Hal {
         frame: &FrameWork<'_, Self>,
         target: Target<'_, Self>,
     ) -> Result<(), BackendError> {
-        let (colour, semaphores) = match target {
-            Target::Texture(t) => ((t.image.view, t.image.format, t.layout), None),
+        let (colour, image, semaphores) = match target {
+            Target::Texture(t) => ((t.image.view, t.image.format, t.layout), t.image.raw, None),
             Target::Surface(s) => (
                 (s.view, s.format, vk::ImageLayout::PRESENT_SRC_KHR),
+                s.image,
                 Some(s),
             ),
         };
@@ -682,7 +710,7 @@ impl Gpu for Hal {
             // SAFETY: `cb` is recording outside a render pass (`submit_synced`); the
             // frame's objects are the executor's, live until it destroys them (which
             // waits for this submission); the framebuffers are retired after it.
-            unsafe { record_frame(hal, cb, frame, &begins, stamps) };
+            unsafe { record_frame(hal, cb, frame, image, &begins, stamps) };
         });
         let in_flight = match submitted {
             Ok(f) => f,
@@ -816,5 +844,6 @@ fn texel_format(format: TexelFormat) -> vk::Format {
         TexelFormat::Rgba16Float => vk::Format::R16G16B16A16_SFLOAT,
         TexelFormat::R8Unorm => vk::Format::R8_UNORM,
         TexelFormat::Rgba8UnormSrgb => OFFSCREEN_FORMAT,
+        TexelFormat::Bgra8UnormSrgb => vk::Format::B8G8R8A8_SRGB,
     }
 }

@@ -25,7 +25,10 @@ pub const ACQUIRE_SEMAPHORES: usize = 3;
 /// The images of one swapchain.
 struct Chain {
     raw: vk::SwapchainKHR,
+    images: Vec<vk::Image>,
     views: Vec<vk::ImageView>,
+    /// Its images can be copied from (`TRANSFER_SRC`, where the surface allows it).
+    copyable: bool,
     drawn: Vec<vk::Semaphore>,
     extent: (u32, u32),
 }
@@ -82,8 +85,12 @@ impl std::fmt::Debug for WindowSurface {
 pub struct Acquired {
     /// The image's index.
     pub index: u32,
+    /// The image.
+    pub image: vk::Image,
     /// Its view.
     pub view: vk::ImageView,
+    /// It can be copied from.
+    pub copyable: bool,
     /// Signalled when it is ready to draw into.
     pub acquired: vk::Semaphore,
     /// To signal when it is drawn (present waits on it).
@@ -278,6 +285,15 @@ impl WindowSurface {
         .into_iter()
         .find(|a| caps.supported_composite_alpha.contains(*a))
         .unwrap_or(vk::CompositeAlphaFlagsKHR::OPAQUE);
+        // Copied after the scene pass for the water's reflections, where it may be.
+        let copyable = caps
+            .supported_usage_flags
+            .contains(vk::ImageUsageFlags::TRANSFER_SRC);
+        let usage = if copyable {
+            vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC
+        } else {
+            vk::ImageUsageFlags::COLOR_ATTACHMENT
+        };
         let old = self.chain.take();
         let info = vk::SwapchainCreateInfoKHR::default()
             .surface(self.surface)
@@ -289,7 +305,7 @@ impl WindowSurface {
                 height: extent.1,
             })
             .image_array_layers(1)
-            .image_usage(vk::ImageUsageFlags::COLOR_ATTACHMENT)
+            .image_usage(usage)
             .image_sharing_mode(vk::SharingMode::EXCLUSIVE)
             .pre_transform(caps.current_transform)
             .composite_alpha(alpha)
@@ -306,7 +322,9 @@ impl WindowSurface {
         let raw = raw.map_err(|e| map_vk("creating the swapchain", e))?;
         let mut chain = Chain {
             raw,
+            images: Vec::new(),
             views: Vec::new(),
+            copyable,
             drawn: Vec::new(),
             extent,
         };
@@ -337,6 +355,7 @@ impl WindowSurface {
             // SAFETY: a view of a live swapchain image in its own format.
             let view = unsafe { device.raw.create_image_view(&info, None) }
                 .map_err(|e| map_vk("creating a swapchain image view", e))?;
+            chain.images.push(image);
             chain.views.push(view);
             chain.drawn.push(semaphore(device)?);
         }
@@ -364,7 +383,9 @@ impl WindowSurface {
                 let i = index as usize;
                 Ok(Some(Acquired {
                     index,
+                    image: chain.images[i],
                     view: chain.views[i],
+                    copyable: chain.copyable,
                     acquired: semaphore,
                     drawn: chain.drawn[i],
                 }))

@@ -87,6 +87,16 @@ pub fn download(device: &Device, source: &Buffer, size: u64) -> Result<Vec<u8>, 
 /// to `new` (before accesses `dst`).
 fn layout_barrier(
     image: &Image,
+    from: (vk::ImageLayout, vk::AccessFlags),
+    to: (vk::ImageLayout, vk::AccessFlags),
+) -> vk::ImageMemoryBarrier<'static> {
+    image_barrier(image.raw, image.range(), from, to)
+}
+
+/// A barrier moving the `range` of `image` from layout and access `from` to `to`.
+pub fn image_barrier(
+    image: vk::Image,
+    range: vk::ImageSubresourceRange,
     (old, src): (vk::ImageLayout, vk::AccessFlags),
     (new, dst): (vk::ImageLayout, vk::AccessFlags),
 ) -> vk::ImageMemoryBarrier<'static> {
@@ -97,8 +107,8 @@ fn layout_barrier(
         .dst_access_mask(dst)
         .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
         .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-        .image(image.raw)
-        .subresource_range(image.range())
+        .image(image)
+        .subresource_range(range)
 }
 
 /// A copy of every texel of a colour image of `extent`, tightly packed in the buffer.

@@ -26,6 +26,35 @@ pub fn encode_pass(
 ) {
     let (begin, end) = (Some(2 * index), Some(2 * index + 1));
     match &pass.kind {
+        PassKind::CopyTarget {
+            colour: copy,
+            depth,
+        } => {
+            // Copies have no timestamps of their own in wgpu: an empty compute pass
+            // writes each of the pass's two.
+            let stamp = |encoder: &mut wgpu::CommandEncoder, at| {
+                encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(pass.name),
+                    timestamp_writes: stamps.map(|s| wgpu::ComputePassTimestampWrites {
+                        query_set: &s.set,
+                        beginning_of_pass_write_index: at,
+                        end_of_pass_write_index: None,
+                    }),
+                });
+            };
+            stamp(encoder, begin);
+            for (from, to) in [
+                (colour.texture(), &copy.texture),
+                (&depth.0.texture, &depth.1.texture),
+            ] {
+                encoder.copy_texture_to_texture(
+                    from.as_image_copy(),
+                    to.as_image_copy(),
+                    from.size(),
+                );
+            }
+            stamp(encoder, end);
+        }
         PassKind::Compute => {
             let mut compute = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(pass.name),

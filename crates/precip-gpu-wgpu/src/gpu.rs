@@ -312,7 +312,9 @@ impl Gpu for Hal {
     fn create_texture(&mut self, desc: &TextureDesc<'_>) -> Result<Texture, BackendError> {
         let usage = match desc.usage {
             TextureUsage::DepthAttachment => {
-                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING
+                wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC
             }
             TextureUsage::StorageAndSampled => {
                 wgpu::TextureUsages::STORAGE_BINDING
@@ -324,6 +326,9 @@ impl Gpu for Hal {
             }
             TextureUsage::ColourTarget => {
                 wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC
+            }
+            TextureUsage::CopyOfTarget => {
+                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST
             }
         };
         let descriptor = wgpu::TextureDescriptor {
@@ -395,6 +400,21 @@ impl Gpu for Hal {
         match target {
             Target::Texture(t) => t.texture.format(),
             Target::Surface(view) => view.texture().format(),
+        }
+    }
+
+    fn copy_format(&self, target: Target<'_, Self>) -> Option<TexelFormat> {
+        let texture = match target {
+            Target::Texture(t) => &t.texture,
+            Target::Surface(view) => view.texture(),
+        };
+        if !texture.usage().contains(wgpu::TextureUsages::COPY_SRC) {
+            return None;
+        }
+        match texture.format() {
+            wgpu::TextureFormat::Rgba8UnormSrgb => Some(TexelFormat::Rgba8UnormSrgb),
+            wgpu::TextureFormat::Bgra8UnormSrgb => Some(TexelFormat::Bgra8UnormSrgb),
+            _ => None,
         }
     }
 
@@ -619,5 +639,6 @@ fn texel_format(format: TexelFormat) -> wgpu::TextureFormat {
         TexelFormat::Rgba16Float => wgpu::TextureFormat::Rgba16Float,
         TexelFormat::R8Unorm => wgpu::TextureFormat::R8Unorm,
         TexelFormat::Rgba8UnormSrgb => wgpu::TextureFormat::Rgba8UnormSrgb,
+        TexelFormat::Bgra8UnormSrgb => wgpu::TextureFormat::Bgra8UnormSrgb,
     }
 }

@@ -18,7 +18,7 @@ struct RenderParams {
     cover_look: vec4<f32>,
     // wet darkening, albedo decay per day, exposure tolerance m, flake mean opacity
     cover_look2: vec4<f32>,
-    // rain rings per m² s, 0, water bodies' depth m, 0
+    // rain rings per m² s, the frame before's scene and depth there (1/0), water bodies' depth m, 0
     water_look: vec4<f32>,
     ground: GridFrame,
     cover: GridFrame,
@@ -35,6 +35,8 @@ struct RenderParams {
     lens: vec4<f32>,
     // clip → world of the camera
     inverse_view_proj: mat4x4<f32>,
+    // world → clip of the camera of the frame before (the reflections' copies)
+    previous_view_proj: mat4x4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

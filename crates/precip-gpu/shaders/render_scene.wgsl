@@ -231,8 +231,35 @@ fn vs_scene(v: SceneVertex) -> SceneVarying {
     return out;
 }
 
+// A surface as lit and wetted, before the fog: its colour; the weight its sharp
+// mirror (a puddle's, a water body's) gives the sky it reflects, as a share of the
+// surface's colour; the fog's transmittance to the eye.
+struct SurfaceLook {
+    shaded: vec3<f32>,
+    mirror: f32,
+    fog: f32,
+}
+
 @fragment
 fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
+    let look = surface_look(in);
+    return vec4<f32>(mix(params.sky_colour_time.xyz, look.shaded, look.fog), 1.0);
+}
+
+// The water bodies: as fs_scene, their sharp mirror showing the scene where its ray
+// meets it, not the sky (render_reflections.wgsl) — a pipeline of its own, so only
+// their fragments carry the ray's loop (precip_gpu::frame's WATER_BODY_DRAW).
+@fragment
+fn fs_water_body(in: SceneVarying) -> @location(0) vec4<f32> {
+    var look = surface_look(in);
+    if (look.mirror > REFLECTION_LEAST) {
+        let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - in.world_m);
+        look.shaded += look.mirror * mirrored_scene(in.world_m, to_viewer);
+    }
+    return vec4<f32>(mix(params.sky_colour_time.xyz, look.shaded, look.fog), 1.0);
+}
+
+fn surface_look(in: SceneVarying) -> SurfaceLook {
     let base = material.base_colour * textureSample(base_colour_texture, material_sampler, in.uv);
     let camera = params.camera_m_cone_cos.xyz;
     let to_viewer = normalize_or_zero(camera - in.world_m);
@@ -280,11 +307,14 @@ fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
     }
     let lit = shadow_lit(in.world_m);
     let intensity = blinn_phong(params.light, params.shadow, n, params.to_sun_extinction.xyz, to_viewer, lit);
-    var shaded = colour * intensity;
+    var look: SurfaceLook;
+    look.shaded = colour * intensity;
+    look.mirror = 0.0;
     if (open_water > 0.0) {
-        let wet = water_surface(shaded, puddle_ratio, wetness, body, in.surface_m.xz, to_viewer, lit, ring_fade);
-        shaded = mix(shaded, wet, open_water);
+        let wet = water_surface(look.shaded, puddle_ratio, wetness, body, in.surface_m.xz, to_viewer, lit, ring_fade);
+        look.shaded = mix(look.shaded, wet.rgb, open_water);
+        look.mirror = wet.w * open_water;
     }
-    let fog = fog_transmittance(distance(in.world_m, camera), params.to_sun_extinction.w);
-    return vec4<f32>(mix(params.sky_colour_time.xyz, shaded, fog), 1.0);
+    look.fog = fog_transmittance(distance(in.world_m, camera), params.to_sun_extinction.w);
+    return look;
 }

@@ -327,6 +327,16 @@ pub const SPLAT_RESOLVE: GroupLayout = GroupLayout {
     bindings: &[binding(rb::RESOLVED_SUMS, storage(false), Stages::Fragment)],
 };
 
+/// Group 3 of the scene's draw (fragment): the frame before's scene and depth, for
+/// the water's reflections.
+pub const REFLECTIONS: GroupLayout = GroupLayout {
+    name: "precip reflections",
+    bindings: &[
+        binding(rb::SCENE_COPY, FILTERED_2D, Stages::Fragment),
+        binding(rb::DEPTH_COPY, DEPTH_2D, Stages::Fragment),
+    ],
+};
+
 /// Group 0 of the `cover_texture` kernel.
 pub const COVER_TEXTURE: GroupLayout = GroupLayout {
     name: "precip cover texture",
@@ -399,8 +409,8 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
         (Program::Render, "vs_sky" | "fs_sky") => &[RENDER_FRAME],
-        (Program::Render, "vs_scene" | "fs_scene") => {
-            &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL]
+        (Program::Render, "vs_scene" | "fs_scene" | "fs_water_body") => {
+            &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL, REFLECTIONS]
         }
         (Program::Render, "vs_splat_resolve" | "fs_splat_resolve") => {
             &[RENDER_FRAME, RENDER_LIGHT, SPLAT_RESOLVE]

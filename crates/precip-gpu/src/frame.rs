@@ -42,14 +42,27 @@ pub enum DepthTarget {
     Camera,
 }
 
+/// Which of the scene's meshes a draw draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshesOf {
+    /// Every mesh.
+    All,
+    /// The water bodies (meshes tagged water): their fragments mirror the scene.
+    WaterBodies,
+    /// Every mesh but the water bodies.
+    AllButWaterBodies,
+}
+
 /// What a draw draws.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DrawOf {
-    /// Every mesh of the scene from its vertex and index buffers; with `materials`,
-    /// each mesh's material group bound before it.
+    /// The scene's meshes `which` picks, from its vertex and index buffers; with
+    /// `materials`, each mesh's material group bound before it.
     SceneMeshes {
         /// Bind each mesh's material group.
         materials: bool,
+        /// Which meshes.
+        which: MeshesOf,
     },
     /// One triangle of 3 vertices covering the target.
     FullScreenTriangle,
@@ -100,6 +113,18 @@ pub struct Draw {
     pub blend: Blend,
 }
 
+impl Draw {
+    /// What names its pipeline: the fragment entry point, or the vertex one of a
+    /// depth-only draw (two draws may share a vertex stage).
+    #[must_use]
+    pub const fn key(&self) -> &'static str {
+        match self.entry_points.1 {
+            Some(fragment) => fragment,
+            None => self.entry_points.0,
+        }
+    }
+}
+
 /// A render pass.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RenderPassRecipe {
@@ -122,6 +147,12 @@ pub enum PassWork {
     Kernels(&'static [KernelPass]),
     /// A render pass.
     Render(RenderPassRecipe),
+    /// The colour target and the camera's depth as the passes so far left them,
+    /// copied into the target's [`crate::frame_resources::TargetResource::SceneCopy`]
+    /// and [`crate::frame_resources::TargetResource::DepthCopy`], for the next
+    /// frame's scene to read (its water's reflections); both stay ready for the next
+    /// render pass.
+    CopyTarget,
 }
 
 /// When a pass runs.
@@ -131,6 +162,9 @@ pub enum PassWhen {
     Always,
     /// When [`precip_model::drawing::shadow_cache::ShadowCache`] says the map is to be redrawn.
     ShadowRedrawn,
+    /// While standing water may show (some rain has fallen or the scene has water
+    /// bodies) and the target can be copied.
+    WaterShows,
 }
 
 /// One pass of the frame.
@@ -146,7 +180,10 @@ pub struct FramePass {
 
 const SHADOW_DRAW: Draw = Draw {
     entry_points: render_passes::SHADOW,
-    of: DrawOf::SceneMeshes { materials: false },
+    of: DrawOf::SceneMeshes {
+        materials: false,
+        which: MeshesOf::All,
+    },
     scene_vertices: true,
     topology: Topology::TriangleList,
     depth_write: true,
@@ -156,7 +193,27 @@ const SHADOW_DRAW: Draw = Draw {
 
 const SCENE_DRAW: Draw = Draw {
     entry_points: render_passes::SCENE,
-    of: DrawOf::SceneMeshes { materials: true },
+    of: DrawOf::SceneMeshes {
+        materials: true,
+        which: MeshesOf::AllButWaterBodies,
+    },
+    scene_vertices: true,
+    topology: Topology::TriangleList,
+    depth_write: true,
+    depth_bias: None,
+    blend: Blend::Opaque,
+};
+
+// The water bodies, whose fragments also follow their mirrored rays
+// (render_reflections.wgsl): a pipeline of their own, so the other meshes'
+// fragments carry none of that code (lavapipe pays for a loop's code in every
+// fragment of a shader that has one, run or not: +30 ms a 1280×720 frame).
+const WATER_BODY_DRAW: Draw = Draw {
+    entry_points: render_passes::WATER_BODIES,
+    of: DrawOf::SceneMeshes {
+        materials: true,
+        which: MeshesOf::WaterBodies,
+    },
     scene_vertices: true,
     topology: Topology::TriangleList,
     depth_write: true,
@@ -211,7 +268,7 @@ const PARTICLE_DRAWS: [Draw; 3] = [
 ];
 
 /// The frame, in order (see the module docs and [`crate::renderer`]).
-pub const FRAME_PASSES: [FramePass; 6] = [
+pub const FRAME_PASSES: [FramePass; 7] = [
     FramePass {
         name: "cover_texture",
         work: PassWork::Kernels(&[COVER_TEXTURE_PASS]),
@@ -235,9 +292,14 @@ pub const FRAME_PASSES: [FramePass; 6] = [
             depth_load: AttachmentLoad::Clear,
             depth_stored: true,
             colour: Some(AttachmentLoad::Clear),
-            draws: &[SCENE_DRAW, SKY_DRAW],
+            draws: &[SCENE_DRAW, WATER_BODY_DRAW, SKY_DRAW],
         }),
         when: PassWhen::Always,
+    },
+    FramePass {
+        name: "scene_copy",
+        work: PassWork::CopyTarget,
+        when: PassWhen::WaterShows,
     },
     FramePass {
         name: "cull_particles",
@@ -279,7 +341,7 @@ pub fn draws() -> impl Iterator<Item = (&'static FramePass, &'static Draw)> {
     FRAME_PASSES.iter().flat_map(|p| {
         let draws: &'static [Draw] = match &p.work {
             PassWork::Render(r) => r.draws,
-            PassWork::Kernels(_) => &[],
+            PassWork::Kernels(_) | PassWork::CopyTarget => &[],
         };
         draws.iter().map(move |d| (p, d))
     })
@@ -289,7 +351,7 @@ pub fn draws() -> impl Iterator<Item = (&'static FramePass, &'static Draw)> {
 pub fn kernels() -> impl Iterator<Item = &'static KernelPass> {
     FRAME_PASSES.iter().flat_map(|p| match &p.work {
         PassWork::Kernels(k) => k.iter(),
-        PassWork::Render(_) => [].iter(),
+        PassWork::Render(_) | PassWork::CopyTarget => [].iter(),
     })
 }
 
@@ -299,6 +361,9 @@ pub struct FrameConditions {
     /// The shadow map is to be drawn again
     /// (`precip_model::drawing::shadow_cache::ShadowCache`).
     pub shadow_redrawn: bool,
+    /// Standing water may show and the target can be copied
+    /// ([`PassWhen::WaterShows`]).
+    pub water_shows: bool,
 }
 
 impl PassWhen {
@@ -308,6 +373,7 @@ impl PassWhen {
         match self {
             Self::Always => true,
             Self::ShadowRedrawn => conditions.shadow_redrawn,
+            Self::WaterShows => conditions.water_shows,
         }
     }
 }
@@ -363,7 +429,7 @@ impl PlannedPass {
     pub fn kernels(&self, counts: DispatchCounts) -> impl Iterator<Item = PlannedKernel> {
         let list: &'static [KernelPass] = match &self.pass.work {
             PassWork::Kernels(list) => list,
-            PassWork::Render(_) => &[],
+            PassWork::Render(_) | PassWork::CopyTarget => &[],
         };
         list.iter().map(move |kernel| PlannedKernel {
             kernel,
@@ -376,7 +442,7 @@ impl PlannedPass {
     pub fn draws(&self) -> impl Iterator<Item = PlannedDraw> {
         let list: &'static [Draw] = match &self.pass.work {
             PassWork::Render(recipe) => recipe.draws,
-            PassWork::Kernels(_) => &[],
+            PassWork::Kernels(_) | PassWork::CopyTarget => &[],
         };
         list.iter().map(|draw| PlannedDraw {
             draw,
@@ -402,6 +468,8 @@ pub struct FrameDecision {
 pub struct FrameHost {
     shadow_bounds_m: (Vec3, Vec3),
     shadow_cache: ShadowCache,
+    /// The scene has a water body (a mesh tagged water).
+    water_bodies: bool,
 }
 
 impl FrameHost {
@@ -411,11 +479,17 @@ impl FrameHost {
         Self {
             shadow_bounds_m: setup.scene_bounds_m(),
             shadow_cache: ShadowCache::default(),
+            water_bodies: setup.scene.as_ref().is_some_and(|s| {
+                s.meshes
+                    .iter()
+                    .any(|m| m.surface == Some(precip_model::cover::Surface::Water))
+            }),
         }
     }
 
     /// The next frame of `sim` for `view`: its block (from the host state), whether
-    /// the shadow map is drawn again, the sky's colour.
+    /// the shadow map is drawn again and whether water may show (the renderer adds
+    /// whether the target can be copied), the sky's colour.
     pub fn decide<G: Gpu>(&mut self, sim: &Simulation<G>, view: &View) -> FrameDecision {
         let host = sim.host();
         let setup = host.setup();
@@ -430,7 +504,10 @@ impl FrameHost {
                 .for_frame(setup, host.weather(), &params, host.time_s());
         FrameDecision {
             params,
-            conditions: FrameConditions { shadow_redrawn },
+            conditions: FrameConditions {
+                shadow_redrawn,
+                water_shows: self.water_bodies || host.activity().water_may_stand,
+            },
             sky_colour: haze_colour(&setup.render, host.weather()),
         }
     }
@@ -477,12 +554,20 @@ mod tests {
     }
 
     #[test]
-    fn the_plan_skips_the_shadow_only_when_it_is_kept() {
-        for shadow_redrawn in [false, true] {
-            let plan: Vec<_> = frame_plan(FrameConditions { shadow_redrawn }).collect();
+    fn the_plan_skips_the_shadow_and_the_copy_only_when_unneeded() {
+        for (shadow_redrawn, water_shows) in [(false, false), (true, false), (false, true)] {
+            let plan: Vec<_> = frame_plan(FrameConditions {
+                shadow_redrawn,
+                water_shows,
+            })
+            .collect();
             assert_eq!(plan.len(), FRAME_PASSES.len());
             for p in &plan {
-                let expected = p.pass.name != "shadow" || shadow_redrawn;
+                let expected = match p.pass.name {
+                    "shadow" => shadow_redrawn,
+                    "scene_copy" => water_shows,
+                    _ => true,
+                };
                 assert_eq!(p.runs, expected, "{}", p.pass.name);
                 assert_eq!(FRAME_PASSES[p.index as usize].name, p.pass.name);
                 for d in p.draws() {
@@ -500,6 +585,7 @@ mod tests {
                 "cover_texture",
                 "shadow",
                 "scene",
+                "scene_copy",
                 "cull_particles",
                 "splat_particles",
                 "particles"

@@ -11,7 +11,7 @@ use precip_model::drawing::render::RenderParams;
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 
 use crate::bind_groups::{
-    COVER_TEXTURE, CULL, GroupLayout, RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
+    COVER_TEXTURE, CULL, GroupLayout, REFLECTIONS, RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
 };
 use crate::recipe::{
     DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
@@ -119,6 +119,9 @@ pub enum TexelFormat {
     R8Unorm,
     /// Four 8-bit sRGB channels (base colour textures, the offscreen image).
     Rgba8UnormSrgb,
+    /// Four 8-bit sRGB channels, blue first (a window's usual format: the copy of
+    /// such a target).
+    Bgra8UnormSrgb,
 }
 
 impl TexelFormat {
@@ -126,7 +129,7 @@ impl TexelFormat {
     #[must_use]
     pub const fn texel_bytes(self) -> u32 {
         match self {
-            Self::Depth32Float | Self::Rgba8UnormSrgb => 4,
+            Self::Depth32Float | Self::Rgba8UnormSrgb | Self::Bgra8UnormSrgb => 4,
             Self::Rgba16Float => 8,
             Self::R8Unorm => 1,
         }
@@ -145,6 +148,9 @@ pub enum TextureUsage {
     Sampled,
     /// The frame's colour target (drawn into, then copied back).
     ColourTarget,
+    /// A copy of the colour target or of the camera's depth (copied into each
+    /// frame, then sampled).
+    CopyOfTarget,
 }
 
 /// A row of the frame's textures.
@@ -220,6 +226,11 @@ pub enum TargetResource {
     /// The splat's sums, [`SPLAT_BYTES_PER_PIXEL`] a pixel, zero at first (the
     /// resolve zeroes what it reads).
     SplatSums,
+    /// The frame as the scene pass left it ([`crate::frame::PassWork::CopyTarget`]),
+    /// in the target's format, for the next frame's reflections.
+    SceneCopy,
+    /// The camera's depth as the scene pass left it, likewise.
+    DepthCopy,
 }
 
 /// Bytes of the splat sums of a `width × height` target.
@@ -320,8 +331,9 @@ pub const FRAME_GROUPS: [FrameGroupFill; 4] = [
     },
 ];
 
-/// The groups made for a target's size (the splat kernel's and its resolve's).
-pub const TARGET_GROUPS: [FrameGroupFill; 2] = [
+/// The groups made for a target's size (the splat kernel's, its resolve's and the
+/// reflections').
+pub const TARGET_GROUPS: [FrameGroupFill; 3] = [
     FrameGroupFill {
         layout: &SPLAT,
         bound: &[
@@ -342,6 +354,19 @@ pub const TARGET_GROUPS: [FrameGroupFill; 2] = [
             rb::RESOLVED_SUMS,
             FrameBound::Target(TargetResource::SplatSums),
         )],
+    },
+    FrameGroupFill {
+        layout: &REFLECTIONS,
+        bound: &[
+            (
+                rb::SCENE_COPY,
+                FrameBound::Target(TargetResource::SceneCopy),
+            ),
+            (
+                rb::DEPTH_COPY,
+                FrameBound::Target(TargetResource::DepthCopy),
+            ),
+        ],
     },
 ];
 
@@ -377,7 +402,12 @@ mod tests {
                         FrameBound::Target(TargetResource::SplatSums),
                     ) | (
                         BindingKind::Texture { .. },
-                        FrameBound::Texture(_) | FrameBound::Target(TargetResource::CameraDepth),
+                        FrameBound::Texture(_)
+                            | FrameBound::Target(
+                                TargetResource::CameraDepth
+                                    | TargetResource::SceneCopy
+                                    | TargetResource::DepthCopy
+                            ),
                     ) | (
                         BindingKind::StorageTextureRgba16Float,
                         FrameBound::StorageTexture(_)

@@ -142,6 +142,16 @@ pub enum PassKind<'a, G: Gpu + ?Sized> {
     /// A render pass into these attachments (and the target, if the recipe has
     /// colour).
     Render(Attachments<'a, G>),
+    /// The colour target copied, whole, into `colour` (of its size and format) and
+    /// the depth texture `depth.0` into `depth.1` (both made with
+    /// [`crate::frame_resources::TextureUsage::CopyOfTarget`]); the target and the
+    /// depth are left as they were, ready for the next render pass.
+    CopyTarget {
+        /// The colour target's copy.
+        colour: &'a G::Texture,
+        /// The depth buffer and its copy.
+        depth: (&'a G::Texture, &'a G::Texture),
+    },
 }
 
 /// One pass of a frame as commands.
@@ -278,6 +288,11 @@ pub trait Gpu {
 
     /// The format of `target`.
     fn colour_format(&self, target: Target<'_, Self>) -> Self::ColourFormat;
+
+    /// The format of a copy of `target` ([`PassKind::CopyTarget`]), or `None` when
+    /// it cannot be copied (a window whose surface allows no copies, a format with no
+    /// [`TexelFormat`]): then the passes that read the copy do not run.
+    fn copy_format(&self, target: Target<'_, Self>) -> Option<TexelFormat>;
 
     /// The size of a texture, px.
     fn texture_size(&self, texture: &Self::Texture) -> (u32, u32);

@@ -386,6 +386,7 @@ pub const FEATURES: [(&str, &[&str]); 6] = [
             "wave_excite",
             "wave_step",
             "wave_shift",
+            "scene_copy",
         ],
     ),
     ("scene", &["scene"]),
@@ -575,6 +576,8 @@ pub mod render_passes {
     pub const SHADOW: (&str, Option<&str>) = ("vs_shadow", None);
     /// The scene with its cover.
     pub const SCENE: (&str, Option<&str>) = ("vs_scene", Some("fs_scene"));
+    /// The water bodies, mirroring the scene (render_reflections.wgsl).
+    pub const WATER_BODIES: (&str, Option<&str>) = ("vs_scene", Some("fs_water_body"));
     /// Snow sprites: triangle strip of 4 vertices per drawn particle, indirect draw 0.
     pub const SNOW: (&str, Option<&str>) = ("vs_snow", Some("fs_snow"));
     /// Rain tetrahedra: triangle list of 12 vertices per drawn particle, indirect draw 1.
@@ -711,6 +714,12 @@ pub mod render_bindings {
     /// Group 2 of the splat kernel: the frame's [`super::FrameDraws`] (the splat
     /// list's count), read-only storage.
     pub const SPLAT_DRAWS: u32 = 6;
+    /// Group 3 of the scene's draw: the frame before as its scene pass left it
+    /// (`scene_copy` pass), `texture_2d<f32>`, read with `textureLoad` by the water's
+    /// reflections.
+    pub const SCENE_COPY: u32 = 0;
+    /// Group 3 of the scene's draw: the frame before's depth, `texture_depth_2d`.
+    pub const DEPTH_COPY: u32 = 1;
     /// Group 0: the water bodies' waves (`array<i32>`, as
     /// [`super::step_bindings::WAVES`]), read-only storage.
     pub const WAVES: u32 = 12;

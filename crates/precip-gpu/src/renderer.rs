@@ -137,7 +137,7 @@ impl<G: Gpu> Drawing<G> {
                     gpu.draw_pipeline(draw, recipe, &layouts, recipe.colour.map(|_| format))
                 });
             match pipeline {
-                Ok(p) => made.push((draw.entry_points.0, p)),
+                Ok(p) => made.push((draw.key(), p)),
                 Err(e) => {
                     for (_, p) in made {
                         gpu.destroy_draw_pipeline(p);
@@ -166,13 +166,18 @@ impl<G: Gpu> Drawing<G> {
     }
 }
 
-/// What a target of one size adds: the camera's depth buffer, the splat sums and
-/// the groups that bind them ([`TARGET_GROUPS`]).
+/// What a target of one size and format adds: the camera's depth buffer, the splat
+/// sums, the copy of the scene and the groups that bind them ([`TARGET_GROUPS`]).
 #[derive(Debug)]
 struct TargetState<G: Gpu> {
     size: (u32, u32),
     depth: G::Texture,
     sums: G::Buffer,
+    /// The scene's copy, in the format the target copies to (an unused
+    /// `Rgba8UnormSrgb` one where it cannot be copied, so the groups are whole).
+    copy: (TexelFormat, G::Texture),
+    /// The depth's copy.
+    depth_copy: G::Texture,
     groups: Vec<(&'static str, G::BindGroup)>,
 }
 
@@ -183,8 +188,19 @@ impl<G: Gpu> TargetState<G> {
         }
         gpu.destroy_texture(self.depth);
         gpu.destroy_buffer(self.sums);
+        gpu.destroy_texture(self.copy.1);
+        gpu.destroy_texture(self.depth_copy);
     }
 }
+
+/// The target's resources for [`TARGET_GROUPS`]: depth, splat sums, scene copy,
+/// depth copy.
+type TargetBound<'a, G> = (
+    &'a <G as Gpu>::Texture,
+    &'a <G as Gpu>::Buffer,
+    &'a <G as Gpu>::Texture,
+    &'a <G as Gpu>::Texture,
+);
 
 /// What drawing holds for one configuration.
 #[derive(Debug)]
@@ -203,14 +219,17 @@ pub struct FrameState<G: Gpu> {
     cover_texels: u32,
     /// Which passes of [`FRAME_PASSES`] the last frame ran.
     ran: [bool; FRAME_PASSES.len()],
+    /// The last frame's camera (world → clip) where it copied its scene and depth
+    /// for this frame's reflections (forgotten when the target is made again).
+    history: Option<glam::Mat4>,
 }
 
 /// What a frame group's entries resolve against.
 struct Bindable<'a, G: Gpu> {
     state: &'a FrameState<G>,
     sim: &'a Simulation<G>,
-    /// The target's depth buffer and splat sums (for [`TARGET_GROUPS`]).
-    target: Option<(&'a G::Texture, &'a G::Buffer)>,
+    /// The target's resources (for [`TARGET_GROUPS`]).
+    target: Option<TargetBound<'a, G>>,
 }
 
 impl<'a, G: Gpu> Bindable<'a, G> {
@@ -232,6 +251,12 @@ impl<'a, G: Gpu> Bindable<'a, G> {
             }
             FrameBound::Target(TargetResource::SplatSums) => {
                 BindingResource::Buffer(self.target.ok_or_else(|| missing("the splat sums"))?.1)
+            }
+            FrameBound::Target(TargetResource::SceneCopy) => {
+                BindingResource::Texture(self.target.ok_or_else(|| missing("the scene copy"))?.2)
+            }
+            FrameBound::Target(TargetResource::DepthCopy) => {
+                BindingResource::Texture(self.target.ok_or_else(|| missing("the depth copy"))?.3)
             }
         })
     }
@@ -292,6 +317,7 @@ impl<G: Gpu> FrameState<G> {
             params_stride: 0,
             cover_texels: texels.x * texels.y,
             ran: [false; FRAME_PASSES.len()],
+            history: None,
         };
         match made.fill(gpu, drawing, sim) {
             Ok(()) => Ok(made),
@@ -374,21 +400,13 @@ impl<G: Gpu> FrameState<G> {
         }
     }
 
-    /// Makes the offscreen image (when no surface is given) and the target's
-    /// resources for a `size` frame, replacing those of another size.
-    fn prepare_target(
-        &mut self,
-        gpu: &mut G,
-        drawing: &Drawing<G>,
-        sim: &Simulation<G>,
-        size: (u32, u32),
-        offscreen: bool,
-    ) -> Result<(), BackendError> {
-        if offscreen
-            && self
-                .offscreen
-                .as_ref()
-                .is_none_or(|t| gpu.texture_size(t) != size)
+    /// Makes the offscreen image of a `size` frame (when no surface is given),
+    /// replacing one of another size.
+    fn prepare_offscreen(&mut self, gpu: &mut G, size: (u32, u32)) -> Result<(), BackendError> {
+        if self
+            .offscreen
+            .as_ref()
+            .is_none_or(|t| gpu.texture_size(t) != size)
         {
             if let Some(old) = self.offscreen.take() {
                 gpu.destroy_texture(old);
@@ -402,7 +420,24 @@ impl<G: Gpu> FrameState<G> {
                 contents: None,
             })?);
         }
-        if self.target.as_ref().is_some_and(|t| t.size == size) {
+        Ok(())
+    }
+
+    /// Makes the target's resources for a `size` frame whose copies are
+    /// `copy_format`, replacing those of another size or format.
+    fn prepare_target(
+        &mut self,
+        gpu: &mut G,
+        drawing: &Drawing<G>,
+        sim: &Simulation<G>,
+        size: (u32, u32),
+        copy_format: TexelFormat,
+    ) -> Result<(), BackendError> {
+        if self
+            .target
+            .as_ref()
+            .is_some_and(|t| t.size == size && t.copy.0 == copy_format)
+        {
             return Ok(());
         }
         if let Some(old) = self.target.take() {
@@ -430,18 +465,47 @@ impl<G: Gpu> FrameState<G> {
                 return Err(e);
             }
         };
+        let copy = |gpu: &mut G, label, format| {
+            gpu.create_texture(&TextureDesc {
+                label,
+                size,
+                format,
+                usage: TextureUsage::CopyOfTarget,
+                contents: None,
+            })
+        };
+        let copies = copy(gpu, "precip scene copy", copy_format).and_then(|scene| {
+            match copy(gpu, "precip depth copy", TexelFormat::Depth32Float) {
+                Ok(d) => Ok((scene, d)),
+                Err(e) => {
+                    gpu.destroy_texture(scene);
+                    Err(e)
+                }
+            }
+        });
+        let (scene_copy, depth_copy) = match copies {
+            Ok(c) => c,
+            Err(e) => {
+                gpu.destroy_texture(depth);
+                gpu.destroy_buffer(sums);
+                return Err(e);
+            }
+        };
         let groups = Bindable {
             state: &*self,
             sim,
-            target: Some((&depth, &sums)),
+            target: Some((&depth, &sums, &scene_copy, &depth_copy)),
         }
         .groups(gpu, drawing, &TARGET_GROUPS);
+        self.history = None;
         match groups {
             Ok(groups) => {
                 self.target = Some(TargetState {
                     size,
                     depth,
                     sums,
+                    copy: (copy_format, scene_copy),
+                    depth_copy,
                     groups,
                 });
                 Ok(())
@@ -449,6 +513,8 @@ impl<G: Gpu> FrameState<G> {
             Err(e) => {
                 gpu.destroy_texture(depth);
                 gpu.destroy_buffer(sums);
+                gpu.destroy_texture(scene_copy);
+                gpu.destroy_texture(depth_copy);
                 Err(e)
             }
         }
@@ -466,8 +532,31 @@ impl<G: Gpu> FrameState<G> {
     ) -> Result<(), BackendError> {
         gpu.limits().check_view(view)?;
         let size = (view.width_px, view.height_px);
-        self.prepare_target(gpu, drawing, sim, size, surface.is_none())?;
-        let decision = self.host.decide(sim, view);
+        if surface.is_none() {
+            self.prepare_offscreen(gpu, size)?;
+        }
+        let copy_format = {
+            let target = match (surface, &self.offscreen) {
+                (Some(s), _) => Target::Surface(s),
+                (None, Some(t)) => Target::Texture(t),
+                (None, None) => return Err(missing("the offscreen image")),
+            };
+            gpu.copy_format(target)
+        };
+        self.prepare_target(
+            gpu,
+            drawing,
+            sim,
+            size,
+            copy_format.unwrap_or(TexelFormat::Rgba8UnormSrgb),
+        )?;
+        let mut decision = self.host.decide(sim, view);
+        decision.conditions.water_shows &= copy_format.is_some();
+        // The water reflects the frame before where its copies are there.
+        if let Some(previous) = self.history.take() {
+            decision.params.previous_view_proj = previous;
+            decision.params.water_look.y = 1.0;
+        }
         let slot = (self.frames_drawn % u64::from(gpu.slots().max(1))) as u32;
         gpu.free_slot(slot)?;
         let offset = u64::from(slot) * self.params_stride;
@@ -495,6 +584,10 @@ impl<G: Gpu> FrameState<G> {
         }
         drop(work);
         self.ran = ran;
+        self.history = decision
+            .conditions
+            .water_shows
+            .then_some(decision.params.view_proj);
         self.frames_drawn += 1;
         if surface.is_none() {
             self.rendered = true;
@@ -567,14 +660,19 @@ impl<G: Gpu> FrameState<G> {
                 }
                 PassWork::Render(recipe) => {
                     for d in planned.draws() {
-                        let vs = d.draw.entry_points.0;
-                        let pipeline = find(pipelines, &vs).ok_or_else(|| missing(vs))?;
+                        let key = d.draw.key();
+                        let pipeline = find(pipelines, &key).ok_or_else(|| missing(key))?;
                         commands.push(Command::Pipeline(pipeline));
                         bind(&mut commands, d.groups)?;
                         match d.draw.of {
-                            DrawOf::SceneMeshes { materials } => {
+                            DrawOf::SceneMeshes { materials, which } => {
                                 if let Some(scene) = &self.scene {
-                                    scene.draw(&mut commands, materials, detail.0, detail.1);
+                                    scene.draw(
+                                        &mut commands,
+                                        (materials, which),
+                                        detail.0,
+                                        detail.1,
+                                    );
                                 }
                             }
                             DrawOf::FullScreenTriangle => commands.push(Command::Draw(3)),
@@ -593,6 +691,10 @@ impl<G: Gpu> FrameState<G> {
                         colour_last: last_colour == Some(planned.index as usize),
                     })
                 }
+                PassWork::CopyTarget => PassKind::CopyTarget {
+                    colour: &target.copy.1,
+                    depth: (&target.depth, &target.depth_copy),
+                },
             };
             passes.push(RecordedPass {
                 name: planned.pass.name,

@@ -10,6 +10,7 @@ use precip_model::scene::gpu_scene::{PackedScene, SceneLod};
 use precip_model::{BackendError, Setup, TextureRgba8};
 
 use crate::bind_groups::RENDER_MATERIAL;
+use crate::frame::MeshesOf;
 use crate::frame_resources::{Sampler, TexelFormat, TextureUsage};
 use crate::gpu::{BindingResource, Command, Gpu, TextureDesc};
 use crate::recipe::render_bindings as rb;
@@ -21,6 +22,8 @@ struct Material<G: Gpu> {
     colour: G::Buffer,
     texture: G::Texture,
     group: Option<G::BindGroup>,
+    /// The mesh is a water body (tagged water).
+    water_body: bool,
 }
 
 /// The uploaded scene.
@@ -115,6 +118,7 @@ impl<G: Gpu> SceneGpu<G> {
                 colour,
                 texture,
                 group: None,
+                water_body: mesh.surface == Some(precip_model::cover::Surface::Water),
             });
             let Some(material) = self.materials.last_mut() else {
                 continue;
@@ -141,21 +145,32 @@ impl<G: Gpu> SceneGpu<G> {
         self.lod.detail_distance_m(view)
     }
 
-    /// The commands drawing every mesh, fine near `camera_m` and coarse beyond
-    /// `detail_distance_m`; each mesh's material group bound at 2 when
+    /// The commands drawing the meshes `which` picks, fine near `camera_m` and
+    /// coarse beyond `detail_distance_m`; each mesh's material group bound at 2 when
     /// `with_materials`.
     pub fn draw<'a>(
         &'a self,
         commands: &mut Vec<Command<'a, G>>,
-        with_materials: bool,
+        (with_materials, which): (bool, MeshesOf),
         camera_m: Vec3,
         detail_distance_m: f32,
     ) {
         let (Some(vertices), Some(indices)) = (&self.vertices, &self.indices) else {
             return;
         };
+        let picked = |m: &Material<G>| match which {
+            MeshesOf::All => true,
+            MeshesOf::WaterBodies => m.water_body,
+            MeshesOf::AllButWaterBodies => !m.water_body,
+        };
+        if !self.materials.iter().any(picked) {
+            return;
+        }
         commands.push(Command::Meshes { vertices, indices });
         for (m, material) in self.materials.iter().enumerate() {
+            if !picked(material) {
+                continue;
+            }
             if with_materials && let Some(group) = &material.group {
                 commands.push(Command::Group {
                     index: 2,

@@ -93,6 +93,8 @@ pub const COVER_TEXTURE: ShaderFile = shader_file!("cover_texture.wgsl");
 pub const PARTICLE_LISTS: ShaderFile = shader_file!("particle_lists.wgsl");
 /// Sub-pixel particles: kernel `splat_particles` and its resolve draw.
 pub const RENDER_SPLAT: ShaderFile = shader_file!("render_splat.wgsl");
+/// The scene mirrored in standing water (the scene pass calls it).
+pub const RENDER_REFLECTIONS: ShaderFile = shader_file!("render_reflections.wgsl");
 /// Kernels `cull_count`, `cull_scan`, `cull_write`.
 pub const CULL_PARTICLES: ShaderFile = shader_file!("cull_particles.wgsl");
 /// Particles' cross-sections (Rust twin: `sensors::optics`).
@@ -170,6 +172,7 @@ impl Program {
                 PARTICLE_LISTS,
                 RENDER_PARTICLES,
                 RENDER_SPLAT,
+                RENDER_REFLECTIONS,
                 COVER_TEXTURE,
             ],
             Self::CullParticles => &[

@@ -78,7 +78,10 @@ fn water_body_colour(bottom_colour: vec3<f32>, depth_m: f32) -> vec3<f32> {
 // sheen, a puddle's mirror with rain rings, a water body's (`body`: 1 on its mesh)
 // Fresnel surface with its simulated waves (water_waves.wgsl) and rings over its
 // depths. `ring_fade` is 0 where a pixel spans a ring's wavelength (no aliasing).
-fn water_surface(shaded: vec3<f32>, puddle_ratio: f32, wetness: f32, body: f32, xz_m: vec2<f32>, to_viewer: vec3<f32>, lit: f32, ring_fade: f32) -> vec3<f32> {
+// In w, the weight its sharp mirrors (the puddle's and the water body's, not the
+// film's blurred sheen) give the sky they reflect: where the renderer's reflections
+// find the scene instead.
+fn water_surface(shaded: vec3<f32>, puddle_ratio: f32, wetness: f32, body: f32, xz_m: vec2<f32>, to_viewer: vec3<f32>, lit: f32, ring_fade: f32) -> vec4<f32> {
     let puddle = puddle_cover(puddle_ratio);
     var slope = ring_slope(xz_m, params.sky_colour_time.w, params.water_look.x) * (ring_fade * max(puddle, body));
     // On a water body the simulated waves (longer than the grid's 4 cm cells) add to
@@ -94,5 +97,5 @@ fn water_surface(shaded: vec3<f32>, puddle_ratio: f32, wetness: f32, body: f32, 
     out = mix(out, (1.0 - f) * shaded + f * sky + vec3<f32>(glint), puddle);
     let depths = water_body_colour(shaded, params.water_look.z) ;
     out = mix(out, (1.0 - f) * depths + f * sky + vec3<f32>(glint), body);
-    return out;
+    return vec4<f32>(out, f * mix(puddle, 1.0, body));
 }

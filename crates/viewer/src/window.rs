@@ -265,6 +265,10 @@ fn wgpu_presenter(
     if let Some(srgb) = caps.formats.iter().find(|f| f.is_srgb()) {
         config.format = *srgb;
     }
+    // Copied after the scene pass for the water's reflections, where it may be.
+    if caps.usages.contains(wgpu::TextureUsages::COPY_SRC) {
+        config.usage |= wgpu::TextureUsages::COPY_SRC;
+    }
     surface.configure(&backend.device().device, &config);
     Ok(Presenter::Wgpu(Box::new(WgpuWindow {
         surface,

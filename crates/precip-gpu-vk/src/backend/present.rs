@@ -111,7 +111,9 @@ impl VkBackend {
                 ..*view
             };
             let image = SwapchainImage {
+                image: frame.image,
                 view: frame.view,
+                copyable: frame.copyable,
                 format,
                 acquired: frame.acquired,
                 drawn: frame.drawn,

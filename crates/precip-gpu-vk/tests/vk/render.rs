@@ -59,6 +59,8 @@ fn frame(backend: &mut dyn Backend, setup: &Setup, steps: usize, view: &View) ->
         backend.step(0.08).expect("valid step");
     }
     backend.set_camera(&view.camera).expect("valid camera");
+    // Twice: the second frame's water reflects the first's scene (its copies).
+    backend.render(view).expect("renders");
     backend.render(view).expect("renders");
     backend.read_image().expect("an image")
 }
@@ -110,6 +112,53 @@ proptest! {
         prop_assert_eq!(vk.drawn().expect("counts"), wgpu.drawn().expect("counts"));
         assert_clean(&vk, "while drawing");
     }
+}
+
+/// A pond before the house, seen low across it: both backends mirror the house in
+/// it alike (the second frame reflects the first's copies of scene and depth).
+#[test]
+fn vk_and_wgpu_mirror_the_house_in_a_pond_alike() {
+    let (Some(mut vk), Some(mut wgpu)) =
+        (vk("vk_and_wgpu_mirror_the_house_in_a_pond_alike"), wgpu())
+    else {
+        return;
+    };
+    let mut scene = house_on_plane();
+    scene.meshes.push(precip_model::Mesh {
+        name: "pond".into(),
+        positions_m: vec![
+            Vec3::new(-8.0, 0.02, 4.0),
+            Vec3::new(8.0, 0.02, 4.0),
+            Vec3::new(8.0, 0.02, 14.0),
+            Vec3::new(-8.0, 0.02, 14.0),
+        ],
+        indices: vec![0, 2, 1, 0, 3, 2],
+        surface: Some(precip_model::cover::Surface::Water),
+        ..precip_model::Mesh::default()
+    });
+    let (mut setup, _) = Setup::over_scene(scene, 64, 6.0, 2_000).expect("valid");
+    setup.weather.intensity_mm_per_h = 0.5;
+    let position = Vec3::new(0.0, 0.8, 18.0);
+    let camera = Camera {
+        position_m: position,
+        forward: (Vec3::new(0.0, 1.0, 0.0) - position).normalize(),
+        ..Camera::default()
+    };
+    setup.camera = camera;
+    let view = View {
+        camera,
+        width_px: 160,
+        height_px: 96,
+    };
+    let a = frame(&mut vk, &setup, 2, &view);
+    let b = frame(&mut wgpu, &setup, 2, &view);
+    let (close, worst) = agreement(&a, &b);
+    assert!(
+        close >= 0.999,
+        "{:.4} % of pixels within 1/255 (worst {worst}/255)",
+        close * 100.0
+    );
+    assert_clean(&vk, "while mirroring");
 }
 
 #[test]

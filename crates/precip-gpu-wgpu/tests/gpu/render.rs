@@ -972,3 +972,119 @@ fn the_drawn_density_is_the_air_s_at_every_intensity() {
         }
     }
 }
+
+/// A pond 30 m long with a red wall 6 m high beyond it, on flat ground.
+fn pond_and_wall(wall: bool) -> Scene {
+    let quad = |name: &str, corners: [Vec3; 4], colour: [f32; 4], surface| Mesh {
+        name: name.to_owned(),
+        positions_m: corners.to_vec(),
+        indices: vec![0, 1, 2, 0, 2, 3],
+        material: Material {
+            base_colour: colour,
+            base_colour_texture: None,
+        },
+        surface,
+        ..Mesh::default()
+    };
+    let mut meshes = vec![
+        quad(
+            "ground",
+            [
+                Vec3::new(-20.0, -0.01, 5.0),
+                Vec3::new(20.0, -0.01, 5.0),
+                Vec3::new(20.0, -0.01, -45.0),
+                Vec3::new(-20.0, -0.01, -45.0),
+            ],
+            [0.3, 0.3, 0.3, 1.0],
+            None,
+        ),
+        quad(
+            "pond",
+            [
+                Vec3::new(-10.0, 0.0, -2.0),
+                Vec3::new(10.0, 0.0, -2.0),
+                Vec3::new(10.0, 0.0, -32.0),
+                Vec3::new(-10.0, 0.0, -32.0),
+            ],
+            [0.3, 0.3, 0.3, 1.0],
+            Some(precip_model::cover::Surface::Water),
+        ),
+    ];
+    if wall {
+        meshes.push(quad(
+            "red wall",
+            [
+                Vec3::new(-4.0, 0.0, -34.0),
+                Vec3::new(4.0, 0.0, -34.0),
+                Vec3::new(4.0, 6.0, -34.0),
+                Vec3::new(-4.0, 6.0, -34.0),
+            ],
+            [0.9, 0.05, 0.05, 1.0],
+            None,
+        ));
+    }
+    Scene { meshes }
+}
+
+/// The water mirrors the scene beyond it, not only the sky: the red wall's mirror
+/// image shows in the pond (from the frame after the first, which has the frame
+/// before to reflect), where the same pond without the wall reflects the sky.
+#[test]
+fn a_pond_mirrors_the_wall_beyond_it() {
+    let camera = Camera {
+        position_m: Vec3::new(0.0, 1.5, 0.0),
+        forward: Vec3::new(0.0, -0.12, -1.0).normalize(),
+        vertical_fov_rad: 50f32.to_radians(),
+        ..Camera::default()
+    };
+    let view = view(camera, 128, 96);
+    // The wall's point 2 m up, mirrored in the pond's level: where its image shows.
+    let (mx, my) = pixel_of(&view, Vec3::new(0.0, -2.0, -34.0)).expect("image in view");
+    let (wx, wy) = pixel_of(&view, Vec3::new(0.0, 2.0, -34.0)).expect("wall in view");
+    // Beside the image, the sky's reflection only.
+    let (sx, sy) = pixel_of(&view, Vec3::new(-8.5, -2.0, -34.0)).expect("pond in view");
+    let redness = |image: &precip_model::Image, x, y| {
+        let [r, g, _] = crate::images::rgb(image, x, y);
+        linear(r) - linear(g)
+    };
+    for (name, mut gpu) in common::gpu_backends("a_pond_mirrors_the_wall_beyond_it") {
+        let mut frames = Vec::new();
+        for wall in [true, false] {
+            let (mut setup, _) = Setup::over_scene(pond_and_wall(wall), 32, 5.0, 1).expect("valid");
+            setup.weather.intensity_mm_per_h = 0.0;
+            setup.camera = camera;
+            common::run(&mut gpu, &setup, 1, 0.05);
+            gpu.render(&view).expect("renders");
+            let first = gpu.read_image().expect("an image");
+            gpu.render(&view).expect("renders");
+            let second = gpu.read_image().expect("an image");
+            keep(&second, &format!("pond_wall_{wall}"));
+            frames.push((first, second));
+        }
+        let (with_wall, without) = (&frames[0], &frames[1]);
+        let wall_red = redness(&with_wall.1, wx, wy);
+        assert!(wall_red > 0.2, "{name}: the wall is red: {wall_red}");
+        // The pond's own colour (its depths are blue-green) is the baseline.
+        let pond = redness(&without.1, mx, my);
+        let image_red = redness(&with_wall.1, mx, my) - pond;
+        assert!(
+            image_red > 0.1 * wall_red,
+            "{name}: the wall's image in the pond at ({mx}, {my}) is red: {image_red} more than the pond alone (the wall {wall_red})"
+        );
+        for (what, red) in [
+            (
+                "the first frame, with no frame before",
+                redness(&with_wall.0, mx, my) - pond,
+            ),
+            (
+                "the pond beside the image",
+                redness(&with_wall.1, sx, sy) - redness(&without.1, sx, sy),
+            ),
+        ] {
+            assert!(
+                red.abs() < 0.02,
+                "{name}: {what} reflects the sky as the pond alone does: red excess {red}"
+            );
+        }
+    }
+}

@@ -173,7 +173,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (528 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (592 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -200,7 +200,9 @@ pub struct RenderParams {
     /// Wet darkening R_d, albedo decay per day, exposure tolerance m, the flake
     /// texture's mean opacity.
     pub cover_look2: Vec4,
-    /// Rain rings struck per m² and s, 0, water bodies' depth m, 0
+    /// Rain rings struck per m² and s, 1 when the scene and depth of the frame
+    /// before (at [`RenderParams::previous_view_proj`]) are there for the water's
+    /// reflections (else 0: the renderer sets it), water bodies' depth m, 0
     /// ([`crate::drawing::water_look`]).
     pub water_look: Vec4,
     /// The ground map's grid.
@@ -223,8 +225,11 @@ pub struct RenderParams {
     pub lens: Vec4,
     /// Clip → world of the camera (the sky's rays).
     pub inverse_view_proj: Mat4,
+    /// World → clip of the camera of the frame before, whose scene and depth the
+    /// water's reflections read (this frame's until the renderer sets it).
+    pub previous_view_proj: Mat4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 528);
+const _: () = assert!(size_of::<RenderParams>() == 592);
 
 /// The camera's world → clip matrix for a target of `aspect` (width / height).
 #[must_use]
@@ -467,6 +472,7 @@ impl RenderParams {
                 0.0,
             ),
             inverse_view_proj: view_projection(camera, aspect).inverse(),
+            previous_view_proj: view_projection(camera, aspect),
         }
     }
 }

@@ -1,0 +1,93 @@
+// render_reflections.wgsl: the scene mirrored in standing water (screen-space
+// reflections over the frame before), for the scene pass's water.
+//
+// After the scene pass the frame's colour and depth are copied (the `scene_copy`
+// pass: scene_copy, depth_copy); the next frame's water follows its mirrored ray —
+// the view ray reflected about the level water surface — across that frame, through
+// its camera (previous_view_proj). Where the ray passes behind a surface that frame
+// shows, it has met the scene: the sky the mirror reflects (water_look.wgsl's
+// water_surface) is replaced by what the frame shows there. Where it leaves the
+// frame, reaches the sky or runs past REFLECTION_REACH_M, the sky stays, faded over
+// the frame's edge and the reach so no seam shows. A frame late (as game engines'
+// screen-space reflections read the last frame's colour), so only the pixels that
+// hold water pay for it and no pass over every pixel is added. The rain rings and
+// waves shape the sky's reflection, not the scene's: the ray leaves a level surface.
+// No Rust twin: a drawing technique over the frame, no formula of the model
+// (Fresnel and the sky are water_look's, twinned there).
+// Program: the Render program's files, after render_scene.wgsl (which calls it).
+
+@group(3) @binding(0) var scene_copy: texture_2d<f32>;
+@group(3) @binding(1) var depth_copy: texture_depth_2d;
+
+// Steps along the ray, spaced geometrically from REFLECTION_NEAR_M to
+// REFLECTION_REACH_M, then halved REFLECTION_REFINE times around the first crossing.
+// Clip coordinates are affine along a ray, so a step is four multiply-adds and one
+// depth texel, no matrix.
+const REFLECTION_STEPS: u32 = 16u;
+const REFLECTION_REFINE: u32 = 3u;
+const REFLECTION_NEAR_M: f32 = 0.1;
+const REFLECTION_REACH_M: f32 = 100.0;
+// What a level mirror shows lies above it: a crossing less than this above the
+// water is the water's own surface or its banks' (a pixel's footprint at a grazing
+// view is longer than the first steps), and the march goes on.
+const REFLECTION_ABOVE_M: f32 = 0.05;
+// Below this weight of the mirror (1/255 of the pixel at most) no ray is followed.
+const REFLECTION_LEAST: f32 = 1.5 / 255.0;
+
+// Clip coordinates `clip` as pixel coordinates of the frame before (y down) and depth.
+fn clip_to_pixel(clip: vec4<f32>, size: vec2<f32>) -> vec3<f32> {
+    let ndc = clip.xyz / clip.w;
+    return vec3<f32>((ndc.x * 0.5 + 0.5) * size.x, (0.5 - ndc.y * 0.5) * size.y, ndc.z);
+}
+
+// What the mirror at `surface_m` seen from `to_viewer` shows instead of the sky:
+// (the scene met − the sky) along the mirrored ray, faded at the frame's edge and the
+// reach; zero where the ray meets nothing or the frame before is not there.
+fn mirrored_scene(surface_m: vec3<f32>, to_viewer: vec3<f32>) -> vec3<f32> {
+    let ray = reflect(-to_viewer, vec3<f32>(0.0, 1.0, 0.0));
+    if (params.water_look.y < 0.5 || ray.y <= 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let size = vec2<f32>(textureDimensions(scene_copy));
+    let c0 = params.previous_view_proj * vec4<f32>(surface_m, 1.0);
+    let dc = params.previous_view_proj * vec4<f32>(ray, 0.0);
+    let grow = pow(REFLECTION_REACH_M / REFLECTION_NEAR_M, 1.0 / f32(REFLECTION_STEPS - 1u));
+    var before = 0.0;
+    var t = REFLECTION_NEAR_M;
+    for (var i = 0u; i < REFLECTION_STEPS; i += 1u) {
+        let clip = c0 + dc * t;
+        if (clip.w <= 1e-4) {
+            break;
+        }
+        let at = clip_to_pixel(clip, size);
+        if (at.x < 0.0 || at.y < 0.0 || at.x >= size.x || at.y >= size.y) {
+            break;
+        }
+        let depth = textureLoad(depth_copy, vec2<i32>(at.xy), 0);
+        if (depth < 1.0 && at.z > depth && t * ray.y > REFLECTION_ABOVE_M) {
+            // Behind the surface shown there: crossed it since `before`. Halve the
+            // interval around the crossing.
+            var lo = before;
+            var hi = t;
+            for (var k = 0u; k < REFLECTION_REFINE; k += 1u) {
+                let mid = 0.5 * (lo + hi);
+                let m = clip_to_pixel(c0 + dc * mid, size);
+                if (m.z > textureLoad(depth_copy, vec2<i32>(m.xy), 0)) {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            let hit = clip_to_pixel(c0 + dc * hi, size);
+            let found = textureLoad(scene_copy, vec2<i32>(hit.xy), 0).rgb;
+            let uv = hit.xy / size;
+            let edge = min(min(uv.x, 1.0 - uv.x), min(uv.y, 1.0 - uv.y));
+            let weight = smoothstep(0.0, 0.08, edge)
+                * (1.0 - smoothstep(0.7 * REFLECTION_REACH_M, REFLECTION_REACH_M, hi));
+            return weight * (found - overcast_sky(params.sky_colour_time.xyz, ray));
+        }
+        before = t;
+        t *= grow;
+    }
+    return vec3<f32>(0.0);
+}
