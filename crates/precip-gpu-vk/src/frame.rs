@@ -34,9 +34,9 @@ use crate::device::Device;
 use crate::error::map_vk;
 use crate::gpu::Hal;
 use crate::gpu::Texture;
-use crate::transfer::image_barrier;
 use crate::image::DEPTH_FORMAT;
 use crate::query::{FRAME_QUERY_COUNT, QueryPool};
+use crate::transfer::image_barrier;
 
 /// What a render pass object is made from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

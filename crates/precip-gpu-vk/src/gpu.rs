@@ -513,6 +513,10 @@ impl Gpu for Hal {
         }
     }
 
+    fn rasterises_on_cpu(&self) -> bool {
+        self.device.properties.device_type == vk::PhysicalDeviceType::CPU
+    }
+
     fn copy_format(&self, target: Target<'_, Self>) -> Option<TexelFormat> {
         let (format, copyable) = match target {
             // The offscreen image rests ready to be copied.

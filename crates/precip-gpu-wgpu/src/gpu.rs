@@ -403,6 +403,10 @@ impl Gpu for Hal {
         }
     }
 
+    fn rasterises_on_cpu(&self) -> bool {
+        self.gpu.info.device_type == wgpu::DeviceType::Cpu
+    }
+
     fn copy_format(&self, target: Target<'_, Self>) -> Option<TexelFormat> {
         let texture = match target {
             Target::Texture(t) => &t.texture,

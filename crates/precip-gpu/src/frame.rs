@@ -111,6 +111,8 @@ pub struct Draw {
     pub depth_bias: Option<(i32, f32)>,
     /// Colour.
     pub blend: Blend,
+    /// When it is drawn (its pass running).
+    pub when: PassWhen,
 }
 
 impl Draw {
@@ -165,6 +167,11 @@ pub enum PassWhen {
     /// While standing water may show (some rain has fallen or the scene has water
     /// bodies) and the target can be copied.
     WaterShows,
+    /// While the ground's puddles mirror the scene (`precip_model::Mirrors`, and the
+    /// frame before's copies are there).
+    GroundMirrors,
+    /// While they do not.
+    GroundMirrorsNot,
 }
 
 /// One pass of the frame.
@@ -189,6 +196,7 @@ const SHADOW_DRAW: Draw = Draw {
     depth_write: true,
     depth_bias: Some((2, 2.0)),
     blend: Blend::None,
+    when: PassWhen::Always,
 };
 
 const SCENE_DRAW: Draw = Draw {
@@ -202,6 +210,14 @@ const SCENE_DRAW: Draw = Draw {
     depth_write: true,
     depth_bias: None,
     blend: Blend::Opaque,
+    when: PassWhen::GroundMirrorsNot,
+};
+
+// The same meshes when their puddles mirror the scene: the water bodies' pipeline.
+const GROUND_MIRROR_DRAW: Draw = Draw {
+    entry_points: render_passes::WATER_BODIES,
+    when: PassWhen::GroundMirrors,
+    ..SCENE_DRAW
 };
 
 // The water bodies, whose fragments also follow their mirrored rays
@@ -219,6 +235,7 @@ const WATER_BODY_DRAW: Draw = Draw {
     depth_write: true,
     depth_bias: None,
     blend: Blend::Opaque,
+    when: PassWhen::Always,
 };
 
 // At the far plane (depth 1), less-or-equal: only where no mesh stands.
@@ -230,6 +247,7 @@ const SKY_DRAW: Draw = Draw {
     depth_write: false,
     depth_bias: None,
     blend: Blend::Opaque,
+    when: PassWhen::Always,
 };
 
 const PARTICLE_DRAWS: [Draw; 3] = [
@@ -242,6 +260,7 @@ const PARTICLE_DRAWS: [Draw; 3] = [
         depth_write: false,
         depth_bias: None,
         blend: Blend::Alpha,
+        when: PassWhen::Always,
     },
     Draw {
         entry_points: render_passes::SNOW,
@@ -253,6 +272,7 @@ const PARTICLE_DRAWS: [Draw; 3] = [
         depth_write: false,
         depth_bias: None,
         blend: Blend::Alpha,
+        when: PassWhen::Always,
     },
     Draw {
         entry_points: render_passes::RAIN,
@@ -264,6 +284,7 @@ const PARTICLE_DRAWS: [Draw; 3] = [
         depth_write: false,
         depth_bias: None,
         blend: Blend::Alpha,
+        when: PassWhen::Always,
     },
 ];
 
@@ -292,7 +313,7 @@ pub const FRAME_PASSES: [FramePass; 7] = [
             depth_load: AttachmentLoad::Clear,
             depth_stored: true,
             colour: Some(AttachmentLoad::Clear),
-            draws: &[SCENE_DRAW, WATER_BODY_DRAW, SKY_DRAW],
+            draws: &[SCENE_DRAW, GROUND_MIRROR_DRAW, WATER_BODY_DRAW, SKY_DRAW],
         }),
         when: PassWhen::Always,
     },
@@ -364,6 +385,8 @@ pub struct FrameConditions {
     /// Standing water may show and the target can be copied
     /// ([`PassWhen::WaterShows`]).
     pub water_shows: bool,
+    /// The ground's puddles mirror the scene ([`PassWhen::GroundMirrors`]).
+    pub ground_mirrors: bool,
 }
 
 impl PassWhen {
@@ -374,6 +397,8 @@ impl PassWhen {
             Self::Always => true,
             Self::ShadowRedrawn => conditions.shadow_redrawn,
             Self::WaterShows => conditions.water_shows,
+            Self::GroundMirrors => conditions.ground_mirrors,
+            Self::GroundMirrorsNot => !conditions.ground_mirrors,
         }
     }
 }
@@ -507,6 +532,7 @@ impl FrameHost {
             conditions: FrameConditions {
                 shadow_redrawn,
                 water_shows: self.water_bodies || host.activity().water_may_stand,
+                ground_mirrors: false,
             },
             sky_colour: haze_colour(&setup.render, host.weather()),
         }
@@ -559,6 +585,7 @@ mod tests {
             let plan: Vec<_> = frame_plan(FrameConditions {
                 shadow_redrawn,
                 water_shows,
+                ground_mirrors: false,
             })
             .collect();
             assert_eq!(plan.len(), FRAME_PASSES.len());
@@ -574,6 +601,38 @@ mod tests {
                     assert!(!d.groups.is_empty(), "{}", p.pass.name);
                 }
             }
+        }
+    }
+
+    #[test]
+    fn the_ground_is_drawn_once_by_the_pipeline_its_mirrors_need() {
+        let scene = FRAME_PASSES
+            .iter()
+            .find(|p| p.name == "scene")
+            .expect("a scene pass");
+        let PassWork::Render(recipe) = scene.work else {
+            unreachable!("the scene is a render pass")
+        };
+        for ground_mirrors in [false, true] {
+            let conditions = FrameConditions {
+                shadow_redrawn: false,
+                water_shows: true,
+                ground_mirrors,
+            };
+            let ground: Vec<_> = recipe
+                .draws
+                .iter()
+                .filter(|d| d.when.holds(conditions))
+                .filter(|d| {
+                    d.of == DrawOf::SceneMeshes {
+                        materials: true,
+                        which: MeshesOf::AllButWaterBodies,
+                    }
+                })
+                .collect();
+            assert_eq!(ground.len(), 1);
+            let mirroring = ground[0].key() == render_passes::WATER_BODIES.1.unwrap_or_default();
+            assert_eq!(mirroring, ground_mirrors);
         }
     }
 

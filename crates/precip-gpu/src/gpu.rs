@@ -289,6 +289,10 @@ pub trait Gpu {
     /// The format of `target`.
     fn colour_format(&self, target: Target<'_, Self>) -> Self::ColourFormat;
 
+    /// The device rasterises on the CPU (lavapipe): what
+    /// `precip_model::Mirrors::Auto` spares it.
+    fn rasterises_on_cpu(&self) -> bool;
+
     /// The format of a copy of `target` ([`PassKind::CopyTarget`]), or `None` when
     /// it cannot be copied (a window whose surface allows no copies, a format with no
     /// [`TexelFormat`]): then the passes that read the copy do not run.

@@ -13,7 +13,7 @@
 //! binds comes from `bind_groups::groups_of` and the resources tables; nothing of
 //! it is written per backend.
 
-use precip_model::{BackendError, DrawnCounts, Image, PassTiming, View};
+use precip_model::{BackendError, DrawnCounts, Image, Mirrors, PassTiming, View};
 
 use crate::bind_groups::{GroupLayout, RENDER_MATERIAL, groups_of};
 use crate::executor::Simulation;
@@ -131,6 +131,10 @@ impl<G: Gpu> Drawing<G> {
             let PassWork::Render(recipe) = &pass.work else {
                 continue;
             };
+            // Draws of one key share their pipeline (the same entry points and state).
+            if made.iter().any(|(k, _)| *k == draw.key()) {
+                continue;
+            }
             let pipeline = self
                 .layouts_of(Program::Render, draw.entry_points.0)
                 .and_then(|layouts| {
@@ -222,6 +226,8 @@ pub struct FrameState<G: Gpu> {
     /// The last frame's camera (world → clip) where it copied its scene and depth
     /// for this frame's reflections (forgotten when the target is made again).
     history: Option<glam::Mat4>,
+    /// Which water mirrors the scene.
+    mirrors: Mirrors,
 }
 
 /// What a frame group's entries resolve against.
@@ -318,6 +324,7 @@ impl<G: Gpu> FrameState<G> {
             cover_texels: texels.x * texels.y,
             ran: [false; FRAME_PASSES.len()],
             history: None,
+            mirrors: setup.render.mirrors,
         };
         match made.fill(gpu, drawing, sim) {
             Ok(()) => Ok(made),
@@ -552,10 +559,16 @@ impl<G: Gpu> FrameState<G> {
         )?;
         let mut decision = self.host.decide(sim, view);
         decision.conditions.water_shows &= copy_format.is_some();
-        // The water reflects the frame before where its copies are there.
+        // The water reflects the frame before where its copies are there; the
+        // ground's puddles too where the settings and the device say so.
         if let Some(previous) = self.history.take() {
             decision.params.previous_view_proj = previous;
             decision.params.water_look.y = 1.0;
+            decision.conditions.ground_mirrors = match self.mirrors {
+                Mirrors::Auto => !gpu.rasterises_on_cpu(),
+                Mirrors::WaterBodies => false,
+                Mirrors::AllWater => true,
+            };
         }
         let slot = (self.frames_drawn % u64::from(gpu.slots().max(1))) as u32;
         gpu.free_slot(slot)?;
@@ -660,6 +673,9 @@ impl<G: Gpu> FrameState<G> {
                 }
                 PassWork::Render(recipe) => {
                     for d in planned.draws() {
+                        if !d.draw.when.holds(decision.conditions) {
+                            continue;
+                        }
                         let key = d.draw.key();
                         let pipeline = find(pipelines, &key).ok_or_else(|| missing(key))?;
                         commands.push(Command::Pipeline(pipeline));

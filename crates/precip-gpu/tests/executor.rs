@@ -198,6 +198,9 @@ impl Gpu for Recording {
     fn colour_format(&self, _target: Target<'_, Self>) -> u8 {
         1
     }
+    fn rasterises_on_cpu(&self) -> bool {
+        false
+    }
     fn copy_format(&self, _target: Target<'_, Self>) -> Option<TexelFormat> {
         Some(TexelFormat::Rgba8UnormSrgb)
     }

@@ -122,6 +122,11 @@ struct RunArgs {
     /// Distance in focus, m.
     #[arg(long, default_value_t = 10.0)]
     focus: f32,
+    /// Which water mirrors the scene (not only the sky): all of it on a GPU and the
+    /// water bodies only on a CPU rasteriser such as lavapipe (auto), the water
+    /// bodies only, or every puddle too.
+    #[arg(long, value_enum, default_value_t = MirrorsName::Auto)]
+    mirrors: MirrorsName,
     /// Headless: render this many frames into --out instead of opening a window.
     #[arg(long)]
     frames: Option<u32>,
@@ -335,6 +340,11 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     if let Some(shift) = args.channel_shift {
         setup.camera.lens_shift = shift;
     }
+    setup.render.mirrors = match args.mirrors {
+        MirrorsName::Auto => precip_model::Mirrors::Auto,
+        MirrorsName::WaterBodies => precip_model::Mirrors::WaterBodies,
+        MirrorsName::AllWater => precip_model::Mirrors::AllWater,
+    };
     setup.camera.lens = precip_model::Lens {
         exposure_s: args.shutter,
         f_number: args.f_number,
@@ -510,6 +520,17 @@ fn quiet_wayland_probe_without_a_session() {
         // thread reads the environment concurrently.
         unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
     }
+}
+
+/// `--mirrors`: which water mirrors the scene (`precip_model::Mirrors`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum MirrorsName {
+    /// All water on a GPU, the water bodies only on a CPU rasteriser.
+    Auto,
+    /// The water bodies only.
+    WaterBodies,
+    /// The water bodies and every puddle.
+    AllWater,
 }
 
 fn main() -> ExitCode {

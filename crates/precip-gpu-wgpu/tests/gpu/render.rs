@@ -1026,18 +1026,23 @@ fn pond_and_wall(wall: bool) -> Scene {
     Scene { meshes }
 }
 
-/// The water mirrors the scene beyond it, not only the sky: the red wall's mirror
-/// image shows in the pond (from the frame after the first, which has the frame
-/// before to reflect), where the same pond without the wall reflects the sky.
-#[test]
-fn a_pond_mirrors_the_wall_beyond_it() {
+/// Eye height over the water, looking at the wall 34 m away.
+fn low_over_the_water() -> (Camera, View) {
     let camera = Camera {
         position_m: Vec3::new(0.0, 1.5, 0.0),
         forward: Vec3::new(0.0, -0.12, -1.0).normalize(),
         vertical_fov_rad: 50f32.to_radians(),
         ..Camera::default()
     };
-    let view = view(camera, 128, 96);
+    (camera, view(camera, 128, 96))
+}
+
+/// The water mirrors the scene beyond it, not only the sky: the red wall's mirror
+/// image shows in the pond (from the frame after the first, which has the frame
+/// before to reflect), where the same pond without the wall reflects the sky.
+#[test]
+fn a_pond_mirrors_the_wall_beyond_it() {
+    let (camera, view) = low_over_the_water();
     // The wall's point 2 m up, mirrored in the pond's level: where its image shows.
     let (mx, my) = pixel_of(&view, Vec3::new(0.0, -2.0, -34.0)).expect("image in view");
     let (wx, wy) = pixel_of(&view, Vec3::new(0.0, 2.0, -34.0)).expect("wall in view");
@@ -1086,5 +1091,56 @@ fn a_pond_mirrors_the_wall_beyond_it() {
                 "{name}: {what} reflects the sky as the pond alone does: red excess {red}"
             );
         }
+    }
+}
+
+/// Rain standing on asphalt before a red wall mirrors the wall where the settings
+/// let puddles mirror the scene (`Mirrors::AllWater`), and only the sky where they
+/// do not (`Mirrors::WaterBodies`).
+#[test]
+fn puddles_mirror_the_wall_only_when_the_settings_say_so() {
+    let (camera, view) = low_over_the_water();
+    let (mx, my) = pixel_of(&view, Vec3::new(0.0, -2.0, -34.0)).expect("image in view");
+    let redness = |image: &precip_model::Image| {
+        let [r, g, _] = crate::images::rgb(image, mx, my);
+        linear(r) - linear(g)
+    };
+    let mut scene = pond_and_wall(true);
+    // No pond: the ground itself, asphalt, under a cloudburst.
+    scene.meshes.retain(|m| m.name != "pond");
+    scene.meshes[0].surface = Some(precip_model::cover::Surface::Asphalt);
+    for (name, mut gpu) in common::gpu_backends("puddles_mirror_the_wall") {
+        let mut reds = Vec::new();
+        for mirrors in [
+            precip_model::Mirrors::WaterBodies,
+            precip_model::Mirrors::AllWater,
+        ] {
+            let (mut setup, _) = Setup::over_scene(scene.clone(), 32, 5.0, 1).expect("valid");
+            // The one particle falls far behind the camera; the cover takes the rate.
+            setup.world_emitter = setup.world_emitter.map(|mut e| {
+                e.emitter = WorldEmitter::horizontal(Vec3::new(0.0, 10.0, 500.0), 1.0, 1.0, 10.0);
+                e
+            });
+            setup.weather.kind = PrecipitationKind::Rain;
+            setup.weather.air_temperature_c = 15.0;
+            setup.weather.intensity_mm_per_h = 40.0;
+            setup.cover.time_scale = 3_600.0;
+            setup.render.mirrors = mirrors;
+            setup.camera = camera;
+            common::run(&mut gpu, &setup, 10, 0.1);
+            let standing = gpu.read_cover().expect("cover").totals().standing_kg;
+            assert!(standing > 0.0, "{name}: water stands on the asphalt");
+            gpu.render(&view).expect("renders");
+            gpu.render(&view).expect("renders");
+            let image = gpu.read_image().expect("an image");
+            keep(&image, &format!("puddle_wall_{mirrors:?}"));
+            reds.push(redness(&image));
+        }
+        assert!(
+            reds[1] > reds[0] + 0.02,
+            "{name}: the puddles mirror the red wall with AllWater ({}) and not with WaterBodies ({})",
+            reds[1],
+            reds[0]
+        );
     }
 }
