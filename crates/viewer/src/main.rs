@@ -393,6 +393,9 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
                             println!("window: {passes}");
                         }
                     }
+                    if args.backend == BackendName::Vk && precip_viewer::backends::vk_validation() {
+                        report_validation(&shown.validation_messages)?;
+                    }
                     return Ok(());
                 }
                 Err(WindowError::NoDisplay(why)) => {
@@ -489,16 +492,21 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     }
     drop(backend);
     if let Some(log) = validation {
-        let messages = log.lock().map(|m| m.clone()).unwrap_or_default();
-        eprintln!("Vulkan validation layer: {} messages", messages.len());
-        for m in &messages {
-            eprintln!("  {m}");
-        }
-        anyhow::ensure!(
-            messages.is_empty(),
-            "the validation layer reported problems"
-        );
+        report_validation(&log.lock().map(|m| m.clone()).unwrap_or_default())?;
     }
+    Ok(())
+}
+
+/// Prints what the Vulkan validation layer said and fails when it said anything.
+fn report_validation(messages: &[String]) -> anyhow::Result<()> {
+    eprintln!("Vulkan validation layer: {} messages", messages.len());
+    for m in messages {
+        eprintln!("  {m}");
+    }
+    anyhow::ensure!(
+        messages.is_empty(),
+        "the validation layer reported problems"
+    );
     Ok(())
 }
 

@@ -239,7 +239,16 @@ fn the_window_presents_frames_on_both_backends() {
             simulated > 0.0 && simulated <= 6.0 * 0.05 + 1e-6,
             "{backend}: {text}"
         );
-        assert!(!err.contains("validation layer"), "{backend}: {err}");
+        // The Vulkan window runs under the validation layer and says what it heard
+        // (the swapchain's images copied for the water's reflections included).
+        if backend == "vk" {
+            assert!(
+                err.contains("Vulkan validation layer: 0 messages"),
+                "{backend}: {err}"
+            );
+        } else {
+            assert!(!err.contains("validation layer"), "{backend}: {err}");
+        }
     }
 }
 
