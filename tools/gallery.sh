@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Renders docs/gallery/: close, mid and far views of each weather over the built-in
+# Renders docs/gallery/: close, mid, far and pond views of each weather over the built-in
 # demo, headless (the last of 45 frames of 1/15 s each, so the weather has set in
 # and the cover has started to build at the default time scale). Run from the
 # repository root after `cargo build --release`; about 3 minutes on lavapipe.
@@ -14,6 +14,7 @@ views=(
   "close 5,1.7,25 0,1,0"
   "mid 22,6,38 0,1,0"
   "far 70,35,95 0,0,0"
+  "pond -17,0.5,21 0,2.5,0"
 )
 weathers=(light-snow blizzard drizzle downpour sleet sandstorm)
 for weather in "${weathers[@]}"; do
