@@ -53,5 +53,5 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
         defocused(q.side_m, 0.8, blur, 2),
         defocused(q.side_m, 0.8, blur, 1).y,
     );
-    probe_drawing_out[19u * i + 18u] = vec4<f32>(cover_warp_m(q.centre_m.xz, vec2<f32>(q.a_m + 0.1, q.side_m + 0.1)), 0.0, 0.0);
+    probe_drawing_out[19u * i + 18u] = vec4<f32>(cover_warp_m(q.centre_m.xz, vec2<f32>(q.a_m + 0.1, q.side_m + 0.1)), flake_sun_phase(q.spin_rad / 6.0), 0.0);
 }

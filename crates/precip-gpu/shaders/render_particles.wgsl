@@ -17,14 +17,19 @@ struct ParticleVarying {
 const GRAIN_COLOUR: vec3<f32> = vec3<f32>(0.58, 0.39, 0.19);
 
 // The light a snowflake (or a grain of sand or dust, drawn the same way) sends toward
-// the camera, fogged: a thin translucent plate, lit from whichever side the sun is on
-// (sprites and splats alike).
+// the camera, fogged: a thin translucent plate facing the camera, its sunlight
+// scattered forward (flake_sun_phase of the angle between the sun's light and the
+// way to the camera, in place of Blinn–Phong's diffuse term), its glint Blinn–Phong's
+// from the sun's side (sprites and splats alike).
 fn snow_colour(p: Particle, distance_m: f32) -> vec3<f32> {
     let to_sun = params.to_sun_extinction.xyz;
     let n = normalize_or_zero(params.camera_m_cone_cos.xyz - p.position_m);
     let facing = select(-n, n, dot(n, to_sun) >= 0.0);
     let lit = shadow_lit(p.position_m);
-    let light = blinn_phong(params.light, params.shadow, facing, to_sun, n, lit);
+    let no_diffuse = vec4<f32>(params.light.x, 0.0, params.light.z, params.light.w);
+    let sh = params.shadow.y * (1.0 - lit);
+    let light = blinn_phong(no_diffuse, params.shadow, facing, to_sun, n, lit)
+        + params.shadow.z * (1.0 - sh) * params.light.y * flake_sun_phase(dot(-to_sun, n));
     let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
     var albedo = vec3<f32>(select(0.95, 0.85, kind == KIND_WET_SNOW));
     if (kind == KIND_GRAIN) {

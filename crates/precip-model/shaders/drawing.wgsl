@@ -201,6 +201,15 @@ fn in_view_cone(position_m: vec3<f32>, camera_m: vec3<f32>, view_dir: vec3<f32>,
     return dot(d * inverseSqrt(l2), view_dir) >= cone_cos;
 }
 
+// flake_sun_phase (precip_model::drawing::flake_sun_phase): ½ Henyey–Greenstein of
+// the delta-Eddington asymmetry g/(1 + g), g = FLAKE_ASYMMETRY.
+const FLAKE_ASYMMETRY: f32 = 0.75;
+fn flake_sun_phase(cos_scatter: f32) -> f32 {
+    let g = FLAKE_ASYMMETRY / (1.0 + FLAKE_ASYMMETRY);
+    let d = 1.0 + g * g - 2.0 * g * clamp(cos_scatter, -1.0, 1.0);
+    return 0.5 * (1.0 - g * g) / (d * sqrt(d));
+}
+
 // blinn_phong. light = (k_A·I_A, k_D·I_D, k_S·I_S, s); shadow = (sc, density, λ, _).
 fn blinn_phong(light: vec4<f32>, shadow: vec4<f32>, normal: vec3<f32>, to_light: vec3<f32>, to_viewer: vec3<f32>, lit: f32) -> f32 {
     let sh = shadow.y * (1.0 - lit);

@@ -8,8 +8,8 @@ use precip_gpu::shaders::Program;
 use precip_model::cover::{cover_warp_m, snow_cover_fraction, sub_texel_threshold, value_noise};
 use precip_model::drawing::multiplicity::drawn_weight;
 use precip_model::drawing::{
-    defocus_blur_m, defocused, raindrop_tetrahedron_sized, snow_sprite_corners_turned,
-    snow_streak_corners,
+    defocus_blur_m, defocused, flake_sun_phase, raindrop_tetrahedron_sized,
+    snow_sprite_corners_turned, snow_streak_corners,
 };
 use precip_model::particles::rng::{particle_key, random_unit};
 
@@ -130,6 +130,12 @@ fn wgsl_drawing_equals_rust_drawing() {
             assert!(
                 (g[0] - warp[0]).abs() <= 2e-5 && (g[1] - warp[1]).abs() <= 2e-5,
                 "{name}: input {i} cover warp: WGSL {g:?} vs Rust {warp:?}"
+            );
+            let phase = flake_sun_phase(q.spin_rad / 6.0);
+            assert!(
+                (g[2] - phase).abs() <= 1e-5 * (1.0 + phase),
+                "{name}: input {i} flake phase: WGSL {} vs Rust {phase}",
+                g[2]
             );
             for (k, (want, uv)) in streak.iter().enumerate() {
                 let g = got[19 * i + 13 + k];

@@ -480,6 +480,27 @@ pub fn blinn_phong(l: &Lighting, normal: Vec3, to_light: Vec3, to_viewer: Vec3, 
             + lit * l.specular * half.dot(normal).max(0.0).powf(l.shininess))
 }
 
+/// Asymmetry parameter `g` of a snowflake's single scattering in visible light,
+/// diffraction included (ice crystals and their aggregates: 0.75–0.8; docs/model.md
+/// (5.7a)).
+pub const FLAKE_ASYMMETRY: f32 = 0.75;
+
+/// The share of the sun's diffuse light a snowflake sends at scattering angle `Θ`
+/// (`cos_scatter = cos Θ`, 1 straight on, away from the sun): half the
+/// Henyey–Greenstein phase function of the delta-Eddington asymmetry
+/// `g' = g/(1 + g)` ([`FLAKE_ASYMMETRY`]; the diffraction peak, a fraction `g²` far
+/// narrower than a pixel, counted as light that went on unscattered), normalised to
+/// a mean of ½ over the sphere like the `|cos|` of a plate lit from either side it
+/// replaces: a flake between the camera and the sun glows (4.4× an isotropic
+/// scatterer's), one with the sun behind the camera is dimmer (0.28×). Docs/model.md
+/// (5.7a).
+#[must_use]
+pub fn flake_sun_phase(cos_scatter: f32) -> f32 {
+    let g = FLAKE_ASYMMETRY / (1.0 + FLAKE_ASYMMETRY);
+    let d = 1.0 + g * g - 2.0 * g * cos_scatter.clamp(-1.0, 1.0);
+    0.5 * (1.0 - g * g) / (d * d.sqrt())
+}
+
 /// Fraction of light that crosses `distance_m` of precipitation of extinction
 /// `extinction_per_m` (Beer–Lambert; at the Koschmieder visibility it is 2 %).
 #[must_use]
@@ -492,6 +513,31 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+
+    #[test]
+    fn a_flake_scatters_forward_with_the_mean_of_a_two_sided_plate() {
+        // Mean over the sphere: ½ ∫ P(cos Θ) d(cos Θ) over [−1, 1], midpoint rule.
+        let n = 20_000;
+        let mean = (0..n)
+            .map(|i| flake_sun_phase(-1.0 + (i as f32 + 0.5) * 2.0 / n as f32))
+            .sum::<f32>()
+            / n as f32;
+        assert!((mean - 0.5).abs() < 1e-3, "{mean}");
+        let g = FLAKE_ASYMMETRY / (1.0 + FLAKE_ASYMMETRY);
+        let forward_over_back = flake_sun_phase(1.0) / flake_sun_phase(-1.0);
+        assert!(
+            (forward_over_back - ((1.0 + g) / (1.0 - g)).powi(3)).abs() < 1e-2,
+            "{forward_over_back}"
+        );
+        assert!(flake_sun_phase(1.0) > 2.0 && flake_sun_phase(-1.0) < 0.15);
+        // Monotonic from back to forward.
+        let mut last = 0.0;
+        for i in 0..=100 {
+            let p = flake_sun_phase(-1.0 + 0.02 * i as f32);
+            assert!(p >= last);
+            last = p;
+        }
+    }
     use crate::weather::visibility::koschmieder_visibility_m;
 
     fn close(a: Vec3, b: Vec3) -> bool {
