@@ -504,11 +504,10 @@ impl FrameHost {
         Self {
             shadow_bounds_m: setup.scene_bounds_m(),
             shadow_cache: ShadowCache::default(),
-            water_bodies: setup.scene.as_ref().is_some_and(|s| {
-                s.meshes
-                    .iter()
-                    .any(|m| m.surface == Some(precip_model::cover::Surface::Water))
-            }),
+            water_bodies: setup
+                .scene
+                .as_ref()
+                .is_some_and(|s| s.meshes.iter().any(precip_model::Mesh::is_water_body)),
         }
     }
 

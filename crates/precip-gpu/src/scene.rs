@@ -118,7 +118,7 @@ impl<G: Gpu> SceneGpu<G> {
                 colour,
                 texture,
                 group: None,
-                water_body: mesh.surface == Some(precip_model::cover::Surface::Water),
+                water_body: mesh.is_water_body(),
             });
             let Some(material) = self.materials.last_mut() else {
                 continue;

@@ -147,7 +147,7 @@ impl PackedScene {
         let mut ranges = Vec::with_capacity(scene.meshes.len());
         for (mesh, pieces) in scene.meshes.iter().zip(&tessellation.pieces) {
             let base = u32::try_from(vertices.len()).map_err(|_| too_big("vertices"))?;
-            let water_body = mesh.surface == Some(precip_cover::Surface::Water);
+            let water_body = mesh.is_water_body();
             for (i, p) in mesh.positions_m.iter().enumerate() {
                 vertices.push(SceneVertex {
                     position_m: p.to_array(),

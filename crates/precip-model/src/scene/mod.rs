@@ -191,6 +191,13 @@ fn check_len(
 }
 
 impl Mesh {
+    /// A water body: a mesh tagged water (a pond, a lake), drawn with its depths and
+    /// its mirror, not covered by snow.
+    #[must_use]
+    pub fn is_water_body(&self) -> bool {
+        self.surface == Some(precip_cover::Surface::Water)
+    }
+
     /// Validates and completes one mesh; `None` when no triangle is left.
     fn prepare(mut self, report: &mut SceneReport) -> Result<Option<Self>, SceneError> {
         let n = self.positions_m.len();
