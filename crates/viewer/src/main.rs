@@ -68,13 +68,13 @@ struct WeatherArgs {
     #[arg(long)]
     intensity: Option<f32>,
     /// Air temperature, °C.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     temperature: Option<f32>,
     /// Mean wind speed, m/s.
     #[arg(long)]
     wind: Option<f32>,
     /// Where the wind blows from, degrees clockwise from north (−Z).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     wind_from: Option<f32>,
     /// Gust factor μ.
     #[arg(long)]

@@ -325,13 +325,32 @@ fn optics_prints_every_band_and_the_mor_and_refuses_an_unphysical_weather() {
         "{text}"
     );
 
+    // A temperature below zero as users type it (not only `--temperature=-20`).
     let out = precip()
-        .args(["optics", "--kind", "rain", "--temperature=-20"])
+        .args(["optics", "--kind", "rain", "--temperature", "-20"])
         .output()
         .expect("runs");
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("not physical"), "{err}");
+
+    let out = precip()
+        .args([
+            "optics",
+            "--kind",
+            "dry-snow",
+            "--temperature",
+            "-8",
+            "--wind-from",
+            "-45",
+        ])
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
