@@ -7,6 +7,10 @@
 @group(0) @binding(0) var<uniform> cover_params: CoverStepParams;
 @group(0) @binding(1) var<storage, read_write> cover: array<CoverTexel>;
 @group(0) @binding(2) var<storage, read_write> deposits: array<atomic<u32>>;
+// The water tiles (precip_gpu::recipe::water_tiles_bytes): word 0 the count of
+// listed tiles; then, per tile, whether it is marked as holding water; whether it
+// was listed the time before; then the list (each tile's x | z << 16).
+@group(0) @binding(3) var<storage, read_write> water_tiles: array<atomic<u32>>;
 
 @compute @workgroup_size(64)
 fn cover_update(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -27,7 +31,12 @@ fn cover_update(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
         snow_mm = f32(snow_units) / DEPOSIT_UNITS_PER_MM;
         rain_mm = f32(rain_units) / DEPOSIT_UNITS_PER_MM;
     }
-    cover[i] = update_texel(texel, snow_mm, rain_mm, cover_params);
+    let t = update_texel(texel, snow_mm, rain_mm, cover_params);
+    cover[i] = t;
+    let g = water_tiles_of(cover_params);
+    let x = i % g.texels_x;
+    let z = i / g.texels_x;
+    mark_water_tile(x / WATER_TILE_SIDE + g.tiles_x * (z / WATER_TILE_SIDE), t);
 }
 
 // water.rs: overland flow. Neighbour k of texel i: -x, +x, -z, +z.
@@ -104,45 +113,173 @@ fn water_outflow_of(i: u32, tau_s: f32, p: CoverStepParams) -> vec4<f32> {
     return out;
 }
 
-// One flow iteration, first pass: every texel's four outflows (its own field only).
-@compute @workgroup_size(64)
-fn water_outflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = linear_index(id, groups);
-    if (i >= cover_params.texel_count) {
-        return;
-    }
-    cover[i].outflow_mm = water_outflow_of(i, cover_params.flow_iteration_s, cover_params);
+// Overland flow runs over the tiles where it has work, not the whole grid
+// (precip_gpu::recipe::WATER_TILE_SIDE): a tile is 8 x 8 texels. Water moves at
+// most a texel a flow iteration, so in the WATER_TILE_GROUP iterations between two
+// lists it reaches at most WATER_TILE_REACH tiles from a tile that holds water; the
+// tiles listed are those within that reach of one, and, once more, those listed
+// the time before (they write their outflows back to zero). Every texel left out
+// is dry, its neighbours too, and would neither send nor take water: the flow is
+// the whole grid's, bit for bit, at the cost of the wet area.
+//
+// A tile is marked as holding water by any kernel that leaves water on one of its
+// texels (cover_update, water_inflow), and every mark is cleared once the list is
+// made: at the next list, the marks are the tiles that held water at some time
+// since the last one, a few more than hold it now, never fewer.
+const WATER_TILE_SIDE: u32 = 8u;
+const WATER_TILE_REACH: i32 = 1;
+
+// The grid in texels and in tiles.
+struct WaterTiles {
+    texels_x: u32,
+    texels_z: u32,
+    tiles_x: u32,
+    tiles_z: u32,
 }
 
-// Second pass: every texel sends its outflows and takes its neighbours' toward it
-// (precip_cover::water::{water_inflow_of, apply_flow}).
-@compute @workgroup_size(64)
-fn water_inflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = linear_index(id, groups);
-    if (i >= cover_params.texel_count) {
-        return;
+fn water_tiles_of(p: CoverStepParams) -> WaterTiles {
+    let texels_z = p.texel_count / p.texels_x;
+    return WaterTiles(
+        p.texels_x,
+        texels_z,
+        (p.texels_x + WATER_TILE_SIDE - 1u) / WATER_TILE_SIDE,
+        (texels_z + WATER_TILE_SIDE - 1u) / WATER_TILE_SIDE,
+    );
+}
+
+// Texel `lane` (0..63, row by row) of the tile at `tile_xz`, or -1 off the grid.
+fn water_tile_texel(tile_xz: vec2<u32>, lane: u32, g: WaterTiles) -> i32 {
+    let x = tile_xz.x * WATER_TILE_SIDE + (lane & (WATER_TILE_SIDE - 1u));
+    let z = tile_xz.y * WATER_TILE_SIDE + lane / WATER_TILE_SIDE;
+    if (x >= g.texels_x || z >= g.texels_z) {
+        return -1;
     }
-    var t = cover[i];
-    var out_inside = 0.0;
-    var out_edge = 0.0;
-    var inflow = 0.0;
-    for (var k = 0u; k < 4u; k += 1u) {
-        let j = neighbour_of(i, k, cover_params);
-        if (j >= 0) {
-            out_inside += t.outflow_mm[k];
-            inflow += cover[u32(j)].outflow_mm[k ^ 1u];
-        } else {
-            out_edge += t.outflow_mm[k];
+    return i32(x + g.texels_x * z);
+}
+
+// Marks tile `tile` as holding water if texel `t`'s standing water can flow
+// (precip_cover::water::water_outflow_of sends none otherwise).
+fn mark_water_tile(tile: u32, t: CoverTexel) {
+    if (t.standing_mm > STILL_WATER_MM && t.surface != SURFACE_WATER) {
+        // Most of a wet tile's texels are wet: a load where the mark is there already
+        // costs less than 64 stores to one word.
+        if (atomicLoad(&water_tiles[1u + tile]) == 0u) {
+            atomicStore(&water_tiles[1u + tile], 1u);
         }
     }
-    t.net_inflow_mm += inflow - out_inside;
-    t.runoff_mm += out_edge;
-    if (t.surface == SURFACE_WATER) {
-        t.runoff_mm += inflow;
-    } else {
-        t.standing_mm = max(t.standing_mm + inflow - out_inside - out_edge, 0.0);
+}
+
+var<workgroup> tiles_listed: atomic<u32>;
+
+// Lists the tiles the next WATER_TILE_GROUP flow iterations run over, then clears
+// the marks: one workgroup, each lane a tile in 64.
+@compute @workgroup_size(64)
+fn water_tiles_list(@builtin(local_invocation_index) lane: u32) {
+    let g = water_tiles_of(cover_params);
+    let count = g.tiles_x * g.tiles_z;
+    let tiles_x = i32(g.tiles_x);
+    let tiles_z = i32(g.tiles_z);
+    if (lane == 0u) {
+        atomicStore(&tiles_listed, 0u);
     }
-    cover[i] = t;
+    workgroupBarrier();
+    for (var tile = lane; tile < count; tile += 64u) {
+        let tx = i32(tile) % tiles_x;
+        let tz = i32(tile) / tiles_x;
+        var near = 0u;
+        for (var dz = -WATER_TILE_REACH; dz <= WATER_TILE_REACH; dz += 1) {
+            for (var dx = -WATER_TILE_REACH; dx <= WATER_TILE_REACH; dx += 1) {
+                let x = tx + dx;
+                let z = tz + dz;
+                if (x >= 0 && x < tiles_x && z >= 0 && z < tiles_z) {
+                    near |= atomicLoad(&water_tiles[1u + u32(x + tiles_x * z)]);
+                }
+            }
+        }
+        let before = atomicLoad(&water_tiles[1u + count + tile]);
+        atomicStore(&water_tiles[1u + count + tile], near);
+        if ((near | before) != 0u) {
+            let k = atomicAdd(&tiles_listed, 1u);
+            atomicStore(&water_tiles[1u + 2u * count + k], u32(tx) | (u32(tz) << 16u));
+        }
+    }
+    storageBarrier();
+    workgroupBarrier();
+    for (var tile = lane; tile < count; tile += 64u) {
+        atomicStore(&water_tiles[1u + tile], 0u);
+    }
+    if (lane == 0u) {
+        atomicStore(&water_tiles[0], atomicLoad(&tiles_listed));
+    }
+}
+
+// The `k`th tile listed: (x, z) in tiles.
+fn listed_water_tile(k: u32, g: WaterTiles) -> vec2<u32> {
+    let packed = atomicLoad(&water_tiles[1u + 2u * g.tiles_x * g.tiles_z + k]);
+    return vec2<u32>(packed & 0xffffu, packed >> 16u);
+}
+
+// One flow iteration, first pass: every listed texel's four outflows (its own
+// field only). A workgroup takes a listed tile at a time.
+@compute @workgroup_size(64)
+fn water_outflow(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let p = cover_params;
+    let g = water_tiles_of(p);
+    let listed = atomicLoad(&water_tiles[0]);
+    for (var k = group.x + group.y * groups.x; k < listed; k += groups.x * groups.y) {
+        let texel = water_tile_texel(listed_water_tile(k, g), lane, g);
+        if (texel >= 0) {
+            let i = u32(texel);
+            cover[i].outflow_mm = water_outflow_of(i, p.flow_iteration_s, p);
+        }
+    }
+}
+
+// Second pass: every listed texel sends its outflows and takes its neighbours'
+// toward it (precip_cover::water::{water_inflow_of, apply_flow}), and marks its
+// tile if water is left on it.
+@compute @workgroup_size(64)
+fn water_inflow(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let p = cover_params;
+    let g = water_tiles_of(p);
+    let listed = atomicLoad(&water_tiles[0]);
+    for (var k = group.x + group.y * groups.x; k < listed; k += groups.x * groups.y) {
+        let tile = listed_water_tile(k, g);
+        let texel = water_tile_texel(tile, lane, g);
+        if (texel >= 0) {
+            let i = u32(texel);
+            var t = cover[i];
+            var out_inside = 0.0;
+            var out_edge = 0.0;
+            var inflow = 0.0;
+            for (var n = 0u; n < 4u; n += 1u) {
+                let j = neighbour_of(i, n, p);
+                if (j >= 0) {
+                    out_inside += t.outflow_mm[n];
+                    inflow += cover[u32(j)].outflow_mm[n ^ 1u];
+                } else {
+                    out_edge += t.outflow_mm[n];
+                }
+            }
+            t.net_inflow_mm += inflow - out_inside;
+            t.runoff_mm += out_edge;
+            if (t.surface == SURFACE_WATER) {
+                t.runoff_mm += inflow;
+            } else {
+                t.standing_mm = max(t.standing_mm + inflow - out_inside - out_edge, 0.0);
+            }
+            cover[i] = t;
+            mark_water_tile(tile.x + g.tiles_x * tile.y, t);
+        }
+    }
 }
 
 // drift.rs: snow moved by the wind and by gravity.

@@ -705,7 +705,7 @@ impl<G: Gpu> Simulation<G> {
     pub fn dispatch_counts(&self) -> DispatchCounts {
         DispatchCounts::of(
             self.particle_count,
-            self.cover_texel_count,
+            &self.host.setup().cover.frame,
             &self.wave_frame,
         )
     }

@@ -91,6 +91,11 @@ pub enum DispatchOver {
     ParticleList,
     /// One invocation per cell of the water bodies' wave grid.
     WaveCells,
+    /// One workgroup per [`WATER_TILES_PER_WORKGROUP`] water tiles
+    /// ([`WATER_TILE_SIDE`]), a texel an invocation, each workgroup taking a listed
+    /// tile at a time with the dispatch's stride: the flow kernels (a fixed dispatch
+    /// for the reason [`LIST_ENTRIES_PER_INVOCATION`] gives).
+    WaterTiles,
 }
 
 /// What the dispatches of a configuration run over.
@@ -102,17 +107,21 @@ pub struct DispatchCounts {
     pub cover_texels: u32,
     /// Wave cells.
     pub wave_cells: u32,
+    /// Water tiles of the cover grid ([`water_tiles`]).
+    pub water_tiles: u32,
 }
 
 impl DispatchCounts {
-    /// The counts of a configuration of `particles` particles, `cover_texels` cover
-    /// texels and the wave grid `waves`.
+    /// The counts of a configuration of `particles` particles, the cover grid
+    /// `cover` and the wave grid `waves`.
     #[must_use]
-    pub fn of(particles: u32, cover_texels: u32, waves: &GridFrame) -> Self {
+    pub fn of(particles: u32, cover: &GridFrame, waves: &GridFrame) -> Self {
+        let (x, z) = water_tiles(cover);
         Self {
             particles,
-            cover_texels,
+            cover_texels: u32::try_from(cover.texel_count()).unwrap_or(u32::MAX),
             wave_cells: u32::try_from(waves.texel_count()).unwrap_or(u32::MAX),
+            water_tiles: x.saturating_mul(z),
         }
     }
 }
@@ -127,8 +136,60 @@ impl DispatchOver {
             Self::OneWorkgroup => 1,
             Self::ParticleList => list_invocations(counts.particles),
             Self::WaveCells => counts.wave_cells,
+            Self::WaterTiles => counts
+                .water_tiles
+                .div_ceil(WATER_TILES_PER_WORKGROUP)
+                .saturating_mul(WORKGROUP_SIZE),
         }
     }
+}
+
+/// Side of a water tile, texels. Overland flow runs only over the tiles within
+/// [`WATER_TILE_REACH`] of a tile that holds standing water (and, one list more,
+/// those listed the time before, so they write their outflows back to zero); the
+/// list is made again every [`WATER_TILE_GROUP`] iterations. The cover kernel and
+/// each inflow mark the tiles where they leave water; the list clears the marks.
+///
+/// Water moves at most a texel a flow iteration, so every texel left out is dry,
+/// and so are its neighbours, until the next list: it would neither send nor take
+/// water, and the flow is the whole grid's, bit for bit, at a cost that follows the
+/// wet area. WGSL twin: `WATER_TILE_SIDE` in `precip-cover/shaders/cover_update.wgsl`.
+pub const WATER_TILE_SIDE: u32 = 8;
+
+/// Water tiles a workgroup of the flow kernels takes, one after the other
+/// ([`DispatchOver::WaterTiles`]). Each workgroup has a cost of its own even when
+/// it has nothing to do (lavapipe: about 1 µs, so that one workgroup per tile of a
+/// 320² grid costs 1.4 ms a dispatch, the whole of the flow's cost where little
+/// water stands): a few tiles each keeps that small where the grid is large.
+pub const WATER_TILES_PER_WORKGROUP: u32 = 8;
+
+/// Flow iterations between two lists of the water tiles.
+pub const WATER_TILE_GROUP: u32 = 8;
+
+/// Tiles standing water can reach in [`WATER_TILE_GROUP`] iterations. WGSL twin:
+/// `WATER_TILE_REACH`.
+pub const WATER_TILE_REACH: u32 = WATER_TILE_GROUP.div_ceil(WATER_TILE_SIDE);
+
+const _: () = assert!(WATER_TILE_SIDE * WATER_TILE_SIDE == WORKGROUP_SIZE);
+const _: () = assert!(precip_cover::WATER_FLOW_ITERATIONS.is_multiple_of(WATER_TILE_GROUP));
+
+/// The water tiles of the cover grid `cover`: across x, across z.
+#[must_use]
+pub fn water_tiles(cover: &GridFrame) -> (u32, u32) {
+    (
+        cover.texels.x.div_ceil(WATER_TILE_SIDE),
+        cover.texels.y.div_ceil(WATER_TILE_SIDE),
+    )
+}
+
+/// Bytes of the water tiles' buffer (`u32` words): the count of listed tiles, then
+/// per tile whether it is marked as holding water and whether it was listed the
+/// time before, then the list (each tile's x | z << 16). WGSL twin: binding
+/// `water_tiles` of `cover_update.wgsl`.
+#[must_use]
+pub fn water_tiles_bytes(cover: &GridFrame) -> u64 {
+    let (x, z) = water_tiles(cover);
+    4 * (1 + 3 * u64::from(x) * u64::from(z))
 }
 
 /// Particles per invocation of a kernel over a list (see [`DispatchOver::ParticleList`]).
@@ -263,19 +324,28 @@ const DRIFT_ITERATION: [KernelPass; 2] = [
     },
 ];
 
-/// One iteration of overland flow: every texel's outflows, then every texel's
-/// exchange ([`precip_cover::water`]).
+/// Before every [`WATER_TILE_GROUP`] flow iterations: the list of the tiles they
+/// run over ([`WATER_TILE_SIDE`]).
+const FLOW_LIST: KernelPass = KernelPass {
+    program: Program::CoverUpdate,
+    entry_point: "water_tiles_list",
+    over: DispatchOver::OneWorkgroup,
+    when: KernelWhen::WhileWaterMayStand,
+};
+
+/// One iteration of overland flow over the listed tiles: every texel's outflows,
+/// then every texel's exchange ([`precip_cover::water`]).
 const FLOW_ITERATION: [KernelPass; 2] = [
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "water_outflow",
-        over: DispatchOver::CoverTexels,
+        over: DispatchOver::WaterTiles,
         when: KernelWhen::WhileWaterMayStand,
     },
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "water_inflow",
-        over: DispatchOver::CoverTexels,
+        over: DispatchOver::WaterTiles,
         when: KernelWhen::WhileWaterMayStand,
     },
 ];
@@ -299,8 +369,12 @@ const SUBSTEP_TAIL: [KernelPass; 2] = [
 /// Drift kernels a sub-step.
 const DRIFT_KERNELS: usize = DRIFT_ITERATION.len() * precip_cover::SNOW_DRIFT_ITERATIONS as usize;
 
-/// Flow kernels a sub-step.
-const FLOW_KERNELS: usize = FLOW_ITERATION.len() * precip_cover::WATER_FLOW_ITERATIONS as usize;
+/// Kernels of a group of flow iterations, its list included.
+const FLOW_GROUP_KERNELS: usize = 1 + FLOW_ITERATION.len() * WATER_TILE_GROUP as usize;
+
+/// Flow kernels a sub-step, the lists included.
+const FLOW_KERNELS: usize =
+    FLOW_GROUP_KERNELS * (precip_cover::WATER_FLOW_ITERATIONS / WATER_TILE_GROUP) as usize;
 
 /// Kernels of one sub-step.
 pub const SUBSTEP_KERNELS: usize =
@@ -312,7 +386,8 @@ pub const SUBSTEP_KERNELS: usize =
 /// re-born (or splash), the cover takes the deposits (or the rate), melts, ages and
 /// wets, the wind's factor over the ground is read, snow drifts and slides
 /// ([`precip_cover::SNOW_DRIFT_ITERATIONS`] iterations of two kernels), standing
-/// water flows ([`precip_cover::WATER_FLOW_ITERATIONS`] iterations of two kernels),
+/// water flows ([`precip_cover::WATER_FLOW_ITERATIONS`] iterations of two kernels,
+/// over the water tiles listed before every [`WATER_TILE_GROUP`]),
 /// and the waves advance ([`precip_model::physics::water_waves`]). Sub-steps repeat this with their
 /// own uniform blocks (dynamic offsets).
 pub const SUBSTEP_PASSES: [KernelPass; SUBSTEP_KERNELS] = {
@@ -325,7 +400,12 @@ pub const SUBSTEP_PASSES: [KernelPass; SUBSTEP_KERNELS] = {
         } else if k < head + DRIFT_KERNELS {
             DRIFT_ITERATION[(k - head) % DRIFT_ITERATION.len()]
         } else if k < head + DRIFT_KERNELS + FLOW_KERNELS {
-            FLOW_ITERATION[(k - head - DRIFT_KERNELS) % FLOW_ITERATION.len()]
+            let in_group = (k - head - DRIFT_KERNELS) % FLOW_GROUP_KERNELS;
+            if in_group == 0 {
+                FLOW_LIST
+            } else {
+                FLOW_ITERATION[(in_group - 1) % FLOW_ITERATION.len()]
+            }
         } else {
             SUBSTEP_TAIL[k - head - DRIFT_KERNELS - FLOW_KERNELS]
         };
@@ -381,6 +461,7 @@ pub const FEATURES: [(&str, &[&str]); 6] = [
     (
         "water",
         &[
+            "water_tiles_list",
             "water_outflow",
             "water_inflow",
             "wave_excite",
@@ -844,6 +925,8 @@ pub mod cover_bindings {
     pub const COVER: u32 = 1;
     /// Deposits, read-write storage.
     pub const DEPOSITS: u32 = 2;
+    /// The water tiles ([`super::water_tiles_bytes`]), read-write storage.
+    pub const WATER_TILES: u32 = 3;
 }
 
 #[cfg(test)]

@@ -628,6 +628,7 @@ impl<G: Gpu> FrameState<G> {
             particles: sim.particle_count(),
             cover_texels: self.cover_texels,
             wave_cells: 0,
+            water_tiles: 0,
         };
         let detail = (
             view.camera.position_m,

@@ -13,6 +13,7 @@ use precip_model::physics::water_waves::initial_waves;
 use precip_model::{GroundMap, Particle};
 
 use crate::bind_groups::{BEAMS, COVER_UPDATE, GroupLayout, OPTICS, STEP};
+use crate::recipe::water_tiles_bytes;
 use crate::recipe::{beam_bindings as bb, cover_bindings as cv, pending_births_bytes};
 use crate::recipe::{optics_bindings as ob, step_bindings as sb};
 
@@ -39,11 +40,13 @@ pub enum SimBuffer {
     StepBlocks,
     /// One [`CoverStepParams`] per sub-step, as [`SimBuffer::StepBlocks`].
     CoverBlocks,
+    /// The water tiles the flow runs over ([`water_tiles_bytes`]), zeroed.
+    WaterTiles,
 }
 
 impl SimBuffer {
     /// Every buffer, in the order they are made.
-    pub const ALL: [Self; 10] = [
+    pub const ALL: [Self; 11] = [
         Self::Particles,
         Self::Cover,
         Self::Deposits,
@@ -54,6 +57,7 @@ impl SimBuffer {
         Self::WindParams,
         Self::StepBlocks,
         Self::CoverBlocks,
+        Self::WaterTiles,
     ];
 
     /// A label for debuggers.
@@ -70,6 +74,7 @@ impl SimBuffer {
             Self::WindParams => "precip wind params",
             Self::StepBlocks => "precip step params",
             Self::CoverBlocks => "precip cover params",
+            Self::WaterTiles => "precip water tiles",
         }
     }
 }
@@ -183,6 +188,11 @@ pub fn simulation_buffers(
                 SimBuffer::StepBlocks | SimBuffer::CoverBlocks => {
                     (blocks, BufferUsage::Uniform, Contents::Undefined)
                 }
+                SimBuffer::WaterTiles => (
+                    water_tiles_bytes(&cover.frame),
+                    BufferUsage::Storage,
+                    Contents::Zeroed,
+                ),
             };
             BufferSpec {
                 buffer,
@@ -246,6 +256,7 @@ pub const COVER_GROUP: GroupFill = GroupFill {
         (cv::COVER_PARAMS, Bound::Buffer(SimBuffer::CoverBlocks)),
         (cv::COVER, Bound::Buffer(SimBuffer::Cover)),
         (cv::DEPOSITS, Bound::Buffer(SimBuffer::Deposits)),
+        (cv::WATER_TILES, Bound::Buffer(SimBuffer::WaterTiles)),
     ],
 };
 

@@ -422,3 +422,32 @@ fn the_binding_tables_match_the_wgsl() {
     }
     assert!(checked > 40, "only {checked} resources checked");
 }
+
+/// The value of WGSL constant `name` of `module` (a `u32` or `i32` literal).
+fn wgsl_integer(module: &naga::Module, name: &str) -> i64 {
+    let constant = module
+        .constants
+        .iter()
+        .map(|(_, c)| c)
+        .find(|c| c.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("no WGSL constant {name}"));
+    match module.global_expressions[constant.init] {
+        naga::Expression::Literal(naga::Literal::U32(v)) => i64::from(v),
+        naga::Expression::Literal(naga::Literal::I32(v)) => i64::from(v),
+        ref e => panic!("{name} is {e:?}"),
+    }
+}
+
+#[test]
+fn the_water_tiles_are_the_same_in_wgsl_and_rust() {
+    use precip_gpu::recipe::{WATER_TILE_REACH, WATER_TILE_SIDE};
+    let module = parse(Program::CoverUpdate);
+    assert_eq!(
+        wgsl_integer(&module, "WATER_TILE_SIDE"),
+        i64::from(WATER_TILE_SIDE)
+    );
+    assert_eq!(
+        wgsl_integer(&module, "WATER_TILE_REACH"),
+        i64::from(WATER_TILE_REACH)
+    );
+}
