@@ -20,8 +20,10 @@ pub struct FrameStats {
     timed: u32,
     drawn_sum: u64,
     drawn_samples: u32,
-    /// Per pass: total GPU ms and samples.
+    /// Per pass: total GPU ms and the frames it ran in.
     passes: Vec<(&'static str, f64, u32)>,
+    /// Frames whose timings were read (a pass that ran in fewer costs its share).
+    timings_read: u32,
 }
 
 impl FrameStats {
@@ -39,19 +41,26 @@ impl FrameStats {
                 self.drawn_samples += 1;
             }
             if self.frames >= WARM_UP_FRAMES {
-                for p in backend.timings()?.passes {
-                    match self.passes.iter_mut().find(|(name, _, _)| *name == p.pass) {
-                        Some(entry) => {
-                            entry.1 += p.milliseconds;
-                            entry.2 += 1;
-                        }
-                        None => self.passes.push((p.pass, p.milliseconds, 1)),
-                    }
-                }
+                let timings = backend.timings()?;
+                self.add_passes(timings.passes.iter().map(|p| (p.pass, p.milliseconds)));
             }
         }
         self.frames += 1;
         Ok(())
+    }
+
+    /// Adds one sampled frame's GPU ms per pass (the passes that ran in it).
+    fn add_passes(&mut self, passes: impl Iterator<Item = (&'static str, f64)>) {
+        self.timings_read += 1;
+        for (pass, ms) in passes {
+            match self.passes.iter_mut().find(|(name, _, _)| *name == pass) {
+                Some(entry) => {
+                    entry.1 += ms;
+                    entry.2 += 1;
+                }
+                None => self.passes.push((pass, ms, 1)),
+            }
+        }
     }
 
     /// Mean time of the frames after the warm-up (of all frames when there were no
@@ -72,13 +81,14 @@ impl FrameStats {
         (self.drawn_samples > 0).then(|| self.drawn_sum as f64 / f64::from(self.drawn_samples))
     }
 
-    /// Mean GPU ms of each kernel and pass over the sampled frames after the
-    /// warm-up, in the order first seen; empty without timestamps.
+    /// Mean GPU ms a frame of each kernel and pass over the sampled frames after
+    /// the warm-up, in the order first seen (a pass that runs every third frame, the
+    /// shadow's, counts a third of its time); empty without timestamps.
     #[must_use]
     pub fn mean_pass_ms(&self) -> Vec<(&'static str, f64)> {
         self.passes
             .iter()
-            .map(|(name, ms, n)| (*name, ms / f64::from((*n).max(1))))
+            .map(|(name, ms, _)| (*name, ms / f64::from(self.timings_read.max(1))))
             .collect()
     }
 
@@ -102,7 +112,14 @@ impl FrameStats {
         (!passes.is_empty()).then(|| {
             let list: Vec<String> = passes
                 .iter()
-                .map(|(name, ms)| format!("{name} {ms:.1}"))
+                .zip(&self.passes)
+                .map(|((name, ms), (_, _, runs))| {
+                    if *runs < self.timings_read {
+                        format!("{name} {ms:.1} (ran in {runs} of {})", self.timings_read)
+                    } else {
+                        format!("{name} {ms:.1}")
+                    }
+                })
                 .collect();
             format!(
                 "GPU ms: {}; share of the GPU time: {}",
@@ -161,6 +178,23 @@ mod tests {
             stats
                 .describe_passes()
                 .is_some_and(|d| d.starts_with("GPU ms: "))
+        );
+    }
+
+    #[test]
+    fn a_pass_that_ran_in_some_frames_costs_its_share_of_every_frame() {
+        let mut stats = FrameStats::default();
+        stats.add_passes([("scene", 100.0), ("shadow", 30.0)].into_iter());
+        stats.add_passes([("scene", 100.0)].into_iter());
+        stats.add_passes([("scene", 100.0)].into_iter());
+        assert_eq!(
+            stats.mean_pass_ms(),
+            vec![("scene", 100.0), ("shadow", 10.0)]
+        );
+        let text = stats.describe_passes().expect("timed");
+        assert!(
+            text.starts_with("GPU ms: scene 100.0, shadow 10.0 (ran in 1 of 3)"),
+            "{text}"
         );
     }
 }

@@ -1,7 +1,8 @@
 //! When the sun's depth map is drawn again (docs/architecture.md §2 step 4): the shadow pass
 //! re-renders the displaced scene from the sun, which changes only when the sun's
 //! projection changes (configuration: sun direction, scene bounds), the displacement
-//! is switched, or the snow surface has moved by more than [`SHADOW_REFRESH_RISE_M`].
+//! is switched, or the snow surface has moved by more than can show in the map: a
+//! texel of the map ([`shadow_texel_m`]), and at least [`SHADOW_REFRESH_RISE_M`].
 //!
 //! The snow's movement is not read back from the GPU: it is bounded from the weather.
 //! New snow raises a surface at most at the snowfall rate over the lightest new-snow
@@ -9,8 +10,10 @@
 //! drift; melt lowers it at most at the degree-day rate of the oldest (darkest) snow
 //! over the same density. Settling is slower than both and is caught by the
 //! [`SHADOW_MAX_AGE_COVER_S`] refresh. At the viewer's default time scale (0.05
-//! days a second) the map is redrawn nearly every frame while it snows; in a
-//! real-time simulator under 2 mm/h it is redrawn about every 7 minutes.
+//! days a second) and 2 mm/h of snow, the demo's map (2048 texels over about 80 m,
+//! 4 cm each) is redrawn about every tenth of a second while it snows, every third
+//! frame at 30 fps; in a real-time simulator it is redrawn every 15 minutes, the
+//! settling refresh.
 
 use glam::Mat4;
 use precip_cover::{CoverParams, new_snow_density, snow_albedo};
@@ -19,9 +22,20 @@ use crate::backend::setup::Setup;
 use crate::drawing::render::RenderParams;
 use crate::weather::Weather;
 
-/// How far the snow surface may move before the map is redrawn, m (a texel of a
-/// 2048² map over 40 m is 2 cm).
+/// How far the snow surface may move before the map is redrawn, at least, m (the
+/// map's texel, [`shadow_texel_m`], where that is coarser).
 pub const SHADOW_REFRESH_RISE_M: f32 = 0.01;
+
+/// The side of a texel of a `map_px`² sun map drawn through the orthographic
+/// `sun_view_proj`, m: the shorter of the two extents it maps onto the map, over
+/// `map_px`. A surface that moves by less moves no shadow edge by more than about a
+/// texel.
+#[must_use]
+pub fn shadow_texel_m(sun_view_proj: Mat4, map_px: u32) -> f32 {
+    let row = |r: usize| sun_view_proj.row(r).truncate().length();
+    let extent_m = 2.0 / row(0).max(row(1)).max(f32::MIN_POSITIVE);
+    extent_m / map_px.max(1) as f32
+}
 
 /// Local landings exceed the mean rate by at most this factor (grain, drift).
 pub const LANDING_LUMP_FACTOR: f32 = 4.0;
@@ -60,14 +74,16 @@ pub struct ShadowCache {
 
 impl ShadowCache {
     /// Whether this frame must draw the shadow map, for the sun's projection, the
-    /// displacement switch, the cover's simulated time (s) and the surface's speed
-    /// bound ([`snow_surface_speed_bound_mps`]); records the draw when it says yes.
+    /// displacement switch, the cover's simulated time (s), the surface's speed
+    /// bound ([`snow_surface_speed_bound_mps`]) and the rise that shows in the map
+    /// (m); records the draw when it says yes.
     pub fn needs_drawing(
         &mut self,
         sun_view_proj: Mat4,
         displacement: bool,
         cover_time_s: f64,
         surface_speed_bound_mps: f32,
+        visible_rise_m: f32,
     ) -> bool {
         let fresh = self.drawn.is_some_and(|d| {
             let elapsed = (cover_time_s - d.cover_time_s).abs();
@@ -78,7 +94,7 @@ impl ShadowCache {
             };
             d.sun_view_proj == sun_view_proj
                 && d.displacement == displacement
-                && moved < f64::from(SHADOW_REFRESH_RISE_M)
+                && moved < f64::from(visible_rise_m.max(SHADOW_REFRESH_RISE_M))
                 && elapsed < SHADOW_MAX_AGE_COVER_S
         });
         if !fresh {
@@ -106,6 +122,7 @@ impl ShadowCache {
             setup.render.snow_displacement,
             time_s * f64::from(setup.cover.time_scale),
             snow_surface_speed_bound_mps(weather, &setup.cover.params),
+            shadow_texel_m(params.sun_view_proj, setup.render.shadow_map_px),
         )
     }
 
@@ -124,30 +141,56 @@ mod tests {
         let sun = Mat4::from_scale(glam::Vec3::splat(0.1));
         let mut cache = ShadowCache::default();
         let speed = 1.0e-5; // 1 cm in 1 000 s
-        assert!(cache.needs_drawing(sun, true, 0.0, speed), "first frame");
         assert!(
-            !cache.needs_drawing(sun, true, 10.0, speed),
+            cache.needs_drawing(sun, true, 0.0, speed, 0.0),
+            "first frame"
+        );
+        assert!(
+            !cache.needs_drawing(sun, true, 10.0, speed, 0.0),
             "nothing changed"
         );
         assert!(
-            !cache.needs_drawing(sun, true, 899.0, speed),
+            !cache.needs_drawing(sun, true, 899.0, speed, 0.0),
             "9 mm at most"
         );
-        assert!(cache.needs_drawing(sun, true, 1_001.0, speed), "1 cm");
-        assert!(!cache.needs_drawing(sun, true, 1_002.0, speed));
+        assert!(cache.needs_drawing(sun, true, 1_001.0, speed, 0.0), "1 cm");
+        assert!(!cache.needs_drawing(sun, true, 1_002.0, speed, 0.0));
         assert!(
-            cache.needs_drawing(sun * 2.0, true, 1_002.0, speed),
+            cache.needs_drawing(sun * 2.0, true, 1_002.0, speed, 0.0),
             "the sun"
         );
         assert!(
-            cache.needs_drawing(sun * 2.0, false, 1_002.0, speed),
+            cache.needs_drawing(sun * 2.0, false, 1_002.0, speed, 0.0),
             "the switch"
         );
         // Without displacement the snow does not move the map; age still does.
-        assert!(!cache.needs_drawing(sun * 2.0, false, 1_800.0, 1.0));
-        assert!(cache.needs_drawing(sun * 2.0, false, 1_002.0 + SHADOW_MAX_AGE_COVER_S, 1.0));
+        assert!(!cache.needs_drawing(sun * 2.0, false, 1_800.0, 1.0, 0.0));
+        assert!(cache.needs_drawing(sun * 2.0, false, 1_002.0 + SHADOW_MAX_AGE_COVER_S, 1.0, 0.0));
         cache.invalidate();
-        assert!(cache.needs_drawing(sun * 2.0, false, 1_902.0, 1.0));
+        assert!(cache.needs_drawing(sun * 2.0, false, 1_902.0, 1.0, 0.0));
+    }
+
+    #[test]
+    fn a_rise_under_a_texel_of_the_map_does_not_redraw_it() {
+        // 80 m across 2048 texels: 3.9 cm a texel.
+        // Looking straight down: x over 80 m, z over 80 m, heights over 200 m.
+        let sun = Mat4::from_cols(
+            glam::Vec4::new(1.0 / 40.0, 0.0, 0.0, 0.0),
+            glam::Vec4::new(0.0, 0.0, 1.0 / 200.0, 0.0),
+            glam::Vec4::new(0.0, 1.0 / 40.0, 0.0, 0.0),
+            glam::Vec4::new(0.0, -0.5, 0.0, 1.0),
+        );
+        let texel = shadow_texel_m(sun, 2048);
+        assert!((texel - 80.0 / 2048.0).abs() < 1e-5, "{texel} m");
+        let mut cache = ShadowCache::default();
+        let speed = 1.0e-3; // 1 mm a second
+        assert!(cache.needs_drawing(sun, true, 0.0, speed, texel));
+        assert!(!cache.needs_drawing(sun, true, 30.0, speed, texel), "3 cm");
+        assert!(cache.needs_drawing(sun, true, 40.0, speed, texel), "4 cm");
+        // A finer map shows the 1 cm floor.
+        let fine = shadow_texel_m(sun, 8192);
+        assert!(!cache.needs_drawing(sun, true, 49.0, speed, fine));
+        assert!(cache.needs_drawing(sun, true, 51.0, speed, fine), "1.1 cm");
     }
 
     #[test]
