@@ -188,6 +188,8 @@ pub struct Simulation<G: Gpu> {
     particle_count: u32,
     cover_texel_count: u32,
     wave_frame: GridFrame,
+    /// The device computes on the CPU ([`Gpu::rasterises_on_cpu`]).
+    on_cpu: bool,
     uniform_stride: u64,
     steps_submitted: u64,
     /// The kernels the last step dispatched, in order (its timings' names).
@@ -274,6 +276,7 @@ impl<G: Gpu> Simulation<G> {
                     particle_count: parts.0,
                     cover_texel_count,
                     wave_frame,
+                    on_cpu: gpu.rasterises_on_cpu(),
                     uniform_stride: parts.1,
                     steps_submitted: 0,
                     last_step: Vec::new(),
@@ -707,6 +710,7 @@ impl<G: Gpu> Simulation<G> {
             self.particle_count,
             &self.host.setup().cover.frame,
             &self.wave_frame,
+            self.on_cpu,
         )
     }
 

@@ -91,10 +91,11 @@ pub enum DispatchOver {
     ParticleList,
     /// One invocation per cell of the water bodies' wave grid.
     WaveCells,
-    /// One workgroup per [`WATER_TILES_PER_WORKGROUP`] water tiles
-    /// ([`WATER_TILE_SIDE`]), a texel an invocation, each workgroup taking a listed
-    /// tile at a time with the dispatch's stride: the flow kernels (a fixed dispatch
-    /// for the reason [`LIST_ENTRIES_PER_INVOCATION`] gives).
+    /// One workgroup per water tile ([`WATER_TILE_SIDE`]) on a GPU, per
+    /// [`WATER_TILES_PER_WORKGROUP`] on a device that computes on the CPU, a texel
+    /// an invocation, each workgroup taking a listed tile at a time with the
+    /// dispatch's stride: the flow kernels (a fixed dispatch for the reason
+    /// [`LIST_ENTRIES_PER_INVOCATION`] gives).
     WaterTiles,
 }
 
@@ -109,19 +110,24 @@ pub struct DispatchCounts {
     pub wave_cells: u32,
     /// Water tiles of the cover grid ([`water_tiles`]).
     pub water_tiles: u32,
+    /// Water tiles a workgroup of the flow takes ([`WATER_TILES_PER_WORKGROUP`]
+    /// on a device that computes on the CPU, else 1; 0 reads as 1).
+    pub water_tiles_per_workgroup: u32,
 }
 
 impl DispatchCounts {
     /// The counts of a configuration of `particles` particles, the cover grid
-    /// `cover` and the wave grid `waves`.
+    /// `cover` and the wave grid `waves`, on a device that computes on the CPU or
+    /// not (`on_cpu`).
     #[must_use]
-    pub fn of(particles: u32, cover: &GridFrame, waves: &GridFrame) -> Self {
+    pub fn of(particles: u32, cover: &GridFrame, waves: &GridFrame, on_cpu: bool) -> Self {
         let (x, z) = water_tiles(cover);
         Self {
             particles,
             cover_texels: u32::try_from(cover.texel_count()).unwrap_or(u32::MAX),
             wave_cells: u32::try_from(waves.texel_count()).unwrap_or(u32::MAX),
             water_tiles: x.saturating_mul(z),
+            water_tiles_per_workgroup: if on_cpu { WATER_TILES_PER_WORKGROUP } else { 1 },
         }
     }
 }
@@ -136,10 +142,16 @@ impl DispatchOver {
             Self::OneWorkgroup => 1,
             Self::ParticleList => list_invocations(counts.particles),
             Self::WaveCells => counts.wave_cells,
-            Self::WaterTiles => counts
-                .water_tiles
-                .div_ceil(WATER_TILES_PER_WORKGROUP)
-                .saturating_mul(WORKGROUP_SIZE),
+            Self::WaterTiles => {
+                let per_workgroup = match counts.water_tiles_per_workgroup {
+                    0 => 1,
+                    n => n,
+                };
+                counts
+                    .water_tiles
+                    .div_ceil(per_workgroup)
+                    .saturating_mul(WORKGROUP_SIZE)
+            }
         }
     }
 }
@@ -156,11 +168,14 @@ impl DispatchOver {
 /// wet area. WGSL twin: `WATER_TILE_SIDE` in `precip-cover/shaders/cover_update.wgsl`.
 pub const WATER_TILE_SIDE: u32 = 8;
 
-/// Water tiles a workgroup of the flow kernels takes, one after the other
-/// ([`DispatchOver::WaterTiles`]). Each workgroup has a cost of its own even when
-/// it has nothing to do (lavapipe: about 1 µs, so that one workgroup per tile of a
-/// 320² grid costs 1.4 ms a dispatch, the whole of the flow's cost where little
-/// water stands): a few tiles each keeps that small where the grid is large.
+/// Water tiles a workgroup of the flow kernels takes, one after the other, on a
+/// device that computes on the CPU ([`DispatchOver::WaterTiles`]). There each
+/// workgroup has a cost of its own even when it has nothing to do (lavapipe: about
+/// 1 µs, so that one workgroup per tile of a 320² grid costs 1.4 ms a dispatch, the
+/// whole of the flow's cost where little water stands): a few tiles each keeps that
+/// small. A GPU wants the parallelism instead (H200, the same grid fully wet:
+/// 1.6 GPU ms a frame at 8 tiles a workgroup, against 1.3 for the whole grid), so
+/// it gets one tile a workgroup.
 pub const WATER_TILES_PER_WORKGROUP: u32 = 8;
 
 /// Flow iterations between two lists of the water tiles.
@@ -931,6 +946,25 @@ pub mod cover_bindings {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn the_flow_takes_a_tile_a_workgroup_on_a_gpu_and_eight_on_a_cpu() {
+        use super::{DispatchCounts, DispatchOver, GridFrame, WORKGROUP_SIZE, water_tiles_bytes};
+        let cover = GridFrame::centred(
+            glam::Vec2::ZERO,
+            glam::Vec2::splat(100.0),
+            glam::UVec2::new(321, 160),
+        );
+        let waves = cover;
+        // 41 x 20 tiles, the last column partial.
+        let gpu = DispatchCounts::of(1, &cover, &waves, false);
+        let cpu = DispatchCounts::of(1, &cover, &waves, true);
+        assert_eq!(gpu.water_tiles, 820);
+        let groups = |c| DispatchOver::WaterTiles.invocations(c) / WORKGROUP_SIZE;
+        assert_eq!(groups(gpu), 820);
+        assert_eq!(groups(cpu), 103);
+        assert_eq!(water_tiles_bytes(&cover), 4 * (1 + 3 * 820));
+    }
+
     #[test]
     fn every_kernel_and_pass_serves_one_feature_and_the_shares_add_up() {
         let names = SUBSTEP_PASSES

@@ -629,6 +629,7 @@ impl<G: Gpu> FrameState<G> {
             cover_texels: self.cover_texels,
             wave_cells: 0,
             water_tiles: 0,
+            water_tiles_per_workgroup: 0,
         };
         let detail = (
             view.camera.position_m,
