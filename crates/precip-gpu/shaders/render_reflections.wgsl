@@ -10,8 +10,9 @@
 // frame, reaches the sky or runs past REFLECTION_REACH_M, the sky stays, faded over
 // the frame's edge and the reach so no seam shows. A frame late (as game engines'
 // screen-space reflections read the last frame's colour), so only the pixels that
-// hold water pay for it and no pass over every pixel is added. The rain rings and
-// waves shape the sky's reflection, not the scene's: the ray leaves a level surface.
+// hold water pay for it and no pass over every pixel is added. The rain's rings and
+// the waves tilt the surface the ray leaves (water_slope), so they break up the
+// scene's image as they do the sky's.
 // No Rust twin: a drawing technique over the frame, no formula of the model
 // (Fresnel and the sky are water_look's, twinned there).
 // Program: the Render program's files, after render_scene.wgsl (which calls it).
@@ -40,11 +41,12 @@ fn clip_to_pixel(clip: vec4<f32>, size: vec2<f32>) -> vec3<f32> {
     return vec3<f32>((ndc.x * 0.5 + 0.5) * size.x, (0.5 - ndc.y * 0.5) * size.y, ndc.z);
 }
 
-// What the mirror at `surface_m` seen from `to_viewer` shows instead of the sky:
-// (the scene met − the sky) along the mirrored ray, faded at the frame's edge and the
-// reach; zero where the ray meets nothing or the frame before is not there.
-fn mirrored_scene(surface_m: vec3<f32>, to_viewer: vec3<f32>) -> vec3<f32> {
-    let ray = reflect(-to_viewer, vec3<f32>(0.0, 1.0, 0.0));
+// What the mirror at `surface_m` sloping by `slope` (water_slope), seen from
+// `to_viewer`, shows instead of the sky: (the scene met − the sky) along the
+// mirrored ray, faded at the frame's edge and the reach; zero where the ray meets
+// nothing or the frame before is not there.
+fn mirrored_scene(surface_m: vec3<f32>, to_viewer: vec3<f32>, slope: vec2<f32>) -> vec3<f32> {
+    let ray = reflect(-to_viewer, normalize(vec3<f32>(-slope.x, 1.0, -slope.y)));
     if (params.water_look.y < 0.5 || ray.y <= 0.0) {
         return vec3<f32>(0.0);
     }

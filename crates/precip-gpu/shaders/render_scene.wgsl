@@ -238,6 +238,8 @@ struct SurfaceLook {
     shaded: vec3<f32>,
     mirror: f32,
     fog: f32,
+    // The standing water's slope (water_slope), which bends the mirror's ray.
+    water_slope: vec2<f32>,
 }
 
 @fragment
@@ -254,7 +256,7 @@ fn fs_water_body(in: SceneVarying) -> @location(0) vec4<f32> {
     var look = surface_look(in);
     if (look.mirror > REFLECTION_LEAST) {
         let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - in.world_m);
-        look.shaded += look.mirror * mirrored_scene(in.world_m, to_viewer);
+        look.shaded += look.mirror * mirrored_scene(in.world_m, to_viewer, look.water_slope);
     }
     return vec4<f32>(mix(params.sky_colour_time.xyz, look.shaded, look.fog), 1.0);
 }
@@ -310,8 +312,10 @@ fn surface_look(in: SceneVarying) -> SurfaceLook {
     var look: SurfaceLook;
     look.shaded = colour * intensity;
     look.mirror = 0.0;
+    look.water_slope = vec2<f32>(0.0);
     if (open_water > 0.0) {
-        let wet = water_surface(look.shaded, puddle_ratio, wetness, body, in.surface_m.xz, to_viewer, lit, ring_fade);
+        look.water_slope = water_slope(puddle_ratio, body, in.surface_m.xz, ring_fade);
+        let wet = water_surface(look.shaded, puddle_ratio, wetness, body, look.water_slope, to_viewer, lit);
         look.shaded = mix(look.shaded, wet.rgb, open_water);
         look.mirror = wet.w * open_water;
     }

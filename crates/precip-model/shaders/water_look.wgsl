@@ -74,19 +74,26 @@ fn water_body_colour(bottom_colour: vec3<f32>, depth_m: f32) -> vec3<f32> {
     return bottom_colour * t + DEEP_WATER_COLOUR * (vec3<f32>(1.0) - t);
 }
 
+// The slope of standing water at `xz_m`: the rain's rings where a puddle or a water
+// body (`body`: 1 on its mesh) lies, faded by `ring_fade` (0 where a pixel spans a
+// ring's wavelength: no aliasing), and on a water body the simulated waves (longer
+// than the grid's 4 cm cells), to which the rings add the capillary waves below
+// the grid's scale.
+fn water_slope(puddle_ratio: f32, body: f32, xz_m: vec2<f32>, ring_fade: f32) -> vec2<f32> {
+    let puddle = puddle_cover(puddle_ratio);
+    let rings = ring_slope(xz_m, params.sky_colour_time.w, params.water_look.x) * (ring_fade * max(puddle, body));
+    return rings + wave_slope(xz_m).xy * body;
+}
+
 // What a lit surface `shaded` looks like under its water: a wet film's blurred
 // sheen, a puddle's mirror with rain rings, a water body's (`body`: 1 on its mesh)
 // Fresnel surface with its simulated waves (water_waves.wgsl) and rings over its
-// depths. `ring_fade` is 0 where a pixel spans a ring's wavelength (no aliasing).
+// depths, its surface sloping by `slope` (water_slope).
 // In w, the weight its sharp mirrors (the puddle's and the water body's, not the
 // film's blurred sheen) give the sky they reflect: where the renderer's reflections
 // find the scene instead.
-fn water_surface(shaded: vec3<f32>, puddle_ratio: f32, wetness: f32, body: f32, xz_m: vec2<f32>, to_viewer: vec3<f32>, lit: f32, ring_fade: f32) -> vec4<f32> {
+fn water_surface(shaded: vec3<f32>, puddle_ratio: f32, wetness: f32, body: f32, slope: vec2<f32>, to_viewer: vec3<f32>, lit: f32) -> vec4<f32> {
     let puddle = puddle_cover(puddle_ratio);
-    var slope = ring_slope(xz_m, params.sky_colour_time.w, params.water_look.x) * (ring_fade * max(puddle, body));
-    // On a water body the simulated waves (longer than the grid's 4 cm cells) add to
-    // the rings, which stand for the capillary waves below the grid's scale.
-    slope += wave_slope(xz_m).xy * body;
     let n = normalize(vec3<f32>(-slope.x, 1.0, -slope.y));
     let f = fresnel_unpolarised(dot(n, to_viewer), WATER_REFRACTIVE_INDEX);
     let sky = overcast_sky(params.sky_colour_time.xyz, reflect(-to_viewer, n));
