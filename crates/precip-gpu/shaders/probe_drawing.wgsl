@@ -21,7 +21,8 @@ struct ProbeDrawing {
 // 4 snow streak corners at a 1/60 s exposure (xyz; w = uv.y), then (the blur at
 // 50·h of an aperture a focused at 10 m, a sprite of side `side` at 0.8 defocused by
 // it, a streak's opacity), then (the cover warp at the centre's x, z over cells
-// (a + 0.1, side + 0.1), 0, 0).
+// (a + 0.1, side + 0.1), the flake's sun phase at cos = spin/6, a drop's
+// environment factor at sin e = spin/6 over ground of albedo `tumble`).
 @group(0) @binding(1) var<storage, read_write> probe_drawing_out: array<vec4<f32>>;
 
 @compute @workgroup_size(64)
@@ -53,5 +54,5 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
         defocused(q.side_m, 0.8, blur, 2),
         defocused(q.side_m, 0.8, blur, 1).y,
     );
-    probe_drawing_out[19u * i + 18u] = vec4<f32>(cover_warp_m(q.centre_m.xz, vec2<f32>(q.a_m + 0.1, q.side_m + 0.1)), flake_sun_phase(q.spin_rad / 6.0), 0.0);
+    probe_drawing_out[19u * i + 18u] = vec4<f32>(cover_warp_m(q.centre_m.xz, vec2<f32>(q.a_m + 0.1, q.side_m + 0.1)), flake_sun_phase(q.spin_rad / 6.0), drop_environment_factor(q.spin_rad / 6.0, q.tumble));
 }

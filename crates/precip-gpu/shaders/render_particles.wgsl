@@ -5,7 +5,8 @@
 struct ParticleVarying {
     @builtin(position) clip: vec4<f32>,
     @location(0) uv: vec2<f32>,
-    // Snow: lit, fogged colour and opacity. Rain: (lit, fog, _, opacity).
+    // Snow: lit, fogged colour and opacity. Rain: (lit, fog, the environment's
+    // radiance it refracts over the horizon's, opacity).
     @location(1) shade: vec4<f32>,
     @location(2) normal: vec3<f32>,
     @location(3) world_m: vec3<f32>,
@@ -41,13 +42,14 @@ fn snow_colour(p: Particle, distance_m: f32) -> vec3<f32> {
 
 // The light of a drop's face of normal `n` toward `to_viewer`, fogged by `fog`. A drop
 // is a wide-angle lens: it shows the environment over some 165° around the viewing
-// direction, mostly the overcast sky, at about 94 % of its radiance (Garg & Nayar,
-// *Vision and rain*, IJCV 2007), plus the sun's glint off its surface; so a streak is
-// bright against a dark background and all but vanishes against the sky.
-fn rain_colour(n: vec3<f32>, to_viewer: vec3<f32>, lit: f32, fog: f32) -> vec3<f32> {
+// direction at about 94 % of its radiance (Garg & Nayar, *Vision and rain*, IJCV
+// 2007), `environment` times the horizon sky's (drop_environment_factor), plus the
+// sun's glint off its surface; so a streak is bright against a dark background and
+// all but vanishes against the sky.
+fn rain_colour(n: vec3<f32>, to_viewer: vec3<f32>, lit: f32, fog: f32, environment: f32) -> vec3<f32> {
     let light = blinn_phong(params.light, params.shadow, n, params.to_sun_extinction.xyz, to_viewer, lit);
-    let environment = 0.94 * params.sky_colour_time.xyz;
-    let water = mix(environment, vec3<f32>(0.75, 0.8, 0.85) * light, 0.2);
+    let refracted = min(environment * params.sky_colour_time.xyz, vec3<f32>(1.0));
+    let water = mix(refracted, vec3<f32>(0.75, 0.8, 0.85) * light, 0.2);
     return mix(params.sky_colour_time.xyz, water, fog);
 }
 
@@ -112,10 +114,13 @@ fn vs_rain(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     var out: ParticleVarying;
     out.clip = params.view_proj * vec4<f32>(v.position_m, 1.0);
     out.uv = vec2<f32>(0.0);
+    // What the drop refracts: the sky and the ground over its field of view (bare
+    // ground: the cover under each drop cost a quarter of the pass on lavapipe).
+    let view_sin_elevation = (p.position_m.y - camera.y) / max(distance_m, 1.0e-6);
     out.shade = vec4<f32>(
         shadow_lit(p.position_m),
         fog_transmittance(distance_m, params.to_sun_extinction.w),
-        0.0,
+        drop_environment_factor(view_sin_elevation, BARE_GROUND_ALBEDO),
         min(1.0, resolved_weight(i, p) * params.cover_look.x * size.z * near_fade(distance_m)),
     );
     out.normal = v.normal;
@@ -131,5 +136,5 @@ fn fs_rain(in: ParticleVarying) -> @location(0) vec4<f32> {
     if (dot(n, to_viewer) < 0.0) {
         n = -n;
     }
-    return vec4<f32>(rain_colour(n, to_viewer, in.shade.x, in.shade.y), in.shade.w);
+    return vec4<f32>(rain_colour(n, to_viewer, in.shade.x, in.shade.y, in.shade.z), in.shade.w);
 }

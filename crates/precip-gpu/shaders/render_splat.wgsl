@@ -33,7 +33,8 @@ fn splat_look(p: Particle, distance_m: f32) -> vec4<f32> {
         let size = raindrop_sizing(length(p.velocity_mps), p.diameter_m, distance_m, pixel_angle, params.sizing);
         let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - p.position_m);
         let fog = fog_transmittance(distance_m, params.to_sun_extinction.w);
-        let colour = rain_colour(to_viewer, to_viewer, shadow_lit(p.position_m), fog);
+        let environment = drop_environment_factor(-to_viewer.y, BARE_GROUND_ALBEDO);
+        let colour = rain_colour(to_viewer, to_viewer, shadow_lit(p.position_m), fog, environment);
         let ink = splat_ink(true, vec3<f32>(size.x, size.y, size.z * params.cover_look.x), distance_m, pixel_angle, 0.0);
         return vec4<f32>(colour, ink);
     }

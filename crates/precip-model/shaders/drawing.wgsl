@@ -210,6 +210,38 @@ fn flake_sun_phase(cos_scatter: f32) -> f32 {
     return 0.5 * (1.0 - g * g) / (d * sqrt(d));
 }
 
+// drop_field_shares, drop_environment_factor (precip_model::drawing::drop_environment):
+// the CIE overcast sky's mean over a drop's 165° field of view, in units of the
+// horizon's radiance, and the share of the field below the horizon; the radiance the
+// drop passes on, with ground of albedo `ground_albedo` below.
+const DROP_HALF_FIELD_RAD: f32 = 1.4398966;
+const DROP_REFRACTED_SHARE: f32 = 0.94;
+const OVERCAST_GROUND_RADIANCE_PER_ALBEDO: f32 = 2.3333333;
+const DROP_PI: f32 = 3.14159265;
+const BARE_GROUND_ALBEDO: f32 = 0.2;
+fn drop_field_shares(sin_elevation: f32) -> vec2<f32> {
+    let s = clamp(sin_elevation, -1.0, 1.0);
+    let sin_a = sin(DROP_HALF_FIELD_RAD);
+    let cos_a = cos(DROP_HALF_FIELD_RAD);
+    let solid_angle = 2.0 * DROP_PI * (1.0 - cos_a);
+    let cos_e = sqrt(max(1.0 - s * s, 0.0));
+    if (cos_e <= cos_a) {
+        if (s > 0.0) {
+            return vec2<f32>((solid_angle + 2.0 * DROP_PI * sin_a * sin_a * s) / solid_angle, 0.0);
+        }
+        return vec2<f32>(0.0, 1.0);
+    }
+    let rim = acos(clamp(-s * cos_a / (sin_a * cos_e), -1.0, 1.0));
+    let chord = acos(clamp(cos_a / cos_e, -1.0, 1.0));
+    let upper = 2.0 * (DROP_PI - acos(clamp(s / sin_a, -1.0, 1.0)) - cos_a * rim);
+    let first_moment = chord + sin_a * sin_a * s * rim - cos_a * sin_a * cos_e * sin(rim);
+    return vec2<f32>((upper + 2.0 * first_moment) / solid_angle, clamp(1.0 - upper / solid_angle, 0.0, 1.0));
+}
+fn drop_environment_factor(sin_elevation: f32, ground_albedo: f32) -> f32 {
+    let shares = drop_field_shares(sin_elevation);
+    return DROP_REFRACTED_SHARE * (shares.x + shares.y * max(ground_albedo, 0.0) * OVERCAST_GROUND_RADIANCE_PER_ALBEDO);
+}
+
 // blinn_phong. light = (k_A·I_A, k_D·I_D, k_S·I_S, s); shadow = (sc, density, λ, _).
 fn blinn_phong(light: vec4<f32>, shadow: vec4<f32>, normal: vec3<f32>, to_light: vec3<f32>, to_viewer: vec3<f32>, lit: f32) -> f32 {
     let sh = shadow.y * (1.0 - lit);

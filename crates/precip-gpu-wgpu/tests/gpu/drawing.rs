@@ -8,8 +8,8 @@ use precip_gpu::shaders::Program;
 use precip_model::cover::{cover_warp_m, snow_cover_fraction, sub_texel_threshold, value_noise};
 use precip_model::drawing::multiplicity::drawn_weight;
 use precip_model::drawing::{
-    defocus_blur_m, defocused, flake_sun_phase, raindrop_tetrahedron_sized,
-    snow_sprite_corners_turned, snow_streak_corners,
+    defocus_blur_m, defocused, drop_environment_factor, flake_sun_phase,
+    raindrop_tetrahedron_sized, snow_sprite_corners_turned, snow_streak_corners,
 };
 use precip_model::particles::rng::{particle_key, random_unit};
 
@@ -136,6 +136,13 @@ fn wgsl_drawing_equals_rust_drawing() {
                 (g[2] - phase).abs() <= 1e-5 * (1.0 + phase),
                 "{name}: input {i} flake phase: WGSL {} vs Rust {phase}",
                 g[2]
+            );
+            // Three acos, steep near ±1: lavapipe's differ from Rust's by 2·10⁻⁵.
+            let drop = drop_environment_factor(q.spin_rad / 6.0, q.tumble);
+            assert!(
+                (g[3] - drop).abs() <= 2e-4 * (1.0 + drop),
+                "{name}: input {i} drop environment: WGSL {} vs Rust {drop}",
+                g[3]
             );
             for (k, (want, uv)) in streak.iter().enumerate() {
                 let g = got[19 * i + 13 + k];

@@ -13,6 +13,7 @@
 //! exactly `min_px` wide at full opacity, so its ink and the splat's are equal: a
 //! particle crossing the threshold does not pop.
 
+mod drop_environment;
 pub mod multiplicity;
 pub mod render;
 pub mod shadow_cache;
@@ -20,6 +21,11 @@ pub mod shadow_fit;
 pub mod water_look;
 
 use glam::Vec3;
+
+pub use drop_environment::{
+    BARE_GROUND_ALBEDO, DROP_HALF_FIELD_RAD, DROP_REFRACTED_SHARE,
+    OVERCAST_GROUND_RADIANCE_PER_ALBEDO, drop_environment_factor, drop_field_shares,
+};
 
 /// The four corners of a camera-facing snow sprite of side `side_m` centred at
 /// `centre_m`, seen from `camera_m`, in strip order V0 V1 V2 V3 (texture coordinates
