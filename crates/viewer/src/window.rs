@@ -246,9 +246,11 @@ fn wgpu_presenter(
     window: &Arc<Window>,
     (width, height): (u32, u32),
 ) -> Result<Presenter, WindowError> {
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle(
-        Box::new(event_loop.owned_display_handle()),
+    let mut descriptor = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(
+        event_loop.owned_display_handle(),
     ));
+    descriptor.flags = precip_gpu_wgpu::device::instance_flags();
+    let instance = wgpu::Instance::new(descriptor);
     let surface = instance
         .create_surface(window.clone())
         .map_err(|e| WindowError::Surface(e.to_string()))?;
