@@ -622,7 +622,7 @@ fn within_a_texel(grid: &CoverGrid, i: usize, value: fn(&CoverTexel) -> f32, mm:
 /// crossed along x by a 3 m asphalt road from x = −30 to 32 m, the whole falling 2 %
 /// along x, at two minutes a second of cover time: water runs down the road across
 /// tile after tile of the flow and past its end onto the sand of the next tile
-/// (`precip_gpu::recipe::WATER_TILE_SIDE`, 8 m from −64 m), and most of the square
+/// (`precip_gpu::recipe::COVER_TILE_SIDE`, 8 m from −64 m), and most of the square
 /// stays dry, so the GPU flow works on few of its tiles.
 fn rain_on_a_road() -> Setup {
     rain_on_a_road_of(0.02, 120.0)
@@ -880,6 +880,187 @@ fn snow_drifts_behind_a_wall_alike_on_every_backend() {
             off * 100 <= reference.texels.len(),
             "{name} vs {reference_name}: {off} texels' depths differ"
         );
+    }
+}
+
+/// Asserts that the drift inside the grid made or lost no snow and the cover's
+/// books close (`what` names the subject).
+fn assert_drift_conserves(what: &str, t: &precip_model::cover::CoverTotals) {
+    assert!(
+        (t.drifted_kg - t.edge_drifted_kg).abs() < 1e-4 * t.deposited_kg,
+        "{what}: snow a texel sent its neighbour was lost or made: {t:?}"
+    );
+    assert!(
+        t.imbalance_kg().abs() < 1e-4 * t.deposited_kg,
+        "{what}: books: {t:?}"
+    );
+}
+
+/// Heavy dry snow in still air at −12 °C over level grass of 1 m texels, with a
+/// 3 m high flat roof 8 m square that fills one tile of the drift
+/// (`precip_gpu::recipe::COVER_TILE_SIDE`: x and z from −4 to 4 m), at four hours a
+/// second of cover time, fed at the weather's rate.
+fn snow_on_a_roof_in_still_air() -> Setup {
+    let mut s = snow_over_a_wall();
+    let frame = s.ground.frame;
+    let roof = |i: usize| {
+        let c = frame.texel_centre(i);
+        c.x.abs() < 4.0 && c.y.abs() < 4.0
+    };
+    let n = frame.texel_count();
+    s.ground.height_m = (0..n).map(|i| if roof(i) { 3.0 } else { 0.0 }).collect();
+    s.ground.eligibility = vec![1.0; n];
+    s.cover.time_scale = 4.0 * 3_600.0;
+    s.weather.intensity_mm_per_h = 10.0;
+    s.weather.wind = precip_model::wind::WindField::calm();
+    s
+}
+
+#[test]
+fn snow_slides_off_a_roof_in_still_air_alike_on_every_backend() {
+    // First a gale blows the snow over every texel; then the air stills, and the
+    // drift runs only over the tiles where snow would move: the roof's and those
+    // around it, where what slides off its edges lands. The tiles the gale worked
+    // on last write their outflows back to zero once, or the roof's neighbours
+    // would go on taking the gale's last outflows from them.
+    let mut covers = Vec::new();
+    for mut s in all_subjects("roof") {
+        let still = snow_on_a_roof_in_still_air();
+        let mut gale = still.clone();
+        gale.weather.wind.mean_wind_mps = Vec3::new(14.0, 0.0, 0.0);
+        s.backend.configure(&gale).expect("configure");
+        for _ in 0..3 {
+            s.backend.step(0.1).expect("step");
+        }
+        s.backend
+            .set_weather(&still.weather)
+            .expect("the air stills");
+        for _ in 0..25 {
+            s.backend.step(0.1).expect("step");
+        }
+        let cover = s.backend.read_cover().expect("cover");
+        let totals = cover.totals();
+        let depth = |x: f32, z: f32| cover.texel_at(x, z).expect("on the grid").depth_mm;
+        let (centre, edge, foot, open) = (
+            depth(0.5, 0.5),
+            depth(-3.5, 0.5),
+            depth(-4.5, 0.5),
+            depth(-15.5, -15.5),
+        );
+        println!(
+            "{}: roof centre {centre:.0} mm, roof edge {edge:.0} mm, its foot {foot:.0} mm, \
+             open ground {open:.0} mm; fallen {:.0} kg, moved inside {:.2e} kg net, blowing area \
+             {} m²; imbalance {:.2e} kg",
+            s.name,
+            totals.deposited_kg,
+            totals.drifted_kg - totals.edge_drifted_kg,
+            totals.blowing_area_m2,
+            totals.imbalance_kg()
+        );
+        // A ledge holds snow up to the repose line from its edge: half a texel at
+        // 38°, 0.39 m.
+        let ledge_mm = 0.5 * 38f32.to_radians().tan() * 1000.0;
+        assert!(
+            centre > ledge_mm + 50.0,
+            "{}: the roof's snow stands above its ledge limit ({centre} mm)",
+            s.name
+        );
+        assert!(
+            edge < ledge_mm + 10.0 && edge < centre - 50.0,
+            "{}: snow slid off the roof's edge ({edge} mm, centre {centre} mm)",
+            s.name
+        );
+        assert!(
+            foot > open + 50.0,
+            "{}: what slid off lies at the wall's foot, in the next tile ({foot} vs {open} mm)",
+            s.name
+        );
+        assert!(
+            totals.blowing_area_m2 <= 0.0,
+            "{}: the air is still, yet snow blows over {} m²",
+            s.name,
+            totals.blowing_area_m2
+        );
+        assert_drift_conserves(&s.name, &totals);
+        s.check_clean("roof");
+        covers.push((s.name.clone(), cover));
+    }
+    let (reference_name, reference) = &covers[0];
+    for (name, cover) in &covers[1..] {
+        for (i, (a, b)) in reference.texels.iter().zip(&cover.texels).enumerate() {
+            assert!(
+                (a.depth_mm - b.depth_mm).abs() <= 0.01 * a.depth_mm.max(b.depth_mm) + 1.0
+                    && (a.swe_mm - b.swe_mm).abs() <= 0.01 * a.swe_mm.max(b.swe_mm) + 0.1,
+                "{name} vs {reference_name}, texel {i}: {} mm deep ({} SWE) vs {} ({})",
+                b.depth_mm,
+                b.swe_mm,
+                a.depth_mm,
+                a.swe_mm
+            );
+        }
+    }
+}
+
+#[test]
+fn snow_blown_across_heated_paving_loses_none_between_tiles() {
+    // Snow lies only on the up-wind column of tiles (x < −12 m); the rest is heated
+    // paving where none may lie. A 14 m/s wind lifts it off the grass and carries it
+    // across the paving a texel a drift iteration, as fast as the drift lets snow
+    // move between two lists of its tiles, and over the grid's down-wind edge.
+    let mut totals_of = Vec::new();
+    for mut s in all_subjects("heated paving") {
+        let mut good = snow_over_a_wall();
+        let frame = good.ground.frame;
+        let n = frame.texel_count();
+        let grass = |i: usize| frame.texel_centre(i).x < -12.0;
+        good.ground.height_m = vec![0.0; n];
+        good.ground.eligibility = (0..n).map(|i| if grass(i) { 1.0 } else { 0.0 }).collect();
+        good.ground.surface = (0..n)
+            .map(|i| {
+                if grass(i) {
+                    precip_model::cover::Surface::Grass
+                } else {
+                    precip_model::cover::Surface::Asphalt
+                }
+            })
+            .collect();
+        s.backend.configure(&good).expect("configure");
+        for _ in 0..20 {
+            s.backend.step(0.1).expect("step");
+        }
+        let cover = s.backend.read_cover().expect("cover");
+        let t = cover.totals();
+        println!(
+            "{}: snow {:.1} kg, in at the edges {:.2} kg net, moved inside {:.2e} kg net; \
+             fallen {:.0} kg, imbalance {:.2e} kg",
+            s.name,
+            t.swe_kg,
+            t.edge_drifted_kg,
+            t.drifted_kg - t.edge_drifted_kg,
+            t.deposited_kg,
+            t.imbalance_kg()
+        );
+        let down_wind = cover.texel_at(19.5, 0.5).expect("on the grid").swe_mm;
+        assert!(
+            down_wind > 0.0,
+            "{}: snow crosses the paving to the down-wind edge",
+            s.name
+        );
+        assert_drift_conserves(&s.name, &t);
+        s.check_clean("heated paving");
+        totals_of.push((s.name.clone(), t));
+    }
+    let (reference_name, a) = &totals_of[0];
+    for (name, b) in &totals_of[1..] {
+        for (what, x, y) in [
+            ("snow", a.swe_kg, b.swe_kg),
+            ("in at the edges", a.edge_drifted_kg, b.edge_drifted_kg),
+        ] {
+            assert!(
+                (x - y).abs() <= 0.01 * x.abs().max(y.abs()) + 1e-3,
+                "{name} vs {reference_name}: {what} {y} vs {x}"
+            );
+        }
     }
 }
 

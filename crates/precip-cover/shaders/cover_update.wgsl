@@ -7,10 +7,10 @@
 @group(0) @binding(0) var<uniform> cover_params: CoverStepParams;
 @group(0) @binding(1) var<storage, read_write> cover: array<CoverTexel>;
 @group(0) @binding(2) var<storage, read_write> deposits: array<atomic<u32>>;
-// The water tiles (precip_gpu::recipe::water_tiles_bytes): word 0 the count of
-// listed tiles; then, per tile, whether it is marked as holding water; whether it
-// was listed the time before; then the list (each tile's x | z << 16).
-@group(0) @binding(3) var<storage, read_write> water_tiles: array<atomic<u32>>;
+// The cover tiles (precip_gpu::recipe::cover_tiles_bytes): for the water's list,
+// then the snow's, the count of listed tiles; then, per tile, whether it is marked;
+// whether it was listed the time before; then the list (each tile's x | z << 16).
+@group(0) @binding(3) var<storage, read_write> cover_tiles: array<atomic<u32>>;
 
 @compute @workgroup_size(64)
 fn cover_update(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -33,10 +33,8 @@ fn cover_update(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
     }
     let t = update_texel(texel, snow_mm, rain_mm, cover_params);
     cover[i] = t;
-    let g = water_tiles_of(cover_params);
-    let x = i % g.texels_x;
-    let z = i / g.texels_x;
-    mark_water_tile(x / WATER_TILE_SIDE + g.tiles_x * (z / WATER_TILE_SIDE), t);
+    let g = cover_tiles_of(cover_params);
+    mark_water_tile(tile_of_texel(i, g), t, g);
 }
 
 // water.rs: overland flow. Neighbour k of texel i: -x, +x, -z, +z.
@@ -113,69 +111,90 @@ fn water_outflow_of(i: u32, tau_s: f32, p: CoverStepParams) -> vec4<f32> {
     return out;
 }
 
-// Overland flow runs over the tiles where it has work, not the whole grid
-// (precip_gpu::recipe::WATER_TILE_SIDE): a tile is 8 x 8 texels. Water moves at
-// most a texel a flow iteration, so in the WATER_TILE_GROUP iterations between two
-// lists it reaches at most WATER_TILE_REACH tiles from a tile that holds water; the
-// tiles listed are those within that reach of one, and, once more, those listed
-// the time before (they write their outflows back to zero). Every texel left out
-// is dry, its neighbours too, and would neither send nor take water: the flow is
-// the whole grid's, bit for bit, at the cost of the wet area.
+// The flow and the drift run over the tiles where they have work, not the whole
+// grid (precip_gpu::recipe::COVER_TILE_SIDE): a tile is 8 x 8 texels, and each has
+// its list (WATER_TILES, SNOW_TILES). Water and snow move at most a texel an
+// iteration, and a texel starts to send only when it or a neighbour took or sent
+// something, so between two lists what moves stays within COVER_TILE_REACH tiles of
+// a marked tile; the tiles listed are those within that reach of one, and, once
+// more, those listed the time before (they write their outflows back to zero).
+// Every texel left out would neither send nor take anything: the exchange is the
+// whole grid's, bit for bit, at the cost of the area where it has work.
 //
-// A tile is marked as holding water by any kernel that leaves water on one of its
-// texels (cover_update, water_inflow), and every mark is cleared once the list is
-// made: at the next list, the marks are the tiles that held water at some time
-// since the last one, a few more than hold it now, never fewer.
-const WATER_TILE_SIDE: u32 = 8u;
-const WATER_TILE_REACH: i32 = 1;
+// Water: a tile is marked by any kernel that leaves water that can flow on one of
+// its texels (cover_update, water_inflow), and listed every WATER_TILE_GROUP flow
+// iterations. Snow: a tile is marked by snow_wind where a texel would send snow,
+// and listed once a sub-step, before the drift's iterations. Every mark is cleared
+// once its list is made.
+const COVER_TILE_SIDE: u32 = 8u;
+const COVER_TILE_REACH: i32 = 1;
+const WATER_TILES: u32 = 0u;
+const SNOW_TILES: u32 = 1u;
 
 // The grid in texels and in tiles.
-struct WaterTiles {
+struct CoverTiles {
     texels_x: u32,
     texels_z: u32,
     tiles_x: u32,
     tiles_z: u32,
 }
 
-fn water_tiles_of(p: CoverStepParams) -> WaterTiles {
+fn cover_tiles_of(p: CoverStepParams) -> CoverTiles {
     let texels_z = p.texel_count / p.texels_x;
-    return WaterTiles(
+    return CoverTiles(
         p.texels_x,
         texels_z,
-        (p.texels_x + WATER_TILE_SIDE - 1u) / WATER_TILE_SIDE,
-        (texels_z + WATER_TILE_SIDE - 1u) / WATER_TILE_SIDE,
+        (p.texels_x + COVER_TILE_SIDE - 1u) / COVER_TILE_SIDE,
+        (texels_z + COVER_TILE_SIDE - 1u) / COVER_TILE_SIDE,
     );
 }
 
+// Where list `list` starts in cover_tiles: its count; then, per tile, its mark;
+// whether it was listed the time before; then the list.
+fn tile_set_start(list: u32, g: CoverTiles) -> u32 {
+    return list * (1u + 3u * g.tiles_x * g.tiles_z);
+}
+
+// The tile of texel `i`.
+fn tile_of_texel(i: u32, g: CoverTiles) -> u32 {
+    return (i % g.texels_x) / COVER_TILE_SIDE + g.tiles_x * ((i / g.texels_x) / COVER_TILE_SIDE);
+}
+
 // Texel `lane` (0..63, row by row) of the tile at `tile_xz`, or -1 off the grid.
-fn water_tile_texel(tile_xz: vec2<u32>, lane: u32, g: WaterTiles) -> i32 {
-    let x = tile_xz.x * WATER_TILE_SIDE + (lane & (WATER_TILE_SIDE - 1u));
-    let z = tile_xz.y * WATER_TILE_SIDE + lane / WATER_TILE_SIDE;
+fn cover_tile_texel(tile_xz: vec2<u32>, lane: u32, g: CoverTiles) -> i32 {
+    let x = tile_xz.x * COVER_TILE_SIDE + (lane & (COVER_TILE_SIDE - 1u));
+    let z = tile_xz.y * COVER_TILE_SIDE + lane / COVER_TILE_SIDE;
     if (x >= g.texels_x || z >= g.texels_z) {
         return -1;
     }
     return i32(x + g.texels_x * z);
 }
 
+// Marks tile `tile` of list `list`.
+fn mark_cover_tile(list: u32, tile: u32, g: CoverTiles) {
+    let at = tile_set_start(list, g) + 1u + tile;
+    // Most of a busy tile's texels mark it: a load where the mark is there already
+    // costs less than 64 stores to one word.
+    if (atomicLoad(&cover_tiles[at]) == 0u) {
+        atomicStore(&cover_tiles[at], 1u);
+    }
+}
+
 // Marks tile `tile` as holding water if texel `t`'s standing water can flow
 // (precip_cover::water::water_outflow_of sends none otherwise).
-fn mark_water_tile(tile: u32, t: CoverTexel) {
+fn mark_water_tile(tile: u32, t: CoverTexel, g: CoverTiles) {
     if (t.standing_mm > STILL_WATER_MM && t.surface != SURFACE_WATER) {
-        // Most of a wet tile's texels are wet: a load where the mark is there already
-        // costs less than 64 stores to one word.
-        if (atomicLoad(&water_tiles[1u + tile]) == 0u) {
-            atomicStore(&water_tiles[1u + tile], 1u);
-        }
+        mark_cover_tile(WATER_TILES, tile, g);
     }
 }
 
 var<workgroup> tiles_listed: atomic<u32>;
 
-// Lists the tiles the next WATER_TILE_GROUP flow iterations run over, then clears
-// the marks: one workgroup, each lane a tile in 64.
-@compute @workgroup_size(64)
-fn water_tiles_list(@builtin(local_invocation_index) lane: u32) {
-    let g = water_tiles_of(cover_params);
+// Lists the tiles of `list` the next iterations run over, then clears the marks: one
+// workgroup, each lane a tile in 64.
+fn list_cover_tiles(list: u32, lane: u32) {
+    let g = cover_tiles_of(cover_params);
+    let start = tile_set_start(list, g);
     let count = g.tiles_x * g.tiles_z;
     let tiles_x = i32(g.tiles_x);
     let tiles_z = i32(g.tiles_z);
@@ -187,35 +206,52 @@ fn water_tiles_list(@builtin(local_invocation_index) lane: u32) {
         let tx = i32(tile) % tiles_x;
         let tz = i32(tile) / tiles_x;
         var near = 0u;
-        for (var dz = -WATER_TILE_REACH; dz <= WATER_TILE_REACH; dz += 1) {
-            for (var dx = -WATER_TILE_REACH; dx <= WATER_TILE_REACH; dx += 1) {
+        for (var dz = -COVER_TILE_REACH; dz <= COVER_TILE_REACH; dz += 1) {
+            for (var dx = -COVER_TILE_REACH; dx <= COVER_TILE_REACH; dx += 1) {
                 let x = tx + dx;
                 let z = tz + dz;
                 if (x >= 0 && x < tiles_x && z >= 0 && z < tiles_z) {
-                    near |= atomicLoad(&water_tiles[1u + u32(x + tiles_x * z)]);
+                    near |= atomicLoad(&cover_tiles[start + 1u + u32(x + tiles_x * z)]);
                 }
             }
         }
-        let before = atomicLoad(&water_tiles[1u + count + tile]);
-        atomicStore(&water_tiles[1u + count + tile], near);
+        let before = atomicLoad(&cover_tiles[start + 1u + count + tile]);
+        atomicStore(&cover_tiles[start + 1u + count + tile], near);
         if ((near | before) != 0u) {
             let k = atomicAdd(&tiles_listed, 1u);
-            atomicStore(&water_tiles[1u + 2u * count + k], u32(tx) | (u32(tz) << 16u));
+            atomicStore(&cover_tiles[start + 1u + 2u * count + k], u32(tx) | (u32(tz) << 16u));
         }
     }
     storageBarrier();
     workgroupBarrier();
     for (var tile = lane; tile < count; tile += 64u) {
-        atomicStore(&water_tiles[1u + tile], 0u);
+        atomicStore(&cover_tiles[start + 1u + tile], 0u);
     }
     if (lane == 0u) {
-        atomicStore(&water_tiles[0], atomicLoad(&tiles_listed));
+        atomicStore(&cover_tiles[start], atomicLoad(&tiles_listed));
     }
 }
 
-// The `k`th tile listed: (x, z) in tiles.
-fn listed_water_tile(k: u32, g: WaterTiles) -> vec2<u32> {
-    let packed = atomicLoad(&water_tiles[1u + 2u * g.tiles_x * g.tiles_z + k]);
+// Lists the tiles the next WATER_TILE_GROUP flow iterations run over.
+@compute @workgroup_size(64)
+fn water_tiles_list(@builtin(local_invocation_index) lane: u32) {
+    list_cover_tiles(WATER_TILES, lane);
+}
+
+// Lists the tiles the drift's iterations of this sub-step run over.
+@compute @workgroup_size(64)
+fn snow_tiles_list(@builtin(local_invocation_index) lane: u32) {
+    list_cover_tiles(SNOW_TILES, lane);
+}
+
+// How many tiles of `list` are listed.
+fn listed_cover_tiles(list: u32, g: CoverTiles) -> u32 {
+    return atomicLoad(&cover_tiles[tile_set_start(list, g)]);
+}
+
+// The `k`th tile of `list` listed: (x, z) in tiles.
+fn listed_cover_tile(list: u32, k: u32, g: CoverTiles) -> vec2<u32> {
+    let packed = atomicLoad(&cover_tiles[tile_set_start(list, g) + 1u + 2u * g.tiles_x * g.tiles_z + k]);
     return vec2<u32>(packed & 0xffffu, packed >> 16u);
 }
 
@@ -228,10 +264,10 @@ fn water_outflow(
     @builtin(local_invocation_index) lane: u32,
 ) {
     let p = cover_params;
-    let g = water_tiles_of(p);
-    let listed = atomicLoad(&water_tiles[0]);
+    let g = cover_tiles_of(p);
+    let listed = listed_cover_tiles(WATER_TILES, g);
     for (var k = group.x + group.y * groups.x; k < listed; k += groups.x * groups.y) {
-        let texel = water_tile_texel(listed_water_tile(k, g), lane, g);
+        let texel = cover_tile_texel(listed_cover_tile(WATER_TILES, k, g), lane, g);
         if (texel >= 0) {
             let i = u32(texel);
             cover[i].outflow_mm = water_outflow_of(i, p.flow_iteration_s, p);
@@ -249,11 +285,11 @@ fn water_inflow(
     @builtin(local_invocation_index) lane: u32,
 ) {
     let p = cover_params;
-    let g = water_tiles_of(p);
-    let listed = atomicLoad(&water_tiles[0]);
+    let g = cover_tiles_of(p);
+    let listed = listed_cover_tiles(WATER_TILES, g);
     for (var k = group.x + group.y * groups.x; k < listed; k += groups.x * groups.y) {
-        let tile = listed_water_tile(k, g);
-        let texel = water_tile_texel(tile, lane, g);
+        let tile = listed_cover_tile(WATER_TILES, k, g);
+        let texel = cover_tile_texel(tile, lane, g);
         if (texel >= 0) {
             let i = u32(texel);
             var t = cover[i];
@@ -277,7 +313,7 @@ fn water_inflow(
                 t.standing_mm = max(t.standing_mm + inflow - out_inside - out_edge, 0.0);
             }
             cover[i] = t;
-            mark_water_tile(tile.x + g.tiles_x * tile.y, t);
+            mark_water_tile(tile.x + g.tiles_x * tile.y, t, g);
         }
     }
 }
@@ -351,7 +387,8 @@ fn snow_wind_factor_of(i: u32, wind_mps: vec2<f32>) -> f32 {
     return terrain / (1.0 + wake * wake);
 }
 
-// Every texel's wind factor, once a step before the drift's iterations.
+// Every texel's wind factor, once a step before the drift's iterations; marks the
+// tiles where a texel would send snow in the first of them.
 @compute @workgroup_size(64)
 fn snow_wind(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = linear_index(id, groups);
@@ -359,8 +396,14 @@ fn snow_wind(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgrou
         return;
     }
     let wind = vec2<f32>(cover_params.wind_x_mps, cover_params.wind_z_mps);
-    let factor = snow_wind_factor_of(i, wind);
-    cover[i].wind_factor = factor;
+    var t = cover[i];
+    t.wind_factor = snow_wind_factor_of(i, wind);
+    cover[i].wind_factor = t.wind_factor;
+    let send = snow_send_of(i, t);
+    if (any(send.outflow_mm > vec4<f32>(0.0))) {
+        let g = cover_tiles_of(cover_params);
+        mark_cover_tile(SNOW_TILES, tile_of_texel(i, g), g);
+    }
 }
 
 // Whether the wind blows out of a texel through face k (-x, +x, -z, +z), or
@@ -390,20 +433,19 @@ fn face_spacing_m(k: u32, p: CoverStepParams) -> f32 {
     return p.cell_z_m;
 }
 
-// A drift iteration, first pass: every texel's outflows (its own fields only).
-@compute @workgroup_size(64)
-fn snow_outflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = linear_index(id, groups);
-    if (i >= cover_params.texel_count) {
-        return;
-    }
+// What texel `i` (its state `t`) sends in a drift iteration
+// (precip_cover::drift::snow_outflow_of).
+struct SnowSend {
+    outflow_mm: vec4<f32>,
+    moving_density_kg_m3: f32,
+    saltation_kg_per_m_s: f32,
+}
+
+fn snow_send_of(i: u32, t: CoverTexel) -> SnowSend {
     let p = cover_params;
-    let t = cover[i];
-    cover[i].outflow_mm = vec4<f32>(0.0);
-    cover[i].moving_density_kg_m3 = 0.0;
-    cover[i].saltation_kg_per_m_s = 0.0;
+    var send = SnowSend(vec4<f32>(0.0), 0.0, 0.0);
     if (t.swe_mm <= NO_SNOW_MM || t.depth_mm <= 0.0) {
-        return;
+        return send;
     }
     let density = t.swe_mm * 1000.0 / t.depth_mm;
     let wind_mps = vec2<f32>(p.wind_x_mps, p.wind_z_mps);
@@ -439,27 +481,62 @@ fn snow_outflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
     let slide_total = slide.x + slide.y + slide.z + slide.w;
     let total = wind_total + slide_total;
     if (total <= 0.0) {
-        return;
+        return send;
     }
     let scale = min(t.swe_mm / total, 1.0);
     flux *= scale;
     let wind_density = max(density, WIND_PACKED_DENSITY_KG_M3);
     let volume = wind_total / wind_density + slide_total / density;
-    cover[i].outflow_mm = (wind + slide) * scale;
-    cover[i].moving_density_kg_m3 = total / volume;
+    send.outflow_mm = (wind + slide) * scale;
+    send.moving_density_kg_m3 = total / volume;
     if (wind_total > 0.0) {
-        cover[i].saltation_kg_per_m_s = flux;
+        send.saltation_kg_per_m_s = flux;
+    }
+    return send;
+}
+
+// A drift iteration, first pass: every listed texel's outflows (its own fields
+// only). A workgroup takes a listed tile at a time.
+@compute @workgroup_size(64)
+fn snow_outflow(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let g = cover_tiles_of(cover_params);
+    let listed = listed_cover_tiles(SNOW_TILES, g);
+    for (var k = group.x + group.y * groups.x; k < listed; k += groups.x * groups.y) {
+        let texel = cover_tile_texel(listed_cover_tile(SNOW_TILES, k, g), lane, g);
+        if (texel >= 0) {
+            let i = u32(texel);
+            let send = snow_send_of(i, cover[i]);
+            cover[i].outflow_mm = send.outflow_mm;
+            cover[i].moving_density_kg_m3 = send.moving_density_kg_m3;
+            cover[i].saltation_kg_per_m_s = send.saltation_kg_per_m_s;
+        }
     }
 }
 
-// Second pass: every texel sends its outflows and takes its neighbours' toward it
-// (precip_cover::drift::{snow_inflow_of, apply_drift}).
+// Second pass: every listed texel sends its outflows and takes its neighbours'
+// toward it (precip_cover::drift::{snow_inflow_of, apply_drift}).
 @compute @workgroup_size(64)
-fn snow_inflow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = linear_index(id, groups);
-    if (i >= cover_params.texel_count) {
-        return;
+fn snow_inflow(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let g = cover_tiles_of(cover_params);
+    let listed = listed_cover_tiles(SNOW_TILES, g);
+    for (var k = group.x + group.y * groups.x; k < listed; k += groups.x * groups.y) {
+        let texel = cover_tile_texel(listed_cover_tile(SNOW_TILES, k, g), lane, g);
+        if (texel >= 0) {
+            take_drift(u32(texel));
+        }
     }
+}
+
+// Texel i's exchange in a drift iteration.
+fn take_drift(i: u32) {
     let p = cover_params;
     var t = cover[i];
     let wind_mps = vec2<f32>(p.wind_x_mps, p.wind_z_mps);

@@ -52,7 +52,10 @@
 //! Both are one exchange: every texel computes its four outflows (SWE, mm) into
 //! [`CoverTexel::outflow_mm`], then every texel takes its neighbours' toward it:
 //! each amount computed once and added once (deterministic, conservative up to
-//! rounding); [`SNOW_DRIFT_ITERATIONS`] iterations a step. Snow reaching a texel
+//! rounding); [`SNOW_DRIFT_ITERATIONS`] iterations a step. The GPU runs them only
+//! over the tiles of the grid within reach of a texel that would send snow
+//! (`precip_gpu::recipe::COVER_TILE_SIDE`), with the same result as the whole
+//! grid's: a texel starts to send only once it or a neighbour took or sent snow. Snow reaching a texel
 //! where none may lie (a fence's top, heated paving, water) passes on while the
 //! wind there can lift fresh wind-packed snow; where it cannot, the share of
 //! [`CoverTexel::eligibility`] stays and the rest melts. The receiver's age is weighted

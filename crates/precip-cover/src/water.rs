@@ -44,7 +44,7 @@
 //! time water then moves at most that many texels a step, which is what lets
 //! depressions fill while slopes drain. That bound is also what lets the GPU flow
 //! only over the tiles of the grid within reach of standing water
-//! (`precip_gpu::recipe::WATER_TILE_SIDE`) with the same result as the whole grid's.
+//! (`precip_gpu::recipe::COVER_TILE_SIDE`) with the same result as the whole grid's.
 
 use crate::frame::GridFrame;
 use crate::surface::Surface;

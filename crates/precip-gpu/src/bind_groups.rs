@@ -249,7 +249,7 @@ pub const COVER_UPDATE: GroupLayout = GroupLayout {
         ),
         binding(cv::COVER, storage(false), Stages::Compute),
         binding(cv::DEPOSITS, storage(false), Stages::Compute),
-        binding(cv::WATER_TILES, storage(false), Stages::Compute),
+        binding(cv::COVER_TILES, storage(false), Stages::Compute),
     ],
 };
 

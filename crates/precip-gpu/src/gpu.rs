@@ -290,8 +290,8 @@ pub trait Gpu {
     fn colour_format(&self, target: Target<'_, Self>) -> Self::ColourFormat;
 
     /// The device rasterises and computes on the CPU (lavapipe): what
-    /// `precip_model::Mirrors::Auto` spares it, and how many water tiles a
-    /// workgroup takes (`crate::recipe::WATER_TILES_PER_WORKGROUP`).
+    /// `precip_model::Mirrors::Auto` spares it, and how many cover tiles a
+    /// workgroup takes (`crate::recipe::COVER_TILES_PER_WORKGROUP`).
     fn rasterises_on_cpu(&self) -> bool;
 
     /// The format of a copy of `target` ([`PassKind::CopyTarget`]), or `None` when

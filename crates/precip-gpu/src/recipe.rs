@@ -91,12 +91,12 @@ pub enum DispatchOver {
     ParticleList,
     /// One invocation per cell of the water bodies' wave grid.
     WaveCells,
-    /// One workgroup per water tile ([`WATER_TILE_SIDE`]) on a GPU, per
-    /// [`WATER_TILES_PER_WORKGROUP`] on a device that computes on the CPU, a texel
+    /// One workgroup per cover tile ([`COVER_TILE_SIDE`]) on a GPU, per
+    /// [`COVER_TILES_PER_WORKGROUP`] on a device that computes on the CPU, a texel
     /// an invocation, each workgroup taking a listed tile at a time with the
-    /// dispatch's stride: the flow kernels (a fixed dispatch for the reason
-    /// [`LIST_ENTRIES_PER_INVOCATION`] gives).
-    WaterTiles,
+    /// dispatch's stride: the flow's and the drift's kernels (a fixed dispatch for
+    /// the reason [`LIST_ENTRIES_PER_INVOCATION`] gives).
+    CoverTiles,
 }
 
 /// What the dispatches of a configuration run over.
@@ -108,11 +108,11 @@ pub struct DispatchCounts {
     pub cover_texels: u32,
     /// Wave cells.
     pub wave_cells: u32,
-    /// Water tiles of the cover grid ([`water_tiles`]).
-    pub water_tiles: u32,
-    /// Water tiles a workgroup of the flow takes ([`WATER_TILES_PER_WORKGROUP`]
+    /// Tiles of the cover grid ([`cover_tiles`]).
+    pub cover_tiles: u32,
+    /// Tiles a workgroup of the flow or the drift takes ([`COVER_TILES_PER_WORKGROUP`]
     /// on a device that computes on the CPU, else 1; 0 reads as 1).
-    pub water_tiles_per_workgroup: u32,
+    pub cover_tiles_per_workgroup: u32,
 }
 
 impl DispatchCounts {
@@ -121,13 +121,13 @@ impl DispatchCounts {
     /// not (`on_cpu`).
     #[must_use]
     pub fn of(particles: u32, cover: &GridFrame, waves: &GridFrame, on_cpu: bool) -> Self {
-        let (x, z) = water_tiles(cover);
+        let (x, z) = cover_tiles(cover);
         Self {
             particles,
             cover_texels: u32::try_from(cover.texel_count()).unwrap_or(u32::MAX),
             wave_cells: u32::try_from(waves.texel_count()).unwrap_or(u32::MAX),
-            water_tiles: x.saturating_mul(z),
-            water_tiles_per_workgroup: if on_cpu { WATER_TILES_PER_WORKGROUP } else { 1 },
+            cover_tiles: x.saturating_mul(z),
+            cover_tiles_per_workgroup: if on_cpu { COVER_TILES_PER_WORKGROUP } else { 1 },
         }
     }
 }
@@ -142,13 +142,13 @@ impl DispatchOver {
             Self::OneWorkgroup => 1,
             Self::ParticleList => list_invocations(counts.particles),
             Self::WaveCells => counts.wave_cells,
-            Self::WaterTiles => {
-                let per_workgroup = match counts.water_tiles_per_workgroup {
+            Self::CoverTiles => {
+                let per_workgroup = match counts.cover_tiles_per_workgroup {
                     0 => 1,
                     n => n,
                 };
                 counts
-                    .water_tiles
+                    .cover_tiles
                     .div_ceil(per_workgroup)
                     .saturating_mul(WORKGROUP_SIZE)
             }
@@ -156,55 +156,81 @@ impl DispatchOver {
     }
 }
 
-/// Side of a water tile, texels. Overland flow runs only over the tiles within
-/// [`WATER_TILE_REACH`] of a tile that holds standing water (and, one list more,
-/// those listed the time before, so they write their outflows back to zero); the
-/// list is made again every [`WATER_TILE_GROUP`] iterations. The cover kernel and
-/// each inflow mark the tiles where they leave water; the list clears the marks.
+/// Side of a cover tile, texels. The cover's exchanges between neighbours, the
+/// overland flow and the snow's drift, run only over the tiles where they have
+/// work, each from its own list of tiles (a [`CoverTileSet`]): the tiles within
+/// [`COVER_TILE_REACH`] of a marked tile, and, one list more, those listed the time
+/// before, so they write their outflows back to zero.
 ///
-/// Water moves at most a texel a flow iteration, so every texel left out is dry,
-/// and so are its neighbours, until the next list: it would neither send nor take
-/// water, and the flow is the whole grid's, bit for bit, at a cost that follows the
-/// wet area. WGSL twin: `WATER_TILE_SIDE` in `precip-cover/shaders/cover_update.wgsl`.
-pub const WATER_TILE_SIDE: u32 = 8;
+/// - **Water** is listed every [`WATER_TILE_GROUP`] flow iterations; the cover
+///   kernel and each inflow mark the tiles where they leave water that can flow.
+/// - **Snow** is listed once a sub-step, before its
+///   [`precip_cover::SNOW_DRIFT_ITERATIONS`] iterations; the wind's kernel
+///   (`snow_wind`) marks the tiles where a texel would send snow (the wind lifts
+///   it, or it stands steeper than its repose).
+///
+/// Each list clears its marks. Water and snow move at most a texel an iteration,
+/// and a texel starts to send only when it or a neighbour took or sent something
+/// (a slide opens where a neighbour's snow left): so between two lists what moves
+/// stays within the reach of a mark, every texel left out would neither send nor
+/// take anything, and the exchange is the whole grid's, bit for bit, at a cost
+/// that follows the area where it has work. WGSL twin: `COVER_TILE_SIDE` in
+/// `precip-cover/shaders/cover_update.wgsl`.
+pub const COVER_TILE_SIDE: u32 = 8;
 
-/// Water tiles a workgroup of the flow kernels takes, one after the other, on a
-/// device that computes on the CPU ([`DispatchOver::WaterTiles`]). There each
+/// Tiles a workgroup of the flow or the drift takes, one after the other, on a
+/// device that computes on the CPU ([`DispatchOver::CoverTiles`]). There each
 /// workgroup has a cost of its own even when it has nothing to do (lavapipe: about
 /// 1 µs, so that one workgroup per tile of a 320² grid costs 1.4 ms a dispatch, the
 /// whole of the flow's cost where little water stands): a few tiles each keeps that
 /// small. A GPU wants the parallelism instead (H200, the same grid fully wet:
 /// 1.6 GPU ms a frame at 8 tiles a workgroup, against 1.3 for the whole grid), so
 /// it gets one tile a workgroup.
-pub const WATER_TILES_PER_WORKGROUP: u32 = 8;
+pub const COVER_TILES_PER_WORKGROUP: u32 = 8;
 
 /// Flow iterations between two lists of the water tiles.
 pub const WATER_TILE_GROUP: u32 = 8;
 
-/// Tiles standing water can reach in [`WATER_TILE_GROUP`] iterations. WGSL twin:
-/// `WATER_TILE_REACH`.
-pub const WATER_TILE_REACH: u32 = WATER_TILE_GROUP.div_ceil(WATER_TILE_SIDE);
+/// Tiles water or snow can reach from a marked tile before the next list (a texel
+/// an iteration: [`WATER_TILE_GROUP`] or [`precip_cover::SNOW_DRIFT_ITERATIONS`]
+/// texels). WGSL twin: `COVER_TILE_REACH`.
+pub const COVER_TILE_REACH: u32 = 1;
 
-const _: () = assert!(WATER_TILE_SIDE * WATER_TILE_SIDE == WORKGROUP_SIZE);
+const _: () = assert!(COVER_TILE_SIDE * COVER_TILE_SIDE == WORKGROUP_SIZE);
 const _: () = assert!(precip_cover::WATER_FLOW_ITERATIONS.is_multiple_of(WATER_TILE_GROUP));
+const _: () = assert!(WATER_TILE_GROUP <= COVER_TILE_REACH * COVER_TILE_SIDE);
+const _: () = assert!(precip_cover::SNOW_DRIFT_ITERATIONS <= COVER_TILE_REACH * COVER_TILE_SIDE);
 
-/// The water tiles of the cover grid `cover`: across x, across z.
+/// Which list of cover tiles: the flow's or the drift's. WGSL twins: `WATER_TILES`,
+/// `SNOW_TILES`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CoverTileSet {
+    /// The tiles where standing water can flow.
+    Water = 0,
+    /// The tiles where snow can drift or slide.
+    Snow = 1,
+}
+
+/// Lists of cover tiles in the buffer ([`CoverTileSet`]).
+pub const COVER_TILE_SETS: u64 = 2;
+
+/// The tiles of the cover grid `cover`: across x, across z.
 #[must_use]
-pub fn water_tiles(cover: &GridFrame) -> (u32, u32) {
+pub fn cover_tiles(cover: &GridFrame) -> (u32, u32) {
     (
-        cover.texels.x.div_ceil(WATER_TILE_SIDE),
-        cover.texels.y.div_ceil(WATER_TILE_SIDE),
+        cover.texels.x.div_ceil(COVER_TILE_SIDE),
+        cover.texels.y.div_ceil(COVER_TILE_SIDE),
     )
 }
 
-/// Bytes of the water tiles' buffer (`u32` words): the count of listed tiles, then
-/// per tile whether it is marked as holding water and whether it was listed the
-/// time before, then the list (each tile's x | z << 16). WGSL twin: binding
-/// `water_tiles` of `cover_update.wgsl`.
+/// Bytes of the cover tiles' buffer (`u32` words): for each [`CoverTileSet`] in
+/// turn, the count of listed tiles, then per tile whether it is marked and whether
+/// it was listed the time before, then the list (each tile's x | z << 16). WGSL
+/// twin: binding `cover_tiles` of `cover_update.wgsl`.
 #[must_use]
-pub fn water_tiles_bytes(cover: &GridFrame) -> u64 {
-    let (x, z) = water_tiles(cover);
-    4 * (1 + 3 * u64::from(x) * u64::from(z))
+pub fn cover_tiles_bytes(cover: &GridFrame) -> u64 {
+    let (x, z) = cover_tiles(cover);
+    4 * COVER_TILE_SETS * (1 + 3 * u64::from(x) * u64::from(z))
 }
 
 /// Particles per invocation of a kernel over a list (see [`DispatchOver::ParticleList`]).
@@ -283,7 +309,7 @@ pub const INIT_PASS: KernelPass = KernelPass {
 };
 
 /// The kernels of one sub-step before the snow's drift.
-const SUBSTEP_HEAD: [KernelPass; 6] = [
+const SUBSTEP_HEAD: [KernelPass; 7] = [
     KernelPass {
         program: Program::StepParticles,
         entry_point: "reset_births",
@@ -320,27 +346,33 @@ const SUBSTEP_HEAD: [KernelPass; 6] = [
         over: DispatchOver::CoverTexels,
         when: KernelWhen::WhileSnowMayLie,
     },
+    KernelPass {
+        program: Program::CoverUpdate,
+        entry_point: "snow_tiles_list",
+        over: DispatchOver::OneWorkgroup,
+        when: KernelWhen::WhileSnowMayLie,
+    },
 ];
 
-/// One iteration of the snow's drift: every texel's outflows, then every texel's
-/// exchange ([`precip_cover::drift`]).
+/// One iteration of the snow's drift over the listed tiles: every texel's
+/// outflows, then every texel's exchange ([`precip_cover::drift`]).
 const DRIFT_ITERATION: [KernelPass; 2] = [
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "snow_outflow",
-        over: DispatchOver::CoverTexels,
+        over: DispatchOver::CoverTiles,
         when: KernelWhen::WhileSnowMayLie,
     },
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "snow_inflow",
-        over: DispatchOver::CoverTexels,
+        over: DispatchOver::CoverTiles,
         when: KernelWhen::WhileSnowMayLie,
     },
 ];
 
 /// Before every [`WATER_TILE_GROUP`] flow iterations: the list of the tiles they
-/// run over ([`WATER_TILE_SIDE`]).
+/// run over ([`COVER_TILE_SIDE`]).
 const FLOW_LIST: KernelPass = KernelPass {
     program: Program::CoverUpdate,
     entry_point: "water_tiles_list",
@@ -354,13 +386,13 @@ const FLOW_ITERATION: [KernelPass; 2] = [
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "water_outflow",
-        over: DispatchOver::WaterTiles,
+        over: DispatchOver::CoverTiles,
         when: KernelWhen::WhileWaterMayStand,
     },
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "water_inflow",
-        over: DispatchOver::WaterTiles,
+        over: DispatchOver::CoverTiles,
         when: KernelWhen::WhileWaterMayStand,
     },
 ];
@@ -399,7 +431,8 @@ pub const SUBSTEP_KERNELS: usize =
 /// (listing those to re-birth, a landed one at its landing point), the landed ones
 /// strike the water bodies' waves, the listed ones deposit their water and are
 /// re-born (or splash), the cover takes the deposits (or the rate), melts, ages and
-/// wets, the wind's factor over the ground is read, snow drifts and slides
+/// wets, the wind's factor over the ground is read (marking where snow can move),
+/// snow drifts and slides over the tiles listed then
 /// ([`precip_cover::SNOW_DRIFT_ITERATIONS`] iterations of two kernels), standing
 /// water flows ([`precip_cover::WATER_FLOW_ITERATIONS`] iterations of two kernels,
 /// over the water tiles listed before every [`WATER_TILE_GROUP`]),
@@ -472,7 +505,15 @@ pub const FEATURES: [(&str, &[&str]); 6] = [
         ],
     ),
     ("cover", &["cover_update", "cover_texture"]),
-    ("drift", &["snow_wind", "snow_outflow", "snow_inflow"]),
+    (
+        "drift",
+        &[
+            "snow_wind",
+            "snow_tiles_list",
+            "snow_outflow",
+            "snow_inflow",
+        ],
+    ),
     (
         "water",
         &[
@@ -940,15 +981,15 @@ pub mod cover_bindings {
     pub const COVER: u32 = 1;
     /// Deposits, read-write storage.
     pub const DEPOSITS: u32 = 2;
-    /// The water tiles ([`super::water_tiles_bytes`]), read-write storage.
-    pub const WATER_TILES: u32 = 3;
+    /// The cover tiles ([`super::cover_tiles_bytes`]), read-write storage.
+    pub const COVER_TILES: u32 = 3;
 }
 
 #[cfg(test)]
 mod tests {
     #[test]
     fn the_flow_takes_a_tile_a_workgroup_on_a_gpu_and_eight_on_a_cpu() {
-        use super::{DispatchCounts, DispatchOver, GridFrame, WORKGROUP_SIZE, water_tiles_bytes};
+        use super::{DispatchCounts, DispatchOver, GridFrame, WORKGROUP_SIZE, cover_tiles_bytes};
         let cover = GridFrame::centred(
             glam::Vec2::ZERO,
             glam::Vec2::splat(100.0),
@@ -958,11 +999,11 @@ mod tests {
         // 41 x 20 tiles, the last column partial.
         let gpu = DispatchCounts::of(1, &cover, &waves, false);
         let cpu = DispatchCounts::of(1, &cover, &waves, true);
-        assert_eq!(gpu.water_tiles, 820);
-        let groups = |c| DispatchOver::WaterTiles.invocations(c) / WORKGROUP_SIZE;
+        assert_eq!(gpu.cover_tiles, 820);
+        let groups = |c| DispatchOver::CoverTiles.invocations(c) / WORKGROUP_SIZE;
         assert_eq!(groups(gpu), 820);
         assert_eq!(groups(cpu), 103);
-        assert_eq!(water_tiles_bytes(&cover), 4 * (1 + 3 * 820));
+        assert_eq!(cover_tiles_bytes(&cover), 4 * 2 * (1 + 3 * 820));
     }
 
     #[test]

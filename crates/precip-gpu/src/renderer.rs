@@ -628,8 +628,8 @@ impl<G: Gpu> FrameState<G> {
             particles: sim.particle_count(),
             cover_texels: self.cover_texels,
             wave_cells: 0,
-            water_tiles: 0,
-            water_tiles_per_workgroup: 0,
+            cover_tiles: 0,
+            cover_tiles_per_workgroup: 0,
         };
         let detail = (
             view.camera.position_m,

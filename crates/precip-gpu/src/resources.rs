@@ -13,7 +13,7 @@ use precip_model::physics::water_waves::initial_waves;
 use precip_model::{GroundMap, Particle};
 
 use crate::bind_groups::{BEAMS, COVER_UPDATE, GroupLayout, OPTICS, STEP};
-use crate::recipe::water_tiles_bytes;
+use crate::recipe::cover_tiles_bytes;
 use crate::recipe::{beam_bindings as bb, cover_bindings as cv, pending_births_bytes};
 use crate::recipe::{optics_bindings as ob, step_bindings as sb};
 
@@ -40,8 +40,9 @@ pub enum SimBuffer {
     StepBlocks,
     /// One [`CoverStepParams`] per sub-step, as [`SimBuffer::StepBlocks`].
     CoverBlocks,
-    /// The water tiles the flow runs over ([`water_tiles_bytes`]), zeroed.
-    WaterTiles,
+    /// The cover tiles the flow and the drift run over ([`cover_tiles_bytes`]),
+    /// zeroed.
+    CoverTiles,
 }
 
 impl SimBuffer {
@@ -57,7 +58,7 @@ impl SimBuffer {
         Self::WindParams,
         Self::StepBlocks,
         Self::CoverBlocks,
-        Self::WaterTiles,
+        Self::CoverTiles,
     ];
 
     /// A label for debuggers.
@@ -74,7 +75,7 @@ impl SimBuffer {
             Self::WindParams => "precip wind params",
             Self::StepBlocks => "precip step params",
             Self::CoverBlocks => "precip cover params",
-            Self::WaterTiles => "precip water tiles",
+            Self::CoverTiles => "precip cover tiles",
         }
     }
 }
@@ -188,8 +189,8 @@ pub fn simulation_buffers(
                 SimBuffer::StepBlocks | SimBuffer::CoverBlocks => {
                     (blocks, BufferUsage::Uniform, Contents::Undefined)
                 }
-                SimBuffer::WaterTiles => (
-                    water_tiles_bytes(&cover.frame),
+                SimBuffer::CoverTiles => (
+                    cover_tiles_bytes(&cover.frame),
                     BufferUsage::Storage,
                     Contents::Zeroed,
                 ),
@@ -256,7 +257,7 @@ pub const COVER_GROUP: GroupFill = GroupFill {
         (cv::COVER_PARAMS, Bound::Buffer(SimBuffer::CoverBlocks)),
         (cv::COVER, Bound::Buffer(SimBuffer::Cover)),
         (cv::DEPOSITS, Bound::Buffer(SimBuffer::Deposits)),
-        (cv::WATER_TILES, Bound::Buffer(SimBuffer::WaterTiles)),
+        (cv::COVER_TILES, Bound::Buffer(SimBuffer::CoverTiles)),
     ],
 };
 

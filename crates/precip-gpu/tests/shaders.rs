@@ -439,15 +439,23 @@ fn wgsl_integer(module: &naga::Module, name: &str) -> i64 {
 }
 
 #[test]
-fn the_water_tiles_are_the_same_in_wgsl_and_rust() {
-    use precip_gpu::recipe::{WATER_TILE_REACH, WATER_TILE_SIDE};
+fn the_cover_tiles_are_the_same_in_wgsl_and_rust() {
+    use precip_gpu::recipe::{COVER_TILE_REACH, COVER_TILE_SIDE, CoverTileSet};
     let module = parse(Program::CoverUpdate);
     assert_eq!(
-        wgsl_integer(&module, "WATER_TILE_SIDE"),
-        i64::from(WATER_TILE_SIDE)
+        wgsl_integer(&module, "COVER_TILE_SIDE"),
+        i64::from(COVER_TILE_SIDE)
     );
     assert_eq!(
-        wgsl_integer(&module, "WATER_TILE_REACH"),
-        i64::from(WATER_TILE_REACH)
+        wgsl_integer(&module, "COVER_TILE_REACH"),
+        i64::from(COVER_TILE_REACH)
+    );
+    assert_eq!(
+        wgsl_integer(&module, "WATER_TILES"),
+        CoverTileSet::Water as i64
+    );
+    assert_eq!(
+        wgsl_integer(&module, "SNOW_TILES"),
+        CoverTileSet::Snow as i64
     );
 }
