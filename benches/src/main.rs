@@ -10,7 +10,8 @@
 //! same run ([`precip_benches::peer`]: `osgprecipitation --snow 0.5` and precip's
 //! viewer in windows of the same size over the demo scene); printed as a table,
 //! written as JSON and plotted as a PNG beside it. Build the viewer first
-//! (`cargo build --release`) for its window run.
+//! (`cargo build --release`) for its window run; `report --peer` runs only that
+//! (the peer, then precip's viewer at each `--quality`).
 
 use std::path::Path;
 use std::time::Instant;
@@ -181,7 +182,18 @@ fn measure_peer() -> serde_json::Value {
             osgprecipitation_fps(&display, &obj, FRAME_SIZE, 14).map_err(|e| e.to_string())
         });
     let _ = std::fs::remove_file(&obj);
-    let ours = viewer_run(&display, FRAME_SIZE, 40).map_err(|e| e.to_string());
+    let ours = viewer_run(&display, FRAME_SIZE, 40, "high").map_err(|e| e.to_string());
+    // The lower quality levels: the particles at half and a quarter of the frame's
+    // resolution (`precip_model::Quality`).
+    let lower: Vec<(&str, Result<_, String>)> = ["medium", "low"]
+        .into_iter()
+        .map(|q| {
+            (
+                q,
+                viewer_run(&display, FRAME_SIZE, 40, q).map_err(|e| e.to_string()),
+            )
+        })
+        .collect();
     match &osg {
         Ok(fps) => println!(
             "osgprecipitation --snow 0.5 over the demo, {}×{}: {fps:.1} fps",
@@ -208,6 +220,26 @@ fn measure_peer() -> serde_json::Value {
         }
         _ => None,
     };
+    let mut by_quality = serde_json::Map::new();
+    for (quality, run) in &lower {
+        match run {
+            Ok(run) => {
+                let r = osg.as_ref().ok().map(|fps| 1e3 / run.frame_ms / fps);
+                println!(
+                    "precip viewer --quality {quality}: {:.1} ms, {:.0} particles drawn; ÷ osgprecipitation {}",
+                    run.frame_ms,
+                    run.particles_drawn,
+                    r.map_or_else(|| "—".to_string(), |r| format!("{r:.2}"))
+                );
+                by_quality.insert(
+                    (*quality).to_string(),
+                    json!({"frame_ms": run.frame_ms, "particles_drawn": run.particles_drawn,
+                           "over_osgprecipitation_fps": r}),
+                );
+            }
+            Err(e) => eprintln!("precip viewer --quality {quality} not measured: {e}"),
+        }
+    }
     json!({
         "width_px": FRAME_SIZE.0, "height_px": FRAME_SIZE.1,
         "osgprecipitation_fps": osg.as_ref().ok(),
@@ -216,6 +248,7 @@ fn measure_peer() -> serde_json::Value {
         "precip_viewer_particles_drawn": ours.as_ref().ok().map(|r| r.particles_drawn),
         "precip_viewer_error": ours.as_ref().err(),
         "precip_over_osgprecipitation_fps": ratio,
+        "precip_viewer_lower_quality": by_quality,
     })
 }
 
@@ -260,6 +293,15 @@ fn series(rows: &[serde_json::Value], key: &str, job: &str) -> Vec<Series> {
 }
 
 fn main() {
+    // `report --peer`: only the side-by-side window run against the peer.
+    if std::env::args().nth(1).as_deref() == Some("--peer") {
+        let peer = measure_peer();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&peer).unwrap_or_default()
+        );
+        return;
+    }
     let out = std::env::args()
         .nth(1)
         .unwrap_or_else(|| "target/precip-report.json".into());

@@ -225,6 +225,7 @@ pub fn viewer_run(
     display: &Display,
     size: (u32, u32),
     frames: u32,
+    quality: &str,
 ) -> Result<ViewerRun, PeerError> {
     let exe = std::env::current_exe()
         .map_err(|e| PeerError::Missing {
@@ -239,6 +240,8 @@ pub fn viewer_run(
             &format!("{}x{}", size.0, size.1),
             "--quit-after",
             &frames.to_string(),
+            "--quality",
+            quality,
         ])
         .env("DISPLAY", &display.name)
         .output()

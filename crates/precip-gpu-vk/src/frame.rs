@@ -103,7 +103,8 @@ pub fn render_pass(device: &Device, key: &RenderPassKey) -> Result<vk::RenderPas
     }];
     let depth = vk::AttachmentReference {
         attachment: attachments.len() as u32 - 1,
-        layout: if key.depth_written {
+        // A cleared depth is written by its clear, even where no draw writes it.
+        layout: if key.depth_written || key.depth_load == AttachmentLoad::Clear {
             L::DEPTH_STENCIL_ATTACHMENT_OPTIMAL
         } else {
             depth_rest
@@ -184,6 +185,8 @@ pub struct PassBegin {
     pub size: (u32, u32),
     /// Whether it has a colour attachment.
     pub colour: bool,
+    /// What its colour is cleared to.
+    pub clear_colour: [f32; 4],
 }
 
 /// The viewport of `size`, y flipped (WGSL's clip space, as wgpu-hal).
@@ -262,20 +265,6 @@ pub unsafe fn record_frame(
             ),
         );
     }
-    let [r, g, b, a] = frame.clear_colour;
-    let clears = [
-        vk::ClearValue {
-            color: vk::ClearColorValue {
-                float32: [r, g, b, a],
-            },
-        },
-        vk::ClearValue {
-            depth_stencil: vk::ClearDepthStencilValue {
-                depth: 1.0,
-                stencil: 0,
-            },
-        },
-    ];
     for ((index, pass), begin) in (0u32..).zip(&frame.passes).zip(begins) {
         let (start, end) = (2 * index, 2 * index + 1);
         stamp(start, S::TOP_OF_PIPE);
@@ -288,6 +277,19 @@ pub unsafe fn record_frame(
         } else if pass.runs {
             let (bind_point, begin) = match (&pass.kind, begin) {
                 (PassKind::Render(_), Some(begin)) => {
+                    let clears = [
+                        vk::ClearValue {
+                            color: vk::ClearColorValue {
+                                float32: begin.clear_colour,
+                            },
+                        },
+                        vk::ClearValue {
+                            depth_stencil: vk::ClearDepthStencilValue {
+                                depth: 1.0,
+                                stencil: 0,
+                            },
+                        },
+                    ];
                     let info = vk::RenderPassBeginInfo::default()
                         .render_pass(begin.pass)
                         .framebuffer(begin.framebuffer)

@@ -181,22 +181,25 @@ impl Hal {
             let begin = match &pass.kind {
                 PassKind::Render(a) if pass.runs => {
                     let recipe = a.recipe;
+                    // A texture drawn into ends the pass ready to be sampled.
+                    let (view, format, last) = match a.colour {
+                        Some(t) => (t.image.view, t.image.format, t.layout),
+                        None if a.colour_last => colour,
+                        None => (
+                            colour.0,
+                            colour.1,
+                            vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                        ),
+                    };
                     let key = RenderPassKey {
-                        colour: recipe.colour.map(|load| {
-                            let last = if a.colour_last {
-                                colour.2
-                            } else {
-                                vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL
-                            };
-                            (colour.1, load, last)
-                        }),
+                        colour: recipe.colour.map(|load| (format, load, last)),
                         depth_load: recipe.depth_load,
                         depth_stored: recipe.depth_stored,
                         depth_written: a.depth_written,
                     };
                     let made = self.render_pass(key).and_then(|pass| {
                         let views: &[vk::ImageView] = if key.colour.is_some() {
-                            &[colour.0, a.depth.image.view]
+                            &[view, a.depth.image.view]
                         } else {
                             &[a.depth.image.view]
                         };
@@ -206,6 +209,7 @@ impl Hal {
                             framebuffer,
                             size,
                             colour: key.colour.is_some(),
+                            clear_colour: a.clear_colour,
                         })
                     });
                     match made {
@@ -411,6 +415,10 @@ impl Gpu for Hal {
             TextureUsage::CopyOfTarget => {
                 (U::SAMPLED | U::TRANSFER_DST, L::SHADER_READ_ONLY_OPTIMAL)
             }
+            TextureUsage::DrawnThenSampled => (
+                U::COLOR_ATTACHMENT | U::SAMPLED,
+                L::SHADER_READ_ONLY_OPTIMAL,
+            ),
         };
         let image = Image::new(
             &self.device,
@@ -427,7 +435,8 @@ impl Gpu for Hal {
                 None,
                 TextureUsage::DepthAttachment
                 | TextureUsage::StorageAndSampled
-                | TextureUsage::CopyOfTarget,
+                | TextureUsage::CopyOfTarget
+                | TextureUsage::DrawnThenSampled,
             ) => to_layout(&self.device, &[&image], layout),
             (None, _) => Ok(()),
         };

@@ -98,19 +98,24 @@ pub fn draw_pipeline(
         .depth_write_enable(d.depth_write)
         .depth_compare_op(vk::CompareOp::LESS_OR_EQUAL)
         .max_depth_bounds(1.0);
-    // wgpu's BlendState::ALPHA_BLENDING: colour src·α + dst·(1 − α), alpha "over".
-    let attachment = match d.blend {
-        Blend::Alpha => vec![
+    // wgpu's BlendState::ALPHA_BLENDING: colour src·α + dst·(1 − α), alpha "over";
+    // PREMULTIPLIED_ALPHA_BLENDING: colour src + dst·(1 − α), alpha "over".
+    let over = |src_colour| {
+        vec![
             vk::PipelineColorBlendAttachmentState::default()
                 .blend_enable(true)
-                .src_color_blend_factor(vk::BlendFactor::SRC_ALPHA)
+                .src_color_blend_factor(src_colour)
                 .dst_color_blend_factor(vk::BlendFactor::ONE_MINUS_SRC_ALPHA)
                 .color_blend_op(vk::BlendOp::ADD)
                 .src_alpha_blend_factor(vk::BlendFactor::ONE)
                 .dst_alpha_blend_factor(vk::BlendFactor::ONE_MINUS_SRC_ALPHA)
                 .alpha_blend_op(vk::BlendOp::ADD)
                 .color_write_mask(vk::ColorComponentFlags::RGBA),
-        ],
+        ]
+    };
+    let attachment = match d.blend {
+        Blend::Alpha => over(vk::BlendFactor::SRC_ALPHA),
+        Blend::Premultiplied => over(vk::BlendFactor::ONE),
         Blend::Opaque => vec![
             vk::PipelineColorBlendAttachmentState::default()
                 .color_write_mask(vk::ColorComponentFlags::RGBA),

@@ -22,7 +22,6 @@ pub fn encode_pass(
     index: u32,
     stamps: Option<&Timestamps>,
     colour: &wgpu::TextureView,
-    clear: [f32; 4],
 ) {
     let (begin, end) = (Some(2 * index), Some(2 * index + 1));
     match &pass.kind {
@@ -79,10 +78,11 @@ pub fn encode_pass(
         }
         PassKind::Render(attachments) => {
             let recipe = attachments.recipe;
-            let [r, g, b, a] = clear.map(f64::from);
+            let [r, g, b, a] = attachments.clear_colour.map(f64::from);
+            let view = attachments.colour.map_or(colour, |t| &t.view);
             let colour = recipe.colour.map(|load| {
                 Some(wgpu::RenderPassColorAttachment {
-                    view: colour,
+                    view,
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {

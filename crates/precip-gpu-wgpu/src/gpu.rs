@@ -330,6 +330,9 @@ impl Gpu for Hal {
             TextureUsage::CopyOfTarget => {
                 wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST
             }
+            TextureUsage::DrawnThenSampled => {
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING
+            }
         };
         let descriptor = wgpu::TextureDescriptor {
             label: Some(desc.label),
@@ -570,14 +573,7 @@ impl Gpu for Hal {
                 });
             for (index, pass) in (0u32..).zip(&frame.passes) {
                 if pass.runs {
-                    encode_pass(
-                        &mut encoder,
-                        pass,
-                        index,
-                        stamps,
-                        colour,
-                        frame.clear_colour,
-                    );
+                    encode_pass(&mut encoder, pass, index, stamps, colour);
                 }
             }
             if let Some(s) = stamps {

@@ -25,6 +25,7 @@ pub fn draw_pipeline(
     let (vs, fs) = d.entry_points;
     let blend = match d.blend {
         Blend::Alpha => Some(wgpu::BlendState::ALPHA_BLENDING),
+        Blend::Premultiplied => Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
         Blend::Opaque | Blend::None => None,
     };
     let targets =

@@ -58,8 +58,19 @@ fn drawn_length_m(p: Particle) -> f32 {
     return p.diameter_m * params.sizing.x;
 }
 
-// Whether particle `p` is drawn at least min px (else it is splatted, or enlarged).
+// Whether particle `p` is at least min px of the frame (else what it stands for
+// beyond itself is in the haze): in the frame's pixels whatever the resolution the
+// particles are drawn at (sizing.y is min px of the frame times lens.z, the frame
+// pixels a drawn pixel spans).
 fn resolved(p: Particle) -> bool {
+    let distance_m = distance(p.position_m, params.camera_m_cone_cos.xyz);
+    let min_px = params.sizing.y / max(params.lens.z, 1.0);
+    return !sub_pixel(drawn_length_m(p), distance_m, params.view_dir_pixel_angle.w, min_px);
+}
+
+// Whether particle `p` is drawn at least min px of the particles' image (else the
+// splat takes it, at the frame's resolution).
+fn drawn_big_enough(p: Particle) -> bool {
     let distance_m = distance(p.position_m, params.camera_m_cone_cos.xyz);
     return !sub_pixel(drawn_length_m(p), distance_m, params.view_dir_pixel_angle.w, params.sizing.y);
 }
@@ -87,7 +98,7 @@ fn drawn_as(i: u32) -> u32 {
         return DRAWN_NOT;
     }
     let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-    if (counts.w != 0u && !resolved(p)) {
+    if (counts.w != 0u && !drawn_big_enough(p)) {
         return DRAWN_SPLAT;
     }
     return select(DRAWN_SNOW, DRAWN_RAIN, kind == KIND_RAIN);

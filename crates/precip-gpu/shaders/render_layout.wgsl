@@ -12,7 +12,7 @@ struct RenderParams {
     light: vec4<f32>,
     // shadow colour, shadow density, attenuation, shadow-map texel (uv)
     shadow: vec4<f32>,
-    // snow scale, min px, min opacity, the lens's exposure s
+    // snow scale, min px (of the frame), min opacity, the lens's exposure s
     sizing: vec4<f32>,
     // rain opacity, displacement on, cover depletion exponent, mask edge
     cover_look: vec4<f32>,
@@ -31,7 +31,8 @@ struct RenderParams {
     camera_box_centre_m: vec4<f32>,
     // the camera volume's half extent m, its multiplicity
     camera_box_half_m: vec4<f32>,
-    // the lens: aperture m, focus distance m, 0, 0
+    // the lens: aperture m, focus distance m; frame pixels per particle pixel
+    // (ParticleResolution::factor), 0
     lens: vec4<f32>,
     // clip → world of the camera
     inverse_view_proj: mat4x4<f32>,

@@ -55,6 +55,15 @@ fn rain_colour(n: vec3<f32>, to_viewer: vec3<f32>, lit: f32, fog: f32, environme
 
 @vertex
 fn vs_snow(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance: u32) -> ParticleVarying {
+    return snow_vertex(corner, instance);
+}
+
+@vertex
+fn vs_snow_reduced(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance: u32) -> ParticleVarying {
+    return snow_vertex(corner, instance);
+}
+
+fn snow_vertex(corner: u32, instance: u32) -> ParticleVarying {
     // Instance = drawn flake × its copies (snow_copy_position): a camera-volume flake
     // stands for `m` of the air's, drawn as `copies` flakes of `m/copies` ink each.
     let copies = snow_copies();
@@ -95,6 +104,16 @@ fn vs_snow(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance
 
 @fragment
 fn fs_snow(in: ParticleVarying) -> @location(0) vec4<f32> {
+    return snow_fragment(in);
+}
+
+@fragment
+fn fs_snow_reduced(in: ParticleVarying) -> @location(0) vec4<f32> {
+    let c = snow_fragment(in);
+    return vec4<f32>(c.rgb, c.a * in_front_of_scene(in.clip));
+}
+
+fn snow_fragment(in: ParticleVarying) -> vec4<f32> {
     let uv = vec2<f32>(in.uv.x, snow_streak_texture_v(in.uv.y, in.stretch));
     let opacity = textureSample(flake_opacity, flake_sampler, uv).r * in.shade.a;
     return vec4<f32>(in.shade.rgb, opacity);
@@ -102,6 +121,15 @@ fn fs_snow(in: ParticleVarying) -> @location(0) vec4<f32> {
 
 @vertex
 fn vs_rain(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> ParticleVarying {
+    return rain_vertex(vertex, instance);
+}
+
+@vertex
+fn vs_rain_reduced(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> ParticleVarying {
+    return rain_vertex(vertex, instance);
+}
+
+fn rain_vertex(vertex: u32, instance: u32) -> ParticleVarying {
     let i = drawn[params.counts.x + instance];
     let p = particles[i];
     let camera = params.camera_m_cone_cos.xyz;
@@ -131,10 +159,58 @@ fn vs_rain(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
 
 @fragment
 fn fs_rain(in: ParticleVarying) -> @location(0) vec4<f32> {
+    return rain_fragment(in);
+}
+
+@fragment
+fn fs_rain_reduced(in: ParticleVarying) -> @location(0) vec4<f32> {
+    let c = rain_fragment(in);
+    return vec4<f32>(c.rgb, c.a * in_front_of_scene(in.clip));
+}
+
+fn rain_fragment(in: ParticleVarying) -> vec4<f32> {
     let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - in.world_m);
     var n = normalize_or_zero(in.normal);
     if (dot(n, to_viewer) < 0.0) {
         n = -n;
     }
     return vec4<f32>(rain_colour(n, to_viewer, in.shade.x, in.shade.y, in.shade.z), in.shade.w);
+}
+
+// Particles at a reduced resolution (precip_model::ParticleResolution): the share of
+// the frame's pixels under a drawn pixel at `frag` where the particle stands in front
+// of the scene (the depth test the frame's resolution would make, less-or-equal), at
+// four of them (all four at half resolution; at a quarter, one in each quadrant).
+fn in_front_of_scene(frag: vec4<f32>) -> f32 {
+    let factor = u32(params.lens.z);
+    let last = vec2<i32>(textureDimensions(scene_depth)) - 1;
+    let corner = vec2<i32>(floor(frag.xy)) * i32(factor);
+    let step = i32(max(factor / 2u, 1u));
+    let first = select(0, step / 2, factor > 2u);
+    var front = 0.0;
+    for (var k = 0; k < 4; k += 1) {
+        let at = corner + vec2<i32>(first + step * (k & 1), first + step * (k >> 1u));
+        let scene = textureLoad(scene_depth, clamp(at, vec2<i32>(0), last), 0);
+        front += select(0.0, 0.25, frag.z <= scene);
+    }
+    return front;
+}
+
+// The splat resolved and the particles' image (premultiplied) over it, laid over
+// the frame in one full-screen pass.
+@group(2) @binding(7) var particle_image: texture_2d<f32>;
+
+@vertex
+fn vs_particles_composite(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+@fragment
+fn fs_particles_composite(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
+    // Drawn pixel i covers the frame's pixels [i·f, (i + 1)·f).
+    let drawn = vec2<f32>(textureDimensions(particle_image)) * params.lens.z;
+    let image = textureSampleLevel(particle_image, cover_sampler, pixel.xy / drawn, 0.0);
+    let splat = resolved_splat(pixel);
+    return image + vec4<f32>(splat.rgb * splat.a, splat.a) * (1.0 - image.a);
 }

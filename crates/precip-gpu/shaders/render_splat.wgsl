@@ -25,21 +25,34 @@
 // opaque particles overflow it).
 const SPLAT_UNITS: f32 = 16384.0;
 
-// Colour and ink (opacity·px²) of a sub-pixel particle, as its sprite or streak.
-fn splat_look(p: Particle, distance_m: f32) -> vec4<f32> {
+// The sprites' sizing in the frame's pixels: params.sizing is in the particles'
+// image's (precip_model::ParticleResolution), lens.z frame pixels a drawn one.
+fn frame_sizing() -> vec4<f32> {
+    let f = max(params.lens.z, 1.0);
+    return vec4<f32>(params.sizing.x, params.sizing.y / f, params.sizing.z * f * f, params.sizing.w);
+}
+
+// Colour and ink (opacity·px²) of a sub-pixel particle, as its sprite or streak of
+// the frame's resolution would draw it with `weight` particles' ink (up to opaque):
+// what the particles' image leaves to the splat below its own minimum size keeps
+// the light the frame's sprite would have.
+fn splat_look(p: Particle, distance_m: f32, weight: f32) -> vec4<f32> {
     let pixel_angle = params.view_dir_pixel_angle.w;
+    let sizing = frame_sizing();
     let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
     if (kind == KIND_RAIN) {
-        let size = raindrop_sizing(length(p.velocity_mps), p.diameter_m, distance_m, pixel_angle, params.sizing);
+        let size = raindrop_sizing(length(p.velocity_mps), p.diameter_m, distance_m, pixel_angle, sizing);
         let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - p.position_m);
         let fog = fog_transmittance(distance_m, params.to_sun_extinction.w);
         let environment = drop_environment_factor(-to_viewer.y, BARE_GROUND_ALBEDO);
         let colour = rain_colour(to_viewer, to_viewer, shadow_lit(p.position_m), fog, environment);
-        let ink = splat_ink(true, vec3<f32>(size.x, size.y, size.z * params.cover_look.x), distance_m, pixel_angle, 0.0);
+        let opacity = min(1.0, weight * size.z * params.cover_look.x);
+        let ink = splat_ink(true, vec3<f32>(size.x, size.y, opacity), distance_m, pixel_angle, 0.0);
         return vec4<f32>(colour, ink);
     }
-    let size = snow_sprite_sizing(p.diameter_m, distance_m, pixel_angle, params.sizing);
-    let ink = splat_ink(false, vec3<f32>(size, 0.0), distance_m, pixel_angle, params.cover_look2.w);
+    let size = snow_sprite_sizing(p.diameter_m, distance_m, pixel_angle, sizing);
+    let opacity = min(1.0, weight * size.y);
+    let ink = splat_ink(false, vec3<f32>(size.x, opacity, 0.0), distance_m, pixel_angle, params.cover_look2.w);
     return vec4<f32>(snow_colour(p, distance_m), ink);
 }
 
@@ -75,11 +88,10 @@ fn splat_particle(i: u32) {
     }
     let base = vec2<i32>(floor(at));
     let f = at - floor(at);
-    var look = splat_look(p, distance(p.position_m, params.camera_m_cone_cos.xyz));
-    // Drawn or not by its pool's multiplicity, but with its own ink only: what a
-    // sub-pixel particle stands for beyond itself is already in the haze, whose
-    // extinction is the whole air's (precip_model::drawing::multiplicity).
-    look.a *= resolved_weight(i, p);
+    // Drawn or not by its pool's multiplicity, but with its own ink only where it is
+    // sub-pixel in the frame: what it stands for beyond itself is already in the
+    // haze, whose extinction is the whole air's (precip_model::drawing::multiplicity).
+    let look = splat_look(p, distance(p.position_m, params.camera_m_cone_cos.xyz), resolved_weight(i, p));
     for (var k = 0; k < 4; k++) {
         let xy = base + vec2<i32>(k & 1, k >> 1u);
         if (any(xy < vec2<i32>(0)) || any(xy >= size)) {
@@ -111,6 +123,11 @@ fn vs_splat_resolve(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f3
 
 @fragment
 fn fs_splat_resolve(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
+    return resolved_splat(pixel);
+}
+
+// The splat's colour and opacity at `pixel` (straight alpha); zeroes its sums.
+fn resolved_splat(pixel: vec4<f32>) -> vec4<f32> {
     let width = frame_counts().w;
     if (width == 0u) {
         return vec4<f32>(0.0);

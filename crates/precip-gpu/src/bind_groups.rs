@@ -328,6 +328,27 @@ pub const SPLAT_RESOLVE: GroupLayout = GroupLayout {
     bindings: &[binding(rb::RESOLVED_SUMS, storage(false), Stages::Fragment)],
 };
 
+/// Group 2 of the reduced particles' draws: the camera's depth, which their
+/// fragments test themselves.
+pub const PARTICLE_DEPTH: GroupLayout = GroupLayout {
+    name: "precip particle depth",
+    bindings: &[binding(
+        rb::PARTICLE_SCENE_DEPTH,
+        DEPTH_2D,
+        Stages::Fragment,
+    )],
+};
+
+/// Group 2 of the composite draw: the splat's sums (it resolves them) and the
+/// particles' image.
+pub const PARTICLE_IMAGE: GroupLayout = GroupLayout {
+    name: "precip particle image",
+    bindings: &[
+        binding(rb::RESOLVED_SUMS, storage(false), Stages::Fragment),
+        binding(rb::PARTICLE_IMAGE, FILTERED_2D, Stages::Fragment),
+    ],
+};
+
 /// Group 3 of the scene's draw (fragment): the frame before's scene and depth, for
 /// the water's reflections.
 pub const REFLECTIONS: GroupLayout = GroupLayout {
@@ -418,6 +439,13 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         }
         (Program::Render, "vs_snow" | "fs_snow" | "vs_rain" | "fs_rain") => {
             &[RENDER_FRAME, RENDER_LIGHT]
+        }
+        (
+            Program::Render,
+            "vs_snow_reduced" | "fs_snow_reduced" | "vs_rain_reduced" | "fs_rain_reduced",
+        ) => &[RENDER_FRAME, RENDER_LIGHT, PARTICLE_DEPTH],
+        (Program::Render, "vs_particles_composite" | "fs_particles_composite") => {
+            &[RENDER_FRAME, RENDER_LIGHT, PARTICLE_IMAGE]
         }
         _ => return None,
     })

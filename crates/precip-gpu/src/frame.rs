@@ -13,7 +13,7 @@
 use glam::Vec3;
 use precip_model::drawing::render::{RenderParams, haze_colour};
 use precip_model::drawing::shadow_cache::ShadowCache;
-use precip_model::{Setup, View};
+use precip_model::{ParticleResolution, Setup, View};
 
 use crate::bind_groups::{GroupLayout, groups_of};
 use crate::executor::Simulation;
@@ -40,6 +40,21 @@ pub enum DepthTarget {
     ShadowMap,
     /// The camera's depth buffer, the frame target's size.
     Camera,
+    /// The particles' image's depth buffer ([`ColourTarget::Particles`]'s size):
+    /// cleared and never written, so every fragment passes (the draws test the
+    /// scene's depth themselves).
+    Particles,
+}
+
+/// Which image a render pass draws into.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ColourTarget {
+    /// The frame's target (the window's image or the offscreen one).
+    Frame,
+    /// The particles' image, at [`precip_model::ParticleResolution`] of the frame
+    /// (`crate::frame_resources::TargetResource::ParticleImage`): cleared to
+    /// transparent, then laid over the frame.
+    Particles,
 }
 
 /// Which of the scene's meshes a draw draws.
@@ -89,8 +104,11 @@ pub enum Blend {
     None,
     /// Replaces the colour.
     Opaque,
-    /// Straight alpha blending: `src·a + dst·(1 − a)`.
+    /// Straight alpha blending: `src·a + dst·(1 − a)` (alpha: `a + dst_a·(1 − a)`,
+    /// so an image cleared to transparent holds premultiplied colour).
     Alpha,
+    /// Premultiplied: `src + dst·(1 − a)`.
+    Premultiplied,
 }
 
 /// One draw of a render pass: its entry points of [`crate::shaders::Program::Render`]
@@ -136,8 +154,10 @@ pub struct RenderPassRecipe {
     pub depth_load: AttachmentLoad,
     /// Whether the depth is kept after the pass.
     pub depth_stored: bool,
-    /// The frame's colour target and how it starts, or `None` (depth only).
+    /// The colour target and how it starts, or `None` (depth only).
     pub colour: Option<AttachmentLoad>,
+    /// Which image the colour target is.
+    pub colour_target: ColourTarget,
     /// The draws, in order.
     pub draws: &'static [Draw],
 }
@@ -172,6 +192,10 @@ pub enum PassWhen {
     GroundMirrors,
     /// While they do not.
     GroundMirrorsNot,
+    /// While rain and snow are drawn at the frame's resolution.
+    ParticlesFull,
+    /// While they are drawn at a reduced one ([`precip_model::ParticleResolution`]).
+    ParticlesReduced,
 }
 
 /// One pass of the frame.
@@ -288,8 +312,42 @@ const PARTICLE_DRAWS: [Draw; 3] = [
     },
 ];
 
+// At reduced resolution: the sprites and streaks into the particles' image, each
+// fragment testing the scene's depth itself (the image's depth is cleared and never
+// written: at depth 0 … 1 less-or-equal passes).
+const REDUCED_PARTICLE_DRAWS: [Draw; 2] = [
+    Draw {
+        entry_points: render_passes::SNOW_REDUCED,
+        ..PARTICLE_DRAWS[1]
+    },
+    Draw {
+        entry_points: render_passes::RAIN_REDUCED,
+        ..PARTICLE_DRAWS[2]
+    },
+];
+
+// Then, at the frame's resolution, the splat resolved and the particles' image laid
+// over it, over the frame: one full-screen triangle at depth 0 (on a CPU rasteriser
+// each full-screen pass costs as much as a frame's worth of fragments).
+const PARTICLE_COMPOSITE_DRAWS: [Draw; 1] = [Draw {
+    entry_points: render_passes::PARTICLES_COMPOSITE,
+    blend: Blend::Premultiplied,
+    ..PARTICLE_DRAWS[0]
+}];
+
+// The particles' passes over the scene: its colour and depth loaded, the depth
+// tested and not written.
+const OVER_THE_FRAME: RenderPassRecipe = RenderPassRecipe {
+    depth: DepthTarget::Camera,
+    depth_load: AttachmentLoad::Load,
+    depth_stored: false,
+    colour: Some(AttachmentLoad::Load),
+    colour_target: ColourTarget::Frame,
+    draws: &PARTICLE_DRAWS,
+};
+
 /// The frame, in order (see the module docs and [`crate::renderer`]).
-pub const FRAME_PASSES: [FramePass; 7] = [
+pub const FRAME_PASSES: [FramePass; 9] = [
     FramePass {
         name: "cover_texture",
         work: PassWork::Kernels(&[COVER_TEXTURE_PASS]),
@@ -302,6 +360,7 @@ pub const FRAME_PASSES: [FramePass; 7] = [
             depth_load: AttachmentLoad::Clear,
             depth_stored: true,
             colour: None,
+            colour_target: ColourTarget::Frame,
             draws: &[SHADOW_DRAW],
         }),
         when: PassWhen::ShadowRedrawn,
@@ -313,6 +372,7 @@ pub const FRAME_PASSES: [FramePass; 7] = [
             depth_load: AttachmentLoad::Clear,
             depth_stored: true,
             colour: Some(AttachmentLoad::Clear),
+            colour_target: ColourTarget::Frame,
             draws: &[SCENE_DRAW, GROUND_MIRROR_DRAW, WATER_BODY_DRAW, SKY_DRAW],
         }),
         when: PassWhen::Always,
@@ -334,14 +394,28 @@ pub const FRAME_PASSES: [FramePass; 7] = [
     },
     FramePass {
         name: "particles",
+        work: PassWork::Render(OVER_THE_FRAME),
+        when: PassWhen::ParticlesFull,
+    },
+    FramePass {
+        name: "particles_reduced",
         work: PassWork::Render(RenderPassRecipe {
-            depth: DepthTarget::Camera,
-            depth_load: AttachmentLoad::Load,
+            depth: DepthTarget::Particles,
+            depth_load: AttachmentLoad::Clear,
             depth_stored: false,
-            colour: Some(AttachmentLoad::Load),
-            draws: &PARTICLE_DRAWS,
+            colour: Some(AttachmentLoad::Clear),
+            colour_target: ColourTarget::Particles,
+            draws: &REDUCED_PARTICLE_DRAWS,
         }),
-        when: PassWhen::Always,
+        when: PassWhen::ParticlesReduced,
+    },
+    FramePass {
+        name: "particles_composite",
+        work: PassWork::Render(RenderPassRecipe {
+            draws: &PARTICLE_COMPOSITE_DRAWS,
+            ..OVER_THE_FRAME
+        }),
+        when: PassWhen::ParticlesReduced,
     },
 ];
 
@@ -387,6 +461,9 @@ pub struct FrameConditions {
     pub water_shows: bool,
     /// The ground's puddles mirror the scene ([`PassWhen::GroundMirrors`]).
     pub ground_mirrors: bool,
+    /// Rain and snow are drawn at a reduced resolution
+    /// ([`PassWhen::ParticlesReduced`]).
+    pub particles_reduced: bool,
 }
 
 impl PassWhen {
@@ -399,6 +476,8 @@ impl PassWhen {
             Self::WaterShows => conditions.water_shows,
             Self::GroundMirrors => conditions.ground_mirrors,
             Self::GroundMirrorsNot => !conditions.ground_mirrors,
+            Self::ParticlesFull => !conditions.particles_reduced,
+            Self::ParticlesReduced => conditions.particles_reduced,
         }
     }
 }
@@ -532,6 +611,7 @@ impl FrameHost {
                 shadow_redrawn,
                 water_shows: self.water_bodies || host.activity().water_may_stand,
                 ground_mirrors: false,
+                particles_reduced: setup.render.particle_resolution != ParticleResolution::Full,
             },
             sky_colour: haze_colour(&setup.render, host.weather()),
         }
@@ -581,23 +661,28 @@ mod tests {
     #[test]
     fn the_plan_skips_the_shadow_and_the_copy_only_when_unneeded() {
         for (shadow_redrawn, water_shows) in [(false, false), (true, false), (false, true)] {
-            let plan: Vec<_> = frame_plan(FrameConditions {
-                shadow_redrawn,
-                water_shows,
-                ground_mirrors: false,
-            })
-            .collect();
-            assert_eq!(plan.len(), FRAME_PASSES.len());
-            for p in &plan {
-                let expected = match p.pass.name {
-                    "shadow" => shadow_redrawn,
-                    "scene_copy" => water_shows,
-                    _ => true,
-                };
-                assert_eq!(p.runs, expected, "{}", p.pass.name);
-                assert_eq!(FRAME_PASSES[p.index as usize].name, p.pass.name);
-                for d in p.draws() {
-                    assert!(!d.groups.is_empty(), "{}", p.pass.name);
+            for particles_reduced in [false, true] {
+                let plan: Vec<_> = frame_plan(FrameConditions {
+                    shadow_redrawn,
+                    water_shows,
+                    ground_mirrors: false,
+                    particles_reduced,
+                })
+                .collect();
+                assert_eq!(plan.len(), FRAME_PASSES.len());
+                for p in &plan {
+                    let expected = match p.pass.name {
+                        "shadow" => shadow_redrawn,
+                        "scene_copy" => water_shows,
+                        "particles" => !particles_reduced,
+                        "particles_reduced" | "particles_composite" => particles_reduced,
+                        _ => true,
+                    };
+                    assert_eq!(p.runs, expected, "{}", p.pass.name);
+                    assert_eq!(FRAME_PASSES[p.index as usize].name, p.pass.name);
+                    for d in p.draws() {
+                        assert!(!d.groups.is_empty(), "{}", p.pass.name);
+                    }
                 }
             }
         }
@@ -617,6 +702,7 @@ mod tests {
                 shadow_redrawn: false,
                 water_shows: true,
                 ground_mirrors,
+                particles_reduced: false,
             };
             let ground: Vec<_> = recipe
                 .draws
@@ -646,7 +732,9 @@ mod tests {
                 "scene_copy",
                 "cull_particles",
                 "splat_particles",
-                "particles"
+                "particles",
+                "particles_reduced",
+                "particles_composite"
             ]
         );
     }

@@ -11,7 +11,8 @@ use precip_model::drawing::render::RenderParams;
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 
 use crate::bind_groups::{
-    COVER_TEXTURE, CULL, GroupLayout, REFLECTIONS, RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
+    COVER_TEXTURE, CULL, GroupLayout, PARTICLE_DEPTH, PARTICLE_IMAGE, REFLECTIONS, RENDER_FRAME,
+    RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
 };
 use crate::recipe::{
     DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
@@ -151,6 +152,9 @@ pub enum TextureUsage {
     /// A copy of the colour target or of the camera's depth (copied into each
     /// frame, then sampled).
     CopyOfTarget,
+    /// Drawn into by a render pass, then sampled by a later one (the particles'
+    /// image); it rests ready to be sampled.
+    DrawnThenSampled,
 }
 
 /// A row of the frame's textures.
@@ -231,6 +235,12 @@ pub enum TargetResource {
     SceneCopy,
     /// The camera's depth as the scene pass left it, likewise.
     DepthCopy,
+    /// The particles' image ([`crate::frame::ColourTarget::Particles`]):
+    /// `Rgba16Float`, [`precip_model::ParticleResolution::drawn_size`] of the
+    /// target (1 × 1 where particles are drawn at the frame's resolution).
+    ParticleImage,
+    /// Its depth buffer ([`crate::frame::DepthTarget::Particles`]), of its size.
+    ParticleDepth,
 }
 
 /// Bytes of the splat sums of a `width × height` target.
@@ -331,9 +341,9 @@ pub const FRAME_GROUPS: [FrameGroupFill; 4] = [
     },
 ];
 
-/// The groups made for a target's size (the splat kernel's, its resolve's and the
-/// reflections').
-pub const TARGET_GROUPS: [FrameGroupFill; 3] = [
+/// The groups made for a target's size (the splat kernel's, its resolve's, the
+/// reflections', the reduced particles' and their composite's).
+pub const TARGET_GROUPS: [FrameGroupFill; 5] = [
     FrameGroupFill {
         layout: &SPLAT,
         bound: &[
@@ -365,6 +375,26 @@ pub const TARGET_GROUPS: [FrameGroupFill; 3] = [
             (
                 rb::DEPTH_COPY,
                 FrameBound::Target(TargetResource::DepthCopy),
+            ),
+        ],
+    },
+    FrameGroupFill {
+        layout: &PARTICLE_DEPTH,
+        bound: &[(
+            rb::PARTICLE_SCENE_DEPTH,
+            FrameBound::Target(TargetResource::CameraDepth),
+        )],
+    },
+    FrameGroupFill {
+        layout: &PARTICLE_IMAGE,
+        bound: &[
+            (
+                rb::RESOLVED_SUMS,
+                FrameBound::Target(TargetResource::SplatSums),
+            ),
+            (
+                rb::PARTICLE_IMAGE,
+                FrameBound::Target(TargetResource::ParticleImage),
             ),
         ],
     },
@@ -407,6 +437,7 @@ mod tests {
                                 TargetResource::CameraDepth
                                     | TargetResource::SceneCopy
                                     | TargetResource::DepthCopy
+                                    | TargetResource::ParticleImage
                             ),
                     ) | (
                         BindingKind::StorageTextureRgba16Float,

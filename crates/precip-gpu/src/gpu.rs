@@ -125,11 +125,17 @@ pub enum Command<'a, G: Gpu + ?Sized> {
 pub struct Attachments<'a, G: Gpu + ?Sized> {
     /// Its depth texture (its size is the pass's).
     pub depth: &'a G::Texture,
+    /// Its colour target where it is not the frame's: a texture of
+    /// [`TextureUsage::DrawnThenSampled`], of the depth's size, left ready to be
+    /// sampled.
+    pub colour: Option<&'a G::Texture>,
+    /// What a clearing colour target is cleared to (linear RGBA).
+    pub clear_colour: [f32; 4],
     /// What the pass recipe says of them.
     pub recipe: &'static RenderPassRecipe,
     /// Whether a draw of the pass writes depth.
     pub depth_written: bool,
-    /// Whether this is the frame's last pass on the colour target (it leaves the
+    /// Whether this is the frame's last pass on the frame's target (it leaves the
     /// target ready to be read or presented).
     pub colour_last: bool,
 }
@@ -174,8 +180,6 @@ pub struct RecordedPass<'a, G: Gpu + ?Sized> {
 pub struct FrameWork<'a, G: Gpu + ?Sized> {
     /// The passes.
     pub passes: Vec<RecordedPass<'a, G>>,
-    /// The colour a clearing pass clears the target to (linear RGBA).
-    pub clear_colour: [f32; 4],
 }
 
 /// The device calls of a GPU backend.

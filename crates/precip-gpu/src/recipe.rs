@@ -502,6 +502,8 @@ pub const FEATURES: [(&str, &[&str]); 6] = [
             "cull_particles",
             "splat_particles",
             "particles",
+            "particles_reduced",
+            "particles_composite",
         ],
     ),
     ("cover", &["cover_update", "cover_texture"]),
@@ -726,6 +728,17 @@ pub mod render_passes {
     /// target, no depth test (the splat kernel tested each particle), alpha blending;
     /// first in the particles' pass.
     pub const SPLAT_RESOLVE: (&str, Option<&str>) = ("vs_splat_resolve", Some("fs_splat_resolve"));
+    /// Snow sprites into the particles' image (reduced resolution), each fragment's
+    /// opacity scaled by the share of the frame's pixels under it where it stands in
+    /// front of the scene.
+    pub const SNOW_REDUCED: (&str, Option<&str>) = ("vs_snow_reduced", Some("fs_snow_reduced"));
+    /// Rain streaks into the particles' image, likewise.
+    pub const RAIN_REDUCED: (&str, Option<&str>) = ("vs_rain_reduced", Some("fs_rain_reduced"));
+    /// The splat's sums resolved and the particles' image over them, over the frame:
+    /// one triangle of 3 vertices covering the target, the image filtered,
+    /// premultiplied.
+    pub const PARTICLES_COMPOSITE: (&str, Option<&str>) =
+        ("vs_particles_composite", Some("fs_particles_composite"));
 }
 
 /// The cover texels into the three filtered textures the surfaces read
@@ -851,6 +864,13 @@ pub mod render_bindings {
     /// Group 2 of the splat kernel: the frame's [`super::FrameDraws`] (the splat
     /// list's count), read-only storage.
     pub const SPLAT_DRAWS: u32 = 6;
+    /// Group 2 of the reduced particles' draws (fragment): the camera's depth
+    /// buffer, the binding [`SPLAT_SCENE_DEPTH`] of the splat kernel's group.
+    pub const PARTICLE_SCENE_DEPTH: u32 = SPLAT_SCENE_DEPTH;
+    /// Group 2 of the composite draw (fragment): the particles' image,
+    /// `texture_2d<f32>` (`Rgba16Float`, premultiplied), read through
+    /// [`COVER_SAMPLER`].
+    pub const PARTICLE_IMAGE: u32 = 7;
     /// Group 3 of the scene's draw: the frame before as its scene pass left it
     /// (`scene_copy` pass), `texture_2d<f32>`, read with `textureLoad` by the water's
     /// reflections.

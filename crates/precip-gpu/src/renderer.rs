@@ -13,12 +13,15 @@
 //! binds comes from `bind_groups::groups_of` and the resources tables; nothing of
 //! it is written per backend.
 
-use precip_model::{BackendError, DrawnCounts, Image, Mirrors, PassTiming, View};
+use precip_model::{
+    BackendError, DrawnCounts, Image, Mirrors, ParticleResolution, PassTiming, View,
+};
 
 use crate::bind_groups::{GroupLayout, RENDER_MATERIAL, groups_of};
 use crate::executor::Simulation;
 use crate::frame::{
-    self, DepthTarget, DrawOf, FRAME_PASSES, FrameDecision, FrameHost, PassWork, frame_plan,
+    self, ColourTarget, DepthTarget, DrawOf, FRAME_PASSES, FrameDecision, FrameHost, PassWork,
+    frame_plan,
 };
 use crate::frame_resources::{
     FRAME_GROUPS, FrameBound, FrameBuffer, FrameGroupFill, FrameTexture, Sampler, TARGET_GROUPS,
@@ -121,8 +124,14 @@ impl<G: Gpu> Drawing<G> {
         find(&self.layouts, &table.name).ok_or_else(|| missing(table.name))
     }
 
-    /// Makes the draws' pipelines for `format`, if not made yet.
-    pub fn prepare(&mut self, gpu: &mut G, format: G::ColourFormat) -> Result<(), BackendError> {
+    /// Makes the draws' pipelines for a frame target of `format` (and the
+    /// particles' image of `particle_format`), if not made yet.
+    pub fn prepare(
+        &mut self,
+        gpu: &mut G,
+        format: G::ColourFormat,
+        particle_format: G::ColourFormat,
+    ) -> Result<(), BackendError> {
         if self.pipelines.iter().any(|(f, _)| *f == format) {
             return Ok(());
         }
@@ -138,7 +147,11 @@ impl<G: Gpu> Drawing<G> {
             let pipeline = self
                 .layouts_of(Program::Render, draw.entry_points.0)
                 .and_then(|layouts| {
-                    gpu.draw_pipeline(draw, recipe, &layouts, recipe.colour.map(|_| format))
+                    let colour = match recipe.colour_target {
+                        ColourTarget::Frame => format,
+                        ColourTarget::Particles => particle_format,
+                    };
+                    gpu.draw_pipeline(draw, recipe, &layouts, recipe.colour.map(|_| colour))
                 });
             match pipeline {
                 Ok(p) => made.push((draw.key(), p)),
@@ -170,18 +183,125 @@ impl<G: Gpu> Drawing<G> {
     }
 }
 
-/// What a target of one size and format adds: the camera's depth buffer, the splat
-/// sums, the copy of the scene and the groups that bind them ([`TARGET_GROUPS`]).
+/// The textures a target of one size and format adds ([`TargetResource`]).
+#[derive(Debug)]
+struct TargetTextures<G: Gpu> {
+    /// The camera's depth buffer.
+    depth: G::Texture,
+    /// The scene's copy, in the format the target copies to (an unused
+    /// `Rgba8UnormSrgb` one where it cannot be copied, so the groups are whole).
+    copy: G::Texture,
+    /// The depth's copy.
+    depth_copy: G::Texture,
+    /// The particles' image and its depth buffer.
+    particles: (G::Texture, G::Texture),
+}
+
+impl<G: Gpu> TargetTextures<G> {
+    /// Those of a `size` target copying to `copy_format`, the particles drawn at
+    /// `particles`; on an error, those made are handed back.
+    fn new(
+        gpu: &mut G,
+        size: (u32, u32),
+        copy_format: TexelFormat,
+        particles: ParticleResolution,
+    ) -> Result<Self, BackendError> {
+        let particle_size = match particles {
+            ParticleResolution::Full => (1, 1),
+            reduced => reduced.drawn_size(size),
+        };
+        let specs = [
+            (
+                "precip depth",
+                size,
+                TexelFormat::Depth32Float,
+                TextureUsage::DepthAttachment,
+            ),
+            (
+                "precip scene copy",
+                size,
+                copy_format,
+                TextureUsage::CopyOfTarget,
+            ),
+            (
+                "precip depth copy",
+                size,
+                TexelFormat::Depth32Float,
+                TextureUsage::CopyOfTarget,
+            ),
+            (
+                "precip particle image",
+                particle_size,
+                TexelFormat::Rgba16Float,
+                TextureUsage::DrawnThenSampled,
+            ),
+            (
+                "precip particle depth",
+                particle_size,
+                TexelFormat::Depth32Float,
+                TextureUsage::DepthAttachment,
+            ),
+        ];
+        let mut made = Vec::with_capacity(specs.len());
+        for (label, size, format, usage) in specs {
+            let desc = TextureDesc {
+                label,
+                size,
+                format,
+                usage,
+                contents: None,
+            };
+            match gpu.create_texture(&desc) {
+                Ok(t) => made.push(t),
+                Err(e) => {
+                    for t in made {
+                        gpu.destroy_texture(t);
+                    }
+                    return Err(e);
+                }
+            }
+        }
+        let mut made = made.into_iter();
+        match (
+            made.next(),
+            made.next(),
+            made.next(),
+            made.next(),
+            made.next(),
+        ) {
+            (Some(depth), Some(copy), Some(depth_copy), Some(image), Some(image_depth)) => {
+                Ok(Self {
+                    depth,
+                    copy,
+                    depth_copy,
+                    particles: (image, image_depth),
+                })
+            }
+            _ => Err(missing("a target texture")),
+        }
+    }
+
+    fn destroy(self, gpu: &mut G) {
+        for t in [
+            self.depth,
+            self.copy,
+            self.depth_copy,
+            self.particles.0,
+            self.particles.1,
+        ] {
+            gpu.destroy_texture(t);
+        }
+    }
+}
+
+/// What a target of one size and format adds: its textures, the splat sums and
+/// the groups that bind them ([`TARGET_GROUPS`]).
 #[derive(Debug)]
 struct TargetState<G: Gpu> {
     size: (u32, u32),
-    depth: G::Texture,
+    copy_format: TexelFormat,
+    textures: TargetTextures<G>,
     sums: G::Buffer,
-    /// The scene's copy, in the format the target copies to (an unused
-    /// `Rgba8UnormSrgb` one where it cannot be copied, so the groups are whole).
-    copy: (TexelFormat, G::Texture),
-    /// The depth's copy.
-    depth_copy: G::Texture,
     groups: Vec<(&'static str, G::BindGroup)>,
 }
 
@@ -190,21 +310,13 @@ impl<G: Gpu> TargetState<G> {
         for (_, g) in self.groups {
             gpu.destroy_bind_group(g);
         }
-        gpu.destroy_texture(self.depth);
+        self.textures.destroy(gpu);
         gpu.destroy_buffer(self.sums);
-        gpu.destroy_texture(self.copy.1);
-        gpu.destroy_texture(self.depth_copy);
     }
 }
 
-/// The target's resources for [`TARGET_GROUPS`]: depth, splat sums, scene copy,
-/// depth copy.
-type TargetBound<'a, G> = (
-    &'a <G as Gpu>::Texture,
-    &'a <G as Gpu>::Buffer,
-    &'a <G as Gpu>::Texture,
-    &'a <G as Gpu>::Texture,
-);
+/// The target's resources for [`TARGET_GROUPS`]: its textures and the splat sums.
+type TargetBound<'a, G> = (&'a TargetTextures<G>, &'a <G as Gpu>::Buffer);
 
 /// What drawing holds for one configuration.
 #[derive(Debug)]
@@ -228,6 +340,8 @@ pub struct FrameState<G: Gpu> {
     history: Option<glam::Mat4>,
     /// Which water mirrors the scene.
     mirrors: Mirrors,
+    /// The resolution rain and snow are drawn at.
+    particle_resolution: ParticleResolution,
 }
 
 /// What a frame group's entries resolve against.
@@ -252,17 +366,20 @@ impl<'a, G: Gpu> Bindable<'a, G> {
             FrameBound::Sampler(s) => BindingResource::Sampler(
                 find(&state.samplers, &s).ok_or_else(|| missing("a sampler"))?,
             ),
-            FrameBound::Target(TargetResource::CameraDepth) => {
-                BindingResource::Texture(self.target.ok_or_else(|| missing("the depth buffer"))?.0)
-            }
-            FrameBound::Target(TargetResource::SplatSums) => {
-                BindingResource::Buffer(self.target.ok_or_else(|| missing("the splat sums"))?.1)
-            }
-            FrameBound::Target(TargetResource::SceneCopy) => {
-                BindingResource::Texture(self.target.ok_or_else(|| missing("the scene copy"))?.2)
-            }
-            FrameBound::Target(TargetResource::DepthCopy) => {
-                BindingResource::Texture(self.target.ok_or_else(|| missing("the depth copy"))?.3)
+            FrameBound::Target(resource) => {
+                let (textures, sums) = self.target.ok_or_else(|| missing("the target"))?;
+                match resource {
+                    TargetResource::CameraDepth => BindingResource::Texture(&textures.depth),
+                    TargetResource::SplatSums => BindingResource::Buffer(sums),
+                    TargetResource::SceneCopy => BindingResource::Texture(&textures.copy),
+                    TargetResource::DepthCopy => BindingResource::Texture(&textures.depth_copy),
+                    TargetResource::ParticleImage => {
+                        BindingResource::Texture(&textures.particles.0)
+                    }
+                    TargetResource::ParticleDepth => {
+                        BindingResource::Texture(&textures.particles.1)
+                    }
+                }
             }
         })
     }
@@ -325,6 +442,7 @@ impl<G: Gpu> FrameState<G> {
             ran: [false; FRAME_PASSES.len()],
             history: None,
             mirrors: setup.render.mirrors,
+            particle_resolution: setup.render.particle_resolution,
         };
         match made.fill(gpu, drawing, sim) {
             Ok(()) => Ok(made),
@@ -443,20 +561,14 @@ impl<G: Gpu> FrameState<G> {
         if self
             .target
             .as_ref()
-            .is_some_and(|t| t.size == size && t.copy.0 == copy_format)
+            .is_some_and(|t| t.size == size && t.copy_format == copy_format)
         {
             return Ok(());
         }
         if let Some(old) = self.target.take() {
             old.destroy(gpu);
         }
-        let depth = gpu.create_texture(&TextureDesc {
-            label: "precip depth",
-            size,
-            format: TexelFormat::Depth32Float,
-            usage: TextureUsage::DepthAttachment,
-            contents: None,
-        })?;
+        let textures = TargetTextures::new(gpu, size, copy_format, self.particle_resolution)?;
         let bytes = splat_sums_bytes(size);
         // Zero at first: the resolve zeroes what it reads after that.
         let zeros = vec![0u8; bytes as usize];
@@ -468,40 +580,14 @@ impl<G: Gpu> FrameState<G> {
         ) {
             Ok(s) => s,
             Err(e) => {
-                gpu.destroy_texture(depth);
-                return Err(e);
-            }
-        };
-        let copy = |gpu: &mut G, label, format| {
-            gpu.create_texture(&TextureDesc {
-                label,
-                size,
-                format,
-                usage: TextureUsage::CopyOfTarget,
-                contents: None,
-            })
-        };
-        let copies = copy(gpu, "precip scene copy", copy_format).and_then(|scene| {
-            match copy(gpu, "precip depth copy", TexelFormat::Depth32Float) {
-                Ok(d) => Ok((scene, d)),
-                Err(e) => {
-                    gpu.destroy_texture(scene);
-                    Err(e)
-                }
-            }
-        });
-        let (scene_copy, depth_copy) = match copies {
-            Ok(c) => c,
-            Err(e) => {
-                gpu.destroy_texture(depth);
-                gpu.destroy_buffer(sums);
+                textures.destroy(gpu);
                 return Err(e);
             }
         };
         let groups = Bindable {
             state: &*self,
             sim,
-            target: Some((&depth, &sums, &scene_copy, &depth_copy)),
+            target: Some((&textures, &sums)),
         }
         .groups(gpu, drawing, &TARGET_GROUPS);
         self.history = None;
@@ -509,19 +595,16 @@ impl<G: Gpu> FrameState<G> {
             Ok(groups) => {
                 self.target = Some(TargetState {
                     size,
-                    depth,
+                    copy_format,
+                    textures,
                     sums,
-                    copy: (copy_format, scene_copy),
-                    depth_copy,
                     groups,
                 });
                 Ok(())
             }
             Err(e) => {
-                gpu.destroy_texture(depth);
+                textures.destroy(gpu);
                 gpu.destroy_buffer(sums);
-                gpu.destroy_texture(scene_copy);
-                gpu.destroy_texture(depth_copy);
                 Err(e)
             }
         }
@@ -586,7 +669,17 @@ impl<G: Gpu> FrameState<G> {
             (None, None) => return Err(missing("the offscreen image")),
         };
         let format = gpu.colour_format(target);
-        drawing.prepare(gpu, format)?;
+        let particle_format = {
+            let image = &self
+                .target
+                .as_ref()
+                .ok_or_else(|| missing("the target"))?
+                .textures
+                .particles
+                .0;
+            gpu.colour_format(Target::Texture(image))
+        };
+        drawing.prepare(gpu, format, particle_format)?;
         let offset = u32::try_from(offset).map_err(|_| missing("a frame block below 4 GiB"))?;
         let offsets = [offset; 2];
         let work = self.record(drawing, format, &decision, &offsets, view, sim)?;
@@ -637,9 +730,17 @@ impl<G: Gpu> FrameState<G> {
                 .as_ref()
                 .map_or(0.0, |s| s.detail_distance_m(view)),
         );
-        let last_colour = FRAME_PASSES
-            .iter()
-            .rposition(|p| matches!(p.work, PassWork::Render(r) if r.colour.is_some()));
+        // The last pass that runs and draws into the frame's target leaves it ready
+        // to be read or presented.
+        let last_colour = frame_plan(decision.conditions)
+            .filter(|p| {
+                p.runs
+                    && matches!(p.pass.work, PassWork::Render(r)
+                        if r.colour.is_some() && r.colour_target == ColourTarget::Frame)
+            })
+            .map(|p| p.index)
+            .last();
+        let sky = decision.sky_colour;
         // Binds each of `tables` at its index (a material group is bound per mesh).
         let bind = |commands: &mut Vec<Command<'a, G>>,
                     tables: &[GroupLayout]|
@@ -699,19 +800,29 @@ impl<G: Gpu> FrameState<G> {
                             }
                         }
                     }
+                    let textures = &target.textures;
                     PassKind::Render(Attachments {
                         depth: match recipe.depth {
                             DepthTarget::ShadowMap => shadow_map,
-                            DepthTarget::Camera => &target.depth,
+                            DepthTarget::Camera => &textures.depth,
+                            DepthTarget::Particles => &textures.particles.1,
+                        },
+                        colour: match recipe.colour_target {
+                            ColourTarget::Frame => None,
+                            ColourTarget::Particles => Some(&textures.particles.0),
+                        },
+                        clear_colour: match recipe.colour_target {
+                            ColourTarget::Frame => [sky.x, sky.y, sky.z, 1.0],
+                            ColourTarget::Particles => [0.0; 4],
                         },
                         recipe,
                         depth_written: recipe.draws.iter().any(|d| d.depth_write),
-                        colour_last: last_colour == Some(planned.index as usize),
+                        colour_last: last_colour == Some(planned.index),
                     })
                 }
                 PassWork::CopyTarget => PassKind::CopyTarget {
-                    colour: &target.copy.1,
-                    depth: (&target.depth, &target.depth_copy),
+                    colour: &target.textures.copy,
+                    depth: (&target.textures.depth, &target.textures.depth_copy),
                 },
             };
             passes.push(RecordedPass {
@@ -721,11 +832,7 @@ impl<G: Gpu> FrameState<G> {
                 commands,
             });
         }
-        let sky = decision.sky_colour;
-        Ok(FrameWork {
-            passes,
-            clear_colour: [sky.x, sky.y, sky.z, 1.0],
-        })
+        Ok(FrameWork { passes })
     }
 
     /// The offscreen image of the last frame drawn into it.

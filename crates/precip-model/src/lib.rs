@@ -53,7 +53,7 @@ pub use backend::{
     substeps,
 };
 pub use cpu::CpuBackend;
-pub use drawing::render::{Mirrors, RenderSettings};
+pub use drawing::render::{Mirrors, ParticleResolution, Quality, RenderSettings};
 pub use particles::emitter::{CameraVolume, WorldEmitter};
 pub use particles::ground::GroundMap;
 pub use particles::particle::{Particle, ParticleKind, ParticleSource};

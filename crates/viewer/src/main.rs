@@ -122,11 +122,23 @@ struct RunArgs {
     /// Distance in focus, m.
     #[arg(long, default_value_t = 10.0)]
     focus: f32,
-    /// Which water mirrors the scene (not only the sky): all of it on a GPU and the
-    /// water bodies only on a CPU rasteriser such as lavapipe (auto), the water
-    /// bodies only, or every puddle too.
-    #[arg(long, value_enum, default_value_t = MirrorsName::Auto)]
-    mirrors: MirrorsName,
+    /// Which water mirrors the scene (not only the sky), over what --quality says
+    /// (auto, except at low: the water bodies): all of it on a GPU and the water
+    /// bodies only on a CPU rasteriser such as lavapipe (auto), the water bodies
+    /// only, or every puddle too.
+    #[arg(long, value_enum)]
+    mirrors: Option<MirrorsName>,
+    /// How much the look may cost: high draws everything at the frame's resolution;
+    /// medium draws rain and snow at half of it; low at a quarter, with a smaller
+    /// shadow map and only the water bodies mirroring the scene. The same weather,
+    /// density and light at every level.
+    #[arg(long, value_enum, default_value_t = QualityName::High)]
+    quality: QualityName,
+    /// The resolution rain and snow are drawn at, against the frame's (the scene is
+    /// always drawn at the frame's), over what --quality says: half or a quarter of
+    /// its side; what is smaller than a sprite there is splatted at the frame's.
+    #[arg(long, value_enum)]
+    particle_resolution: Option<ParticleResolutionName>,
     /// Headless: render this many frames into --out instead of opening a window.
     #[arg(long)]
     frames: Option<u32>,
@@ -340,11 +352,25 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     if let Some(shift) = args.channel_shift {
         setup.camera.lens_shift = shift;
     }
-    setup.render.mirrors = match args.mirrors {
-        MirrorsName::Auto => precip_model::Mirrors::Auto,
-        MirrorsName::WaterBodies => precip_model::Mirrors::WaterBodies,
-        MirrorsName::AllWater => precip_model::Mirrors::AllWater,
-    };
+    setup.render = setup.render.at_quality(match args.quality {
+        QualityName::Low => precip_model::Quality::Low,
+        QualityName::Medium => precip_model::Quality::Medium,
+        QualityName::High => precip_model::Quality::High,
+    });
+    if let Some(mirrors) = args.mirrors {
+        setup.render.mirrors = match mirrors {
+            MirrorsName::Auto => precip_model::Mirrors::Auto,
+            MirrorsName::WaterBodies => precip_model::Mirrors::WaterBodies,
+            MirrorsName::AllWater => precip_model::Mirrors::AllWater,
+        };
+    }
+    if let Some(resolution) = args.particle_resolution {
+        setup.render.particle_resolution = match resolution {
+            ParticleResolutionName::Full => precip_model::ParticleResolution::Full,
+            ParticleResolutionName::Half => precip_model::ParticleResolution::Half,
+            ParticleResolutionName::Quarter => precip_model::ParticleResolution::Quarter,
+        };
+    }
     setup.camera.lens = precip_model::Lens {
         exposure_s: args.shutter,
         f_number: args.f_number,
@@ -539,6 +565,29 @@ enum MirrorsName {
     WaterBodies,
     /// The water bodies and every puddle.
     AllWater,
+}
+
+/// `--quality`: `precip_model::Quality`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum QualityName {
+    /// Particles at a quarter of the frame's resolution, a smaller shadow map, only
+    /// the water bodies mirroring.
+    Low,
+    /// Particles at half the frame's resolution.
+    Medium,
+    /// Everything at the frame's resolution.
+    High,
+}
+
+/// `--particle-resolution`: `precip_model::ParticleResolution`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum ParticleResolutionName {
+    /// The frame's.
+    Full,
+    /// Half the frame's width and height.
+    Half,
+    /// A quarter of the frame's width and height.
+    Quarter,
 }
 
 fn main() -> ExitCode {

@@ -88,6 +88,7 @@ proptest! {
         (x, y, z) in (-14.0f32..14.0, 1.5f32..9.0, 8.0f32..16.0),
         yaw in -0.5f32..0.5,
         culling in any::<bool>(),
+        resolution in 0usize..3,
     ) {
         let (Some(mut vk), Some(mut wgpu)) = (vk("vk_and_wgpu_draw_the_same_frames"), wgpu()) else {
             return Ok(());
@@ -95,6 +96,11 @@ proptest! {
         let kind = if rain { PrecipitationKind::Rain } else { PrecipitationKind::WetSnow };
         let mut setup = house(seed, kind, wind_mps, count);
         setup.render.view_cone_culling = culling;
+        setup.render.particle_resolution = [
+            precip_model::ParticleResolution::Full,
+            precip_model::ParticleResolution::Half,
+            precip_model::ParticleResolution::Quarter,
+        ][resolution];
         let position = Vec3::new(x, y, z);
         let camera = Camera {
             position_m: position,
@@ -240,30 +246,39 @@ fn timings_name_every_pass_of_a_frame() {
     let Some(mut vk) = vk("timings_name_every_pass_of_a_frame") else {
         return;
     };
-    let setup = house(2, PrecipitationKind::DrySnow, 1.0, 2_000);
-    vk.configure(&setup).expect("valid");
-    vk.step(0.05).expect("valid step");
-    vk.render(&View {
-        camera: setup.camera,
-        width_px: 64,
-        height_px: 48,
-    })
-    .expect("renders");
-    let timings = vk.timings().expect("timings");
-    if timings.source == precip_model::TimingSource::Unavailable {
-        eprintln!("no timestamps on this device");
-        return;
-    }
-    for pass in ["step_particles"]
-        .into_iter()
-        .chain(precip_gpu::recipe::TIMED_RENDER_PASSES)
-    {
-        let t = timings
-            .passes
-            .iter()
-            .find(|p| p.pass == pass)
-            .unwrap_or_else(|| panic!("no timing for {pass}: {timings:?}"));
-        assert!(t.milliseconds.is_finite() && t.milliseconds >= 0.0);
+    let mut setup = house(2, PrecipitationKind::DrySnow, 1.0, 2_000);
+    for resolution in [
+        precip_model::ParticleResolution::Full,
+        precip_model::ParticleResolution::Quarter,
+    ] {
+        setup.render.particle_resolution = resolution;
+        vk.configure(&setup).expect("valid");
+        vk.step(0.05).expect("valid step");
+        vk.render(&View {
+            camera: setup.camera,
+            width_px: 64,
+            height_px: 48,
+        })
+        .expect("renders");
+        let timings = vk.timings().expect("timings");
+        if timings.source == precip_model::TimingSource::Unavailable {
+            eprintln!("no timestamps on this device");
+            return;
+        }
+        // The particles are drawn one way or the other.
+        let not_run: &[&str] = if resolution == precip_model::ParticleResolution::Full {
+            &["particles_reduced", "particles_composite"]
+        } else {
+            &["particles"]
+        };
+        for pass in ["step_particles"]
+            .into_iter()
+            .chain(precip_gpu::recipe::TIMED_RENDER_PASSES)
+        {
+            let t = timings.passes.iter().find(|p| p.pass == pass);
+            assert_eq!(t.is_none(), not_run.contains(&pass), "{pass}: {timings:?}");
+            assert!(t.is_none_or(|t| t.milliseconds.is_finite() && t.milliseconds >= 0.0));
+        }
     }
     let _: fn(bool) -> Result<VkBackend, BackendError> = VkBackend::new;
 }

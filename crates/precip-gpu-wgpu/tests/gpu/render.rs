@@ -535,20 +535,41 @@ fn bad_views_and_scenes_are_typed_errors() {
 fn timings_name_every_pass_of_a_frame() {
     let (setup, view) = snow_column();
     for (name, mut gpu) in common::gpu_backends("timings_name_every_pass_of_a_frame") {
-        common::run(&mut gpu, &setup, 1, 0.05);
-        gpu.render(&view).expect("renders");
-        let timings = gpu.timings().expect("timings");
-        if timings.source == precip_model::TimingSource::Unavailable {
-            eprintln!("{name}: no timestamps on this adapter");
-            continue;
-        }
-        for pass in precip_gpu::recipe::TIMED_RENDER_PASSES {
-            let t = timings
-                .passes
-                .iter()
-                .find(|p| p.pass == pass)
-                .unwrap_or_else(|| panic!("{name}: no timing for {pass}: {timings:?}"));
-            assert!(t.milliseconds.is_finite() && t.milliseconds >= 0.0);
+        for reduced in [false, true] {
+            let mut setup = setup.clone();
+            if reduced {
+                setup.render.particle_resolution = precip_model::ParticleResolution::Half;
+            }
+            common::run(&mut gpu, &setup, 1, 0.05);
+            gpu.render(&view).expect("renders");
+            let timings = gpu.timings().expect("timings");
+            if timings.source == precip_model::TimingSource::Unavailable {
+                eprintln!("{name}: no timestamps on this adapter");
+                continue;
+            }
+            // The particles are drawn one way or the other.
+            let skipped: &[&str] = if reduced {
+                &["particles"]
+            } else {
+                &["particles_reduced", "particles_composite"]
+            };
+            for pass in precip_gpu::recipe::TIMED_RENDER_PASSES
+                .into_iter()
+                .filter(|p| !skipped.contains(p))
+            {
+                let t = timings
+                    .passes
+                    .iter()
+                    .find(|p| p.pass == pass)
+                    .unwrap_or_else(|| panic!("{name}: no timing for {pass}: {timings:?}"));
+                assert!(t.milliseconds.is_finite() && t.milliseconds >= 0.0);
+            }
+            for pass in skipped {
+                assert!(
+                    timings.passes.iter().all(|p| p.pass != *pass),
+                    "{name}: {pass} did not run"
+                );
+            }
         }
     }
 }
@@ -690,6 +711,95 @@ fn splatted_far_snow_matches_the_all_sprite_frame() {
             tile_difference <= 2.0,
             "{name}: tiles differ by {tile_difference}/255 on average"
         );
+    }
+}
+
+/// Snow from near to far drawn at half and at a quarter of the frame's resolution
+/// (`ParticleResolution`), seen from outside the snow and from inside it: the
+/// particles' image, laid over the frame, brings the same light as drawing them at
+/// the frame's — the mean light above the sky within 5 % (or half a level of 255),
+/// 16×16-pixel tiles within 2/255 of each other on average — with fewer sprites
+/// (what is under the sprites' minimum size in drawn pixels is splatted at the
+/// frame's resolution, with the light the frame's sprite would have had).
+#[test]
+fn particles_drawn_at_a_reduced_resolution_bring_the_same_light() {
+    use precip_model::ParticleResolution;
+    let mut setup = Setup::over_flat_ground(400.0, 64, 40.0, 60_000);
+    setup.world_emitter = setup.world_emitter.map(|mut e| {
+        e.emitter = WorldEmitter::horizontal(Vec3::new(0.0, 40.0, 0.0), 160.0, 160.0, 40.0);
+        e
+    });
+    dark_sky(&mut setup);
+    setup.render.sizing.snow_scale = 30.0;
+    let name_of = "particles_drawn_at_a_reduced_resolution_bring_the_same_light";
+    for (name, mut gpu) in common::gpu_backends(name_of) {
+        // Outside the snow, most of it far and splatted; inside it, among sprites.
+        for (place, z_m) in [("outside", 60.0), ("inside", 0.0)] {
+            let camera = Camera {
+                position_m: Vec3::new(0.0, 20.0, z_m),
+                forward: Vec3::new(0.0, -0.05, -1.0),
+                ..Camera::default()
+            };
+            setup.camera = camera;
+            let view = view(camera, 256, 160);
+            let mut images = Vec::new();
+            let mut drawn = Vec::new();
+            for resolution in [
+                ParticleResolution::Full,
+                ParticleResolution::Half,
+                ParticleResolution::Quarter,
+            ] {
+                setup.render.particle_resolution = resolution;
+                common::run(&mut gpu, &setup, 3, 0.05);
+                gpu.render(&view).expect("renders");
+                images.push(gpu.read_image().expect("an image"));
+                drawn.push(gpu.drawn().expect("counts").expect("a drawing backend"));
+            }
+            keep(&images[0], &format!("snow_{place}_at_full_resolution"));
+            keep(&images[1], &format!("snow_{place}_at_half_resolution"));
+            keep(&images[2], &format!("snow_{place}_at_a_quarter_resolution"));
+            let sky = light(&images[0], 0, 0);
+            let above_sky = |image| {
+                let tiles = block_means(image, 16);
+                tiles.iter().sum::<f32>() / tiles.len() as f32 - sky
+            };
+            let full = above_sky(&images[0]);
+            assert!(full > 0.5, "{name}: the snow shows ({full})");
+            for (reduced, (image, counts)) in ["half", "quarter"]
+                .into_iter()
+                .zip(images[1..].iter().zip(&drawn[1..]))
+            {
+                let light_there = above_sky(image);
+                let (ta, tb) = (block_means(&images[0], 16), block_means(image, 16));
+                let tiles =
+                    ta.iter().zip(&tb).map(|(x, y)| (x - y).abs()).sum::<f32>() / ta.len() as f32;
+                eprintln!(
+                    "{name}, {place}: light above the sky: full {full:.3}, {reduced} \
+                 {light_there:.3}; mean tile difference {tiles:.3}/255; drawn {:?} against {:?}",
+                    counts, drawn[0]
+                );
+                // Inside, a hundred near sprites carry most of the light, each
+                // rasterised on its own grid: within half a level of 255 there.
+                assert!(
+                    (light_there - full).abs() <= (0.05 * full).max(0.5),
+                    "{name}, {place}: {reduced} {light_there}, full {full}"
+                );
+                assert!(
+                    tiles <= 2.0,
+                    "{name}: {reduced}: tiles differ by {tiles}/255"
+                );
+                assert_eq!(
+                    counts.total(),
+                    drawn[0].total(),
+                    "{name}: the same particles"
+                );
+                assert!(
+                    counts.sprites < drawn[0].sprites,
+                    "{name}: {reduced}: fewer sprites ({counts:?} against {:?})",
+                    drawn[0]
+                );
+            }
+        }
     }
 }
 

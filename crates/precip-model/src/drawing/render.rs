@@ -37,6 +37,58 @@ pub enum Mirrors {
     AllWater,
 }
 
+/// The resolution rain and snow are drawn at, against the frame's (the scene is
+/// always drawn at the frame's). Reduced, the sprites and streaks are drawn into an
+/// image of a half or a quarter of the frame's side, each of their pixels tested
+/// against the scene's depth at several of the frame's pixels it covers (the share
+/// in front of the scene scales its opacity), and that image is laid over the frame
+/// (filtered); what is smaller than `sizing.min_px` drawn pixels goes to the splat,
+/// at the frame's resolution. The particles' fragments cost a quarter or a
+/// sixteenth; thin streaks come out softer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ParticleResolution {
+    /// The frame's.
+    #[default]
+    Full,
+    /// Half the frame's width and height.
+    Half,
+    /// A quarter of the frame's width and height.
+    Quarter,
+}
+
+impl ParticleResolution {
+    /// Frame pixels per drawn pixel, along each side.
+    #[must_use]
+    pub const fn factor(self) -> u32 {
+        match self {
+            Self::Full => 1,
+            Self::Half => 2,
+            Self::Quarter => 4,
+        }
+    }
+
+    /// The size particles are drawn at for a `size` frame (rounded up).
+    #[must_use]
+    pub const fn drawn_size(self, (width, height): (u32, u32)) -> (u32, u32) {
+        let f = self.factor();
+        (width.div_ceil(f), height.div_ceil(f))
+    }
+}
+
+/// How much of a frame's cost the look may take: each level trades the same
+/// physical picture (what falls, how densely, with what light) for detail.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Quality {
+    /// Particles at a quarter of the frame's resolution, a 1024-texel shadow map,
+    /// only the water bodies mirroring the scene.
+    Low,
+    /// Particles at half the frame's resolution.
+    Medium,
+    /// Everything at the frame's resolution (the defaults).
+    #[default]
+    High,
+}
+
 /// The look of a frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RenderSettings {
@@ -73,6 +125,8 @@ pub struct RenderSettings {
     pub water_body_depth_m: f32,
     /// Which water mirrors the scene.
     pub mirrors: Mirrors,
+    /// The resolution rain and snow are drawn at.
+    pub particle_resolution: ParticleResolution,
 }
 
 impl Default for RenderSettings {
@@ -100,6 +154,7 @@ impl Default for RenderSettings {
             max_scene_triangles: 2_000_000,
             water_body_depth_m: 1.5,
             mirrors: Mirrors::Auto,
+            particle_resolution: ParticleResolution::Full,
         }
     }
 }
@@ -109,6 +164,29 @@ fn bad(field: &'static str, problem: String) -> BackendError {
 }
 
 impl RenderSettings {
+    /// These settings at `quality`: its particle resolution, shadow map and mirrors
+    /// (the rest kept).
+    #[must_use]
+    pub fn at_quality(self, quality: Quality) -> Self {
+        let high = Self::default();
+        match quality {
+            Quality::High => Self {
+                particle_resolution: ParticleResolution::Full,
+                ..self
+            },
+            Quality::Medium => Self {
+                particle_resolution: ParticleResolution::Half,
+                ..self
+            },
+            Quality::Low => Self {
+                particle_resolution: ParticleResolution::Quarter,
+                shadow_map_px: self.shadow_map_px.min(high.shadow_map_px / 2),
+                mirrors: Mirrors::WaterBodies,
+                ..self
+            },
+        }
+    }
+
     /// Checks every field.
     pub fn validate(&self) -> Result<(), BackendError> {
         let sun = self.to_sun.normalize_or_zero();
@@ -211,7 +289,8 @@ pub struct RenderParams {
     pub light: Vec4,
     /// Shadow colour, shadow density, attenuation λ, shadow-map texel size (uv).
     pub shadow: Vec4,
-    /// Snow scale, min px, min opacity, the lens's exposure s.
+    /// Snow scale, min px (of the frame: `sizing.min_px` drawn pixels), min opacity,
+    /// the lens's exposure s.
     pub sizing: Vec4,
     /// Rain opacity, displacement on (1/0), the cover's depletion exponent, mask edge.
     pub cover_look: Vec4,
@@ -239,7 +318,8 @@ pub struct RenderParams {
     pub camera_box_centre_m: Vec4,
     /// The camera volume's half extent, m; w: its multiplicity.
     pub camera_box_half_m: Vec4,
-    /// The lens: aperture m, focus distance m, 0, 0 ([`crate::backend::camera::Lens`]).
+    /// The lens: aperture m, focus distance m ([`crate::backend::camera::Lens`]);
+    /// frame pixels per particle pixel ([`ParticleResolution::factor`]), 0.
     pub lens: Vec4,
     /// Clip → world of the camera (the sky's rays).
     pub inverse_view_proj: Mat4,
@@ -429,8 +509,12 @@ impl RenderParams {
             ),
             sizing: Vec4::new(
                 s.sizing.snow_scale,
-                s.sizing.min_px,
-                s.sizing.min_opacity,
+                // In drawn pixels: a sprite or streak is at least `min_px` of the
+                // particles' image, whatever its resolution (below, it is splatted).
+                s.sizing.min_px * s.particle_resolution.factor() as f32,
+                // The enlarged sprite's least ink kept in the frame's pixels: over
+                // factor² of them a drawn pixel.
+                s.sizing.min_opacity / (s.particle_resolution.factor().pow(2)) as f32,
                 f.view.camera.lens.exposure_s,
             ),
             cover_look: Vec4::new(
@@ -486,7 +570,7 @@ impl RenderParams {
                     .lens
                     .aperture_m(f.view.camera.vertical_fov_rad),
                 f.view.camera.lens.focus_distance_m,
-                0.0,
+                s.particle_resolution.factor() as f32,
                 0.0,
             ),
             inverse_view_proj: view_projection(camera, aspect).inverse(),
@@ -498,6 +582,48 @@ impl RenderParams {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn each_quality_level_sets_only_its_knobs() {
+        let mine = RenderSettings {
+            shadow_map_px: 4096,
+            rain_opacity: 0.7,
+            mirrors: Mirrors::AllWater,
+            ..RenderSettings::default()
+        };
+        let high = mine.at_quality(Quality::High);
+        assert_eq!(high, mine);
+        let medium = mine.at_quality(Quality::Medium);
+        assert_eq!(medium.particle_resolution, ParticleResolution::Half);
+        assert_eq!(
+            RenderSettings {
+                particle_resolution: ParticleResolution::Full,
+                ..medium
+            },
+            mine
+        );
+        let low = mine.at_quality(Quality::Low);
+        assert_eq!(low.particle_resolution, ParticleResolution::Quarter);
+        assert_eq!(
+            (low.shadow_map_px, low.mirrors),
+            (1024, Mirrors::WaterBodies)
+        );
+        assert_eq!(
+            RenderSettings {
+                particle_resolution: ParticleResolution::Full,
+                shadow_map_px: 4096,
+                mirrors: Mirrors::AllWater,
+                ..low
+            },
+            mine,
+            "the look's other settings are kept"
+        );
+        assert!(low.validate().is_ok());
+        assert_eq!(
+            ParticleResolution::Quarter.drawn_size((1281, 720)),
+            (321, 180)
+        );
+    }
 
     #[test]
     fn the_camera_matrix_puts_the_view_direction_at_the_centre() {

@@ -354,6 +354,55 @@ fn optics_prints_every_band_and_the_mor_and_refuses_an_unphysical_weather() {
 }
 
 #[test]
+fn the_quality_levels_draw_the_particles_at_their_resolutions() {
+    if !gpu_or_skip("the_quality_levels_draw_the_particles_at_their_resolutions") {
+        return;
+    }
+    for (args, reduced) in [
+        (&["--quality", "high"][..], false),
+        (&["--quality", "low"][..], true),
+        (
+            &["--quality", "low", "--particle-resolution", "full"][..],
+            false,
+        ),
+        (&["--particle-resolution", "half"][..], true),
+    ] {
+        let dir = temp_dir("quality");
+        let out = precip()
+            .args(["--frames", "12", "--size", "64x36", "--particles", "5000"])
+            .args(args)
+            .arg("--out")
+            .arg(&dir)
+            .env_remove("DISPLAY")
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .expect("runs");
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let timings = text
+            .lines()
+            .find(|l| l.starts_with("GPU ms"))
+            .unwrap_or_else(|| panic!("{args:?}: no timings in {text}"));
+        assert_eq!(
+            timings.contains("particles_reduced") && timings.contains("particles_composite"),
+            reduced,
+            "{args:?}: {timings}"
+        );
+        assert_eq!(
+            timings.contains(", particles "),
+            !reduced,
+            "{args:?}: {timings}"
+        );
+        assert!(dir.join("frame_0011.png").exists(), "{args:?}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+#[test]
 fn a_headless_run_with_lidar_writes_a_point_cloud_beside_each_frame() {
     if !gpu_or_skip("a_headless_run_with_lidar_writes_a_point_cloud_beside_each_frame") {
         return;
