@@ -69,10 +69,57 @@ fn splat_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
     }
 }
 
-// Adds particle `i`'s ink at its pixels.
+// Adds particle `i`'s ink along the streak it draws during the exposure (sizing.w):
+// a drop's from its centre back along its fall, tapering to the tail as its
+// tetrahedron does; a flake's across its centre, evenly, as its swept sprite. A
+// sample every two pixels of the streak (at most eight), each spreading its share
+// bilinearly over the four nearest pixels, depth-tested there; a streak under two
+// pixels is one sample at the centre.
 fn splat_particle(i: u32) {
     let p = particles[i];
-    let clip = params.view_proj * vec4<f32>(p.position_m, 1.0);
+    let camera = params.camera_m_cone_cos.xyz;
+    // Drawn or not by its pool's multiplicity, but with its own ink only where it is
+    // sub-pixel in the frame: what it stands for beyond itself is already in the
+    // haze, whose extinction is the whole air's (precip_model::drawing::multiplicity).
+    let look = splat_look(p, distance(p.position_m, camera), resolved_weight(i, p));
+    let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
+    var from_m = p.position_m;
+    var to_m = p.position_m;
+    let is_rain = kind == KIND_RAIN;
+    if (is_rain) {
+        to_m = p.position_m - normalize_or_zero(p.velocity_mps) * params.sizing.w * length(p.velocity_mps);
+    } else {
+        let n = normalize_or_zero(camera - p.position_m);
+        let sweep = params.sizing.w * (p.velocity_mps - n * dot(n, p.velocity_mps));
+        from_m = p.position_m - 0.5 * sweep;
+        to_m = p.position_m + 0.5 * sweep;
+    }
+    let size = vec2<f32>(textureDimensions(scene_depth));
+    let ends = array<vec4<f32>, 2>(
+        params.view_proj * vec4<f32>(from_m, 1.0),
+        params.view_proj * vec4<f32>(to_m, 1.0),
+    );
+    var length_px = 0.0;
+    if (ends[0].w > 0.0 && ends[1].w > 0.0) {
+        length_px = distance(ends[0].xy / ends[0].w * size, ends[1].xy / ends[1].w * size) * 0.5;
+    }
+    let samples = clamp(u32(ceil(0.5 * length_px)), 1u, 8u);
+    for (var k = 0u; k < samples; k += 1u) {
+        var t = 0.5;
+        var share = 1.0;
+        if (samples > 1u) {
+            t = (f32(k) + 0.5) / f32(samples);
+            // The drop's streak tapers from its head to its tail: shares 2(1 − t)/n.
+            share = select(1.0, 2.0 * (1.0 - t), is_rain) / f32(samples);
+        }
+        splat_at(mix(from_m, to_m, t), vec4<f32>(look.rgb, look.a * share));
+    }
+}
+
+// Adds ink `look.a` of colour `look.rgb` at world point `position_m`: its four
+// nearest pixels by bilinear weights, where it is in front of the scene.
+fn splat_at(position_m: vec3<f32>, look: vec4<f32>) {
+    let clip = params.view_proj * vec4<f32>(position_m, 1.0);
     if (!(clip.w > 0.0)) {
         return;
     }
@@ -88,10 +135,6 @@ fn splat_particle(i: u32) {
     }
     let base = vec2<i32>(floor(at));
     let f = at - floor(at);
-    // Drawn or not by its pool's multiplicity, but with its own ink only where it is
-    // sub-pixel in the frame: what it stands for beyond itself is already in the
-    // haze, whose extinction is the whole air's (precip_model::drawing::multiplicity).
-    let look = splat_look(p, distance(p.position_m, params.camera_m_cone_cos.xyz), resolved_weight(i, p));
     for (var k = 0; k < 4; k++) {
         let xy = base + vec2<i32>(k & 1, k >> 1u);
         if (any(xy < vec2<i32>(0)) || any(xy >= size)) {
