@@ -193,6 +193,20 @@ impl<G: Gpu> Backend for GpuBackend<G> {
         self.draw(view, None)
     }
 
+    fn set_particle_resolution(
+        &mut self,
+        resolution: precip_model::ParticleResolution,
+    ) -> Result<(), BackendError> {
+        let state = self.state.as_mut().ok_or(BackendError::NotConfigured {
+            operation: "set_particle_resolution",
+        })?;
+        state.sim.set_particle_resolution(resolution);
+        if let Some(frame) = state.frame.as_mut() {
+            frame.set_particle_resolution(resolution);
+        }
+        Ok(())
+    }
+
     fn weather(&self) -> Result<Weather, BackendError> {
         Ok(*configured(self.state.as_ref(), "weather")?
             .sim
@@ -316,6 +330,12 @@ macro_rules! delegate_backend {
                 view: &::precip_model::View,
             ) -> Result<(), ::precip_model::BackendError> {
                 ::precip_model::Backend::render(&mut self.0, view)
+            }
+            fn set_particle_resolution(
+                &mut self,
+                resolution: ::precip_model::ParticleResolution,
+            ) -> Result<(), ::precip_model::BackendError> {
+                self.0.set_particle_resolution(resolution)
             }
             fn weather(&self) -> Result<::precip_model::Weather, ::precip_model::BackendError> {
                 self.0.weather()

@@ -426,6 +426,11 @@ impl<G: Gpu> Simulation<G> {
         self.host.set_camera(camera)
     }
 
+    /// Draws rain and snow at `resolution` from the next frame on.
+    pub fn set_particle_resolution(&mut self, resolution: precip_model::ParticleResolution) {
+        self.host.set_particle_resolution(resolution);
+    }
+
     /// A step of `dt_s` (validated): every sub-step's blocks uploaded into the next
     /// slot's ring, the sub-steps' kernels submitted at once (timed where the device
     /// can), and the host's clock moved.

@@ -300,6 +300,7 @@ impl<G: Gpu> TargetTextures<G> {
 struct TargetState<G: Gpu> {
     size: (u32, u32),
     copy_format: TexelFormat,
+    particle_resolution: ParticleResolution,
     textures: TargetTextures<G>,
     sums: G::Buffer,
     groups: Vec<(&'static str, G::BindGroup)>,
@@ -500,6 +501,12 @@ impl<G: Gpu> FrameState<G> {
         Ok(())
     }
 
+    /// Draws rain and snow at `resolution` from the next frame on (its image made
+    /// again then).
+    pub fn set_particle_resolution(&mut self, resolution: ParticleResolution) {
+        self.particle_resolution = resolution;
+    }
+
     /// Hands everything back to `gpu`.
     pub fn destroy(self, gpu: &mut G) {
         if let Some(t) = self.target {
@@ -558,11 +565,11 @@ impl<G: Gpu> FrameState<G> {
         size: (u32, u32),
         copy_format: TexelFormat,
     ) -> Result<(), BackendError> {
-        if self
-            .target
-            .as_ref()
-            .is_some_and(|t| t.size == size && t.copy_format == copy_format)
-        {
+        if self.target.as_ref().is_some_and(|t| {
+            t.size == size
+                && t.copy_format == copy_format
+                && t.particle_resolution == self.particle_resolution
+        }) {
             return Ok(());
         }
         if let Some(old) = self.target.take() {
@@ -596,6 +603,7 @@ impl<G: Gpu> FrameState<G> {
                 self.target = Some(TargetState {
                     size,
                     copy_format,
+                    particle_resolution: self.particle_resolution,
                     textures,
                     sums,
                     groups,

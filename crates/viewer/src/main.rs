@@ -130,10 +130,14 @@ struct RunArgs {
     mirrors: Option<MirrorsName>,
     /// How much the look may cost: high draws everything at the frame's resolution;
     /// medium draws rain and snow at half of it; low at a quarter, with a smaller
-    /// shadow map and only the water bodies mirroring the scene. The same weather,
-    /// density and light at every level.
+    /// shadow map and only the water bodies mirroring the scene; auto, in a window,
+    /// holds --target-fps by the particles' resolution (headless: as high). The
+    /// same weather, density and light at every level.
     #[arg(long, value_enum, default_value_t = QualityName::High)]
     quality: QualityName,
+    /// The frame rate `--quality auto` holds in a window.
+    #[arg(long, default_value_t = 30.0)]
+    target_fps: f32,
     /// The resolution rain and snow are drawn at, against the frame's (the scene is
     /// always drawn at the frame's), over what --quality says: half or a quarter of
     /// its side; what is smaller than a sprite there is splatted at the frame's.
@@ -355,7 +359,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     setup.render = setup.render.at_quality(match args.quality {
         QualityName::Low => precip_model::Quality::Low,
         QualityName::Medium => precip_model::Quality::Medium,
-        QualityName::High => precip_model::Quality::High,
+        QualityName::High | QualityName::Auto => precip_model::Quality::High,
     });
     if let Some(mirrors) = args.mirrors {
         setup.render.mirrors = match mirrors {
@@ -395,12 +399,20 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
                 }
                 None => None,
             };
+            if !(args.target_fps.is_finite() && args.target_fps > 0.0) {
+                anyhow::bail!(
+                    "--target-fps {} must be a positive number of frames a second",
+                    args.target_fps
+                );
+            }
+            let hold_fps = (args.quality == QualityName::Auto).then_some(args.target_fps);
             match run_window(
                 setup.clone(),
                 args.size,
                 args.backend,
                 args.quit_after,
                 cigi,
+                hold_fps,
             ) {
                 Ok(shown) => {
                     if shown.frames > 0 {
@@ -577,6 +589,9 @@ enum QualityName {
     Medium,
     /// Everything at the frame's resolution.
     High,
+    /// In a window, the particles' resolution follows the frame rate
+    /// (`--target-fps`); headless, as high.
+    Auto,
 }
 
 /// `--particle-resolution`: `precip_model::ParticleResolution`.

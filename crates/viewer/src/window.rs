@@ -26,6 +26,7 @@ use winit::window::{Window, WindowId};
 use crate::BackendName;
 use crate::fly_camera::FlyCamera;
 use crate::frame_stats::FrameStats;
+use crate::resolution_control::ResolutionControl;
 use crate::snow_summary::SnowSummary;
 use crate::water_summary::WaterSummary;
 
@@ -144,6 +145,8 @@ struct Running {
     water: Option<WaterSummary>,
     /// The snow, sampled with the water.
     snow: Option<SnowSummary>,
+    /// `--quality auto`: the frame-rate control over the particles' resolution.
+    control: Option<ResolutionControl>,
 }
 
 struct App {
@@ -160,6 +163,8 @@ struct App {
     validation: Option<crate::backends::ValidationLog>,
     /// A CIGI host's messages, read before each frame.
     cigi: Option<precip_cigi::CigiReceiver>,
+    /// `--quality auto`: the frame rate to hold.
+    hold_fps: Option<f32>,
 }
 
 /// Simulated seconds a displayed frame may step: one sub-step
@@ -178,8 +183,12 @@ fn title(r: &Running) -> String {
         .filter(SnowSummary::blowing)
         .map(|s| format!(" — BLOWING SNOW over {:.0} m²", s.blowing_area_m2))
         .unwrap_or_default();
+    let resolution = r
+        .control
+        .map(|c| format!(" (drawn at {:?} resolution)", c.resolution()))
+        .unwrap_or_default();
     format!(
-        "precip — {:.1} ms/frame, sim ×{:.2}, {} particles — {:?} {:.1} mm/h, {:.1} °C, wind {:.1} m/s, cover ×{:.0}{blowing}{water}",
+        "precip — {:.1} ms/frame, sim ×{:.2}, {} particles{resolution} — {:?} {:.1} mm/h, {:.1} °C, wind {:.1} m/s, cover ×{:.0}{blowing}{water}",
         r.frame_ms,
         r.sim_rate,
         r.particles,
@@ -236,6 +245,9 @@ impl App {
             stats: FrameStats::default(),
             water: None,
             snow: None,
+            control: self
+                .hold_fps
+                .map(|fps| ResolutionControl::new(fps, self.setup.render.particle_resolution)),
         })
     }
 }
@@ -386,6 +398,13 @@ impl Running {
         backend.step(sim_dt)?;
         self.presenter.present(&view)?;
         self.stats.record(elapsed_ms, self.presenter.backend())?;
+        if let Some(next) = self
+            .control
+            .as_mut()
+            .and_then(|c| c.after_frame(self.frame_ms))
+        {
+            self.presenter.backend().set_particle_resolution(next)?;
+        }
         self.frames += 1;
         if self.frames.is_multiple_of(WaterSummary::EVERY_FRAMES) {
             let cover = self.presenter.backend().read_cover()?;
@@ -532,13 +551,15 @@ pub struct WindowSummary {
 
 /// Opens a window of `size` over `setup`, drawing with `backend`, and runs until it
 /// is closed (or, with `quit_after`, after that many frames).
-/// With `cigi`, a host's weather takes effect at the next frame.
+/// With `cigi`, a host's weather takes effect at the next frame; with `hold_fps`,
+/// the particles' resolution follows the frame rate ([`ResolutionControl`]).
 pub fn run_window(
     setup: Setup,
     size: (u32, u32),
     backend: BackendName,
     quit_after: Option<u32>,
     cigi: Option<precip_cigi::CigiReceiver>,
+    hold_fps: Option<f32>,
 ) -> Result<WindowSummary, WindowError> {
     if !display_available() {
         return Err(WindowError::NoDisplay(
@@ -556,6 +577,7 @@ pub fn run_window(
         shown: None,
         validation: None,
         cigi,
+        hold_fps,
     };
     event_loop
         .run_app(&mut app)

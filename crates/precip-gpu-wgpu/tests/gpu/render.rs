@@ -768,6 +768,57 @@ fn splatted_snow_streaks_over_the_exposure() {
     }
 }
 
+/// The particles' resolution changed between frames (`set_particle_resolution`, what
+/// `--quality auto` turns) draws the frame configuring it would: the same image
+/// within 1/255 as a configuration at that resolution, through a full → half →
+/// quarter → full sequence; not configured, it is refused.
+#[test]
+fn the_particles_resolution_changes_between_frames_as_configured() {
+    use precip_model::ParticleResolution;
+    let (mut setup, view) = snow_column();
+    // Sprites, not only splats, at every resolution.
+    setup.render.sizing.snow_scale = 100.0;
+    let view = View {
+        width_px: 256,
+        height_px: 160,
+        ..view
+    };
+    let name_of = "the_particles_resolution_changes_between_frames_as_configured";
+    for (name, mut gpu) in common::gpu_backends(name_of) {
+        let sequence = [
+            ParticleResolution::Half,
+            ParticleResolution::Quarter,
+            ParticleResolution::Full,
+            ParticleResolution::Half,
+        ];
+        let mut turned = Vec::new();
+        common::run(&mut gpu, &setup, 2, 0.05);
+        gpu.render(&view).expect("renders");
+        for resolution in sequence {
+            gpu.set_particle_resolution(resolution).expect("configured");
+            gpu.render(&view).expect("renders");
+            turned.push(gpu.read_image().expect("an image"));
+        }
+        for (resolution, image) in sequence.into_iter().zip(&turned) {
+            let mut configured = setup.clone();
+            configured.render.particle_resolution = resolution;
+            common::run(&mut gpu, &configured, 2, 0.05);
+            gpu.render(&view).expect("renders");
+            let expected = gpu.read_image().expect("an image");
+            let worst = max_difference(image, &expected);
+            let drawn = gpu.drawn().expect("counts").expect("a drawing backend");
+            eprintln!("{name}: {resolution:?}: worst {worst}/255, drawn {drawn:?}");
+            assert!(drawn.sprites > 50, "{name}: {resolution:?}: {drawn:?}");
+            assert!(worst <= 1, "{name}: {resolution:?}: {worst}/255");
+        }
+        let mut fresh = WgpuBackend::with_device(gpu.device().clone()).expect("a backend");
+        assert!(matches!(
+            fresh.set_particle_resolution(ParticleResolution::Half),
+            Err(BackendError::NotConfigured { .. })
+        ));
+    }
+}
+
 /// Snow from near to far drawn at half and at a quarter of the frame's resolution
 /// (`ParticleResolution`), seen from outside the snow and from inside it: the
 /// particles' image, laid over the frame, brings the same light as drawing them at

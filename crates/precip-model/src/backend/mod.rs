@@ -128,6 +128,16 @@ pub trait Backend {
     fn step(&mut self, dt_s: f32) -> Result<(), BackendError>;
     /// Draws the scene, cover and precipitation for `view`.
     fn render(&mut self, view: &View) -> Result<(), BackendError>;
+    /// Draws rain and snow at `resolution` of the frame's from the next frame on
+    /// (`RenderSettings::particle_resolution` changed without re-configuring: what a
+    /// frame-rate controller turns). A backend that does not draw ignores it.
+    fn set_particle_resolution(
+        &mut self,
+        resolution: crate::ParticleResolution,
+    ) -> Result<(), BackendError> {
+        let _ = resolution;
+        Ok(())
+    }
     /// The weather in effect (the setup's, or the last `set_weather`'s).
     fn weather(&self) -> Result<Weather, BackendError>;
     /// Casts LiDAR beams against the particles and the scene's ground map as they

@@ -120,6 +120,11 @@ impl HostState {
         Ok(())
     }
 
+    /// Draws rain and snow at `resolution` from the next frame's block on.
+    pub fn set_particle_resolution(&mut self, resolution: crate::ParticleResolution) {
+        self.setup.render.particle_resolution = resolution;
+    }
+
     /// The blocks of a step of `dt_s` (validated), from the clock now; the clock
     /// moves only with [`HostState::advance`], once the backend has the step under way.
     pub fn substeps(&self, dt_s: f32) -> Result<SubSteps, BackendError> {
