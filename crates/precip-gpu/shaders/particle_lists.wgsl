@@ -101,5 +101,14 @@ fn drawn_as(i: u32) -> u32 {
     if (counts.w != 0u && !drawn_big_enough(p)) {
         return DRAWN_SPLAT;
     }
+    // At a reduced resolution a drop narrower than the image's minimum would be
+    // widened there into a soft blob: it is splatted along its streak at the
+    // frame's resolution instead (render_splat.wgsl).
+    if (counts.w != 0u && kind == KIND_RAIN && params.lens.z > 1.0) {
+        let distance_m = distance(p.position_m, camera);
+        if (sub_pixel(p.diameter_m, distance_m, params.view_dir_pixel_angle.w, params.sizing.y)) {
+            return DRAWN_SPLAT;
+        }
+    }
     return select(DRAWN_SNOW, DRAWN_RAIN, kind == KIND_RAIN);
 }

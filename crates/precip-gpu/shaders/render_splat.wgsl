@@ -103,7 +103,10 @@ fn splat_particle(i: u32) {
     if (ends[0].w > 0.0 && ends[1].w > 0.0) {
         length_px = distance(ends[0].xy / ends[0].w * size, ends[1].xy / ends[1].w * size) * 0.5;
     }
-    let samples = clamp(u32(ceil(0.5 * length_px)), 1u, 8u);
+    // A flake's streak a sample every 2 px (at most 8); a drop's, thin and long,
+    // every pixel (at most 32).
+    let spacing_px = select(2.0, 1.0, is_rain);
+    let samples = clamp(u32(ceil(length_px / spacing_px)), 1u, select(8u, 32u, is_rain));
     for (var k = 0u; k < samples; k += 1u) {
         var t = 0.5;
         var share = 1.0;

@@ -269,59 +269,68 @@ fn rain_frames_show_streaks_along_the_velocity() {
     };
     let view = view(camera, 256, 192);
     for (name, mut gpu) in common::gpu_backends("rain_frames_show_streaks_along_the_velocity") {
-        let mut angles = Vec::new();
-        for wind_x in [0.0, 9.0] {
-            let mut setup = Setup::over_flat_ground(60.0, 16, 40.0, 1);
-            setup.world_emitter = None;
-            setup.camera_volume = Some(CameraVolumeSetup {
-                volume: CameraVolume {
-                    half_extent_m: Vec3::splat(6.0),
-                    ..CameraVolume::default()
-                },
-                particle_count: 3_000,
-            });
-            setup.camera = camera;
-            setup.weather.kind = PrecipitationKind::Rain;
-            setup.weather.air_temperature_c = 10.0;
-            setup.weather.intensity_mm_per_h = 10.0;
-            setup.weather.wind = WindField {
-                mean_wind_mps: Vec3::new(wind_x, 0.0, 0.0),
-                ..WindField::calm()
-            };
-            dark_sky(&mut setup);
-            // Let the drops reach the wind's speed.
-            common::run(&mut gpu, &setup, 30, 0.1);
-            gpu.render(&view).expect("renders");
-            let image = gpu.read_image().expect("an image");
-            keep(&image, &format!("rain_wind_{wind_x}"));
-            let particles = gpu.read_particles().expect("particles");
-            // Weighted by each drop's ink, its projected area: big drops (falling
-            // fastest, so steepest in the wind) show most.
-            let (sum, weight) = particles.iter().fold((Vec3::ZERO, 0.0), |(a, w), p| {
-                let ink = p.diameter_m * p.diameter_m;
-                (a + p.velocity_mps * ink, w + ink)
-            });
-            let mean_velocity = sum / weight;
-            // The velocity's direction on screen at the image centre.
-            let ahead = camera.position_m + camera.forward * 5.0;
-            let a = project(&view, ahead).expect("in front");
-            let b = project(&view, ahead + mean_velocity * 0.1).expect("in front");
-            let d = b - a;
-            let expected = d.y.atan2(d.x).to_degrees().rem_euclid(180.0);
-            let got = streak_angle_deg(&image);
-            let error = (got - expected).abs();
-            let error = error.min(180.0 - error);
+        // At a reduced resolution the drops are splatted along their streaks at the
+        // frame's (precip_model::ParticleResolution): the same directions.
+        for resolution in [
+            precip_model::ParticleResolution::Full,
+            precip_model::ParticleResolution::Half,
+            precip_model::ParticleResolution::Quarter,
+        ] {
+            let mut angles = Vec::new();
+            for wind_x in [0.0, 9.0] {
+                let mut setup = Setup::over_flat_ground(60.0, 16, 40.0, 1);
+                setup.world_emitter = None;
+                setup.camera_volume = Some(CameraVolumeSetup {
+                    volume: CameraVolume {
+                        half_extent_m: Vec3::splat(6.0),
+                        ..CameraVolume::default()
+                    },
+                    particle_count: 3_000,
+                });
+                setup.camera = camera;
+                setup.weather.kind = PrecipitationKind::Rain;
+                setup.weather.air_temperature_c = 10.0;
+                setup.weather.intensity_mm_per_h = 10.0;
+                setup.weather.wind = WindField {
+                    mean_wind_mps: Vec3::new(wind_x, 0.0, 0.0),
+                    ..WindField::calm()
+                };
+                dark_sky(&mut setup);
+                setup.render.particle_resolution = resolution;
+                // Let the drops reach the wind's speed.
+                common::run(&mut gpu, &setup, 30, 0.1);
+                gpu.render(&view).expect("renders");
+                let image = gpu.read_image().expect("an image");
+                keep(&image, &format!("rain_wind_{wind_x}_{resolution:?}"));
+                let particles = gpu.read_particles().expect("particles");
+                // Weighted by each drop's ink, its projected area: big drops (falling
+                // fastest, so steepest in the wind) show most.
+                let (sum, weight) = particles.iter().fold((Vec3::ZERO, 0.0), |(a, w), p| {
+                    let ink = p.diameter_m * p.diameter_m;
+                    (a + p.velocity_mps * ink, w + ink)
+                });
+                let mean_velocity = sum / weight;
+                // The velocity's direction on screen at the image centre.
+                let ahead = camera.position_m + camera.forward * 5.0;
+                let a = project(&view, ahead).expect("in front");
+                let b = project(&view, ahead + mean_velocity * 0.1).expect("in front");
+                let d = b - a;
+                let expected = d.y.atan2(d.x).to_degrees().rem_euclid(180.0);
+                let got = streak_angle_deg(&image);
+                let error = (got - expected).abs();
+                let error = error.min(180.0 - error);
+                assert!(
+                    error < 12.0,
+                    "{name}, {resolution:?}: wind {wind_x} m/s: streaks at {got:.1}°, velocity at {expected:.1}° on screen"
+                );
+                angles.push(got);
+            }
+            let apart = (angles[0] - angles[1]).abs();
             assert!(
-                error < 12.0,
-                "{name}: wind {wind_x} m/s: streaks at {got:.1}°, velocity at {expected:.1}° on screen"
+                apart.min(180.0 - apart) > 20.0,
+                "{name}, {resolution:?}: wind should tilt the streaks: {angles:?}"
             );
-            angles.push(got);
         }
-        let apart = (angles[0] - angles[1]).abs();
-        assert!(
-            apart.min(180.0 - apart) > 20.0,
-            "{name}: wind should tilt the streaks: {angles:?}"
-        );
     }
 }
 
