@@ -54,6 +54,7 @@ pub use backend::{
 };
 pub use cpu::CpuBackend;
 pub use drawing::render::{Mirrors, ParticleResolution, Quality, RenderSettings};
+pub use drawing::resolution_control::ResolutionControl;
 pub use particles::emitter::{CameraVolume, WorldEmitter};
 pub use particles::ground::GroundMap;
 pub use particles::particle::{Particle, ParticleKind, ParticleSource};

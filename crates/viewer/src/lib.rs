@@ -21,7 +21,6 @@ pub mod meshopt_views;
 pub mod node_graph;
 pub mod optics_report;
 pub mod presets;
-pub mod resolution_control;
 pub mod scenario;
 pub mod scene_setup;
 pub mod snow_summary;

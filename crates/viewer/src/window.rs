@@ -16,7 +16,9 @@ use std::time::Instant;
 use glam::Vec3;
 use precip_gpu_vk::VkBackend;
 use precip_gpu_wgpu::WgpuBackend;
-use precip_model::{Backend, BackendError, PrecipitationKind, Setup, View, Weather};
+use precip_model::{
+    Backend, BackendError, PrecipitationKind, ResolutionControl, Setup, View, Weather,
+};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
@@ -26,7 +28,6 @@ use winit::window::{Window, WindowId};
 use crate::BackendName;
 use crate::fly_camera::FlyCamera;
 use crate::frame_stats::FrameStats;
-use crate::resolution_control::ResolutionControl;
 use crate::snow_summary::SnowSummary;
 use crate::water_summary::WaterSummary;
 

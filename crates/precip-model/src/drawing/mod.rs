@@ -16,6 +16,7 @@
 mod drop_environment;
 pub mod multiplicity;
 pub mod render;
+pub mod resolution_control;
 pub mod shadow_cache;
 pub mod shadow_fit;
 pub mod water_look;

@@ -1,14 +1,17 @@
-//! `--quality auto`: holds a frame rate in the window by the resolution rain and
-//! snow are drawn at (`precip_model::ParticleResolution`), never by drawing fewer
-//! of them. After each frame the smoothed frame time is compared with the target:
-//! over it by a tenth, the particles go to the next coarser resolution; under 60 %
-//! of it, to the next finer one. After a change the smoothed time is given
+//! [`ResolutionControl`]: holds a frame rate by the resolution rain and snow are
+//! drawn at ([`ParticleResolution`]), never by drawing fewer of them. The viewer's
+//! `--quality auto` runs it; any application can: feed it each frame's smoothed
+//! time and pass what it returns to [`crate::Backend::set_particle_resolution`].
+//!
+//! After each frame the smoothed frame time is compared with the target: over it
+//! by a tenth, the particles go to the next coarser resolution; under 60 % of it,
+//! to the next finer one. After a change the smoothed time is given
 //! [`ResolutionControl::SETTLE_FRAMES`] frames to follow before the next decision,
 //! so the control does not swing on its own echo. Where even a quarter cannot hold
 //! the target (a CPU rasteriser), it stays at a quarter: the scene is drawn at the
 //! frame's resolution whatever the level.
 
-use precip_model::ParticleResolution;
+use crate::drawing::render::ParticleResolution;
 
 /// The frame-rate control over the particles' resolution.
 #[derive(Debug, Clone, Copy, PartialEq)]
