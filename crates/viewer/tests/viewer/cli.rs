@@ -353,6 +353,27 @@ fn optics_prints_every_band_and_the_mor_and_refuses_an_unphysical_weather() {
     );
 }
 
+/// A headless run of `frames` 64×36 frames of 5 000 particles with `args`, into
+/// `dir`, without a display.
+fn small_headless_run(frames: u32, args: &[&str], dir: &std::path::Path) -> std::process::Output {
+    precip()
+        .args([
+            "--frames",
+            &frames.to_string(),
+            "--size",
+            "64x36",
+            "--particles",
+            "5000",
+        ])
+        .args(args)
+        .arg("--out")
+        .arg(dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("runs")
+}
+
 #[test]
 fn the_quality_levels_draw_the_particles_at_their_resolutions() {
     if !gpu_or_skip("the_quality_levels_draw_the_particles_at_their_resolutions") {
@@ -368,15 +389,7 @@ fn the_quality_levels_draw_the_particles_at_their_resolutions() {
         (&["--particle-resolution", "half"][..], true),
     ] {
         let dir = temp_dir("quality");
-        let out = precip()
-            .args(["--frames", "12", "--size", "64x36", "--particles", "5000"])
-            .args(args)
-            .arg("--out")
-            .arg(&dir)
-            .env_remove("DISPLAY")
-            .env_remove("WAYLAND_DISPLAY")
-            .output()
-            .expect("runs");
+        let out = small_headless_run(12, args, &dir);
         let text = String::from_utf8_lossy(&out.stdout);
         assert!(
             out.status.success(),
@@ -408,22 +421,7 @@ fn a_headless_run_with_lidar_writes_a_point_cloud_beside_each_frame() {
         return;
     }
     let dir = temp_dir("lidar");
-    let out = precip()
-        .args([
-            "--frames",
-            "2",
-            "--size",
-            "64x36",
-            "--particles",
-            "5000",
-            "--lidar",
-            "--out",
-        ])
-        .arg(&dir)
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .expect("runs");
+    let out = small_headless_run(2, &["--lidar"], &dir);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
         out.status.success(),
