@@ -32,7 +32,7 @@ fn rotation0_rad(packed: u32) -> vec3<f32> {
 // Particle.flags (Rust: precip_model::particles::particle::flags).
 const FLAG_ROTATION_INCREASING_X: u32 = 1u;
 const FLAG_KIND_SHIFT: u32 = 4u;
-const FLAG_KIND_MASK: u32 = 3u;
+const FLAG_KIND_MASK: u32 = 15u;
 const FLAG_CAMERA_VOLUME: u32 = 256u;
 // Set by step_particles on a particle that landed on the cover grid (its position is
 // then the landing point), read by birth_particles within the same sub-step.

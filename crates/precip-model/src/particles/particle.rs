@@ -23,6 +23,9 @@ impl ParticleKind {
     pub const fn is_snow(self) -> bool {
         matches!(self, Self::DrySnow | Self::WetSnow)
     }
+
+    /// Every kind, in the order of their values.
+    pub const ALL: [Self; 4] = [Self::DrySnow, Self::WetSnow, Self::Rain, Self::Grain];
 }
 
 /// Which volume a particle belongs to.
@@ -38,10 +41,11 @@ pub enum ParticleSource {
 pub mod flags {
     /// Bits 0–2: the rotation offset of axis X/Y/Z is increasing.
     pub const ROTATION_INCREASING_X: u32 = 1 << 0;
-    /// Bits 4–5: [`super::ParticleKind`].
+    /// Bits 4–7: [`super::ParticleKind`] (four taken of sixteen: a new kind, say
+    /// hail, needs no change of layout).
     pub const KIND_SHIFT: u32 = 4;
     /// Mask of the kind bits after shifting.
-    pub const KIND_MASK: u32 = 0b11;
+    pub const KIND_MASK: u32 = 0b1111;
     /// Bit 8: the particle belongs to the camera volume.
     pub const CAMERA_VOLUME: u32 = 1 << 8;
     /// Bit 9: GPU only, between the `step_particles` and `birth_particles` kernels of
@@ -218,12 +222,7 @@ mod tests {
 
     #[test]
     fn flags_round_trip() {
-        for kind in [
-            ParticleKind::DrySnow,
-            ParticleKind::WetSnow,
-            ParticleKind::Rain,
-            ParticleKind::Grain,
-        ] {
+        for kind in ParticleKind::ALL {
             for source in [ParticleSource::WorldEmitter, ParticleSource::CameraVolume] {
                 for bits in 0..8u32 {
                     let inc = [bits & 1 != 0, bits & 2 != 0, bits & 4 != 0];
@@ -239,5 +238,46 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The value of `const NAME: u32 = …u;` in layout.wgsl.
+    fn wgsl_const(name: &str) -> u32 {
+        let layout = include_str!("../../shaders/layout.wgsl");
+        let line = layout
+            .lines()
+            .find(|l| l.starts_with(&format!("const {name}: u32 = ")))
+            .unwrap_or_else(|| panic!("layout.wgsl declares no {name}"));
+        let value = line.rsplit("= ").next().unwrap_or_default();
+        value
+            .trim_end_matches(';')
+            .trim_end_matches('u')
+            .parse()
+            .expect("a u32")
+    }
+
+    #[test]
+    fn the_flag_bits_are_the_wgsl_twins() {
+        assert_eq!(wgsl_const("FLAG_KIND_SHIFT"), flags::KIND_SHIFT);
+        assert_eq!(wgsl_const("FLAG_KIND_MASK"), flags::KIND_MASK);
+        assert_eq!(wgsl_const("FLAG_CAMERA_VOLUME"), flags::CAMERA_VOLUME);
+        assert_eq!(wgsl_const("FLAG_LANDED"), flags::LANDED);
+        assert_eq!(wgsl_const("FLAG_SPLASH"), flags::SPLASH);
+        assert_eq!(
+            wgsl_const("FLAG_ROTATION_INCREASING_X"),
+            flags::ROTATION_INCREASING_X
+        );
+        for (name, kind) in ["KIND_DRY_SNOW", "KIND_WET_SNOW", "KIND_RAIN", "KIND_GRAIN"]
+            .into_iter()
+            .zip(ParticleKind::ALL)
+        {
+            assert_eq!(wgsl_const(name), kind as u32, "{name}");
+        }
+        // The kind's bits lie between the rotation's and the camera volume's.
+        let kind_bits = flags::KIND_MASK << flags::KIND_SHIFT;
+        assert_eq!(kind_bits & (flags::ROTATION_INCREASING_X * 0b111), 0);
+        assert_eq!(
+            kind_bits & (flags::CAMERA_VOLUME | flags::LANDED | flags::SPLASH),
+            0
+        );
     }
 }
