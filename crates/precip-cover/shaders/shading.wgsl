@@ -1,6 +1,7 @@
 // shading.wgsl: the cover as a surface shader sees it. Rust twins:
 // precip_cover::shading::{snow_cover_fraction, accumulated_fraction, value_noise,
-// sub_texel_threshold, melted_fraction, shade_with_masks, settled_grain_cover} and
+// sub_texel_threshold, melted_fraction, shade_with_masks, settled_grain_cover,
+// ground_albedo} and
 // precip_cover::Surface::snow_roughness_m.
 
 // Rust: precip_cover::shading::GRAINS_COVERING_KG_M2.
@@ -111,4 +112,12 @@ fn cover_shading(texel: CoverTexel, mask_g: f32, mask_r: f32, roughness_m: f32, 
         1.0 - wet_darkening * clamp(texel.wetness, 0.0, 1.0),
         texel.depth_mm * 1.0e-3,
     );
+}
+
+// The ground's albedo at a texel as a whole: bare where no snow shows, the snow's
+// (greying with age) over the share its own masks show. Rust:
+// precip_cover::shading::ground_albedo.
+fn ground_albedo(texel: CoverTexel, roughness_m: f32, exponent: f32, edge: f32, albedo_decay_per_day: f32, bare_albedo: f32) -> f32 {
+    let shown = cover_shading(texel, texel.accumulation_mask, texel.melt_mask, roughness_m, exponent, edge, 0.0).snow_alpha;
+    return bare_albedo + (snow_albedo(texel.age_days, albedo_decay_per_day) - bare_albedo) * shown;
 }

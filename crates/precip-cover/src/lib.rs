@@ -54,8 +54,8 @@ pub use params::CoverParams;
 pub use shading::{
     COVER_WARP_WAVELENGTH_TEXELS, CoverShading, GRAINS_COVERING_KG_M2, NEW_SNOW_DENSITY_KG_M3,
     THRESHOLD_NOISE_AMPLITUDE, THRESHOLD_NOISE_WAVELENGTHS_M, accumulated_fraction, cover_warp_m,
-    melted_fraction, settled_grain_cover, shade_texel, shade_with_masks, snow_cover_fraction,
-    sub_texel_threshold, value_noise,
+    ground_albedo, melted_fraction, settled_grain_cover, shade_texel, shade_with_masks,
+    snow_cover_fraction, sub_texel_threshold, value_noise,
 };
 pub use snowpack::{compacted_density, new_snow_density};
 pub use surface::{Surface, SurfaceWater};

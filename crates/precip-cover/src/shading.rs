@@ -210,9 +210,52 @@ pub fn shade_with_masks(
     }
 }
 
+/// The albedo of the ground at a texel as a whole, for light it sends back to the sky
+/// and to falling drops (what a raindrop refracts, `precip_model`'s drop
+/// environment): the bare surface's `bare_albedo` where no snow shows, the snow's
+/// ([`crate::melt::snow_albedo`], greying with age) over the share
+/// [`shade_texel`] shows, `ρ = ρ_bare + (A − ρ_bare)·α`. WGSL twin: `ground_albedo`
+/// (shading.wgsl).
+#[must_use]
+pub fn ground_albedo(texel: &CoverTexel, params: &CoverParams, bare_albedo: f32) -> f32 {
+    let shown = shade_texel(texel, params).snow_alpha;
+    let snow = crate::melt::snow_albedo(texel.age_days, params.albedo_decay_per_day);
+    bare_albedo + (snow - bare_albedo) * shown
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_ground_s_albedo_goes_from_bare_to_the_snow_s_as_snow_covers_it() {
+        let p = CoverParams::default();
+        let bare = CoverTexel {
+            accumulation_mask: 0.5,
+            melt_mask: 0.5,
+            ..CoverTexel::default()
+        };
+        assert!((ground_albedo(&bare, &p, 0.2) - 0.2).abs() < 1e-6);
+        let mut deep = bare;
+        deep.depth_mm = 500.0;
+        deep.swe_mm = 50.0;
+        deep.peak_swe_mm = 50.0;
+        assert!(
+            (ground_albedo(&deep, &p, 0.2) - 0.8).abs() < 1e-4,
+            "fresh snow: 0.8"
+        );
+        deep.age_days = 30.0;
+        let old = ground_albedo(&deep, &p, 0.2);
+        assert!((0.4..0.8).contains(&old), "old snow greys: {old}");
+        // Thin snow at a texel whose threshold it just passes shows in part.
+        let mut thin = bare;
+        thin.accumulation_mask = 0.1;
+        thin.depth_mm = 3.0;
+        thin.swe_mm = 0.3;
+        thin.peak_swe_mm = 0.3;
+        let a = ground_albedo(&thin, &p, 0.2);
+        assert!(a > 0.2 && a < 0.8, "thin snow: {a}");
+    }
 
     #[test]
     fn settled_grains_hide_the_surface_as_their_layer_grows() {

@@ -142,13 +142,13 @@ fn rain_vertex(vertex: u32, instance: u32) -> ParticleVarying {
     var out: ParticleVarying;
     out.clip = params.view_proj * vec4<f32>(v.position_m, 1.0);
     out.uv = vec2<f32>(0.0);
-    // What the drop refracts: the sky and the ground over its field of view (bare
-    // ground: the cover under each drop cost a quarter of the pass on lavapipe).
+    // What the drop refracts: the sky and the ground over its field of view, the
+    // ground's albedo the cover's around the camera (drop_ground, once a frame).
     let view_sin_elevation = (p.position_m.y - camera.y) / max(distance_m, 1.0e-6);
     out.shade = vec4<f32>(
         shadow_lit(p.position_m),
         fog_transmittance(distance_m, params.to_sun_extinction.w),
-        drop_environment_factor(view_sin_elevation, BARE_GROUND_ALBEDO),
+        drop_environment_factor(view_sin_elevation, drop_ground_albedo[0]),
         min(1.0, resolved_weight(i, p) * params.cover_look.x * size.z * near_fade(distance_m)),
     );
     out.normal = v.normal;

@@ -35,6 +35,8 @@ fn frame_pools() -> vec4<u32> {
 @group(0) @binding(7) var cover_sampler: sampler;
 // The water bodies' waves (water_waves.wgsl's buffer, read here as plain words).
 @group(0) @binding(12) var<storage, read> waves_read: array<i32>;
+// The albedo of the ground the drops refract (cover_texture.wgsl's drop_ground).
+@group(0) @binding(15) var<storage, read> drop_ground_albedo: array<f32>;
 // Group 1: light and the flake's opacity.
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(1) var shadow_sampler: sampler_comparison;

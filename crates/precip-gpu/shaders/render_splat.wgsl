@@ -44,7 +44,7 @@ fn splat_look(p: Particle, distance_m: f32, weight: f32) -> vec4<f32> {
         let size = raindrop_sizing(length(p.velocity_mps), p.diameter_m, distance_m, pixel_angle, sizing);
         let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - p.position_m);
         let fog = fog_transmittance(distance_m, params.to_sun_extinction.w);
-        let environment = drop_environment_factor(-to_viewer.y, BARE_GROUND_ALBEDO);
+        let environment = drop_environment_factor(-to_viewer.y, drop_ground_albedo[0]);
         let colour = rain_colour(to_viewer, to_viewer, shadow_lit(p.position_m), fog, environment);
         let opacity = min(1.0, weight * size.z * params.cover_look.x);
         let ink = splat_ink(true, vec3<f32>(size.x, size.y, opacity), distance_m, pixel_angle, 0.0);

@@ -118,6 +118,18 @@ impl<G: Gpu> GpuBackend<G> {
         }
     }
 
+    /// The albedo of the ground the last frame's drops refracted (tests and tools;
+    /// see [`FrameState::drop_ground_albedo`]); `None` before a frame.
+    pub fn read_drop_ground_albedo(&mut self) -> Result<Option<f32>, BackendError> {
+        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
+            operation: "read_drop_ground_albedo",
+        })?;
+        match &state.frame {
+            Some(frame) => frame.drop_ground_albedo(&mut self.gpu),
+            None => Ok(None),
+        }
+    }
+
     fn release_state(&mut self) {
         if let Some(old) = self.state.take() {
             if let Some(frame) = old.frame {

@@ -284,6 +284,7 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
         binding(rb::COVER_C, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::COVER_SAMPLER, FILTERING, Stages::DrawAndCompute),
         binding(rb::WAVES, storage(true), Stages::DrawAndCompute),
+        binding(rb::DROP_GROUND, storage(true), Stages::DrawAndCompute),
     ],
 };
 
@@ -359,11 +360,17 @@ pub const REFLECTIONS: GroupLayout = GroupLayout {
     ],
 };
 
-/// Group 0 of the `cover_texture` kernel.
+/// Group 0 of the `cover_texture` and `drop_ground` kernels.
 pub const COVER_TEXTURE: GroupLayout = GroupLayout {
     name: "precip cover texture",
     bindings: &[
+        binding(
+            rb::PARAMS,
+            uniform(size_of::<RenderParams>(), true),
+            Stages::Compute,
+        ),
         binding(rb::COVER, storage(true), Stages::Compute),
+        binding(rb::DROP_GROUND_OUT, storage(false), Stages::Compute),
         binding(
             rb::COVER_A_OUT,
             BindingKind::StorageTextureRgba16Float,
@@ -427,7 +434,7 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::CullParticles, _) => &[CULL],
         (Program::QueryBeams, _) => &[BEAMS],
         (Program::OpticsSums, _) => &[OPTICS],
-        (Program::Render, "cover_texture") => &[COVER_TEXTURE],
+        (Program::Render, "cover_texture" | "drop_ground") => &[COVER_TEXTURE],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
         (Program::Render, "vs_sky" | "fs_sky") => &[RENDER_FRAME],

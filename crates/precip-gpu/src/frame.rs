@@ -19,8 +19,8 @@ use crate::bind_groups::{GroupLayout, groups_of};
 use crate::executor::Simulation;
 use crate::gpu::Gpu;
 use crate::recipe::{
-    COVER_TEXTURE_PASS, CULL_PASSES, DispatchCounts, FrameDraws, KernelPass, SPLAT_PASS,
-    dispatch_size, render_passes,
+    COVER_TEXTURE_PASS, CULL_PASSES, DROP_GROUND_PASS, DispatchCounts, FrameDraws, KernelPass,
+    SPLAT_PASS, dispatch_size, render_passes,
 };
 use crate::shaders::Program;
 
@@ -350,7 +350,7 @@ const OVER_THE_FRAME: RenderPassRecipe = RenderPassRecipe {
 pub const FRAME_PASSES: [FramePass; 9] = [
     FramePass {
         name: "cover_texture",
-        work: PassWork::Kernels(&[COVER_TEXTURE_PASS]),
+        work: PassWork::Kernels(&[COVER_TEXTURE_PASS, DROP_GROUND_PASS]),
         when: PassWhen::Always,
     },
     FramePass {

@@ -35,6 +35,8 @@ pub enum FrameBuffer {
     DrawnKinds,
     /// [`FrameDraws`]: the two indirect draws and the splat count.
     Draws,
+    /// The albedo of the ground the drops refract (`drop_ground` kernel).
+    DropGround,
 }
 
 /// A row of the frame's buffers.
@@ -52,7 +54,7 @@ pub struct FrameBufferSpec {
 
 /// The frame's buffers for `particle_count` particles.
 #[must_use]
-pub fn frame_buffers(particle_count: u32) -> [FrameBufferSpec; 5] {
+pub fn frame_buffers(particle_count: u32) -> [FrameBufferSpec; 6] {
     let count = u64::from(particle_count);
     let spec = |buffer, label, bytes: u64, usage| FrameBufferSpec {
         buffer,
@@ -90,6 +92,12 @@ pub fn frame_buffers(particle_count: u32) -> [FrameBufferSpec; 5] {
             "precip draws",
             FrameDraws::BYTES,
             BufferUsage::Indirect,
+        ),
+        spec(
+            FrameBuffer::DropGround,
+            "precip drop ground",
+            4,
+            BufferUsage::Storage,
         ),
     ]
 }
@@ -293,6 +301,7 @@ pub const FRAME_GROUPS: [FrameGroupFill; 4] = [
             (rb::COVER_B, FrameBound::Texture(FrameTexture::CoverB)),
             (rb::COVER_C, FrameBound::Texture(FrameTexture::CoverC)),
             (rb::COVER_SAMPLER, FrameBound::Sampler(Sampler::LinearClamp)),
+            (rb::DROP_GROUND, FrameBound::Buffer(FrameBuffer::DropGround)),
         ],
     },
     FrameGroupFill {
@@ -324,7 +333,12 @@ pub const FRAME_GROUPS: [FrameGroupFill; 4] = [
     FrameGroupFill {
         layout: &COVER_TEXTURE,
         bound: &[
+            (rb::PARAMS, FrameBound::Buffer(FrameBuffer::RenderParams)),
             (rb::COVER, FrameBound::Sim(SimBuffer::Cover)),
+            (
+                rb::DROP_GROUND_OUT,
+                FrameBound::Buffer(FrameBuffer::DropGround),
+            ),
             (
                 rb::COVER_A_OUT,
                 FrameBound::StorageTexture(FrameTexture::CoverA),

@@ -506,7 +506,7 @@ pub const FEATURES: [(&str, &[&str]); 6] = [
             "particles_composite",
         ],
     ),
-    ("cover", &["cover_update", "cover_texture"]),
+    ("cover", &["cover_update", "cover_texture", "drop_ground"]),
     (
         "drift",
         &[
@@ -751,6 +751,16 @@ pub const COVER_TEXTURE_PASS: KernelPass = KernelPass {
     when: KernelWhen::Always,
 };
 
+/// The albedo of the ground the drops refract, averaged around the camera over the
+/// cover ([`render_bindings::DROP_GROUND`]): one workgroup, after
+/// [`COVER_TEXTURE_PASS`], before any draw.
+pub const DROP_GROUND_PASS: KernelPass = KernelPass {
+    program: Program::Render,
+    entry_point: "drop_ground",
+    over: DispatchOver::OneWorkgroup,
+    when: KernelWhen::Always,
+};
+
 /// The format of the cover textures (filterable everywhere, a storage format in
 /// WebGPU and Vulkan).
 pub const COVER_TEXTURE_FORMAT_NAME: &str = "Rgba16Float";
@@ -885,6 +895,13 @@ pub mod render_bindings {
     /// Group 0 of the `cover_texture` kernel: [`COVER_C`] as a write-only storage
     /// texture.
     pub const COVER_C_OUT: u32 = 14;
+    /// Group 0: the albedo of the ground the drops refract
+    /// ([`precip_model::drawing::drop_ground_albedo`]), one `f32` the `drop_ground`
+    /// kernel writes each frame, read-only storage.
+    pub const DROP_GROUND: u32 = 15;
+    /// Group 0 of the `cover_texture` and `drop_ground` kernels: [`DROP_GROUND`],
+    /// read-write.
+    pub const DROP_GROUND_OUT: u32 = 16;
 }
 
 /// One input of the `probe_drawing` test kernel (64 bytes). WGSL: `ProbeDrawing`.

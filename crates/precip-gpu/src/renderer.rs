@@ -866,6 +866,21 @@ impl<G: Gpu> FrameState<G> {
         ))
     }
 
+    /// The albedo of the ground the last frame's drops refracted (the `drop_ground`
+    /// kernel's, [`precip_model::drawing::drop_ground_albedo`]); `None` before a
+    /// frame.
+    pub fn drop_ground_albedo(&self, gpu: &mut G) -> Result<Option<f32>, BackendError> {
+        if self.frames_drawn == 0 {
+            return Ok(None);
+        }
+        let buffer = find(&self.buffers, &FrameBuffer::DropGround)
+            .ok_or_else(|| missing("the drops' ground"))?;
+        let bytes = gpu.read_buffer(buffer, 4)?;
+        Ok(bytes
+            .get(..4)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])))
+    }
+
     /// The last frame's time per pass that ran.
     pub fn timings(&self, gpu: &mut G) -> Result<Vec<PassTiming>, BackendError> {
         let Some(ms) = gpu.frame_times_ms()? else {

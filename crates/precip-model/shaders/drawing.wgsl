@@ -242,6 +242,17 @@ fn drop_environment_factor(sin_elevation: f32, ground_albedo: f32) -> f32 {
     return DROP_REFRACTED_SHARE * (shares.x + shares.y * max(ground_albedo, 0.0) * OVERCAST_GROUND_RADIANCE_PER_ALBEDO);
 }
 
+// drop_ground_offset_m (precip_model::drawing::drop_environment): lattice point k of
+// the square around the camera over which the drops' ground is averaged (the
+// drop_ground kernel, cover_texture.wgsl).
+const DROP_GROUND_RADIUS_M: f32 = 20.0;
+const DROP_GROUND_SAMPLES_PER_SIDE: u32 = 16u;
+fn drop_ground_offset_m(k: u32) -> vec2<f32> {
+    let n = DROP_GROUND_SAMPLES_PER_SIDE;
+    let cell = (vec2<f32>(f32(k % n), f32(k / n)) + 0.5) / f32(n);
+    return (cell * 2.0 - 1.0) * DROP_GROUND_RADIUS_M;
+}
+
 // blinn_phong. light = (k_A·I_A, k_D·I_D, k_S·I_S, s); shadow = (sc, density, λ, _).
 fn blinn_phong(light: vec4<f32>, shadow: vec4<f32>, normal: vec3<f32>, to_light: vec3<f32>, to_viewer: vec3<f32>, lit: f32) -> f32 {
     let sh = shadow.y * (1.0 - lit);

@@ -972,6 +972,51 @@ fn the_cover_textures_match_the_cover_texels() {
     }
 }
 
+/// A drop refracts the ground over its lower field: the `drop_ground` kernel gives
+/// every frame the cover's ground albedo around the camera, as
+/// `precip_model::drawing::drop_ground_albedo` computes it from the cover read back
+/// (bare ground 0.2 before the snow; brighter under a day of it).
+#[test]
+fn the_drops_refract_the_cover_around_the_camera() {
+    let (setup, _) = snowed_house();
+    let view = view(setup.camera, 64, 48);
+    for (name, mut gpu) in common::gpu_backends("the_drops_refract_the_cover_around_the_camera") {
+        let mut albedos = Vec::new();
+        for steps in [0, 10] {
+            common::run(&mut gpu, &setup, steps, 0.1);
+            assert_eq!(gpu.read_drop_ground_albedo().expect("reads"), None);
+            gpu.render(&view).expect("renders");
+            let got = gpu
+                .read_drop_ground_albedo()
+                .expect("reads")
+                .expect("a frame wrote it");
+            let cover = gpu.read_cover().expect("the cover");
+            let camera = view.camera.position_m;
+            let want = precip_model::drawing::drop_ground_albedo(
+                &cover,
+                Vec2::new(camera.x, camera.z),
+                &setup.cover.params,
+            );
+            assert!(
+                (got - want).abs() < 1.0e-4,
+                "{name} after {steps} steps: kernel {got}, model {want}"
+            );
+            albedos.push(got);
+        }
+        assert!(
+            (albedos[0] - precip_model::drawing::BARE_GROUND_ALBEDO).abs() < 1.0e-6,
+            "{name}: bare ground {}",
+            albedos[0]
+        );
+        // The grid ends within the radius (bare beyond): 0.4 here.
+        assert!(
+            albedos[1] > albedos[0] + 0.15,
+            "{name}: under a day of snow {}",
+            albedos[1]
+        );
+    }
+}
+
 /// The shadow map is drawn on the first frame and again only when the sun, the
 /// displacement or the snow moved enough (`ShadowCache`): frames in real time under
 /// light snow, with the camera moving, reuse it and look the same as a frame that

@@ -26,8 +26,15 @@
 //! `Y = ψ₀ + sin²α·s·φ₀ − cos α·sin α·cos e·sin φ₀`. Over the cone's solid angle
 //! `Ω = 2π(1 − cos α)` the sky gives `(U + 2Y)/Ω` of `L_h`, the ground
 //! `(1 − U/Ω)·7ρ/3`. WGSL twin: `drop_environment_factor` in `shaders/drawing.wgsl`.
+//!
+//! The ground's albedo `ρ` is the cover's around the camera ([`drop_ground_albedo`]):
+//! over fresh snow (0.8) a drop seen level shows 1.8 times the horizon's radiance,
+//! over grass (0.2) 1.14.
 
 use std::f32::consts::PI;
+
+use glam::Vec2;
+use precip_cover::{CoverGrid, CoverParams, ground_albedo};
 
 /// Half the field of view of a falling drop, rad (165° in all: Garg & Nayar 2007).
 pub const DROP_HALF_FIELD_RAD: f32 = 82.5 * PI / 180.0;
@@ -36,11 +43,59 @@ pub const DROP_HALF_FIELD_RAD: f32 = 82.5 * PI / 180.0;
 /// Nayar 2007: at least 94 % over the field of view, the rest reflected).
 pub const DROP_REFRACTED_SHARE: f32 = 0.94;
 
-/// The albedo of the ground the renderer's drops see (grass 0.2–0.25, soil
-/// 0.1–0.2, asphalt 0.05–0.1). Snow on it is not counted: reading the cover under
-/// every drop cost a quarter of the particle pass on lavapipe. WGSL twin:
-/// `BARE_GROUND_ALBEDO`.
+/// The albedo of bare ground (grass 0.2–0.25, soil 0.1–0.2, asphalt 0.05–0.1) and of
+/// ground off the cover grid. WGSL twin: `BARE_GROUND_ALBEDO`.
 pub const BARE_GROUND_ALBEDO: f32 = 0.2;
+
+/// The radius around the camera over which the ground the drops refract is averaged,
+/// m ([`drop_ground_albedo`]). WGSL twin: `DROP_GROUND_RADIUS_M`.
+pub const DROP_GROUND_RADIUS_M: f32 = 20.0;
+
+/// Samples a side of the square lattice [`drop_ground_albedo`] reads within the
+/// radius (those inside the disk count). WGSL twin: `DROP_GROUND_SAMPLES_PER_SIDE`.
+pub const DROP_GROUND_SAMPLES_PER_SIDE: u32 = 16;
+
+/// Lattice point `k` of [`drop_ground_albedo`] from the camera, m: the centres of
+/// a [`DROP_GROUND_SAMPLES_PER_SIDE`]² grid over the square of half side
+/// [`DROP_GROUND_RADIUS_M`], row by row. WGSL twin: `drop_ground_offset_m`.
+#[must_use]
+pub fn drop_ground_offset_m(k: u32) -> Vec2 {
+    let n = DROP_GROUND_SAMPLES_PER_SIDE;
+    let cell = (Vec2::new((k % n) as f32, (k / n) as f32) + 0.5) / n as f32;
+    (cell * 2.0 - 1.0) * DROP_GROUND_RADIUS_M
+}
+
+/// The albedo of the ground the drops near the camera refract: the mean of the
+/// cover's ground albedo ([`precip_cover::ground_albedo`], bare
+/// [`BARE_GROUND_ALBEDO`]) over the lattice points within [`DROP_GROUND_RADIUS_M`]
+/// of `camera_xz_m`, each at its texel (bare off the grid).
+///
+/// One number for every drop of a frame: the drops that show are within some metres
+/// of the camera, and each refracts the ground over its whole lower field (out to
+/// the horizon), not the point beneath it, so the mean around the camera stands for
+/// what each sees; reading the cover under every drop cost a quarter of the
+/// particle pass on lavapipe. On the GPU the `drop_ground` kernel computes it once
+/// a frame (WGSL: cover_texture.wgsl, summed in another order: equal within
+/// rounding).
+#[must_use]
+pub fn drop_ground_albedo(cover: &CoverGrid, camera_xz_m: Vec2, params: &CoverParams) -> f32 {
+    let n = DROP_GROUND_SAMPLES_PER_SIDE;
+    let (mut sum, mut count) = (0.0f32, 0.0f32);
+    for k in 0..n * n {
+        let offset = drop_ground_offset_m(k);
+        if offset.length_squared() > DROP_GROUND_RADIUS_M * DROP_GROUND_RADIUS_M {
+            continue;
+        }
+        sum += cover
+            .frame
+            .texel_index(camera_xz_m + offset)
+            .map_or(BARE_GROUND_ALBEDO, |i| {
+                ground_albedo(&cover.texels[i], params, BARE_GROUND_ALBEDO)
+            });
+        count += 1.0;
+    }
+    sum / count
+}
 
 /// The radiance of level Lambertian ground of albedo 1 under the CIE overcast sky,
 /// in units of the horizon's radiance: `E/π` with `E = 7π/3·L_h`.
@@ -151,5 +206,54 @@ mod tests {
         assert!(drop_environment_factor(0.0, 0.8) > grass + 0.5);
         assert!(drop_environment_factor(1.0, 0.2) > 2.0);
         assert!((drop_environment_factor(-1.0, 0.2) - 0.94 * 0.2 * 7.0 / 3.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn the_drops_ground_is_the_cover_s_around_the_camera() {
+        use precip_cover::{CoverFeed, GridFrame, generate_threshold_masks};
+        let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(60.0), glam::UVec2::splat(60));
+        let n = frame.texel_count();
+        let masks = generate_threshold_masks(&frame, 7, 4.0);
+        let mut cover = CoverGrid::new(
+            frame,
+            &vec![1.0; n],
+            &masks,
+            &vec![CoverFeed::WeatherRate; n],
+        )
+        .expect("a grid");
+        let params = CoverParams::default();
+        // Bare: the bare albedo wherever the camera stands, on or off the grid.
+        for at in [Vec2::ZERO, Vec2::splat(25.0), Vec2::splat(1_000.0)] {
+            let a = drop_ground_albedo(&cover, at, &params);
+            assert!((a - BARE_GROUND_ALBEDO).abs() < 1e-6, "{at}: {a}");
+        }
+        // Half a metre of fresh snow on the west half of the grid (x < 0).
+        for (i, t) in cover.texels.iter_mut().enumerate() {
+            if frame.texel_centre(i).x < 0.0 {
+                t.depth_mm = 500.0;
+                t.swe_mm = 50.0;
+                t.peak_swe_mm = 50.0;
+            }
+        }
+        let west = drop_ground_albedo(&cover, Vec2::new(-28.0, 0.0), &params);
+        let middle = drop_ground_albedo(&cover, Vec2::ZERO, &params);
+        let east = drop_ground_albedo(&cover, Vec2::new(28.0, 0.0), &params);
+        // From the west edge the disk is half on snow and half off the grid (bare);
+        // from the middle half on snow; from the east edge on bare ground alone.
+        assert!((east - BARE_GROUND_ALBEDO).abs() < 1e-6, "{east}");
+        assert!(
+            (middle - 0.5).abs() < 0.03,
+            "half snow (0.8), half bare: {middle}"
+        );
+        assert!((west - middle).abs() < 0.05, "{west} against {middle}");
+        // A drop seen level shows more light over the snow than over grass.
+        assert!(drop_environment_factor(0.0, middle) > drop_environment_factor(0.0, east) + 0.2);
+        // The lattice is symmetric about the camera and fills the disk.
+        let inside = (0..DROP_GROUND_SAMPLES_PER_SIDE.pow(2))
+            .map(drop_ground_offset_m)
+            .filter(|o| o.length() <= DROP_GROUND_RADIUS_M)
+            .collect::<Vec<_>>();
+        assert!(inside.len() > 190 && inside.len() < 210, "{}", inside.len());
+        assert!(inside.iter().sum::<Vec2>().length() < 1e-3);
     }
 }

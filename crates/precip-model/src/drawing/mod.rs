@@ -24,8 +24,9 @@ pub mod water_look;
 use glam::Vec3;
 
 pub use drop_environment::{
-    BARE_GROUND_ALBEDO, DROP_HALF_FIELD_RAD, DROP_REFRACTED_SHARE,
-    OVERCAST_GROUND_RADIANCE_PER_ALBEDO, drop_environment_factor, drop_field_shares,
+    BARE_GROUND_ALBEDO, DROP_GROUND_RADIUS_M, DROP_GROUND_SAMPLES_PER_SIDE, DROP_HALF_FIELD_RAD,
+    DROP_REFRACTED_SHARE, OVERCAST_GROUND_RADIANCE_PER_ALBEDO, drop_environment_factor,
+    drop_field_shares, drop_ground_albedo, drop_ground_offset_m,
 };
 
 /// The four corners of a camera-facing snow sprite of side `side_m` centred at
