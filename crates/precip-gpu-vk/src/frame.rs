@@ -187,13 +187,21 @@ pub struct PassBegin {
     pub colour: bool,
     /// What its colour is cleared to.
     pub clear_colour: [f32; 4],
+    /// Where it draws, px `(x, y, width, height)` (`None`: everywhere).
+    pub scissor: Option<[u32; 4]>,
 }
 
-/// The viewport of `size`, y flipped (WGSL's clip space, as wgpu-hal).
+/// The viewport of `size`, y flipped (WGSL's clip space, as wgpu-hal), drawing
+/// within `scissor` (`x, y, width, height`, inside `size`) or everywhere.
 ///
 /// # Safety
 /// `cb` is a command buffer of `device` in the recording state.
-unsafe fn viewport(device: &Device, cb: vk::CommandBuffer, (width, height): (u32, u32)) {
+unsafe fn viewport(
+    device: &Device,
+    cb: vk::CommandBuffer,
+    (width, height): (u32, u32),
+    scissor: Option<[u32; 4]>,
+) {
     let viewport = vk::Viewport {
         x: 0.0,
         y: height as f32,
@@ -202,9 +210,16 @@ unsafe fn viewport(device: &Device, cb: vk::CommandBuffer, (width, height): (u32
         min_depth: 0.0,
         max_depth: 1.0,
     };
+    let [x, y, w, h] = scissor.unwrap_or([0, 0, width, height]);
     let scissor = vk::Rect2D {
-        offset: vk::Offset2D { x: 0, y: 0 },
-        extent: vk::Extent2D { width, height },
+        offset: vk::Offset2D {
+            x: x.min(width) as i32,
+            y: y.min(height) as i32,
+        },
+        extent: vk::Extent2D {
+            width: w.min(width - x.min(width)),
+            height: h.min(height - y.min(height)),
+        },
     };
     // SAFETY: the caller guarantees `cb` is recording; negative heights are core
     // since Vulkan 1.1.
@@ -307,7 +322,7 @@ pub unsafe fn record_frame(
                         device
                             .raw
                             .cmd_begin_render_pass(cb, &info, vk::SubpassContents::INLINE);
-                        viewport(device, cb, begin.size);
+                        viewport(device, cb, begin.size, begin.scissor);
                     }
                     (vk::PipelineBindPoint::GRAPHICS, Some(begin))
                 }

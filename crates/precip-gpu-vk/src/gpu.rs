@@ -210,6 +210,7 @@ impl Hal {
                             size,
                             colour: key.colour.is_some(),
                             clear_colour: a.clear_colour,
+                            scissor: a.scissor,
                         })
                     });
                     match made {

@@ -117,6 +117,9 @@ pub fn encode_pass(
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
+            if let Some([x, y, width, height]) = attachments.scissor {
+                render.set_scissor_rect(x, y, width, height);
+            }
             for command in &pass.commands {
                 match command {
                     Command::Pipeline(p) => render.set_pipeline(p),

@@ -38,6 +38,10 @@ struct RenderParams {
     inverse_view_proj: mat4x4<f32>,
     // world → clip of the camera of the frame before (the reflections' copies)
     previous_view_proj: mat4x4<f32>,
+    // world → clip through the water bodies' mirror (the camera's when none)
+    mirror_view_proj: mat4x4<f32>,
+    // the mirror's level m, drawn this frame (1/0), 0, 0
+    mirror: vec4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

@@ -19,6 +19,10 @@
 
 @group(3) @binding(0) var scene_copy: texture_2d<f32>;
 @group(3) @binding(1) var depth_copy: texture_depth_2d;
+// The water bodies' mirror (precip_model::drawing::water_mirror): the scene drawn
+// through params.mirror_view_proj at half the frame's side, transparent where
+// nothing stands (the sky).
+@group(3) @binding(2) var mirror_image: texture_2d<f32>;
 
 // Steps along the ray, spaced geometrically from REFLECTION_NEAR_M to
 // REFLECTION_REACH_M, then halved REFLECTION_REFINE times around the first crossing.
@@ -92,4 +96,61 @@ fn mirrored_scene(surface_m: vec3<f32>, to_viewer: vec3<f32>, slope: vec2<f32>) 
         t *= grow;
     }
     return vec3<f32>(0.0);
+}
+
+// The planar mirror (precip_model::drawing::water_mirror): constants twinned there.
+const MIRROR_LEVEL_TOLERANCE_M: f32 = 0.05;
+const MIRROR_SLOPE_REACH: f32 = 0.02;
+// What lies this far below the mirror's level is under the water: not reflected.
+const MIRROR_CUT_M: f32 = 0.005;
+
+// The scene but the water bodies, reflected about the water's level, into the
+// mirror image: lit and fogged as seen from the reflected camera; what lies below
+// the level cut.
+@fragment
+fn fs_mirror(in: SceneVarying) -> @location(0) vec4<f32> {
+    let level = params.mirror.x;
+    if (in.world_m.y < level - MIRROR_CUT_M) {
+        discard;
+    }
+    let camera = params.camera_m_cone_cos.xyz;
+    let look = surface_look(in, vec3<f32>(camera.x, 2.0 * level - camera.y, camera.z));
+    return vec4<f32>(mix(params.sky_colour_time.xyz, look.shaded, look.fog), 1.0);
+}
+
+// The water bodies when the mirror is drawn: as fs_water_body, what their mirror
+// shows read from its image at the pixel (no ray); a body at another level mirrors
+// the sky.
+@fragment
+fn fs_water_body_planar(in: SceneVarying) -> @location(0) vec4<f32> {
+    let camera = params.camera_m_cone_cos.xyz;
+    var look = surface_look(in, camera);
+    if (look.mirror > REFLECTION_LEAST && abs(in.surface_m.y - params.mirror.x) <= MIRROR_LEVEL_TOLERANCE_M) {
+        let to_viewer = normalize_or_zero(camera - in.world_m);
+        look.shaded += look.mirror * planar_mirrored_scene(in.clip.xy, to_viewer, look.water_slope);
+    }
+    return vec4<f32>(mix(params.sky_colour_time.xyz, look.shaded, look.fog), 1.0);
+}
+
+// What the mirror shows instead of the sky at pixel `frag_xy`: (the mirror image
+// − the sky it covers). Waves tilt the surface: the image is read where the tilted
+// ray's reflection points, at most MIRROR_SLOPE_REACH of the frame away — the shift
+// of the ray's vanishing point (exact for what is far, more than enough for what is
+// near).
+fn planar_mirrored_scene(frag_xy: vec2<f32>, to_viewer: vec3<f32>, slope: vec2<f32>) -> vec3<f32> {
+    let size = vec2<f32>(textureDimensions(scene_copy));
+    var uv = frag_xy / size;
+    let ray = reflect(-to_viewer, normalize(vec3<f32>(-slope.x, 1.0, -slope.y)));
+    if (dot(slope, slope) > 0.0) {
+        // The reflections of the level and the tilted rays, seen through the mirror.
+        let level = params.view_proj * vec4<f32>(-to_viewer, 0.0);
+        let tilted = params.view_proj * vec4<f32>(ray.x, -ray.y, ray.z, 0.0);
+        if (level.w > 1.0e-4 && tilted.w > 1.0e-4) {
+            let shift = (tilted.xy / tilted.w - level.xy / level.w) * vec2<f32>(0.5, -0.5);
+            let reach = length(shift);
+            uv += shift * min(1.0, MIRROR_SLOPE_REACH / max(reach, 1.0e-6));
+        }
+    }
+    let found = textureSampleLevel(mirror_image, cover_sampler, uv, 0.0);
+    return found.rgb - found.a * overcast_sky(params.sky_colour_time.xyz, ray);
 }

@@ -222,9 +222,19 @@ fn vs_shadow(v: SceneVertex) -> @builtin(position) vec4<f32> {
 
 @vertex
 fn vs_scene(v: SceneVertex) -> SceneVarying {
+    return scene_varying(v, params.view_proj);
+}
+
+// The scene reflected about the water bodies' level (render_reflections.wgsl).
+@vertex
+fn vs_mirror(v: SceneVertex) -> SceneVarying {
+    return scene_varying(v, params.mirror_view_proj);
+}
+
+fn scene_varying(v: SceneVertex, view_proj: mat4x4<f32>) -> SceneVarying {
     let p = displaced(v);
     var out: SceneVarying;
-    out.clip = params.view_proj * vec4<f32>(p, 1.0);
+    out.clip = view_proj * vec4<f32>(p, 1.0);
     out.world_m = p;
     out.normal = v.normal;
     out.uv = v.uv;
@@ -246,7 +256,7 @@ struct SurfaceLook {
 
 @fragment
 fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
-    let look = surface_look(in);
+    let look = surface_look(in, params.camera_m_cone_cos.xyz);
     return vec4<f32>(mix(params.sky_colour_time.xyz, look.shaded, look.fog), 1.0);
 }
 
@@ -255,7 +265,7 @@ fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
 // their fragments carry the ray's loop (precip_gpu::frame's WATER_BODY_DRAW).
 @fragment
 fn fs_water_body(in: SceneVarying) -> @location(0) vec4<f32> {
-    var look = surface_look(in);
+    var look = surface_look(in, params.camera_m_cone_cos.xyz);
     if (look.mirror > REFLECTION_LEAST) {
         let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - in.world_m);
         look.shaded += look.mirror * mirrored_scene(in.world_m, to_viewer, look.water_slope);
@@ -263,9 +273,11 @@ fn fs_water_body(in: SceneVarying) -> @location(0) vec4<f32> {
     return vec4<f32>(mix(params.sky_colour_time.xyz, look.shaded, look.fog), 1.0);
 }
 
-fn surface_look(in: SceneVarying) -> SurfaceLook {
+// The look of a surface seen from `camera` (the camera, or its reflection about the
+// water's level for the mirror: the light's path through the mirror is as long and
+// arrives as from there).
+fn surface_look(in: SceneVarying, camera: vec3<f32>) -> SurfaceLook {
     let base = material.base_colour * textureSample(base_colour_texture, material_sampler, in.uv);
-    let camera = params.camera_m_cone_cos.xyz;
     let to_viewer = normalize_or_zero(camera - in.world_m);
     var n = normalize_or_zero(in.normal);
     // Two-sided: a face seen from behind (a roof's underside) is lit as its back.

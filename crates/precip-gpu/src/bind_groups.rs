@@ -351,12 +351,13 @@ pub const PARTICLE_IMAGE: GroupLayout = GroupLayout {
 };
 
 /// Group 3 of the scene's draw (fragment): the frame before's scene and depth, for
-/// the water's reflections.
+/// the water's reflections, and the water bodies' mirror image.
 pub const REFLECTIONS: GroupLayout = GroupLayout {
     name: "precip reflections",
     bindings: &[
         binding(rb::SCENE_COPY, FILTERED_2D, Stages::Fragment),
         binding(rb::DEPTH_COPY, DEPTH_2D, Stages::Fragment),
+        binding(rb::MIRROR_IMAGE, FILTERED_2D, Stages::Fragment),
     ],
 };
 
@@ -438,7 +439,10 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
         (Program::Render, "vs_sky" | "fs_sky") => &[RENDER_FRAME],
-        (Program::Render, "vs_scene" | "fs_scene" | "fs_water_body") => {
+        (Program::Render, "vs_mirror" | "fs_mirror") => {
+            &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL]
+        }
+        (Program::Render, "vs_scene" | "fs_scene" | "fs_water_body" | "fs_water_body_planar") => {
             &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL, REFLECTIONS]
         }
         (Program::Render, "vs_splat_resolve" | "fs_splat_resolve") => {

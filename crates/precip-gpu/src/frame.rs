@@ -13,6 +13,7 @@
 use glam::Vec3;
 use precip_model::drawing::render::{RenderParams, haze_colour};
 use precip_model::drawing::shadow_cache::ShadowCache;
+use precip_model::drawing::water_mirror::{WaterLevel, frame_mirror, water_levels};
 use precip_model::{ParticleResolution, Setup, View};
 
 use crate::bind_groups::{GroupLayout, groups_of};
@@ -44,6 +45,8 @@ pub enum DepthTarget {
     /// cleared and never written, so every fragment passes (the draws test the
     /// scene's depth themselves).
     Particles,
+    /// The water mirror's depth buffer ([`ColourTarget::Mirror`]'s size).
+    Mirror,
 }
 
 /// Which image a render pass draws into.
@@ -55,6 +58,11 @@ pub enum ColourTarget {
     /// (`crate::frame_resources::TargetResource::ParticleImage`): cleared to
     /// transparent, then laid over the frame.
     Particles,
+    /// The water bodies' mirror image
+    /// (`crate::frame_resources::TargetResource::MirrorImage`): cleared to
+    /// transparent (the sky), drawn within the water's rectangle, then sampled by
+    /// the water bodies.
+    Mirror,
 }
 
 /// Which of the scene's meshes a draw draws.
@@ -196,6 +204,11 @@ pub enum PassWhen {
     ParticlesFull,
     /// While they are drawn at a reduced one ([`precip_model::ParticleResolution`]).
     ParticlesReduced,
+    /// While the water bodies' planar mirror is drawn
+    /// ([`precip_model::drawing::water_mirror::frame_mirror`]).
+    WaterMirrored,
+    /// While it is not (the water bodies follow their rays over the frame before).
+    WaterMirroredNot,
 }
 
 /// One pass of the frame.
@@ -259,7 +272,23 @@ const WATER_BODY_DRAW: Draw = Draw {
     depth_write: true,
     depth_bias: None,
     blend: Blend::Opaque,
+    when: PassWhen::WaterMirroredNot,
+};
+
+// The water bodies where the planar mirror is drawn: one sample of its image, no
+// ray (a pipeline of its own, for the reason above).
+const WATER_BODY_PLANAR_DRAW: Draw = Draw {
+    entry_points: render_passes::WATER_BODIES_PLANAR,
+    when: PassWhen::WaterMirrored,
+    ..WATER_BODY_DRAW
+};
+
+// The scene but the water bodies, reflected about their level, into the mirror
+// image (what lies below the level cut).
+const MIRROR_DRAW: Draw = Draw {
+    entry_points: render_passes::MIRROR,
     when: PassWhen::Always,
+    ..SCENE_DRAW
 };
 
 // At the far plane (depth 1), less-or-equal: only where no mesh stands.
@@ -347,7 +376,7 @@ const OVER_THE_FRAME: RenderPassRecipe = RenderPassRecipe {
 };
 
 /// The frame, in order (see the module docs and [`crate::renderer`]).
-pub const FRAME_PASSES: [FramePass; 9] = [
+pub const FRAME_PASSES: [FramePass; 10] = [
     FramePass {
         name: "cover_texture",
         work: PassWork::Kernels(&[COVER_TEXTURE_PASS, DROP_GROUND_PASS]),
@@ -366,6 +395,18 @@ pub const FRAME_PASSES: [FramePass; 9] = [
         when: PassWhen::ShadowRedrawn,
     },
     FramePass {
+        name: "water_mirror",
+        work: PassWork::Render(RenderPassRecipe {
+            depth: DepthTarget::Mirror,
+            depth_load: AttachmentLoad::Clear,
+            depth_stored: true,
+            colour: Some(AttachmentLoad::Clear),
+            colour_target: ColourTarget::Mirror,
+            draws: &[MIRROR_DRAW],
+        }),
+        when: PassWhen::WaterMirrored,
+    },
+    FramePass {
         name: "scene",
         work: PassWork::Render(RenderPassRecipe {
             depth: DepthTarget::Camera,
@@ -373,7 +414,13 @@ pub const FRAME_PASSES: [FramePass; 9] = [
             depth_stored: true,
             colour: Some(AttachmentLoad::Clear),
             colour_target: ColourTarget::Frame,
-            draws: &[SCENE_DRAW, GROUND_MIRROR_DRAW, WATER_BODY_DRAW, SKY_DRAW],
+            draws: &[
+                SCENE_DRAW,
+                GROUND_MIRROR_DRAW,
+                WATER_BODY_DRAW,
+                WATER_BODY_PLANAR_DRAW,
+                SKY_DRAW,
+            ],
         }),
         when: PassWhen::Always,
     },
@@ -464,6 +511,8 @@ pub struct FrameConditions {
     /// Rain and snow are drawn at a reduced resolution
     /// ([`PassWhen::ParticlesReduced`]).
     pub particles_reduced: bool,
+    /// The water bodies' planar mirror is drawn ([`PassWhen::WaterMirrored`]).
+    pub water_mirrored: bool,
 }
 
 impl PassWhen {
@@ -478,6 +527,8 @@ impl PassWhen {
             Self::GroundMirrorsNot => !conditions.ground_mirrors,
             Self::ParticlesFull => !conditions.particles_reduced,
             Self::ParticlesReduced => conditions.particles_reduced,
+            Self::WaterMirrored => conditions.water_mirrored,
+            Self::WaterMirroredNot => !conditions.water_mirrored,
         }
     }
 }
@@ -564,6 +615,9 @@ pub struct FrameDecision {
     pub conditions: FrameConditions,
     /// The sky's colour (linear): the colour targets are cleared to it.
     pub sky_colour: Vec3,
+    /// The rectangle of the frame the water bodies' mirror is drawn in, px
+    /// `(x, y, width, height)`, when it is drawn.
+    pub mirror_rect_px: Option<[u32; 4]>,
 }
 
 /// The host's side of drawing one configuration: the box the sun's shadow map
@@ -574,6 +628,8 @@ pub struct FrameHost {
     shadow_cache: ShadowCache,
     /// The scene has a water body (a mesh tagged water).
     water_bodies: bool,
+    /// Its water bodies' level surfaces (the planar mirror's candidates).
+    water_levels: Vec<WaterLevel>,
 }
 
 impl FrameHost {
@@ -587,7 +643,17 @@ impl FrameHost {
                 .scene
                 .as_ref()
                 .is_some_and(|s| s.meshes.iter().any(precip_model::Mesh::is_water_body)),
+            water_levels: setup
+                .scene
+                .as_ref()
+                .map_or_else(Vec::new, |s| water_levels(s)),
         }
+    }
+
+    /// Whether the scene has water bodies at a level (the mirror's image is made).
+    #[must_use]
+    pub fn mirrors_water(&self) -> bool {
+        !self.water_levels.is_empty()
     }
 
     /// The next frame of `sim` for `view`: its block (from the host state), whether
@@ -596,12 +662,22 @@ impl FrameHost {
     pub fn decide<G: Gpu>(&mut self, sim: &Simulation<G>, view: &View) -> FrameDecision {
         let host = sim.host();
         let setup = host.setup();
-        let params = host.render_params(
+        let mut params = host.render_params(
             view,
             self.shadow_bounds_m,
             sim.particle_count(),
             sim.wave_frame(),
         );
+        let mirror = frame_mirror(
+            &self.water_levels,
+            view.camera.position_m,
+            params.view_proj,
+            (view.width_px, view.height_px),
+        );
+        if let Some(m) = &mirror {
+            params.mirror_view_proj = m.view_proj;
+            params.mirror = glam::Vec4::new(m.level_m, 1.0, 0.0, 0.0);
+        }
         let shadow_redrawn =
             self.shadow_cache
                 .for_frame(setup, host.weather(), &params, host.time_s());
@@ -612,8 +688,10 @@ impl FrameHost {
                 water_shows: self.water_bodies || host.activity().water_may_stand,
                 ground_mirrors: false,
                 particles_reduced: setup.render.particle_resolution != ParticleResolution::Full,
+                water_mirrored: mirror.is_some(),
             },
             sky_colour: haze_colour(&setup.render, host.weather()),
+            mirror_rect_px: mirror.map(|m| m.rect_px),
         }
     }
 }
@@ -661,12 +739,15 @@ mod tests {
     #[test]
     fn the_plan_skips_the_shadow_and_the_copy_only_when_unneeded() {
         for (shadow_redrawn, water_shows) in [(false, false), (true, false), (false, true)] {
-            for particles_reduced in [false, true] {
+            for (particles_reduced, water_mirrored) in
+                [(false, false), (true, false), (false, true)]
+            {
                 let plan: Vec<_> = frame_plan(FrameConditions {
                     shadow_redrawn,
                     water_shows,
                     ground_mirrors: false,
                     particles_reduced,
+                    water_mirrored,
                 })
                 .collect();
                 assert_eq!(plan.len(), FRAME_PASSES.len());
@@ -676,6 +757,7 @@ mod tests {
                         "scene_copy" => water_shows,
                         "particles" => !particles_reduced,
                         "particles_reduced" | "particles_composite" => particles_reduced,
+                        "water_mirror" => water_mirrored,
                         _ => true,
                     };
                     assert_eq!(p.runs, expected, "{}", p.pass.name);
@@ -703,6 +785,7 @@ mod tests {
                 water_shows: true,
                 ground_mirrors,
                 particles_reduced: false,
+                water_mirrored: false,
             };
             let ground: Vec<_> = recipe
                 .draws
@@ -728,6 +811,7 @@ mod tests {
             [
                 "cover_texture",
                 "shadow",
+                "water_mirror",
                 "scene",
                 "scene_copy",
                 "cull_particles",

@@ -249,6 +249,13 @@ pub enum TargetResource {
     ParticleImage,
     /// Its depth buffer ([`crate::frame::DepthTarget::Particles`]), of its size.
     ParticleDepth,
+    /// The water bodies' mirror image ([`crate::frame::ColourTarget::Mirror`]):
+    /// `Rgba16Float`, the target's size over
+    /// [`precip_model::drawing::water_mirror::MIRROR_DOWNSCALE`] (1 × 1 where the
+    /// scene has no water body at a level).
+    MirrorImage,
+    /// Its depth buffer ([`crate::frame::DepthTarget::Mirror`]), of its size.
+    MirrorDepth,
 }
 
 /// Bytes of the splat sums of a `width × height` target.
@@ -390,6 +397,10 @@ pub const TARGET_GROUPS: [FrameGroupFill; 5] = [
                 rb::DEPTH_COPY,
                 FrameBound::Target(TargetResource::DepthCopy),
             ),
+            (
+                rb::MIRROR_IMAGE,
+                FrameBound::Target(TargetResource::MirrorImage),
+            ),
         ],
     },
     FrameGroupFill {
@@ -452,6 +463,7 @@ mod tests {
                                     | TargetResource::SceneCopy
                                     | TargetResource::DepthCopy
                                     | TargetResource::ParticleImage
+                                    | TargetResource::MirrorImage
                             ),
                     ) | (
                         BindingKind::StorageTextureRgba16Float,

@@ -138,6 +138,10 @@ pub struct Attachments<'a, G: Gpu + ?Sized> {
     /// Whether this is the frame's last pass on the frame's target (it leaves the
     /// target ready to be read or presented).
     pub colour_last: bool,
+    /// The draws only within this rectangle, px `(x, y, width, height)`, y down,
+    /// within the attachments (`None`: all of them); what is cleared is cleared
+    /// whole.
+    pub scissor: Option<[u32; 4]>,
 }
 
 /// What a pass of the frame is.

@@ -526,6 +526,7 @@ pub const FEATURES: [(&str, &[&str]); 6] = [
             "wave_step",
             "wave_shift",
             "scene_copy",
+            "water_mirror",
         ],
     ),
     ("scene", &["scene"]),
@@ -717,6 +718,12 @@ pub mod render_passes {
     pub const SCENE: (&str, Option<&str>) = ("vs_scene", Some("fs_scene"));
     /// The water bodies, mirroring the scene (render_reflections.wgsl).
     pub const WATER_BODIES: (&str, Option<&str>) = ("vs_scene", Some("fs_water_body"));
+    /// The water bodies where the planar mirror is drawn: its image sampled.
+    pub const WATER_BODIES_PLANAR: (&str, Option<&str>) =
+        ("vs_scene", Some("fs_water_body_planar"));
+    /// The scene but the water bodies, reflected about their level, into the
+    /// mirror image.
+    pub const MIRROR: (&str, Option<&str>) = ("vs_mirror", Some("fs_mirror"));
     /// Snow sprites: triangle strip of 4 vertices per drawn particle, indirect draw 0.
     pub const SNOW: (&str, Option<&str>) = ("vs_snow", Some("fs_snow"));
     /// Rain tetrahedra: triangle list of 12 vertices per drawn particle, indirect draw 1.
@@ -887,6 +894,10 @@ pub mod render_bindings {
     pub const SCENE_COPY: u32 = 0;
     /// Group 3 of the scene's draw: the frame before's depth, `texture_depth_2d`.
     pub const DEPTH_COPY: u32 = 1;
+    /// Group 3 of the scene's draw: the water bodies' mirror image, `texture_2d<f32>`
+    /// (`Rgba16Float`, alpha 0 where the sky shows), read through
+    /// [`COVER_SAMPLER`].
+    pub const MIRROR_IMAGE: u32 = 2;
     /// Group 0: the water bodies' waves (`array<i32>`, as
     /// [`super::step_bindings::WAVES`]), read-only storage.
     pub const WAVES: u32 = 12;

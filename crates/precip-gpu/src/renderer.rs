@@ -13,6 +13,7 @@
 //! binds comes from `bind_groups::groups_of` and the resources tables; nothing of
 //! it is written per backend.
 
+use precip_model::drawing::water_mirror::MIRROR_DOWNSCALE;
 use precip_model::{
     BackendError, DrawnCounts, Image, Mirrors, ParticleResolution, PassTiming, View,
 };
@@ -124,13 +125,13 @@ impl<G: Gpu> Drawing<G> {
         find(&self.layouts, &table.name).ok_or_else(|| missing(table.name))
     }
 
-    /// Makes the draws' pipelines for a frame target of `format` (and the
-    /// particles' image of `particle_format`), if not made yet.
+    /// Makes the draws' pipelines for a frame target of `format` (and the images
+    /// of `image_format`: the particles' and the mirror's), if not made yet.
     pub fn prepare(
         &mut self,
         gpu: &mut G,
         format: G::ColourFormat,
-        particle_format: G::ColourFormat,
+        image_format: G::ColourFormat,
     ) -> Result<(), BackendError> {
         if self.pipelines.iter().any(|(f, _)| *f == format) {
             return Ok(());
@@ -149,7 +150,7 @@ impl<G: Gpu> Drawing<G> {
                 .and_then(|layouts| {
                     let colour = match recipe.colour_target {
                         ColourTarget::Frame => format,
-                        ColourTarget::Particles => particle_format,
+                        ColourTarget::Particles | ColourTarget::Mirror => image_format,
                     };
                     gpu.draw_pipeline(draw, recipe, &layouts, recipe.colour.map(|_| colour))
                 });
@@ -195,20 +196,32 @@ struct TargetTextures<G: Gpu> {
     depth_copy: G::Texture,
     /// The particles' image and its depth buffer.
     particles: (G::Texture, G::Texture),
+    /// The water bodies' mirror image and its depth buffer.
+    mirror: (G::Texture, G::Texture),
 }
 
 impl<G: Gpu> TargetTextures<G> {
     /// Those of a `size` target copying to `copy_format`, the particles drawn at
-    /// `particles`; on an error, those made are handed back.
+    /// `particles`, the water bodies mirrored or not (`mirrors`); on an error, those
+    /// made are handed back.
     fn new(
         gpu: &mut G,
         size: (u32, u32),
         copy_format: TexelFormat,
         particles: ParticleResolution,
+        mirrors: bool,
     ) -> Result<Self, BackendError> {
         let particle_size = match particles {
             ParticleResolution::Full => (1, 1),
             reduced => reduced.drawn_size(size),
+        };
+        let mirror_size = if mirrors {
+            (
+                size.0.div_ceil(MIRROR_DOWNSCALE),
+                size.1.div_ceil(MIRROR_DOWNSCALE),
+            )
+        } else {
+            (1, 1)
         };
         let specs = [
             (
@@ -241,6 +254,18 @@ impl<G: Gpu> TargetTextures<G> {
                 TexelFormat::Depth32Float,
                 TextureUsage::DepthAttachment,
             ),
+            (
+                "precip mirror image",
+                mirror_size,
+                TexelFormat::Rgba16Float,
+                TextureUsage::DrawnThenSampled,
+            ),
+            (
+                "precip mirror depth",
+                mirror_size,
+                TexelFormat::Depth32Float,
+                TextureUsage::DepthAttachment,
+            ),
         ];
         let mut made = Vec::with_capacity(specs.len());
         for (label, size, format, usage) in specs {
@@ -261,23 +286,31 @@ impl<G: Gpu> TargetTextures<G> {
                 }
             }
         }
-        let mut made = made.into_iter();
-        match (
-            made.next(),
-            made.next(),
-            made.next(),
-            made.next(),
-            made.next(),
-        ) {
-            (Some(depth), Some(copy), Some(depth_copy), Some(image), Some(image_depth)) => {
-                Ok(Self {
+        let made: Result<[G::Texture; 7], _> = made.try_into();
+        match made {
+            Ok(
+                [
                     depth,
                     copy,
                     depth_copy,
-                    particles: (image, image_depth),
-                })
+                    image,
+                    image_depth,
+                    mirror,
+                    mirror_depth,
+                ],
+            ) => Ok(Self {
+                depth,
+                copy,
+                depth_copy,
+                particles: (image, image_depth),
+                mirror: (mirror, mirror_depth),
+            }),
+            Err(made) => {
+                for t in made {
+                    gpu.destroy_texture(t);
+                }
+                Err(missing("a target texture"))
             }
-            _ => Err(missing("a target texture")),
         }
     }
 
@@ -288,6 +321,8 @@ impl<G: Gpu> TargetTextures<G> {
             self.depth_copy,
             self.particles.0,
             self.particles.1,
+            self.mirror.0,
+            self.mirror.1,
         ] {
             gpu.destroy_texture(t);
         }
@@ -380,6 +415,8 @@ impl<'a, G: Gpu> Bindable<'a, G> {
                     TargetResource::ParticleDepth => {
                         BindingResource::Texture(&textures.particles.1)
                     }
+                    TargetResource::MirrorImage => BindingResource::Texture(&textures.mirror.0),
+                    TargetResource::MirrorDepth => BindingResource::Texture(&textures.mirror.1),
                 }
             }
         })
@@ -575,7 +612,13 @@ impl<G: Gpu> FrameState<G> {
         if let Some(old) = self.target.take() {
             old.destroy(gpu);
         }
-        let textures = TargetTextures::new(gpu, size, copy_format, self.particle_resolution)?;
+        let textures = TargetTextures::new(
+            gpu,
+            size,
+            copy_format,
+            self.particle_resolution,
+            self.host.mirrors_water(),
+        )?;
         let bytes = splat_sums_bytes(size);
         // Zero at first: the resolve zeroes what it reads after that.
         let zeros = vec![0u8; bytes as usize];
@@ -814,14 +857,24 @@ impl<G: Gpu> FrameState<G> {
                             DepthTarget::ShadowMap => shadow_map,
                             DepthTarget::Camera => &textures.depth,
                             DepthTarget::Particles => &textures.particles.1,
+                            DepthTarget::Mirror => &textures.mirror.1,
                         },
                         colour: match recipe.colour_target {
                             ColourTarget::Frame => None,
                             ColourTarget::Particles => Some(&textures.particles.0),
+                            ColourTarget::Mirror => Some(&textures.mirror.0),
                         },
                         clear_colour: match recipe.colour_target {
                             ColourTarget::Frame => [sky.x, sky.y, sky.z, 1.0],
-                            ColourTarget::Particles => [0.0; 4],
+                            ColourTarget::Particles | ColourTarget::Mirror => [0.0; 4],
+                        },
+                        // The mirror only over the water's rectangle, in its image's
+                        // pixels.
+                        scissor: match (recipe.colour_target, decision.mirror_rect_px) {
+                            (ColourTarget::Mirror, Some(rect)) => {
+                                Some(mirror_scissor(rect, target.size))
+                            }
+                            _ => None,
                         },
                         recipe,
                         depth_written: recipe.draws.iter().any(|d| d.depth_write),
@@ -929,6 +982,17 @@ impl<G: Gpu> FrameState<G> {
                 .collect(),
         ))
     }
+}
+
+/// The mirror image's pixels (the target's over [`MIRROR_DOWNSCALE`], rounded up) that
+/// hold the target's rectangle `rect` (`x, y, width, height` px).
+fn mirror_scissor([x, y, width, height]: [u32; 4], target: (u32, u32)) -> [u32; 4] {
+    let d = MIRROR_DOWNSCALE;
+    let size = (target.0.div_ceil(d), target.1.div_ceil(d));
+    let (x0, y0) = ((x / d).min(size.0), (y / d).min(size.1));
+    let x1 = (x + width).div_ceil(d).clamp(x0, size.0);
+    let y1 = (y + height).div_ceil(d).clamp(y0, size.1);
+    [x0, y0, x1 - x0, y1 - y0]
 }
 
 /// An IEEE half (binary16) as `f32`.

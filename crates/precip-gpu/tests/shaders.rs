@@ -268,7 +268,10 @@ fn rust_and_wgsl_layouts_match() {
             camera_box_centre_m,
             camera_box_half_m,
             lens,
-            inverse_view_proj
+            inverse_view_proj,
+            previous_view_proj,
+            mirror_view_proj,
+            mirror
         }),
         rust_layout!(DrawArgs {
             vertex_count,

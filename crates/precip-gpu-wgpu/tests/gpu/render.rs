@@ -556,11 +556,11 @@ fn timings_name_every_pass_of_a_frame() {
                 eprintln!("{name}: no timestamps on this adapter");
                 continue;
             }
-            // The particles are drawn one way or the other.
+            // The particles are drawn one way or the other; no water to mirror.
             let skipped: &[&str] = if reduced {
-                &["particles"]
+                &["particles", "water_mirror"]
             } else {
-                &["particles_reduced", "particles_composite"]
+                &["particles_reduced", "particles_composite", "water_mirror"]
             };
             for pass in precip_gpu::recipe::TIMED_RENDER_PASSES
                 .into_iter()
@@ -1306,9 +1306,26 @@ fn low_over_the_water() -> (Camera, View) {
     (camera, view(camera, 128, 96))
 }
 
+/// The first two frames of the pond (with the wall or not) seen by `camera`.
+fn pond_frames(
+    gpu: &mut WgpuBackend,
+    camera: Camera,
+    view: &View,
+    wall: bool,
+) -> (precip_model::Image, precip_model::Image) {
+    let (mut setup, _) = Setup::over_scene(pond_and_wall(wall), 32, 5.0, 1).expect("valid");
+    setup.weather.intensity_mm_per_h = 0.0;
+    setup.camera = camera;
+    common::run(gpu, &setup, 1, 0.05);
+    gpu.render(view).expect("renders");
+    let first = gpu.read_image().expect("an image");
+    gpu.render(view).expect("renders");
+    (first, gpu.read_image().expect("an image"))
+}
+
 /// The water mirrors the scene beyond it, not only the sky: the red wall's mirror
-/// image shows in the pond (from the frame after the first, which has the frame
-/// before to reflect), where the same pond without the wall reflects the sky.
+/// image shows in the pond (the planar mirror, from the first frame on), where the
+/// same pond without the wall reflects the sky.
 #[test]
 fn a_pond_mirrors_the_wall_beyond_it() {
     let (camera, view) = low_over_the_water();
@@ -1324,14 +1341,7 @@ fn a_pond_mirrors_the_wall_beyond_it() {
     for (name, mut gpu) in common::gpu_backends("a_pond_mirrors_the_wall_beyond_it") {
         let mut frames = Vec::new();
         for wall in [true, false] {
-            let (mut setup, _) = Setup::over_scene(pond_and_wall(wall), 32, 5.0, 1).expect("valid");
-            setup.weather.intensity_mm_per_h = 0.0;
-            setup.camera = camera;
-            common::run(&mut gpu, &setup, 1, 0.05);
-            gpu.render(&view).expect("renders");
-            let first = gpu.read_image().expect("an image");
-            gpu.render(&view).expect("renders");
-            let second = gpu.read_image().expect("an image");
+            let (first, second) = pond_frames(&mut gpu, camera, &view, wall);
             keep(&second, &format!("pond_wall_{wall}"));
             frames.push((first, second));
         }
@@ -1345,21 +1355,50 @@ fn a_pond_mirrors_the_wall_beyond_it() {
             image_red > 0.1 * wall_red,
             "{name}: the wall's image in the pond at ({mx}, {my}) is red: {image_red} more than the pond alone (the wall {wall_red})"
         );
-        for (what, red) in [
-            (
-                "the first frame, with no frame before",
-                redness(&with_wall.0, mx, my) - pond,
-            ),
-            (
-                "the pond beside the image",
-                redness(&with_wall.1, sx, sy) - redness(&without.1, sx, sy),
-            ),
-        ] {
-            assert!(
-                red.abs() < 0.02,
-                "{name}: {what} reflects the sky as the pond alone does: red excess {red}"
-            );
+        let first = redness(&with_wall.0, mx, my) - pond;
+        assert!(
+            (first - image_red).abs() < 0.02,
+            "{name}: the first frame mirrors the wall as the second does: {first} against {image_red}"
+        );
+        let beside = redness(&with_wall.1, sx, sy) - redness(&without.1, sx, sy);
+        assert!(
+            beside.abs() < 0.02,
+            "{name}: the pond beside the image reflects the sky as the pond alone does: red excess {beside}"
+        );
+    }
+}
+
+/// The planar mirror shows what the frame does not: looking down at the pond, the
+/// red wall beyond it is above the frame's top edge (no screen-space ray can find
+/// it), and its image still shows in the water; without the wall, the sky's.
+#[test]
+fn a_pond_mirrors_a_wall_above_the_frame() {
+    let (camera, _) = low_over_the_water();
+    let camera = Camera {
+        forward: Vec3::new(0.0, -0.53, -1.0).normalize(),
+        ..camera
+    };
+    let view = view(camera, 128, 96);
+    assert_eq!(
+        pixel_of(&view, Vec3::new(0.0, 0.0, -34.0)),
+        None,
+        "the wall's foot is out of view"
+    );
+    let (mx, my) = pixel_of(&view, Vec3::new(0.0, -4.0, -34.0)).expect("its image in view");
+    for (name, mut gpu) in common::gpu_backends("a_pond_mirrors_a_wall_above_the_frame") {
+        let mut reds = Vec::new();
+        for wall in [true, false] {
+            let (_, image) = pond_frames(&mut gpu, camera, &view, wall);
+            keep(&image, &format!("pond_wall_above_{wall}"));
+            let [r, g, _] = crate::images::rgb(&image, mx, my);
+            reds.push(linear(r) - linear(g));
         }
+        assert!(
+            reds[0] > reds[1] + 0.05,
+            "{name}: the wall's image in the pond is red ({}) against the pond alone ({})",
+            reds[0],
+            reds[1]
+        );
     }
 }
 

@@ -20,6 +20,7 @@ pub mod resolution_control;
 pub mod shadow_cache;
 pub mod shadow_fit;
 pub mod water_look;
+pub mod water_mirror;
 
 use glam::Vec3;
 

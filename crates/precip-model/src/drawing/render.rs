@@ -269,7 +269,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (592 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (672 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -326,8 +326,15 @@ pub struct RenderParams {
     /// World → clip of the camera of the frame before, whose scene and depth the
     /// water's reflections read (this frame's until the renderer sets it).
     pub previous_view_proj: Mat4,
+    /// World → clip through the water bodies' mirror
+    /// ([`crate::drawing::water_mirror::FrameMirror::view_proj`]; the camera's when
+    /// none is drawn).
+    pub mirror_view_proj: Mat4,
+    /// The mirror's level m, 1 when the frame draws it (else 0: the renderer sets
+    /// it), 0, 0.
+    pub mirror: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 592);
+const _: () = assert!(size_of::<RenderParams>() == 672);
 
 /// The camera's world → clip matrix for a target of `aspect` (width / height).
 #[must_use]
@@ -575,6 +582,8 @@ impl RenderParams {
             ),
             inverse_view_proj: view_projection(camera, aspect).inverse(),
             previous_view_proj: view_projection(camera, aspect),
+            mirror_view_proj: view_projection(camera, aspect),
+            mirror: Vec4::ZERO,
         }
     }
 }
