@@ -618,6 +618,8 @@ pub struct FrameDecision {
     /// The rectangle of the frame the water bodies' mirror is drawn in, px
     /// `(x, y, width, height)`, when it is drawn.
     pub mirror_rect_px: Option<[u32; 4]>,
+    /// The frame's size, px.
+    pub target_px: (u32, u32),
 }
 
 /// The host's side of drawing one configuration: the box the sun's shadow map
@@ -692,6 +694,7 @@ impl FrameHost {
             },
             sky_colour: haze_colour(&setup.render, host.weather()),
             mirror_rect_px: mirror.map(|m| m.rect_px),
+            target_px: (view.width_px, view.height_px),
         }
     }
 }

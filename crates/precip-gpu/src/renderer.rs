@@ -14,6 +14,7 @@
 //! it is written per backend.
 
 use precip_model::drawing::water_mirror::MIRROR_DOWNSCALE;
+use precip_model::scene::gpu_scene::TileCull;
 use precip_model::{
     BackendError, DrawnCounts, Image, Mirrors, ParticleResolution, PassTiming, View,
 };
@@ -842,6 +843,7 @@ impl<G: Gpu> FrameState<G> {
                                         (materials, which),
                                         detail.0,
                                         detail.1,
+                                        Some(tile_cull(recipe.depth, decision)),
                                     );
                                 }
                             }
@@ -981,6 +983,32 @@ impl<G: Gpu> FrameState<G> {
                 })
                 .collect(),
         ))
+    }
+}
+
+/// What the scene's draws into `depth` may see of the tiles: the sun's view for the
+/// shadow map; the camera's for the frame; the mirror's within the water's
+/// rectangle and above its level for the mirror.
+fn tile_cull(depth: DepthTarget, decision: &FrameDecision) -> TileCull {
+    let p = &decision.params;
+    match depth {
+        DepthTarget::ShadowMap => TileCull::whole(p.sun_view_proj),
+        DepthTarget::Camera | DepthTarget::Particles => TileCull::whole(p.view_proj),
+        DepthTarget::Mirror => {
+            let whole = TileCull::whole(p.mirror_view_proj);
+            match (decision.mirror_rect_px, decision.target_px) {
+                (Some([x, y, w, h]), (width, height)) if width > 0 && height > 0 => {
+                    let ndc_x = |px: u32| 2.0 * px as f32 / width as f32 - 1.0;
+                    let ndc_y = |px: u32| 1.0 - 2.0 * px as f32 / height as f32;
+                    TileCull {
+                        ndc: [ndc_x(x), ndc_y(y + h), ndc_x(x + w), ndc_y(y)],
+                        floor_m: p.mirror.x,
+                        ..whole
+                    }
+                }
+                _ => whole,
+            }
+        }
     }
 }
 

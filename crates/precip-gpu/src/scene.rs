@@ -6,7 +6,7 @@
 //! triangles near the camera, coarse beyond (`SceneLod::ranges`).
 
 use glam::Vec3;
-use precip_model::scene::gpu_scene::{PackedScene, SceneLod};
+use precip_model::scene::gpu_scene::{PackedScene, SceneLod, TileCull};
 use precip_model::{BackendError, Setup, TextureRgba8};
 
 use crate::bind_groups::RENDER_MATERIAL;
@@ -146,14 +146,15 @@ impl<G: Gpu> SceneGpu<G> {
     }
 
     /// The commands drawing the meshes `which` picks, fine near `camera_m` and
-    /// coarse beyond `detail_distance_m`; each mesh's material group bound at 2 when
-    /// `with_materials`.
+    /// coarse beyond `detail_distance_m`, only the tiles `cull` may see; each mesh's
+    /// material group bound at 2 when `with_materials`.
     pub fn draw<'a>(
         &'a self,
         commands: &mut Vec<Command<'a, G>>,
         (with_materials, which): (bool, MeshesOf),
         camera_m: Vec3,
         detail_distance_m: f32,
+        cull: Option<TileCull>,
     ) {
         let (Some(vertices), Some(indices)) = (&self.vertices, &self.indices) else {
             return;
@@ -178,7 +179,7 @@ impl<G: Gpu> SceneGpu<G> {
                     offsets: &[],
                 });
             }
-            for range in self.lod.ranges(m, camera_m, detail_distance_m) {
+            for range in self.lod.ranges(m, camera_m, detail_distance_m, cull) {
                 commands.push(Command::DrawIndexed(range));
             }
         }

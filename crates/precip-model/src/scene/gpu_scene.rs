@@ -82,27 +82,96 @@ impl SceneLod {
 
     /// The index ranges to draw of mesh `mesh` seen from `camera_m`: its kept
     /// triangles, and each tile's fine triangles when the tile's box is within
-    /// `detail_distance_m` of the camera, else its coarse ones.
+    /// `detail_distance_m` of the camera, else its coarse ones; only the tiles
+    /// `cull` may see (all without one).
     pub fn ranges(
         &self,
         mesh: usize,
         camera_m: Vec3,
         detail_distance_m: f32,
+        cull: Option<TileCull>,
     ) -> impl Iterator<Item = Range<u32>> + '_ {
         let lod = self.meshes.get(mesh);
         lod.map(|m| m.always.clone())
             .into_iter()
             .chain(lod.into_iter().flat_map(move |m| {
-                m.tiles.iter().map(move |t| {
-                    let nearest = camera_m.clamp(t.bounds_m.0, t.bounds_m.1);
-                    if nearest.distance(camera_m) <= detail_distance_m {
-                        t.fine.clone()
-                    } else {
-                        t.coarse.clone()
-                    }
-                })
+                m.tiles
+                    .iter()
+                    .filter(move |t| cull.is_none_or(|c| c.may_see(t.bounds_m)))
+                    .map(move |t| {
+                        let nearest = camera_m.clamp(t.bounds_m.0, t.bounds_m.1);
+                        if nearest.distance(camera_m) <= detail_distance_m {
+                            t.fine.clone()
+                        } else {
+                            t.coarse.clone()
+                        }
+                    })
             }))
             .filter(|r| !r.is_empty())
+    }
+}
+
+/// How high snow may raise a tile's vertices above its box for culling, m (the
+/// displacement is the cover's depth, not known on the host: a deep drift).
+pub const TILE_SNOW_MARGIN_M: f32 = 10.0;
+
+/// Which tiles a pass may see: those whose box (raised by [`TILE_SNOW_MARGIN_M`])
+/// reaches into the clip volume of `view_proj` within the rectangle `ndc`
+/// (`x0, y0, x1, y1`, y up) and above `floor_m`. A tile outside is not drawn: its
+/// vertices would be shaded and every triangle clipped (a CPU rasteriser pays for
+/// each).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TileCull {
+    /// World → clip of the pass.
+    pub view_proj: glam::Mat4,
+    /// The part of the target drawn, normalised device coordinates.
+    pub ndc: [f32; 4],
+    /// Nothing below this height is drawn, m.
+    pub floor_m: f32,
+}
+
+impl TileCull {
+    /// All of the target of `view_proj`.
+    #[must_use]
+    pub const fn whole(view_proj: glam::Mat4) -> Self {
+        Self {
+            view_proj,
+            ndc: [-1.0, -1.0, 1.0, 1.0],
+            floor_m: f32::NEG_INFINITY,
+        }
+    }
+
+    /// Whether the box `(lo, hi)` may show: false only when all its corners lie
+    /// outside one plane of the clip volume (conservative: a box near a corner of
+    /// the volume may be kept), or it lies below the floor.
+    #[must_use]
+    pub fn may_see(&self, (lo, hi): (Vec3, Vec3)) -> bool {
+        let hi = hi + Vec3::Y * TILE_SNOW_MARGIN_M;
+        if hi.y < self.floor_m {
+            return false;
+        }
+        let [x0, y0, x1, y1] = self.ndc;
+        let corners = (0..8).map(|k| {
+            let p = Vec3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            );
+            self.view_proj * p.extend(1.0)
+        });
+        // Each plane as a · (x, y, z, w) ≥ 0 inside.
+        let planes = [
+            glam::Vec4::new(1.0, 0.0, 0.0, -x0),
+            glam::Vec4::new(-1.0, 0.0, 0.0, x1),
+            glam::Vec4::new(0.0, 1.0, 0.0, -y0),
+            glam::Vec4::new(0.0, -1.0, 0.0, y1),
+            glam::Vec4::new(0.0, 0.0, 1.0, 0.0),
+            glam::Vec4::new(0.0, 0.0, -1.0, 1.0),
+        ];
+        let clips: Vec<glam::Vec4> = corners.collect();
+        !planes
+            .iter()
+            .any(|plane| clips.iter().all(|c| plane.dot(*c) < 0.0))
     }
 }
 
@@ -221,7 +290,7 @@ impl PackedScene {
     #[must_use]
     pub fn triangles_drawn(&self, camera_m: Vec3, detail_distance_m: f32) -> u64 {
         (0..self.lod.meshes.len())
-            .flat_map(|m| self.lod.ranges(m, camera_m, detail_distance_m))
+            .flat_map(|m| self.lod.ranges(m, camera_m, detail_distance_m, None))
             .map(|r| u64::from(r.end - r.start) / 3)
             .sum()
     }
@@ -290,9 +359,46 @@ mod tests {
         );
         // Each mesh's ranges lie in its own range.
         for (m, range) in packed.ranges.iter().enumerate() {
-            for r in packed.lod.ranges(m, corner, 12.0) {
+            for r in packed.lod.ranges(m, corner, 12.0, None) {
                 assert!(range.start <= r.start && r.end <= range.end);
             }
         }
+    }
+
+    #[test]
+    fn tiles_out_of_a_pass_s_view_are_culled() {
+        use crate::backend::camera::Camera;
+        let camera = Camera {
+            position_m: Vec3::new(0.0, 2.0, 0.0),
+            forward: Vec3::NEG_Z,
+            ..Camera::default()
+        };
+        let view_proj = crate::drawing::render::view_projection(&camera, 1.5);
+        let cull = TileCull::whole(view_proj);
+        let tile = |x: f32, z: f32| (Vec3::new(x, 0.0, z), Vec3::new(x + 8.0, 0.5, z + 8.0));
+        assert!(cull.may_see(tile(-4.0, -20.0)), "ahead");
+        assert!(cull.may_see(tile(-4.0, -4.0)), "around the camera");
+        assert!(!cull.may_see(tile(-4.0, 10.0)), "behind");
+        assert!(!cull.may_see(tile(200.0, -20.0)), "far to the right");
+        assert!(!cull.may_see(tile(-4.0, -2.0e4)), "beyond the far plane");
+        // Snow may raise a tile just below the view into it; far below, not.
+        assert!(cull.may_see((Vec3::new(-4.0, -12.0, -30.0), Vec3::new(4.0, -11.0, -22.0))));
+        assert!(!cull.may_see((
+            Vec3::new(-4.0, -200.0, -20.0),
+            Vec3::new(4.0, -150.0, -12.0)
+        )));
+        // A part of the target: the left half sees only what is left.
+        let left = TileCull {
+            ndc: [-1.0, -1.0, 0.0, 1.0],
+            ..cull
+        };
+        assert!(left.may_see(tile(-12.0, -20.0)));
+        assert!(!left.may_see(tile(6.0, -20.0)));
+        // The floor: a tile wholly below it is cut.
+        let floored = TileCull {
+            floor_m: 20.0,
+            ..cull
+        };
+        assert!(!floored.may_see(tile(-4.0, -20.0)));
     }
 }
