@@ -18,6 +18,7 @@ use precip_model::{ParticleResolution, Setup, View};
 
 use crate::bind_groups::{GroupLayout, groups_of};
 use crate::executor::Simulation;
+use crate::frame_resources::TargetResource;
 use crate::gpu::Gpu;
 use crate::recipe::{
     COVER_TEXTURE_PASS, CULL_PASSES, DROP_GROUND_PASS, DispatchCounts, FrameDraws, KernelPass,
@@ -47,6 +48,33 @@ pub enum DepthTarget {
     Particles,
     /// The water mirror's depth buffer ([`ColourTarget::Mirror`]'s size).
     Mirror,
+}
+
+impl DepthTarget {
+    /// The target's resource it is (`None`: the shadow map, a texture of the
+    /// configuration).
+    #[must_use]
+    pub const fn target_resource(self) -> Option<TargetResource> {
+        match self {
+            Self::ShadowMap => None,
+            Self::Camera => Some(TargetResource::CameraDepth),
+            Self::Particles => Some(TargetResource::ParticleDepth),
+            Self::Mirror => Some(TargetResource::MirrorDepth),
+        }
+    }
+}
+
+impl ColourTarget {
+    /// The target's resource it is (`None`: the frame's own target, cleared to the
+    /// sky; an image is cleared to transparent).
+    #[must_use]
+    pub const fn target_resource(self) -> Option<TargetResource> {
+        match self {
+            Self::Frame => None,
+            Self::Particles => Some(TargetResource::ParticleImage),
+            Self::Mirror => Some(TargetResource::MirrorImage),
+        }
+    }
 }
 
 /// Which image a render pass draws into.

@@ -258,6 +258,105 @@ pub enum TargetResource {
     MirrorDepth,
 }
 
+/// A texture a target of one size adds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TargetTextureSpec {
+    /// Which.
+    pub resource: TargetResource,
+    /// A label for debuggers.
+    pub label: &'static str,
+    /// Width and height, texels.
+    pub size: (u32, u32),
+    /// Format.
+    pub format: TexelFormat,
+    /// Usage.
+    pub usage: TextureUsage,
+}
+
+/// The textures a `size` target adds: the camera's depth, the copies of the scene
+/// (in `copy_format`) and of the depth, the particles' image at `particles` (1 × 1
+/// at the frame's resolution: unused) and the water bodies' mirror image
+/// (1 × 1 unless `mirrors`), each image with its depth buffer.
+#[must_use]
+pub fn target_textures(
+    size: (u32, u32),
+    copy_format: TexelFormat,
+    particles: precip_model::ParticleResolution,
+    mirrors: bool,
+) -> [TargetTextureSpec; 7] {
+    use TargetResource as R;
+    use TexelFormat::{Depth32Float, Rgba16Float};
+    use TextureUsage::{CopyOfTarget, DepthAttachment, DrawnThenSampled};
+    let particle_size = match particles {
+        precip_model::ParticleResolution::Full => (1, 1),
+        reduced => reduced.drawn_size(size),
+    };
+    let downscale = precip_model::drawing::water_mirror::MIRROR_DOWNSCALE;
+    let mirror_size = if mirrors {
+        (size.0.div_ceil(downscale), size.1.div_ceil(downscale))
+    } else {
+        (1, 1)
+    };
+    let spec = |resource, label, size, format, usage| TargetTextureSpec {
+        resource,
+        label,
+        size,
+        format,
+        usage,
+    };
+    [
+        spec(
+            R::CameraDepth,
+            "precip depth",
+            size,
+            Depth32Float,
+            DepthAttachment,
+        ),
+        spec(
+            R::SceneCopy,
+            "precip scene copy",
+            size,
+            copy_format,
+            CopyOfTarget,
+        ),
+        spec(
+            R::DepthCopy,
+            "precip depth copy",
+            size,
+            Depth32Float,
+            CopyOfTarget,
+        ),
+        spec(
+            R::ParticleImage,
+            "precip particle image",
+            particle_size,
+            Rgba16Float,
+            DrawnThenSampled,
+        ),
+        spec(
+            R::ParticleDepth,
+            "precip particle depth",
+            particle_size,
+            Depth32Float,
+            DepthAttachment,
+        ),
+        spec(
+            R::MirrorImage,
+            "precip mirror image",
+            mirror_size,
+            Rgba16Float,
+            DrawnThenSampled,
+        ),
+        spec(
+            R::MirrorDepth,
+            "precip mirror depth",
+            mirror_size,
+            Depth32Float,
+            DepthAttachment,
+        ),
+    ]
+}
+
 /// Bytes of the splat sums of a `width × height` target.
 #[must_use]
 pub fn splat_sums_bytes((width, height): (u32, u32)) -> u64 {
@@ -477,6 +576,55 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn a_target_s_textures_are_one_row_each_and_sized_by_their_settings() {
+        use precip_model::ParticleResolution;
+        let size = (1279, 719);
+        let full = target_textures(
+            size,
+            TexelFormat::Bgra8UnormSrgb,
+            ParticleResolution::Full,
+            false,
+        );
+        for row in &full {
+            let rows = full.iter().filter(|t| t.resource == row.resource).count();
+            assert_eq!(rows, 1, "{:?}", row.resource);
+            assert_ne!(
+                row.resource,
+                TargetResource::SplatSums,
+                "a buffer, not a texture"
+            );
+        }
+        let size_of = |rows: &[TargetTextureSpec], r| {
+            rows.iter()
+                .find(|t| t.resource == r)
+                .map(|t| t.size)
+                .expect("a row")
+        };
+        assert_eq!(size_of(&full, TargetResource::CameraDepth), size);
+        assert_eq!(size_of(&full, TargetResource::SceneCopy), size);
+        // Unused images are a texel.
+        assert_eq!(size_of(&full, TargetResource::ParticleImage), (1, 1));
+        assert_eq!(size_of(&full, TargetResource::MirrorImage), (1, 1));
+        let reduced = target_textures(
+            size,
+            TexelFormat::Rgba8UnormSrgb,
+            ParticleResolution::Half,
+            true,
+        );
+        assert_eq!(size_of(&reduced, TargetResource::ParticleImage), (640, 360));
+        assert_eq!(size_of(&reduced, TargetResource::ParticleDepth), (640, 360));
+        assert_eq!(size_of(&reduced, TargetResource::MirrorImage), (640, 360));
+        assert_eq!(size_of(&reduced, TargetResource::MirrorDepth), (640, 360));
+        assert_eq!(
+            reduced
+                .iter()
+                .find(|t| t.resource == TargetResource::SceneCopy)
+                .map(|t| t.format),
+            Some(TexelFormat::Rgba8UnormSrgb)
+        );
     }
 
     #[test]

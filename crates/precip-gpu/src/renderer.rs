@@ -28,6 +28,7 @@ use crate::frame::{
 use crate::frame_resources::{
     FRAME_GROUPS, FrameBound, FrameBuffer, FrameGroupFill, FrameTexture, Sampler, TARGET_GROUPS,
     TargetResource, TexelFormat, TextureUsage, frame_buffers, frame_textures, splat_sums_bytes,
+    target_textures,
 };
 use crate::gpu::{
     Attachments, BindingResource, Command, FrameWork, Gpu, PassKind, RecordedPass, Target,
@@ -185,20 +186,11 @@ impl<G: Gpu> Drawing<G> {
     }
 }
 
-/// The textures a target of one size and format adds ([`TargetResource`]).
+/// The textures a target of one size and format adds
+/// ([`crate::frame_resources::target_textures`]).
 #[derive(Debug)]
 struct TargetTextures<G: Gpu> {
-    /// The camera's depth buffer.
-    depth: G::Texture,
-    /// The scene's copy, in the format the target copies to (an unused
-    /// `Rgba8UnormSrgb` one where it cannot be copied, so the groups are whole).
-    copy: G::Texture,
-    /// The depth's copy.
-    depth_copy: G::Texture,
-    /// The particles' image and its depth buffer.
-    particles: (G::Texture, G::Texture),
-    /// The water bodies' mirror image and its depth buffer.
-    mirror: (G::Texture, G::Texture),
+    made: Vec<(TargetResource, G::Texture)>,
 }
 
 impl<G: Gpu> TargetTextures<G> {
@@ -212,119 +204,33 @@ impl<G: Gpu> TargetTextures<G> {
         particles: ParticleResolution,
         mirrors: bool,
     ) -> Result<Self, BackendError> {
-        let particle_size = match particles {
-            ParticleResolution::Full => (1, 1),
-            reduced => reduced.drawn_size(size),
-        };
-        let mirror_size = if mirrors {
-            (
-                size.0.div_ceil(MIRROR_DOWNSCALE),
-                size.1.div_ceil(MIRROR_DOWNSCALE),
-            )
-        } else {
-            (1, 1)
-        };
-        let specs = [
-            (
-                "precip depth",
-                size,
-                TexelFormat::Depth32Float,
-                TextureUsage::DepthAttachment,
-            ),
-            (
-                "precip scene copy",
-                size,
-                copy_format,
-                TextureUsage::CopyOfTarget,
-            ),
-            (
-                "precip depth copy",
-                size,
-                TexelFormat::Depth32Float,
-                TextureUsage::CopyOfTarget,
-            ),
-            (
-                "precip particle image",
-                particle_size,
-                TexelFormat::Rgba16Float,
-                TextureUsage::DrawnThenSampled,
-            ),
-            (
-                "precip particle depth",
-                particle_size,
-                TexelFormat::Depth32Float,
-                TextureUsage::DepthAttachment,
-            ),
-            (
-                "precip mirror image",
-                mirror_size,
-                TexelFormat::Rgba16Float,
-                TextureUsage::DrawnThenSampled,
-            ),
-            (
-                "precip mirror depth",
-                mirror_size,
-                TexelFormat::Depth32Float,
-                TextureUsage::DepthAttachment,
-            ),
-        ];
-        let mut made = Vec::with_capacity(specs.len());
-        for (label, size, format, usage) in specs {
+        let mut made = Self { made: Vec::new() };
+        for spec in target_textures(size, copy_format, particles, mirrors) {
             let desc = TextureDesc {
-                label,
-                size,
-                format,
-                usage,
+                label: spec.label,
+                size: spec.size,
+                format: spec.format,
+                usage: spec.usage,
                 contents: None,
             };
             match gpu.create_texture(&desc) {
-                Ok(t) => made.push(t),
+                Ok(t) => made.made.push((spec.resource, t)),
                 Err(e) => {
-                    for t in made {
-                        gpu.destroy_texture(t);
-                    }
+                    made.destroy(gpu);
                     return Err(e);
                 }
             }
         }
-        let made: Result<[G::Texture; 7], _> = made.try_into();
-        match made {
-            Ok(
-                [
-                    depth,
-                    copy,
-                    depth_copy,
-                    image,
-                    image_depth,
-                    mirror,
-                    mirror_depth,
-                ],
-            ) => Ok(Self {
-                depth,
-                copy,
-                depth_copy,
-                particles: (image, image_depth),
-                mirror: (mirror, mirror_depth),
-            }),
-            Err(made) => {
-                for t in made {
-                    gpu.destroy_texture(t);
-                }
-                Err(missing("a target texture"))
-            }
-        }
+        Ok(made)
+    }
+
+    /// The texture of `resource`.
+    fn get(&self, resource: TargetResource) -> Result<&G::Texture, BackendError> {
+        find(&self.made, &resource).ok_or_else(|| missing("a target texture"))
     }
 
     fn destroy(self, gpu: &mut G) {
-        for t in [
-            self.depth,
-            self.copy,
-            self.depth_copy,
-            self.particles.0,
-            self.particles.1,
-            self.mirror.0,
-            self.mirror.1,
-        ] {
+        for (_, t) in self.made {
             gpu.destroy_texture(t);
         }
     }
@@ -406,18 +312,8 @@ impl<'a, G: Gpu> Bindable<'a, G> {
             FrameBound::Target(resource) => {
                 let (textures, sums) = self.target.ok_or_else(|| missing("the target"))?;
                 match resource {
-                    TargetResource::CameraDepth => BindingResource::Texture(&textures.depth),
                     TargetResource::SplatSums => BindingResource::Buffer(sums),
-                    TargetResource::SceneCopy => BindingResource::Texture(&textures.copy),
-                    TargetResource::DepthCopy => BindingResource::Texture(&textures.depth_copy),
-                    TargetResource::ParticleImage => {
-                        BindingResource::Texture(&textures.particles.0)
-                    }
-                    TargetResource::ParticleDepth => {
-                        BindingResource::Texture(&textures.particles.1)
-                    }
-                    TargetResource::MirrorImage => BindingResource::Texture(&textures.mirror.0),
-                    TargetResource::MirrorDepth => BindingResource::Texture(&textures.mirror.1),
+                    texture => BindingResource::Texture(textures.get(texture)?),
                 }
             }
         })
@@ -721,17 +617,17 @@ impl<G: Gpu> FrameState<G> {
             (None, None) => return Err(missing("the offscreen image")),
         };
         let format = gpu.colour_format(target);
-        let particle_format = {
-            let image = &self
+        // The images' format (the particles' and the mirror's are alike).
+        let image_format = {
+            let image = self
                 .target
                 .as_ref()
                 .ok_or_else(|| missing("the target"))?
                 .textures
-                .particles
-                .0;
+                .get(TargetResource::ParticleImage)?;
             gpu.colour_format(Target::Texture(image))
         };
-        drawing.prepare(gpu, format, particle_format)?;
+        drawing.prepare(gpu, format, image_format)?;
         let offset = u32::try_from(offset).map_err(|_| missing("a frame block below 4 GiB"))?;
         let offsets = [offset; 2];
         let work = self.record(drawing, format, &decision, &offsets, view, sim)?;
@@ -854,21 +750,16 @@ impl<G: Gpu> FrameState<G> {
                         }
                     }
                     let textures = &target.textures;
+                    let image = recipe.colour_target.target_resource();
                     PassKind::Render(Attachments {
-                        depth: match recipe.depth {
-                            DepthTarget::ShadowMap => shadow_map,
-                            DepthTarget::Camera => &textures.depth,
-                            DepthTarget::Particles => &textures.particles.1,
-                            DepthTarget::Mirror => &textures.mirror.1,
+                        depth: match recipe.depth.target_resource() {
+                            Some(r) => textures.get(r)?,
+                            None => shadow_map,
                         },
-                        colour: match recipe.colour_target {
-                            ColourTarget::Frame => None,
-                            ColourTarget::Particles => Some(&textures.particles.0),
-                            ColourTarget::Mirror => Some(&textures.mirror.0),
-                        },
-                        clear_colour: match recipe.colour_target {
-                            ColourTarget::Frame => [sky.x, sky.y, sky.z, 1.0],
-                            ColourTarget::Particles | ColourTarget::Mirror => [0.0; 4],
+                        colour: image.map(|r| textures.get(r)).transpose()?,
+                        clear_colour: match image {
+                            None => [sky.x, sky.y, sky.z, 1.0],
+                            Some(_) => [0.0; 4],
                         },
                         // The mirror only over the water's rectangle, in its image's
                         // pixels.
@@ -884,8 +775,11 @@ impl<G: Gpu> FrameState<G> {
                     })
                 }
                 PassWork::CopyTarget => PassKind::CopyTarget {
-                    colour: &target.textures.copy,
-                    depth: (&target.textures.depth, &target.textures.depth_copy),
+                    colour: target.textures.get(TargetResource::SceneCopy)?,
+                    depth: (
+                        target.textures.get(TargetResource::CameraDepth)?,
+                        target.textures.get(TargetResource::DepthCopy)?,
+                    ),
                 },
             };
             passes.push(RecordedPass {
