@@ -219,6 +219,13 @@ impl<G: Gpu> Backend for GpuBackend<G> {
         Ok(())
     }
 
+    fn set_shadow_refresh_frames(&mut self, frames: u32) -> Result<(), BackendError> {
+        let state = self.state.as_mut().ok_or(BackendError::NotConfigured {
+            operation: "set_shadow_refresh_frames",
+        })?;
+        state.sim.set_shadow_refresh_frames(frames)
+    }
+
     fn weather(&self) -> Result<Weather, BackendError> {
         Ok(*configured(self.state.as_ref(), "weather")?
             .sim
@@ -348,6 +355,12 @@ macro_rules! delegate_backend {
                 resolution: ::precip_model::ParticleResolution,
             ) -> Result<(), ::precip_model::BackendError> {
                 self.0.set_particle_resolution(resolution)
+            }
+            fn set_shadow_refresh_frames(
+                &mut self,
+                frames: u32,
+            ) -> Result<(), ::precip_model::BackendError> {
+                self.0.set_shadow_refresh_frames(frames)
             }
             fn weather(&self) -> Result<::precip_model::Weather, ::precip_model::BackendError> {
                 self.0.weather()

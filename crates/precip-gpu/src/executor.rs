@@ -431,6 +431,11 @@ impl<G: Gpu> Simulation<G> {
         self.host.set_particle_resolution(resolution);
     }
 
+    /// Keeps a stale shadow map for up to `frames` frames (validated).
+    pub fn set_shadow_refresh_frames(&mut self, frames: u32) -> Result<(), BackendError> {
+        self.host.set_shadow_refresh_frames(frames)
+    }
+
     /// A step of `dt_s` (validated): every sub-step's blocks uploaded into the next
     /// slot's ring, the sub-steps' kernels submitted at once (timed where the device
     /// can), and the host's clock moved.

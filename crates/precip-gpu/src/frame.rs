@@ -710,7 +710,7 @@ impl FrameHost {
         }
         let shadow_redrawn =
             self.shadow_cache
-                .for_frame(setup, host.weather(), &params, host.time_s());
+                .for_frame(setup, host.weather(), &mut params, host.time_s());
         FrameDecision {
             params,
             conditions: FrameConditions {

@@ -53,8 +53,8 @@ pub use backend::{
     substeps,
 };
 pub use cpu::CpuBackend;
+pub use drawing::frame_rate_control::{FrameLevel, FrameRateControl};
 pub use drawing::render::{Mirrors, ParticleResolution, Quality, RenderSettings};
-pub use drawing::resolution_control::ResolutionControl;
 pub use particles::emitter::{CameraVolume, WorldEmitter};
 pub use particles::ground::GroundMap;
 pub use particles::particle::{Particle, ParticleKind, ParticleSource};

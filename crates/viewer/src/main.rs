@@ -130,9 +130,10 @@ struct RunArgs {
     mirrors: Option<MirrorsName>,
     /// How much the look may cost: high draws everything at the frame's resolution;
     /// medium draws rain and snow at half of it; low at a quarter, with a smaller
-    /// shadow map and only the water bodies mirroring the scene; auto, in a window,
-    /// holds --target-fps by the particles' resolution (headless: as high). The
-    /// same weather, density and light at every level.
+    /// shadow map kept up to 4 frames when stale and only the water bodies
+    /// mirroring the scene; auto, in a window, holds --target-fps by the particles'
+    /// resolution and the shadow map's refresh (headless: as high). The same
+    /// weather, density and light at every level.
     #[arg(long, value_enum, default_value_t = QualityName::High)]
     quality: QualityName,
     /// The frame rate `--quality auto` holds in a window.
@@ -582,15 +583,15 @@ enum MirrorsName {
 /// `--quality`: `precip_model::Quality`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 enum QualityName {
-    /// Particles at a quarter of the frame's resolution, a smaller shadow map, only
-    /// the water bodies mirroring.
+    /// Particles at a quarter of the frame's resolution, a smaller shadow map kept up
+    /// to 4 frames when stale, only the water bodies mirroring.
     Low,
     /// Particles at half the frame's resolution.
     Medium,
     /// Everything at the frame's resolution.
     High,
-    /// In a window, the particles' resolution follows the frame rate
-    /// (`--target-fps`); headless, as high.
+    /// In a window, the particles' resolution and the shadow map's refresh follow
+    /// the frame rate (`--target-fps`); headless, as high.
     Auto,
 }
 

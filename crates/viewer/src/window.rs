@@ -17,7 +17,7 @@ use glam::Vec3;
 use precip_gpu_vk::VkBackend;
 use precip_gpu_wgpu::WgpuBackend;
 use precip_model::{
-    Backend, BackendError, PrecipitationKind, ResolutionControl, Setup, View, Weather,
+    Backend, BackendError, FrameRateControl, PrecipitationKind, Setup, View, Weather,
 };
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, WindowEvent};
@@ -146,8 +146,9 @@ struct Running {
     water: Option<WaterSummary>,
     /// The snow, sampled with the water.
     snow: Option<SnowSummary>,
-    /// `--quality auto`: the frame-rate control over the particles' resolution.
-    control: Option<ResolutionControl>,
+    /// `--quality auto`: the frame-rate control over the particles' resolution and
+    /// the shadow map's refresh.
+    control: Option<FrameRateControl>,
 }
 
 struct App {
@@ -186,7 +187,13 @@ fn title(r: &Running) -> String {
         .unwrap_or_default();
     let resolution = r
         .control
-        .map(|c| format!(" (drawn at {:?} resolution)", c.resolution()))
+        .map(|c| {
+            let l = c.level();
+            format!(
+                " (drawn at {:?} resolution, shadow kept {} frames)",
+                l.particle_resolution, l.shadow_refresh_frames
+            )
+        })
         .unwrap_or_default();
     format!(
         "precip — {:.1} ms/frame, sim ×{:.2}, {} particles{resolution} — {:?} {:.1} mm/h, {:.1} °C, wind {:.1} m/s, cover ×{:.0}{blowing}{water}",
@@ -248,7 +255,7 @@ impl App {
             snow: None,
             control: self
                 .hold_fps
-                .map(|fps| ResolutionControl::new(fps, self.setup.render.particle_resolution)),
+                .map(|fps| FrameRateControl::new(fps, self.setup.render.particle_resolution)),
         })
     }
 }
@@ -404,7 +411,9 @@ impl Running {
             .as_mut()
             .and_then(|c| c.after_frame(self.frame_ms))
         {
-            self.presenter.backend().set_particle_resolution(next)?;
+            let backend = self.presenter.backend();
+            backend.set_particle_resolution(next.particle_resolution)?;
+            backend.set_shadow_refresh_frames(next.shadow_refresh_frames)?;
         }
         self.frames += 1;
         if self.frames.is_multiple_of(WaterSummary::EVERY_FRAMES) {
@@ -553,7 +562,8 @@ pub struct WindowSummary {
 /// Opens a window of `size` over `setup`, drawing with `backend`, and runs until it
 /// is closed (or, with `quit_after`, after that many frames).
 /// With `cigi`, a host's weather takes effect at the next frame; with `hold_fps`,
-/// the particles' resolution follows the frame rate ([`ResolutionControl`]).
+/// the particles' resolution and the shadow map's refresh follow the frame rate
+/// ([`FrameRateControl`]).
 pub fn run_window(
     setup: Setup,
     size: (u32, u32),

@@ -1084,6 +1084,25 @@ fn the_shadow_map_is_not_redrawn_when_nothing_changed() {
             gpu.render(&view).expect("renders");
             assert!(shadow_timed(&mut gpu), "{name}: frame {frame} redraws it");
         }
+        // Kept up to 4 frames (a frame-rate control's knob): redrawn every 4th.
+        for bad in [0, 61] {
+            assert!(
+                gpu.set_shadow_refresh_frames(bad).is_err(),
+                "{name}: {bad} frames"
+            );
+        }
+        gpu.set_shadow_refresh_frames(4).expect("valid");
+        let mut redrawn = Vec::new();
+        for _ in 0..8 {
+            gpu.step(0.05).expect("valid");
+            gpu.render(&view).expect("renders");
+            redrawn.push(shadow_timed(&mut gpu));
+        }
+        assert_eq!(
+            redrawn,
+            [false, false, false, true, false, false, false, true],
+            "{name}: kept 3 frames after each draw"
+        );
     }
 }
 

@@ -138,6 +138,14 @@ pub trait Backend {
         let _ = resolution;
         Ok(())
     }
+    /// Keeps a stale shadow map for up to `frames` frames from the next frame on
+    /// (`RenderSettings::shadow_refresh_frames` changed without re-configuring,
+    /// `[1, 60]`: what a frame-rate controller turns). A backend that does not draw
+    /// ignores it.
+    fn set_shadow_refresh_frames(&mut self, frames: u32) -> Result<(), BackendError> {
+        let _ = frames;
+        Ok(())
+    }
     /// The weather in effect (the setup's, or the last `set_weather`'s).
     fn weather(&self) -> Result<Weather, BackendError>;
     /// Casts LiDAR beams against the particles and the scene's ground map as they

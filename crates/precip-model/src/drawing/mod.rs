@@ -14,9 +14,9 @@
 //! particle crossing the threshold does not pop.
 
 mod drop_environment;
+pub mod frame_rate_control;
 pub mod multiplicity;
 pub mod render;
-pub mod resolution_control;
 pub mod shadow_cache;
 pub mod shadow_fit;
 pub mod water_look;

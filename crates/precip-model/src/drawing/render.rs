@@ -116,6 +116,12 @@ pub struct RenderSettings {
     pub snow_displacement: bool,
     /// Shadow map side, px.
     pub shadow_map_px: u32,
+    /// The most frames a stale shadow map is kept, `[1, 60]`: 1 redraws it as soon as
+    /// the sun's view or the snow moved enough to show
+    /// ([`crate::drawing::shadow_cache::ShadowCache`]); `n` keeps it, sampled as it was
+    /// drawn, for up to `n − 1` more frames (a moving camera redraws it every `n`th
+    /// frame, not every frame).
+    pub shadow_refresh_frames: u32,
     /// Longest triangle edge after tessellation for the displacement, m.
     pub tessellation_edge_m: f32,
     /// Most triangles the tessellated scene may have.
@@ -150,6 +156,7 @@ impl Default for RenderSettings {
             rain_opacity: 1.0,
             snow_displacement: true,
             shadow_map_px: 2048,
+            shadow_refresh_frames: 1,
             tessellation_edge_m: 0.5,
             max_scene_triangles: 2_000_000,
             water_body_depth_m: 1.5,
@@ -159,13 +166,16 @@ impl Default for RenderSettings {
     }
 }
 
+/// The most frames [`Quality::Low`] keeps a stale shadow map.
+pub const LOW_SHADOW_REFRESH_FRAMES: u32 = 4;
+
 fn bad(field: &'static str, problem: String) -> BackendError {
     BackendError::Setup { field, problem }
 }
 
 impl RenderSettings {
-    /// These settings at `quality`: its particle resolution, shadow map and mirrors
-    /// (the rest kept).
+    /// These settings at `quality`: its particle resolution, shadow map, shadow
+    /// refresh and mirrors (the rest kept).
     #[must_use]
     pub fn at_quality(self, quality: Quality) -> Self {
         let high = Self::default();
@@ -181,6 +191,7 @@ impl RenderSettings {
             Quality::Low => Self {
                 particle_resolution: ParticleResolution::Quarter,
                 shadow_map_px: self.shadow_map_px.min(high.shadow_map_px / 2),
+                shadow_refresh_frames: self.shadow_refresh_frames.max(LOW_SHADOW_REFRESH_FRAMES),
                 mirrors: Mirrors::WaterBodies,
                 ..self
             },
@@ -249,6 +260,15 @@ impl RenderSettings {
             return Err(bad(
                 "render.sky_colour",
                 format!("= {} must be finite and non-negative", self.sky_colour),
+            ));
+        }
+        if !(1..=60).contains(&self.shadow_refresh_frames) {
+            return Err(bad(
+                "render.shadow_refresh_frames",
+                format!(
+                    "= {} must be in [1, 60] (1: redraw a stale shadow map at once)",
+                    self.shadow_refresh_frames
+                ),
             ));
         }
         if !(16..=8192).contains(&self.shadow_map_px) {
@@ -614,13 +634,14 @@ mod tests {
         let low = mine.at_quality(Quality::Low);
         assert_eq!(low.particle_resolution, ParticleResolution::Quarter);
         assert_eq!(
-            (low.shadow_map_px, low.mirrors),
-            (1024, Mirrors::WaterBodies)
+            (low.shadow_map_px, low.mirrors, low.shadow_refresh_frames),
+            (1024, Mirrors::WaterBodies, LOW_SHADOW_REFRESH_FRAMES)
         );
         assert_eq!(
             RenderSettings {
                 particle_resolution: ParticleResolution::Full,
                 shadow_map_px: 4096,
+                shadow_refresh_frames: 1,
                 mirrors: Mirrors::AllWater,
                 ..low
             },

@@ -64,6 +64,8 @@ struct Drawn {
     sun_view_proj: Mat4,
     displacement: bool,
     cover_time_s: f64,
+    /// Frames since it went stale (0: fresh).
+    stale_frames: u32,
 }
 
 /// Decides, frame by frame, whether the shadow pass runs.
@@ -85,6 +87,30 @@ impl ShadowCache {
         surface_speed_bound_mps: f32,
         visible_rise_m: f32,
     ) -> bool {
+        self.decide(
+            sun_view_proj,
+            displacement,
+            cover_time_s,
+            surface_speed_bound_mps,
+            visible_rise_m,
+            1,
+        )
+        .0
+    }
+
+    /// [`ShadowCache::needs_drawing`], a stale map kept for up to
+    /// `refresh_frames − 1` frames (not when the displacement switch changed or none
+    /// was drawn): whether to draw, and the sun's projection the map in use was
+    /// drawn with (the frame samples it with that).
+    pub fn decide(
+        &mut self,
+        sun_view_proj: Mat4,
+        displacement: bool,
+        cover_time_s: f64,
+        surface_speed_bound_mps: f32,
+        visible_rise_m: f32,
+        refresh_frames: u32,
+    ) -> (bool, Mat4) {
         let fresh = self.drawn.is_some_and(|d| {
             let elapsed = (cover_time_s - d.cover_time_s).abs();
             let moved = if displacement {
@@ -97,33 +123,48 @@ impl ShadowCache {
                 && moved < f64::from(visible_rise_m.max(SHADOW_REFRESH_RISE_M))
                 && elapsed < SHADOW_MAX_AGE_COVER_S
         });
+        if let Some(d) = self
+            .drawn
+            .as_mut()
+            .filter(|d| d.displacement == displacement)
+            && !fresh
+            && d.stale_frames + 1 < refresh_frames
+        {
+            d.stale_frames += 1;
+            return (false, d.sun_view_proj);
+        }
         if !fresh {
             self.drawn = Some(Drawn {
                 sun_view_proj,
                 displacement,
                 cover_time_s,
+                stale_frames: 0,
             });
         }
-        !fresh
+        (!fresh, sun_view_proj)
     }
 
-    /// [`ShadowCache::needs_drawing`] for a frame of `setup` under `weather` at
-    /// simulated time `time_s` (the cover's time is that times its time scale),
-    /// drawn with `params`.
+    /// [`ShadowCache::decide`] for a frame of `setup` under `weather` at simulated
+    /// time `time_s` (the cover's time is that times its time scale), drawn with
+    /// `params`, keeping a stale map for `setup.render.shadow_refresh_frames`;
+    /// `params.sun_view_proj` becomes the projection of the map in use.
     pub fn for_frame(
         &mut self,
         setup: &Setup,
         weather: &Weather,
-        params: &RenderParams,
+        params: &mut RenderParams,
         time_s: f64,
     ) -> bool {
-        self.needs_drawing(
+        let (draw, sun_view_proj) = self.decide(
             params.sun_view_proj,
             setup.render.snow_displacement,
             time_s * f64::from(setup.cover.time_scale),
             snow_surface_speed_bound_mps(weather, &setup.cover.params),
             shadow_texel_m(params.sun_view_proj, setup.render.shadow_map_px),
-        )
+            setup.render.shadow_refresh_frames,
+        );
+        params.sun_view_proj = sun_view_proj;
+        draw
     }
 
     /// Forgets the map (its contents are lost or stale).
@@ -215,5 +256,40 @@ mod tests {
             ..cold
         };
         assert!(snow_surface_speed_bound_mps(&thaw, &cover) > 0.0);
+    }
+
+    #[test]
+    fn a_stale_map_is_kept_for_the_refresh_frames_and_sampled_as_drawn() {
+        let sun = Mat4::from_scale(glam::Vec3::splat(0.1));
+        let moved = sun * 2.0;
+        let mut cache = ShadowCache::default();
+        assert_eq!(
+            cache.decide(sun, true, 0.0, 0.0, 0.0, 4),
+            (true, sun),
+            "first frame"
+        );
+        // The camera moves every frame: kept three frames, sampled as drawn.
+        for k in 1..4 {
+            let view = sun * (1.0 + k as f32);
+            assert_eq!(
+                cache.decide(view, true, 0.0, 0.0, 0.0, 4),
+                (false, sun),
+                "frame {k}"
+            );
+        }
+        assert_eq!(
+            cache.decide(moved, true, 0.0, 0.0, 0.0, 4),
+            (true, moved),
+            "the fourth"
+        );
+        assert_eq!(
+            cache.decide(moved, true, 0.0, 0.0, 0.0, 4),
+            (false, moved),
+            "fresh"
+        );
+        // The displacement switch is never waited for.
+        assert_eq!(cache.decide(moved, false, 0.0, 0.0, 0.0, 4), (true, moved));
+        // One refresh frame: redrawn at once.
+        assert_eq!(cache.decide(sun, false, 0.0, 0.0, 0.0, 1), (true, sun));
     }
 }

@@ -125,6 +125,18 @@ impl HostState {
         self.setup.render.particle_resolution = resolution;
     }
 
+    /// Keeps a stale shadow map for up to `frames` frames from the next frame on
+    /// (validated as `RenderSettings::shadow_refresh_frames`).
+    pub fn set_shadow_refresh_frames(&mut self, frames: u32) -> Result<(), BackendError> {
+        let render = crate::drawing::render::RenderSettings {
+            shadow_refresh_frames: frames,
+            ..self.setup.render
+        };
+        render.validate()?;
+        self.setup.render = render;
+        Ok(())
+    }
+
     /// The blocks of a step of `dt_s` (validated), from the clock now; the clock
     /// moves only with [`HostState::advance`], once the backend has the step under way.
     pub fn substeps(&self, dt_s: f32) -> Result<SubSteps, BackendError> {
