@@ -78,30 +78,10 @@ impl ShadowCache {
     /// Whether this frame must draw the shadow map, for the sun's projection, the
     /// displacement switch, the cover's simulated time (s), the surface's speed
     /// bound ([`snow_surface_speed_bound_mps`]) and the rise that shows in the map
-    /// (m); records the draw when it says yes.
-    pub fn needs_drawing(
-        &mut self,
-        sun_view_proj: Mat4,
-        displacement: bool,
-        cover_time_s: f64,
-        surface_speed_bound_mps: f32,
-        visible_rise_m: f32,
-    ) -> bool {
-        self.decide(
-            sun_view_proj,
-            displacement,
-            cover_time_s,
-            surface_speed_bound_mps,
-            visible_rise_m,
-            1,
-        )
-        .0
-    }
-
-    /// [`ShadowCache::needs_drawing`], a stale map kept for up to
+    /// (m), recording the draw when it says yes; a stale map kept for up to
     /// `refresh_frames − 1` frames (not when the displacement switch changed or none
-    /// was drawn): whether to draw, and the sun's projection the map in use was
-    /// drawn with (the frame samples it with that).
+    /// was drawn). Also the sun's projection the map in use was drawn with (the
+    /// frame samples it with that).
     pub fn decide(
         &mut self,
         sun_view_proj: Mat4,
@@ -182,33 +162,41 @@ mod tests {
         let sun = Mat4::from_scale(glam::Vec3::splat(0.1));
         let mut cache = ShadowCache::default();
         let speed = 1.0e-5; // 1 cm in 1 000 s
+        assert!(cache.decide(sun, true, 0.0, speed, 0.0, 1).0, "first frame");
         assert!(
-            cache.needs_drawing(sun, true, 0.0, speed, 0.0),
-            "first frame"
-        );
-        assert!(
-            !cache.needs_drawing(sun, true, 10.0, speed, 0.0),
+            !cache.decide(sun, true, 10.0, speed, 0.0, 1).0,
             "nothing changed"
         );
         assert!(
-            !cache.needs_drawing(sun, true, 899.0, speed, 0.0),
+            !cache.decide(sun, true, 899.0, speed, 0.0, 1).0,
             "9 mm at most"
         );
-        assert!(cache.needs_drawing(sun, true, 1_001.0, speed, 0.0), "1 cm");
-        assert!(!cache.needs_drawing(sun, true, 1_002.0, speed, 0.0));
+        assert!(cache.decide(sun, true, 1_001.0, speed, 0.0, 1).0, "1 cm");
+        assert!(!cache.decide(sun, true, 1_002.0, speed, 0.0, 1).0);
         assert!(
-            cache.needs_drawing(sun * 2.0, true, 1_002.0, speed, 0.0),
+            cache.decide(sun * 2.0, true, 1_002.0, speed, 0.0, 1).0,
             "the sun"
         );
         assert!(
-            cache.needs_drawing(sun * 2.0, false, 1_002.0, speed, 0.0),
+            cache.decide(sun * 2.0, false, 1_002.0, speed, 0.0, 1).0,
             "the switch"
         );
         // Without displacement the snow does not move the map; age still does.
-        assert!(!cache.needs_drawing(sun * 2.0, false, 1_800.0, 1.0, 0.0));
-        assert!(cache.needs_drawing(sun * 2.0, false, 1_002.0 + SHADOW_MAX_AGE_COVER_S, 1.0, 0.0));
+        assert!(!cache.decide(sun * 2.0, false, 1_800.0, 1.0, 0.0, 1).0);
+        assert!(
+            cache
+                .decide(
+                    sun * 2.0,
+                    false,
+                    1_002.0 + SHADOW_MAX_AGE_COVER_S,
+                    1.0,
+                    0.0,
+                    1
+                )
+                .0
+        );
         cache.invalidate();
-        assert!(cache.needs_drawing(sun * 2.0, false, 1_902.0, 1.0, 0.0));
+        assert!(cache.decide(sun * 2.0, false, 1_902.0, 1.0, 0.0, 1).0);
     }
 
     #[test]
@@ -225,13 +213,13 @@ mod tests {
         assert!((texel - 80.0 / 2048.0).abs() < 1e-5, "{texel} m");
         let mut cache = ShadowCache::default();
         let speed = 1.0e-3; // 1 mm a second
-        assert!(cache.needs_drawing(sun, true, 0.0, speed, texel));
-        assert!(!cache.needs_drawing(sun, true, 30.0, speed, texel), "3 cm");
-        assert!(cache.needs_drawing(sun, true, 40.0, speed, texel), "4 cm");
+        assert!(cache.decide(sun, true, 0.0, speed, texel, 1).0);
+        assert!(!cache.decide(sun, true, 30.0, speed, texel, 1).0, "3 cm");
+        assert!(cache.decide(sun, true, 40.0, speed, texel, 1).0, "4 cm");
         // A finer map shows the 1 cm floor.
         let fine = shadow_texel_m(sun, 8192);
-        assert!(!cache.needs_drawing(sun, true, 49.0, speed, fine));
-        assert!(cache.needs_drawing(sun, true, 51.0, speed, fine), "1.1 cm");
+        assert!(!cache.decide(sun, true, 49.0, speed, fine, 1).0);
+        assert!(cache.decide(sun, true, 51.0, speed, fine, 1).0, "1.1 cm");
     }
 
     #[test]
