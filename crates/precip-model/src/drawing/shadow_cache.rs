@@ -14,6 +14,11 @@
 //! 4 cm each) is redrawn about every tenth of a second while it snows, every third
 //! frame at 30 fps; in a real-time simulator it is redrawn every 15 minutes, the
 //! settling refresh.
+//!
+//! A frame-rate budget may keep a stale map for `RenderSettings::shadow_refresh_frames`
+//! frames: the frame then samples it with the projection it was drawn with
+//! ([`ShadowCache::decide`]), so a camera that moves (and with it the map's fit)
+//! redraws it every `n`th frame instead of every frame.
 
 use glam::Mat4;
 use precip_cover::{CoverParams, new_snow_density, snow_albedo};
