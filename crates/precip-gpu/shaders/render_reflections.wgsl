@@ -109,7 +109,8 @@ const MIRROR_CUT_M: f32 = 0.005;
 // the level cut.
 @fragment
 fn fs_mirror(in: SceneVarying) -> @location(0) vec4<f32> {
-    let level = params.mirror.x;
+    // From the storage copy: a branch tests it (render_scene.wgsl's `switches`).
+    let level = switches.mirror.x;
     if (in.world_m.y < level - MIRROR_CUT_M) {
         discard;
     }
@@ -125,7 +126,7 @@ fn fs_mirror(in: SceneVarying) -> @location(0) vec4<f32> {
 fn fs_water_body_planar(in: SceneVarying) -> @location(0) vec4<f32> {
     let camera = params.camera_m_cone_cos.xyz;
     var look = surface_look(in, camera);
-    if (look.mirror > REFLECTION_LEAST && abs(in.surface_m.y - params.mirror.x) <= MIRROR_LEVEL_TOLERANCE_M) {
+    if (look.mirror > REFLECTION_LEAST && abs(in.surface_m.y - switches.mirror.x) <= MIRROR_LEVEL_TOLERANCE_M) {
         let to_viewer = normalize_or_zero(camera - in.world_m);
         look.shaded += look.mirror * planar_mirrored_scene(in.clip.xy, to_viewer, look.water_slope);
     }
@@ -143,8 +144,9 @@ fn planar_mirrored_scene(frag_xy: vec2<f32>, to_viewer: vec3<f32>, slope: vec2<f
     let ray = reflect(-to_viewer, normalize(vec3<f32>(-slope.x, 1.0, -slope.y)));
     if (dot(slope, slope) > 0.0) {
         // The reflections of the level and the tilted rays, seen through the mirror.
-        let level = params.view_proj * vec4<f32>(-to_viewer, 0.0);
-        let tilted = params.view_proj * vec4<f32>(ray.x, -ray.y, ray.z, 0.0);
+        // The storage copy of the camera: a branch tests what it gives.
+        let level = switches.view_proj * vec4<f32>(-to_viewer, 0.0);
+        let tilted = switches.view_proj * vec4<f32>(ray.x, -ray.y, ray.z, 0.0);
         if (level.w > 1.0e-4 && tilted.w > 1.0e-4) {
             let shift = (tilted.xy / tilted.w - level.xy / level.w) * vec2<f32>(0.5, -0.5);
             let reach = length(shift);
