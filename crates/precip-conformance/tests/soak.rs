@@ -8,7 +8,7 @@
 
 use glam::Vec3;
 use precip_conformance::{Subject, gpu_subjects, resident_kib};
-use precip_model::scene::builtin::house_on_plane;
+use precip_model::scene::builtin::house_with_pond;
 use precip_model::wind::WindField;
 use precip_model::{Backend, DeviceMemory, PrecipitationKind, Setup, View};
 
@@ -34,20 +34,7 @@ const MAX_KIB_PER_CYCLE: f64 = 256.0;
 /// frame runs, the water bodies' mirror included (a lavapipe leak once hid in a
 /// pass the plain house never ran).
 fn setup(particles: u32) -> Setup {
-    let mut scene = house_on_plane();
-    scene.meshes.push(precip_model::Mesh {
-        name: "pond".into(),
-        positions_m: vec![
-            Vec3::new(-8.0, 0.02, 4.0),
-            Vec3::new(8.0, 0.02, 4.0),
-            Vec3::new(8.0, 0.02, 14.0),
-            Vec3::new(-8.0, 0.02, 14.0),
-        ],
-        indices: vec![0, 2, 1, 0, 3, 2],
-        surface: Some(precip_model::cover::Surface::Water),
-        ..precip_model::Mesh::default()
-    });
-    let (mut setup, _) = Setup::over_scene(scene, 48, 6.0, particles).expect("house");
+    let (mut setup, _) = Setup::over_scene(house_with_pond(), 48, 6.0, particles).expect("house");
     setup.cover.time_scale = 2_000.0;
     let position = Vec3::new(0.0, 1.5, 20.0);
     setup.camera.position_m = position;

@@ -295,12 +295,8 @@ const WATER_BODY_DRAW: Draw = Draw {
         materials: true,
         which: MeshesOf::WaterBodies,
     },
-    scene_vertices: true,
-    topology: Topology::TriangleList,
-    depth_write: true,
-    depth_bias: None,
-    blend: Blend::Opaque,
     when: PassWhen::WaterMirroredNot,
+    ..SCENE_DRAW
 };
 
 // The water bodies where the planar mirror is drawn: one sample of its image, no

@@ -129,20 +129,13 @@ fn vk_and_wgpu_mirror_the_house_in_a_pond_alike() {
     else {
         return;
     };
-    let mut scene = house_on_plane();
-    scene.meshes.push(precip_model::Mesh {
-        name: "pond".into(),
-        positions_m: vec![
-            Vec3::new(-8.0, 0.02, 4.0),
-            Vec3::new(8.0, 0.02, 4.0),
-            Vec3::new(8.0, 0.02, 14.0),
-            Vec3::new(-8.0, 0.02, 14.0),
-        ],
-        indices: vec![0, 2, 1, 0, 3, 2],
-        surface: Some(precip_model::cover::Surface::Water),
-        ..precip_model::Mesh::default()
-    });
-    let (mut setup, _) = Setup::over_scene(scene, 64, 6.0, 2_000).expect("valid");
+    let (mut setup, _) = Setup::over_scene(
+        precip_model::scene::builtin::house_with_pond(),
+        64,
+        6.0,
+        2_000,
+    )
+    .expect("valid");
     setup.weather.intensity_mm_per_h = 0.5;
     let position = Vec3::new(0.0, 0.8, 18.0);
     let camera = Camera {

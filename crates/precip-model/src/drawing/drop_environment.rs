@@ -89,8 +89,9 @@ pub fn drop_ground_albedo(cover: &CoverGrid, camera_xz_m: Vec2, params: &CoverPa
         sum += cover
             .frame
             .texel_index(camera_xz_m + offset)
-            .map_or(BARE_GROUND_ALBEDO, |i| {
-                ground_albedo(&cover.texels[i], params, BARE_GROUND_ALBEDO)
+            .and_then(|i| cover.texels.get(i))
+            .map_or(BARE_GROUND_ALBEDO, |t| {
+                ground_albedo(t, params, BARE_GROUND_ALBEDO)
             });
         count += 1.0;
     }

@@ -177,6 +177,26 @@ pub fn house_on_plane() -> Scene {
     house(&HousePlan::default())
 }
 
+/// [`house_on_plane`] with a pond before its south side: a 16 × 10 m water body
+/// (`Surface::Water`) 2 cm above the plane, from `z = 4` to `14` m.
+#[must_use]
+pub fn house_with_pond() -> Scene {
+    let mut scene = house_on_plane();
+    scene.meshes.push(Mesh {
+        name: "pond".into(),
+        positions_m: vec![
+            Vec3::new(-8.0, 0.02, 4.0),
+            Vec3::new(8.0, 0.02, 4.0),
+            Vec3::new(8.0, 0.02, 14.0),
+            Vec3::new(-8.0, 0.02, 14.0),
+        ],
+        indices: vec![0, 2, 1, 0, 3, 2],
+        surface: Some(precip_cover::Surface::Water),
+        ..Mesh::default()
+    });
+    scene
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
