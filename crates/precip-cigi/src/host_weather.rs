@@ -21,10 +21,14 @@
 //! visibility ([`precip_model::physics::grain`]). The layer's coverage (%) scales the rate
 //! (showers over part of the area). Base elevation and thickness are kept
 //! ([`HostWeather::layer_extent_m`]) but precipitation falls to the ground from
-//! whatever layer sends it. Hail (layer 7), fog and cloud layers and the regional and
-//! entity scopes are counted as ignored.
+//! whatever layer sends it. The ground fog (layer 0) is a fog layer from the ground
+//! up to its base elevation + thickness, of the visibility range the host sends (by
+//! severity when it sends 0: 1 000, 500, 300, 200, 100, 50 m); disabling it clears
+//! it. Hail (layer 7), cloud layers and the regional and entity scopes are counted as
+//! ignored.
 
 use glam::Vec3;
+use precip_model::drawing::fog_layer::FogLayer;
 use precip_model::physics::grain::{Grain, grain_settling_speed_mps};
 use precip_model::wind::WindField;
 use precip_model::{PrecipitationKind, Weather};
@@ -37,6 +41,11 @@ pub const RAIN_MM_PER_H: [f32; 6] = [0.5, 1.5, 4.0, 10.0, 25.0, 60.0];
 pub const SNOW_MM_PER_H: [f32; 6] = [0.2, 0.5, 1.0, 2.0, 4.0, 8.0];
 /// Sand's and dust's visibility by severity, m.
 pub const GRAIN_VISIBILITY_M: [f32; 6] = [5_000.0, 2_000.0, 1_000.0, 500.0, 200.0, 50.0];
+/// Ground fog's visibility by severity when the host sends none, m (WMO: fog is
+/// below 1 km).
+pub const FOG_VISIBILITY_M: [f32; 6] = [1_000.0, 500.0, 300.0, 200.0, 100.0, 50.0];
+/// CIGI 3.3's layer ID of the ground fog.
+pub const GROUND_FOG_LAYER: u8 = 0;
 
 /// The precipitation kind of a Weather Control layer; `None` for the layers precip
 /// does not draw.
@@ -66,6 +75,8 @@ pub fn grain_rate_for_visibility(grain: &Grain, visibility_m: f32) -> f32 {
 pub enum Applied {
     /// The weather changed to this.
     Changed(Weather),
+    /// The ground fog changed to this layer (`None`: cleared).
+    Fog(Option<FogLayer>),
     /// The packet was for a layer, scope or kind precip does not draw.
     Ignored,
     /// The weather it asks for is not physical (precip_model's validation): kept
@@ -78,6 +89,7 @@ pub enum Applied {
 pub struct HostWeather {
     weather: Weather,
     layer_extent_m: Option<(f32, f32)>,
+    fog_layer: Option<FogLayer>,
 }
 
 impl HostWeather {
@@ -87,6 +99,7 @@ impl HostWeather {
         Self {
             weather,
             layer_extent_m: None,
+            fog_layer: None,
         }
     }
 
@@ -102,8 +115,17 @@ impl HostWeather {
         self.layer_extent_m
     }
 
+    /// The ground fog in effect.
+    #[must_use]
+    pub fn fog_layer(&self) -> Option<FogLayer> {
+        self.fog_layer
+    }
+
     /// Applies one Weather Control packet (module docs).
     pub fn apply(&mut self, packet: &WeatherControl) -> Applied {
+        if packet.layer == GROUND_FOG_LAYER && packet.scope == 0 {
+            return self.apply_fog(packet);
+        }
         let Some(kind) = layer_kind(packet.layer) else {
             return Applied::Ignored;
         };
@@ -153,5 +175,25 @@ impl HostWeather {
         self.weather = next;
         self.layer_extent_m = Some((packet.base_elevation_m, packet.thickness_m));
         Applied::Changed(next)
+    }
+
+    /// The ground fog layer of a packet for layer 0.
+    fn apply_fog(&mut self, packet: &WeatherControl) -> Applied {
+        let fog = packet.enabled.then(|| {
+            let visibility = if packet.visibility_m > 0.0 {
+                packet.visibility_m
+            } else {
+                FOG_VISIBILITY_M[usize::from(packet.severity.min(5))]
+            };
+            FogLayer::new(
+                packet.base_elevation_m + packet.thickness_m.max(0.0),
+                visibility,
+            )
+        });
+        if fog.as_ref().is_some_and(|f| f.validate().is_err()) {
+            return Applied::Refused;
+        }
+        self.fog_layer = fog;
+        Applied::Fog(fog)
     }
 }

@@ -44,6 +44,10 @@ pub struct CigiReceiver {
     buffer: Vec<u8>,
     /// The weather [`CigiReceiver::poll`] last returned (or started from).
     announced: Weather,
+    /// The ground fog [`CigiReceiver::take_fog_layer`] last returned (none at first).
+    announced_fog: Option<precip_model::drawing::fog_layer::FogLayer>,
+    /// A ground fog that differs from the announced one, not yet taken.
+    fog_news: Option<Option<precip_model::drawing::fog_layer::FogLayer>>,
     /// Where Start of Frame goes: set by [`CigiReceiver::reply_to`], else the sender
     /// of the last well-formed message.
     host: Option<SocketAddr>,
@@ -69,6 +73,8 @@ impl CigiReceiver {
             last_error: None,
             buffer: vec![0u8; 65_536],
             announced: weather,
+            announced_fog: None,
+            fog_news: None,
             host: None,
             host_fixed: false,
             last_control: None,
@@ -167,11 +173,23 @@ impl CigiReceiver {
                     self.announced = weather;
                     return news.then_some(weather);
                 }
+                Applied::Fog(fog) => {
+                    self.counts.weather_applied += 1;
+                    self.fog_news = (fog != self.announced_fog).then_some(fog);
+                }
                 Applied::Ignored => self.counts.weather_ignored += 1,
                 Applied::Refused => self.counts.weather_refused += 1,
             },
         }
         None
+    }
+
+    /// The ground fog the host set since the last call, if it changed (`Some(None)`:
+    /// it was cleared); read after [`CigiReceiver::poll`].
+    pub fn take_fog_layer(&mut self) -> Option<Option<precip_model::drawing::fog_layer::FogLayer>> {
+        let news = self.fog_news.take()?;
+        self.announced_fog = news;
+        Some(news)
     }
 
     /// The weather in effect.

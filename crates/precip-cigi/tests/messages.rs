@@ -4,11 +4,12 @@
 use std::net::UdpSocket;
 use std::time::{Duration, Instant};
 
-use precip_cigi::host_weather::{RAIN_MM_PER_H, SNOW_MM_PER_H};
+use precip_cigi::host_weather::{FOG_VISIBILITY_M, RAIN_MM_PER_H, SNOW_MM_PER_H};
 use precip_cigi::{
     Applied, ByteOrder, CigiError, CigiReceiver, HostWeather, Packet, StartOfFrame, WeatherControl,
     parse_message, parse_start_of_frame,
 };
+use precip_model::drawing::fog_layer::FogLayer;
 use precip_model::{PrecipitationKind, Weather};
 use proptest::prelude::*;
 
@@ -209,6 +210,11 @@ fn disabling_the_layer_clears_it_and_other_layers_and_scopes_are_ignored() {
         "a cloud layer"
     );
     assert_eq!(
+        host.apply(&packet(0, true, 1, 10.0)),
+        Applied::Ignored,
+        "a region's fog"
+    );
+    assert_eq!(
         host.apply(&packet(7, true, 0, 10.0)),
         Applied::Ignored,
         "hail"
@@ -374,4 +380,81 @@ fn a_host_on_loopback_changes_the_weather_and_bad_datagrams_are_counted() {
     );
     assert_eq!(sof.last_host_frame, RAIN_HOST_FRAME);
     assert_eq!(receiver.counts().start_of_frame_sent, 1);
+}
+
+#[test]
+fn the_ground_fog_layer_is_fog_up_to_its_top_and_only_news_is_announced() {
+    let mut receiver = CigiReceiver::bind(0, Weather::default()).expect("a free port");
+    let port = receiver.local_addr().expect("bound").port();
+    let host = UdpSocket::bind("127.0.0.1:0").expect("host socket");
+    let fog_message = |enabled: bool, visibility_m: f32| {
+        let mut w = Writer::new(ByteOrder::Big);
+        w.ig_control(7);
+        // Base 800 m, thickness 1 500 m (the writer's): the top at 2 300 m.
+        w.weather(0, enabled, 3, 5.0, visibility_m, 100.0, (2.0, 0.0, 90.0), 0);
+        w.bytes
+    };
+    let mut deliver = |bytes: Vec<u8>| {
+        let before = receiver.counts().datagrams;
+        host.send_to(&bytes, ("127.0.0.1", port)).expect("sent");
+        let start = Instant::now();
+        while receiver.counts().datagrams == before && start.elapsed() < Duration::from_secs(5) {
+            assert_eq!(receiver.poll(), None, "fog is not a weather change");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        receiver.take_fog_layer()
+    };
+    assert_eq!(
+        deliver(fog_message(true, 150.0)),
+        Some(Some(FogLayer::new(2_300.0, 150.0)))
+    );
+    assert_eq!(
+        deliver(fog_message(true, 150.0)),
+        None,
+        "a repeat is no news"
+    );
+    // No visibility sent: severity 3's.
+    assert_eq!(
+        deliver(fog_message(true, 0.0)),
+        Some(Some(FogLayer::new(2_300.0, FOG_VISIBILITY_M[3])))
+    );
+    assert_eq!(deliver(fog_message(false, 0.0)), Some(None), "cleared");
+
+    let mut weather = HostWeather::new(Weather::default());
+    let refused = WeatherControl {
+        entity_region_id: 0,
+        layer: 0,
+        humidity_percent: 80,
+        enabled: true,
+        random_winds: false,
+        scope: 0,
+        severity: 2,
+        air_temperature_c: 5.0,
+        visibility_m: f32::NAN,
+        coverage_percent: 100.0,
+        base_elevation_m: 0.0,
+        thickness_m: 30.0,
+        horizontal_wind_mps: 0.0,
+        vertical_wind_mps: 0.0,
+        wind_from_deg: 0.0,
+    };
+    assert_eq!(
+        weather.apply(&refused),
+        Applied::Fog(Some(FogLayer::new(30.0, FOG_VISIBILITY_M[2]))),
+        "NaN is not above 0: the severity's visibility"
+    );
+    let too_high = WeatherControl {
+        base_elevation_m: 1.0e9,
+        ..refused
+    };
+    assert_eq!(weather.apply(&too_high), Applied::Refused);
+    assert_eq!(
+        weather.fog_layer(),
+        Some(FogLayer::new(30.0, FOG_VISIBILITY_M[2]))
+    );
+    assert_eq!(
+        weather.weather(),
+        Weather::default(),
+        "fog leaves the precipitation"
+    );
 }

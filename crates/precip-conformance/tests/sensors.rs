@@ -206,6 +206,76 @@ fn optics_from_the_particles_in_the_air_follow_the_weather_on_every_backend() {
 }
 
 #[test]
+fn a_fog_layer_set_while_running_reaches_the_optics_and_the_beams_on_every_backend() {
+    use precip_model::drawing::fog_layer::FogLayer;
+    use precip_model::sensors::optics::FOG_LIDAR_RATIO_SR;
+    let setup = snow_before_a_wall();
+    // The camera at 1.7 m: in a 10 m fog, above a 1 m one.
+    let deep = FogLayer::new(10.0, 150.0);
+    let shallow = FogLayer::new(1.0, 150.0);
+    let beam = Beam::ray(Vec3::new(0.0, 1.7, 0.0), Vec3::NEG_Z, 40.0);
+    let query = BeamQuery {
+        beams: vec![beam],
+        band: Band::NearInfrared,
+        aperture_radius_m: 0.0,
+        extinction_per_m: Some(0.0),
+        sample_unresolved: false,
+    };
+    for mut s in all_subjects("fog_layer") {
+        s.backend.configure(&setup).expect("configure");
+        s.backend.step(0.05).expect("step");
+        let clear = s.backend.optics().expect("optics");
+        let wall = |s: &mut precip_conformance::Subject| {
+            let r = s.backend.query_beams(&query).expect("beams");
+            r[0].target
+                .expect("the wall 6 m ahead")
+                .two_way_transmittance
+        };
+        let clear_wall = wall(&mut s);
+        s.backend.set_fog_layer(Some(deep)).expect("a valid fog");
+        let fog = s.backend.optics().expect("optics");
+        let b = deep.extinction_per_m();
+        for band in Band::ALL {
+            let (f, c) = (fog.band(band), clear.band(band));
+            assert!(
+                (f.extinction_per_m - c.extinction_per_m - b).abs() < 1e-3 * b
+                    && (f.backscatter_per_m_sr - c.backscatter_per_m_sr - b / FOG_LIDAR_RATIO_SR)
+                        .abs()
+                        < 1e-3 * b,
+                "{} {band:?}: {f:?} against {c:?} + fog",
+                s.name
+            );
+        }
+        // MOR (5 %) from the fog's and the snow's extinction together.
+        let mor = fog.meteorological_optical_range_m();
+        let expected = 2.996 / (clear.band(Band::Visible).extinction_per_m + b);
+        assert!(
+            (mor / expected - 1.0).abs() < 0.01 && mor < 150.0,
+            "{}: MOR {mor} m against {expected}",
+            s.name
+        );
+        let foggy_wall = wall(&mut s);
+        let range = 6.0;
+        assert!(
+            (foggy_wall / clear_wall - (-2.0 * b * range).exp()).abs() < 0.02,
+            "{}: {foggy_wall} against {clear_wall}",
+            s.name
+        );
+        s.backend.set_fog_layer(Some(shallow)).expect("a valid fog");
+        let above = s.backend.optics().expect("optics");
+        assert_eq!(above.bands, clear.bands, "{}: above the fog", s.name);
+        assert!(
+            s.backend
+                .set_fog_layer(Some(FogLayer::new(10.0, f32::NAN)))
+                .is_err(),
+            "{}: a NaN visibility is refused",
+            s.name
+        );
+        s.check_clean("fog_layer");
+    }
+}
+
+#[test]
 fn optics_of_snow_and_dust_are_the_cpus_on_every_backend() {
     // The GPU's cross-sections (optics.wgsl) for ice and mineral grains, every band:
     // the CPU reference's sums of the same particles, within the sums' rounding.

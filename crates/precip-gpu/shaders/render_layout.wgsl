@@ -42,6 +42,8 @@ struct RenderParams {
     mirror_view_proj: mat4x4<f32>,
     // the mirror's level m, drawn this frame (1/0), 0, 0
     mirror: vec4<f32>,
+    // the fog layer: top m, bottom m, extinction B per m (0: none), the sun's light on
+    fog_layer: vec4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

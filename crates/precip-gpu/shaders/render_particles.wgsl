@@ -12,6 +12,8 @@ struct ParticleVarying {
     @location(3) world_m: vec3<f32>,
     // A snow streak's length over its width (1: a sprite; snow_streak_corner).
     @location(4) stretch: f32,
+    // Rain: the sun's light the fog layer scatters on the way (air_between's y).
+    @location(5) air_sun: f32,
 }
 
 // Quartz sand and mineral dust in daylight (sRGB ~ #c8a878, linear).
@@ -22,7 +24,7 @@ const GRAIN_COLOUR: vec3<f32> = vec3<f32>(0.58, 0.39, 0.19);
 // scattered forward (flake_sun_phase of the angle between the sun's light and the
 // way to the camera, in place of Blinn–Phong's diffuse term), its glint Blinn–Phong's
 // from the sun's side (sprites and splats alike).
-fn snow_colour(p: Particle, distance_m: f32) -> vec3<f32> {
+fn snow_colour(p: Particle) -> vec3<f32> {
     let to_sun = params.to_sun_extinction.xyz;
     let n = normalize_or_zero(params.camera_m_cone_cos.xyz - p.position_m);
     let facing = select(-n, n, dot(n, to_sun) >= 0.0);
@@ -36,21 +38,21 @@ fn snow_colour(p: Particle, distance_m: f32) -> vec3<f32> {
     if (kind == KIND_GRAIN) {
         albedo = GRAIN_COLOUR;
     }
-    let fog = fog_transmittance(distance_m, params.to_sun_extinction.w);
-    return mix(params.sky_colour_time.xyz, albedo * light, fog);
+    return with_air(albedo * light, air_between(params.camera_m_cone_cos.xyz, p.position_m, params.fog_layer));
 }
 
-// The light of a drop's face of normal `n` toward `to_viewer`, fogged by `fog`. A drop
+// The light of a drop's face of normal `n` toward `to_viewer`, through the air `air`
+// (air_between). A drop
 // is a wide-angle lens: it shows the environment over some 165° around the viewing
 // direction at about 94 % of its radiance (Garg & Nayar, *Vision and rain*, IJCV
 // 2007), `environment` times the horizon sky's (drop_environment_factor), plus the
 // sun's glint off its surface; so a streak is bright against a dark background and
 // all but vanishes against the sky.
-fn rain_colour(n: vec3<f32>, to_viewer: vec3<f32>, lit: f32, fog: f32, environment: f32) -> vec3<f32> {
+fn rain_colour(n: vec3<f32>, to_viewer: vec3<f32>, lit: f32, air: vec2<f32>, environment: f32) -> vec3<f32> {
     let light = blinn_phong(params.light, params.shadow, n, params.to_sun_extinction.xyz, to_viewer, lit);
     let refracted = min(environment * params.sky_colour_time.xyz, vec3<f32>(1.0));
     let water = mix(refracted, vec3<f32>(0.75, 0.8, 0.85) * light, 0.2);
-    return mix(params.sky_colour_time.xyz, water, fog);
+    return with_air(water, air);
 }
 
 @vertex
@@ -92,11 +94,12 @@ fn snow_vertex(corner: u32, instance: u32) -> ParticleVarying {
     out.clip = params.view_proj * vec4<f32>(world, 1.0);
     out.uv = streak.uv;
     out.stretch = streak.stretch;
+    out.air_sun = 0.0;
     // Its multiplicity's ink, up to opaque (precip_model::drawing::multiplicity): a
     // resolved flake's over its copies, a sub-pixel one's its own.
     let weight = resolved_weight(i, original) / select(1.0, f32(copies), in_camera_volume && is_resolved);
     // The ink spreads over the streak: opacity over the stretch.
-    out.shade = vec4<f32>(snow_colour(p, distance_m), min(1.0, weight * size.y * near_fade(distance_m) / streak.stretch));
+    out.shade = vec4<f32>(snow_colour(p), min(1.0, weight * size.y * near_fade(distance_m) / streak.stretch));
     out.normal = normalize_or_zero(camera - p.position_m);
     out.world_m = world;
     return out;
@@ -145,9 +148,11 @@ fn rain_vertex(vertex: u32, instance: u32) -> ParticleVarying {
     // What the drop refracts: the sky and the ground over its field of view, the
     // ground's albedo the cover's around the camera (drop_ground, once a frame).
     let view_sin_elevation = (p.position_m.y - camera.y) / max(distance_m, 1.0e-6);
+    let air = air_between(camera, p.position_m, params.fog_layer);
+    out.air_sun = air.y;
     out.shade = vec4<f32>(
         shadow_lit(p.position_m),
-        fog_transmittance(distance_m, params.to_sun_extinction.w),
+        air.x,
         drop_environment_factor(view_sin_elevation, drop_ground_albedo[0]),
         min(1.0, resolved_weight(i, p) * params.cover_look.x * size.z * near_fade(distance_m)),
     );
@@ -174,7 +179,7 @@ fn rain_fragment(in: ParticleVarying) -> vec4<f32> {
     if (dot(n, to_viewer) < 0.0) {
         n = -n;
     }
-    return vec4<f32>(rain_colour(n, to_viewer, in.shade.x, in.shade.y, in.shade.z), in.shade.w);
+    return vec4<f32>(rain_colour(n, to_viewer, in.shade.x, vec2<f32>(in.shade.y, in.air_sun), in.shade.z), in.shade.w);
 }
 
 // Particles at a reduced resolution (precip_model::ParticleResolution): the share of

@@ -115,8 +115,14 @@ fn fs_mirror(in: SceneVarying) -> @location(0) vec4<f32> {
         discard;
     }
     let camera = params.camera_m_cone_cos.xyz;
-    let look = surface_look(in, vec3<f32>(camera.x, 2.0 * level - camera.y, camera.z));
-    return vec4<f32>(mix(params.sky_colour_time.xyz, look.shaded, look.fog), 1.0);
+    let reflected = vec3<f32>(camera.x, 2.0 * level - camera.y, camera.z);
+    let look = surface_look(in, reflected);
+    // The fog layer reflected with the camera: the path's part above the water, in
+    // fog below the top, lies between the reflected top and the level; the sun's
+    // scattered light is left out (its dimming from the top is not a line there).
+    let fog = params.fog_layer;
+    let layer = vec4<f32>(fog.x, 2.0 * level - fog.x, fog.z, 0.0);
+    return vec4<f32>(with_air(look.shaded, air_between(reflected, in.world_m, layer)), 1.0);
 }
 
 // The water bodies when the mirror is drawn: as fs_water_body, what their mirror
@@ -130,7 +136,7 @@ fn fs_water_body_planar(in: SceneVarying) -> @location(0) vec4<f32> {
         let to_viewer = normalize_or_zero(camera - in.world_m);
         look.shaded += look.mirror * planar_mirrored_scene(in.clip.xy, to_viewer, look.water_slope);
     }
-    return vec4<f32>(mix(params.sky_colour_time.xyz, look.shaded, look.fog), 1.0);
+    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, params.fog_layer)), 1.0);
 }
 
 // What the mirror shows instead of the sky at pixel `frag_xy`: (the mirror image

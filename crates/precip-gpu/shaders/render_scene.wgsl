@@ -88,8 +88,36 @@ fn vs_sky(@builtin(vertex_index) v: u32) -> SkyVarying {
 @fragment
 fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
-    let ray = normalize_or_zero(far.xyz / far.w - params.camera_m_cone_cos.xyz);
-    return vec4<f32>(overcast_sky(params.sky_colour_time.xyz, ray), 1.0);
+    let camera = params.camera_m_cone_cos.xyz;
+    let ray = normalize_or_zero(far.xyz / far.w - camera);
+    let sky = overcast_sky(params.sky_colour_time.xyz, ray);
+    if (switches.fog_layer.z <= 0.0) {
+        return vec4<f32>(sky, 1.0);
+    }
+    // Through the fog layer only (the haze's colour is the horizon's already).
+    let air = air_path(camera, ray, SKY_DISTANCE_M, 0.0, params.fog_layer, params.to_sun_extinction.xyz);
+    return vec4<f32>(with_air(sky, air), 1.0);
+}
+
+// The air between `camera` and `world_m` (air_path, drawing.wgsl; docs/model.md
+// (6.5)): the transmittance and the sun's light the fog layer `layer` scatters.
+// Without a layer, the uniform haze's transmittance alone: the branch reads the
+// storage copy of the block (`switches`), so every invocation takes the same way
+// and a GPU skips the layer's arithmetic.
+fn air_between(camera: vec3<f32>, world_m: vec3<f32>, layer: vec4<f32>) -> vec2<f32> {
+    let offset = world_m - camera;
+    let d = length(offset);
+    if (switches.fog_layer.z <= 0.0) {
+        return vec2<f32>(fog_transmittance(d, params.to_sun_extinction.w), 0.0);
+    }
+    return air_path(camera, offset / max(d, 1.0e-6), d, params.to_sun_extinction.w, layer, params.to_sun_extinction.xyz);
+}
+
+// `shaded` seen through the air `air` (air_between): what passes, the sky's light
+// scattered in (the haze's colour) and the sun's (white, as bright as on a white
+// surface facing it times the path's share).
+fn with_air(shaded: vec3<f32>, air: vec2<f32>) -> vec3<f32> {
+    return shaded * air.x + params.sky_colour_time.xyz * (1.0 - air.x) + vec3<f32>(params.light.y * air.y);
 }
 
 // The ground map's height at (x, z) between texel centres (bilinear, clamped at
@@ -245,19 +273,19 @@ fn scene_varying(v: SceneVertex, view_proj: mat4x4<f32>) -> SceneVarying {
 
 // A surface as lit and wetted, before the fog: its colour; the weight its sharp
 // mirror (a puddle's, a water body's) gives the sky it reflects, as a share of the
-// surface's colour; the fog's transmittance to the eye.
+// surface's colour.
 struct SurfaceLook {
     shaded: vec3<f32>,
     mirror: f32,
-    fog: f32,
     // The standing water's slope (water_slope), which bends the mirror's ray.
     water_slope: vec2<f32>,
 }
 
 @fragment
 fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
-    let look = surface_look(in, params.camera_m_cone_cos.xyz);
-    return vec4<f32>(mix(params.sky_colour_time.xyz, look.shaded, look.fog), 1.0);
+    let camera = params.camera_m_cone_cos.xyz;
+    let look = surface_look(in, camera);
+    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, params.fog_layer)), 1.0);
 }
 
 // The water bodies: as fs_scene, their sharp mirror showing the scene where its ray
@@ -265,17 +293,18 @@ fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
 // their fragments carry the ray's loop (precip_gpu::frame's WATER_BODY_DRAW).
 @fragment
 fn fs_water_body(in: SceneVarying) -> @location(0) vec4<f32> {
-    var look = surface_look(in, params.camera_m_cone_cos.xyz);
+    let camera = params.camera_m_cone_cos.xyz;
+    var look = surface_look(in, camera);
     if (look.mirror > REFLECTION_LEAST) {
-        let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - in.world_m);
+        let to_viewer = normalize_or_zero(camera - in.world_m);
         look.shaded += look.mirror * mirrored_scene(in.world_m, to_viewer, look.water_slope);
     }
-    return vec4<f32>(mix(params.sky_colour_time.xyz, look.shaded, look.fog), 1.0);
+    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, params.fog_layer)), 1.0);
 }
 
 // The look of a surface seen from `camera` (the camera, or its reflection about the
 // water's level for the mirror: the light's path through the mirror is as long and
-// arrives as from there).
+// arrives as from there), before the air (air_between).
 fn surface_look(in: SceneVarying, camera: vec3<f32>) -> SurfaceLook {
     let base = material.base_colour * textureSample(base_colour_texture, material_sampler, in.uv);
     let to_viewer = normalize_or_zero(camera - in.world_m);
@@ -338,6 +367,5 @@ fn surface_look(in: SceneVarying, camera: vec3<f32>) -> SurfaceLook {
         look.shaded = mix(look.shaded, wet.rgb, open_water);
         look.mirror = wet.w * open_water;
     }
-    look.fog = fog_transmittance(distance(in.world_m, camera), params.to_sun_extinction.w);
     return look;
 }

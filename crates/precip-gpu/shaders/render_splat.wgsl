@@ -43,9 +43,9 @@ fn splat_look(p: Particle, distance_m: f32, weight: f32) -> vec4<f32> {
     if (kind == KIND_RAIN) {
         let size = raindrop_sizing(length(p.velocity_mps), p.diameter_m, distance_m, pixel_angle, sizing);
         let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - p.position_m);
-        let fog = fog_transmittance(distance_m, params.to_sun_extinction.w);
+        let air = air_between(params.camera_m_cone_cos.xyz, p.position_m, params.fog_layer);
         let environment = drop_environment_factor(-to_viewer.y, drop_ground_albedo[0]);
-        let colour = rain_colour(to_viewer, to_viewer, shadow_lit(p.position_m), fog, environment);
+        let colour = rain_colour(to_viewer, to_viewer, shadow_lit(p.position_m), air, environment);
         let opacity = min(1.0, weight * size.z * params.cover_look.x);
         let ink = splat_ink(true, vec3<f32>(size.x, size.y, opacity), distance_m, pixel_angle, 0.0);
         return vec4<f32>(colour, ink);
@@ -53,7 +53,7 @@ fn splat_look(p: Particle, distance_m: f32, weight: f32) -> vec4<f32> {
     let size = snow_sprite_sizing(p.diameter_m, distance_m, pixel_angle, sizing);
     let opacity = min(1.0, weight * size.y);
     let ink = splat_ink(false, vec3<f32>(size.x, opacity, 0.0), distance_m, pixel_angle, params.cover_look2.w);
-    return vec4<f32>(snow_colour(p, distance_m), ink);
+    return vec4<f32>(snow_colour(p), ink);
 }
 
 // Over the splat list (the cull's, `drawn` from 2N): each invocation walks it with

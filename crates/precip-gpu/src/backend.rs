@@ -226,6 +226,16 @@ impl<G: Gpu> Backend for GpuBackend<G> {
         state.sim.set_shadow_refresh_frames(frames)
     }
 
+    fn set_fog_layer(
+        &mut self,
+        fog_layer: Option<precip_model::drawing::fog_layer::FogLayer>,
+    ) -> Result<(), BackendError> {
+        let state = self.state.as_mut().ok_or(BackendError::NotConfigured {
+            operation: "set_fog_layer",
+        })?;
+        state.sim.set_fog_layer(fog_layer)
+    }
+
     fn weather(&self) -> Result<Weather, BackendError> {
         Ok(*configured(self.state.as_ref(), "weather")?
             .sim
@@ -361,6 +371,12 @@ macro_rules! delegate_backend {
                 frames: u32,
             ) -> Result<(), ::precip_model::BackendError> {
                 self.0.set_shadow_refresh_frames(frames)
+            }
+            fn set_fog_layer(
+                &mut self,
+                fog_layer: Option<::precip_model::drawing::fog_layer::FogLayer>,
+            ) -> Result<(), ::precip_model::BackendError> {
+                self.0.set_fog_layer(fog_layer)
             }
             fn weather(&self) -> Result<::precip_model::Weather, ::precip_model::BackendError> {
                 self.0.weather()

@@ -436,6 +436,14 @@ impl<G: Gpu> Simulation<G> {
         self.host.set_shadow_refresh_frames(frames)
     }
 
+    /// Takes a fog layer or none ([`HostState::set_fog_layer`]).
+    pub fn set_fog_layer(
+        &mut self,
+        fog_layer: Option<precip_model::drawing::fog_layer::FogLayer>,
+    ) -> Result<(), BackendError> {
+        self.host.set_fog_layer(fog_layer)
+    }
+
     /// A step of `dt_s` (validated): every sub-step's blocks uploaded into the next
     /// slot's ring, the sub-steps' kernels submitted at once (timed where the device
     /// can), and the host's clock moved.
@@ -656,6 +664,10 @@ impl<G: Gpu> Simulation<G> {
             Ok(Optics::from_sums(
                 self.host.weather(),
                 &CrossSectionSums::of_partials(&partials),
+            )
+            .in_fog(
+                self.host.setup().render.fog_layer,
+                self.host.camera().position_m,
             ))
         })();
         for b in made {

@@ -273,6 +273,52 @@ fn fog_transmittance(distance_m: f32, extinction_per_m: f32) -> f32 {
     return exp(-extinction_per_m * max(distance_m, 0.0));
 }
 
+// The fog layer (precip_model::drawing::fog_layer; docs/model.md (6.5)-(6.7)).
+const FOG_ASYMMETRY: f32 = 0.85;
+const SKY_DISTANCE_M: f32 = 1.0e6;
+
+// fog_phase: the seed's angular function (16) scaled to a mean of 1 over the sphere.
+fn fog_phase(cos_mu: f32, l: f32) -> f32 {
+    let d = 1.0 + l * l - 2.0 * l * clamp(cos_mu, -1.0, 1.0);
+    return (1.0 - l) * (1.0 - l) / (d * sqrt(d)) * (1.0 + l) / (1.0 - l);
+}
+
+// fog_layer_segment: the part [s0, s1] of the path in the layer (s0 = s1: none).
+fn fog_layer_segment(camera_y_m: f32, dir_y: f32, length_m: f32, bottom_m: f32, top_m: f32) -> vec2<f32> {
+    var s = vec2<f32>(0.0, length_m);
+    if (abs(dir_y) < 1.0e-6) {
+        if (camera_y_m >= top_m || camera_y_m <= bottom_m) {
+            return vec2<f32>(0.0);
+        }
+    } else {
+        let to_top = (top_m - camera_y_m) / dir_y;
+        let to_bottom = (bottom_m - camera_y_m) / dir_y;
+        s.x = max(s.x, select(to_top, to_bottom, dir_y > 0.0));
+        s.y = min(s.y, select(to_bottom, to_top, dir_y > 0.0));
+    }
+    return select(vec2<f32>(0.0), s, s.y > s.x);
+}
+
+// (e^x − 1)/x, exact near 0.
+fn exp_minus_one_over(x: f32) -> f32 {
+    return select((exp(x) - 1.0) / x, 1.0 + 0.5 * x, abs(x) < 1.0e-4);
+}
+
+// air_path: (the transmittance T, the sun's scattered light J) between the camera and
+// the point distance_m along the unit dir. layer = (top m, bottom m, B per m, sun on).
+fn air_path(camera_m: vec3<f32>, dir: vec3<f32>, distance_m: f32, extinction_per_m: f32, layer: vec4<f32>, to_sun: vec3<f32>) -> vec2<f32> {
+    let b = layer.z;
+    let s = fog_layer_segment(camera_m.y, dir.y, distance_m, layer.y, layer.x);
+    let in_fog = s.y - s.x;
+    let transmittance = exp(-extinction_per_m * max(distance_m, 0.0) - b * in_fog);
+    let sin_sun = max(to_sun.y, 0.05);
+    let k = -extinction_per_m - b + b * dir.y / sin_sun;
+    let a = b * s.x - b * (layer.x - camera_m.y) / sin_sun;
+    let along = exp(a + k * s.x) * in_fog * exp_minus_one_over(k * in_fog);
+    let sun = select(0.0, b * along * fog_phase(dot(dir, to_sun), FOG_ASYMMETRY) * 0.25, to_sun.y > 0.0);
+    return vec2<f32>(transmittance, sun * layer.w);
+}
+
 // multiplicity_rank (precip_model::drawing::multiplicity): a particle's rank in [0, 1).
 fn multiplicity_rank(index: u32) -> f32 {
     var h = index * 0x9e3779b9u;

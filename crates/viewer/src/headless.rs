@@ -127,6 +127,12 @@ pub fn run_headless_with(
         {
             backend.set_weather(&weather)?;
         }
+        if let Some(fog) = cigi
+            .as_deref_mut()
+            .and_then(precip_cigi::CigiReceiver::take_fog_layer)
+        {
+            backend.set_fog_layer(fog)?;
+        }
         backend.set_camera(&view.camera)?;
         backend.step(dt_s)?;
         backend.render(view)?;

@@ -58,7 +58,8 @@ enum Command {
 #[derive(clap::Args, Debug)]
 struct WeatherArgs {
     /// A weather preset: a TOML file or a shipped name (light-snow, blizzard,
-    /// wet-snow, drizzle, downpour, sleet); the options below override it.
+    /// wet-snow, drizzle, downpour, sleet, sandstorm, dust-haze, valley-fog); the options
+    /// below override it.
     #[arg(long)]
     preset: Option<String>,
     /// Kind of precipitation.
@@ -79,6 +80,13 @@ struct WeatherArgs {
     /// Gust factor μ.
     #[arg(long)]
     gust: Option<f32>,
+    /// A fog layer up to this height, m (valley or ground fog, lit by the sky and
+    /// the sun; docs/model.md (6.5)).
+    #[arg(long, allow_negative_numbers = true)]
+    fog_top: Option<f32>,
+    /// The visibility inside the fog layer, m (200 when only --fog-top is given).
+    #[arg(long)]
+    fog_visibility: Option<f32>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -308,6 +316,8 @@ fn preset_of(args: &WeatherArgs) -> anyhow::Result<Preset> {
     preset.wind_speed_mps = args.wind.unwrap_or(preset.wind_speed_mps);
     preset.wind_from_deg = args.wind_from.unwrap_or(preset.wind_from_deg);
     preset.gust_factor = args.gust.unwrap_or(preset.gust_factor);
+    preset.fog_top_m = args.fog_top.or(preset.fog_top_m);
+    preset.fog_visibility_m = args.fog_visibility.or(preset.fog_visibility_m);
     Ok(preset)
 }
 
@@ -324,9 +334,15 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         .as_deref()
         .map(precip_viewer::scenario::load_scenario_weather)
         .transpose()?;
-    let weather = match &scenario {
-        Some(s) => s.weather,
-        None => preset_of(&args.weather)?.weather().context("the weather")?,
+    let (weather, fog_layer) = match &scenario {
+        Some(s) => (s.weather, s.fog_layer),
+        None => {
+            let preset = preset_of(&args.weather)?;
+            (
+                preset.weather().context("the weather")?,
+                preset.fog_layer()?,
+            )
+        }
     };
     let camera = match (args.camera, args.look_at) {
         (Some(eye), Some(at)) => Some(Camera {
@@ -352,6 +368,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     if let Some(fog) = scenario.and_then(|s| s.fog_extinction_per_m) {
         setup.render.clear_air_extinction_per_m = fog;
     }
+    setup.render.fog_layer = fog_layer;
     setup.camera.forward =
         channel_forward(setup.camera.forward, args.channel_yaw, args.channel_pitch);
     if let Some(shift) = args.channel_shift {

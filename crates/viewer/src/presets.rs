@@ -1,10 +1,11 @@
-//! Weather presets: TOML files (serde) naming the weather in physical units. Eight
+//! Weather presets: TOML files (serde) naming the weather in physical units. Nine
 //! ship with the viewer (`presets/*.toml` at the repository root, also built in by
 //! name).
 
 use std::path::Path;
 
 use glam::Vec3;
+use precip_model::drawing::fog_layer::FogLayer;
 use precip_model::physics::grain::Grain;
 use precip_model::wind::WindField;
 use precip_model::{PrecipitationKind, Weather};
@@ -38,7 +39,18 @@ pub struct Preset {
     /// Sand and dust: the grains' density, kg/m³; optional (quartz, 2650).
     #[serde(default)]
     pub grain_density_kg_m3: Option<f32>,
+    /// A fog layer's top, m above the scene's origin (valley or ground fog);
+    /// optional, with `fog_visibility_m`.
+    #[serde(default)]
+    pub fog_top_m: Option<f32>,
+    /// The visibility inside the fog layer, m; optional (200 m when only the top is
+    /// given).
+    #[serde(default)]
+    pub fog_visibility_m: Option<f32>,
 }
+
+/// The visibility in a fog layer whose preset gives only its top, m.
+pub const DEFAULT_FOG_VISIBILITY_M: f32 = 200.0;
 
 fn default_relative_humidity() -> f32 {
     Weather::DEFAULT_RELATIVE_HUMIDITY
@@ -76,7 +88,7 @@ impl From<KindName> for PrecipitationKind {
 }
 
 /// The shipped presets, by name.
-pub const BUILT_IN: [(&str, &str); 8] = [
+pub const BUILT_IN: [(&str, &str); 9] = [
     (
         "light-snow",
         include_str!("../../../presets/light-snow.toml"),
@@ -88,6 +100,10 @@ pub const BUILT_IN: [(&str, &str); 8] = [
     ("sleet", include_str!("../../../presets/sleet.toml")),
     ("sandstorm", include_str!("../../../presets/sandstorm.toml")),
     ("dust-haze", include_str!("../../../presets/dust-haze.toml")),
+    (
+        "valley-fog",
+        include_str!("../../../presets/valley-fog.toml"),
+    ),
 ];
 
 /// A preset that cannot be used.
@@ -147,6 +163,26 @@ impl Preset {
         })
     }
 
+    /// The fog layer, validated: `None` without a top (a visibility alone is an
+    /// error: say where the fog ends).
+    pub fn fog_layer(&self) -> Result<Option<FogLayer>, PresetError> {
+        let problem = |problem: String| PresetError {
+            name: "fog".to_owned(),
+            problem,
+        };
+        match (self.fog_top_m, self.fog_visibility_m) {
+            (None, None) => Ok(None),
+            (None, Some(v)) => Err(problem(format!(
+                "fog_visibility_m = {v} needs fog_top_m (the fog's top, m); a fog without a top is the clear air's haze"
+            ))),
+            (Some(top), v) => {
+                let fog = FogLayer::new(top, v.unwrap_or(DEFAULT_FOG_VISIBILITY_M));
+                fog.validate().map_err(|e| problem(e.to_string()))?;
+                Ok(Some(fog))
+            }
+        }
+    }
+
     /// The weather, validated.
     pub fn weather(&self) -> Result<Weather, precip_model::WeatherError> {
         let weather = Weather {
@@ -175,7 +211,31 @@ mod tests {
         for (name, text) in BUILT_IN {
             let preset = Preset::parse(text, name).expect("parses");
             preset.weather().unwrap_or_else(|e| panic!("{name}: {e}"));
+            preset.fog_layer().unwrap_or_else(|e| panic!("{name}: {e}"));
         }
+        let valley = Preset::load("valley-fog").expect("shipped");
+        assert_eq!(
+            valley.fog_layer().expect("valid"),
+            Some(FogLayer::new(12.0, 150.0))
+        );
+    }
+
+    #[test]
+    fn a_fog_needs_its_top_and_a_visibility_it_can_have() {
+        let mut p = Preset::load("drizzle").expect("shipped");
+        assert_eq!(p.fog_layer().expect("no fog"), None);
+        p.fog_visibility_m = Some(100.0);
+        let e = p.fog_layer().expect_err("no top");
+        assert!(e.to_string().contains("fog_top_m"), "{e}");
+        p.fog_top_m = Some(20.0);
+        p.fog_visibility_m = Some(-5.0);
+        let e = p.fog_layer().expect_err("negative visibility");
+        assert!(e.to_string().contains("visibility"), "{e}");
+        p.fog_visibility_m = None;
+        assert_eq!(
+            p.fog_layer().expect("the default visibility"),
+            Some(FogLayer::new(20.0, DEFAULT_FOG_VISIBILITY_M))
+        );
     }
 
     #[test]

@@ -6,7 +6,8 @@
 //! `precipitationIntensity` in mm/h (1.1+), or 1.0's `intensity` in `[0, 1]`, which is
 //! read as a fraction of a heavy 10 mm/h), its `Wind` (`direction`: the heading the
 //! wind blows toward, rad, counter-clockwise from the world's x axis; `speed`, m/s)
-//! and its `Fog` (`visualRange`, m, becomes the clear air's extinction `3.912/V`).
+//! and its `Fog` (`visualRange`, m, becomes the clear air's extinction `3.912/V`; with
+//! a `BoundingBox`, a fog layer of that visibility up to the box's top).
 //! World axes: OpenSCENARIO's x is precip's x (east), its y is precip's −z (north).
 //! Snow above −1 °C is wet snow. What is missing or out of range is an error that
 //! names the element and attribute.
@@ -14,6 +15,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
+use precip_model::drawing::fog_layer::FogLayer;
 use precip_model::wind::WindField;
 use precip_model::{PrecipitationKind, Weather};
 use quick_xml::Reader;
@@ -70,8 +72,13 @@ pub enum ScenarioError {
 pub struct ScenarioWeather {
     /// The weather.
     pub weather: Weather,
-    /// The fog's extinction, per m (`None` without a `Fog` element).
+    /// The fog's extinction, per m (`None` without a `Fog` element, or with a
+    /// `BoundingBox`: then it is a layer).
     pub fog_extinction_per_m: Option<f32>,
+    /// A `Fog` with a `BoundingBox`: a fog layer up to the box's top (its centre's
+    /// `z` + half its `height`; OpenSCENARIO's `z` is up). The layer spreads
+    /// horizontally without end.
+    pub fog_layer: Option<FogLayer>,
 }
 
 /// Kelvin at 0 °C.
@@ -91,6 +98,9 @@ struct Found {
     wind_direction_rad: Option<String>,
     wind_speed_mps: Option<String>,
     fog_visual_range_m: Option<String>,
+    in_fog: bool,
+    fog_centre_z_m: Option<String>,
+    fog_height_m: Option<String>,
 }
 
 fn attribute(e: &BytesStart<'_>, name: &str) -> Option<String> {
@@ -123,7 +133,10 @@ impl Found {
             }
             b"Fog" if self.weather => {
                 self.fog_visual_range_m = attribute(e, "visualRange");
+                self.in_fog = true;
             }
+            b"Center" if self.in_fog => self.fog_centre_z_m = attribute(e, "z"),
+            b"Dimensions" if self.in_fog => self.fog_height_m = attribute(e, "height"),
             _ => {}
         }
     }
@@ -144,7 +157,13 @@ pub fn scenario_weather(text: &str, file: &Path) -> Result<ScenarioWeather, Scen
     let mut found = Found::default();
     loop {
         match reader.read_event() {
-            Ok(Event::Start(e) | Event::Empty(e)) => found.element(&e),
+            Ok(Event::Start(e)) => found.element(&e),
+            Ok(Event::Empty(e)) => {
+                found.element(&e);
+                // An empty <Fog/> holds no bounding box.
+                found.in_fog &= e.name().as_ref() != b"Fog";
+            }
+            Ok(Event::End(e)) if e.name().as_ref() == b"Fog" => found.in_fog = false,
             Ok(Event::End(e)) if e.name().as_ref() == b"Environment" && found.weather => break,
             Ok(Event::End(e)) if e.name().as_ref() == b"Environment" => {
                 found.in_environment = false;
@@ -281,6 +300,35 @@ fn to_weather(found: &Found, file: &Path) -> Result<ScenarioWeather, ScenarioErr
         "[1, 10 000 000] m",
     )?
     .map(|v| 3.912 / v);
+    let centre_z = number(
+        file,
+        "Fog/BoundingBox/Center",
+        "z",
+        found.fog_centre_z_m.as_ref(),
+        (-20_000.0, 20_000.0),
+        "a height within ±20 000 m",
+    )?;
+    let height = number(
+        file,
+        "Fog/BoundingBox/Dimensions",
+        "height",
+        found.fog_height_m.as_ref(),
+        (0.0, 20_000.0),
+        "[0, 20 000] m",
+    )?;
+    let (fog_extinction_per_m, fog_layer) = match (fog_extinction_per_m, centre_z, height) {
+        (Some(b), Some(z), Some(h)) => (None, Some(FogLayer::new(z + 0.5 * h, 3.912 / b))),
+        (b, _, _) => (b, None),
+    };
+    if let Some(layer) = &fog_layer {
+        layer.validate().map_err(|e| ScenarioError::Attribute {
+            file: file.to_path_buf(),
+            element: "Fog",
+            attribute: "visualRange",
+            value: found.fog_visual_range_m.clone().unwrap_or_default(),
+            problem: e.to_string(),
+        })?;
+    }
     let weather = Weather {
         kind,
         intensity_mm_per_h,
@@ -297,6 +345,7 @@ fn to_weather(found: &Found, file: &Path) -> Result<ScenarioWeather, ScenarioErr
     Ok(ScenarioWeather {
         weather,
         fog_extinction_per_m,
+        fog_layer,
     })
 }
 
@@ -320,6 +369,34 @@ mod tests {
 
     fn read(environment: &str) -> Result<ScenarioWeather, ScenarioError> {
         scenario_weather(&xosc(environment), Path::new("t.xosc"))
+    }
+
+    #[test]
+    fn a_fog_with_a_bounding_box_is_a_layer_up_to_its_top() {
+        let w = read(
+            r#"<Environment name="valley"><Weather temperature="278.15">
+                 <Fog visualRange="150">
+                   <BoundingBox>
+                     <Center x="0" y="0" z="10"/>
+                     <Dimensions width="2000" length="2000" height="30"/>
+                   </BoundingBox>
+                 </Fog>
+                 <Precipitation precipitationType="dry"/>
+               </Weather></Environment>"#,
+        )
+        .expect("valid");
+        assert_eq!(w.fog_layer, Some(FogLayer::new(25.0, 150.0)));
+        assert_eq!(
+            w.fog_extinction_per_m, None,
+            "the layer, not a uniform haze"
+        );
+        let bad = read(
+            r#"<Environment name="v"><Weather><Fog visualRange="150"><BoundingBox>
+                 <Center x="0" y="0" z="high"/><Dimensions width="1" length="1" height="30"/>
+               </BoundingBox></Fog><Precipitation precipitationType="dry"/></Weather></Environment>"#,
+        )
+        .expect_err("z is not a number");
+        assert!(bad.to_string().contains("Center"), "{bad}");
     }
 
     #[test]

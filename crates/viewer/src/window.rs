@@ -514,6 +514,14 @@ impl ApplicationHandler for App {
                 {
                     r.weather = weather;
                 }
+                if let Some(fog) = self
+                    .cigi
+                    .as_mut()
+                    .and_then(precip_cigi::CigiReceiver::take_fog_layer)
+                {
+                    // A fog the host asks for that is not valid was refused already.
+                    let _ = r.presenter.backend().set_fog_layer(fog);
+                }
                 if let Err(e) = r.frame() {
                     self.error = Some(e);
                     event_loop.exit();

@@ -137,6 +137,8 @@ fn vk_and_wgpu_mirror_the_house_in_a_pond_alike() {
     )
     .expect("valid");
     setup.weather.intensity_mm_per_h = 0.5;
+    // Through a fog layer over the pond, which the mirror reflects with the camera.
+    setup.render.fog_layer = Some(precip_model::drawing::fog_layer::FogLayer::new(2.5, 60.0));
     let position = Vec3::new(0.0, 0.8, 18.0);
     let camera = Camera {
         position_m: position,

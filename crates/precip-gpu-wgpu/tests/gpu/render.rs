@@ -421,6 +421,68 @@ fn fog_lowers_contrast_with_distance_and_with_the_precipitation() {
 }
 
 #[test]
+fn a_fog_layer_dims_below_its_top_and_scatters_the_sun() {
+    use precip_model::drawing::fog_layer::{FOG_LAYER_BOTTOM_M, FogLayer, air_path};
+    let distances = [25.0f32, 60.0];
+    let fog = FogLayer::new(8.0, 50.0);
+    let to_sun = Vec3::new(0.0, 0.5, -1.0);
+    // In the fog, and above its top looking down into it.
+    for (height, pitch) in [(3.0f32, 0.0f32), (14.0, -0.25)] {
+        let camera = Camera {
+            position_m: Vec3::new(0.0, height, 0.0),
+            forward: Vec3::new(0.0, pitch, -1.0),
+            vertical_fov_rad: 50f32.to_radians(),
+            ..Camera::default()
+        };
+        let view = view(camera, 96, 64);
+        for (name, mut gpu) in common::gpu_backends("a_fog_layer_dims_below_its_top") {
+            let (mut setup, _) =
+                Setup::over_scene(black_walls(&distances), 32, 5.0, 1).expect("valid");
+            setup.world_emitter = setup.world_emitter.map(|mut e| {
+                e.emitter = WorldEmitter::horizontal(Vec3::new(0.0, 10.0, 500.0), 1.0, 1.0, 10.0);
+                e
+            });
+            setup.weather.intensity_mm_per_h = 0.0;
+            setup.render.fog_layer = Some(fog);
+            setup.render.to_sun = to_sun;
+            setup.camera = camera;
+            common::run(&mut gpu, &setup, 1, 0.05);
+            gpu.render(&view).expect("renders");
+            let image = gpu.read_image().expect("an image");
+            keep(&image, &format!("fog_layer_{height}"));
+            let sky = precip_model::drawing::render::haze_colour(&setup.render, &setup.weather).x;
+            let extinction =
+                setup.render.clear_air_extinction_per_m + setup.weather.extinction_per_m();
+            for (i, &d) in distances.iter().enumerate() {
+                let x = 8.0 * i as f32 - 4.0;
+                let centre = Vec3::new(x, 2.0, -d);
+                let (px, py) = pixel_of(&view, centre).expect("wall in view");
+                let wall = linear(crate::images::rgb(&image, px, py)[0]);
+                let offset = centre - camera.position_m;
+                let air = air_path(
+                    camera.position_m,
+                    offset.normalize(),
+                    offset.length(),
+                    extinction,
+                    fog.extinction_per_m(),
+                    FOG_LAYER_BOTTOM_M,
+                    fog.top_m,
+                    to_sun.normalize(),
+                );
+                // A black wall shows the sky's light scattered in and the sun's.
+                let expected =
+                    sky * (1.0 - air.transmittance) + setup.render.lighting.diffuse * air.sun;
+                assert!(
+                    (wall - expected).abs() < 0.03,
+                    "{name}: from {height} m, the wall at {d} m: {wall:.3}, the model {expected:.3} ({air:?})"
+                );
+                assert!(air.sun > 0.01, "the sun's share shows: {air:?}");
+            }
+        }
+    }
+}
+
+#[test]
 fn a_surface_format_renders_the_same_frame() {
     let (setup, view) = snow_column();
     for (name, mut gpu) in common::gpu_backends("a_surface_format_renders_the_same_frame") {

@@ -146,6 +146,13 @@ pub trait Backend {
         let _ = frames;
         Ok(())
     }
+    /// Takes a fog layer, or none, from the next frame, beam query and optics on
+    /// (what a host's ground-fog layer sets while running; validated as
+    /// `RenderSettings::fog_layer`).
+    fn set_fog_layer(
+        &mut self,
+        fog_layer: Option<crate::drawing::fog_layer::FogLayer>,
+    ) -> Result<(), BackendError>;
     /// The weather in effect (the setup's, or the last `set_weather`'s).
     fn weather(&self) -> Result<Weather, BackendError>;
     /// Casts LiDAR beams against the particles and the scene's ground map as they

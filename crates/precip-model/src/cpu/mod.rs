@@ -179,6 +179,25 @@ impl Backend for CpuBackend {
         })
     }
 
+    fn set_fog_layer(
+        &mut self,
+        fog_layer: Option<crate::drawing::fog_layer::FogLayer>,
+    ) -> Result<(), BackendError> {
+        self.state_mut("set_fog_layer")?
+            .host
+            .set_fog_layer(fog_layer)
+    }
+
+    fn optics(&mut self) -> Result<crate::sensors::optics::Optics, BackendError> {
+        let state = self.state_mut("optics")?;
+        Ok(
+            crate::sensors::optics::Optics::live(state.host.weather(), &state.particles).in_fog(
+                state.host.setup().render.fog_layer,
+                state.host.camera().position_m,
+            ),
+        )
+    }
+
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {
         Ok(self.state_mut("read_particles")?.particles.clone())
     }

@@ -14,6 +14,7 @@
 //! particle crossing the threshold does not pop.
 
 mod drop_environment;
+pub mod fog_layer;
 pub mod frame_rate_control;
 pub mod multiplicity;
 pub mod render;

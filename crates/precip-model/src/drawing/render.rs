@@ -15,6 +15,7 @@ use precip_cover::{CoverParams, GridFrame};
 
 use crate::backend::camera::{Camera, View};
 use crate::backend::error::BackendError;
+use crate::drawing::fog_layer::{FOG_LAYER_BOTTOM_M, FogLayer};
 use crate::drawing::multiplicity::PoolDrawing;
 use crate::drawing::{Lighting, SpriteSizing, view_cone_cos};
 use crate::weather::Weather;
@@ -133,6 +134,9 @@ pub struct RenderSettings {
     pub mirrors: Mirrors,
     /// The resolution rain and snow are drawn at.
     pub particle_resolution: ParticleResolution,
+    /// A layer of fog up to a height (valley and ground fog), lit by the sky and
+    /// the sun ([`crate::drawing::fog_layer`]); `None`: no fog but the uniform haze.
+    pub fog_layer: Option<FogLayer>,
 }
 
 impl Default for RenderSettings {
@@ -162,6 +166,7 @@ impl Default for RenderSettings {
             water_body_depth_m: 1.5,
             mirrors: Mirrors::Auto,
             particle_resolution: ParticleResolution::Full,
+            fog_layer: None,
         }
     }
 }
@@ -277,6 +282,9 @@ impl RenderSettings {
                 format!("= {} must be in [16, 8192]", self.shadow_map_px),
             ));
         }
+        if let Some(fog) = &self.fog_layer {
+            fog.validate()?;
+        }
         if self.max_scene_triangles == 0 {
             return Err(bad(
                 "render.max_scene_triangles",
@@ -289,7 +297,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (672 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (688 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -353,8 +361,12 @@ pub struct RenderParams {
     /// The mirror's level m, 1 when the frame draws it (else 0: the renderer sets
     /// it), 0, 0.
     pub mirror: Vec4,
+    /// The fog layer ([`crate::drawing::fog_layer`]): its top m, its bottom m (far
+    /// below the ground; the mirror's pass reflects the layer about the water), its
+    /// extinction B per m (0: none), the sun's scattered light on (1/0).
+    pub fog_layer: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 672);
+const _: () = assert!(size_of::<RenderParams>() == 688);
 
 /// The camera's world → clip matrix for a target of `aspect` (width / height).
 #[must_use]
@@ -604,6 +616,9 @@ impl RenderParams {
             previous_view_proj: view_projection(camera, aspect),
             mirror_view_proj: view_projection(camera, aspect),
             mirror: Vec4::ZERO,
+            fog_layer: f.settings.fog_layer.map_or(Vec4::ZERO, |fog| {
+                Vec4::new(fog.top_m, FOG_LAYER_BOTTOM_M, fog.extinction_per_m(), 1.0)
+            }),
         }
     }
 }

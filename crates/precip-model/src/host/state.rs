@@ -137,6 +137,20 @@ impl HostState {
         Ok(())
     }
 
+    /// Takes a fog layer (validated) or none, from the next frame on.
+    pub fn set_fog_layer(
+        &mut self,
+        fog_layer: Option<crate::drawing::fog_layer::FogLayer>,
+    ) -> Result<(), BackendError> {
+        let render = crate::drawing::render::RenderSettings {
+            fog_layer,
+            ..self.setup.render
+        };
+        render.validate()?;
+        self.setup.render = render;
+        Ok(())
+    }
+
     /// The blocks of a step of `dt_s` (validated), from the clock now; the clock
     /// moves only with [`HostState::advance`], once the backend has the step under way.
     pub fn substeps(&self, dt_s: f32) -> Result<SubSteps, BackendError> {

@@ -420,3 +420,41 @@ fn still_air() -> UnresolvedAir {
         0.0,
     )
 }
+
+#[test]
+fn a_fog_layer_dims_the_targets_behind_it_by_its_path_in_it() {
+    use crate::drawing::fog_layer::FogLayer;
+    // From 10 m up, one beam level (above the 5 m fog: clear), one down at 45° to
+    // the ground 10 m below (the last 5 m of height, 5·√2 m of path, in fog).
+    let level = Beam::ray(Vec3::new(0.0, 10.0, 0.0), Vec3::X, 50.0);
+    let down = Beam::ray(Vec3::new(0.0, 10.0, 0.0), Vec3::new(1.0, -1.0, 0.0), 50.0);
+    let beams = query(vec![level, down]).validate().expect("valid");
+    let hits = [30.0f32, 10.0 * 2f32.sqrt()]
+        .map(|range| BeamHit {
+            particle_range_m: 0.0,
+            particle_diameter_m: 0.0,
+            particle_flags: NO_PARTICLE,
+            target_range_m: range,
+        })
+        .to_vec();
+    let fog = FogLayer::new(5.0, 100.0);
+    let air = UnresolvedAir {
+        fog_layer: Some(fog),
+        ..still_air()
+    };
+    let q = BeamQuery {
+        extinction_per_m: Some(0.0),
+        ..query(beams.clone())
+    };
+    let returns = q
+        .answer("test", &beams, &hits, &crate::Weather::default(), &air)
+        .expect("answered");
+    let clear = returns[0].target.expect("target").two_way_transmittance;
+    assert!((clear - 1.0).abs() < 1e-6, "above the fog: {clear}");
+    let through = returns[1].target.expect("target").two_way_transmittance;
+    let expected = (-2.0 * fog.extinction_per_m() * 5.0 * 2f32.sqrt()).exp();
+    assert!(
+        (through - expected).abs() < 1e-4,
+        "{through} against {expected}"
+    );
+}

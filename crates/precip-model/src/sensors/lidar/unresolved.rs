@@ -45,6 +45,9 @@ pub struct UnresolvedAir {
     pub species: StepParams,
     /// The seed and the clock, in one key.
     pub key: u32,
+    /// A fog layer's droplets, far too many and too small to draw one by one: their
+    /// extinction dims what lies behind ([`BeamQuery::answer`](super::BeamQuery::answer)).
+    pub fog_layer: Option<crate::drawing::fog_layer::FogLayer>,
 }
 
 /// A strike drawn from the spectrum.
@@ -85,6 +88,7 @@ impl UnresolvedAir {
             // Milliseconds of the clock: a new draw each frame, the same on every
             // backend at the same time.
             key: particle_key(seed ^ STRIKE_SEED, (time_s * 1000.0).round() as u32, 0),
+            fog_layer: None,
         }
     }
 
@@ -102,13 +106,16 @@ impl UnresolvedAir {
         let (half_extent, particles) = setup.camera_volume.map_or((Vec3::ZERO, 0), |c| {
             (c.volume.half_extent_m, c.particle_count)
         });
-        Self::new(
-            weather.simulated_number_density_per_m3(),
-            (camera_m, half_extent, particles),
-            species,
-            setup.seed,
-            time_s,
-        )
+        Self {
+            fog_layer: setup.render.fog_layer,
+            ..Self::new(
+                weather.simulated_number_density_per_m3(),
+                (camera_m, half_extent, particles),
+                species,
+                setup.seed,
+                time_s,
+            )
+        }
     }
 
     /// The species' mean radius, m.

@@ -267,6 +267,11 @@ pub enum OpticsSource {
     },
 }
 
+/// The lidar ratio (extinction over backscatter) of liquid-water fog and cloud
+/// droplets, sr (O'Connor, Illingworth & Hogan 2004, J. Atmos. Oceanic Technol. 21:
+/// 18.8 sr, nearly constant over the droplet sizes of water clouds).
+pub const FOG_LIDAR_RATIO_SR: f32 = 18.8;
+
 /// Extinction and backscatter in every band, and the meteorological optical range.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Optics {
@@ -287,6 +292,26 @@ impl Optics {
     #[must_use]
     pub fn meteorological_optical_range_m(&self) -> f32 {
         meteorological_optical_range_m(self.band(Band::Visible).extinction_per_m)
+    }
+
+    /// These optics with a fog layer's droplets added where `at_m` lies in it:
+    /// its extinction `B` in every band (droplets of a few µm and more have an
+    /// extinction efficiency of 2 from the visible to 1.5 µm) and backscatter
+    /// `B/S`, `S` = [`FOG_LIDAR_RATIO_SR`].
+    #[must_use]
+    pub fn in_fog(
+        mut self,
+        fog: Option<crate::drawing::fog_layer::FogLayer>,
+        at_m: glam::Vec3,
+    ) -> Self {
+        if let Some(fog) = fog.filter(|f| at_m.y < f.top_m) {
+            let b = fog.extinction_per_m();
+            for band in &mut self.bands {
+                band.extinction_per_m += b;
+                band.backscatter_per_m_sr += b / FOG_LIDAR_RATIO_SR;
+            }
+        }
+        self
     }
 
     /// The optics of `weather`'s size spectra (all sizes).
