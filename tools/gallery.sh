@@ -2,7 +2,8 @@
 # Renders docs/gallery/: close, mid, far and pond views of each weather over the built-in
 # demo, headless (the last of 45 frames of 1/15 s each, so the weather has set in
 # and the cover has started to build at the default time scale). Run from the
-# repository root after `cargo build --release`; about 3 minutes on lavapipe.
+# repository root after `cargo build --release`; about 4 minutes on lavapipe (name
+# presets as arguments to render only those).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 precip=target/release/precip
@@ -16,7 +17,9 @@ views=(
   "far 70,35,95 0,0,0"
   "pond -17,0.5,21 0,2.5,0"
 )
-weathers=(light-snow blizzard drizzle downpour sleet sandstorm)
+weathers=(light-snow blizzard drizzle downpour sleet sandstorm valley-fog)
+# Only some of them: tools/gallery.sh blizzard valley-fog
+if [ "$#" -gt 0 ]; then weathers=("$@"); fi
 for weather in "${weathers[@]}"; do
   for view in "${views[@]}"; do
     read -r name eye at <<<"$view"
