@@ -17,7 +17,7 @@ views=(
   "far 70,35,95 0,0,0"
   "pond -17,0.5,21 0,2.5,0"
 )
-weathers=(light-snow blizzard drizzle downpour sleet sandstorm valley-fog)
+weathers=(light-snow blizzard drizzle downpour sleet sandstorm valley-fog fair-cumulus thunderstorm)
 # Only some of them: tools/gallery.sh blizzard valley-fog
 if [ "$#" -gt 0 ]; then weathers=("$@"); fi
 for weather in "${weathers[@]}"; do

@@ -24,10 +24,12 @@
 //! whatever layer sends it. The ground fog (layer 0) is a fog layer from the ground
 //! up to its base elevation + thickness, of the visibility range the host sends (by
 //! severity when it sends 0: 1 000, 500, 300, 200, 100, 50 m); disabling it clears
-//! it. Hail (layer 7), cloud layers and the regional and entity scopes are counted as
-//! ignored.
+//! it. Cloud layers 1–3 (base elevation, thickness, coverage, cloud type: [`cloud_kind`])
+//! are kept; the lowest of those on is drawn. Hail (layer 7) and the regional and
+//! entity scopes are counted as ignored.
 
 use glam::Vec3;
+use precip_model::drawing::clouds::{CloudKind, CloudLayer};
 use precip_model::drawing::fog_layer::FogLayer;
 use precip_model::physics::grain::{Grain, grain_settling_speed_mps};
 use precip_model::wind::WindField;
@@ -46,6 +48,21 @@ pub const GRAIN_VISIBILITY_M: [f32; 6] = [5_000.0, 2_000.0, 1_000.0, 500.0, 200.
 pub const FOG_VISIBILITY_M: [f32; 6] = [1_000.0, 500.0, 300.0, 200.0, 100.0, 50.0];
 /// CIGI 3.3's layer ID of the ground fog.
 pub const GROUND_FOG_LAYER: u8 = 0;
+/// CIGI 3.3's layer IDs of the cloud layers.
+pub const CLOUD_LAYERS: std::ops::RangeInclusive<u8> = 1..=3;
+
+/// The cloud kind precip draws for a CIGI 3.3 cloud type: cumulonimbus, cumulus
+/// (and the heaped altocumulus, stratocumulus, cirrocumulus), stratus (and the
+/// sheets: altostratus, cirrostratus, cirrus), nimbostratus (and none or other).
+#[must_use]
+pub const fn cloud_kind(cloud_type: u8) -> CloudKind {
+    match cloud_type {
+        6 => CloudKind::Cumulonimbus,
+        1 | 3 | 7 | 9 => CloudKind::Cumulus,
+        2 | 4 | 5 | 10 => CloudKind::Stratus,
+        _ => CloudKind::Nimbostratus,
+    }
+}
 
 /// The precipitation kind of a Weather Control layer; `None` for the layers precip
 /// does not draw.
@@ -77,6 +94,8 @@ pub enum Applied {
     Changed(Weather),
     /// The ground fog changed to this layer (`None`: cleared).
     Fog(Option<FogLayer>),
+    /// The cloud layer drawn changed to this (`None`: no cloud layer is on).
+    Clouds(Option<CloudLayer>),
     /// The packet was for a layer, scope or kind precip does not draw.
     Ignored,
     /// The weather it asks for is not physical (precip_model's validation): kept
@@ -90,6 +109,8 @@ pub struct HostWeather {
     weather: Weather,
     layer_extent_m: Option<(f32, f32)>,
     fog_layer: Option<FogLayer>,
+    /// Cloud layers 1–3 as the host set them.
+    cloud_layers: [Option<CloudLayer>; 3],
 }
 
 impl HostWeather {
@@ -100,6 +121,7 @@ impl HostWeather {
             weather,
             layer_extent_m: None,
             fog_layer: None,
+            cloud_layers: [None; 3],
         }
     }
 
@@ -115,6 +137,16 @@ impl HostWeather {
         self.layer_extent_m
     }
 
+    /// The cloud layer drawn: the lowest of those on (precip draws one layer).
+    #[must_use]
+    pub fn cloud_layer(&self) -> Option<CloudLayer> {
+        self.cloud_layers
+            .iter()
+            .flatten()
+            .min_by(|a, b| a.base_m.total_cmp(&b.base_m))
+            .copied()
+    }
+
     /// The ground fog in effect.
     #[must_use]
     pub fn fog_layer(&self) -> Option<FogLayer> {
@@ -125,6 +157,9 @@ impl HostWeather {
     pub fn apply(&mut self, packet: &WeatherControl) -> Applied {
         if packet.layer == GROUND_FOG_LAYER && packet.scope == 0 {
             return self.apply_fog(packet);
+        }
+        if CLOUD_LAYERS.contains(&packet.layer) && packet.scope == 0 {
+            return self.apply_clouds(packet);
         }
         let Some(kind) = layer_kind(packet.layer) else {
             return Applied::Ignored;
@@ -175,6 +210,24 @@ impl HostWeather {
         self.weather = next;
         self.layer_extent_m = Some((packet.base_elevation_m, packet.thickness_m));
         Applied::Changed(next)
+    }
+
+    /// A cloud layer's packet (layers 1–3).
+    fn apply_clouds(&mut self, packet: &WeatherControl) -> Applied {
+        let layer = packet.enabled.then(|| CloudLayer {
+            base_m: packet.base_elevation_m,
+            thickness_m: packet.thickness_m,
+            coverage: (packet.coverage_percent / 100.0).clamp(0.0, 1.0),
+            kind: cloud_kind(packet.cloud_type),
+        });
+        if layer.as_ref().is_some_and(|l| l.validate().is_err()) {
+            return Applied::Refused;
+        }
+        let slot = usize::from(packet.layer - 1);
+        if let Some(s) = self.cloud_layers.get_mut(slot) {
+            *s = layer;
+        }
+        Applied::Clouds(self.cloud_layer())
     }
 
     /// The ground fog layer of a packet for layer 0.

@@ -73,6 +73,10 @@ pub struct WeatherControl {
     pub enabled: bool,
     /// Whether the IG may vary the wind.
     pub random_winds: bool,
+    /// Cloud type of a cloud layer: 0 none, 1 altocumulus, 2 altostratus, 3
+    /// cirrocumulus, 4 cirrostratus, 5 cirrus, 6 cumulonimbus, 7 cumulus, 8
+    /// nimbostratus, 9 stratocumulus, 10 stratus, 11–15 other.
+    pub cloud_type: u8,
     /// Scope: 0 global, 1 regional, 2 entity.
     pub scope: u8,
     /// Severity, 0 (least) to 5 (most severe).
@@ -278,6 +282,7 @@ fn weather_control(r: &Reader<'_>) -> Result<WeatherControl, CigiError> {
         humidity_percent: r.u8(5),
         enabled: flags & 0x01 != 0,
         random_winds: flags & 0x04 != 0,
+        cloud_type: flags >> 4,
         scope: scope_severity & 0b11,
         severity: (scope_severity >> 2) & 0b111,
         air_temperature_c: r.f32(8, "air temperature")?,

@@ -48,6 +48,10 @@ pub struct CigiReceiver {
     announced_fog: Option<precip_model::drawing::fog_layer::FogLayer>,
     /// A ground fog that differs from the announced one, not yet taken.
     fog_news: Option<Option<precip_model::drawing::fog_layer::FogLayer>>,
+    /// The cloud layer [`CigiReceiver::take_cloud_layer`] last returned.
+    announced_clouds: Option<precip_model::drawing::clouds::CloudLayer>,
+    /// A cloud layer that differs from the announced one, not yet taken.
+    cloud_news: Option<Option<precip_model::drawing::clouds::CloudLayer>>,
     /// Where Start of Frame goes: set by [`CigiReceiver::reply_to`], else the sender
     /// of the last well-formed message.
     host: Option<SocketAddr>,
@@ -75,6 +79,8 @@ impl CigiReceiver {
             announced: weather,
             announced_fog: None,
             fog_news: None,
+            announced_clouds: None,
+            cloud_news: None,
             host: None,
             host_fixed: false,
             last_control: None,
@@ -177,6 +183,10 @@ impl CigiReceiver {
                     self.counts.weather_applied += 1;
                     self.fog_news = (fog != self.announced_fog).then_some(fog);
                 }
+                Applied::Clouds(clouds) => {
+                    self.counts.weather_applied += 1;
+                    self.cloud_news = (clouds != self.announced_clouds).then_some(clouds);
+                }
                 Applied::Ignored => self.counts.weather_ignored += 1,
                 Applied::Refused => self.counts.weather_refused += 1,
             },
@@ -189,6 +199,16 @@ impl CigiReceiver {
     pub fn take_fog_layer(&mut self) -> Option<Option<precip_model::drawing::fog_layer::FogLayer>> {
         let news = self.fog_news.take()?;
         self.announced_fog = news;
+        Some(news)
+    }
+
+    /// The cloud layer the host set since the last call, if it changed (`Some(None)`:
+    /// every layer is off); read after [`CigiReceiver::poll`].
+    pub fn take_cloud_layer(
+        &mut self,
+    ) -> Option<Option<precip_model::drawing::clouds::CloudLayer>> {
+        let news = self.cloud_news.take()?;
+        self.announced_clouds = news;
         Some(news)
     }
 

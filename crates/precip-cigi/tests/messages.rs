@@ -186,6 +186,7 @@ fn disabling_the_layer_clears_it_and_other_layers_and_scopes_are_ignored() {
         humidity_percent: 80,
         enabled,
         random_winds: false,
+        cloud_type: 0,
         scope,
         severity: 2,
         air_temperature_c: temperature,
@@ -206,8 +207,8 @@ fn disabling_the_layer_clears_it_and_other_layers_and_scopes_are_ignored() {
     );
     assert_eq!(
         host.apply(&packet(1, true, 0, 10.0)),
-        Applied::Ignored,
-        "a cloud layer"
+        Applied::Refused,
+        "a cloud layer 0 m thick"
     );
     assert_eq!(
         host.apply(&packet(0, true, 1, 10.0)),
@@ -427,6 +428,7 @@ fn the_ground_fog_layer_is_fog_up_to_its_top_and_only_news_is_announced() {
         humidity_percent: 80,
         enabled: true,
         random_winds: false,
+        cloud_type: 0,
         scope: 0,
         severity: 2,
         air_temperature_c: 5.0,
@@ -456,5 +458,87 @@ fn the_ground_fog_layer_is_fog_up_to_its_top_and_only_news_is_announced() {
         weather.weather(),
         Weather::default(),
         "fog leaves the precipitation"
+    );
+}
+
+#[test]
+fn cloud_layers_one_to_three_draw_the_lowest_that_is_on() {
+    use precip_model::drawing::clouds::{CloudKind, CloudLayer};
+    let mut host = HostWeather::new(Weather::default());
+    let layer = |id: u8, enabled: bool, cloud_type: u8, base: f32, coverage: f32| WeatherControl {
+        entity_region_id: 0,
+        layer: id,
+        humidity_percent: 70,
+        enabled,
+        random_winds: false,
+        cloud_type,
+        scope: 0,
+        severity: 0,
+        air_temperature_c: 10.0,
+        visibility_m: 0.0,
+        coverage_percent: coverage,
+        base_elevation_m: base,
+        thickness_m: 1_200.0,
+        horizontal_wind_mps: 0.0,
+        vertical_wind_mps: 0.0,
+        wind_from_deg: 0.0,
+    };
+    let cumulus = CloudLayer {
+        base_m: 1_500.0,
+        thickness_m: 1_200.0,
+        coverage: 0.4,
+        kind: CloudKind::Cumulus,
+    };
+    assert_eq!(
+        host.apply(&layer(2, true, 7, 1_500.0, 40.0)),
+        Applied::Clouds(Some(cumulus))
+    );
+    // A lower stratus sheet on layer 1 is the one drawn; off again, the cumulus.
+    let stratus = CloudLayer {
+        base_m: 400.0,
+        coverage: 0.9,
+        kind: CloudKind::Stratus,
+        ..cumulus
+    };
+    assert_eq!(
+        host.apply(&layer(1, true, 10, 400.0, 90.0)),
+        Applied::Clouds(Some(stratus))
+    );
+    assert_eq!(
+        host.apply(&layer(1, false, 10, 400.0, 90.0)),
+        Applied::Clouds(Some(cumulus))
+    );
+    assert_eq!(
+        host.apply(&layer(2, false, 7, 1_500.0, 40.0)),
+        Applied::Clouds(None)
+    );
+    assert_eq!(
+        host.apply(&layer(3, true, 6, f32::INFINITY, 40.0)),
+        Applied::Refused
+    );
+    assert_eq!(host.cloud_layer(), None);
+    assert_eq!(
+        host.weather(),
+        Weather::default(),
+        "clouds leave the precipitation"
+    );
+    // The type travels in the flags' high bits.
+    let mut w = Writer::new(ByteOrder::Big);
+    w.ig_control(1);
+    let start = w.bytes.len();
+    w.weather(2, true, 0, 10.0, 0.0, 50.0, (0.0, 0.0, 0.0), 0);
+    w.bytes[start + 6] |= 6 << 4;
+    let Packet::WeatherControl(p) = parse_message(&w.bytes).expect("valid")[1] else {
+        panic!()
+    };
+    assert_eq!(p.cloud_type, 6);
+    assert_eq!(
+        host.apply(&p),
+        Applied::Clouds(Some(CloudLayer {
+            base_m: 800.0,
+            thickness_m: 1_500.0,
+            coverage: 0.5,
+            kind: CloudKind::Cumulonimbus,
+        }))
     );
 }

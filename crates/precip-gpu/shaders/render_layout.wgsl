@@ -44,6 +44,10 @@ struct RenderParams {
     mirror: vec4<f32>,
     // the fog layer: top m, bottom m, extinction B per m (0: none), the sun's light on
     fog_layer: vec4<f32>,
+    // the cloud layer: base m, top m, coverage, kind (0 stratus … 3 cumulonimbus)
+    clouds: vec4<f32>,
+    // the clouds' drift x, z m, their most extinction per m, drawn (1/0)
+    cloud_drift: vec4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

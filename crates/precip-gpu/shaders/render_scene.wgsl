@@ -37,6 +37,11 @@ fn frame_pools() -> vec4<u32> {
 @group(0) @binding(12) var<storage, read> waves_read: array<i32>;
 // The albedo of the ground the drops refract (cover_texture.wgsl's drop_ground).
 @group(0) @binding(15) var<storage, read> drop_ground_albedo: array<f32>;
+// The clouds' coverage map (precip_model::drawing::clouds::cloud_coverage_map),
+// tiling, and the clouds' image the sky lays over itself.
+@group(0) @binding(17) var cloud_map: texture_2d<f32>;
+@group(0) @binding(18) var cloud_sampler: sampler;
+@group(1) @binding(4) var cloud_image: texture_2d<f32>;
 // Group 1: light and the flake's opacity.
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(1) var shadow_sampler: sampler_comparison;
@@ -75,6 +80,11 @@ struct SkyVarying {
 // after the meshes where nothing stands (depth less-equal 1).
 @vertex
 fn vs_sky(@builtin(vertex_index) v: u32) -> SkyVarying {
+    return sky_triangle(v);
+}
+
+// One triangle covering the target, at the far plane.
+fn sky_triangle(v: u32) -> SkyVarying {
     let uv = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
     let ndc = uv * 2.0 - 1.0;
     var out: SkyVarying;
@@ -90,7 +100,14 @@ fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let camera = params.camera_m_cone_cos.xyz;
     let ray = normalize_or_zero(far.xyz / far.w - camera);
-    let sky = overcast_sky(params.sky_colour_time.xyz, ray);
+    var sky = overcast_sky(params.sky_colour_time.xyz, ray);
+    // A drawn cloud layer stands for the deck the overcast sky stood for: the clear
+    // sky between its clouds, their image over it (premultiplied). From the storage
+    // copy: a branch.
+    if (switches.cloud_drift.w > 0.0) {
+        let cloud = textureSampleLevel(cloud_image, cover_sampler, in.ndc * vec2<f32>(0.5, -0.5) + 0.5, 0.0);
+        sky = clear_sky(params.sky_colour_time.xyz, ray) * (1.0 - cloud.a) + cloud.rgb;
+    }
     if (switches.fog_layer.z <= 0.0) {
         return vec4<f32>(sky, 1.0);
     }

@@ -226,6 +226,16 @@ impl<G: Gpu> Backend for GpuBackend<G> {
         state.sim.set_shadow_refresh_frames(frames)
     }
 
+    fn set_cloud_layer(
+        &mut self,
+        cloud_layer: Option<precip_model::drawing::clouds::CloudLayer>,
+    ) -> Result<(), BackendError> {
+        let state = self.state.as_mut().ok_or(BackendError::NotConfigured {
+            operation: "set_cloud_layer",
+        })?;
+        state.sim.set_cloud_layer(cloud_layer)
+    }
+
     fn set_fog_layer(
         &mut self,
         fog_layer: Option<precip_model::drawing::fog_layer::FogLayer>,
@@ -377,6 +387,12 @@ macro_rules! delegate_backend {
                 fog_layer: Option<::precip_model::drawing::fog_layer::FogLayer>,
             ) -> Result<(), ::precip_model::BackendError> {
                 self.0.set_fog_layer(fog_layer)
+            }
+            fn set_cloud_layer(
+                &mut self,
+                cloud_layer: Option<::precip_model::drawing::clouds::CloudLayer>,
+            ) -> Result<(), ::precip_model::BackendError> {
+                self.0.set_cloud_layer(cloud_layer)
             }
             fn weather(&self) -> Result<::precip_model::Weather, ::precip_model::BackendError> {
                 self.0.weather()

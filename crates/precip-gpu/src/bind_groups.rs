@@ -285,7 +285,15 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
         binding(rb::COVER_SAMPLER, FILTERING, Stages::DrawAndCompute),
         binding(rb::WAVES, storage(true), Stages::DrawAndCompute),
         binding(rb::DROP_GROUND, storage(true), Stages::DrawAndCompute),
+        binding(rb::CLOUD_MAP, FILTERED_2D, Stages::DrawAndCompute),
+        binding(rb::CLOUD_SAMPLER, FILTERING, Stages::DrawAndCompute),
     ],
+};
+
+/// Group 1 of the sky's draw: the clouds' image.
+pub const CLOUD_IMAGE: GroupLayout = GroupLayout {
+    name: "precip cloud image",
+    bindings: &[binding(rb::CLOUD_IMAGE, FILTERED_2D, Stages::Draw)],
 };
 
 /// Group 1: light and the flake's opacity.
@@ -438,7 +446,8 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::Render, "cover_texture" | "drop_ground") => &[COVER_TEXTURE],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
-        (Program::Render, "vs_sky" | "fs_sky") => &[RENDER_FRAME],
+        (Program::Render, "vs_sky" | "fs_sky") => &[RENDER_FRAME, CLOUD_IMAGE],
+        (Program::Render, "vs_clouds" | "fs_clouds") => &[RENDER_FRAME],
         (Program::Render, "vs_mirror" | "fs_mirror") => {
             &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL]
         }

@@ -436,6 +436,14 @@ impl<G: Gpu> Simulation<G> {
         self.host.set_shadow_refresh_frames(frames)
     }
 
+    /// Takes a cloud layer or none ([`HostState::set_cloud_layer`]).
+    pub fn set_cloud_layer(
+        &mut self,
+        cloud_layer: Option<precip_model::drawing::clouds::CloudLayer>,
+    ) -> Result<(), BackendError> {
+        self.host.set_cloud_layer(cloud_layer)
+    }
+
     /// Takes a fog layer or none ([`HostState::set_fog_layer`]).
     pub fn set_fog_layer(
         &mut self,

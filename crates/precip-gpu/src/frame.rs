@@ -48,6 +48,9 @@ pub enum DepthTarget {
     Particles,
     /// The water mirror's depth buffer ([`ColourTarget::Mirror`]'s size).
     Mirror,
+    /// The clouds' image's depth buffer ([`ColourTarget::Clouds`]'s size): cleared
+    /// and never written.
+    Clouds,
 }
 
 impl DepthTarget {
@@ -60,6 +63,7 @@ impl DepthTarget {
             Self::Camera => Some(TargetResource::CameraDepth),
             Self::Particles => Some(TargetResource::ParticleDepth),
             Self::Mirror => Some(TargetResource::MirrorDepth),
+            Self::Clouds => Some(TargetResource::CloudDepth),
         }
     }
 }
@@ -73,6 +77,7 @@ impl ColourTarget {
             Self::Frame => None,
             Self::Particles => Some(TargetResource::ParticleImage),
             Self::Mirror => Some(TargetResource::MirrorImage),
+            Self::Clouds => Some(TargetResource::CloudImage),
         }
     }
 }
@@ -91,6 +96,10 @@ pub enum ColourTarget {
     /// transparent (the sky), drawn within the water's rectangle, then sampled by
     /// the water bodies.
     Mirror,
+    /// The clouds' image (`crate::frame_resources::TargetResource::CloudImage`), at
+    /// a quarter of the frame's side: marched through the cloud layer, then sampled
+    /// by the sky.
+    Clouds,
 }
 
 /// Which of the scene's meshes a draw draws.
@@ -237,6 +246,8 @@ pub enum PassWhen {
     WaterMirrored,
     /// While it is not (the water bodies follow their rays over the frame before).
     WaterMirroredNot,
+    /// While a cloud layer is set (`RenderSettings::cloud_layer`).
+    Clouds,
 }
 
 /// One pass of the frame.
@@ -313,6 +324,13 @@ const MIRROR_DRAW: Draw = Draw {
     entry_points: render_passes::MIRROR,
     when: PassWhen::Always,
     ..SCENE_DRAW
+};
+
+// The cloud layer marched at a quarter of the frame's side (render_clouds.wgsl),
+// into its own image, which the sky then reads.
+const CLOUDS_DRAW: Draw = Draw {
+    entry_points: render_passes::CLOUDS,
+    ..SKY_DRAW
 };
 
 // At the far plane (depth 1), less-or-equal: only where no mesh stands.
@@ -400,7 +418,7 @@ const OVER_THE_FRAME: RenderPassRecipe = RenderPassRecipe {
 };
 
 /// The frame, in order (see the module docs and [`crate::renderer`]).
-pub const FRAME_PASSES: [FramePass; 10] = [
+pub const FRAME_PASSES: [FramePass; 11] = [
     FramePass {
         name: "cover_texture",
         work: PassWork::Kernels(&[COVER_TEXTURE_PASS, DROP_GROUND_PASS]),
@@ -429,6 +447,18 @@ pub const FRAME_PASSES: [FramePass; 10] = [
             draws: &[MIRROR_DRAW],
         }),
         when: PassWhen::WaterMirrored,
+    },
+    FramePass {
+        name: "clouds",
+        work: PassWork::Render(RenderPassRecipe {
+            depth: DepthTarget::Clouds,
+            depth_load: AttachmentLoad::Clear,
+            depth_stored: false,
+            colour: Some(AttachmentLoad::Clear),
+            colour_target: ColourTarget::Clouds,
+            draws: &[CLOUDS_DRAW],
+        }),
+        when: PassWhen::Clouds,
     },
     FramePass {
         name: "scene",
@@ -537,6 +567,8 @@ pub struct FrameConditions {
     pub particles_reduced: bool,
     /// The water bodies' planar mirror is drawn ([`PassWhen::WaterMirrored`]).
     pub water_mirrored: bool,
+    /// A cloud layer is drawn ([`PassWhen::Clouds`]).
+    pub clouds: bool,
 }
 
 impl PassWhen {
@@ -553,6 +585,7 @@ impl PassWhen {
             Self::ParticlesReduced => conditions.particles_reduced,
             Self::WaterMirrored => conditions.water_mirrored,
             Self::WaterMirroredNot => !conditions.water_mirrored,
+            Self::Clouds => conditions.clouds,
         }
     }
 }
@@ -715,6 +748,7 @@ impl FrameHost {
                 ground_mirrors: false,
                 particles_reduced: setup.render.particle_resolution != ParticleResolution::Full,
                 water_mirrored: mirror.is_some(),
+                clouds: setup.render.cloud_layer.is_some(),
             },
             sky_colour: haze_colour(&setup.render, host.weather()),
             mirror_rect_px: mirror.map(|m| m.rect_px),
@@ -766,15 +800,19 @@ mod tests {
     #[test]
     fn the_plan_skips_the_shadow_and_the_copy_only_when_unneeded() {
         for (shadow_redrawn, water_shows) in [(false, false), (true, false), (false, true)] {
-            for (particles_reduced, water_mirrored) in
-                [(false, false), (true, false), (false, true)]
-            {
+            for (particles_reduced, water_mirrored, clouds) in [
+                (false, false, false),
+                (true, false, true),
+                (false, true, false),
+                (false, false, true),
+            ] {
                 let plan: Vec<_> = frame_plan(FrameConditions {
                     shadow_redrawn,
                     water_shows,
                     ground_mirrors: false,
                     particles_reduced,
                     water_mirrored,
+                    clouds,
                 })
                 .collect();
                 assert_eq!(plan.len(), FRAME_PASSES.len());
@@ -785,6 +823,7 @@ mod tests {
                         "particles" => !particles_reduced,
                         "particles_reduced" | "particles_composite" => particles_reduced,
                         "water_mirror" => water_mirrored,
+                        "clouds" => clouds,
                         _ => true,
                     };
                     assert_eq!(p.runs, expected, "{}", p.pass.name);
@@ -813,6 +852,7 @@ mod tests {
                 ground_mirrors,
                 particles_reduced: false,
                 water_mirrored: false,
+                clouds: false,
             };
             let ground: Vec<_> = recipe
                 .draws
@@ -839,6 +879,7 @@ mod tests {
                 "cover_texture",
                 "shadow",
                 "water_mirror",
+                "clouds",
                 "scene",
                 "scene_copy",
                 "cull_particles",

@@ -7,12 +7,13 @@
 //! where is decided here, once.
 
 use precip_model::Setup;
+use precip_model::drawing::clouds::{CLOUD_MAP_PX, cloud_coverage_map};
 use precip_model::drawing::render::RenderParams;
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 
 use crate::bind_groups::{
-    COVER_TEXTURE, CULL, GroupLayout, PARTICLE_DEPTH, PARTICLE_IMAGE, REFLECTIONS, RENDER_FRAME,
-    RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
+    CLOUD_IMAGE, COVER_TEXTURE, CULL, GroupLayout, PARTICLE_DEPTH, PARTICLE_IMAGE, REFLECTIONS,
+    RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
 };
 use crate::recipe::{
     DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
@@ -115,6 +116,8 @@ pub enum FrameTexture {
     CoverC,
     /// The flake's opacity.
     Flake,
+    /// The clouds' coverage map.
+    CloudMap,
 }
 
 /// A texel format of the frame.
@@ -216,6 +219,14 @@ pub fn frame_textures(setup: &Setup) -> Vec<TextureSpec> {
             usage: TextureUsage::Sampled,
             contents: Some(snowflake_opacity(FLAKE_TEXTURE_PX)),
         },
+        TextureSpec {
+            texture: FrameTexture::CloudMap,
+            label: "precip cloud coverage map",
+            size: [CLOUD_MAP_PX, CLOUD_MAP_PX],
+            format: TexelFormat::R8Unorm,
+            usage: TextureUsage::Sampled,
+            contents: Some(cloud_coverage_map()),
+        },
     ]
 }
 
@@ -256,6 +267,11 @@ pub enum TargetResource {
     MirrorImage,
     /// Its depth buffer ([`crate::frame::DepthTarget::Mirror`]), of its size.
     MirrorDepth,
+    /// The clouds' image ([`crate::frame::ColourTarget::Clouds`]): `Rgba16Float`,
+    /// [`CLOUD_DOWNSCALE`] times smaller along each side than the target.
+    CloudImage,
+    /// Its depth buffer ([`crate::frame::DepthTarget::Clouds`]), of its size.
+    CloudDepth,
 }
 
 /// A texture a target of one size adds.
@@ -275,15 +291,16 @@ pub struct TargetTextureSpec {
 
 /// The textures a `size` target adds: the camera's depth, the copies of the scene
 /// (in `copy_format`) and of the depth, the particles' image at `particles` (1 × 1
-/// at the frame's resolution: unused) and the water bodies' mirror image
-/// (1 × 1 unless `mirrors`), each image with its depth buffer.
+/// at the frame's resolution: unused), the water bodies' mirror image
+/// (1 × 1 unless `mirrors`) and the clouds' image (a quarter of the side: a cloud
+/// layer may come while running), each image with its depth buffer.
 #[must_use]
 pub fn target_textures(
     size: (u32, u32),
     copy_format: TexelFormat,
     particles: precip_model::ParticleResolution,
     mirrors: bool,
-) -> [TargetTextureSpec; 7] {
+) -> [TargetTextureSpec; 9] {
     use TargetResource as R;
     use TexelFormat::{Depth32Float, Rgba16Float};
     use TextureUsage::{CopyOfTarget, DepthAttachment, DrawnThenSampled};
@@ -297,6 +314,10 @@ pub fn target_textures(
     } else {
         (1, 1)
     };
+    let cloud_size = (
+        size.0.div_ceil(CLOUD_DOWNSCALE),
+        size.1.div_ceil(CLOUD_DOWNSCALE),
+    );
     let spec = |resource, label, size, format, usage| TargetTextureSpec {
         resource,
         label,
@@ -354,8 +375,25 @@ pub fn target_textures(
             Depth32Float,
             DepthAttachment,
         ),
+        spec(
+            R::CloudImage,
+            "precip cloud image",
+            cloud_size,
+            Rgba16Float,
+            DrawnThenSampled,
+        ),
+        spec(
+            R::CloudDepth,
+            "precip cloud depth",
+            cloud_size,
+            Depth32Float,
+            DepthAttachment,
+        ),
     ]
 }
+
+/// Frame pixels along each side per pixel of the clouds' image.
+pub const CLOUD_DOWNSCALE: u32 = 4;
 
 /// Bytes of the splat sums of a `width × height` target.
 #[must_use]
@@ -408,6 +446,11 @@ pub const FRAME_GROUPS: [FrameGroupFill; 4] = [
             (rb::COVER_C, FrameBound::Texture(FrameTexture::CoverC)),
             (rb::COVER_SAMPLER, FrameBound::Sampler(Sampler::LinearClamp)),
             (rb::DROP_GROUND, FrameBound::Buffer(FrameBuffer::DropGround)),
+            (rb::CLOUD_MAP, FrameBound::Texture(FrameTexture::CloudMap)),
+            (
+                rb::CLOUD_SAMPLER,
+                FrameBound::Sampler(Sampler::LinearRepeat),
+            ),
         ],
     },
     FrameGroupFill {
@@ -463,7 +506,7 @@ pub const FRAME_GROUPS: [FrameGroupFill; 4] = [
 
 /// The groups made for a target's size (the splat kernel's, its resolve's, the
 /// reflections', the reduced particles' and their composite's).
-pub const TARGET_GROUPS: [FrameGroupFill; 5] = [
+pub const TARGET_GROUPS: [FrameGroupFill; 6] = [
     FrameGroupFill {
         layout: &SPLAT,
         bound: &[
@@ -507,6 +550,13 @@ pub const TARGET_GROUPS: [FrameGroupFill; 5] = [
         bound: &[(
             rb::PARTICLE_SCENE_DEPTH,
             FrameBound::Target(TargetResource::CameraDepth),
+        )],
+    },
+    FrameGroupFill {
+        layout: &CLOUD_IMAGE,
+        bound: &[(
+            rb::CLOUD_IMAGE,
+            FrameBound::Target(TargetResource::CloudImage),
         )],
     },
     FrameGroupFill {
@@ -563,6 +613,7 @@ mod tests {
                                     | TargetResource::DepthCopy
                                     | TargetResource::ParticleImage
                                     | TargetResource::MirrorImage
+                                    | TargetResource::CloudImage
                             ),
                     ) | (
                         BindingKind::StorageTextureRgba16Float,
@@ -608,6 +659,8 @@ mod tests {
         // Unused images are a texel.
         assert_eq!(size_of(&full, TargetResource::ParticleImage), (1, 1));
         assert_eq!(size_of(&full, TargetResource::MirrorImage), (1, 1));
+        // The clouds' image is always a quarter of the side (a layer may come).
+        assert_eq!(size_of(&full, TargetResource::CloudImage), (320, 180));
         let reduced = target_textures(
             size,
             TexelFormat::Rgba8UnormSrgb,

@@ -492,7 +492,7 @@ pub fn substep_timings(
 /// serve it (every kernel of [`SUBSTEP_PASSES`] and pass of
 /// [`crate::frame::FRAME_PASSES`] is in exactly one): what the viewer's summary and
 /// the report add up into each feature's share of the frame.
-pub const FEATURES: [(&str, &[&str]); 6] = [
+pub const FEATURES: [(&str, &[&str]); 7] = [
     (
         "particles",
         &[
@@ -529,6 +529,7 @@ pub const FEATURES: [(&str, &[&str]); 6] = [
             "water_mirror",
         ],
     ),
+    ("sky", &["clouds"]),
     ("scene", &["scene"]),
     ("shadow", &["shadow"]),
 ];
@@ -731,6 +732,9 @@ pub mod render_passes {
     /// The overcast sky behind the scene: one triangle of 3 vertices at the far plane,
     /// after the meshes, where nothing stands.
     pub const SKY: (&str, Option<&str>) = ("vs_sky", Some("fs_sky"));
+    /// The cloud layer marched into the clouds' image: one triangle of 3 vertices
+    /// covering it.
+    pub const CLOUDS: (&str, Option<&str>) = ("vs_clouds", Some("fs_clouds"));
     /// The splat sums blended over the frame: one triangle of 3 vertices covering the
     /// target, no depth test (the splat kernel tested each particle), alpha blending;
     /// first in the particles' pass.
@@ -913,6 +917,16 @@ pub mod render_bindings {
     /// Group 0 of the `cover_texture` and `drop_ground` kernels: [`DROP_GROUND`],
     /// read-write.
     pub const DROP_GROUND_OUT: u32 = 16;
+    /// Group 0: the clouds' coverage map
+    /// ([`precip_model::drawing::clouds::cloud_coverage_map`]), `texture_2d<f32>`
+    /// (`R8Unorm`).
+    pub const CLOUD_MAP: u32 = 17;
+    /// Group 0: its sampler (linear, repeating: the map tiles).
+    pub const CLOUD_SAMPLER: u32 = 18;
+    /// Group 1 of the sky's draw (its own group, numbered apart from the light's
+    /// bindings): the clouds' image, `texture_2d<f32>` (`Rgba16Float`: their light,
+    /// premultiplied, and opacity), read through [`COVER_SAMPLER`].
+    pub const CLOUD_IMAGE: u32 = 4;
 }
 
 /// One input of the `probe_drawing` test kernel (64 bytes). WGSL: `ProbeDrawing`.

@@ -152,7 +152,9 @@ impl<G: Gpu> Drawing<G> {
                 .and_then(|layouts| {
                     let colour = match recipe.colour_target {
                         ColourTarget::Frame => format,
-                        ColourTarget::Particles | ColourTarget::Mirror => image_format,
+                        ColourTarget::Particles | ColourTarget::Mirror | ColourTarget::Clouds => {
+                            image_format
+                        }
                     };
                     gpu.draw_pipeline(draw, recipe, &layouts, recipe.colour.map(|_| colour))
                 });
@@ -887,7 +889,9 @@ fn tile_cull(depth: DepthTarget, decision: &FrameDecision) -> TileCull {
     let p = &decision.params;
     match depth {
         DepthTarget::ShadowMap => TileCull::whole(p.sun_view_proj),
-        DepthTarget::Camera | DepthTarget::Particles => TileCull::whole(p.view_proj),
+        DepthTarget::Camera | DepthTarget::Particles | DepthTarget::Clouds => {
+            TileCull::whole(p.view_proj)
+        }
         DepthTarget::Mirror => {
             let whole = TileCull::whole(p.mirror_view_proj);
             match (decision.mirror_rect_px, decision.target_px) {

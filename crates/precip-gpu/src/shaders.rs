@@ -95,6 +95,8 @@ pub const PARTICLE_LISTS: ShaderFile = shader_file!("particle_lists.wgsl");
 pub const RENDER_SPLAT: ShaderFile = shader_file!("render_splat.wgsl");
 /// The scene mirrored in standing water (the scene pass calls it).
 pub const RENDER_REFLECTIONS: ShaderFile = shader_file!("render_reflections.wgsl");
+/// The cloud layer marched into the clouds' image.
+pub const RENDER_CLOUDS: ShaderFile = shader_file!("render_clouds.wgsl");
 /// Kernels `cull_count`, `cull_scan`, `cull_write`.
 pub const CULL_PARTICLES: ShaderFile = shader_file!("cull_particles.wgsl");
 /// Particles' cross-sections (Rust twin: `sensors::optics`).
@@ -173,6 +175,7 @@ impl Program {
                 RENDER_PARTICLES,
                 RENDER_SPLAT,
                 RENDER_REFLECTIONS,
+                RENDER_CLOUDS,
                 COVER_TEXTURE,
             ],
             Self::CullParticles => &[

@@ -319,6 +319,77 @@ fn air_path(camera_m: vec3<f32>, dir: vec3<f32>, distance_m: f32, extinction_per
     return vec2<f32>(transmittance, sun * layer.w);
 }
 
+// The cloud layer (precip_model::drawing::clouds; docs/model.md (6.9)-(6.12)).
+const CLOUD_MAP_PERIOD_M: f32 = 12000.0;
+const CLOUD_DETAIL_PERIOD_M: f32 = 1700.0;
+const CLOUD_DETAIL_SHARE: f32 = 0.45;
+const CLOUD_THRESHOLD: f32 = 0.12;
+const CLOUD_EDGE: f32 = 0.04;
+const CLOUD_DOME: f32 = 0.25;
+const CLOUD_VIEW_STEPS: u32 = 20u;
+const CLOUD_SUN_SAMPLES: u32 = 3u;
+const CLOUD_MAX_PATH_M: f32 = 30000.0;
+
+// cloud_profile: the kind's height profile at h (0 at the base, 1 at the top).
+fn cloud_profile(kind: u32, h: f32) -> f32 {
+    var rise_fall = vec2<f32>(0.05, 0.85);
+    switch kind {
+        case 0u: { rise_fall = vec2<f32>(0.15, 0.6); }
+        case 2u: { rise_fall = vec2<f32>(0.07, 0.35); }
+        case 3u: { rise_fall = vec2<f32>(0.02, 0.8); }
+        default: {}
+    }
+    let inside = select(0.0, 1.0, h >= 0.0 && h <= 1.0);
+    return inside * smoothstep(0.0, rise_fall.x, h) * (1.0 - smoothstep(rise_fall.y, 1.0, h));
+}
+
+// cloud_density: [0, 1] at height fraction h of a column of map value m, detail d.
+fn cloud_density(kind: u32, coverage: f32, m: f32, d: f32, h: f32) -> f32 {
+    let column = smoothstep(0.0, CLOUD_EDGE, coverage - m);
+    let reach = clamp((coverage - m) / CLOUD_DOME, 0.05, 1.0);
+    let raw = column * cloud_profile(kind, h / reach) * (1.0 - CLOUD_DETAIL_SHARE + CLOUD_DETAIL_SHARE * d);
+    return max((raw - CLOUD_THRESHOLD) / (1.0 - CLOUD_THRESHOLD), 0.0);
+}
+
+// cloud_phase: two Henyey-Greenstein lobes (0.8, -0.3, weights 0.75, 0.25), mean 1.
+fn cloud_phase(cos_mu: f32) -> f32 {
+    let c = clamp(cos_mu, -1.0, 1.0);
+    let d1 = 1.0 + 0.64 - 1.6 * c;
+    let d2 = 1.0 + 0.09 + 0.6 * c;
+    return 0.75 * (1.0 - 0.64) / (d1 * sqrt(d1)) + 0.25 * (1.0 - 0.09) / (d2 * sqrt(d2));
+}
+
+// cloud_sun_light: three octaves of multiple scattering (a = b = c = 1/2) of the
+// sun's light behind an optical depth `optical`, per unit extinction.
+fn cloud_sun_light(cos_mu: f32, optical: f32) -> f32 {
+    let c = clamp(cos_mu, -1.0, 1.0);
+    var sum = 0.0;
+    var k = 1.0;
+    for (var n = 0u; n < 3u; n += 1u) {
+        let g1 = 0.8 * k;
+        let g2 = -0.3 * k;
+        let d1 = 1.0 + g1 * g1 - 2.0 * g1 * c;
+        let d2 = 1.0 + g2 * g2 - 2.0 * g2 * c;
+        let phase = 0.75 * (1.0 - g1 * g1) / (d1 * sqrt(d1)) + 0.25 * (1.0 - g2 * g2) / (d2 * sqrt(d2));
+        sum += k * phase * exp(-k * optical);
+        k *= 0.5;
+    }
+    return sum;
+}
+
+// cloud_slab: where the ray crosses [base_m, top_m], at most CLOUD_MAX_PATH_M long.
+fn cloud_slab(camera_y_m: f32, dir_y: f32, base_m: f32, top_m: f32) -> vec2<f32> {
+    let s = fog_layer_segment(camera_y_m, dir_y, CLOUD_MAX_PATH_M * 4.0, base_m, top_m);
+    return vec2<f32>(s.x, min(s.y, s.x + CLOUD_MAX_PATH_M));
+}
+
+// cloud_map_uvs: the column's uv (drifting by offset_m) and the detail's.
+fn cloud_map_uvs(p: vec3<f32>, offset_m: vec2<f32>) -> vec4<f32> {
+    let ground = p.xz + offset_m;
+    let detail = vec2<f32>(ground.x + 0.6 * p.y, ground.y - 0.8 * p.y);
+    return vec4<f32>(ground / CLOUD_MAP_PERIOD_M, detail / CLOUD_DETAIL_PERIOD_M);
+}
+
 // multiplicity_rank (precip_model::drawing::multiplicity): a particle's rank in [0, 1).
 fn multiplicity_rank(index: u32) -> f32 {
     var h = index * 0x9e3779b9u;

@@ -133,6 +133,12 @@ pub fn run_headless_with(
         {
             backend.set_fog_layer(fog)?;
         }
+        if let Some(clouds) = cigi
+            .as_deref_mut()
+            .and_then(precip_cigi::CigiReceiver::take_cloud_layer)
+        {
+            backend.set_cloud_layer(clouds)?;
+        }
         backend.set_camera(&view.camera)?;
         backend.step(dt_s)?;
         backend.render(view)?;

@@ -58,7 +58,8 @@ enum Command {
 #[derive(clap::Args, Debug)]
 struct WeatherArgs {
     /// A weather preset: a TOML file or a shipped name (light-snow, blizzard,
-    /// wet-snow, drizzle, downpour, sleet, sandstorm, dust-haze, valley-fog); the options
+    /// wet-snow, drizzle, downpour, sleet, sandstorm, dust-haze, valley-fog,
+    /// fair-cumulus, thunderstorm); the options
     /// below override it.
     #[arg(long)]
     preset: Option<String>,
@@ -87,6 +88,19 @@ struct WeatherArgs {
     /// The visibility inside the fog layer, m (200 when only --fog-top is given).
     #[arg(long)]
     fog_visibility: Option<f32>,
+    /// A layer of volumetric clouds of this type (docs/model.md (6.9)).
+    #[arg(long, value_enum)]
+    cloud_type: Option<precip_viewer::presets::CloudTypeName>,
+    /// The share of the sky the cloud layer covers, 0–1 (oktas / 8; 0.6 when only
+    /// --cloud-type is given; alone, a nimbostratus deck).
+    #[arg(long)]
+    cloud_cover: Option<f32>,
+    /// The cloud layer's base, m (the type's typical base).
+    #[arg(long, allow_negative_numbers = true)]
+    cloud_base: Option<f32>,
+    /// The cloud layer's thickness, m (the type's typical thickness).
+    #[arg(long)]
+    cloud_thickness: Option<f32>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -318,6 +332,10 @@ fn preset_of(args: &WeatherArgs) -> anyhow::Result<Preset> {
     preset.gust_factor = args.gust.unwrap_or(preset.gust_factor);
     preset.fog_top_m = args.fog_top.or(preset.fog_top_m);
     preset.fog_visibility_m = args.fog_visibility.or(preset.fog_visibility_m);
+    preset.cloud_type = args.cloud_type.or(preset.cloud_type);
+    preset.cloud_cover = args.cloud_cover.or(preset.cloud_cover);
+    preset.cloud_base_m = args.cloud_base.or(preset.cloud_base_m);
+    preset.cloud_thickness_m = args.cloud_thickness.or(preset.cloud_thickness_m);
     Ok(preset)
 }
 
@@ -334,13 +352,14 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         .as_deref()
         .map(precip_viewer::scenario::load_scenario_weather)
         .transpose()?;
-    let (weather, fog_layer) = match &scenario {
-        Some(s) => (s.weather, s.fog_layer),
+    let (weather, fog_layer, cloud_layer) = match &scenario {
+        Some(s) => (s.weather, s.fog_layer, s.cloud_layer),
         None => {
             let preset = preset_of(&args.weather)?;
             (
                 preset.weather().context("the weather")?,
                 preset.fog_layer()?,
+                preset.cloud_layer()?,
             )
         }
     };
@@ -369,6 +388,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         setup.render.clear_air_extinction_per_m = fog;
     }
     setup.render.fog_layer = fog_layer;
+    setup.render.cloud_layer = cloud_layer;
     setup.camera.forward =
         channel_forward(setup.camera.forward, args.channel_yaw, args.channel_pitch);
     if let Some(shift) = args.channel_shift {

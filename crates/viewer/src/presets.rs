@@ -1,10 +1,11 @@
-//! Weather presets: TOML files (serde) naming the weather in physical units. Nine
+//! Weather presets: TOML files (serde) naming the weather in physical units. Eleven
 //! ship with the viewer (`presets/*.toml` at the repository root, also built in by
 //! name).
 
 use std::path::Path;
 
 use glam::Vec3;
+use precip_model::drawing::clouds::{CloudKind, CloudLayer};
 use precip_model::drawing::fog_layer::FogLayer;
 use precip_model::physics::grain::Grain;
 use precip_model::wind::WindField;
@@ -47,7 +48,49 @@ pub struct Preset {
     /// given).
     #[serde(default)]
     pub fog_visibility_m: Option<f32>,
+    /// A cloud layer's type: "stratus", "nimbostratus", "cumulus" or
+    /// "cumulonimbus"; optional (no clouds when absent and no cover is given).
+    #[serde(default)]
+    pub cloud_type: Option<CloudTypeName>,
+    /// The share of the sky the cloud layer covers, `[0, 1]` (oktas / 8); optional
+    /// (0.6 when only the type is given).
+    #[serde(default)]
+    pub cloud_cover: Option<f32>,
+    /// The cloud layer's base, m; optional (the type's typical base).
+    #[serde(default)]
+    pub cloud_base_m: Option<f32>,
+    /// The cloud layer's thickness, m; optional (the type's typical thickness).
+    #[serde(default)]
+    pub cloud_thickness_m: Option<f32>,
 }
+
+/// A cloud type, as written in presets and on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum CloudTypeName {
+    /// A thin, flat, grey sheet.
+    Stratus,
+    /// A thick, even deck of rain or snow.
+    Nimbostratus,
+    /// Heaps with flat bases (fair weather).
+    Cumulus,
+    /// Towering storm clouds.
+    Cumulonimbus,
+}
+
+impl From<CloudTypeName> for CloudKind {
+    fn from(k: CloudTypeName) -> Self {
+        match k {
+            CloudTypeName::Stratus => Self::Stratus,
+            CloudTypeName::Nimbostratus => Self::Nimbostratus,
+            CloudTypeName::Cumulus => Self::Cumulus,
+            CloudTypeName::Cumulonimbus => Self::Cumulonimbus,
+        }
+    }
+}
+
+/// The cover of a cloud layer whose preset gives only its type.
+pub const DEFAULT_CLOUD_COVER: f32 = 0.6;
 
 /// The visibility in a fog layer whose preset gives only its top, m.
 pub const DEFAULT_FOG_VISIBILITY_M: f32 = 200.0;
@@ -88,7 +131,7 @@ impl From<KindName> for PrecipitationKind {
 }
 
 /// The shipped presets, by name.
-pub const BUILT_IN: [(&str, &str); 9] = [
+pub const BUILT_IN: [(&str, &str); 11] = [
     (
         "light-snow",
         include_str!("../../../presets/light-snow.toml"),
@@ -103,6 +146,14 @@ pub const BUILT_IN: [(&str, &str); 9] = [
     (
         "valley-fog",
         include_str!("../../../presets/valley-fog.toml"),
+    ),
+    (
+        "fair-cumulus",
+        include_str!("../../../presets/fair-cumulus.toml"),
+    ),
+    (
+        "thunderstorm",
+        include_str!("../../../presets/thunderstorm.toml"),
     ),
 ];
 
@@ -183,6 +234,32 @@ impl Preset {
         }
     }
 
+    /// The cloud layer, validated: `None` without a type or a cover (a cover alone
+    /// is nimbostratus: the deck rain and snow fall from).
+    pub fn cloud_layer(&self) -> Result<Option<CloudLayer>, PresetError> {
+        if self.cloud_type.is_none()
+            && self.cloud_cover.is_none()
+            && self.cloud_base_m.is_none()
+            && self.cloud_thickness_m.is_none()
+        {
+            return Ok(None);
+        }
+        let kind = self
+            .cloud_type
+            .map_or(CloudKind::Nimbostratus, CloudKind::from);
+        let typical = CloudLayer::typical(kind, self.cloud_cover.unwrap_or(DEFAULT_CLOUD_COVER));
+        let layer = CloudLayer {
+            base_m: self.cloud_base_m.unwrap_or(typical.base_m),
+            thickness_m: self.cloud_thickness_m.unwrap_or(typical.thickness_m),
+            ..typical
+        };
+        layer.validate().map_err(|e| PresetError {
+            name: "clouds".to_owned(),
+            problem: e.to_string(),
+        })?;
+        Ok(Some(layer))
+    }
+
     /// The weather, validated.
     pub fn weather(&self) -> Result<Weather, precip_model::WeatherError> {
         let weather = Weather {
@@ -213,11 +290,37 @@ mod tests {
             preset.weather().unwrap_or_else(|e| panic!("{name}: {e}"));
             preset.fog_layer().unwrap_or_else(|e| panic!("{name}: {e}"));
         }
+        preset_layers_are_checked();
         let valley = Preset::load("valley-fog").expect("shipped");
         assert_eq!(
             valley.fog_layer().expect("valid"),
             Some(FogLayer::new(12.0, 150.0))
         );
+    }
+
+    fn preset_layers_are_checked() {
+        for (name, text) in BUILT_IN {
+            let preset = Preset::parse(text, name).expect("parses");
+            preset
+                .cloud_layer()
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+        }
+        let storm = Preset::load("thunderstorm").expect("shipped");
+        let layer = storm.cloud_layer().expect("valid").expect("a layer");
+        assert_eq!(layer.kind, CloudKind::Cumulonimbus);
+        assert!((layer.coverage - 0.85).abs() < 1e-6);
+        let mut p = Preset::load("drizzle").expect("shipped");
+        assert_eq!(p.cloud_layer().expect("none"), None);
+        p.cloud_cover = Some(0.5);
+        let deck = p.cloud_layer().expect("valid").expect("a deck");
+        assert_eq!(
+            deck.kind,
+            CloudKind::Nimbostratus,
+            "a cover alone is the deck"
+        );
+        p.cloud_cover = Some(1.5);
+        let e = p.cloud_layer().expect_err("over 1");
+        assert!(e.to_string().contains("coverage"), "{e}");
     }
 
     #[test]

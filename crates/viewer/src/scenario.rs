@@ -7,7 +7,8 @@
 //! read as a fraction of a heavy 10 mm/h), its `Wind` (`direction`: the heading the
 //! wind blows toward, rad, counter-clockwise from the world's x axis; `speed`, m/s)
 //! and its `Fog` (`visualRange`, m, becomes the clear air's extinction `3.912/V`; with
-//! a `BoundingBox`, a fog layer of that visibility up to the box's top).
+//! a `BoundingBox`, a fog layer of that visibility up to the box's top), and a cloud
+//! layer from its `fractionalCloudCover` or `cloudState` ([`cloud_layer_of`]).
 //! World axes: OpenSCENARIO's x is precip's x (east), its y is precip's −z (north).
 //! Snow above −1 °C is wet snow. What is missing or out of range is an error that
 //! names the element and attribute.
@@ -15,6 +16,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
+use precip_model::drawing::clouds::{CloudKind, CloudLayer};
 use precip_model::drawing::fog_layer::FogLayer;
 use precip_model::wind::WindField;
 use precip_model::{PrecipitationKind, Weather};
@@ -79,6 +81,54 @@ pub struct ScenarioWeather {
     /// `z` + half its `height`; OpenSCENARIO's `z` is up). The layer spreads
     /// horizontally without end.
     pub fog_layer: Option<FogLayer>,
+    /// The cloud layer its `Weather`'s `fractionalCloudCover` (1.1+, oktas) or
+    /// `cloudState` (1.0) implies ([`cloud_layer_of`]).
+    pub cloud_layer: Option<CloudLayer>,
+}
+
+/// The cloud layer of OpenSCENARIO's cloud attributes, the first that is given:
+/// `fractionalCloudCover` `nOktas` covers `n/8` of the sky (`nineOktas`, sky
+/// obscured: all of it) with nimbostratus where it rains or snows, else cumulus up
+/// to six oktas and stratus above; `cloudState` `free` and `skyOff` are none,
+/// `cloudy` half the sky of cumulus, `overcast` all of it of stratus (nimbostratus
+/// where it rains or snows), `rainy` all of it of nimbostratus. Each type at its
+/// typical base and thickness.
+#[must_use]
+pub fn cloud_layer_of(
+    fractional_cloud_cover: Option<&str>,
+    cloud_state: Option<&str>,
+    precipitating: bool,
+) -> Option<CloudLayer> {
+    let layer = |kind, coverage| Some(CloudLayer::typical(kind, coverage));
+    if let Some(oktas) = fractional_cloud_cover {
+        let n = match oktas.trim() {
+            "zeroOktas" => 0,
+            "oneOktas" => 1,
+            "twoOktas" => 2,
+            "threeOktas" => 3,
+            "fourOktas" => 4,
+            "fiveOktas" => 5,
+            "sixOktas" => 6,
+            "sevenOktas" => 7,
+            "eightOktas" | "nineOktas" => 8,
+            _ => return None,
+        };
+        let kind = if precipitating && n > 0 {
+            CloudKind::Nimbostratus
+        } else if n <= 6 {
+            CloudKind::Cumulus
+        } else {
+            CloudKind::Stratus
+        };
+        return (n > 0).then(|| CloudLayer::typical(kind, n as f32 / 8.0));
+    }
+    match cloud_state?.trim() {
+        "cloudy" => layer(CloudKind::Cumulus, 0.5),
+        "overcast" if precipitating => layer(CloudKind::Nimbostratus, 1.0),
+        "overcast" => layer(CloudKind::Stratus, 1.0),
+        "rainy" => layer(CloudKind::Nimbostratus, 1.0),
+        _ => None,
+    }
 }
 
 /// Kelvin at 0 °C.
@@ -99,6 +149,8 @@ struct Found {
     wind_speed_mps: Option<String>,
     fog_visual_range_m: Option<String>,
     in_fog: bool,
+    cloud_state: Option<String>,
+    fractional_cloud_cover: Option<String>,
     fog_centre_z_m: Option<String>,
     fog_height_m: Option<String>,
 }
@@ -121,6 +173,8 @@ impl Found {
             b"Weather" if self.in_environment && !self.weather => {
                 self.weather = true;
                 self.temperature_k = attribute(e, "temperature");
+                self.cloud_state = attribute(e, "cloudState");
+                self.fractional_cloud_cover = attribute(e, "fractionalCloudCover");
             }
             b"Precipitation" if self.weather => {
                 self.precipitation_type = attribute(e, "precipitationType");
@@ -342,10 +396,16 @@ fn to_weather(found: &Found, file: &Path) -> Result<ScenarioWeather, ScenarioErr
     weather
         .validate()
         .map_err(|e| ScenarioError::Weather(e, file.to_path_buf()))?;
+    let cloud_layer = cloud_layer_of(
+        found.fractional_cloud_cover.as_deref(),
+        found.cloud_state.as_deref(),
+        weather.intensity_mm_per_h > 0.0,
+    );
     Ok(ScenarioWeather {
         weather,
         fog_extinction_per_m,
         fog_layer,
+        cloud_layer,
     })
 }
 
@@ -369,6 +429,38 @@ mod tests {
 
     fn read(environment: &str) -> Result<ScenarioWeather, ScenarioError> {
         scenario_weather(&xosc(environment), Path::new("t.xosc"))
+    }
+
+    #[test]
+    fn cloud_cover_in_oktas_or_as_a_state_is_a_cloud_layer() {
+        let w = read(
+            r#"<Environment name="c"><Weather temperature="290" fractionalCloudCover="threeOktas">
+                 <Precipitation precipitationType="dry"/></Weather></Environment>"#,
+        )
+        .expect("valid");
+        assert_eq!(
+            w.cloud_layer,
+            Some(CloudLayer::typical(CloudKind::Cumulus, 0.375))
+        );
+        let rainy = read(
+            r#"<Environment name="r"><Weather cloudState="rainy">
+                 <Precipitation precipitationType="rain" intensity="0.5"/></Weather></Environment>"#,
+        )
+        .expect("valid");
+        assert_eq!(
+            rainy.cloud_layer,
+            Some(CloudLayer::typical(CloudKind::Nimbostratus, 1.0))
+        );
+        assert_eq!(cloud_layer_of(None, Some("free"), false), None);
+        assert_eq!(cloud_layer_of(Some("zeroOktas"), Some("rainy"), true), None);
+        assert_eq!(
+            cloud_layer_of(Some("eightOktas"), None, true),
+            Some(CloudLayer::typical(CloudKind::Nimbostratus, 1.0))
+        );
+        assert_eq!(
+            cloud_layer_of(None, Some("overcast"), false),
+            Some(CloudLayer::typical(CloudKind::Stratus, 1.0))
+        );
     }
 
     #[test]

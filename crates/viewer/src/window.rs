@@ -522,6 +522,14 @@ impl ApplicationHandler for App {
                     // A fog the host asks for that is not valid was refused already.
                     let _ = r.presenter.backend().set_fog_layer(fog);
                 }
+                if let Some(clouds) = self
+                    .cigi
+                    .as_mut()
+                    .and_then(precip_cigi::CigiReceiver::take_cloud_layer)
+                {
+                    // Likewise: an invalid layer was refused when it arrived.
+                    let _ = r.presenter.backend().set_cloud_layer(clouds);
+                }
                 if let Err(e) = r.frame() {
                     self.error = Some(e);
                     event_loop.exit();

@@ -137,8 +137,13 @@ fn vk_and_wgpu_mirror_the_house_in_a_pond_alike() {
     )
     .expect("valid");
     setup.weather.intensity_mm_per_h = 0.5;
-    // Through a fog layer over the pond, which the mirror reflects with the camera.
+    // Through a fog layer over the pond, which the mirror reflects with the camera,
+    // under cumulus (the clouds' pass and image).
     setup.render.fog_layer = Some(precip_model::drawing::fog_layer::FogLayer::new(2.5, 60.0));
+    setup.render.cloud_layer = Some(precip_model::drawing::clouds::CloudLayer::typical(
+        precip_model::drawing::clouds::CloudKind::Cumulus,
+        0.5,
+    ));
     let position = Vec3::new(0.0, 0.8, 18.0);
     let camera = Camera {
         position_m: position,
@@ -260,11 +265,17 @@ fn timings_name_every_pass_of_a_frame() {
             eprintln!("no timestamps on this device");
             return;
         }
-        // The particles are drawn one way or the other; the house has no water.
+        // The particles are drawn one way or the other; the house has no water, the
+        // sky no clouds.
         let not_run: &[&str] = if resolution == precip_model::ParticleResolution::Full {
-            &["particles_reduced", "particles_composite", "water_mirror"]
+            &[
+                "particles_reduced",
+                "particles_composite",
+                "water_mirror",
+                "clouds",
+            ]
         } else {
-            &["particles", "water_mirror"]
+            &["particles", "water_mirror", "clouds"]
         };
         for pass in ["step_particles"]
             .into_iter()

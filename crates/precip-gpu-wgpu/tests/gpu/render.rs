@@ -483,6 +483,53 @@ fn a_fog_layer_dims_below_its_top_and_scatters_the_sun() {
 }
 
 #[test]
+fn seen_from_above_a_cloud_layer_hides_its_coverage_of_the_ground() {
+    use precip_model::drawing::clouds::{CloudKind, CloudLayer};
+    // 20 km up looking straight down over 24 km of a cumulus layer (two periods of
+    // the coverage map): the share of pixels whose clouds are at least 0.4 opaque
+    // (an optical depth of 0.5, as the model's test counts a column clouded) is the
+    // layer's coverage. Opacity: the pixel's light over a full cover's there.
+    let camera = Camera {
+        position_m: Vec3::new(0.0, 20_000.0, 0.0),
+        forward: Vec3::new(0.0, -1.0, 0.001),
+        vertical_fov_rad: 62f32.to_radians(),
+        ..Camera::default()
+    };
+    let view = view(camera, 96, 96);
+    for (name, mut gpu) in common::gpu_backends("seen_from_above_a_cloud_layer") {
+        let frame = |gpu: &mut WgpuBackend, coverage: f32| {
+            let (mut setup, _) =
+                Setup::over_scene(black_walls(&[10.0]), 16, 5.0, 1).expect("valid");
+            setup.weather.intensity_mm_per_h = 0.0;
+            // No haze, and a black sky: only the sun's light on the clouds shows.
+            setup.render.clear_air_extinction_per_m = 0.0;
+            setup.render.sky_colour = Vec3::ZERO;
+            setup.render.cloud_layer = Some(CloudLayer::typical(CloudKind::Cumulus, coverage));
+            setup.camera = camera;
+            common::run(gpu, &setup, 1, 0.05);
+            gpu.render(&view).expect("renders");
+            gpu.read_image().expect("an image")
+        };
+        let full = frame(&mut gpu, 1.0);
+        for coverage in [0.3f32, 0.7] {
+            let clouded = frame(&mut gpu, coverage);
+            keep(&clouded, &format!("clouds_from_above_{coverage}"));
+            let changed = full
+                .rgba8
+                .chunks(4)
+                .zip(clouded.rgba8.chunks(4))
+                .filter(|(a, b)| linear(b[1]) > 0.4 * linear(a[1]))
+                .count();
+            let share = changed as f32 / (view.width_px * view.height_px) as f32;
+            assert!(
+                (share - coverage).abs() < 0.1,
+                "{name}: {share} of the view clouded at a coverage of {coverage}"
+            );
+        }
+    }
+}
+
+#[test]
 fn a_surface_format_renders_the_same_frame() {
     let (setup, view) = snow_column();
     for (name, mut gpu) in common::gpu_backends("a_surface_format_renders_the_same_frame") {
@@ -620,9 +667,14 @@ fn timings_name_every_pass_of_a_frame() {
             }
             // The particles are drawn one way or the other; no water to mirror.
             let skipped: &[&str] = if reduced {
-                &["particles", "water_mirror"]
+                &["particles", "water_mirror", "clouds"]
             } else {
-                &["particles_reduced", "particles_composite", "water_mirror"]
+                &[
+                    "particles_reduced",
+                    "particles_composite",
+                    "water_mirror",
+                    "clouds",
+                ]
             };
             for pass in precip_gpu::recipe::TIMED_RENDER_PASSES
                 .into_iter()

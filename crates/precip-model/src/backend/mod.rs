@@ -146,6 +146,12 @@ pub trait Backend {
         let _ = frames;
         Ok(())
     }
+    /// Takes a cloud layer, or none, from the next frame on (what a host's cloud
+    /// layers set while running; validated as `RenderSettings::cloud_layer`).
+    fn set_cloud_layer(
+        &mut self,
+        cloud_layer: Option<crate::drawing::clouds::CloudLayer>,
+    ) -> Result<(), BackendError>;
     /// Takes a fog layer, or none, from the next frame, beam query and optics on
     /// (what a host's ground-fog layer sets while running; validated as
     /// `RenderSettings::fog_layer`).

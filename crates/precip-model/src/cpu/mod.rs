@@ -179,6 +179,15 @@ impl Backend for CpuBackend {
         })
     }
 
+    fn set_cloud_layer(
+        &mut self,
+        cloud_layer: Option<crate::drawing::clouds::CloudLayer>,
+    ) -> Result<(), BackendError> {
+        self.state_mut("set_cloud_layer")?
+            .host
+            .set_cloud_layer(cloud_layer)
+    }
+
     fn set_fog_layer(
         &mut self,
         fog_layer: Option<crate::drawing::fog_layer::FogLayer>,

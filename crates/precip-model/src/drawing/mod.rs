@@ -13,6 +13,7 @@
 //! exactly `min_px` wide at full opacity, so its ink and the splat's are equal: a
 //! particle crossing the threshold does not pop.
 
+pub mod clouds;
 mod drop_environment;
 pub mod fog_layer;
 pub mod frame_rate_control;

@@ -15,6 +15,7 @@ use precip_cover::{CoverParams, GridFrame};
 
 use crate::backend::camera::{Camera, View};
 use crate::backend::error::BackendError;
+use crate::drawing::clouds::{CLOUD_MAP_PERIOD_M, CloudLayer};
 use crate::drawing::fog_layer::{FOG_LAYER_BOTTOM_M, FogLayer};
 use crate::drawing::multiplicity::PoolDrawing;
 use crate::drawing::{Lighting, SpriteSizing, view_cone_cos};
@@ -137,6 +138,9 @@ pub struct RenderSettings {
     /// A layer of fog up to a height (valley and ground fog), lit by the sky and
     /// the sun ([`crate::drawing::fog_layer`]); `None`: no fog but the uniform haze.
     pub fog_layer: Option<FogLayer>,
+    /// A layer of volumetric clouds ([`crate::drawing::clouds`]); `None`: the
+    /// overcast sky alone.
+    pub cloud_layer: Option<CloudLayer>,
 }
 
 impl Default for RenderSettings {
@@ -167,6 +171,7 @@ impl Default for RenderSettings {
             mirrors: Mirrors::Auto,
             particle_resolution: ParticleResolution::Full,
             fog_layer: None,
+            cloud_layer: None,
         }
     }
 }
@@ -285,6 +290,9 @@ impl RenderSettings {
         if let Some(fog) = &self.fog_layer {
             fog.validate()?;
         }
+        if let Some(clouds) = &self.cloud_layer {
+            clouds.validate()?;
+        }
         if self.max_scene_triangles == 0 {
             return Err(bad(
                 "render.max_scene_triangles",
@@ -297,7 +305,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (688 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (720 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -365,8 +373,14 @@ pub struct RenderParams {
     /// below the ground; the mirror's pass reflects the layer about the water), its
     /// extinction B per m (0: none), the sun's scattered light on (1/0).
     pub fog_layer: Vec4,
+    /// The cloud layer ([`crate::drawing::clouds`]): its base m, top m, coverage,
+    /// kind ([`crate::drawing::clouds::CloudKind::index`]).
+    pub clouds: Vec4,
+    /// The clouds' drift with the wind (x, z m), their most extinction per m, 1
+    /// when a layer is drawn (else 0).
+    pub cloud_drift: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 688);
+const _: () = assert!(size_of::<RenderParams>() == 720);
 
 /// The camera's world → clip matrix for a target of `aspect` (width / height).
 #[must_use]
@@ -616,6 +630,18 @@ impl RenderParams {
             previous_view_proj: view_projection(camera, aspect),
             mirror_view_proj: view_projection(camera, aspect),
             mirror: Vec4::ZERO,
+            clouds: f.settings.cloud_layer.map_or(Vec4::ZERO, |c| {
+                Vec4::new(c.base_m, c.top_m(), c.coverage, c.kind.index() as f32)
+            }),
+            cloud_drift: f.settings.cloud_layer.map_or(Vec4::ZERO, |c| {
+                let wind = f.weather.wind.mean_wind_mps * f.time_s;
+                Vec4::new(
+                    wind.x.rem_euclid(CLOUD_MAP_PERIOD_M),
+                    wind.z.rem_euclid(CLOUD_MAP_PERIOD_M),
+                    c.kind.extinction_per_m(),
+                    1.0,
+                )
+            }),
             fog_layer: f.settings.fog_layer.map_or(Vec4::ZERO, |fog| {
                 Vec4::new(fog.top_m, FOG_LAYER_BOTTOM_M, fog.extinction_per_m(), 1.0)
             }),

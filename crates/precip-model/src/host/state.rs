@@ -11,7 +11,7 @@ use crate::backend::error::BackendError;
 use crate::backend::setup::Setup;
 use crate::backend::substeps;
 use crate::drawing::multiplicity::PoolDrawing;
-use crate::drawing::render::RenderParams;
+use crate::drawing::render::{RenderParams, RenderSettings};
 use crate::host::activity::Activity;
 use crate::host::layout::Frames;
 use crate::particles::step::StepParams;
@@ -128,13 +128,21 @@ impl HostState {
     /// Keeps a stale shadow map for up to `frames` frames from the next frame on
     /// (validated as `RenderSettings::shadow_refresh_frames`).
     pub fn set_shadow_refresh_frames(&mut self, frames: u32) -> Result<(), BackendError> {
-        let render = crate::drawing::render::RenderSettings {
+        self.set_look(RenderSettings {
             shadow_refresh_frames: frames,
             ..self.setup.render
-        };
-        render.validate()?;
-        self.setup.render = render;
-        Ok(())
+        })
+    }
+
+    /// Takes a cloud layer (validated) or none, from the next frame on.
+    pub fn set_cloud_layer(
+        &mut self,
+        cloud_layer: Option<crate::drawing::clouds::CloudLayer>,
+    ) -> Result<(), BackendError> {
+        self.set_look(RenderSettings {
+            cloud_layer,
+            ..self.setup.render
+        })
     }
 
     /// Takes a fog layer (validated) or none, from the next frame on.
@@ -142,10 +150,15 @@ impl HostState {
         &mut self,
         fog_layer: Option<crate::drawing::fog_layer::FogLayer>,
     ) -> Result<(), BackendError> {
-        let render = crate::drawing::render::RenderSettings {
+        self.set_look(RenderSettings {
             fog_layer,
             ..self.setup.render
-        };
+        })
+    }
+
+    /// Takes `render` if it is valid (what may change between frames without
+    /// configuring again: the callers above pick which fields).
+    fn set_look(&mut self, render: RenderSettings) -> Result<(), BackendError> {
         render.validate()?;
         self.setup.render = render;
         Ok(())

@@ -1,0 +1,82 @@
+// render_clouds.wgsl: the cloud layer marched into the clouds' image (a quarter of
+// the frame's side), which the sky lays over itself (fs_sky). The formulas are
+// drawing.wgsl's twins of precip_model::drawing::clouds; docs/model.md (6.9)-(6.12).
+
+// The clear sky between the clouds: the haze's colour at the horizon, deeper blue
+// toward the zenith (a look, not a sky model).
+fn clear_sky(horizon: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
+    let zenith = vec3<f32>(0.16, 0.3, 0.62);
+    return mix(horizon, zenith, 1.0 - exp(-3.0 * max(dir.y, 0.0)));
+}
+
+// The triangle covering the clouds' image (as vs_sky's).
+@vertex
+fn vs_clouds(@builtin(vertex_index) v: u32) -> SkyVarying {
+    return sky_triangle(v);
+}
+
+// The density at p of the layer `layer` (base, top, coverage, kind), drifted by
+// `drift.xy`.
+fn cloud_density_at(p: vec3<f32>, layer: vec4<f32>, drift: vec4<f32>) -> f32 {
+    let h = (p.y - layer.x) / max(layer.y - layer.x, 1.0);
+    let uvs = cloud_map_uvs(p, drift.xy);
+    let m = textureSampleLevel(cloud_map, cloud_sampler, uvs.xy, 0.0).r;
+    let d = textureSampleLevel(cloud_map, cloud_sampler, uvs.zw, 0.0).r;
+    return cloud_density(u32(layer.w), layer.z, m, d, h);
+}
+
+// The light the layer and the haze in front of it send along the pixel's ray
+// (premultiplied) and their opacity: CLOUD_VIEW_STEPS steps through the layer, each lit
+// by the sun through CLOUD_SUN_SAMPLES samples toward it (Beer's law) and the
+// two-lobe phase function, and by the sky's light, weaker with depth below the
+// top; each step's light integrated over it, S·(1 − e^(−σΔ)).
+@fragment
+fn fs_clouds(in: SkyVarying) -> @location(0) vec4<f32> {
+    let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
+    let camera = params.camera_m_cone_cos.xyz;
+    let ray = normalize_or_zero(far.xyz / far.w - camera);
+    let layer = params.clouds;
+    let drift = params.cloud_drift;
+    let slab = cloud_slab(camera.y, ray.y, layer.x, layer.y);
+    if (slab.y <= slab.x) {
+        return vec4<f32>(0.0);
+    }
+    let to_sun = params.to_sun_extinction.xyz;
+    let sin_sun = max(to_sun.y, 0.05);
+    // The sun's light a unit of extinction scatters toward the camera is
+    // light.y·P/4 (as the fog's, docs/model.md (6.6)), P with its octaves.
+    let cos_mu = dot(ray, to_sun);
+    let dt = (slab.y - slab.x) / f32(CLOUD_VIEW_STEPS);
+    // A fixed jitter per pixel hides the steps' banding.
+    let pixel = vec2<u32>(in.clip.xy);
+    let jitter = f32(pcg_hash(pixel.x * 7919u + pixel.y * 104729u) >> 8u) / 16777216.0;
+    var transmittance = 1.0;
+    var light = vec3<f32>(0.0);
+    for (var i = 0u; i < CLOUD_VIEW_STEPS; i += 1u) {
+        let p = camera + ray * (slab.x + (f32(i) + jitter) * dt);
+        let rho = cloud_density_at(p, layer, drift);
+        if (rho > 0.0) {
+            let h = (p.y - layer.x) / max(layer.y - layer.x, 1.0);
+            // Toward the sun up to the layer's top (at most 3 km).
+            let reach = min((layer.y - p.y) / sin_sun, 3000.0);
+            var optical = 0.0;
+            for (var k = 0u; k < CLOUD_SUN_SAMPLES; k += 1u) {
+                let q = p + to_sun * (reach * (f32(k) + 0.5) / f32(CLOUD_SUN_SAMPLES));
+                optical += cloud_density_at(q, layer, drift);
+            }
+            let sun = params.light.y * 0.25 * cloud_sun_light(cos_mu, drift.z * optical * reach / f32(CLOUD_SUN_SAMPLES));
+            let scattered = vec3<f32>(sun) + params.sky_colour_time.xyz * (0.4 + 0.6 * h);
+            let step_transmittance = exp(-drift.z * rho * dt);
+            light += transmittance * scattered * (1.0 - step_transmittance);
+            transmittance *= step_transmittance;
+            if (transmittance < 0.01) {
+                break;
+            }
+        }
+    }
+    // The haze between the camera and the layer (clear air and the precipitation
+    // falling from it) dims the clouds and what lies behind them, and adds its own
+    // light: premultiplied h·L + (1 − h)·A over (1 − h·T) of the sky behind.
+    let haze = fog_transmittance(slab.x, params.to_sun_extinction.w);
+    return vec4<f32>(light * haze + params.sky_colour_time.xyz * (1.0 - haze), 1.0 - haze * transmittance);
+}

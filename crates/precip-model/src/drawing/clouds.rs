@@ -1,0 +1,518 @@
+//! A layer of volumetric clouds: where they stand, how dense, how they are lit
+//! (docs/model.md (6.9)–(6.12)).
+//!
+//! *Source: seed 002's volumetric clouds (Perlin noise in a texture, a height
+//! distribution function shaping the cloud, a threshold cutting thin parts, rays
+//! marched from the camera and secondary rays toward the sun), with the layer's
+//! coverage made exact and the light as in Schneider & Vos 2015 (Beer's law along
+//! the sun's ray, a two-lobe Henyey–Greenstein phase function).*
+//!
+//! ## Where the cloud is
+//!
+//! A point `p` of the layer `[base, base + thickness]` is in a cloudy column when the
+//! coverage map `m(x, z)` (tiling Perlin noise whose values are replaced by their rank,
+//! so they are spread evenly over `[0, 1)`) is below the coverage `c`: the share of
+//! the sky the layer covers is `c` whatever the noise. Inside a column the density
+//! is `edge(c − m)·profile(h/r)·(1 − E + E·d(p))`, `r = clamp((c − m)/D, 0.05, 1)`
+//! the share of the layer the column reaches (domes rising from their edges), cut by
+//! the seed's threshold τ and
+//! rescaled: `max(0, (ρ − τ)/(1 − τ))`; `h` is the height in the layer (0 at its base,
+//! 1 at its top), `profile` the kind's (stratus thin and flat, cumulus rising from
+//! a flat base to a rounded top, cumulonimbus filling the whole depth), `d` the same
+//! map read across a tilted plane (detail that changes with height), `E` its share.
+//! The clouds drift with the mean wind.
+//!
+//! ## How it is lit
+//!
+//! Along the camera's ray through the layer, in `N` steps: extinction `σ = σ_max·ρ`,
+//! the sun's light dimmed by `e^(−Σσ·Δ)` over secondary samples toward it, scattered
+//! by the two-lobe phase function [`cloud_phase`] with octaves of multiple
+//! scattering ([`cloud_sun_light`]); the sky's light scattered
+//! isotropically, weaker with depth below the top. Each step adds its scattered light
+//! integrated over the step (`S·(1 − e^(−σΔ))/σ`, energy conserving: Hillaire 2016)
+//! times the transmittance so far.
+//!
+//! WGSL twins: `cloud_profile`, `cloud_density`, `cloud_phase`, `cloud_slab` in
+//! drawing.wgsl, `fs_clouds` in render_clouds.wgsl.
+
+use glam::{Vec2, Vec3};
+
+use crate::BackendError;
+
+/// The cloud types the layer can have (WMO genera).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CloudKind {
+    /// A thin, flat, grey sheet (drizzle).
+    Stratus,
+    /// A thick, dark, even deck (steady rain and snow).
+    #[default]
+    Nimbostratus,
+    /// Separate heaps with flat bases and rounded tops (fair weather).
+    Cumulus,
+    /// Towers through the whole troposphere's lower part (downpours, hail).
+    Cumulonimbus,
+}
+
+impl CloudKind {
+    /// Every kind, in the order of [`CloudKind::index`].
+    pub const ALL: [Self; 4] = [
+        Self::Stratus,
+        Self::Nimbostratus,
+        Self::Cumulus,
+        Self::Cumulonimbus,
+    ];
+
+    /// The kind's number in the uniform block (0–3).
+    #[must_use]
+    pub const fn index(self) -> u32 {
+        match self {
+            Self::Stratus => 0,
+            Self::Nimbostratus => 1,
+            Self::Cumulus => 2,
+            Self::Cumulonimbus => 3,
+        }
+    }
+
+    /// Typical base and thickness, m (WMO International Cloud Atlas: stratus below
+    /// 500 m and a few hundred metres thick; nimbostratus from about 600 m, kilometres
+    /// thick; cumulus bases near 1 km, a kilometre or two deep; cumulonimbus towering
+    /// 8 km or more).
+    #[must_use]
+    pub const fn typical_base_thickness_m(self) -> (f32, f32) {
+        match self {
+            Self::Stratus => (300.0, 400.0),
+            Self::Nimbostratus => (600.0, 2_500.0),
+            Self::Cumulus => (1_000.0, 1_500.0),
+            Self::Cumulonimbus => (800.0, 8_000.0),
+        }
+    }
+
+    /// The height profile's rise and fall `(a, b)`: `profile(h) = smoothstep(0, a,
+    /// h)·(1 − smoothstep(b, 1, h))`.
+    #[must_use]
+    pub const fn profile_rise_fall(self) -> (f32, f32) {
+        match self {
+            Self::Stratus => (0.15, 0.6),
+            Self::Nimbostratus => (0.05, 0.85),
+            Self::Cumulus => (0.07, 0.35),
+            Self::Cumulonimbus => (0.02, 0.8),
+        }
+    }
+
+    /// The most extinction inside, per m: visibility inside water clouds is some 20
+    /// to 130 m (`3/σ`), thicker in convective cores.
+    #[must_use]
+    pub const fn extinction_per_m(self) -> f32 {
+        match self {
+            Self::Stratus => 0.03,
+            Self::Nimbostratus => 0.05,
+            Self::Cumulus => 0.06,
+            Self::Cumulonimbus => 0.1,
+        }
+    }
+}
+
+/// A layer of clouds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CloudLayer {
+    /// Height of its base, m (world `y`).
+    pub base_m: f32,
+    /// Its thickness, m.
+    pub thickness_m: f32,
+    /// The share of the sky it covers, `[0, 1]` (oktas / 8).
+    pub coverage: f32,
+    /// Its type.
+    pub kind: CloudKind,
+}
+
+impl CloudLayer {
+    /// A layer of `kind` at its typical base and thickness covering `coverage`.
+    #[must_use]
+    pub const fn typical(kind: CloudKind, coverage: f32) -> Self {
+        let (base_m, thickness_m) = kind.typical_base_thickness_m();
+        Self {
+            base_m,
+            thickness_m,
+            coverage,
+            kind,
+        }
+    }
+
+    /// Its top, m.
+    #[must_use]
+    pub fn top_m(&self) -> f32 {
+        self.base_m + self.thickness_m
+    }
+
+    /// Checks the base (within ±20 km), thickness (`[10, 15 000]` m) and coverage.
+    pub fn validate(&self) -> Result<(), BackendError> {
+        let bad = |field, problem: String| Err(BackendError::Setup { field, problem });
+        if !(self.base_m.is_finite() && self.base_m.abs() <= 20_000.0) {
+            return bad(
+                "render.cloud_layer.base_m",
+                format!("= {} must be a height within ±20 000 m", self.base_m),
+            );
+        }
+        if !(self.thickness_m.is_finite() && (10.0..=15_000.0).contains(&self.thickness_m)) {
+            return bad(
+                "render.cloud_layer.thickness_m",
+                format!("= {} must be in [10, 15000] m", self.thickness_m),
+            );
+        }
+        if !(self.coverage.is_finite() && (0.0..=1.0).contains(&self.coverage)) {
+            return bad(
+                "render.cloud_layer.coverage",
+                format!(
+                    "= {} must be in [0, 1] (a fraction of the sky: oktas / 8)",
+                    self.coverage
+                ),
+            );
+        }
+        Ok(())
+    }
+}
+
+/// The coverage map's side, texels.
+pub const CLOUD_MAP_PX: u32 = 256;
+/// The ground distance one period of the coverage map spans, m.
+pub const CLOUD_MAP_PERIOD_M: f32 = 12_000.0;
+/// The detail's period across its tilted plane, m.
+pub const CLOUD_DETAIL_PERIOD_M: f32 = 1_700.0;
+/// The detail's share `E` of the density.
+pub const CLOUD_DETAIL_SHARE: f32 = 0.45;
+/// The seed's threshold τ: density below it is cut.
+pub const CLOUD_THRESHOLD: f32 = 0.12;
+/// The width of a column's edge in the coverage map's values.
+pub const CLOUD_EDGE: f32 = 0.04;
+/// How far below the coverage the map must lie for a column to reach the layer's
+/// top: a column of `c − m` reaches `min(1, (c − m)/D)` of it (at least a twentieth),
+/// so clouds rise into domes from their edges (the seed's height distribution).
+pub const CLOUD_DOME: f32 = 0.25;
+/// Steps along the camera's ray through the layer.
+pub const CLOUD_VIEW_STEPS: u32 = 20;
+/// Secondary samples toward the sun from each step.
+pub const CLOUD_SUN_SAMPLES: u32 = 3;
+/// The longest path through the layer marched, m (beyond, the haze hides it).
+pub const CLOUD_MAX_PATH_M: f32 = 30_000.0;
+/// The two lobes of the phase function: forward asymmetry, backward asymmetry and
+/// the forward lobe's weight (a silver lining toward the sun, a little back-scatter
+/// away from it; Schneider & Vos 2015 use two lobes the same way).
+pub const CLOUD_LOBES: (f32, f32, f32) = (0.8, -0.3, 0.75);
+
+fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
+    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// The kind's height profile at `h` (0 at the base, 1 at the top).
+#[must_use]
+pub fn cloud_profile(kind: CloudKind, h: f32) -> f32 {
+    let (a, b) = kind.profile_rise_fall();
+    if !(0.0..=1.0).contains(&h) {
+        return 0.0;
+    }
+    smoothstep(0.0, a, h) * (1.0 - smoothstep(b, 1.0, h))
+}
+
+/// The density `[0, 1]` at height fraction `h` of a column whose coverage-map value
+/// is `m`, with detail `d`, in a layer covering `coverage` (module docs).
+#[must_use]
+pub fn cloud_density(kind: CloudKind, coverage: f32, m: f32, d: f32, h: f32) -> f32 {
+    let column = smoothstep(0.0, CLOUD_EDGE, coverage - m);
+    let reach = ((coverage - m) / CLOUD_DOME).clamp(0.05, 1.0);
+    let raw = column
+        * cloud_profile(kind, h / reach)
+        * (1.0 - CLOUD_DETAIL_SHARE + CLOUD_DETAIL_SHARE * d);
+    ((raw - CLOUD_THRESHOLD) / (1.0 - CLOUD_THRESHOLD)).max(0.0)
+}
+
+/// The two-lobe Henyey–Greenstein phase function, mean 1 over the sphere
+/// ([`CLOUD_LOBES`]); `cos_mu` between the sun's light and the way to the camera.
+#[must_use]
+pub fn cloud_phase(cos_mu: f32) -> f32 {
+    cloud_phase_scaled(cos_mu, 1.0)
+}
+
+/// The two-lobe phase function with both asymmetries scaled by `scale`.
+fn cloud_phase_scaled(cos_mu: f32, scale: f32) -> f32 {
+    let (g1, g2, w) = CLOUD_LOBES;
+    let hg = |g: f32| {
+        let g = g * scale;
+        let d = 1.0 + g * g - 2.0 * g * cos_mu.clamp(-1.0, 1.0);
+        (1.0 - g * g) / (d * d.sqrt())
+    };
+    w * hg(g1) + (1.0 - w) * hg(g2)
+}
+
+/// Octaves of multiple scattering (Wrenninge, Kulla & Lundqvist 2013, *Oz: the
+/// great and volumetric*; as Hillaire 2016): the sun's light scattered toward the
+/// camera by a unit of extinction behind an optical depth `optical` toward the sun,
+/// `Σₙ aⁿ·P(μ; cⁿg)·e^(−bⁿ·τ)` over [`CLOUD_OCTAVES`] octaves, `a = b = c = ½`: light
+/// scattered many times goes deeper, less peaked, so a thick cloud is bright on its
+/// sunlit side, not only where it glows forward.
+#[must_use]
+pub fn cloud_sun_light(cos_mu: f32, optical: f32) -> f32 {
+    (0..CLOUD_OCTAVES)
+        .map(|n| {
+            let k = 0.5f32.powi(n as i32);
+            k * cloud_phase_scaled(cos_mu, k) * (-k * optical).exp()
+        })
+        .sum()
+}
+
+/// Octaves in [`cloud_sun_light`].
+pub const CLOUD_OCTAVES: u32 = 3;
+
+/// Where a ray from `camera_y_m` going up `dir_y` a metre crosses the layer
+/// `[base_m, top_m]`: `(t₀, t₁)`, at most [`CLOUD_MAX_PATH_M`] long; `t₀ = t₁` when
+/// it does not.
+#[must_use]
+pub fn cloud_slab(camera_y_m: f32, dir_y: f32, base_m: f32, top_m: f32) -> (f32, f32) {
+    let (s0, s1) = crate::drawing::fog_layer::fog_layer_segment(
+        camera_y_m,
+        dir_y,
+        CLOUD_MAX_PATH_M * 4.0,
+        base_m,
+        top_m,
+    );
+    (s0, s1.min(s0 + CLOUD_MAX_PATH_M))
+}
+
+/// The tiling coverage map: Perlin noise of five octaves over a [`CLOUD_MAP_PX`]²
+/// torus, each value replaced by its rank (so the values spread evenly over
+/// `[0, 1)`), as bytes (R8Unorm), deterministic.
+#[must_use]
+pub fn cloud_coverage_map() -> Vec<u8> {
+    let n = CLOUD_MAP_PX as usize;
+    let mut values: Vec<(f32, usize)> = (0..n * n)
+        .map(|i| {
+            let p = Vec2::new((i % n) as f32, (i / n) as f32) / n as f32;
+            let mut sum = 0.0;
+            let mut amplitude = 1.0;
+            for octave in 0..5u32 {
+                let period = 4u32 << octave;
+                sum += amplitude * tiling_perlin(p * period as f32, period, octave);
+                amplitude *= 0.5;
+            }
+            (sum, i)
+        })
+        .collect();
+    values.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut bytes = vec![0u8; n * n];
+    for (rank, &(_, i)) in values.iter().enumerate() {
+        bytes[i] = ((rank * 256) / (n * n)) as u8;
+    }
+    bytes
+}
+
+/// 2D Perlin noise of period `period` (lattice cells) at `p`, about `[-0.7, 0.7]`.
+fn tiling_perlin(p: Vec2, period: u32, seed: u32) -> f32 {
+    let cell = p.floor();
+    let f = p - cell;
+    let corner = |dx: u32, dy: u32| {
+        let x = (cell.x as i64 + i64::from(dx)).rem_euclid(i64::from(period)) as u32;
+        let y = (cell.y as i64 + i64::from(dy)).rem_euclid(i64::from(period)) as u32;
+        let h = crate::particles::rng::pcg_hash(
+            x.wrapping_mul(0x9e37_79b1)
+                ^ y.wrapping_mul(0x85eb_ca77)
+                ^ seed.wrapping_mul(0xc2b2_ae3d),
+        );
+        let angle = (h as f32 / u32::MAX as f32) * std::f32::consts::TAU;
+        Vec2::new(angle.cos(), angle.sin()).dot(f - Vec2::new(dx as f32, dy as f32))
+    };
+    let fade = |t: f32| t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+    let (u, v) = (fade(f.x), fade(f.y));
+    let a = corner(0, 0) + u * (corner(1, 0) - corner(0, 0));
+    let b = corner(0, 1) + u * (corner(1, 1) - corner(0, 1));
+    a + v * (b - a)
+}
+
+/// The coverage map's value at `uv` (texels wrap), bilinear as the GPU's sampler.
+#[must_use]
+pub fn sample_coverage_map(map: &[u8], uv: Vec2) -> f32 {
+    let n = i64::from(CLOUD_MAP_PX);
+    let p = uv * CLOUD_MAP_PX as f32 - Vec2::splat(0.5);
+    let cell = p.floor();
+    let f = p - cell;
+    let at = |dx: i64, dy: i64| {
+        let x = (cell.x as i64 + dx).rem_euclid(n);
+        let y = (cell.y as i64 + dy).rem_euclid(n);
+        map.get((y * n + x) as usize)
+            .map_or(0.0, |&b| f32::from(b) / 255.0)
+    };
+    let a = at(0, 0) + f.x * (at(1, 0) - at(0, 0));
+    let b = at(0, 1) + f.x * (at(1, 1) - at(0, 1));
+    a + f.y * (b - a)
+}
+
+/// Where a point samples the map: the column's `uv` (drifting with `offset_m`, the
+/// wind's travel) and the detail's, across a plane tilted with height.
+#[must_use]
+pub fn cloud_map_uvs(p: Vec3, offset_m: Vec2) -> (Vec2, Vec2) {
+    let ground = Vec2::new(p.x, p.z) + offset_m;
+    let column = ground / CLOUD_MAP_PERIOD_M;
+    let detail = Vec2::new(ground.x + 0.6 * p.y, ground.y - 0.8 * p.y) / CLOUD_DETAIL_PERIOD_M;
+    (column, detail)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_map_s_values_are_spread_evenly() {
+        let map = cloud_coverage_map();
+        let mut histogram = [0usize; 8];
+        for &b in &map {
+            histogram[usize::from(b) / 32] += 1;
+        }
+        let each = map.len() / 8;
+        assert!(histogram.iter().all(|&h| h == each), "{histogram:?}");
+        assert_eq!(map, cloud_coverage_map(), "deterministic");
+        // It tiles: the last column continues into the first (neighbours differ by
+        // little, as inside).
+        let n = CLOUD_MAP_PX as usize;
+        let jump = |a: usize, b: usize| (i32::from(map[a]) - i32::from(map[b])).abs();
+        let seam: i32 = (0..n).map(|y| jump(y * n + n - 1, y * n)).sum();
+        let inside: i32 = (0..n).map(|y| jump(y * n + n / 2, y * n + n / 2 + 1)).sum();
+        assert!(seam < 2 * inside, "seam {seam} against inside {inside}");
+    }
+
+    #[test]
+    fn looking_up_the_layer_covers_its_coverage_of_the_sky() {
+        let map = cloud_coverage_map();
+        for kind in CloudKind::ALL {
+            for coverage in [0.125f32, 0.375, 0.625, 0.875] {
+                let layer = CloudLayer::typical(kind, coverage);
+                let n = 120;
+                let mut covered = 0;
+                for i in 0..n * n {
+                    let ground = Vec2::new((i % n) as f32, (i / n) as f32) * 97.0;
+                    // A vertical column's optical depth through the layer.
+                    let steps = 64;
+                    let dy = layer.thickness_m / steps as f32;
+                    let tau: f32 = (0..steps)
+                        .map(|k| {
+                            let h = (k as f32 + 0.5) / steps as f32;
+                            let p =
+                                Vec3::new(ground.x, layer.base_m + h * layer.thickness_m, ground.y);
+                            let (c, d) = cloud_map_uvs(p, Vec2::ZERO);
+                            let m = sample_coverage_map(&map, c);
+                            let detail = sample_coverage_map(&map, d);
+                            kind.extinction_per_m()
+                                * cloud_density(kind, coverage, m, detail, h)
+                                * dy
+                        })
+                        .sum();
+                    if tau > 0.5 {
+                        covered += 1;
+                    }
+                }
+                let share = covered as f32 / (n * n) as f32;
+                assert!(
+                    (share - coverage).abs() < 0.1,
+                    "{kind:?} at {coverage}: {share} of the columns are clouded"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn profiles_rise_from_the_base_and_fall_to_the_top() {
+        for kind in CloudKind::ALL {
+            assert!(cloud_profile(kind, 0.0) < 1e-6 && cloud_profile(kind, 1.0) < 1e-6);
+            assert!(cloud_profile(kind, -0.1) == 0.0 && cloud_profile(kind, 1.1) == 0.0);
+            let peak = (0..=100)
+                .map(|i| cloud_profile(kind, i as f32 / 100.0))
+                .fold(0.0, f32::max);
+            assert!(peak > 0.99, "{kind:?}: {peak}");
+        }
+        // Cumulus is bottom-heavy (flat base, rounded top); stratus a thin sheet.
+        let mass = |kind, lo: f32, hi: f32| -> f32 {
+            (0..100)
+                .map(|i| lo + (hi - lo) * (i as f32 + 0.5) / 100.0)
+                .map(|h| cloud_profile(kind, h))
+                .sum()
+        };
+        assert!(mass(CloudKind::Cumulus, 0.0, 0.5) > 2.0 * mass(CloudKind::Cumulus, 0.5, 1.0));
+        assert!(
+            mass(CloudKind::Cumulonimbus, 0.5, 1.0) > 0.6 * mass(CloudKind::Cumulonimbus, 0.0, 0.5)
+        );
+    }
+
+    #[test]
+    fn the_two_lobes_average_one_and_glow_toward_the_sun() {
+        let n = 100_000;
+        let mean: f64 = (0..n)
+            .map(|i| {
+                f64::from(cloud_phase(
+                    (-1.0 + 2.0 * (f64::from(i) + 0.5) / f64::from(n)) as f32,
+                ))
+            })
+            .sum::<f64>()
+            / f64::from(n);
+        assert!((mean - 1.0).abs() < 2e-3, "{mean}");
+        assert!(cloud_phase(1.0) > 20.0 * cloud_phase(0.0));
+        assert!(
+            cloud_phase(-1.0) > cloud_phase(0.0),
+            "a little back-scatter"
+        );
+    }
+
+    #[test]
+    fn the_octaves_start_from_single_scattering_and_reach_deeper() {
+        // Octave 0 is Beer and the phase function; the others add light that goes
+        // deeper: behind an optical depth of 8 it is most of what is left.
+        let single = |c: f32, t: f32| cloud_phase(c) * (-t).exp();
+        for c in [-0.9f32, 0.0, 0.9] {
+            let all = cloud_sun_light(c, 0.0);
+            assert!(all > single(c, 0.0), "{c}: more light with the octaves");
+            assert!(all < 2.0 * cloud_phase(c).max(1.0) + 1e-3, "{c}: {all}");
+            let deep = cloud_sun_light(c, 8.0);
+            assert!(deep > 50.0 * single(c, 8.0), "{c}: {deep} deep in");
+        }
+    }
+
+    #[test]
+    fn a_ray_crosses_the_layer_where_it_is() {
+        // From the ground straight up through 1000–2500 m.
+        assert_eq!(cloud_slab(0.0, 1.0, 1_000.0, 2_500.0), (1_000.0, 2_500.0));
+        // Level from the ground: never.
+        let (a, b) = cloud_slab(0.0, 0.0, 1_000.0, 2_500.0);
+        assert!(b <= a);
+        // From inside, level: the longest path marched.
+        let (a, b) = cloud_slab(1_500.0, 0.0, 1_000.0, 2_500.0);
+        assert!(a.abs() < 1e-3 && (b - CLOUD_MAX_PATH_M).abs() < 1.0);
+        // From above looking down at 30°: enters at the top.
+        let (a, b) = cloud_slab(3_000.0, -0.5, 1_000.0, 2_500.0);
+        assert!(
+            (a - 1_000.0).abs() < 1e-2 && (b - 4_000.0).abs() < 1e-1,
+            "{a} {b}"
+        );
+    }
+
+    #[test]
+    fn layers_are_checked() {
+        assert!(
+            CloudLayer::typical(CloudKind::Cumulus, 0.4)
+                .validate()
+                .is_ok()
+        );
+        for bad in [
+            CloudLayer {
+                coverage: 1.5,
+                ..CloudLayer::typical(CloudKind::Stratus, 0.5)
+            },
+            CloudLayer {
+                thickness_m: 0.0,
+                ..CloudLayer::typical(CloudKind::Stratus, 0.5)
+            },
+            CloudLayer {
+                base_m: f32::NAN,
+                ..CloudLayer::typical(CloudKind::Stratus, 0.5)
+            },
+        ] {
+            assert!(bad.validate().is_err(), "{bad:?}");
+        }
+    }
+}
