@@ -276,6 +276,76 @@ fn a_fog_layer_set_while_running_reaches_the_optics_and_the_beams_on_every_backe
 }
 
 #[test]
+fn a_cloud_the_camera_is_in_reaches_the_optics_and_the_beams_on_every_backend() {
+    use precip_model::drawing::clouds::{
+        CloudKind, CloudLayer, cloud_drift_m, cloud_extinction_at, coverage_map,
+    };
+    let setup = snow_before_a_wall();
+    // A full nimbostratus deck from 500 m below the ground (the camera, at 1.7 m, a
+    // fifth of the way up it).
+    let deck = CloudLayer {
+        base_m: -500.0,
+        thickness_m: 2_500.0,
+        coverage: 1.0,
+        kind: CloudKind::Nimbostratus,
+    };
+    let beam = Beam::ray(Vec3::new(0.0, 1.7, 0.0), Vec3::NEG_Z, 40.0);
+    let query = BeamQuery {
+        beams: vec![beam],
+        band: Band::NearInfrared,
+        aperture_radius_m: 0.0,
+        extinction_per_m: Some(0.0),
+        sample_unresolved: false,
+    };
+    for mut s in all_subjects("cloud_layer") {
+        s.backend.configure(&setup).expect("configure");
+        s.backend.step(0.05).expect("step");
+        let clear = s.backend.optics().expect("optics");
+        let clear_wall = s.backend.query_beams(&query).expect("beams")[0]
+            .target
+            .expect("the wall")
+            .two_way_transmittance;
+        s.backend
+            .set_cloud_layer(Some(deck))
+            .expect("a valid layer");
+        let cloudy = s.backend.optics().expect("optics");
+        // The clock after one step of 0.05 s: the deck drifted with the calm wind.
+        let offset = cloud_drift_m(setup.weather.wind.mean_wind_mps, 0.05);
+        let sigma = cloud_extinction_at(coverage_map(), &deck, offset, setup.camera.position_m);
+        assert!(sigma > 0.01, "the camera is in the cloud: {sigma}");
+        for band in Band::ALL {
+            let added = cloudy.band(band).extinction_per_m - clear.band(band).extinction_per_m;
+            assert!(
+                (added - sigma).abs() < 1e-3 * sigma,
+                "{} {band:?}: {added} against {sigma}",
+                s.name
+            );
+        }
+        let wall = s.backend.query_beams(&query).expect("beams")[0]
+            .target
+            .expect("the wall")
+            .two_way_transmittance;
+        // 6 m to the wall in a cloud of some 0.03 per m: e^(−2·6·σ).
+        assert!(
+            (wall / clear_wall - (-12.0 * sigma).exp()).abs() < 0.03,
+            "{}: {wall} against {clear_wall} at σ {sigma}",
+            s.name
+        );
+        assert!(
+            s.backend
+                .set_cloud_layer(Some(CloudLayer {
+                    coverage: 2.0,
+                    ..deck
+                }))
+                .is_err(),
+            "{}: a coverage of 2 is refused",
+            s.name
+        );
+        s.check_clean("cloud_layer");
+    }
+}
+
+#[test]
 fn optics_of_snow_and_dust_are_the_cpus_on_every_backend() {
     // The GPU's cross-sections (optics.wgsl) for ice and mineral grains, every band:
     // the CPU reference's sums of the same particles, within the sums' rounding.

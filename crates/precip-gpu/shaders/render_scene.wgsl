@@ -58,10 +58,19 @@ struct Material {
 // Depth offset (NDC) of the shadow test, against acne.
 const SHADOW_BIAS: f32 = 0.0005;
 
-// Visibility of the sun at `world_m`: one comparison sample, which the sampler's
-// linear filter turns into a 2×2 percentage-closer filter in the texture unit; 1
-// outside the map.
+// Visibility of the sun at `world_m`: the scene's shadow times a cloud layer's.
 fn shadow_lit(world_m: vec3<f32>) -> f32 {
+    // Under a cloud layer, its shadow (from the storage copy: a branch).
+    var clouds = 1.0;
+    if (switches.cloud_drift.w > 0.0) {
+        clouds = cloud_sun_transmittance(world_m);
+    }
+    return clouds * scene_shadow_lit(world_m);
+}
+
+// The shadow map's: one comparison sample, which the sampler's linear filter turns
+// into a 2×2 percentage-closer filter in the texture unit; 1 outside the map.
+fn scene_shadow_lit(world_m: vec3<f32>) -> f32 {
     let p = params.sun_view_proj * vec4<f32>(world_m, 1.0);
     let ndc = p.xyz / p.w;
     let uv = vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y);
@@ -108,7 +117,9 @@ fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
         let cloud = textureSampleLevel(cloud_image, cover_sampler, in.ndc * vec2<f32>(0.5, -0.5) + 0.5, 0.0);
         sky = clear_sky(params.sky_colour_time.xyz, ray) * (1.0 - cloud.a) + cloud.rgb;
     }
-    if (switches.fog_layer.z <= 0.0) {
+    // Inside a cloud (a fog layer without the sun's share, precip_model's air_layer)
+    // the clouds' image has marched the sky's rays through it already.
+    if (switches.fog_layer.z <= 0.0 || switches.fog_layer.w < 0.5) {
         return vec4<f32>(sky, 1.0);
     }
     // Through the fog layer only (the haze's colour is the horizon's already).

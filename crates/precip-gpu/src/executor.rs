@@ -669,14 +669,10 @@ impl<G: Gpu> Simulation<G> {
             let read = ran.and_then(|()| gpu.read_buffer(partials, partial_bytes));
             gpu.destroy_bind_group(group);
             let partials: Vec<OpticsPartial> = bytemuck::pod_collect_to_vec(&read?);
-            Ok(Optics::from_sums(
+            Ok(self.host.with_layers(Optics::from_sums(
                 self.host.weather(),
                 &CrossSectionSums::of_partials(&partials),
-            )
-            .in_fog(
-                self.host.setup().render.fog_layer,
-                self.host.camera().position_m,
-            ))
+            )))
         })();
         for b in made {
             gpu.destroy_buffer(b);

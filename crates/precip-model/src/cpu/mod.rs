@@ -199,12 +199,10 @@ impl Backend for CpuBackend {
 
     fn optics(&mut self) -> Result<crate::sensors::optics::Optics, BackendError> {
         let state = self.state_mut("optics")?;
-        Ok(
-            crate::sensors::optics::Optics::live(state.host.weather(), &state.particles).in_fog(
-                state.host.setup().render.fog_layer,
-                state.host.camera().position_m,
-            ),
-        )
+        Ok(state.host.with_layers(crate::sensors::optics::Optics::live(
+            state.host.weather(),
+            &state.particles,
+        )))
     }
 
     fn read_particles(&mut self) -> Result<Vec<Particle>, BackendError> {

@@ -327,6 +327,118 @@ fn tiling_perlin(p: Vec2, period: u32, seed: u32) -> f32 {
     a + v * (b - a)
 }
 
+/// Samples along the sun's ray through the layer for a cloud's shadow.
+pub const CLOUD_SHADOW_SAMPLES: u32 = 3;
+
+/// The share of the sun's light that reaches `p` through the layer (its shadow on
+/// the scene, docs/model.md (6.12)): `e^(−σ_max·Σρ·ℓ/n)` over [`CLOUD_SHADOW_SAMPLES`]
+/// points of the sun's ray's part `ℓ` in the layer (at most [`CLOUD_MAX_PATH_M`]),
+/// `to_sun` a unit vector, the map drifted by `offset_m`.
+#[must_use]
+pub fn cloud_sun_transmittance(
+    map: &[u8],
+    layer: &CloudLayer,
+    offset_m: Vec2,
+    p: Vec3,
+    to_sun: Vec3,
+) -> f32 {
+    let (t0, t1) = cloud_slab(p.y, to_sun.y, layer.base_m, layer.top_m());
+    if t1 <= t0 {
+        return 1.0;
+    }
+    let n = CLOUD_SHADOW_SAMPLES;
+    let density: f32 = (0..n)
+        .map(|k| {
+            let q = p + to_sun * (t0 + (t1 - t0) * (k as f32 + 0.5) / n as f32);
+            let h = (q.y - layer.base_m) / layer.thickness_m;
+            let (c, d) = cloud_map_uvs(q, offset_m);
+            cloud_density(
+                layer.kind,
+                layer.coverage,
+                sample_coverage_map(map, c),
+                sample_coverage_map(map, d),
+                h,
+            )
+        })
+        .sum();
+    (-layer.kind.extinction_per_m() * density * (t1 - t0) / n as f32).exp()
+}
+
+/// [`cloud_coverage_map`], made once.
+#[must_use]
+pub fn coverage_map() -> &'static [u8] {
+    static MAP: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
+    MAP.get_or_init(cloud_coverage_map)
+}
+
+/// How far the clouds have drifted by `time_s` in a mean wind `wind_mps`, m,
+/// wrapped to the map's period (the uniform block's `cloud_drift.xy`).
+#[must_use]
+pub fn cloud_drift_m(wind_mps: Vec3, time_s: f32) -> Vec2 {
+    let travel = Vec2::new(wind_mps.x, wind_mps.z) * time_s;
+    Vec2::new(
+        travel.x.rem_euclid(CLOUD_MAP_PERIOD_M),
+        travel.y.rem_euclid(CLOUD_MAP_PERIOD_M),
+    )
+}
+
+/// The cloud's extinction at `p`, per m (0 outside the layer).
+#[must_use]
+pub fn cloud_extinction_at(map: &[u8], layer: &CloudLayer, offset_m: Vec2, p: Vec3) -> f32 {
+    let h = (p.y - layer.base_m) / layer.thickness_m;
+    if !(0.0..=1.0).contains(&h) {
+        return 0.0;
+    }
+    let (c, d) = cloud_map_uvs(p, offset_m);
+    layer.kind.extinction_per_m()
+        * cloud_density(
+            layer.kind,
+            layer.coverage,
+            sample_coverage_map(map, c),
+            sample_coverage_map(map, d),
+            h,
+        )
+}
+
+/// Steps of [`cloud_optical_depth`] along a path.
+pub const CLOUD_PATH_STEPS: u32 = 32;
+
+/// The cloud's optical depth from `origin` along the unit `dir` for `length_m`
+/// (midpoints of [`CLOUD_PATH_STEPS`] steps over the path's part in the layer).
+#[must_use]
+pub fn cloud_optical_depth(
+    map: &[u8],
+    layer: &CloudLayer,
+    offset_m: Vec2,
+    origin: Vec3,
+    dir: Vec3,
+    length_m: f32,
+) -> f32 {
+    let (s0, s1) = crate::drawing::fog_layer::fog_layer_segment(
+        origin.y,
+        dir.y,
+        length_m,
+        layer.base_m,
+        layer.top_m(),
+    );
+    if s1 <= s0 {
+        return 0.0;
+    }
+    let n = CLOUD_PATH_STEPS;
+    let ds = (s1 - s0) / n as f32;
+    (0..n)
+        .map(|k| {
+            cloud_extinction_at(
+                map,
+                layer,
+                offset_m,
+                origin + dir * (s0 + (k as f32 + 0.5) * ds),
+            )
+        })
+        .sum::<f32>()
+        * ds
+}
+
 /// The coverage map's value at `uv` (texels wrap), bilinear as the GPU's sampler.
 #[must_use]
 pub fn sample_coverage_map(map: &[u8], uv: Vec2) -> f32 {
@@ -471,6 +583,60 @@ mod tests {
             let deep = cloud_sun_light(c, 8.0);
             assert!(deep > 50.0 * single(c, 8.0), "{c}: {deep} deep in");
         }
+    }
+
+    #[test]
+    fn clouds_shade_their_coverage_of_the_ground() {
+        let map = cloud_coverage_map();
+        let sun = Vec3::new(0.3, 0.8, 0.2).normalize();
+        for coverage in [0.0f32, 0.3, 0.7, 1.0] {
+            let layer = CloudLayer::typical(CloudKind::Cumulus, coverage);
+            let n = 100;
+            let shaded = (0..n * n)
+                .filter(|i| {
+                    let p = Vec3::new((i % n) as f32 * 113.0, 0.0, (i / n) as f32 * 113.0);
+                    cloud_sun_transmittance(&map, &layer, Vec2::ZERO, p, sun) < 0.5
+                })
+                .count() as f32
+                / (n * n) as f32;
+            assert!(
+                (shaded - coverage).abs() < 0.12,
+                "{coverage}: {shaded} of the ground in the clouds' shadow"
+            );
+        }
+        // Above the layer the sun is not dimmed.
+        let layer = CloudLayer::typical(CloudKind::Nimbostratus, 1.0);
+        let above = Vec3::new(0.0, layer.top_m() + 10.0, 0.0);
+        assert!((cloud_sun_transmittance(&map, &layer, Vec2::ZERO, above, sun) - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_path_s_optical_depth_is_its_extinction_summed() {
+        let map = coverage_map();
+        // A full nimbostratus deck from 0 to 2 500 m: inside it the extinction is
+        // up to its most, outside none; a level path of 100 m inside sums it.
+        let layer = CloudLayer {
+            base_m: 0.0,
+            thickness_m: 2_500.0,
+            coverage: 1.0,
+            kind: CloudKind::Nimbostratus,
+        };
+        let at = Vec3::new(10.0, 1_200.0, 10.0);
+        let sigma = cloud_extinction_at(map, &layer, Vec2::ZERO, at);
+        assert!(sigma > 0.01 && sigma <= 0.05 + 1e-6, "{sigma}");
+        assert!(cloud_extinction_at(map, &layer, Vec2::ZERO, Vec3::new(0.0, 3_000.0, 0.0)) == 0.0);
+        let tau = cloud_optical_depth(map, &layer, Vec2::ZERO, at, Vec3::X, 1.0);
+        assert!((tau - sigma).abs() < 0.02 * sigma, "{tau} against {sigma}");
+        // Straight up out of the layer: only the part inside counts.
+        let up = cloud_optical_depth(map, &layer, Vec2::ZERO, at, Vec3::Y, 10_000.0);
+        let inside = cloud_optical_depth(map, &layer, Vec2::ZERO, at, Vec3::Y, 1_300.0);
+        assert!((up - inside).abs() < 0.02 * inside, "{up} {inside}");
+        // The drift wraps.
+        let d = cloud_drift_m(Vec3::new(10.0, 0.0, -5.0), 2_000.0);
+        assert!(
+            (d.x - 8_000.0).abs() < 1e-2 && (d.y - 2_000.0).abs() < 1e-2,
+            "{d}"
+        );
     }
 
     #[test]

@@ -15,7 +15,7 @@ use precip_cover::{CoverParams, GridFrame};
 
 use crate::backend::camera::{Camera, View};
 use crate::backend::error::BackendError;
-use crate::drawing::clouds::{CLOUD_MAP_PERIOD_M, CloudLayer};
+use crate::drawing::clouds::{CloudLayer, cloud_drift_m, cloud_extinction_at, coverage_map};
 use crate::drawing::fog_layer::{FOG_LAYER_BOTTOM_M, FogLayer};
 use crate::drawing::multiplicity::PoolDrawing;
 use crate::drawing::{Lighting, SpriteSizing, view_cone_cos};
@@ -504,6 +504,26 @@ impl crate::Setup {
     }
 }
 
+/// The fog layer of the frame's block: the settings' fog layer, or where the camera
+/// is inside a cloud and its extinction there is the larger, the cloud's layer as a
+/// fog of that extinction (the camera flying through a cloud sees the scene fade;
+/// docs/model.md (6.13)), its sun's share left out.
+fn air_layer(settings: &RenderSettings, weather: &Weather, time_s: f32, camera_m: Vec3) -> Vec4 {
+    let fog = settings.fog_layer.map_or(Vec4::ZERO, |fog| {
+        Vec4::new(fog.top_m, FOG_LAYER_BOTTOM_M, fog.extinction_per_m(), 1.0)
+    });
+    let Some(layer) = settings.cloud_layer else {
+        return fog;
+    };
+    let offset = cloud_drift_m(weather.wind.mean_wind_mps, time_s);
+    let in_cloud = cloud_extinction_at(coverage_map(), &layer, offset, camera_m);
+    if in_cloud > fog.z {
+        Vec4::new(layer.top_m(), layer.base_m, in_cloud, 0.0)
+    } else {
+        fog
+    }
+}
+
 /// The colour of air thick with sand or dust (a brown-orange haze, as photographed
 /// in haboobs and Saharan dust events).
 pub const DUST_HAZE_COLOUR: Vec3 = Vec3::new(0.66, 0.5, 0.33);
@@ -634,17 +654,11 @@ impl RenderParams {
                 Vec4::new(c.base_m, c.top_m(), c.coverage, c.kind.index() as f32)
             }),
             cloud_drift: f.settings.cloud_layer.map_or(Vec4::ZERO, |c| {
-                let wind = f.weather.wind.mean_wind_mps * f.time_s;
-                Vec4::new(
-                    wind.x.rem_euclid(CLOUD_MAP_PERIOD_M),
-                    wind.z.rem_euclid(CLOUD_MAP_PERIOD_M),
-                    c.kind.extinction_per_m(),
-                    1.0,
-                )
+                cloud_drift_m(f.weather.wind.mean_wind_mps, f.time_s)
+                    .extend(c.kind.extinction_per_m())
+                    .extend(1.0)
             }),
-            fog_layer: f.settings.fog_layer.map_or(Vec4::ZERO, |fog| {
-                Vec4::new(fog.top_m, FOG_LAYER_BOTTOM_M, fog.extinction_per_m(), 1.0)
-            }),
+            fog_layer: air_layer(f.settings, f.weather, f.time_s, camera.position_m),
         }
     }
 }

@@ -17,6 +17,7 @@ use crate::host::layout::Frames;
 use crate::particles::step::StepParams;
 use crate::physics::drag::MAX_SUBSTEP_S;
 use crate::sensors::lidar::UnresolvedAir;
+use crate::sensors::optics::Optics;
 use crate::weather::Weather;
 
 /// The host side of a configured simulation.
@@ -235,6 +236,22 @@ impl HostState {
                     .map(|(_, half)| (self.camera.position_m, half)),
                 ..self.pools
             },
+        )
+    }
+
+    /// `optics` with the fog layer's and the cloud layer's droplets where the camera
+    /// is in them ([`Optics::in_fog`], [`Optics::in_cloud`]).
+    #[must_use]
+    pub fn with_layers(&self, optics: Optics) -> Optics {
+        let render = &self.setup.render;
+        let at = self.camera.position_m;
+        optics.in_fog(render.fog_layer, at).in_cloud(
+            render.cloud_layer.as_ref(),
+            crate::drawing::clouds::cloud_drift_m(
+                self.weather.wind.mean_wind_mps,
+                self.time_s as f32,
+            ),
+            at,
         )
     }
 

@@ -31,7 +31,9 @@
 //! the two-way transmittance `e^(−2σr)` through the air's extinction in the query's
 //! band ([`crate::sensors::optics`]; by default the weather's spectra: pass
 //! [`crate::Backend::optics`]' live value to follow the particles), times a fog
-//! layer's `e^(−2B·ℓ)` over the part `ℓ` of the path in it ([`fog_layer_two_way`]).
+//! layer's `e^(−2B·ℓ)` over the part `ℓ` of the path in it ([`fog_layer_two_way`])
+//! and a cloud layer's `e^(−2τ)` over its optical depth along the path
+//! ([`crate::drawing::clouds::cloud_optical_depth`]).
 //!
 //! ## Cost
 //!
@@ -289,6 +291,22 @@ impl BeamQuery {
             for (beam, r) in beams.iter().zip(&mut returns) {
                 if let Some(t) = r.target.as_mut() {
                     t.two_way_transmittance *= fog_layer_two_way(beam, t.range_m, &fog);
+                }
+            }
+        }
+        if let Some((layer, offset)) = air.cloud_layer {
+            let map = crate::drawing::clouds::coverage_map();
+            for (beam, r) in beams.iter().zip(&mut returns) {
+                if let Some(t) = r.target.as_mut() {
+                    let tau = crate::drawing::clouds::cloud_optical_depth(
+                        map,
+                        &layer,
+                        offset,
+                        beam.origin_m,
+                        beam.direction.normalize_or_zero(),
+                        t.range_m,
+                    );
+                    t.two_way_transmittance *= (-2.0 * tau).exp();
                 }
             }
         }

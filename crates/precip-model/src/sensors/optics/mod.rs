@@ -314,6 +314,31 @@ impl Optics {
         self
     }
 
+    /// These optics with a cloud's droplets added where `at_m` lies in `layer`
+    /// (drifted by `offset_m`): its extinction there in every band and backscatter
+    /// over [`FOG_LIDAR_RATIO_SR`], as [`Optics::in_fog`]'s.
+    #[must_use]
+    pub fn in_cloud(
+        mut self,
+        layer: Option<&crate::drawing::clouds::CloudLayer>,
+        offset_m: glam::Vec2,
+        at_m: glam::Vec3,
+    ) -> Self {
+        if let Some(layer) = layer {
+            let sigma = crate::drawing::clouds::cloud_extinction_at(
+                crate::drawing::clouds::coverage_map(),
+                layer,
+                offset_m,
+                at_m,
+            );
+            for band in &mut self.bands {
+                band.extinction_per_m += sigma;
+                band.backscatter_per_m_sr += sigma / FOG_LIDAR_RATIO_SR;
+            }
+        }
+        self
+    }
+
     /// The optics of `weather`'s size spectra (all sizes).
     #[must_use]
     pub fn of_weather(weather: &Weather) -> Self {
