@@ -38,6 +38,18 @@ fn snow_before_a_wall() -> Setup {
     s
 }
 
+/// One pencil beam from the camera of [`snow_before_a_wall`] to its wall, 6 m ahead,
+/// at 905 nm through air that dims nothing by itself.
+fn beam_to_the_wall() -> BeamQuery {
+    BeamQuery {
+        beams: vec![Beam::ray(Vec3::new(0.0, 1.7, 0.0), Vec3::NEG_Z, 40.0)],
+        band: Band::NearInfrared,
+        aperture_radius_m: 0.0,
+        extinction_per_m: Some(0.0),
+        sample_unresolved: false,
+    }
+}
+
 /// A spinning LiDAR's fan: 16 channels from −15° to +10°, every 3° around.
 fn fan(origin_m: Vec3) -> Vec<Beam> {
     let mut beams = Vec::new();
@@ -213,14 +225,7 @@ fn a_fog_layer_set_while_running_reaches_the_optics_and_the_beams_on_every_backe
     // The camera at 1.7 m: in a 10 m fog, above a 1 m one.
     let deep = FogLayer::new(10.0, 150.0);
     let shallow = FogLayer::new(1.0, 150.0);
-    let beam = Beam::ray(Vec3::new(0.0, 1.7, 0.0), Vec3::NEG_Z, 40.0);
-    let query = BeamQuery {
-        beams: vec![beam],
-        band: Band::NearInfrared,
-        aperture_radius_m: 0.0,
-        extinction_per_m: Some(0.0),
-        sample_unresolved: false,
-    };
+    let query = beam_to_the_wall();
     for mut s in all_subjects("fog_layer") {
         s.backend.configure(&setup).expect("configure");
         s.backend.step(0.05).expect("step");
@@ -289,14 +294,7 @@ fn a_cloud_the_camera_is_in_reaches_the_optics_and_the_beams_on_every_backend() 
         coverage: 1.0,
         kind: CloudKind::Nimbostratus,
     };
-    let beam = Beam::ray(Vec3::new(0.0, 1.7, 0.0), Vec3::NEG_Z, 40.0);
-    let query = BeamQuery {
-        beams: vec![beam],
-        band: Band::NearInfrared,
-        aperture_radius_m: 0.0,
-        extinction_per_m: Some(0.0),
-        sample_unresolved: false,
-    };
+    let query = beam_to_the_wall();
     for mut s in all_subjects("cloud_layer") {
         s.backend.configure(&setup).expect("configure");
         s.backend.step(0.05).expect("step");
