@@ -92,7 +92,7 @@ struct WeatherArgs {
     #[arg(long, value_enum)]
     cloud_type: Option<precip_viewer::presets::CloudTypeName>,
     /// The share of the sky the cloud layer covers, 0–1 (oktas / 8; 0.6 when only
-    /// --cloud-type is given; alone, a nimbostratus deck).
+    /// --cloud-type is given; alone, the deck the weather falls from).
     #[arg(long)]
     cloud_cover: Option<f32>,
     /// The cloud layer's base, m (the type's typical base).

@@ -234,8 +234,9 @@ impl Preset {
         }
     }
 
-    /// The cloud layer, validated: `None` without a type or a cover (a cover alone
-    /// is nimbostratus: the deck rain and snow fall from).
+    /// The cloud layer, validated: `None` without a type, cover, base or thickness;
+    /// without a type, the deck the weather falls from
+    /// ([`CloudLayer::implied_by`]).
     pub fn cloud_layer(&self) -> Result<Option<CloudLayer>, PresetError> {
         if self.cloud_type.is_none()
             && self.cloud_cover.is_none()
@@ -244,10 +245,12 @@ impl Preset {
         {
             return Ok(None);
         }
-        let kind = self
-            .cloud_type
-            .map_or(CloudKind::Nimbostratus, CloudKind::from);
-        let typical = CloudLayer::typical(kind, self.cloud_cover.unwrap_or(DEFAULT_CLOUD_COVER));
+        let coverage = self.cloud_cover.unwrap_or(DEFAULT_CLOUD_COVER);
+        let typical = match (self.cloud_type, self.weather()) {
+            (Some(kind), _) => CloudLayer::typical(kind.into(), coverage),
+            (None, Ok(weather)) => CloudLayer::implied_by(&weather, coverage),
+            (None, Err(_)) => CloudLayer::typical(CloudKind::Nimbostratus, coverage),
+        };
         let layer = CloudLayer {
             base_m: self.cloud_base_m.unwrap_or(typical.base_m),
             thickness_m: self.cloud_thickness_m.unwrap_or(typical.thickness_m),
@@ -315,8 +318,8 @@ mod tests {
         let deck = p.cloud_layer().expect("valid").expect("a deck");
         assert_eq!(
             deck.kind,
-            CloudKind::Nimbostratus,
-            "a cover alone is the deck"
+            CloudKind::Stratus,
+            "a cover alone is the deck drizzle falls from"
         );
         p.cloud_cover = Some(1.5);
         let e = p.cloud_layer().expect_err("over 1");

@@ -138,6 +138,24 @@ impl CloudLayer {
         }
     }
 
+    /// The deck `weather` falls from, covering `coverage` (WMO cloud atlas):
+    /// drizzle (rain under 1 mm/h) from stratus, heavy rain (10 mm/h and more) from
+    /// cumulonimbus, other rain, snow and sleet from nimbostratus; with nothing
+    /// falling, or sand and dust, cumulus.
+    #[must_use]
+    pub fn implied_by(weather: &crate::Weather, coverage: f32) -> Self {
+        use crate::PrecipitationKind as K;
+        let rate = weather.intensity_mm_per_h;
+        let kind = match weather.kind {
+            _ if rate <= 0.0 => CloudKind::Cumulus,
+            K::Sand | K::Dust => CloudKind::Cumulus,
+            K::Rain if rate < 1.0 => CloudKind::Stratus,
+            K::Rain if rate >= 10.0 => CloudKind::Cumulonimbus,
+            K::Rain | K::Sleet | K::DrySnow | K::WetSnow => CloudKind::Nimbostratus,
+        };
+        Self::typical(kind, coverage)
+    }
+
     /// Its top, m.
     #[must_use]
     pub fn top_m(&self) -> f32 {
@@ -655,6 +673,30 @@ mod tests {
             (a - 1_000.0).abs() < 1e-2 && (b - 4_000.0).abs() < 1e-1,
             "{a} {b}"
         );
+    }
+
+    #[test]
+    fn the_weather_implies_its_deck() {
+        use crate::{PrecipitationKind as K, Weather};
+        let w = |kind, rate| Weather {
+            kind,
+            intensity_mm_per_h: rate,
+            air_temperature_c: if matches!(kind, K::Rain) { 10.0 } else { -5.0 },
+            ..Weather::default()
+        };
+        for (weather, kind) in [
+            (w(K::Rain, 0.3), CloudKind::Stratus),
+            (w(K::Rain, 4.0), CloudKind::Nimbostratus),
+            (w(K::Rain, 40.0), CloudKind::Cumulonimbus),
+            (w(K::DrySnow, 2.0), CloudKind::Nimbostratus),
+            (w(K::DrySnow, 0.0), CloudKind::Cumulus),
+        ] {
+            assert_eq!(
+                CloudLayer::implied_by(&weather, 0.9).kind,
+                kind,
+                "{weather:?}"
+            );
+        }
     }
 
     #[test]
