@@ -28,9 +28,9 @@ fn cloud_density_at(p: vec3<f32>, layer: vec4<f32>, drift: vec4<f32>) -> f32 {
 // The share of the sun's light that reaches `p` through the layer (its shadow):
 // CLOUD_SHADOW_SAMPLES points of the sun's ray's part in it (cloud_sun_transmittance).
 fn cloud_sun_transmittance(p: vec3<f32>) -> f32 {
-    let layer = params.clouds;
-    let drift = params.cloud_drift;
-    let to_sun = params.to_sun_extinction.xyz;
+    let layer = switches.clouds;
+    let drift = switches.cloud_drift;
+    let to_sun = switches.to_sun_extinction.xyz;
     let slab = cloud_slab(p.y, to_sun.y, layer.x, layer.y);
     let length = max(slab.y - slab.x, 0.0);
     var density = 0.0;
@@ -48,16 +48,16 @@ fn cloud_sun_transmittance(p: vec3<f32>) -> f32 {
 // top; each step's light integrated over it, S·(1 − e^(−σΔ)).
 @fragment
 fn fs_clouds(in: SkyVarying) -> @location(0) vec4<f32> {
-    let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
-    let camera = params.camera_m_cone_cos.xyz;
+    let far = switches.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
+    let camera = switches.camera_m_cone_cos.xyz;
     let ray = normalize_or_zero(far.xyz / far.w - camera);
-    let layer = params.clouds;
-    let drift = params.cloud_drift;
+    let layer = switches.clouds;
+    let drift = switches.cloud_drift;
     let slab = cloud_slab(camera.y, ray.y, layer.x, layer.y);
     if (slab.y <= slab.x) {
         return vec4<f32>(0.0);
     }
-    let to_sun = params.to_sun_extinction.xyz;
+    let to_sun = switches.to_sun_extinction.xyz;
     let sin_sun = max(to_sun.y, 0.05);
     // The sun's light a unit of extinction scatters toward the camera is
     // light.y·P/4 (as the fog's, docs/model.md (6.6)), P with its octaves.
@@ -80,8 +80,8 @@ fn fs_clouds(in: SkyVarying) -> @location(0) vec4<f32> {
                 let q = p + to_sun * (reach * (f32(k) + 0.5) / f32(CLOUD_SUN_SAMPLES));
                 optical += cloud_density_at(q, layer, drift);
             }
-            let sun = params.light.y * 0.25 * cloud_sun_light(cos_mu, drift.z * optical * reach / f32(CLOUD_SUN_SAMPLES));
-            let scattered = vec3<f32>(sun) + params.sky_colour_time.xyz * (0.4 + 0.6 * h);
+            let sun = switches.light.y * 0.25 * cloud_sun_light(cos_mu, drift.z * optical * reach / f32(CLOUD_SUN_SAMPLES));
+            let scattered = vec3<f32>(sun) + switches.sky_colour_time.xyz * (0.4 + 0.6 * h);
             let step_transmittance = exp(-drift.z * rho * dt);
             light += transmittance * scattered * (1.0 - step_transmittance);
             transmittance *= step_transmittance;
@@ -93,6 +93,6 @@ fn fs_clouds(in: SkyVarying) -> @location(0) vec4<f32> {
     // The haze between the camera and the layer (clear air and the precipitation
     // falling from it) dims the clouds and what lies behind them, and adds its own
     // light: premultiplied h·L + (1 − h)·A over (1 − h·T) of the sky behind.
-    let haze = fog_transmittance(slab.x, params.to_sun_extinction.w);
-    return vec4<f32>(light * haze + params.sky_colour_time.xyz * (1.0 - haze), 1.0 - haze * transmittance);
+    let haze = fog_transmittance(slab.x, switches.to_sun_extinction.w);
+    return vec4<f32>(light * haze + switches.sky_colour_time.xyz * (1.0 - haze), 1.0 - haze * transmittance);
 }

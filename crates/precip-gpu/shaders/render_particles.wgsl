@@ -38,7 +38,7 @@ fn snow_colour(p: Particle) -> vec3<f32> {
     if (kind == KIND_GRAIN) {
         albedo = GRAIN_COLOUR;
     }
-    return with_air(albedo * light, air_between(params.camera_m_cone_cos.xyz, p.position_m, params.fog_layer));
+    return with_air(albedo * light, air_between(switches.camera_m_cone_cos.xyz, p.position_m, switches.fog_layer));
 }
 
 // The light of a drop's face of normal `n` toward `to_viewer`, through the air `air`
@@ -148,7 +148,7 @@ fn rain_vertex(vertex: u32, instance: u32) -> ParticleVarying {
     // What the drop refracts: the sky and the ground over its field of view, the
     // ground's albedo the cover's around the camera (drop_ground, once a frame).
     let view_sin_elevation = (p.position_m.y - camera.y) / max(distance_m, 1.0e-6);
-    let air = air_between(camera, p.position_m, params.fog_layer);
+    let air = air_between(camera, p.position_m, switches.fog_layer);
     out.air_sun = air.y;
     out.shade = vec4<f32>(
         shadow_lit(p.position_m),

@@ -120,7 +120,7 @@ fn fs_mirror(in: SceneVarying) -> @location(0) vec4<f32> {
     // The fog layer reflected with the camera: the path's part above the water, in
     // fog below the top, lies between the reflected top and the level; the sun's
     // scattered light is left out (its dimming from the top is not a line there).
-    let fog = params.fog_layer;
+    let fog = switches.fog_layer;
     let layer = vec4<f32>(fog.x, 2.0 * level - fog.x, fog.z, 0.0);
     return vec4<f32>(with_air(look.shaded, air_between(reflected, in.world_m, layer)), 1.0);
 }
@@ -136,7 +136,7 @@ fn fs_water_body_planar(in: SceneVarying) -> @location(0) vec4<f32> {
         let to_viewer = normalize_or_zero(camera - in.world_m);
         look.shaded += look.mirror * planar_mirrored_scene(in.clip.xy, to_viewer, look.water_slope);
     }
-    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, params.fog_layer)), 1.0);
+    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, switches.fog_layer)), 1.0);
 }
 
 // What the mirror shows instead of the sky at pixel `frag_xy`: (the mirror image

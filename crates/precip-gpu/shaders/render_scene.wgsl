@@ -4,7 +4,9 @@
 
 // Group 0: the frame.
 // RenderParams is a uniform block, and the same block is bound again as read-only
-// storage (`switches`) for every branch that tests nothing but the block: Mesa's
+// storage (`switches`) for every branch that tests nothing but the block — also in
+// the functions block values are passed to (the fog's and the clouds' slab tests:
+// the clouds' shadow leaked 1.9 MB a frame with `params` there): Mesa's
 // lavapipe up to 23.1 inlines the uniforms such a branch tests, recompiling at every
 // draw and never freeing the variants (1.8 MB a frame here); storage is never
 // inlined (precip_gpu::recipe::render_bindings::PARAMS_SWITCHES).
@@ -107,7 +109,7 @@ fn sky_triangle(v: u32) -> SkyVarying {
 @fragment
 fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
-    let camera = params.camera_m_cone_cos.xyz;
+    let camera = switches.camera_m_cone_cos.xyz;
     let ray = normalize_or_zero(far.xyz / far.w - camera);
     var sky = overcast_sky(params.sky_colour_time.xyz, ray);
     // A drawn cloud layer stands for the deck the overcast sky stood for: the clear
@@ -123,7 +125,7 @@ fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
         return vec4<f32>(sky, 1.0);
     }
     // Through the fog layer only (the haze's colour is the horizon's already).
-    let air = air_path(camera, ray, SKY_DISTANCE_M, 0.0, params.fog_layer, params.to_sun_extinction.xyz);
+    let air = air_path(camera, ray, SKY_DISTANCE_M, 0.0, switches.fog_layer, switches.to_sun_extinction.xyz);
     return vec4<f32>(with_air(sky, air), 1.0);
 }
 
@@ -138,7 +140,7 @@ fn air_between(camera: vec3<f32>, world_m: vec3<f32>, layer: vec4<f32>) -> vec2<
     if (switches.fog_layer.z <= 0.0) {
         return vec2<f32>(fog_transmittance(d, params.to_sun_extinction.w), 0.0);
     }
-    return air_path(camera, offset / max(d, 1.0e-6), d, params.to_sun_extinction.w, layer, params.to_sun_extinction.xyz);
+    return air_path(camera, offset / max(d, 1.0e-6), d, switches.to_sun_extinction.w, layer, switches.to_sun_extinction.xyz);
 }
 
 // `shaded` seen through the air `air` (air_between): what passes, the sky's light
@@ -313,7 +315,7 @@ struct SurfaceLook {
 fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
     let camera = params.camera_m_cone_cos.xyz;
     let look = surface_look(in, camera);
-    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, params.fog_layer)), 1.0);
+    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, switches.fog_layer)), 1.0);
 }
 
 // The water bodies: as fs_scene, their sharp mirror showing the scene where its ray
@@ -327,7 +329,7 @@ fn fs_water_body(in: SceneVarying) -> @location(0) vec4<f32> {
         let to_viewer = normalize_or_zero(camera - in.world_m);
         look.shaded += look.mirror * mirrored_scene(in.world_m, to_viewer, look.water_slope);
     }
-    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, params.fog_layer)), 1.0);
+    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, switches.fog_layer)), 1.0);
 }
 
 // The look of a surface seen from `camera` (the camera, or its reflection about the

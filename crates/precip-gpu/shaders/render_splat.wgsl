@@ -43,7 +43,7 @@ fn splat_look(p: Particle, distance_m: f32, weight: f32) -> vec4<f32> {
     if (kind == KIND_RAIN) {
         let size = raindrop_sizing(length(p.velocity_mps), p.diameter_m, distance_m, pixel_angle, sizing);
         let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - p.position_m);
-        let air = air_between(params.camera_m_cone_cos.xyz, p.position_m, params.fog_layer);
+        let air = air_between(switches.camera_m_cone_cos.xyz, p.position_m, switches.fog_layer);
         let environment = drop_environment_factor(-to_viewer.y, drop_ground_albedo[0]);
         let colour = rain_colour(to_viewer, to_viewer, shadow_lit(p.position_m), air, environment);
         let opacity = min(1.0, weight * size.z * params.cover_look.x);

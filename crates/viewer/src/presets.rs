@@ -218,7 +218,7 @@ impl Preset {
     /// error: say where the fog ends).
     pub fn fog_layer(&self) -> Result<Option<FogLayer>, PresetError> {
         let problem = |problem: String| PresetError {
-            name: "fog".to_owned(),
+            name: "fog layer (--fog-* or the preset's fog_*)".to_owned(),
             problem,
         };
         match (self.fog_top_m, self.fog_visibility_m) {
@@ -257,7 +257,7 @@ impl Preset {
             ..typical
         };
         layer.validate().map_err(|e| PresetError {
-            name: "clouds".to_owned(),
+            name: "cloud layer (--cloud-* or the preset's cloud_*)".to_owned(),
             problem: e.to_string(),
         })?;
         Ok(Some(layer))
