@@ -25,22 +25,6 @@ fn cloud_density_at(p: vec3<f32>, layer: vec4<f32>, drift: vec4<f32>) -> f32 {
     return cloud_density(u32(layer.w), layer.z, m, d, h);
 }
 
-// The share of the sun's light that reaches `p` through the layer (its shadow):
-// CLOUD_SHADOW_SAMPLES points of the sun's ray's part in it (cloud_sun_transmittance).
-fn cloud_sun_transmittance(p: vec3<f32>) -> f32 {
-    let layer = switches.clouds;
-    let drift = switches.cloud_drift;
-    let to_sun = switches.to_sun_extinction.xyz;
-    let slab = cloud_slab(p.y, to_sun.y, layer.x, layer.y);
-    let length = max(slab.y - slab.x, 0.0);
-    var density = 0.0;
-    for (var k = 0u; k < CLOUD_SHADOW_SAMPLES; k += 1u) {
-        let q = p + to_sun * (slab.x + length * (f32(k) + 0.5) / f32(CLOUD_SHADOW_SAMPLES));
-        density += cloud_density_at(q, layer, drift);
-    }
-    return exp(-drift.z * density * length / f32(CLOUD_SHADOW_SAMPLES));
-}
-
 // The light the layer and the haze in front of it send along the pixel's ray
 // (premultiplied) and their opacity: CLOUD_VIEW_STEPS steps through the layer, each lit
 // by the sun through CLOUD_SUN_SAMPLES samples toward it (Beer's law) and the

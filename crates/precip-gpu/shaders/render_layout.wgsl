@@ -48,6 +48,8 @@ struct RenderParams {
     clouds: vec4<f32>,
     // the clouds' drift x, z m, their most extinction per m, drawn (1/0)
     cloud_drift: vec4<f32>,
+    // the share of the sun's light the clouds let through (their shadow), 0, 0, 0
+    cloud_shadow: vec4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

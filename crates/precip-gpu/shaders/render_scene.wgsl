@@ -62,12 +62,8 @@ const SHADOW_BIAS: f32 = 0.0005;
 
 // Visibility of the sun at `world_m`: the scene's shadow times a cloud layer's.
 fn shadow_lit(world_m: vec3<f32>) -> f32 {
-    // Under a cloud layer, its shadow (from the storage copy: a branch).
-    var clouds = 1.0;
-    if (switches.cloud_drift.w > 0.0) {
-        clouds = cloud_sun_transmittance(world_m);
-    }
-    return clouds * scene_shadow_lit(world_m);
+    // Under a cloud layer, its shadow: one share for the frame, the host's.
+    return params.cloud_shadow.x * scene_shadow_lit(world_m);
 }
 
 // The shadow map's: one comparison sample, which the sampler's linear filter turns
@@ -109,16 +105,30 @@ fn sky_triangle(v: u32) -> SkyVarying {
 @fragment
 fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
+    let ray = normalize_or_zero(far.xyz / far.w - switches.camera_m_cone_cos.xyz);
+    return sky_through_air(overcast_sky(params.sky_colour_time.xyz, ray), ray);
+}
+
+// The sky under a drawn cloud layer (a pipeline of its own, so frames without one
+// carry none of its code): the layer stands for the deck the overcast sky stood
+// for — the clear sky between its clouds, their image over it (premultiplied).
+@vertex
+fn vs_sky_clouds(@builtin(vertex_index) v: u32) -> SkyVarying {
+    return sky_triangle(v);
+}
+
+@fragment
+fn fs_sky_clouds(in: SkyVarying) -> @location(0) vec4<f32> {
+    let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
+    let ray = normalize_or_zero(far.xyz / far.w - switches.camera_m_cone_cos.xyz);
+    let cloud = textureSampleLevel(cloud_image, cover_sampler, in.ndc * vec2<f32>(0.5, -0.5) + 0.5, 0.0);
+    let sky = clear_sky(params.sky_colour_time.xyz, ray) * (1.0 - cloud.a) + cloud.rgb;
+    return sky_through_air(sky, ray);
+}
+
+// `sky` seen along `ray` through the fog layer.
+fn sky_through_air(sky: vec3<f32>, ray: vec3<f32>) -> vec4<f32> {
     let camera = switches.camera_m_cone_cos.xyz;
-    let ray = normalize_or_zero(far.xyz / far.w - camera);
-    var sky = overcast_sky(params.sky_colour_time.xyz, ray);
-    // A drawn cloud layer stands for the deck the overcast sky stood for: the clear
-    // sky between its clouds, their image over it (premultiplied). From the storage
-    // copy: a branch.
-    if (switches.cloud_drift.w > 0.0) {
-        let cloud = textureSampleLevel(cloud_image, cover_sampler, in.ndc * vec2<f32>(0.5, -0.5) + 0.5, 0.0);
-        sky = clear_sky(params.sky_colour_time.xyz, ray) * (1.0 - cloud.a) + cloud.rgb;
-    }
     // Inside a cloud (a fog layer without the sun's share, precip_model's air_layer)
     // the clouds' image has marched the sky's rays through it already.
     if (switches.fog_layer.z <= 0.0 || switches.fog_layer.w < 0.5) {

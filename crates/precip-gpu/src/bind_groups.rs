@@ -446,7 +446,8 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::Render, "cover_texture" | "drop_ground") => &[COVER_TEXTURE],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
-        (Program::Render, "vs_sky" | "fs_sky") => &[RENDER_FRAME, CLOUD_IMAGE],
+        (Program::Render, "vs_sky" | "fs_sky") => &[RENDER_FRAME],
+        (Program::Render, "vs_sky_clouds" | "fs_sky_clouds") => &[RENDER_FRAME, CLOUD_IMAGE],
         (Program::Render, "vs_clouds" | "fs_clouds") => &[RENDER_FRAME],
         (Program::Render, "vs_mirror" | "fs_mirror") => {
             &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL]

@@ -248,6 +248,8 @@ pub enum PassWhen {
     WaterMirroredNot,
     /// While a cloud layer is set (`RenderSettings::cloud_layer`).
     Clouds,
+    /// While none is.
+    CloudsNot,
 }
 
 /// One pass of the frame.
@@ -330,6 +332,7 @@ const MIRROR_DRAW: Draw = Draw {
 // into its own image, which the sky then reads.
 const CLOUDS_DRAW: Draw = Draw {
     entry_points: render_passes::CLOUDS,
+    when: PassWhen::Always,
     ..SKY_DRAW
 };
 
@@ -342,7 +345,15 @@ const SKY_DRAW: Draw = Draw {
     depth_write: false,
     depth_bias: None,
     blend: Blend::Opaque,
-    when: PassWhen::Always,
+    when: PassWhen::CloudsNot,
+};
+
+// The same under a drawn cloud layer: a pipeline of its own that reads the clouds'
+// image.
+const SKY_CLOUDS_DRAW: Draw = Draw {
+    entry_points: render_passes::SKY_CLOUDS,
+    when: PassWhen::Clouds,
+    ..SKY_DRAW
 };
 
 const PARTICLE_DRAWS: [Draw; 3] = [
@@ -474,6 +485,7 @@ pub const FRAME_PASSES: [FramePass; 11] = [
                 WATER_BODY_DRAW,
                 WATER_BODY_PLANAR_DRAW,
                 SKY_DRAW,
+                SKY_CLOUDS_DRAW,
             ],
         }),
         when: PassWhen::Always,
@@ -586,6 +598,7 @@ impl PassWhen {
             Self::WaterMirrored => conditions.water_mirrored,
             Self::WaterMirroredNot => !conditions.water_mirrored,
             Self::Clouds => conditions.clouds,
+            Self::CloudsNot => !conditions.clouds,
         }
     }
 }

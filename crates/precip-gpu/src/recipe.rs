@@ -732,6 +732,8 @@ pub mod render_passes {
     /// The overcast sky behind the scene: one triangle of 3 vertices at the far plane,
     /// after the meshes, where nothing stands.
     pub const SKY: (&str, Option<&str>) = ("vs_sky", Some("fs_sky"));
+    /// The sky under a drawn cloud layer: the clear sky and the clouds' image.
+    pub const SKY_CLOUDS: (&str, Option<&str>) = ("vs_sky_clouds", Some("fs_sky_clouds"));
     /// The cloud layer marched into the clouds' image: one triangle of 3 vertices
     /// covering it.
     pub const CLOUDS: (&str, Option<&str>) = ("vs_clouds", Some("fs_clouds"));

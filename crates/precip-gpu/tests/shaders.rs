@@ -271,7 +271,11 @@ fn rust_and_wgsl_layouts_match() {
             inverse_view_proj,
             previous_view_proj,
             mirror_view_proj,
-            mirror
+            mirror,
+            fog_layer,
+            clouds,
+            cloud_drift,
+            cloud_shadow
         }),
         rust_layout!(DrawArgs {
             vertex_count,

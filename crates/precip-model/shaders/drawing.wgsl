@@ -383,8 +383,6 @@ fn cloud_slab(camera_y_m: f32, dir_y: f32, base_m: f32, top_m: f32) -> vec2<f32>
     return vec2<f32>(s.x, min(s.y, s.x + CLOUD_MAX_PATH_M));
 }
 
-const CLOUD_SHADOW_SAMPLES: u32 = 3u;
-
 // cloud_map_uvs: the column's uv (drifting by offset_m) and the detail's.
 fn cloud_map_uvs(p: vec3<f32>, offset_m: vec2<f32>) -> vec4<f32> {
     let ground = p.xz + offset_m;

@@ -15,7 +15,9 @@ use precip_cover::{CoverParams, GridFrame};
 
 use crate::backend::camera::{Camera, View};
 use crate::backend::error::BackendError;
-use crate::drawing::clouds::{CloudLayer, cloud_drift_m, cloud_extinction_at, coverage_map};
+use crate::drawing::clouds::{
+    CloudLayer, cloud_drift_m, cloud_extinction_at, cloud_sun_transmittance, coverage_map,
+};
 use crate::drawing::fog_layer::{FOG_LAYER_BOTTOM_M, FogLayer};
 use crate::drawing::multiplicity::PoolDrawing;
 use crate::drawing::{Lighting, SpriteSizing, view_cone_cos};
@@ -305,7 +307,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (720 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (736 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -379,8 +381,12 @@ pub struct RenderParams {
     /// The clouds' drift with the wind (x, z m), their most extinction per m, 1
     /// when a layer is drawn (else 0).
     pub cloud_drift: Vec4,
+    /// The share of the sun's light that reaches the ground under the camera through
+    /// the cloud layer ([`crate::drawing::clouds::cloud_sun_transmittance`]: the
+    /// clouds' shadow, one share for the frame; 1 without a layer), 0, 0, 0.
+    pub cloud_shadow: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 720);
+const _: () = assert!(size_of::<RenderParams>() == 736);
 
 /// The camera's world → clip matrix for a target of `aspect` (width / height).
 #[must_use]
@@ -659,6 +665,20 @@ impl RenderParams {
                     .extend(1.0)
             }),
             fog_layer: air_layer(f.settings, f.weather, f.time_s, camera.position_m),
+            cloud_shadow: Vec4::new(
+                f.settings.cloud_layer.map_or(1.0, |layer| {
+                    cloud_sun_transmittance(
+                        coverage_map(),
+                        &layer,
+                        cloud_drift_m(f.weather.wind.mean_wind_mps, f.time_s),
+                        Vec3::new(camera.position_m.x, 0.0, camera.position_m.z),
+                        f.settings.to_sun.normalize(),
+                    )
+                }),
+                0.0,
+                0.0,
+                0.0,
+            ),
         }
     }
 }
