@@ -10,10 +10,10 @@ struct ParticleVarying {
     @location(1) shade: vec4<f32>,
     @location(2) normal: vec3<f32>,
     @location(3) world_m: vec3<f32>,
-    // A snow streak's length over its width (1: a sprite; snow_streak_corner).
+    // Snow: a streak's length over its width (1: a sprite; snow_streak_corner).
+    // Rain: the sun's light the fog layer scatters on the way (air_between's y) —
+    // one interpolant for both, as every one costs a CPU rasteriser per fragment.
     @location(4) stretch: f32,
-    // Rain: the sun's light the fog layer scatters on the way (air_between's y).
-    @location(5) air_sun: f32,
 }
 
 // Quartz sand and mineral dust in daylight (sRGB ~ #c8a878, linear).
@@ -94,7 +94,6 @@ fn snow_vertex(corner: u32, instance: u32) -> ParticleVarying {
     out.clip = params.view_proj * vec4<f32>(world, 1.0);
     out.uv = streak.uv;
     out.stretch = streak.stretch;
-    out.air_sun = 0.0;
     // Its multiplicity's ink, up to opaque (precip_model::drawing::multiplicity): a
     // resolved flake's over its copies, a sub-pixel one's its own.
     let weight = resolved_weight(i, original) / select(1.0, f32(copies), in_camera_volume && is_resolved);
@@ -149,7 +148,7 @@ fn rain_vertex(vertex: u32, instance: u32) -> ParticleVarying {
     // ground's albedo the cover's around the camera (drop_ground, once a frame).
     let view_sin_elevation = (p.position_m.y - camera.y) / max(distance_m, 1.0e-6);
     let air = air_between(camera, p.position_m, switches.fog_layer);
-    out.air_sun = air.y;
+
     out.shade = vec4<f32>(
         shadow_lit(p.position_m),
         air.x,
@@ -158,7 +157,7 @@ fn rain_vertex(vertex: u32, instance: u32) -> ParticleVarying {
     );
     out.normal = v.normal;
     out.world_m = v.position_m;
-    out.stretch = 1.0;
+    out.stretch = air.y;
     return out;
 }
 
@@ -179,7 +178,7 @@ fn rain_fragment(in: ParticleVarying) -> vec4<f32> {
     if (dot(n, to_viewer) < 0.0) {
         n = -n;
     }
-    return vec4<f32>(rain_colour(n, to_viewer, in.shade.x, vec2<f32>(in.shade.y, in.air_sun), in.shade.z), in.shade.w);
+    return vec4<f32>(rain_colour(n, to_viewer, in.shade.x, vec2<f32>(in.shade.y, in.stretch), in.shade.z), in.shade.w);
 }
 
 // Particles at a reduced resolution (precip_model::ParticleResolution): the share of
