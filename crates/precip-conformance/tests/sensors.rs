@@ -83,7 +83,14 @@ fn reference_hits(
 ) -> (Vec<Beam>, Vec<precip_model::sensors::lidar::BeamHit>) {
     let particles = backend.read_particles().expect("particles");
     let beams = query.validate().expect("valid");
-    let params: BeamParams = query.params(&beams, particles.len() as u32, &setup.ground);
+    // The particles in the air under the setup's weather (the rest rest unseen).
+    let in_the_air = precip_model::particles::step::stepped_particles(&setup.step_params(
+        &setup.weather,
+        Vec3::ZERO,
+        0.01,
+        0.0,
+    ));
+    let params: BeamParams = query.params(&beams, in_the_air, &setup.ground);
     let hits = query_on_cpu(&beams, &params, &particles, &setup.ground);
     (beams, hits)
 }

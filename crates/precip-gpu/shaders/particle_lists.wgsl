@@ -16,7 +16,8 @@ fn particle_multiplicity(i: u32, position_m: vec3<f32>) -> f32 {
     if (i >= pools.y) {
         return 1.0;
     }
-    if (pools.z != 0u && all(abs(position_m - params.camera_box_centre_m.xyz) < params.camera_box_half_m.xyz)) {
+    // Without a camera volume its half extent is 0: nothing is inside.
+    if (all(abs(position_m - params.camera_box_centre_m.xyz) < params.camera_box_half_m.xyz)) {
         return 0.0;
     }
     return params.camera_box_centre_m.w;
@@ -44,8 +45,13 @@ fn snow_copy_position(index: u32, copy: u32, position_m: vec3<f32>) -> vec3<f32>
     return centre + q - 2.0 * half * floor((q + half) / (2.0 * half));
 }
 
-// The ink particle `i` is drawn with, in particles (drawn_weight): 0 when not drawn.
+// particle_weight (precip_model::drawing::multiplicity): the ink particle `i` is
+// drawn with, in particles; 0 when not drawn.
 fn particle_weight(i: u32, position_m: vec3<f32>) -> f32 {
+    let pools = frame_pools();
+    if (i >= pools.x) {
+        return select(0.0, max(params.camera_box_half_m.w, 1.0), i < pools.z);
+    }
     return drawn_weight(i, particle_multiplicity(i, position_m));
 }
 

@@ -13,6 +13,7 @@
 
 use precip_cover::{CoverGrid, GridFrame};
 use precip_model::host::HostState;
+use precip_model::particles::step::stepped_particles;
 use precip_model::sensors::lidar::{Beam, BeamHit, BeamParams, BeamQuery, BeamReturn};
 use precip_model::sensors::optics::{CrossSectionSums, Optics, OpticsPartial};
 use precip_model::{BackendError, Camera, Particle, PassTiming, Setup, Weather};
@@ -480,7 +481,13 @@ impl<G: Gpu> Simulation<G> {
         }
         gpu.write_buffer(self.buffer_mut(SimBuffer::StepBlocks), base, &step_bytes)?;
         gpu.write_buffer(self.buffer_mut(SimBuffer::CoverBlocks), base, &cover_bytes)?;
-        let counts = self.dispatch_counts();
+        let counts = DispatchCounts {
+            stepped_particles: steps
+                .blocks
+                .first()
+                .map_or(0, |b| stepped_particles(&b.step).len() as u32),
+            ..self.dispatch_counts()
+        };
         // An idle feature's kernels are not dispatched (`KernelWhen`).
         let activity = self.host.activity();
         let substep: Vec<_> = kernels
@@ -535,7 +542,11 @@ impl<G: Gpu> Simulation<G> {
         query: &BeamQuery,
     ) -> Result<Vec<BeamReturn>, BackendError> {
         let beams = query.validate()?;
-        let params = query.params(&beams, self.particle_count, &self.host.setup().ground);
+        let params = query.params(
+            &beams,
+            self.host.particles_in_the_air(),
+            &self.host.setup().ground,
+        );
         let hits = self.first_strikes(gpu, kernels, &params, &beams)?;
         query.answer(
             backend,
@@ -620,7 +631,8 @@ impl<G: Gpu> Simulation<G> {
         let groups = u64::from(x) * u64::from(y);
         let partial_bytes = groups * size_of::<OpticsPartial>() as u64;
         let params = OpticsParams {
-            particle_count: self.particle_count,
+            // The camera volume's particles that rest are not in the air.
+            particle_count: self.host.particles_in_the_air().end,
             ..OpticsParams::default()
         };
         let mut made: Vec<G::Buffer> = Vec::with_capacity(2);

@@ -237,9 +237,13 @@ pub enum PassWhen {
     GroundMirrors,
     /// While they do not.
     GroundMirrorsNot,
-    /// While rain and snow are drawn at the frame's resolution.
+    /// While some particle is in the air to be drawn
+    /// (`precip_model::host::HostState::particles_in_the_air`: at 0 mm/h none is).
+    ParticlesInTheAir,
+    /// While rain and snow are in the air and drawn at the frame's resolution.
     ParticlesFull,
-    /// While they are drawn at a reduced one ([`precip_model::ParticleResolution`]).
+    /// While they are in the air and drawn at a reduced one
+    /// ([`precip_model::ParticleResolution`]).
     ParticlesReduced,
     /// While the water bodies' planar mirror is drawn
     /// ([`precip_model::drawing::water_mirror::frame_mirror`]).
@@ -498,12 +502,12 @@ pub const FRAME_PASSES: [FramePass; 11] = [
     FramePass {
         name: "cull_particles",
         work: PassWork::Kernels(&CULL_PASSES),
-        when: PassWhen::Always,
+        when: PassWhen::ParticlesInTheAir,
     },
     FramePass {
         name: "splat_particles",
         work: PassWork::Kernels(&[SPLAT_PASS]),
-        when: PassWhen::Always,
+        when: PassWhen::ParticlesInTheAir,
     },
     FramePass {
         name: "particles",
@@ -574,6 +578,8 @@ pub struct FrameConditions {
     pub water_shows: bool,
     /// The ground's puddles mirror the scene ([`PassWhen::GroundMirrors`]).
     pub ground_mirrors: bool,
+    /// Some particle is in the air to be drawn ([`PassWhen::ParticlesInTheAir`]).
+    pub particles_in_the_air: bool,
     /// Rain and snow are drawn at a reduced resolution
     /// ([`PassWhen::ParticlesReduced`]).
     pub particles_reduced: bool,
@@ -593,8 +599,11 @@ impl PassWhen {
             Self::WaterShows => conditions.water_shows,
             Self::GroundMirrors => conditions.ground_mirrors,
             Self::GroundMirrorsNot => !conditions.ground_mirrors,
-            Self::ParticlesFull => !conditions.particles_reduced,
-            Self::ParticlesReduced => conditions.particles_reduced,
+            Self::ParticlesInTheAir => conditions.particles_in_the_air,
+            Self::ParticlesFull => conditions.particles_in_the_air && !conditions.particles_reduced,
+            Self::ParticlesReduced => {
+                conditions.particles_in_the_air && conditions.particles_reduced
+            }
             Self::WaterMirrored => conditions.water_mirrored,
             Self::WaterMirroredNot => !conditions.water_mirrored,
             Self::Clouds => conditions.clouds,
@@ -759,6 +768,7 @@ impl FrameHost {
                 shadow_redrawn,
                 water_shows: self.water_bodies || host.activity().water_may_stand,
                 ground_mirrors: false,
+                particles_in_the_air: !host.particles_in_the_air().is_empty(),
                 particles_reduced: setup.render.particle_resolution != ParticleResolution::Full,
                 water_mirrored: mirror.is_some(),
                 clouds: setup.render.cloud_layer.is_some(),
@@ -812,7 +822,12 @@ mod tests {
 
     #[test]
     fn the_plan_skips_the_shadow_and_the_copy_only_when_unneeded() {
-        for (shadow_redrawn, water_shows) in [(false, false), (true, false), (false, true)] {
+        for (shadow_redrawn, water_shows, particles) in [
+            (false, false, true),
+            (true, false, true),
+            (false, true, true),
+            (false, false, false),
+        ] {
             for (particles_reduced, water_mirrored, clouds) in [
                 (false, false, false),
                 (true, false, true),
@@ -823,6 +838,7 @@ mod tests {
                     shadow_redrawn,
                     water_shows,
                     ground_mirrors: false,
+                    particles_in_the_air: particles,
                     particles_reduced,
                     water_mirrored,
                     clouds,
@@ -833,8 +849,11 @@ mod tests {
                     let expected = match p.pass.name {
                         "shadow" => shadow_redrawn,
                         "scene_copy" => water_shows,
-                        "particles" => !particles_reduced,
-                        "particles_reduced" | "particles_composite" => particles_reduced,
+                        "cull_particles" | "splat_particles" => particles,
+                        "particles" => particles && !particles_reduced,
+                        "particles_reduced" | "particles_composite" => {
+                            particles && particles_reduced
+                        }
                         "water_mirror" => water_mirrored,
                         "clouds" => clouds,
                         _ => true,
@@ -863,6 +882,7 @@ mod tests {
                 shadow_redrawn: false,
                 water_shows: true,
                 ground_mirrors,
+                particles_in_the_air: true,
                 particles_reduced: false,
                 water_mirrored: false,
                 clouds: false,

@@ -80,6 +80,9 @@ impl FrameDraws {
 pub enum DispatchOver {
     /// One invocation per particle.
     Particles,
+    /// One invocation per particle a step moves (`StepParams::step_first` on:
+    /// `precip_model::particles::step::stepped_particles`).
+    SteppedParticles,
     /// One invocation per cover texel.
     CoverTexels,
     /// A single workgroup.
@@ -104,6 +107,8 @@ pub enum DispatchOver {
 pub struct DispatchCounts {
     /// Particles.
     pub particles: u32,
+    /// Particles a step moves (the rest rest); the frame: all of them.
+    pub stepped_particles: u32,
     /// Cover texels.
     pub cover_texels: u32,
     /// Wave cells.
@@ -124,6 +129,7 @@ impl DispatchCounts {
         let (x, z) = cover_tiles(cover);
         Self {
             particles,
+            stepped_particles: particles,
             cover_texels: u32::try_from(cover.texel_count()).unwrap_or(u32::MAX),
             wave_cells: u32::try_from(waves.texel_count()).unwrap_or(u32::MAX),
             cover_tiles: x.saturating_mul(z),
@@ -138,9 +144,12 @@ impl DispatchOver {
     pub const fn invocations(self, counts: DispatchCounts) -> u32 {
         match self {
             Self::Particles => counts.particles,
+            Self::SteppedParticles => counts.stepped_particles,
             Self::CoverTexels => counts.cover_texels,
             Self::OneWorkgroup => 1,
-            Self::ParticleList => list_invocations(counts.particles),
+            // A list holds particles in the air only (births come from the ones
+            // stepped, the splat's from the ones drawn).
+            Self::ParticleList => list_invocations(counts.stepped_particles),
             Self::WaveCells => counts.wave_cells,
             Self::CoverTiles => {
                 let per_workgroup = match counts.cover_tiles_per_workgroup {
@@ -319,7 +328,7 @@ const SUBSTEP_HEAD: [KernelPass; 7] = [
     KernelPass {
         program: Program::StepParticles,
         entry_point: "step_particles",
-        over: DispatchOver::Particles,
+        over: DispatchOver::SteppedParticles,
         when: KernelWhen::Always,
     },
     KernelPass {

@@ -669,6 +669,7 @@ impl<G: Gpu> FrameState<G> {
             .ok_or_else(|| missing("the shadow map"))?;
         let counts = DispatchCounts {
             particles: sim.particle_count(),
+            stepped_particles: sim.particle_count(),
             cover_texels: self.cover_texels,
             wave_cells: 0,
             cover_tiles: 0,

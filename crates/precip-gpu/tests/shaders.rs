@@ -132,8 +132,8 @@ fn rust_and_wgsl_layouts_match() {
             lift_area_min_m,
             lift_area_max_m,
             wall_rebound_speed_mps,
-            reserved0,
-            reserved1,
+            step_first,
+            step_end,
             reserved2
         }),
         rust_layout!(Beam {
@@ -162,9 +162,13 @@ fn rust_and_wgsl_layouts_match() {
         }),
         rust_layout!(BeamParams {
             beam_count,
-            particle_count,
+            particle_first,
+            particle_end,
             aperture_radius_m,
-            march_step_m
+            march_step_m,
+            reserved0,
+            reserved1,
+            reserved2
         }),
         rust_layout!(GridFrame {
             origin_m,

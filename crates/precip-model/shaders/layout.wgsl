@@ -77,8 +77,8 @@ struct StepParams {
     lift_area_min_m: vec2<f32>,
     lift_area_max_m: vec2<f32>,
     wall_rebound_speed_mps: f32,
-    reserved0: u32,
-    reserved1: u32,
+    step_first: u32,
+    step_end: u32,
     reserved2: u32,
 }
 

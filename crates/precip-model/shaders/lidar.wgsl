@@ -20,9 +20,13 @@ struct BeamHit {
 
 struct BeamParams {
     beam_count: u32,
-    particle_count: u32,
+    particle_first: u32,
+    particle_end: u32,
     aperture_radius_m: f32,
     march_step_m: f32,
+    reserved0: u32,
+    reserved1: u32,
+    reserved2: u32,
 }
 
 // Rust: precip_gpu::recipe::beam_bindings.
@@ -177,8 +181,9 @@ fn query_beams(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgr
     let bound = beam_group_bound(beam_params.aperture_radius_m);
     var hit = BeamHit(0.0, 0.0, LIDAR_NO_PARTICLE, target_range);
     var hit_index = 0u;
-    let count = beam_params.particle_count;
-    for (var base = 0u; base < count; base += 64u) {
+    // The particles in the air: the ones resting are not (query_on_cpu).
+    let count = beam_params.particle_end;
+    for (var base = beam_params.particle_first; base < count; base += 64u) {
         if (lid == 0u) {
             atomicStore(&kept, 0u);
         }

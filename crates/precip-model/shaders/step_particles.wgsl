@@ -47,7 +47,7 @@ fn step_in_camera_volume(index: u32, generation: u32, moved: Particle) -> Partic
     local.x = wrap_centred(local.x, half.x);
     local.z = wrap_centred(local.z, half.z);
     if (local.y > half.y) {
-        local.y -= 2.0 * half.y;
+        local.y = wrap_centred(local.y, half.y);
     }
     let position = centre + local;
     let ground = ground_height_at(vec2<f32>(position.x, position.z));
@@ -129,8 +129,9 @@ fn step_particle(index: u32, particle: Particle) -> Particle {
 
 @compute @workgroup_size(64)
 fn step_particles(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = linear_index(id, groups);
-    if (i >= step_params.particle_count) {
+    // Over the particles that do not rest (precip_model::particles::step::stepped_particles).
+    let i = step_params.step_first + linear_index(id, groups);
+    if (i >= step_params.step_end) {
         return;
     }
     var next = step_particle(i, particles[i]);

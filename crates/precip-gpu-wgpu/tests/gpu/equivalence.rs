@@ -323,6 +323,43 @@ fn lifted_sand_and_dust_match() {
     );
 }
 
+/// A trace of rain and none at all: the camera volume's particles past the ones
+/// drawn, and at 0 mm/h the sky's, rest (precip_model::particles::step, "Resting
+/// particles") and stay bit for bit as they were, on the GPU as on the CPU.
+#[test]
+fn resting_particles_match() {
+    for intensity_mm_per_h in [0.0005, 0.0] {
+        let mut setup = scenario(14, PrecipitationKind::Rain, true, 6_000, true);
+        setup.weather.intensity_mm_per_h = intensity_mm_per_h;
+        // An 8 × 6 × 8 m box holds about 350 drops at 0.0005 mm/h.
+        if let Some(c) = setup.camera_volume.as_mut() {
+            c.volume.half_extent_m = Vec3::new(4.0, 3.0, 4.0);
+        }
+        let stepped = precip_model::particles::step::stepped_particles(&setup.step_params(
+            &setup.weather,
+            Vec3::ZERO,
+            0.02,
+            0.0,
+        ));
+        assert!(
+            stepped.end < 6_000 && (intensity_mm_per_h > 0.0 || stepped.start == 3_000),
+            "{intensity_mm_per_h} mm/h: {stepped:?} of 6 000 move"
+        );
+        let before = common::cpu_run(&setup, 0, 0.02)
+            .read_particles()
+            .expect("configured");
+        let after = common::cpu_run(&setup, 10, 0.02)
+            .read_particles()
+            .expect("configured");
+        for (i, (a, b)) in before.iter().zip(&after).enumerate() {
+            if !stepped.contains(&(i as u32)) {
+                assert_eq!(a, b, "{intensity_mm_per_h} mm/h: particle {i} rests");
+            }
+        }
+        check(&setup, 10, 0.02);
+    }
+}
+
 /// Display channels on separate machines show the same precipitation from (seed,
 /// clock) alone: two backends stepped alike, each drawing its own view of a rig
 /// (the same eye, 40° apart), hold the same particles, bit for bit.

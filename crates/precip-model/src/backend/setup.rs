@@ -354,6 +354,7 @@ impl Setup {
             _ => 0.0,
         };
         let volume = self.camera_volume.map(|c| c.volume).unwrap_or_default();
+        let pools = self.pool_drawing(weather, camera_centre_m);
         let e = emitter.unwrap_or_else(|| WorldEmitter::horizontal(Vec3::ZERO, 1.0, 1.0, 1.0));
         StepParams {
             emitter_model: e.model,
@@ -400,8 +401,14 @@ impl Setup {
             } else {
                 precip_cover::blowing::dry_snow_threshold_wind_mps(weather.air_temperature_c)
             },
-            reserved0: 0,
-            reserved1: 0,
+            // What rests (particles::step, "Resting particles"): the sky while it
+            // carries and shows nothing, the camera volume's particles not drawn.
+            step_first: if water_per_particle_kg_per_s == 0.0 && pools.world_multiplicity == 0.0 {
+                lift.lift_from
+            } else {
+                0
+            },
+            step_end: pools.camera_drawn_end,
             reserved2: 0,
         }
     }

@@ -21,7 +21,7 @@ use crate::backend::{Backend, BackendInfo, PassTiming, TimingSource, Timings};
 use crate::host::HostState;
 use crate::particles::birth::initial_particle;
 use crate::particles::particle::Particle;
-use crate::particles::step::{StepInputs, step_particle};
+use crate::particles::step::{StepInputs, step_particle, stepped_particles};
 use crate::sensors::lidar::{BeamQuery, BeamReturn, query_on_cpu};
 use crate::weather::Weather;
 
@@ -140,12 +140,12 @@ impl Backend for CpuBackend {
                 cover_texels: &state.cover.texels,
                 deposits: &state.deposits,
             };
-            state
-                .particles
+            let stepped = stepped_particles(&blocks.step);
+            state.particles[stepped.start as usize..stepped.end as usize]
                 .par_iter_mut()
-                .enumerate()
-                .for_each(|(i, p)| {
-                    *p = step_particle(i as u32, p, &inputs).0;
+                .zip(stepped)
+                .for_each(|(p, i)| {
+                    *p = step_particle(i, p, &inputs).0;
                 });
             particle_ms += elapsed_ms(start);
 
@@ -199,9 +199,10 @@ impl Backend for CpuBackend {
 
     fn optics(&mut self) -> Result<crate::sensors::optics::Optics, BackendError> {
         let state = self.state_mut("optics")?;
+        let in_the_air = state.host.particles_in_the_air();
         Ok(state.host.with_layers(crate::sensors::optics::Optics::live(
             state.host.weather(),
-            &state.particles,
+            &state.particles[in_the_air.start as usize..in_the_air.end as usize],
         )))
     }
 
@@ -222,7 +223,7 @@ impl Backend for CpuBackend {
         let beams = query.validate()?;
         let state = self.state_mut("query_beams")?;
         let ground = &state.host.setup().ground;
-        let params = query.params(&beams, state.particles.len() as u32, ground);
+        let params = query.params(&beams, state.host.particles_in_the_air(), ground);
         let hits = query_on_cpu(&beams, &params, &state.particles, ground);
         let air = state.host.unresolved_air();
         query.answer(NAME, &beams, &hits, state.host.weather(), &air)

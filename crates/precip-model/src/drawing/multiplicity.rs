@@ -12,7 +12,11 @@
 //! - `m < 1` (more particles than the air holds, e.g. a trace of drizzle): a
 //!   particle is drawn only if its rank `r(i) ∈ [0, 1)` (a hash of its index, fixed
 //!   for its life) is below `m`, so a share `m` of the pool is drawn, the same ones
-//!   frame after frame; at 0 mm/h nothing is.
+//!   frame after frame; at 0 mm/h nothing is. The camera volume draws its first
+//!   `⌈n_sim·V⌉` particles instead (`camera_drawn_end`): its particles are born at
+//!   random places keyed by their index, so the first ones are as good a sample as
+//!   any, and the ones not drawn form one range that the step leaves at rest
+//!   ([`crate::particles::step`], "Resting particles").
 //! - `m ≥ 1` (the budget is short of the air's count, e.g. a downpour): each drawn
 //!   particle carries `m` particles' ink — its opacity × `m`, up to opaque — so the
 //!   ink on screen, and with it the pixels a photograph's precipitation covers,
@@ -55,6 +59,9 @@ pub struct PoolDrawing {
     pub camera_box_m: Option<(Vec3, Vec3)>,
     /// Copies of each camera-volume flake drawn as a sprite ([`snow_copies`]).
     pub snow_copies: u32,
+    /// The camera volume's particles `[world_count, camera_drawn_end)` are drawn:
+    /// `⌈n_sim·V⌉` of them, at most all (`world_count` without a camera volume).
+    pub camera_drawn_end: u32,
 }
 
 /// The most ink one drawn particle carries, in particles: beyond it the image
@@ -126,13 +133,22 @@ impl Setup {
             }
             None => 0.0,
         };
-        let (camera_multiplicity, camera_box_m): (f32, Option<(Vec3, Vec3)>) =
+        let (camera_multiplicity, camera_box_m, camera_drawn): (f32, Option<(Vec3, Vec3)>, u32) =
             match &self.camera_volume {
-                Some(c) if camera_count > 0 => (
-                    per(n_sim * f64::from(c.volume.volume_m3()), camera_count),
-                    Some((camera_centre_m, c.volume.half_extent_m)),
-                ),
-                _ => (0.0, None),
+                Some(c) if camera_count > 0 => {
+                    let in_the_air = n_sim * f64::from(c.volume.volume_m3());
+                    let drawn = if in_the_air.is_nan() || in_the_air <= 0.0 {
+                        0
+                    } else {
+                        in_the_air.ceil().min(f64::from(camera_count)) as u32
+                    };
+                    (
+                        per(in_the_air, camera_count),
+                        Some((camera_centre_m, c.volume.half_extent_m)),
+                        drawn,
+                    )
+                }
+                _ => (0.0, None, 0),
             };
         PoolDrawing {
             world_count,
@@ -141,6 +157,7 @@ impl Setup {
             camera_multiplicity,
             camera_box_m,
             snow_copies: snow_copies(camera_multiplicity),
+            camera_drawn_end: world_count + camera_drawn,
         }
     }
 
@@ -190,6 +207,22 @@ pub fn particle_multiplicity(pools: &PoolDrawing, index: u32, position_m: Vec3) 
         return 0.0;
     }
     pools.world_multiplicity
+}
+
+/// How much ink particle `index` at `position_m` is drawn with, in particles (0: not
+/// drawn): a camera-volume particle below `camera_drawn_end` carries `max(m, 1)`,
+/// one above it none; a world particle [`drawn_weight`] of its
+/// [`particle_multiplicity`]. WGSL twin: `particle_weight` (particle_lists.wgsl).
+#[must_use]
+pub fn particle_weight(pools: &PoolDrawing, index: u32, position_m: Vec3) -> f32 {
+    if index >= pools.world_count {
+        return if index < pools.camera_drawn_end {
+            pools.camera_multiplicity.max(1.0)
+        } else {
+            0.0
+        };
+    }
+    drawn_weight(index, particle_multiplicity(pools, index, position_m))
 }
 
 /// How much ink particle `index` of multiplicity `m` is drawn with, in particles: 0
@@ -258,6 +291,42 @@ mod tests {
         };
         let p0 = s.pool_drawing(&dry, Vec3::ZERO);
         assert_eq!((p0.world_multiplicity, p0.camera_multiplicity), (0.0, 0.0));
+    }
+
+    #[test]
+    fn the_camera_volume_draws_the_air_s_count_of_its_first_particles_and_the_rest_rest() {
+        for (mm_per_h, kind) in [
+            (0.0, PrecipitationKind::Rain),
+            (0.01, PrecipitationKind::Rain),
+            (0.3, PrecipitationKind::DrySnow),
+            (40.0, PrecipitationKind::Rain),
+        ] {
+            let s = setup(mm_per_h, kind);
+            let p = s.pool_drawing(&s.weather, Vec3::ZERO);
+            let in_the_air = f64::from(s.weather.simulated_number_density_per_m3()) * 3072.0;
+            let drawn = p.camera_drawn_end - p.world_count;
+            assert_eq!(
+                drawn,
+                in_the_air.ceil().min(10_000.0) as u32,
+                "{mm_per_h}: {p:?}"
+            );
+            let weights: Vec<f32> = (p.world_count..p.world_count + 10_000)
+                .map(|i| particle_weight(&p, i, Vec3::ZERO))
+                .collect();
+            let inked = weights.iter().filter(|&&w| w > 0.0).count() as u32;
+            assert_eq!(inked, drawn, "{mm_per_h} mm/h");
+            assert!(weights[..drawn as usize].iter().all(|&w| w >= 1.0));
+            // The step moves exactly the drawn ones of the camera volume; at 0 mm/h
+            // none of the sky's either.
+            let step = s.step_params(&s.weather, Vec3::ZERO, 0.01, 0.0);
+            let moved = crate::particles::step::stepped_particles(&step);
+            assert_eq!(moved.end, p.camera_drawn_end, "{mm_per_h} mm/h");
+            assert_eq!(
+                moved.start == p.lift_from,
+                mm_per_h == 0.0,
+                "{mm_per_h} mm/h"
+            );
+        }
     }
 
     #[test]

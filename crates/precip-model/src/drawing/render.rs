@@ -350,11 +350,12 @@ pub struct RenderParams {
     /// px (0: splat off).
     pub counts: UVec4,
     /// The pools ([`crate::drawing::multiplicity::PoolDrawing`]): world particle
-    /// count, first lifted world particle, camera volume present (1/0), copies of each camera-volume sprite.
+    /// count, first lifted world particle, end of the camera volume's drawn ones,
+    /// copies of each camera-volume sprite.
     pub pools: UVec4,
     /// The camera volume's centre, m; w: the world emitter's multiplicity.
     pub camera_box_centre_m: Vec4,
-    /// The camera volume's half extent, m; w: its multiplicity.
+    /// The camera volume's half extent, m (0 without one); w: its multiplicity.
     pub camera_box_half_m: Vec4,
     /// The lens: aperture m, focus distance m ([`crate::backend::camera::Lens`]);
     /// frame pixels per particle pixel ([`ParticleResolution::factor`]), 0.
@@ -630,7 +631,7 @@ impl RenderParams {
             pools: UVec4::new(
                 f.pools.world_count,
                 f.pools.lift_from,
-                u32::from(f.pools.camera_box_m.is_some()),
+                f.pools.camera_drawn_end,
                 f.pools.snow_copies,
             ),
             camera_box_centre_m: f

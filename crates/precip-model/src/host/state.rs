@@ -297,6 +297,14 @@ impl HostState {
         self.time_s
     }
 
+    /// The particles in the air under the current weather: the ones a step moves
+    /// (the others rest unseen: [`crate::particles::step::stepped_particles`]);
+    /// what the beams and the optics read.
+    #[must_use]
+    pub fn particles_in_the_air(&self) -> std::ops::Range<u32> {
+        crate::particles::step::stepped_particles(&self.step_template)
+    }
+
     /// The step block of the current weather, before a sub-step's camera, length and
     /// time are set.
     #[must_use]

@@ -29,7 +29,23 @@
 //! 3. Camera volume particles wrap through the box's sides and top; one that falls out
 //!    of the bottom or reaches the ground is re-born just under the top (spread over
 //!    one step's fall, so the flux in is continuous), at the same x, z; a raindrop
-//!    that strikes the ground hard enough splashes first.
+//!    that strikes the ground hard enough splashes first. Above the top they wrap
+//!    by whole box heights, so one left far above (resting while the camera flew
+//!    down) comes back into the box in one step.
+//!
+//! ## Resting particles
+//!
+//! A particle that nobody sees and that carries nothing is not stepped at all: the
+//! camera volume's particles past the ones drawn (`m < 1`: it draws its first
+//! `⌈n_sim·V⌉`, [`crate::drawing::multiplicity`]; at 0 mm/h none), and, while the
+//! weather gives the sky nothing to carry or draw (0 mm/h, no grains from the sky),
+//! the world emitter's sky-born particles `[0, lift_from)`. What is left is one
+//! range, `[step_first, step_end)`, and a step runs over it alone: a dispatch of
+//! its length, a loop over it on the CPU. Resting particles keep their state and
+//! wake where they were when the weather wants them again. What lands is
+//! unchanged: a resting world particle gathers no water, and the camera volume's
+//! particles never deposit. The beams and the optics read the range too: what
+//! rests is not in the air.
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec2, Vec3};
@@ -122,10 +138,12 @@ pub struct StepParams {
     /// A snowflake blown against a wall faster than this is carried up along it
     /// instead of settling at its foot, m/s (the snow's transport threshold).
     pub wall_rebound_speed_mps: f32,
-    /// Unused (`0`).
-    pub reserved0: u32,
-    /// Unused (`0`).
-    pub reserved1: u32,
+    /// The first particle a step moves (module docs, "Resting particles"): 0, or
+    /// `lift_from` while the sky-born world particles rest.
+    pub step_first: u32,
+    /// The end of the particles a step moves: the camera volume's drawn ones'
+    /// (`PoolDrawing::camera_drawn_end`).
+    pub step_end: u32,
     /// Unused (`0`).
     pub reserved2: u32,
 }
@@ -188,7 +206,15 @@ pub enum StepEvent {
     Reborn,
 }
 
-/// Advances particle `index` by one step (see the module docs).
+/// The particles a step moves, `[step_first, step_end)` (module docs, "Resting
+/// particles").
+#[must_use]
+pub fn stepped_particles(params: &StepParams) -> std::ops::Range<u32> {
+    params.step_first..params.step_end.max(params.step_first)
+}
+
+/// Advances particle `index` by one step (see the module docs); the step calls it
+/// for [`stepped_particles`] only.
 #[must_use]
 pub fn step_particle(
     index: u32,
@@ -358,7 +384,7 @@ fn step_in_camera_volume(
     local.x = wrap_centred(local.x, half.x);
     local.z = wrap_centred(local.z, half.z);
     if local.y > half.y {
-        local.y -= 2.0 * half.y;
+        local.y = wrap_centred(local.y, half.y);
     }
     let position = centre + local;
     let xz = Vec2::new(position.x, position.z);

@@ -128,14 +128,24 @@ const _: () = assert!(size_of::<BeamHit>() == 16);
 pub struct BeamParams {
     /// Beams in the query.
     pub beam_count: u32,
-    /// Particles in the buffer.
-    pub particle_count: u32,
+    /// The first particle in the air: particles `[particle_first, particle_end)`
+    /// are, the others rest unseen (`precip_model::particles::step`, "Resting
+    /// particles").
+    pub particle_first: u32,
+    /// The end of the particles in the air.
+    pub particle_end: u32,
     /// The beams' aperture radius, m.
     pub aperture_radius_m: f32,
     /// The hard target's march step, m (before [`MAX_MARCH_STEPS`] lengthens it).
     pub march_step_m: f32,
+    /// Unused (`0`).
+    pub reserved0: u32,
+    /// Unused (`0`).
+    pub reserved1: u32,
+    /// Unused (`0`).
+    pub reserved2: u32,
 }
-const _: () = assert!(size_of::<BeamParams>() == 16);
+const _: () = assert!(size_of::<BeamParams>() == 32);
 
 /// Beams to cast, and in which band.
 #[derive(Debug, Clone, PartialEq)]
@@ -219,15 +229,24 @@ impl BeamQuery {
             .collect()
     }
 
-    /// The uniform block for `beams` (validated) over `particle_count` particles and
-    /// `ground`.
+    /// The uniform block for `beams` (validated) over the particles in the air,
+    /// `particles` (`precip_model::particles::step::stepped_particles`), and `ground`.
     #[must_use]
-    pub fn params(&self, beams: &[Beam], particle_count: u32, ground: &GroundMap) -> BeamParams {
+    pub fn params(
+        &self,
+        beams: &[Beam],
+        particles: std::ops::Range<u32>,
+        ground: &GroundMap,
+    ) -> BeamParams {
         BeamParams {
             beam_count: beams.len() as u32,
-            particle_count,
+            particle_first: particles.start,
+            particle_end: particles.end,
             aperture_radius_m: self.aperture_radius_m,
             march_step_m: march_step_m(ground),
+            reserved0: 0,
+            reserved1: 0,
+            reserved2: 0,
         }
     }
 
@@ -655,7 +674,8 @@ pub fn group_may_strike(bound: &BeamGroupBound, centre_m: Vec3, diameter_m: f32)
     distance * outside.sin() <= pad
 }
 
-/// The reference answer: each validated beam against every particle and the ground.
+/// The reference answer: each validated beam against every particle in the air
+/// (`params`' range of `particles`) and the ground.
 #[must_use]
 pub fn query_on_cpu(
     beams: &[Beam],
@@ -673,7 +693,9 @@ pub fn query_on_cpu(
                 particle_flags: NO_PARTICLE,
                 target_range_m: target.unwrap_or(-1.0),
             };
-            for p in particles {
+            let end = (params.particle_end as usize).min(particles.len());
+            let start = (params.particle_first as usize).min(end);
+            for p in &particles[start..end] {
                 let Some(t) =
                     beam_strike_range_m(beam, params.aperture_radius_m, p.position_m, p.diameter_m)
                 else {

@@ -102,7 +102,7 @@ fn a_wall_stops_the_beam_and_hides_the_particles_behind_it() {
     let beams = query(vec![beam]).validate().expect("valid");
     let behind = particle_at(Vec3::new(15.0, 1.0, 0.5), 0.004);
     let before = particle_at(Vec3::new(5.0, 1.0, 0.5), 0.004);
-    let params = query(vec![beam]).params(&beams, 2, &ground);
+    let params = query(vec![beam]).params(&beams, 0..2, &ground);
     let hits = query_on_cpu(&beams, &params, &[behind], &ground);
     assert!(
         (hits[0].target_range_m - 10.0).abs() < 1e-3,
@@ -256,7 +256,7 @@ fn hits_in_a_uniform_field_are_poisson() {
         let beams = q.validate().expect("valid");
         let hits = query_on_cpu(
             &beams,
-            &q.params(&beams, count, &ground),
+            &q.params(&beams, 0..count, &ground),
             &particles,
             &ground,
         );

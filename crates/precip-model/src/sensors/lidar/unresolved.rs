@@ -107,8 +107,15 @@ impl UnresolvedAir {
         camera_m: Vec3,
         time_s: f64,
     ) -> Self {
+        // The camera volume's particles in the air: the ones drawn (the rest rest).
         let (half_extent, particles) = setup.camera_volume.map_or((Vec3::ZERO, 0), |c| {
-            (c.volume.half_extent_m, c.particle_count)
+            (
+                c.volume.half_extent_m,
+                species
+                    .step_end
+                    .saturating_sub(species.world_count)
+                    .min(c.particle_count),
+            )
         });
         Self {
             fog_layer: setup.render.fog_layer,
