@@ -5,5 +5,6 @@ mod common;
 mod determinism;
 mod drifting;
 mod mass_link;
+mod resting;
 mod scene;
 mod splashes;
