@@ -22,8 +22,21 @@ struct ProbeDrawing {
 // 50·h of an aperture a focused at 10 m, a sprite of side `side` at 0.8 defocused by
 // it, a streak's opacity), then (the cover warp at the centre's x, z over cells
 // (a + 0.1, side + 0.1), the flake's sun phase at cos = spin/6, a drop's
-// environment factor at sin e = spin/6 over ground of albedo `tumble`).
+// environment factor at sin e = spin/6 over ground of albedo `tumble`), then (the
+// clouds' march slot of the pixel |centre.xz|, the history's uv and whether it is
+// there for the point centre through probe_history_camera(camera)).
 @group(0) @binding(1) var<storage, read_write> probe_drawing_out: array<vec4<f32>>;
+
+// A projection-like matrix from a point: clip = (p.x + c.x/100, p.y + c.y/100, p.z, −p.z)
+// (the Rust test builds the same).
+fn probe_history_camera(c: vec3<f32>) -> mat4x4<f32> {
+    return mat4x4<f32>(
+        vec4<f32>(1.0, 0.0, 0.0, 0.0),
+        vec4<f32>(0.0, 1.0, 0.0, 0.0),
+        vec4<f32>(0.0, 0.0, 1.0, -1.0),
+        vec4<f32>(c.x / 100.0, c.y / 100.0, 0.0, 0.0),
+    );
+}
 
 @compute @workgroup_size(64)
 fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -33,12 +46,12 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let q = probe_drawing_in[i];
     for (var k = 0u; k < 4u; k++) {
-        probe_drawing_out[19u * i + k] = vec4<f32>(snow_sprite_corner(q.centre_m, q.camera_m, q.side_m, q.spin_rad, q.tumble, k), 0.0);
+        probe_drawing_out[20u * i + k] = vec4<f32>(snow_sprite_corner(q.centre_m, q.camera_m, q.side_m, q.spin_rad, q.tumble, k), 0.0);
         let v = raindrop_vertex(q.centre_m, q.velocity_mps, q.h_m, q.a_m, k);
-        probe_drawing_out[19u * i + 4u + k] = vec4<f32>(v.position_m, 0.0);
-        probe_drawing_out[19u * i + 8u + k] = vec4<f32>(v.normal, 0.0);
+        probe_drawing_out[20u * i + 4u + k] = vec4<f32>(v.position_m, 0.0);
+        probe_drawing_out[20u * i + 8u + k] = vec4<f32>(v.normal, 0.0);
     }
-    probe_drawing_out[19u * i + 12u] = vec4<f32>(
+    probe_drawing_out[20u * i + 12u] = vec4<f32>(
         snow_cover_fraction(q.h_m, q.cover.x, q.a_m, q.cover.y),
         sub_texel_threshold(q.tumble, q.centre_m.xz),
         value_noise(q.centre_m.x, q.centre_m.z),
@@ -46,13 +59,15 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
     );
     for (var k = 0u; k < 4u; k++) {
         let s = snow_streak_corner(q.centre_m, q.camera_m, q.side_m, vec2<f32>(q.spin_rad, q.tumble), q.velocity_mps, 1.0 / 60.0, k);
-        probe_drawing_out[19u * i + 13u + k] = vec4<f32>(s.position_m, s.uv.y);
+        probe_drawing_out[20u * i + 13u + k] = vec4<f32>(s.position_m, s.uv.y);
     }
     let blur = defocus_blur_m(q.a_m, 10.0, 50.0 * q.h_m);
-    probe_drawing_out[19u * i + 17u] = vec4<f32>(
+    probe_drawing_out[20u * i + 17u] = vec4<f32>(
         blur,
         defocused(q.side_m, 0.8, blur, 2),
         defocused(q.side_m, 0.8, blur, 1).y,
     );
-    probe_drawing_out[19u * i + 18u] = vec4<f32>(cover_warp_m(q.centre_m.xz, vec2<f32>(q.a_m + 0.1, q.side_m + 0.1)), flake_sun_phase(q.spin_rad / 6.0), drop_environment_factor(q.spin_rad / 6.0, q.tumble));
+    let history = cloud_history_uv(probe_history_camera(q.camera_m), q.centre_m);
+    probe_drawing_out[20u * i + 19u] = vec4<f32>(f32(cloud_march_slot(vec2<u32>(abs(q.centre_m.xz)))), history.xy, history.z);
+    probe_drawing_out[20u * i + 18u] = vec4<f32>(cover_warp_m(q.centre_m.xz, vec2<f32>(q.a_m + 0.1, q.side_m + 0.1)), flake_sun_phase(q.spin_rad / 6.0), drop_environment_factor(q.spin_rad / 6.0, q.tumble));
 }

@@ -1,6 +1,14 @@
 // render_clouds.wgsl: the cloud layer marched into the clouds' image (a quarter of
-// the frame's side), which the sky lays over itself (fs_sky). The formulas are
-// drawing.wgsl's twins of precip_model::drawing::clouds; docs/model.md (6.9)-(6.12).
+// the frame's side), which the sky lays over itself (fs_sky_clouds). The formulas are
+// drawing.wgsl's twins of precip_model::drawing::clouds; docs/model.md (6.9)-(6.13).
+//
+// Temporal reuse (docs/model.md (6.14)): there are two images, written on
+// alternate frames (pass "clouds" into A, "clouds_b" into B), each reading the other
+// as the frame before's (`cloud_image`, group 1). A frame marches one tile in 16
+// (cloud_march_slot, switches.cloud_shadow.y; CLOUD_MARCH_ALL: every tile, when
+// there is no history) and takes every other pixel from where the frame before's
+// camera saw its ray's entry into the layer; where that lies outside the image it
+// marches.
 
 // The clear sky between the clouds: the haze's colour at the horizon, deeper blue
 // toward the zenith (a look, not a sky model).
@@ -9,10 +17,26 @@ fn clear_sky(horizon: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
     return mix(horizon, zenith, 1.0 - exp(-3.0 * max(dir.y, 0.0)));
 }
 
-// The triangle covering the clouds' image (as vs_sky's).
+// The triangle covering the clouds' image (as vs_sky's): into image A, reading B.
 @vertex
 fn vs_clouds(@builtin(vertex_index) v: u32) -> SkyVarying {
     return sky_triangle(v);
+}
+
+@fragment
+fn fs_clouds(in: SkyVarying) -> @location(0) vec4<f32> {
+    return clouds_with_history(in);
+}
+
+// The same into image B, reading A.
+@vertex
+fn vs_clouds_b(@builtin(vertex_index) v: u32) -> SkyVarying {
+    return sky_triangle(v);
+}
+
+@fragment
+fn fs_clouds_b(in: SkyVarying) -> @location(0) vec4<f32> {
+    return clouds_with_history(in);
 }
 
 // The density at p of the layer `layer` (base, top, coverage, kind), drifted by
@@ -30,8 +54,7 @@ fn cloud_density_at(p: vec3<f32>, layer: vec4<f32>, drift: vec4<f32>) -> f32 {
 // by the sun through CLOUD_SUN_SAMPLES samples toward it (Beer's law) and the
 // two-lobe phase function, and by the sky's light, weaker with depth below the
 // top; each step's light integrated over it, S·(1 − e^(−σΔ)).
-@fragment
-fn fs_clouds(in: SkyVarying) -> @location(0) vec4<f32> {
+fn clouds_with_history(in: SkyVarying) -> vec4<f32> {
     let far = switches.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let camera = switches.camera_m_cone_cos.xyz;
     let ray = normalize_or_zero(far.xyz / far.w - camera);
@@ -41,6 +64,25 @@ fn fs_clouds(in: SkyVarying) -> @location(0) vec4<f32> {
     if (slab.y <= slab.x) {
         return vec4<f32>(0.0);
     }
+    // Not this tile's frame: the frame before's image where its camera saw the
+    // ray's entry into the layer, moved with the clouds' drift since
+    // (cloud_shadow.zw: the map is read at p + drift, so what lies at p now lay
+    // there at p + Δ).
+    let slot = u32(switches.cloud_shadow.y);
+    if (slot < CLOUD_MARCH_ALL && cloud_march_slot(vec2<u32>(in.clip.xy)) != slot) {
+        let moved = vec3<f32>(switches.cloud_shadow.z, 0.0, switches.cloud_shadow.w);
+        let history = cloud_history_uv(switches.previous_view_proj, camera + ray * slab.x + moved);
+        if (history.z > 0.5) {
+            return textureSampleLevel(cloud_image, cover_sampler, history.xy, 0.0);
+        }
+    }
+    return march_clouds(in, camera, ray, slab);
+}
+
+// The layer marched along the pixel's ray over `slab`.
+fn march_clouds(in: SkyVarying, camera: vec3<f32>, ray: vec3<f32>, slab: vec2<f32>) -> vec4<f32> {
+    let layer = switches.clouds;
+    let drift = switches.cloud_drift;
     let to_sun = switches.to_sun_extinction.xyz;
     let sin_sun = max(to_sun.y, 0.05);
     // The sun's light a unit of extinction scatters toward the camera is

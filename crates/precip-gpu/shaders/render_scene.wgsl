@@ -43,6 +43,7 @@ fn frame_pools() -> vec4<u32> {
 // tiling, and the clouds' image the sky lays over itself.
 @group(0) @binding(17) var cloud_map: texture_2d<f32>;
 @group(0) @binding(18) var cloud_sampler: sampler;
+// The clouds' pass reads the other image there: the frame before's.
 @group(1) @binding(4) var cloud_image: texture_2d<f32>;
 // Group 1: light and the flake's opacity.
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
@@ -119,6 +120,21 @@ fn vs_sky_clouds(@builtin(vertex_index) v: u32) -> SkyVarying {
 
 @fragment
 fn fs_sky_clouds(in: SkyVarying) -> @location(0) vec4<f32> {
+    return sky_under_clouds(in);
+}
+
+// The same over the clouds' image B (render_clouds.wgsl: the images alternate).
+@vertex
+fn vs_sky_clouds_b(@builtin(vertex_index) v: u32) -> SkyVarying {
+    return sky_triangle(v);
+}
+
+@fragment
+fn fs_sky_clouds_b(in: SkyVarying) -> @location(0) vec4<f32> {
+    return sky_under_clouds(in);
+}
+
+fn sky_under_clouds(in: SkyVarying) -> vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let ray = normalize_or_zero(far.xyz / far.w - switches.camera_m_cone_cos.xyz);
     let cloud = textureSampleLevel(cloud_image, cover_sampler, in.ndc * vec2<f32>(0.5, -0.5) + 0.5, 0.0);

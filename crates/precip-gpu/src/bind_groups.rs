@@ -290,10 +290,17 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
     ],
 };
 
-/// Group 1 of the sky's draw: the clouds' image.
+/// Group 1 of the sky's draw: the clouds' image A (of the clouds' pass into B:
+/// the frame before's).
 pub const CLOUD_IMAGE: GroupLayout = GroupLayout {
     name: "precip cloud image",
     bindings: &[binding(rb::CLOUD_IMAGE, FILTERED_2D, Stages::Draw)],
+};
+
+/// The same table bound to the clouds' image B (the images alternate by frame).
+pub const CLOUD_IMAGE_B: GroupLayout = GroupLayout {
+    name: "precip cloud image b",
+    ..CLOUD_IMAGE
 };
 
 /// Group 1: light and the flake's opacity.
@@ -447,8 +454,13 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
         (Program::Render, "vs_sky" | "fs_sky") => &[RENDER_FRAME],
-        (Program::Render, "vs_sky_clouds" | "fs_sky_clouds") => &[RENDER_FRAME, CLOUD_IMAGE],
-        (Program::Render, "vs_clouds" | "fs_clouds") => &[RENDER_FRAME],
+        // The sky reads the image its frame marched; the clouds' pass the other.
+        (Program::Render, "vs_sky_clouds" | "fs_sky_clouds" | "vs_clouds_b" | "fs_clouds_b") => {
+            &[RENDER_FRAME, CLOUD_IMAGE]
+        }
+        (Program::Render, "vs_sky_clouds_b" | "fs_sky_clouds_b" | "vs_clouds" | "fs_clouds") => {
+            &[RENDER_FRAME, CLOUD_IMAGE_B]
+        }
         (Program::Render, "vs_mirror" | "fs_mirror") => {
             &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL]
         }

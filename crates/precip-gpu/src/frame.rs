@@ -78,6 +78,7 @@ impl ColourTarget {
             Self::Particles => Some(TargetResource::ParticleImage),
             Self::Mirror => Some(TargetResource::MirrorImage),
             Self::Clouds => Some(TargetResource::CloudImage),
+            Self::CloudsB => Some(TargetResource::CloudImageB),
         }
     }
 }
@@ -100,6 +101,9 @@ pub enum ColourTarget {
     /// a quarter of the frame's side: marched through the cloud layer, then sampled
     /// by the sky.
     Clouds,
+    /// The clouds' second image (`…::CloudImageB`): the images alternate by frame,
+    /// each pass reading the other as the frame before's.
+    CloudsB,
 }
 
 /// Which of the scene's meshes a draw draws.
@@ -250,8 +254,11 @@ pub enum PassWhen {
     WaterMirrored,
     /// While it is not (the water bodies follow their rays over the frame before).
     WaterMirroredNot,
-    /// While a cloud layer is set (`RenderSettings::cloud_layer`).
-    Clouds,
+    /// While a cloud layer is set (`RenderSettings::cloud_layer`) and the frame
+    /// writes the clouds' image A (frames alternate between A and B).
+    CloudsA,
+    /// While one is set and the frame writes image B.
+    CloudsB,
     /// While none is.
     CloudsNot,
 }
@@ -333,11 +340,16 @@ const MIRROR_DRAW: Draw = Draw {
 };
 
 // The cloud layer marched at a quarter of the frame's side (render_clouds.wgsl),
-// into its own image, which the sky then reads.
+// into its own image, which the sky then reads; A and B alternate by frame.
 const CLOUDS_DRAW: Draw = Draw {
     entry_points: render_passes::CLOUDS,
     when: PassWhen::Always,
     ..SKY_DRAW
+};
+
+const CLOUDS_B_DRAW: Draw = Draw {
+    entry_points: render_passes::CLOUDS_B,
+    ..CLOUDS_DRAW
 };
 
 // At the far plane (depth 1), less-or-equal: only where no mesh stands.
@@ -353,10 +365,16 @@ const SKY_DRAW: Draw = Draw {
 };
 
 // The same under a drawn cloud layer: a pipeline of its own that reads the clouds'
-// image.
+// image the frame marched (A or B).
 const SKY_CLOUDS_DRAW: Draw = Draw {
     entry_points: render_passes::SKY_CLOUDS,
-    when: PassWhen::Clouds,
+    when: PassWhen::CloudsA,
+    ..SKY_DRAW
+};
+
+const SKY_CLOUDS_B_DRAW: Draw = Draw {
+    entry_points: render_passes::SKY_CLOUDS_B,
+    when: PassWhen::CloudsB,
     ..SKY_DRAW
 };
 
@@ -432,8 +450,17 @@ const OVER_THE_FRAME: RenderPassRecipe = RenderPassRecipe {
     draws: &PARTICLE_DRAWS,
 };
 
+const CLOUDS_PASS: RenderPassRecipe = RenderPassRecipe {
+    depth: DepthTarget::Clouds,
+    depth_load: AttachmentLoad::Clear,
+    depth_stored: false,
+    colour: Some(AttachmentLoad::Clear),
+    colour_target: ColourTarget::Clouds,
+    draws: &[CLOUDS_DRAW],
+};
+
 /// The frame, in order (see the module docs and [`crate::renderer`]).
-pub const FRAME_PASSES: [FramePass; 11] = [
+pub const FRAME_PASSES: [FramePass; 12] = [
     FramePass {
         name: "cover_texture",
         work: PassWork::Kernels(&[COVER_TEXTURE_PASS, DROP_GROUND_PASS]),
@@ -465,15 +492,17 @@ pub const FRAME_PASSES: [FramePass; 11] = [
     },
     FramePass {
         name: "clouds",
+        work: PassWork::Render(CLOUDS_PASS),
+        when: PassWhen::CloudsA,
+    },
+    FramePass {
+        name: "clouds_b",
         work: PassWork::Render(RenderPassRecipe {
-            depth: DepthTarget::Clouds,
-            depth_load: AttachmentLoad::Clear,
-            depth_stored: false,
-            colour: Some(AttachmentLoad::Clear),
-            colour_target: ColourTarget::Clouds,
-            draws: &[CLOUDS_DRAW],
+            colour_target: ColourTarget::CloudsB,
+            draws: &[CLOUDS_B_DRAW],
+            ..CLOUDS_PASS
         }),
-        when: PassWhen::Clouds,
+        when: PassWhen::CloudsB,
     },
     FramePass {
         name: "scene",
@@ -490,6 +519,7 @@ pub const FRAME_PASSES: [FramePass; 11] = [
                 WATER_BODY_PLANAR_DRAW,
                 SKY_DRAW,
                 SKY_CLOUDS_DRAW,
+                SKY_CLOUDS_B_DRAW,
             ],
         }),
         when: PassWhen::Always,
@@ -585,8 +615,11 @@ pub struct FrameConditions {
     pub particles_reduced: bool,
     /// The water bodies' planar mirror is drawn ([`PassWhen::WaterMirrored`]).
     pub water_mirrored: bool,
-    /// A cloud layer is drawn ([`PassWhen::Clouds`]).
+    /// A cloud layer is drawn ([`PassWhen::CloudsA`], [`PassWhen::CloudsB`]).
     pub clouds: bool,
+    /// The frame marches the clouds into their image B (reading A), else into A
+    /// (reading B).
+    pub clouds_into_b: bool,
 }
 
 impl PassWhen {
@@ -606,7 +639,8 @@ impl PassWhen {
             }
             Self::WaterMirrored => conditions.water_mirrored,
             Self::WaterMirroredNot => !conditions.water_mirrored,
-            Self::Clouds => conditions.clouds,
+            Self::CloudsA => conditions.clouds && !conditions.clouds_into_b,
+            Self::CloudsB => conditions.clouds && conditions.clouds_into_b,
             Self::CloudsNot => !conditions.clouds,
         }
     }
@@ -772,6 +806,7 @@ impl FrameHost {
                 particles_reduced: setup.render.particle_resolution != ParticleResolution::Full,
                 water_mirrored: mirror.is_some(),
                 clouds: setup.render.cloud_layer.is_some(),
+                clouds_into_b: false,
             },
             sky_colour: haze_colour(&setup.render, host.weather()),
             mirror_rect_px: mirror.map(|m| m.rect_px),
@@ -828,11 +863,11 @@ mod tests {
             (false, true, true),
             (false, false, false),
         ] {
-            for (particles_reduced, water_mirrored, clouds) in [
-                (false, false, false),
-                (true, false, true),
-                (false, true, false),
-                (false, false, true),
+            for (particles_reduced, water_mirrored, clouds, into_b) in [
+                (false, false, false, false),
+                (true, false, true, false),
+                (false, true, false, true),
+                (false, false, true, true),
             ] {
                 let plan: Vec<_> = frame_plan(FrameConditions {
                     shadow_redrawn,
@@ -842,6 +877,7 @@ mod tests {
                     particles_reduced,
                     water_mirrored,
                     clouds,
+                    clouds_into_b: into_b,
                 })
                 .collect();
                 assert_eq!(plan.len(), FRAME_PASSES.len());
@@ -855,7 +891,8 @@ mod tests {
                             particles && particles_reduced
                         }
                         "water_mirror" => water_mirrored,
-                        "clouds" => clouds,
+                        "clouds" => clouds && !into_b,
+                        "clouds_b" => clouds && into_b,
                         _ => true,
                     };
                     assert_eq!(p.runs, expected, "{}", p.pass.name);
@@ -886,6 +923,7 @@ mod tests {
                 particles_reduced: false,
                 water_mirrored: false,
                 clouds: false,
+                clouds_into_b: false,
             };
             let ground: Vec<_> = recipe
                 .draws
@@ -913,6 +951,7 @@ mod tests {
                 "shadow",
                 "water_mirror",
                 "clouds",
+                "clouds_b",
                 "scene",
                 "scene_copy",
                 "cull_particles",

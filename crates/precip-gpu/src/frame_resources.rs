@@ -12,8 +12,8 @@ use precip_model::drawing::render::RenderParams;
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 
 use crate::bind_groups::{
-    CLOUD_IMAGE, COVER_TEXTURE, CULL, GroupLayout, PARTICLE_DEPTH, PARTICLE_IMAGE, REFLECTIONS,
-    RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
+    CLOUD_IMAGE, CLOUD_IMAGE_B, COVER_TEXTURE, CULL, GroupLayout, PARTICLE_DEPTH, PARTICLE_IMAGE,
+    REFLECTIONS, RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
 };
 use crate::recipe::{
     DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
@@ -268,8 +268,12 @@ pub enum TargetResource {
     /// Its depth buffer ([`crate::frame::DepthTarget::Mirror`]), of its size.
     MirrorDepth,
     /// The clouds' image ([`crate::frame::ColourTarget::Clouds`]): `Rgba16Float`,
-    /// [`CLOUD_DOWNSCALE`] times smaller along each side than the target.
+    /// [`CLOUD_DOWNSCALE`] times smaller along each side than the target; written on
+    /// alternate frames with [`TargetResource::CloudImageB`], each read as the frame
+    /// before's by the other's pass.
     CloudImage,
+    /// The clouds' second image ([`crate::frame::ColourTarget::CloudsB`]), alike.
+    CloudImageB,
     /// Its depth buffer ([`crate::frame::DepthTarget::Clouds`]), of its size.
     CloudDepth,
 }
@@ -300,7 +304,7 @@ pub fn target_textures(
     copy_format: TexelFormat,
     particles: precip_model::ParticleResolution,
     mirrors: bool,
-) -> [TargetTextureSpec; 9] {
+) -> [TargetTextureSpec; 10] {
     use TargetResource as R;
     use TexelFormat::{Depth32Float, Rgba16Float};
     use TextureUsage::{CopyOfTarget, DepthAttachment, DrawnThenSampled};
@@ -378,6 +382,13 @@ pub fn target_textures(
         spec(
             R::CloudImage,
             "precip cloud image",
+            cloud_size,
+            Rgba16Float,
+            DrawnThenSampled,
+        ),
+        spec(
+            R::CloudImageB,
+            "precip cloud image b",
             cloud_size,
             Rgba16Float,
             DrawnThenSampled,
@@ -506,7 +517,7 @@ pub const FRAME_GROUPS: [FrameGroupFill; 4] = [
 
 /// The groups made for a target's size (the splat kernel's, its resolve's, the
 /// reflections', the reduced particles' and their composite's).
-pub const TARGET_GROUPS: [FrameGroupFill; 6] = [
+pub const TARGET_GROUPS: [FrameGroupFill; 7] = [
     FrameGroupFill {
         layout: &SPLAT,
         bound: &[
@@ -557,6 +568,13 @@ pub const TARGET_GROUPS: [FrameGroupFill; 6] = [
         bound: &[(
             rb::CLOUD_IMAGE,
             FrameBound::Target(TargetResource::CloudImage),
+        )],
+    },
+    FrameGroupFill {
+        layout: &CLOUD_IMAGE_B,
+        bound: &[(
+            rb::CLOUD_IMAGE,
+            FrameBound::Target(TargetResource::CloudImageB),
         )],
     },
     FrameGroupFill {
@@ -614,6 +632,7 @@ mod tests {
                                     | TargetResource::ParticleImage
                                     | TargetResource::MirrorImage
                                     | TargetResource::CloudImage
+                                    | TargetResource::CloudImageB
                             ),
                     ) | (
                         BindingKind::StorageTextureRgba16Float,
@@ -661,6 +680,7 @@ mod tests {
         assert_eq!(size_of(&full, TargetResource::MirrorImage), (1, 1));
         // The clouds' image is always a quarter of the side (a layer may come).
         assert_eq!(size_of(&full, TargetResource::CloudImage), (320, 180));
+        assert_eq!(size_of(&full, TargetResource::CloudImageB), (320, 180));
         let reduced = target_textures(
             size,
             TexelFormat::Rgba8UnormSrgb,

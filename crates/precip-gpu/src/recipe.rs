@@ -538,7 +538,7 @@ pub const FEATURES: [(&str, &[&str]); 7] = [
             "water_mirror",
         ],
     ),
-    ("sky", &["clouds"]),
+    ("sky", &["clouds", "clouds_b"]),
     ("scene", &["scene"]),
     ("shadow", &["shadow"]),
 ];
@@ -743,9 +743,13 @@ pub mod render_passes {
     pub const SKY: (&str, Option<&str>) = ("vs_sky", Some("fs_sky"));
     /// The sky under a drawn cloud layer: the clear sky and the clouds' image.
     pub const SKY_CLOUDS: (&str, Option<&str>) = ("vs_sky_clouds", Some("fs_sky_clouds"));
+    /// The same over the clouds' image B (the images alternate by frame).
+    pub const SKY_CLOUDS_B: (&str, Option<&str>) = ("vs_sky_clouds_b", Some("fs_sky_clouds_b"));
     /// The cloud layer marched into the clouds' image: one triangle of 3 vertices
     /// covering it.
     pub const CLOUDS: (&str, Option<&str>) = ("vs_clouds", Some("fs_clouds"));
+    /// The same into the clouds' image B, reading A as the frame before's.
+    pub const CLOUDS_B: (&str, Option<&str>) = ("vs_clouds_b", Some("fs_clouds_b"));
     /// The splat sums blended over the frame: one triangle of 3 vertices covering the
     /// target, no depth test (the splat kernel tested each particle), alpha blending;
     /// first in the particles' pass.

@@ -13,6 +13,7 @@
 //! binds comes from `bind_groups::groups_of` and the resources tables; nothing of
 //! it is written per backend.
 
+use precip_model::drawing::clouds::CLOUD_MARCH_ALL;
 use precip_model::drawing::water_mirror::MIRROR_DOWNSCALE;
 use precip_model::scene::gpu_scene::TileCull;
 use precip_model::{
@@ -152,9 +153,10 @@ impl<G: Gpu> Drawing<G> {
                 .and_then(|layouts| {
                     let colour = match recipe.colour_target {
                         ColourTarget::Frame => format,
-                        ColourTarget::Particles | ColourTarget::Mirror | ColourTarget::Clouds => {
-                            image_format
-                        }
+                        ColourTarget::Particles
+                        | ColourTarget::Mirror
+                        | ColourTarget::Clouds
+                        | ColourTarget::CloudsB => image_format,
                     };
                     gpu.draw_pipeline(draw, recipe, &layouts, recipe.colour.map(|_| colour))
                 });
@@ -283,10 +285,32 @@ pub struct FrameState<G: Gpu> {
     /// The last frame's camera (world → clip) where it copied its scene and depth
     /// for this frame's reflections (forgotten when the target is made again).
     history: Option<glam::Mat4>,
+    /// What the clouds' image the last frame marched holds (forgotten when the
+    /// target is made again or a frame draws no clouds).
+    cloud_history: Option<CloudHistory>,
     /// Which water mirrors the scene.
     mirrors: Mirrors,
     /// The resolution rain and snow are drawn at.
     particle_resolution: ParticleResolution,
+}
+
+/// The farthest the camera may move in a frame and still reuse the clouds' image
+/// of the frame before, m (beyond, every tile is marched).
+const CLOUD_HISTORY_REACH_M: f32 = 100.0;
+
+/// What the clouds' image a frame marched holds.
+#[derive(Debug, Clone, Copy)]
+struct CloudHistory {
+    /// Its camera, world → clip.
+    view_proj: glam::Mat4,
+    /// It is image B.
+    in_b: bool,
+    /// Its layer (`RenderParams::clouds`).
+    layer: glam::Vec4,
+    /// The clouds' drift then, m.
+    drift_m: glam::Vec2,
+    /// Its camera's position, m.
+    camera_m: glam::Vec3,
 }
 
 /// What a frame group's entries resolve against.
@@ -378,6 +402,7 @@ impl<G: Gpu> FrameState<G> {
             cover_texels: texels.x * texels.y,
             ran: [false; FRAME_PASSES.len()],
             history: None,
+            cloud_history: None,
             mirrors: setup.render.mirrors,
             particle_resolution: setup.render.particle_resolution,
         };
@@ -540,6 +565,7 @@ impl<G: Gpu> FrameState<G> {
         }
         .groups(gpu, drawing, &TARGET_GROUPS);
         self.history = None;
+        self.cloud_history = None;
         match groups {
             Ok(groups) => {
                 self.target = Some(TargetState {
@@ -603,6 +629,7 @@ impl<G: Gpu> FrameState<G> {
                 Mirrors::AllWater => true,
             };
         }
+        self.reuse_clouds(&mut decision, view);
         let slot = (self.frames_drawn % u64::from(gpu.slots().max(1))) as u32;
         gpu.free_slot(slot)?;
         let offset = u64::from(slot) * self.params_stride;
@@ -644,11 +671,46 @@ impl<G: Gpu> FrameState<G> {
             .conditions
             .water_shows
             .then_some(decision.params.view_proj);
+        self.cloud_history = decision.conditions.clouds.then_some(CloudHistory {
+            view_proj: decision.params.view_proj,
+            in_b: decision.conditions.clouds_into_b,
+            layer: decision.params.clouds,
+            drift_m: glam::Vec2::new(decision.params.cloud_drift.x, decision.params.cloud_drift.y),
+            camera_m: view.camera.position_m,
+        });
         self.frames_drawn += 1;
         if surface.is_none() {
             self.rendered = true;
         }
         Ok(())
+    }
+
+    /// Which clouds' image the frame marches into (the other than the last frame's)
+    /// and which of its tiles: one in [`CLOUD_MARCH_ALL`] where the other holds the
+    /// frame before's clouds of the same layer seen from nearby (its camera in
+    /// `previous_view_proj`, the clouds' drift since in `cloud_shadow.zw`), every
+    /// tile otherwise, or from inside the layer (render_clouds.wgsl).
+    fn reuse_clouds(&self, decision: &mut FrameDecision, view: &View) {
+        let params = &mut decision.params;
+        let camera_m = view.camera.position_m;
+        let drift_m = glam::Vec2::new(params.cloud_drift.x, params.cloud_drift.y);
+        decision.conditions.clouds_into_b = self.cloud_history.is_some_and(|h| !h.in_b);
+        let inside = (params.clouds.x..=params.clouds.y).contains(&camera_m.y);
+        let reusable = self.cloud_history.filter(|h| {
+            h.layer == params.clouds
+                && h.camera_m.distance(camera_m) < CLOUD_HISTORY_REACH_M
+                && !inside
+        });
+        params.cloud_shadow.y = match reusable {
+            Some(h) => {
+                params.previous_view_proj = h.view_proj;
+                let moved = drift_m - h.drift_m;
+                params.cloud_shadow.z = moved.x;
+                params.cloud_shadow.w = moved.y;
+                (self.frames_drawn % u64::from(CLOUD_MARCH_ALL)) as f32
+            }
+            None => CLOUD_MARCH_ALL as f32,
+        };
     }
 
     /// The frame plan under `decision` as commands.

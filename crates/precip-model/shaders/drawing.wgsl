@@ -329,6 +329,27 @@ const CLOUD_DOME: f32 = 0.25;
 const CLOUD_VIEW_STEPS: u32 = 20u;
 const CLOUD_SUN_SAMPLES: u32 = 3u;
 const CLOUD_MAX_PATH_M: f32 = 30000.0;
+const CLOUD_MARCH_TILE_PX: u32 = 4u;
+const CLOUD_MARCH_ALL: u32 = 16u;
+
+// cloud_march_slot: the frame of CLOUD_MARCH_ALL that marches pixel's tile (4 × 4 Bayer).
+fn cloud_march_slot(pixel: vec2<u32>) -> u32 {
+    let bayer = array<u32, 16>(0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);
+    let tile = pixel / CLOUD_MARCH_TILE_PX;
+    return bayer[(tile.y % 4u) * 4u + tile.x % 4u];
+}
+
+// cloud_history_uv: where the frame before's clouds' image holds p_m (xy), and
+// whether it does (z: 1, else 0: behind that camera or outside its image).
+fn cloud_history_uv(previous_view_proj: mat4x4<f32>, p_m: vec3<f32>) -> vec3<f32> {
+    let clip = previous_view_proj * vec4<f32>(p_m, 1.0);
+    if (clip.w <= 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let uv = vec2<f32>(clip.x, -clip.y) / clip.w * 0.5 + 0.5;
+    let inside = all(uv >= vec2<f32>(0.0)) && all(uv <= vec2<f32>(1.0));
+    return vec3<f32>(uv, select(0.0, 1.0, inside));
+}
 
 // cloud_profile: the kind's height profile at h (0 at the base, 1 at the top).
 fn cloud_profile(kind: u32, h: f32) -> f32 {

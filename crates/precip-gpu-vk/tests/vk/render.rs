@@ -273,9 +273,10 @@ fn timings_name_every_pass_of_a_frame() {
                 "particles_composite",
                 "water_mirror",
                 "clouds",
+                "clouds_b",
             ]
         } else {
-            &["particles", "water_mirror", "clouds"]
+            &["particles", "water_mirror", "clouds", "clouds_b"]
         };
         for pass in ["step_particles"]
             .into_iter()

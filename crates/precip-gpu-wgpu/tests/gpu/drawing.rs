@@ -6,6 +6,7 @@ use glam::Vec3;
 use precip_gpu::recipe::ProbeDrawing;
 use precip_gpu::shaders::Program;
 use precip_model::cover::{cover_warp_m, snow_cover_fraction, sub_texel_threshold, value_noise};
+use precip_model::drawing::clouds::{cloud_history_uv, cloud_march_slot};
 use precip_model::drawing::multiplicity::drawn_weight;
 use precip_model::drawing::{
     defocus_blur_m, defocused, drop_environment_factor, flake_sun_phase,
@@ -53,7 +54,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             Program::ProbeDrawing,
             bytemuck::cast_slice(&inputs),
             inputs.len() as u32,
-            (inputs.len() * 19 * 16) as u64,
+            (inputs.len() * 20 * 16) as u64,
         );
         let got: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
         for (i, q) in inputs.iter().enumerate() {
@@ -75,7 +76,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 .chain(&tetra.normals)
                 .copied();
             for (k, want) in expected.enumerate() {
-                let g = got[19 * i + k];
+                let g = got[20 * i + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 // The four face normals (values 8–11) of a drop's thin tetrahedron are
                 // cross products of nearly parallel edges: a driver that fuses a
@@ -88,7 +89,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                     "{name}: input {i} value {k}: WGSL {have} vs Rust {want}"
                 );
             }
-            let cover = got[19 * i + 12];
+            let cover = got[20 * i + 12];
             let want = [
                 snow_cover_fraction(q.h_m, q.cover[0], q.a_m, q.cover[1]),
                 sub_texel_threshold(q.tumble, [centre.x, centre.z]),
@@ -114,7 +115,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             let blur = defocus_blur_m(q.a_m, 10.0, 50.0 * q.h_m);
             let sprite = defocused(q.side_m, 0.8, blur, 2);
             let streak_opacity = defocused(q.side_m, 0.8, blur, 1).1;
-            let g = got[19 * i + 17];
+            let g = got[20 * i + 17];
             for (k, want) in [blur, sprite.0, sprite.1, streak_opacity]
                 .into_iter()
                 .enumerate()
@@ -126,7 +127,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 );
             }
             let warp = cover_warp_m([centre.x, centre.z], [q.a_m + 0.1, q.side_m + 0.1]);
-            let g = got[19 * i + 18];
+            let g = got[20 * i + 18];
             assert!(
                 (g[0] - warp[0]).abs() <= 2e-5 && (g[1] - warp[1]).abs() <= 2e-5,
                 "{name}: input {i} cover warp: WGSL {g:?} vs Rust {warp:?}"
@@ -144,8 +145,29 @@ fn wgsl_drawing_equals_rust_drawing() {
                 "{name}: input {i} drop environment: WGSL {} vs Rust {drop}",
                 g[3]
             );
+            // The clouds' march slot and the history's uv.
+            let g = got[20 * i + 19];
+            let slot = cloud_march_slot(glam::UVec2::new(
+                centre.x.abs() as u32,
+                centre.z.abs() as u32,
+            ));
+            assert_eq!(g[0] as u32, slot, "{name}: input {i} march slot");
+            let c = Vec3::from(q.camera_m) / 100.0;
+            let camera = glam::Mat4::from_cols(
+                glam::Vec4::X,
+                glam::Vec4::Y,
+                glam::Vec4::new(0.0, 0.0, 1.0, -1.0),
+                glam::Vec4::new(c.x, c.y, 0.0, 0.0),
+            );
+            match cloud_history_uv(camera, centre) {
+                Some(uv) => assert!(
+                    g[3] > 0.5 && (g[1] - uv.x).abs() <= 1e-5 && (g[2] - uv.y).abs() <= 1e-5,
+                    "{name}: input {i} history: WGSL {g:?} vs Rust {uv}"
+                ),
+                None => assert!(g[3] < 0.5, "{name}: input {i} history: WGSL {g:?} vs none"),
+            }
             for (k, (want, uv)) in streak.iter().enumerate() {
-                let g = got[19 * i + 13 + k];
+                let g = got[20 * i + 13 + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 let tolerance = 1e-5 * (1.0 + want.abs().max_element());
                 assert!(

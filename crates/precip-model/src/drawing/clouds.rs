@@ -32,10 +32,17 @@
 //! integrated over the step (`S·(1 − e^(−σΔ))/σ`, energy conserving: Hillaire 2016)
 //! times the transmittance so far.
 //!
-//! WGSL twins: `cloud_profile`, `cloud_density`, `cloud_phase`, `cloud_slab` in
-//! drawing.wgsl, `fs_clouds` in render_clouds.wgsl.
+//! ## A sixteenth a frame
+//!
+//! A frame marches one tile in [`CLOUD_MARCH_ALL`] of the clouds' image
+//! ([`cloud_march_slot`]) and takes the other pixels from the frame before's image
+//! where its camera saw them ([`cloud_history_uv`]; docs/model.md (6.14)).
+//!
+//! WGSL twins: `cloud_profile`, `cloud_density`, `cloud_phase`, `cloud_slab`,
+//! `cloud_march_slot`, `cloud_history_uv` in drawing.wgsl, `clouds_with_history` in
+//! render_clouds.wgsl.
 
-use glam::{Vec2, Vec3};
+use glam::{Mat4, UVec2, Vec2, Vec3};
 
 use crate::BackendError;
 
@@ -296,6 +303,40 @@ pub fn cloud_slab(camera_y_m: f32, dir_y: f32, base_m: f32, top_m: f32) -> (f32,
     (s0, s1.min(s0 + CLOUD_MAX_PATH_M))
 }
 
+/// Side of a tile of the clouds' image marched as one, px: a CPU rasteriser shades
+/// a 4 × 4 block of pixels as one vector and runs a loop as long as any of them
+/// needs it, so what is marched a frame is whole tiles (on a GPU a warp holds two).
+pub const CLOUD_MARCH_TILE_PX: u32 = 4;
+/// Frames over which every tile is marched once; the slot that marches every tile
+/// (no history to reproject).
+pub const CLOUD_MARCH_ALL: u32 = 16;
+
+/// Which frame of [`CLOUD_MARCH_ALL`] marches the tile of the clouds' image holding
+/// `pixel`: the 4 × 4 Bayer order over the tiles, so each frame's tiles are spread
+/// evenly over the image (Schneider & Vos 2015, *The real-time volumetric
+/// cloudscapes of Horizon Zero Dawn*: one pixel in 16 a frame). WGSL twin:
+/// `cloud_march_slot` (drawing.wgsl).
+#[must_use]
+pub fn cloud_march_slot(pixel: UVec2) -> u32 {
+    const BAYER: [u32; 16] = [0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5];
+    let tile = pixel / CLOUD_MARCH_TILE_PX;
+    BAYER[((tile.y % 4) * 4 + tile.x % 4) as usize]
+}
+
+/// Where the clouds' image of the frame before (its camera `previous_view_proj`)
+/// holds the point `p_m`: its texture coordinates (`v` down), or `None` where it
+/// was behind that camera or outside its image (the pixel is marched again).
+/// WGSL twin: `cloud_history_uv` (drawing.wgsl).
+#[must_use]
+pub fn cloud_history_uv(previous_view_proj: Mat4, p_m: Vec3) -> Option<Vec2> {
+    let clip = previous_view_proj * p_m.extend(1.0);
+    if clip.w <= 0.0 {
+        return None;
+    }
+    let uv = Vec2::new(clip.x, -clip.y) / clip.w * 0.5 + 0.5;
+    (uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all()).then_some(uv)
+}
+
 /// The tiling coverage map: Perlin noise of five octaves over a [`CLOUD_MAP_PX`]²
 /// torus, each value replaced by its rank (so the values spread evenly over
 /// `[0, 1)`), as bytes (R8Unorm), deterministic.
@@ -488,6 +529,51 @@ pub fn cloud_map_uvs(p: Vec3, offset_m: Vec2) -> (Vec2, Vec2) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_tile_is_marched_once_in_sixteen_frames_and_each_frame_s_are_spread() {
+        // A 64 × 48 image (a quarter of 256 × 192).
+        let mut marched = vec![0u32; 64 * 48];
+        for slot in 0..CLOUD_MARCH_ALL {
+            let mut tiles = Vec::new();
+            for y in 0..48u32 {
+                for x in 0..64u32 {
+                    if cloud_march_slot(UVec2::new(x, y)) == slot {
+                        marched[(y * 64 + x) as usize] += 1;
+                        tiles.push(UVec2::new(x, y) / CLOUD_MARCH_TILE_PX);
+                    }
+                }
+            }
+            // Whole tiles: each a frame's has all its 16 pixels.
+            assert_eq!(tiles.len() % 16, 0);
+            // One tile in every 4 × 4 block of tiles (16 × 12 tiles: 12 blocks).
+            tiles.dedup();
+            let mut blocks: Vec<_> = tiles.iter().map(|t| *t / 4).collect();
+            blocks.sort_by_key(|b| (b.y, b.x));
+            blocks.dedup();
+            assert_eq!(blocks.len(), 12, "slot {slot}");
+        }
+        assert!(marched.iter().all(|&n| n == 1));
+    }
+
+    #[test]
+    fn the_history_is_read_where_the_camera_before_saw_the_point() {
+        let camera = crate::Camera {
+            position_m: Vec3::new(0.0, 2.0, 0.0),
+            forward: Vec3::NEG_Z,
+            up: Vec3::Y,
+            ..crate::Camera::default()
+        };
+        let view_proj = crate::drawing::render::view_projection(&camera, 16.0 / 9.0);
+        // Straight ahead: the image's centre; behind: none; far to the side: none.
+        let ahead = cloud_history_uv(view_proj, Vec3::new(0.0, 2.0, -2000.0)).expect("seen");
+        assert!((ahead - Vec2::splat(0.5)).length() < 1e-4, "{ahead}");
+        assert!(cloud_history_uv(view_proj, Vec3::new(0.0, 2.0, 2000.0)).is_none());
+        assert!(cloud_history_uv(view_proj, Vec3::new(2000.0, 2.0, -10.0)).is_none());
+        // Up is up the image (v down): a point above the axis has v < ½.
+        let up = cloud_history_uv(view_proj, Vec3::new(0.0, 400.0, -2000.0)).expect("seen");
+        assert!(up.y < 0.5 && (up.x - 0.5).abs() < 1e-4, "{up}");
+    }
 
     #[test]
     fn the_map_s_values_are_spread_evenly() {

@@ -384,7 +384,11 @@ pub struct RenderParams {
     pub cloud_drift: Vec4,
     /// The share of the sun's light that reaches the ground under the camera through
     /// the cloud layer ([`crate::drawing::clouds::cloud_sun_transmittance`]: the
-    /// clouds' shadow, one share for the frame; 1 without a layer), 0, 0, 0.
+    /// clouds' shadow, one share for the frame; 1 without a layer); the frame's
+    /// slot of the clouds' march ([`crate::drawing::clouds::cloud_march_slot`];
+    /// [`crate::drawing::clouds::CLOUD_MARCH_ALL`]: every tile, as made here — the
+    /// renderer sets it where the frame before's image can be reused); the clouds'
+    /// drift since that image (x, z m).
     pub cloud_shadow: Vec4,
 }
 const _: () = assert!(size_of::<RenderParams>() == 736);
@@ -676,7 +680,7 @@ impl RenderParams {
                         f.settings.to_sun.normalize(),
                     )
                 }),
-                0.0,
+                crate::drawing::clouds::CLOUD_MARCH_ALL as f32,
                 0.0,
                 0.0,
             ),
