@@ -329,6 +329,7 @@ const CLOUD_DOME: f32 = 0.25;
 const CLOUD_VIEW_STEPS: u32 = 20u;
 const CLOUD_SUN_SAMPLES: u32 = 3u;
 const CLOUD_MAX_PATH_M: f32 = 30000.0;
+const CLOUD_INSIDE_PATH_M: f32 = 2000.0;
 const CLOUD_MARCH_TILE_PX: u32 = 4u;
 const CLOUD_MARCH_ALL: u32 = 16u;
 
@@ -401,7 +402,8 @@ fn cloud_sun_light(cos_mu: f32, optical: f32) -> f32 {
 // cloud_slab: where the ray crosses [base_m, top_m], at most CLOUD_MAX_PATH_M long.
 fn cloud_slab(camera_y_m: f32, dir_y: f32, base_m: f32, top_m: f32) -> vec2<f32> {
     let s = fog_layer_segment(camera_y_m, dir_y, CLOUD_MAX_PATH_M * 4.0, base_m, top_m);
-    return vec2<f32>(s.x, min(s.y, s.x + CLOUD_MAX_PATH_M));
+    let inside = camera_y_m >= base_m && camera_y_m <= top_m;
+    return vec2<f32>(s.x, min(s.y, s.x + select(CLOUD_MAX_PATH_M, CLOUD_INSIDE_PATH_M, inside)));
 }
 
 // cloud_map_uvs: the column's uv (drifting by offset_m) and the detail's.

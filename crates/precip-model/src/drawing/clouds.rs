@@ -219,6 +219,11 @@ pub const CLOUD_VIEW_STEPS: u32 = 20;
 pub const CLOUD_SUN_SAMPLES: u32 = 3;
 /// The longest path through the layer marched, m (beyond, the haze hides it).
 pub const CLOUD_MAX_PATH_M: f32 = 30_000.0;
+/// The longest path marched from a camera inside the layer, m: a cloud's visibility
+/// is tens of metres, so the steps stay short enough to meet the cloud around the
+/// camera (over the full path they would step past it and show far clouds
+/// through it as sparkles).
+pub const CLOUD_INSIDE_PATH_M: f32 = 2_000.0;
 /// The two lobes of the phase function: forward asymmetry, backward asymmetry and
 /// the forward lobe's weight (a silver lining toward the sun, a little back-scatter
 /// away from it; Schneider & Vos 2015 use two lobes the same way).
@@ -289,8 +294,9 @@ pub fn cloud_sun_light(cos_mu: f32, optical: f32) -> f32 {
 pub const CLOUD_OCTAVES: u32 = 3;
 
 /// Where a ray from `camera_y_m` going up `dir_y` a metre crosses the layer
-/// `[base_m, top_m]`: `(t₀, t₁)`, at most [`CLOUD_MAX_PATH_M`] long; `t₀ = t₁` when
-/// it does not.
+/// `[base_m, top_m]`: `(t₀, t₁)`, at most [`CLOUD_MAX_PATH_M`] long, and at most
+/// [`CLOUD_INSIDE_PATH_M`] from a camera inside the layer; `t₀ = t₁` when it does
+/// not.
 #[must_use]
 pub fn cloud_slab(camera_y_m: f32, dir_y: f32, base_m: f32, top_m: f32) -> (f32, f32) {
     let (s0, s1) = crate::drawing::fog_layer::fog_layer_segment(
@@ -300,7 +306,12 @@ pub fn cloud_slab(camera_y_m: f32, dir_y: f32, base_m: f32, top_m: f32) -> (f32,
         base_m,
         top_m,
     );
-    (s0, s1.min(s0 + CLOUD_MAX_PATH_M))
+    let longest = if (base_m..=top_m).contains(&camera_y_m) {
+        CLOUD_INSIDE_PATH_M
+    } else {
+        CLOUD_MAX_PATH_M
+    };
+    (s0, s1.min(s0 + longest))
 }
 
 /// Side of a tile of the clouds' image marched as one, px: a CPU rasteriser shades
@@ -750,9 +761,12 @@ mod tests {
         // Level from the ground: never.
         let (a, b) = cloud_slab(0.0, 0.0, 1_000.0, 2_500.0);
         assert!(b <= a);
-        // From inside, level: the longest path marched.
+        // From inside, level: the longest path marched from inside.
         let (a, b) = cloud_slab(1_500.0, 0.0, 1_000.0, 2_500.0);
-        assert!(a.abs() < 1e-3 && (b - CLOUD_MAX_PATH_M).abs() < 1.0);
+        assert!(a.abs() < 1e-3 && (b - CLOUD_INSIDE_PATH_M).abs() < 1.0);
+        // From below, nearly level: the longest path.
+        let (a, b) = cloud_slab(0.0, 0.05, 1_000.0, 2_500.0);
+        assert!((b - a - CLOUD_MAX_PATH_M).abs() < 1.0, "{a} {b}");
         // From above looking down at 30°: enters at the top.
         let (a, b) = cloud_slab(3_000.0, -0.5, 1_000.0, 2_500.0);
         assert!(
