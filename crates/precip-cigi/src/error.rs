@@ -44,7 +44,7 @@ pub enum CigiError {
         expected: Option<usize>,
     },
     /// A number is NaN or infinite.
-    #[error("CIGI weather field {field} is not finite")]
+    #[error("CIGI field {field} is not finite")]
     NonFinite {
         /// The field.
         field: &'static str,

@@ -25,11 +25,12 @@
 //! up to its base elevation + thickness, of the visibility range the host sends (by
 //! severity when it sends 0: 1 000, 500, 300, 200, 100, 50 m); disabling it clears
 //! it. Cloud layers 1–3 (base elevation, thickness, coverage, cloud type: [`cloud_kind`])
-//! are kept; the lowest of those on is drawn. Hail (layer 7) and the regional and
-//! entity scopes are counted as ignored.
+//! are kept and every one that is on is drawn, lowest first; a layer reaching into
+//! the one below it starts at that one's top (dropped where less than 10 m of it is
+//! left). Hail (layer 7) and the regional and entity scopes are counted as ignored.
 
 use glam::Vec3;
-use precip_model::drawing::clouds::{CloudKind, CloudLayer};
+use precip_model::drawing::clouds::{CloudKind, CloudLayer, CloudLayers};
 use precip_model::drawing::fog_layer::FogLayer;
 use precip_model::physics::grain::{Grain, grain_settling_speed_mps};
 use precip_model::wind::WindField;
@@ -48,6 +49,9 @@ pub const GRAIN_VISIBILITY_M: [f32; 6] = [5_000.0, 2_000.0, 1_000.0, 500.0, 200.
 pub const FOG_VISIBILITY_M: [f32; 6] = [1_000.0, 500.0, 300.0, 200.0, 100.0, 50.0];
 /// CIGI 3.3's layer ID of the ground fog.
 pub const GROUND_FOG_LAYER: u8 = 0;
+/// The thinnest cloud layer drawn, m ([`CloudLayer::validate`]'s least).
+const MIN_CLOUD_THICKNESS_M: f32 = 10.0;
+
 /// CIGI 3.3's layer IDs of the cloud layers.
 pub const CLOUD_LAYERS: std::ops::RangeInclusive<u8> = 1..=3;
 
@@ -94,8 +98,8 @@ pub enum Applied {
     Changed(Weather),
     /// The ground fog changed to this layer (`None`: cleared).
     Fog(Option<FogLayer>),
-    /// The cloud layer drawn changed to this (`None`: no cloud layer is on).
-    Clouds(Option<CloudLayer>),
+    /// The cloud layers drawn changed to these (none: no cloud layer is on).
+    Clouds(CloudLayers),
     /// The packet was for a layer, scope or kind precip does not draw.
     Ignored,
     /// The weather it asks for is not physical (precip_model's validation): kept
@@ -137,14 +141,28 @@ impl HostWeather {
         self.layer_extent_m
     }
 
-    /// The cloud layer drawn: the lowest of those on (precip draws one layer).
+    /// The cloud layers drawn: every one that is on, lowest first, each starting
+    /// no lower than the top of the one below it (a layer with less than 10 m
+    /// left above that top is not drawn).
     #[must_use]
-    pub fn cloud_layer(&self) -> Option<CloudLayer> {
-        self.cloud_layers
-            .iter()
-            .flatten()
-            .min_by(|a, b| a.base_m.total_cmp(&b.base_m))
-            .copied()
+    pub fn cloud_layers(&self) -> CloudLayers {
+        let mut on: Vec<CloudLayer> = self.cloud_layers.iter().flatten().copied().collect();
+        on.sort_by(|a, b| a.base_m.total_cmp(&b.base_m));
+        let mut drawn: Vec<CloudLayer> = Vec::with_capacity(on.len());
+        for layer in on {
+            let floor = drawn.last().map_or(f32::NEG_INFINITY, CloudLayer::top_m);
+            let base_m = layer.base_m.max(floor);
+            let thickness_m = layer.top_m() - base_m;
+            if thickness_m >= MIN_CLOUD_THICKNESS_M {
+                drawn.push(CloudLayer {
+                    base_m,
+                    thickness_m,
+                    ..layer
+                });
+            }
+        }
+        // Each layer was validated on arrival; cut as above they stay valid.
+        CloudLayers::new(&drawn).unwrap_or_default()
     }
 
     /// The ground fog in effect.
@@ -227,7 +245,7 @@ impl HostWeather {
         if let Some(s) = self.cloud_layers.get_mut(slot) {
             *s = layer;
         }
-        Applied::Clouds(self.cloud_layer())
+        Applied::Clouds(self.cloud_layers())
     }
 
     /// The ground fog layer of a packet for layer 0.

@@ -14,18 +14,29 @@
 //! given with [`CigiReceiver::reply_to`]), in the host's byte order, echoing its
 //! frame counter, so a host running synchronously can pace itself on it.
 //!
-//! The viewer listens with `--cigi PORT` (headless and in the window). Not yet here:
-//! the other weather layers' looks (fog, clouds), hail, and regional and entity
-//! scopes.
+//! The host flies the eyepoint ([`HostView`]): Entity Control places the ownship
+//! (and other entities) by latitude, longitude, altitude and attitude on the
+//! scene's local tangent plane ([`GeodeticOrigin`]), View Control hangs the view
+//! drawn on an entity, View Definition sets its field of view;
+//! [`CigiReceiver::take_eyepoint`] hands the camera over, and
+//! [`CigiReceiver::wait_for_host_frame`] keeps the IG in lockstep with a host
+//! running synchronously.
+//!
+//! The viewer listens with `--cigi PORT` (headless and in the window; `--origin`,
+//! `--cigi-view`, `--cigi-lockstep`). Not yet here: hail, regional and entity
+//! weather scopes, the other views of a multi-channel rig in one IG.
 
 pub mod error;
+pub mod host_view;
 pub mod host_weather;
 pub mod packet;
 pub mod receiver;
 
 pub use error::CigiError;
+pub use host_view::{Eyepoint, GeodeticOrigin, HostView};
 pub use host_weather::{Applied, HostWeather};
 pub use packet::{
-    ByteOrder, IgControl, Packet, StartOfFrame, WeatherControl, parse_message, parse_start_of_frame,
+    ByteOrder, EntityControl, IgControl, Packet, StartOfFrame, ViewControl, ViewDefinition,
+    WeatherControl, parse_message, parse_start_of_frame,
 };
 pub use receiver::{CigiReceiver, PacketCounts};

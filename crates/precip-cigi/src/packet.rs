@@ -5,7 +5,9 @@
 //! order: read big-endian it is 0x8000 for a big-endian sender and 0x0080 for a
 //! little-endian one. Every packet starts with its opcode and its size in bytes;
 //! packets precip does not use are skipped by their size. Layouts: CIGI ICD 3.3,
-//! §4.1.1 (IG Control) and §4.1.12 (Weather Control).
+//! §4.1.1 (IG Control), §4.1.12 (Weather Control), and for the eyepoint §4.1.2
+//! (Entity Control), §4.1.16 (View Control), §4.1.21 (View Definition) in
+//! [`view`].
 //!
 //! The IG answers each frame with Start of Frame (§4.2.1, opcode 101, 24 bytes:
 //! major version, database, IG status, IG mode / timestamp valid / earth model /
@@ -15,6 +17,12 @@
 //! with IG Control, so [`parse_start_of_frame`] reads one back.
 
 use crate::error::CigiError;
+
+mod view;
+pub use view::{
+    ENTITY_CONTROL_OPCODE, ENTITY_CONTROL_SIZE, EntityControl, VIEW_CONTROL_OPCODE,
+    VIEW_CONTROL_SIZE, VIEW_DEFINITION_OPCODE, VIEW_DEFINITION_SIZE, ViewControl, ViewDefinition,
+};
 
 /// Opcode of IG Control.
 pub const IG_CONTROL_OPCODE: u8 = 1;
@@ -187,6 +195,12 @@ pub enum Packet {
     IgControl(IgControl),
     /// Weather Control.
     WeatherControl(WeatherControl),
+    /// Entity Control.
+    EntityControl(EntityControl),
+    /// View Control.
+    ViewControl(ViewControl),
+    /// View Definition.
+    ViewDefinition(ViewDefinition),
     /// A packet precip does not read (skipped by its size).
     Other {
         /// Its opcode.
@@ -336,6 +350,9 @@ pub fn parse_message(datagram: &[u8]) -> Result<Vec<Packet>, CigiError> {
         let expected = match opcode {
             IG_CONTROL_OPCODE => Some(IG_CONTROL_SIZE),
             WEATHER_CONTROL_OPCODE => Some(WEATHER_CONTROL_SIZE),
+            ENTITY_CONTROL_OPCODE => Some(ENTITY_CONTROL_SIZE),
+            VIEW_CONTROL_OPCODE => Some(VIEW_CONTROL_SIZE),
+            VIEW_DEFINITION_OPCODE => Some(VIEW_DEFINITION_SIZE),
             _ => None,
         };
         if expected.is_some_and(|e| e != size) {
@@ -349,6 +366,9 @@ pub fn parse_message(datagram: &[u8]) -> Result<Vec<Packet>, CigiError> {
         packets.push(match opcode {
             IG_CONTROL_OPCODE => Packet::IgControl(ig_control(&r, order)?),
             WEATHER_CONTROL_OPCODE => Packet::WeatherControl(weather_control(&r)?),
+            ENTITY_CONTROL_OPCODE => Packet::EntityControl(view::entity_control(&r)?),
+            VIEW_CONTROL_OPCODE => Packet::ViewControl(view::view_control(&r)?),
+            VIEW_DEFINITION_OPCODE => Packet::ViewDefinition(view::view_definition(&r)?),
             _ => Packet::Other { opcode },
         });
         offset += size;

@@ -1,11 +1,13 @@
 //! [`CigiReceiver`]: host messages from a UDP port, read without blocking once a
 //! frame.
 
+use std::collections::BTreeMap;
 use std::net::{SocketAddr, UdpSocket};
 
 use precip_model::Weather;
 
 use crate::error::CigiError;
+use crate::host_view::{Eyepoint, GeodeticOrigin, HostView};
 use crate::host_weather::{Applied, HostWeather};
 use crate::packet::{ByteOrder, IgControl, Packet, StartOfFrame, parse_message};
 
@@ -24,7 +26,14 @@ pub struct PacketCounts {
     pub weather_ignored: u64,
     /// Weather Control packets asking for weather that is not physical.
     pub weather_refused: u64,
-    /// Other packets, skipped by their size.
+    /// Entity Control packets that placed an entity.
+    pub entity_control: u64,
+    /// View Control and View Definition packets taken for the view drawn.
+    pub view_control: u64,
+    /// Entity, View Control and View Definition packets not used (another view, a
+    /// standby entity, an unknown parent, a field of view that is none).
+    pub view_ignored: u64,
+    /// Other packets, skipped by their size ([`CigiReceiver::other_opcodes`]).
     pub other: u64,
     /// Start of Frame packets sent to the host.
     pub start_of_frame_sent: u64,
@@ -48,10 +57,10 @@ pub struct CigiReceiver {
     announced_fog: Option<precip_model::drawing::fog_layer::FogLayer>,
     /// A ground fog that differs from the announced one, not yet taken.
     fog_news: Option<Option<precip_model::drawing::fog_layer::FogLayer>>,
-    /// The cloud layer [`CigiReceiver::take_cloud_layer`] last returned.
-    announced_clouds: Option<precip_model::drawing::clouds::CloudLayer>,
-    /// A cloud layer that differs from the announced one, not yet taken.
-    cloud_news: Option<Option<precip_model::drawing::clouds::CloudLayer>>,
+    /// The cloud layers [`CigiReceiver::take_cloud_layers`] last returned.
+    announced_clouds: precip_model::drawing::clouds::CloudLayers,
+    /// Cloud layers that differ from the announced ones, not yet taken.
+    cloud_news: Option<precip_model::drawing::clouds::CloudLayers>,
     /// Where Start of Frame goes: set by [`CigiReceiver::reply_to`], else the sender
     /// of the last well-formed message.
     host: Option<SocketAddr>,
@@ -59,6 +68,14 @@ pub struct CigiReceiver {
     host_fixed: bool,
     /// The host's last IG Control.
     last_control: Option<IgControl>,
+    /// The entities and views the host set.
+    view: HostView,
+    /// An entity or view changed since [`CigiReceiver::take_eyepoint`].
+    view_news: bool,
+    /// Packets skipped, by opcode.
+    other_opcodes: BTreeMap<u8, u64>,
+    /// The host frame [`CigiReceiver::wait_for_host_frame`] last returned.
+    waited_host_frame: Option<u32>,
 }
 
 impl CigiReceiver {
@@ -79,12 +96,58 @@ impl CigiReceiver {
             announced: weather,
             announced_fog: None,
             fog_news: None,
-            announced_clouds: None,
+            announced_clouds: precip_model::drawing::clouds::CloudLayers::NONE,
             cloud_news: None,
             host: None,
             host_fixed: false,
             last_control: None,
+            view: HostView::new(GeodeticOrigin::default(), 0),
+            view_news: false,
+            other_opcodes: BTreeMap::new(),
+            waited_host_frame: None,
         })
+    }
+
+    /// Draws view `view_id` on the tangent plane at `origin` (before any message:
+    /// what the host placed so far is forgotten).
+    pub fn set_view(&mut self, origin: GeodeticOrigin, view_id: u16) {
+        self.view = HostView::new(origin, view_id);
+        self.view_news = false;
+    }
+
+    /// Where the host put the view drawn, if an entity or view changed since the
+    /// last call and the view's entity is placed; `aspect` is the image's width over
+    /// its height ([`HostView::eyepoint`]). Read after [`CigiReceiver::poll`].
+    pub fn take_eyepoint(&mut self, aspect: f32) -> Option<Eyepoint> {
+        if !std::mem::take(&mut self.view_news) {
+            return None;
+        }
+        self.view.eyepoint(aspect)
+    }
+
+    /// Packets skipped, by opcode, and how many of each.
+    #[must_use]
+    pub fn other_opcodes(&self) -> &BTreeMap<u8, u64> {
+        &self.other_opcodes
+    }
+
+    /// Lockstep with a host running synchronously: polls until a message with a
+    /// host frame counter other than the last one waited for arrives (true), or
+    /// `timeout` passes (false). Each IG frame then draws one host frame.
+    pub fn wait_for_host_frame(&mut self, timeout: std::time::Duration) -> bool {
+        let start = std::time::Instant::now();
+        loop {
+            self.poll_datagrams();
+            let frame = self.last_control.map(|c| c.host_frame);
+            if frame.is_some() && frame != self.waited_host_frame {
+                self.waited_host_frame = frame;
+                return true;
+            }
+            if start.elapsed() >= timeout {
+                return false;
+            }
+            std::thread::sleep(std::time::Duration::from_micros(500));
+        }
     }
 
     /// Sends Start of Frame to `host` (a host that listens on another port than it
@@ -137,7 +200,14 @@ impl CigiReceiver {
     /// Reads the datagrams waiting (at most [`MAX_DATAGRAMS_PER_POLL`]); returns
     /// the weather if they changed it since the last time it returned one.
     pub fn poll(&mut self) -> Option<Weather> {
-        let mut changed = None;
+        self.poll_datagrams();
+        let news = self.announced != self.weather.weather();
+        self.announced = self.weather.weather();
+        news.then_some(self.announced)
+    }
+
+    /// Reads the datagrams waiting (at most [`MAX_DATAGRAMS_PER_POLL`]).
+    fn poll_datagrams(&mut self) {
         for _ in 0..MAX_DATAGRAMS_PER_POLL {
             let Ok((len, sender)) = self.socket.recv_from(&mut self.buffer) else {
                 break;
@@ -150,9 +220,7 @@ impl CigiReceiver {
                         self.host = Some(sender);
                     }
                     for packet in packets {
-                        if let Some(w) = self.take(&packet) {
-                            changed = Some(w);
-                        }
+                        self.take(&packet);
                     }
                 }
                 Err(e) => {
@@ -161,24 +229,34 @@ impl CigiReceiver {
                 }
             }
         }
-        changed
     }
 
-    fn take(&mut self, packet: &Packet) -> Option<Weather> {
+    fn take(&mut self, packet: &Packet) {
         match packet {
             Packet::IgControl(c) => {
                 self.counts.ig_control += 1;
                 self.last_control = Some(*c);
             }
-            Packet::Other { .. } => self.counts.other += 1,
+            Packet::Other { opcode } => {
+                self.counts.other += 1;
+                *self.other_opcodes.entry(*opcode).or_default() += 1;
+            }
+            Packet::EntityControl(e) => {
+                let placed = self.view.apply_entity(e);
+                self.count_view(placed, true);
+            }
+            Packet::ViewControl(v) => {
+                let taken = self.view.apply_view_control(v);
+                self.count_view(taken, false);
+            }
+            Packet::ViewDefinition(v) => {
+                let taken = self.view.apply_view_definition(v);
+                self.count_view(taken, false);
+            }
             Packet::WeatherControl(w) => match self.weather.apply(w) {
-                Applied::Changed(weather) => {
-                    self.counts.weather_applied += 1;
-                    // A host repeats its weather every frame: only a change is news.
-                    let news = weather != self.announced;
-                    self.announced = weather;
-                    return news.then_some(weather);
-                }
+                // A host repeats its weather every frame: only a change is news
+                // (poll compares it with the one announced).
+                Applied::Changed(_) => self.counts.weather_applied += 1,
                 Applied::Fog(fog) => {
                     self.counts.weather_applied += 1;
                     self.fog_news = (fog != self.announced_fog).then_some(fog);
@@ -191,7 +269,17 @@ impl CigiReceiver {
                 Applied::Refused => self.counts.weather_refused += 1,
             },
         }
-        None
+    }
+
+    /// Counts an entity (`entity`) or view packet taken or not; one taken is news
+    /// for [`CigiReceiver::take_eyepoint`].
+    fn count_view(&mut self, taken: bool, entity: bool) {
+        match (taken, entity) {
+            (true, true) => self.counts.entity_control += 1,
+            (true, false) => self.counts.view_control += 1,
+            (false, _) => self.counts.view_ignored += 1,
+        }
+        self.view_news |= taken;
     }
 
     /// The ground fog the host set since the last call, if it changed (`Some(None)`:
@@ -202,11 +290,9 @@ impl CigiReceiver {
         Some(news)
     }
 
-    /// The cloud layer the host set since the last call, if it changed (`Some(None)`:
+    /// The cloud layers the host set since the last call, if they changed (empty:
     /// every layer is off); read after [`CigiReceiver::poll`].
-    pub fn take_cloud_layer(
-        &mut self,
-    ) -> Option<Option<precip_model::drawing::clouds::CloudLayer>> {
+    pub fn take_cloud_layers(&mut self) -> Option<precip_model::drawing::clouds::CloudLayers> {
         let news = self.cloud_news.take()?;
         self.announced_clouds = news;
         Some(news)

@@ -41,6 +41,47 @@ impl Writer {
     fn f32(&mut self, v: f32) {
         self.u32(v.to_bits());
     }
+    fn f64(&mut self, v: f64) {
+        self.bytes.extend(match self.order {
+            ByteOrder::Big => v.to_bits().to_be_bytes(),
+            ByteOrder::Little => v.to_bits().to_le_bytes(),
+        });
+    }
+    /// Entity Control for an active entity: attitude (roll, pitch, yaw °), then
+    /// latitude °, longitude °, altitude m.
+    fn entity(&mut self, id: u16, attitude: [f32; 3], place: [f64; 3]) {
+        self.bytes.extend([2, 48]);
+        self.u16(id);
+        self.bytes.extend([1, 0, 255, 0]);
+        self.u16(0);
+        self.u16(0);
+        for v in attitude {
+            self.f32(v);
+        }
+        for v in place {
+            self.f64(v);
+        }
+    }
+    /// View Control of view 0 on `entity`: every offset enabled.
+    fn view_control(&mut self, entity: u16, offsets: [f32; 6]) {
+        self.bytes.extend([16, 32]);
+        self.u16(0);
+        self.bytes.push(0);
+        self.bytes.push(0b11_1111);
+        self.u16(entity);
+        for v in offsets {
+            self.f32(v);
+        }
+    }
+    /// View Definition of view 0: left, right, top, bottom half-angles.
+    fn view_definition(&mut self, half_angles: [f32; 4]) {
+        self.bytes.extend([21, 32]);
+        self.u16(0);
+        self.bytes.extend([0, 0b11_1100, 0, 0]);
+        for v in [0.1, 10_000.0].into_iter().chain(half_angles) {
+            self.f32(v);
+        }
+    }
     fn ig_control(&mut self, frame: u32) {
         self.bytes.extend([1, 24, 3, 0, (3 << 4) | 1, 0]);
         self.u16(0x8000);
@@ -462,8 +503,8 @@ fn the_ground_fog_layer_is_fog_up_to_its_top_and_only_news_is_announced() {
 }
 
 #[test]
-fn cloud_layers_one_to_three_draw_the_lowest_that_is_on() {
-    use precip_model::drawing::clouds::{CloudKind, CloudLayer};
+fn cloud_layers_one_to_three_are_drawn_together_lowest_first() {
+    use precip_model::drawing::clouds::{CloudKind, CloudLayer, CloudLayers};
     let mut host = HostWeather::new(Weather::default());
     let layer = |id: u8, enabled: bool, cloud_type: u8, base: f32, coverage: f32| WeatherControl {
         entity_region_id: 0,
@@ -491,32 +532,50 @@ fn cloud_layers_one_to_three_draw_the_lowest_that_is_on() {
     };
     assert_eq!(
         host.apply(&layer(2, true, 7, 1_500.0, 40.0)),
-        Applied::Clouds(Some(cumulus))
+        Applied::Clouds(CloudLayers::one(cumulus))
     );
-    // A lower stratus sheet on layer 1 is the one drawn; off again, the cumulus.
+    // A stratus sheet on layer 1 reaching into the cumulus (400 … 1 600 m) is
+    // drawn below it, ending at the cumulus' base; both are drawn, lowest first.
     let stratus = CloudLayer {
-        base_m: 400.0,
+        base_m: 300.0,
         coverage: 0.9,
         kind: CloudKind::Stratus,
         ..cumulus
     };
+    let two = host.apply(&layer(1, true, 10, 300.0, 90.0));
+    let Applied::Clouds(two) = two else {
+        panic!("{two:?}");
+    };
+    assert_eq!(two.iter().copied().collect::<Vec<_>>(), [stratus, cumulus]);
+    // An altostratus (type 2: a sheet) on layer 3 at 2 000 m starts at the
+    // cumulus' top, 2 700 m; below 10 m left it would not be drawn.
+    let Applied::Clouds(three) = host.apply(&layer(3, true, 2, 2_000.0, 100.0)) else {
+        panic!("three layers");
+    };
+    let top = three.iter().nth(2).copied().expect("a third layer");
+    assert_eq!((top.base_m, top.thickness_m), (2_700.0, 500.0));
     assert_eq!(
-        host.apply(&layer(1, true, 10, 400.0, 90.0)),
-        Applied::Clouds(Some(stratus))
+        host.apply(&layer(3, true, 2, 1_500.0, 100.0)),
+        Applied::Clouds(two),
+        "a sheet wholly inside the cumulus is not drawn"
     );
     assert_eq!(
-        host.apply(&layer(1, false, 10, 400.0, 90.0)),
-        Applied::Clouds(Some(cumulus))
+        host.apply(&layer(3, false, 2, 1_500.0, 100.0)),
+        Applied::Clouds(two)
+    );
+    assert_eq!(
+        host.apply(&layer(1, false, 10, 300.0, 90.0)),
+        Applied::Clouds(CloudLayers::one(cumulus))
     );
     assert_eq!(
         host.apply(&layer(2, false, 7, 1_500.0, 40.0)),
-        Applied::Clouds(None)
+        Applied::Clouds(CloudLayers::NONE)
     );
     assert_eq!(
         host.apply(&layer(3, true, 6, f32::INFINITY, 40.0)),
         Applied::Refused
     );
-    assert_eq!(host.cloud_layer(), None);
+    assert!(host.cloud_layers().is_empty());
     assert_eq!(
         host.weather(),
         Weather::default(),
@@ -534,11 +593,77 @@ fn cloud_layers_one_to_three_draw_the_lowest_that_is_on() {
     assert_eq!(p.cloud_type, 6);
     assert_eq!(
         host.apply(&p),
-        Applied::Clouds(Some(CloudLayer {
+        Applied::Clouds(CloudLayers::one(CloudLayer {
             base_m: 800.0,
             thickness_m: 1_500.0,
             coverage: 0.5,
             kind: CloudKind::Cumulonimbus,
         }))
     );
+}
+
+#[test]
+fn a_host_flies_the_eyepoint_in_either_byte_order_and_the_ig_keeps_step() {
+    use glam::Vec3;
+    use precip_cigi::GeodeticOrigin;
+    let origin = GeodeticOrigin {
+        latitude_deg: 47.0,
+        longitude_deg: 8.0,
+        altitude_m: 400.0,
+    };
+    for order in [ByteOrder::Big, ByteOrder::Little] {
+        let mut receiver = CigiReceiver::bind(0, Weather::default()).expect("a free port");
+        receiver.set_view(origin, 0);
+        let port = receiver.local_addr().expect("bound").port();
+        let host = UdpSocket::bind("127.0.0.1:0").expect("host socket");
+        let send = |frame: u32, build: &dyn Fn(&mut Writer)| {
+            let mut w = Writer::new(order);
+            w.ig_control(frame);
+            build(&mut w);
+            host.send_to(&w.bytes, ("127.0.0.1", port)).expect("sent");
+        };
+        // Frame 1: the ownship 300 m above the origin heading east, and a packet
+        // precip does not use (Celestial Sphere Control, opcode 9, 16 bytes).
+        send(1, &|w| {
+            w.entity(0, [0.0, 0.0, 90.0], [47.0, 8.0, 700.0]);
+            w.bytes.extend([9u8, 16]);
+            w.bytes.extend([0u8; 14]);
+        });
+        assert!(
+            receiver.wait_for_host_frame(Duration::from_secs(5)),
+            "{order:?}"
+        );
+        let eye = receiver.take_eyepoint(16.0 / 9.0).expect("placed");
+        assert!((eye.position_m - Vec3::new(0.0, 300.0, 0.0)).length() < 1e-3);
+        assert!((eye.forward - Vec3::X).length() < 1e-5, "{eye:?}");
+        assert_eq!(receiver.take_eyepoint(1.0), None, "only news");
+        // Nothing new: the wait times out.
+        assert!(!receiver.wait_for_host_frame(Duration::from_millis(50)));
+        // Frame 2: 0.01° further east, a pilot's eye looking 10° down, 60° × 40°.
+        send(2, &|w| {
+            w.entity(0, [0.0, 0.0, 90.0], [47.0, 8.01, 700.0]);
+            w.view_control(0, [2.0, 0.0, -1.0, 0.0, -10.0, 0.0]);
+            w.view_definition([-30.0, 30.0, 20.0, -20.0]);
+        });
+        assert!(receiver.wait_for_host_frame(Duration::from_secs(5)));
+        let eye = receiver.take_eyepoint(1.5).expect("moved");
+        assert!(
+            (eye.position_m.x - 762.5).abs() < 0.5 && (eye.position_m.y - 300.9).abs() < 0.1,
+            "{eye:?}"
+        );
+        assert!(
+            (eye.forward.y + 10f32.to_radians().sin()).abs() < 1e-5,
+            "{eye:?}"
+        );
+        let fov = eye.vertical_fov_rad.expect("defined");
+        assert!((fov - 40f32.to_radians()).abs() < 1e-5);
+        let counts = receiver.counts();
+        assert_eq!(
+            (counts.entity_control, counts.view_control, counts.other),
+            (2, 2, 1),
+            "{order:?}"
+        );
+        assert_eq!(receiver.other_opcodes().get(&9), Some(&1));
+        assert_eq!(receiver.weather(), Weather::default());
+    }
 }

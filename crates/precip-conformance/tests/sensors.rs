@@ -290,7 +290,7 @@ fn a_fog_layer_set_while_running_reaches_the_optics_and_the_beams_on_every_backe
 #[test]
 fn a_cloud_the_camera_is_in_reaches_the_optics_and_the_beams_on_every_backend() {
     use precip_model::drawing::clouds::{
-        CloudKind, CloudLayer, cloud_drift_m, cloud_extinction_at, coverage_map,
+        CloudKind, CloudLayer, CloudLayers, cloud_drift_m, cloud_extinction_at, coverage_map,
     };
     let setup = snow_before_a_wall();
     // A full nimbostratus deck from 500 m below the ground (the camera, at 1.7 m, a
@@ -310,9 +310,16 @@ fn a_cloud_the_camera_is_in_reaches_the_optics_and_the_beams_on_every_backend() 
             .target
             .expect("the wall")
             .two_way_transmittance;
+        // The deck with a stratus sheet above it (the camera in the deck only).
+        let sheet = CloudLayer {
+            base_m: deck.top_m() + 500.0,
+            thickness_m: 400.0,
+            coverage: 1.0,
+            kind: CloudKind::Stratus,
+        };
         s.backend
-            .set_cloud_layer(Some(deck))
-            .expect("a valid layer");
+            .set_cloud_layers(CloudLayers::new(&[sheet, deck]).expect("valid layers"))
+            .expect("valid layers");
         let cloudy = s.backend.optics().expect("optics");
         // The clock after one step of 0.05 s: the deck drifted with the calm wind.
         let offset = cloud_drift_m(setup.weather.wind.mean_wind_mps, 0.05);
@@ -338,7 +345,7 @@ fn a_cloud_the_camera_is_in_reaches_the_optics_and_the_beams_on_every_backend() 
         );
         assert!(
             s.backend
-                .set_cloud_layer(Some(CloudLayer {
+                .set_cloud_layers(CloudLayers::one(CloudLayer {
                     coverage: 2.0,
                     ..deck
                 }))

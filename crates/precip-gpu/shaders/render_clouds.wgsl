@@ -1,13 +1,13 @@
-// render_clouds.wgsl: the cloud layer marched into the clouds' image (a quarter of
+// render_clouds.wgsl: the cloud layers marched into the clouds' image (a quarter of
 // the frame's side), which the sky lays over itself (fs_sky_clouds). The formulas are
-// drawing.wgsl's twins of precip_model::drawing::clouds; docs/model.md (6.9)-(6.13).
+// drawing.wgsl's twins of precip_model::drawing::clouds; docs/model.md (6.9)-(6.15).
 //
 // Temporal reuse (docs/model.md (6.14)): there are two images, written on
 // alternate frames (pass "clouds" into A, "clouds_b" into B), each reading the other
 // as the frame before's (`cloud_image`, group 1). A frame marches one tile in 16
 // (cloud_march_slot, switches.cloud_shadow.y; CLOUD_MARCH_ALL: every tile, when
 // there is no history) and takes every other pixel from where the frame before's
-// camera saw its ray's entry into the layer; where that lies outside the image it
+// camera saw its ray's entry into the nearest layer; where that lies outside the image it
 // marches.
 
 // The clear sky between the clouds: the haze's colour at the horizon, deeper blue
@@ -39,76 +39,165 @@ fn fs_clouds_b(in: SkyVarying) -> @location(0) vec4<f32> {
     return clouds_with_history(in);
 }
 
-// The density at p of the layer `layer` (base, top, coverage, kind), drifted by
-// `drift.xy`.
-fn cloud_density_at(p: vec3<f32>, layer: vec4<f32>, drift: vec4<f32>) -> f32 {
+// The density at p of the layer `layer` (base, top, coverage, kind), its map read
+// at `offset_m` (the drift plus the layer's own offset).
+fn cloud_density_at(p: vec3<f32>, layer: vec4<f32>, offset_m: vec2<f32>) -> f32 {
     let h = (p.y - layer.x) / max(layer.y - layer.x, 1.0);
-    let uvs = cloud_map_uvs(p, drift.xy);
+    let uvs = cloud_map_uvs(p, offset_m);
     let m = textureSampleLevel(cloud_map, cloud_sampler, uvs.xy, 0.0).r;
     let d = textureSampleLevel(cloud_map, cloud_sampler, uvs.zw, 0.0).r;
     return cloud_density(u32(layer.w), layer.z, m, d, h);
 }
 
-// The light the layer and the haze in front of it send along the pixel's ray
-// (premultiplied) and their opacity: CLOUD_VIEW_STEPS steps through the layer, each lit
-// by the sun through CLOUD_SUN_SAMPLES samples toward it (Beer's law) and the
-// two-lobe phase function, and by the sky's light, weaker with depth below the
-// top; each step's light integrated over it, S·(1 − e^(−σΔ)).
+// Where the ray crosses layer `i` (empty past the last layer: its rows are zeros).
+fn layer_slab(i: u32, camera: vec3<f32>, ray: vec3<f32>) -> vec2<f32> {
+    let layer = switches.clouds[i];
+    return cloud_slab(camera.y, ray.y, layer.x, layer.y);
+}
+
+// The light the layers and the haze in front of them send along the pixel's ray
+// (premultiplied) and their opacity, marched (march_clouds) or taken from the frame
+// before's image.
 fn clouds_with_history(in: SkyVarying) -> vec4<f32> {
     let far = switches.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let camera = switches.camera_m_cone_cos.xyz;
     let ray = normalize_or_zero(far.xyz / far.w - camera);
-    let layer = switches.clouds;
-    let drift = switches.cloud_drift;
-    let slab = cloud_slab(camera.y, ray.y, layer.x, layer.y);
-    if (slab.y <= slab.x) {
+    // The ray's entry into the nearest layer it crosses.
+    var nearest = -1.0;
+    for (var i = 0u; i < MAX_CLOUD_LAYERS; i += 1u) {
+        let slab = layer_slab(i, camera, ray);
+        if (slab.y > slab.x && (nearest < 0.0 || slab.x < nearest)) {
+            nearest = slab.x;
+        }
+    }
+    if (nearest < 0.0) {
         return vec4<f32>(0.0);
     }
     // Not this tile's frame: the frame before's image where its camera saw the
-    // ray's entry into the layer, moved with the clouds' drift since
+    // ray's entry into the nearest layer, moved with the clouds' drift since
     // (cloud_shadow.zw: the map is read at p + drift, so what lies at p now lay
     // there at p + Δ).
     let slot = u32(switches.cloud_shadow.y);
     if (slot < CLOUD_MARCH_ALL && cloud_march_slot(vec2<u32>(in.clip.xy)) != slot) {
         let moved = vec3<f32>(switches.cloud_shadow.z, 0.0, switches.cloud_shadow.w);
-        let history = cloud_history_uv(switches.previous_view_proj, camera + ray * slab.x + moved);
+        let history = cloud_history_uv(switches.previous_view_proj, camera + ray * nearest + moved);
         if (history.z > 0.5) {
             return textureSampleLevel(cloud_image, cover_sampler, history.xy, 0.0);
         }
     }
-    return march_clouds(in, camera, ray, slab);
+    return march_clouds(in, camera, ray, nearest);
 }
 
-// The layer marched along the pixel's ray over `slab`.
-fn march_clouds(in: SkyVarying, camera: vec3<f32>, ray: vec3<f32>, slab: vec2<f32>) -> vec4<f32> {
-    let layer = switches.clouds;
-    let drift = switches.cloud_drift;
+// The layers marched along the pixel's ray in the order it meets them (upward the
+// lowest first, downward the highest), `nearest` the first one's entry. Each
+// layer's light is dimmed by the layers in front of it and by the haze up to its
+// entry; the haze's own light is laid in front of the first.
+fn march_clouds(in: SkyVarying, camera: vec3<f32>, ray: vec3<f32>, nearest: f32) -> vec4<f32> {
+    // A fixed jitter per pixel hides the steps' banding.
+    let pixel = vec2<u32>(in.clip.xy);
+    let jitter = f32(pcg_hash(pixel.x * 7919u + pixel.y * 104729u) >> 8u) / 16777216.0;
+    var light_transmittance = vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    for (var n = 0u; n < MAX_CLOUD_LAYERS; n += 1u) {
+        let i = select(MAX_CLOUD_LAYERS - 1u - n, n, ray.y >= 0.0);
+        let slab = layer_slab(i, camera, ray);
+        if (slab.y <= slab.x) {
+            continue;
+        }
+        let before = light_transmittance;
+        let lit = march_layer(i, camera, ray, slab, jitter, before.w);
+        let haze = haze_transmittance(camera, ray, slab.x);
+        light_transmittance = vec4<f32>(before.xyz + lit.xyz * haze.x * haze.y, lit.w);
+        if (lit.w < 0.01) {
+            break;
+        }
+    }
+    // The haze between the camera and the first layer (clear air and the
+    // precipitation falling from it) dims the clouds and what lies behind them,
+    // and adds its own light: premultiplied h·L + (1 − h)·A over (1 − h·T) of the
+    // sky behind. The shafts beyond the camera's surroundings hang in their
+    // clouds' shade: they scatter the sky's light as a layer's base does, 0.4 of
+    // the horizon's ((6.10)), behind the rest of the haze.
+    let haze = haze_transmittance(camera, ray, nearest);
+    let horizon = switches.sky_colour_time.xyz;
+    let in_scattered = horizon * (1.0 - haze.x) + CLOUD_BASE_SKY_SHARE * horizon * haze.x * (1.0 - haze.y);
+    return vec4<f32>(
+        light_transmittance.xyz + in_scattered,
+        1.0 - haze.x * haze.y * light_transmittance.w,
+    );
+}
+
+// The haze's transmittance over the ray's first `t` m: x the clear air's and the
+// grains' everywhere with the precipitation's (cloud_extinction.w) near the camera,
+// y the shafts' beyond, under the lowest layer's clouds (cloud_drift.z;
+// docs/model.md (6.16)).
+fn haze_transmittance(camera: vec3<f32>, ray: vec3<f32>, t: f32) -> vec2<f32> {
+    let sigma_p = switches.cloud_extinction.w;
+    let sigma_rest = max(switches.to_sun_extinction.w - sigma_p, 0.0);
+    var path = vec2<f32>(max(t, 0.0), 0.0);
+    if (sigma_p > 0.0) {
+        path = precipitation_path_m(camera, ray, t);
+    }
+    return vec2<f32>(
+        exp(-sigma_rest * max(t, 0.0) - sigma_p * path.x),
+        exp(-switches.cloud_drift.z * path.y),
+    );
+}
+
+// precipitation_path_m (precip_model::drawing::clouds::precipitation_path_m): how
+// much of the ray's first `t_end` m lies in the camera's precipitation (x) and in
+// the shafts beyond (y).
+fn precipitation_path_m(camera: vec3<f32>, ray: vec3<f32>, t_end: f32) -> vec2<f32> {
+    let lowest = switches.clouds[0];
+    if (t_end <= LOCAL_WEATHER_RADIUS_M || camera.y >= lowest.x) {
+        return vec2<f32>(max(t_end, 0.0), 0.0);
+    }
+    var t_base = t_end;
+    if (ray.y > 0.0) {
+        t_base = clamp((lowest.x - camera.y) / ray.y, LOCAL_WEATHER_RADIUS_M, t_end);
+    }
+    let dt = (t_base - LOCAL_WEATHER_RADIUS_M) / f32(RAIN_SHAFT_SAMPLES);
+    var covered = 0.0;
+    for (var k = 0u; k < RAIN_SHAFT_SAMPLES; k += 1u) {
+        let p = camera + ray * (LOCAL_WEATHER_RADIUS_M + (f32(k) + 0.5) * dt);
+        let uv = cloud_map_uvs(p, switches.cloud_drift.xy).xy;
+        covered += cloud_column(lowest.z, textureSampleLevel(cloud_map, cloud_sampler, uv, 0.0).r);
+    }
+    return vec2<f32>(LOCAL_WEATHER_RADIUS_M, covered * dt);
+}
+
+// Layer `i` marched over `slab` behind a transmittance `transmittance_in`: the light
+// it sends toward the camera (times the transmittance in front of each step) and the
+// transmittance behind it. CLOUD_VIEW_STEPS steps, each lit by the sun through
+// CLOUD_SUN_SAMPLES samples toward it up to the layer's top (Beer's law) and the
+// two-lobe phase function, and by the sky's light, weaker with depth below the top;
+// each step's light integrated over it, S·(1 − e^(−σΔ)).
+fn march_layer(i: u32, camera: vec3<f32>, ray: vec3<f32>, slab: vec2<f32>, jitter: f32, transmittance_in: f32) -> vec4<f32> {
+    let layer = switches.clouds[i];
+    let offset = switches.cloud_drift.xy + cloud_layer_map_offset_m(i);
+    let sigma_max = switches.cloud_extinction[i];
     let to_sun = switches.to_sun_extinction.xyz;
     let sin_sun = max(to_sun.y, 0.05);
     // The sun's light a unit of extinction scatters toward the camera is
     // light.y·P/4 (as the fog's, docs/model.md (6.6)), P with its octaves.
     let cos_mu = dot(ray, to_sun);
     let dt = (slab.y - slab.x) / f32(CLOUD_VIEW_STEPS);
-    // A fixed jitter per pixel hides the steps' banding.
-    let pixel = vec2<u32>(in.clip.xy);
-    let jitter = f32(pcg_hash(pixel.x * 7919u + pixel.y * 104729u) >> 8u) / 16777216.0;
-    var transmittance = 1.0;
+    var transmittance = transmittance_in;
     var light = vec3<f32>(0.0);
-    for (var i = 0u; i < CLOUD_VIEW_STEPS; i += 1u) {
-        let p = camera + ray * (slab.x + (f32(i) + jitter) * dt);
-        let rho = cloud_density_at(p, layer, drift);
+    for (var k = 0u; k < CLOUD_VIEW_STEPS; k += 1u) {
+        let p = camera + ray * (slab.x + (f32(k) + jitter) * dt);
+        let rho = cloud_density_at(p, layer, offset);
         if (rho > 0.0) {
             let h = (p.y - layer.x) / max(layer.y - layer.x, 1.0);
             // Toward the sun up to the layer's top (at most 3 km).
             let reach = min((layer.y - p.y) / sin_sun, 3000.0);
             var optical = 0.0;
-            for (var k = 0u; k < CLOUD_SUN_SAMPLES; k += 1u) {
-                let q = p + to_sun * (reach * (f32(k) + 0.5) / f32(CLOUD_SUN_SAMPLES));
-                optical += cloud_density_at(q, layer, drift);
+            for (var s = 0u; s < CLOUD_SUN_SAMPLES; s += 1u) {
+                let q = p + to_sun * (reach * (f32(s) + 0.5) / f32(CLOUD_SUN_SAMPLES));
+                optical += cloud_density_at(q, layer, offset);
             }
-            let sun = switches.light.y * 0.25 * cloud_sun_light(cos_mu, drift.z * optical * reach / f32(CLOUD_SUN_SAMPLES));
-            let scattered = vec3<f32>(sun) + switches.sky_colour_time.xyz * (0.4 + 0.6 * h);
-            let step_transmittance = exp(-drift.z * rho * dt);
+            let sun = switches.light.y * 0.25 * cloud_sun_light(cos_mu, sigma_max * optical * reach / f32(CLOUD_SUN_SAMPLES));
+            let scattered = vec3<f32>(sun) + switches.sky_colour_time.xyz * (CLOUD_BASE_SKY_SHARE + (1.0 - CLOUD_BASE_SKY_SHARE) * h);
+            let step_transmittance = exp(-sigma_max * rho * dt);
             light += transmittance * scattered * (1.0 - step_transmittance);
             transmittance *= step_transmittance;
             if (transmittance < 0.01) {
@@ -116,9 +205,5 @@ fn march_clouds(in: SkyVarying, camera: vec3<f32>, ray: vec3<f32>, slab: vec2<f3
             }
         }
     }
-    // The haze between the camera and the layer (clear air and the precipitation
-    // falling from it) dims the clouds and what lies behind them, and adds its own
-    // light: premultiplied h·L + (1 − h)·A over (1 − h·T) of the sky behind.
-    let haze = fog_transmittance(slab.x, switches.to_sun_extinction.w);
-    return vec4<f32>(light * haze + switches.sky_colour_time.xyz * (1.0 - haze), 1.0 - haze * transmittance);
+    return vec4<f32>(light, transmittance);
 }

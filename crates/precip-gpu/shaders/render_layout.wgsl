@@ -44,9 +44,14 @@ struct RenderParams {
     mirror: vec4<f32>,
     // the fog layer: top m, bottom m, extinction B per m (0: none), the sun's light on
     fog_layer: vec4<f32>,
-    // the cloud layer: base m, top m, coverage, kind (0 stratus … 3 cumulonimbus)
-    clouds: vec4<f32>,
-    // the clouds' drift x, z m, their most extinction per m, drawn (1/0)
+    // the cloud layers, lowest first: base m, top m, coverage, kind (0 stratus …
+    // 3 cumulonimbus); zeros past the last
+    clouds: array<vec4<f32>, 3>,
+    // each layer's most extinction per m; the precipitation's extinction per m
+    // (what falls from the lowest layer: rain and snow, not sand or dust)
+    cloud_extinction: vec4<f32>,
+    // the clouds' drift x, z m, the extinction per m under a shaft of the lowest
+    // layer, drawn (1/0)
     cloud_drift: vec4<f32>,
     // the share of the sun's light the clouds let through (their shadow), 0, 0, 0
     cloud_shadow: vec4<f32>,

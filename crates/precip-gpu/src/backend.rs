@@ -226,14 +226,25 @@ impl<G: Gpu> Backend for GpuBackend<G> {
         state.sim.set_shadow_refresh_frames(frames)
     }
 
-    fn set_cloud_layer(
+    fn set_atmosphere(
         &mut self,
-        cloud_layer: Option<precip_model::drawing::clouds::CloudLayer>,
+        to_sun: glam::Vec3,
+        clear_air_extinction_per_m: f32,
     ) -> Result<(), BackendError> {
         let state = self.state.as_mut().ok_or(BackendError::NotConfigured {
-            operation: "set_cloud_layer",
+            operation: "set_atmosphere",
         })?;
-        state.sim.set_cloud_layer(cloud_layer)
+        state.sim.set_atmosphere(to_sun, clear_air_extinction_per_m)
+    }
+
+    fn set_cloud_layers(
+        &mut self,
+        cloud_layers: precip_model::drawing::clouds::CloudLayers,
+    ) -> Result<(), BackendError> {
+        let state = self.state.as_mut().ok_or(BackendError::NotConfigured {
+            operation: "set_cloud_layers",
+        })?;
+        state.sim.set_cloud_layers(cloud_layers)
     }
 
     fn set_fog_layer(
@@ -388,11 +399,18 @@ macro_rules! delegate_backend {
             ) -> Result<(), ::precip_model::BackendError> {
                 self.0.set_fog_layer(fog_layer)
             }
-            fn set_cloud_layer(
+            fn set_atmosphere(
                 &mut self,
-                cloud_layer: Option<::precip_model::drawing::clouds::CloudLayer>,
+                to_sun: ::glam::Vec3,
+                clear_air_extinction_per_m: f32,
             ) -> Result<(), ::precip_model::BackendError> {
-                self.0.set_cloud_layer(cloud_layer)
+                self.0.set_atmosphere(to_sun, clear_air_extinction_per_m)
+            }
+            fn set_cloud_layers(
+                &mut self,
+                cloud_layers: ::precip_model::drawing::clouds::CloudLayers,
+            ) -> Result<(), ::precip_model::BackendError> {
+                self.0.set_cloud_layers(cloud_layers)
             }
             fn weather(&self) -> Result<::precip_model::Weather, ::precip_model::BackendError> {
                 self.0.weather()

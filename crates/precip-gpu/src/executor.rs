@@ -437,12 +437,22 @@ impl<G: Gpu> Simulation<G> {
         self.host.set_shadow_refresh_frames(frames)
     }
 
-    /// Takes a cloud layer or none ([`HostState::set_cloud_layer`]).
-    pub fn set_cloud_layer(
+    /// Takes the sun's direction and the clear air's haze
+    /// ([`HostState::set_atmosphere`]).
+    pub fn set_atmosphere(
         &mut self,
-        cloud_layer: Option<precip_model::drawing::clouds::CloudLayer>,
+        to_sun: glam::Vec3,
+        clear_air_extinction_per_m: f32,
     ) -> Result<(), BackendError> {
-        self.host.set_cloud_layer(cloud_layer)
+        self.host.set_atmosphere(to_sun, clear_air_extinction_per_m)
+    }
+
+    /// Takes cloud layers ([`HostState::set_cloud_layers`]).
+    pub fn set_cloud_layers(
+        &mut self,
+        cloud_layers: precip_model::drawing::clouds::CloudLayers,
+    ) -> Result<(), BackendError> {
+        self.host.set_cloud_layers(cloud_layers)
     }
 
     /// Takes a fog layer or none ([`HostState::set_fog_layer`]).

@@ -805,7 +805,7 @@ impl FrameHost {
                 particles_in_the_air: !host.particles_in_the_air().is_empty(),
                 particles_reduced: setup.render.particle_resolution != ParticleResolution::Full,
                 water_mirrored: mirror.is_some(),
-                clouds: setup.render.cloud_layer.is_some(),
+                clouds: !setup.render.cloud_layers.is_empty(),
                 clouds_into_b: false,
             },
             sky_colour: haze_colour(&setup.render, host.weather()),

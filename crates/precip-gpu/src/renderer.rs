@@ -305,8 +305,8 @@ struct CloudHistory {
     view_proj: glam::Mat4,
     /// It is image B.
     in_b: bool,
-    /// Its layer (`RenderParams::clouds`).
-    layer: glam::Vec4,
+    /// Its layers (`RenderParams::clouds`).
+    layers: [glam::Vec4; precip_model::drawing::clouds::MAX_CLOUD_LAYERS],
     /// The clouds' drift then, m.
     drift_m: glam::Vec2,
     /// Its camera's position, m.
@@ -674,7 +674,7 @@ impl<G: Gpu> FrameState<G> {
         self.cloud_history = decision.conditions.clouds.then_some(CloudHistory {
             view_proj: decision.params.view_proj,
             in_b: decision.conditions.clouds_into_b,
-            layer: decision.params.clouds,
+            layers: decision.params.clouds,
             drift_m: glam::Vec2::new(decision.params.cloud_drift.x, decision.params.cloud_drift.y),
             camera_m: view.camera.position_m,
         });
@@ -687,17 +687,20 @@ impl<G: Gpu> FrameState<G> {
 
     /// Which clouds' image the frame marches into (the other than the last frame's)
     /// and which of its tiles: one in [`CLOUD_MARCH_ALL`] where the other holds the
-    /// frame before's clouds of the same layer seen from nearby (its camera in
+    /// frame before's clouds of the same layers seen from nearby (its camera in
     /// `previous_view_proj`, the clouds' drift since in `cloud_shadow.zw`), every
-    /// tile otherwise, or from inside the layer (render_clouds.wgsl).
+    /// tile otherwise, or from inside a layer (render_clouds.wgsl).
     fn reuse_clouds(&self, decision: &mut FrameDecision, view: &View) {
         let params = &mut decision.params;
         let camera_m = view.camera.position_m;
         let drift_m = glam::Vec2::new(params.cloud_drift.x, params.cloud_drift.y);
         decision.conditions.clouds_into_b = self.cloud_history.is_some_and(|h| !h.in_b);
-        let inside = (params.clouds.x..=params.clouds.y).contains(&camera_m.y);
+        let inside = params
+            .clouds
+            .iter()
+            .any(|layer| layer.y > layer.x && (layer.x..=layer.y).contains(&camera_m.y));
         let reusable = self.cloud_history.filter(|h| {
-            h.layer == params.clouds
+            h.layers == params.clouds
                 && h.camera_m.distance(camera_m) < CLOUD_HISTORY_REACH_M
                 && !inside
         });

@@ -332,6 +332,17 @@ const CLOUD_MAX_PATH_M: f32 = 30000.0;
 const CLOUD_INSIDE_PATH_M: f32 = 2000.0;
 const CLOUD_MARCH_TILE_PX: u32 = 4u;
 const CLOUD_MARCH_ALL: u32 = 16u;
+const MAX_CLOUD_LAYERS: u32 = 3u;
+const LOCAL_WEATHER_RADIUS_M: f32 = 3000.0;
+const RAIN_SHAFT_SAMPLES: u32 = 8u;
+const CLOUD_BASE_SKY_SHARE: f32 = 0.4;
+
+// cloud_layer_map_offset_m: where layer `index` reads the coverage map, m (added to
+// the drift; precip_model::drawing::clouds::cloud_layer_map_offset_m).
+fn cloud_layer_map_offset_m(index: u32) -> vec2<f32> {
+    let i = f32(index);
+    return vec2<f32>((i * 4100.0) % CLOUD_MAP_PERIOD_M, (i * 7300.0) % CLOUD_MAP_PERIOD_M);
+}
 
 // cloud_march_slot: the frame of CLOUD_MARCH_ALL that marches pixel's tile (4 × 4 Bayer).
 fn cloud_march_slot(pixel: vec2<u32>) -> u32 {
@@ -365,9 +376,14 @@ fn cloud_profile(kind: u32, h: f32) -> f32 {
     return inside * smoothstep(0.0, rise_fall.x, h) * (1.0 - smoothstep(rise_fall.y, 1.0, h));
 }
 
+// cloud_column: how much a column of map value m stands under a cloud.
+fn cloud_column(coverage: f32, m: f32) -> f32 {
+    return smoothstep(0.0, CLOUD_EDGE, coverage - m);
+}
+
 // cloud_density: [0, 1] at height fraction h of a column of map value m, detail d.
 fn cloud_density(kind: u32, coverage: f32, m: f32, d: f32, h: f32) -> f32 {
-    let column = smoothstep(0.0, CLOUD_EDGE, coverage - m);
+    let column = cloud_column(coverage, m);
     let reach = clamp((coverage - m) / CLOUD_DOME, 0.05, 1.0);
     let raw = column * cloud_profile(kind, h / reach) * (1.0 - CLOUD_DETAIL_SHARE + CLOUD_DETAIL_SHARE * d);
     return max((raw - CLOUD_THRESHOLD) / (1.0 - CLOUD_THRESHOLD), 0.0);

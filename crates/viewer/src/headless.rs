@@ -36,18 +36,36 @@ pub struct Summary {
     /// With a LiDAR: the points its scans held in all, and how many of them were
     /// echoes from particles.
     pub lidar_points: Option<(u64, u64)>,
+    /// The camera of the last frame (a CIGI host may have flown it).
+    pub last_camera: precip_model::Camera,
+    /// Lockstep: frames drawn without a new host frame (the wait timed out).
+    pub host_frames_missed: u32,
+    /// The scenario's changes as applied, one line each.
+    pub scenario_log: Vec<String>,
 }
 
 /// What a headless run does besides drawing.
 #[derive(Debug, Default)]
 pub struct HeadlessExtras<'a> {
-    /// Take the weather from this CIGI host (read before each frame; a change takes
-    /// effect in it) and answer it with Start of Frame after each frame.
+    /// Take the weather and the eyepoint from this CIGI host (read before each
+    /// frame; a change takes effect in it) and answer it with Start of Frame after
+    /// each frame.
     pub cigi: Option<&'a mut precip_cigi::CigiReceiver>,
+    /// An OpenSCENARIO timeline: each change applied when the simulated clock
+    /// (frames × `dt_s`) reaches it.
+    pub scenario: Option<crate::scenario::apply::ScenarioClock>,
+    /// With `cigi`: lockstep with a host running synchronously — each frame waits
+    /// for the host's next frame (at most [`LOCKSTEP_TIMEOUT`]), so N host frames
+    /// draw N frames.
+    pub lockstep: bool,
     /// Scan with this LiDAR after each frame, writing `scan_NNNN.ply` beside the
     /// frame's PNG ([`crate::lidar_scan`]).
     pub lidar: Option<crate::lidar_scan::SpinningLidar>,
 }
+
+/// How long a lockstep frame waits for the host's next frame before it draws
+/// without one (counted in [`Summary::host_frames_missed`]).
+pub const LOCKSTEP_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(5);
 
 /// Something that stopped a headless run.
 #[derive(Debug, thiserror::Error)]
@@ -98,7 +116,15 @@ pub fn run_headless_with(
     progress: bool,
     extras: HeadlessExtras<'_>,
 ) -> Result<Summary, HeadlessError> {
-    let HeadlessExtras { mut cigi, lidar } = extras;
+    let HeadlessExtras {
+        mut cigi,
+        lidar,
+        lockstep,
+        mut scenario,
+    } = extras;
+    let mut scenario_log = Vec::new();
+    let mut view = *view;
+    let mut host_frames_missed = 0;
     let mut lidar_points = lidar.map(|_| (0u64, 0u64));
     std::fs::create_dir_all(out).map_err(|e| HeadlessError::Write {
         file: out.to_path_buf(),
@@ -121,6 +147,12 @@ pub fn run_headless_with(
     let run_started = Instant::now();
     for frame in 0..frames {
         let start = Instant::now();
+        if lockstep
+            && let Some(receiver) = cigi.as_deref_mut()
+            && !receiver.wait_for_host_frame(LOCKSTEP_TIMEOUT)
+        {
+            host_frames_missed += 1;
+        }
         if let Some(weather) = cigi
             .as_deref_mut()
             .and_then(precip_cigi::CigiReceiver::poll)
@@ -135,13 +167,21 @@ pub fn run_headless_with(
         }
         if let Some(clouds) = cigi
             .as_deref_mut()
-            .and_then(precip_cigi::CigiReceiver::take_cloud_layer)
+            .and_then(precip_cigi::CigiReceiver::take_cloud_layers)
         {
-            backend.set_cloud_layer(clouds)?;
+            backend.set_cloud_layers(clouds)?;
+        }
+        if let Some(clock) = scenario.as_mut() {
+            scenario_log.extend(clock.advance(f64::from(frame) * f64::from(dt_s), backend)?);
+        }
+        let aspect = view.width_px as f32 / view.height_px.max(1) as f32;
+        if let Some(eye) = cigi.as_deref_mut().and_then(|r| r.take_eyepoint(aspect)) {
+            view.camera = crate::cigi_view::camera_at_eyepoint(&eye, &view.camera);
         }
         backend.set_camera(&view.camera)?;
+
         backend.step(dt_s)?;
-        backend.render(view)?;
+        backend.render(&view)?;
         let image = backend.read_image()?;
         let file = out.join(format!("frame_{frame:04}.png"));
         image::save_buffer(
@@ -205,6 +245,9 @@ pub fn run_headless_with(
         snow: crate::snow_summary::SnowSummary::of(&cover),
         files,
         lidar_points,
+        last_camera: view.camera,
+        host_frames_missed,
+        scenario_log,
     })
 }
 

@@ -7,6 +7,7 @@
 //! of `precip optics` ([`optics_report`]). The `precip` binary is its command line.
 
 pub mod backends;
+pub mod cigi_view;
 pub mod demo;
 pub mod eligibility;
 pub mod error;

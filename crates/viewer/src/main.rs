@@ -59,7 +59,7 @@ enum Command {
 struct WeatherArgs {
     /// A weather preset: a TOML file or a shipped name (light-snow, blizzard,
     /// wet-snow, drizzle, downpour, sleet, sandstorm, dust-haze, valley-fog,
-    /// fair-cumulus, thunderstorm); the options
+    /// fair-cumulus, thunderstorm, layered-sky); the options
     /// below override it.
     #[arg(long)]
     preset: Option<String>,
@@ -101,6 +101,11 @@ struct WeatherArgs {
     /// The cloud layer's thickness, m (the type's typical thickness).
     #[arg(long)]
     cloud_thickness: Option<f32>,
+    /// Another cloud layer, TYPE[:COVER[:BASE_M[:THICKNESS_M]]] (e.g.
+    /// stratus:0.9:4000:400); repeat for a third. Added to the preset's; at most
+    /// three layers in all, none reaching into another (docs/model.md (6.15)).
+    #[arg(long, value_name = "TYPE[:COVER[:BASE_M[:THICKNESS_M]]]")]
+    more_clouds: Vec<precip_viewer::presets::MoreClouds>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -178,10 +183,24 @@ struct RunArgs {
     /// Seconds of simulation per headless frame.
     #[arg(long, default_value_t = 1.0 / 30.0)]
     dt: f32,
-    /// Take the weather from a CIGI 3.3 host on this UDP port (IG Control and global
-    /// Weather Control; applied at the next frame).
+    /// Take the weather and the eyepoint from a CIGI 3.3 host on this UDP port (IG
+    /// Control, global Weather Control, Entity Control, View Control, View
+    /// Definition; applied at the next frame).
     #[arg(long)]
     cigi: Option<u16>,
+    /// Where the scene's origin lies on the Earth for a CIGI host's geodetic
+    /// positions: LAT,LON[,ALT] (degrees, degrees, m above the WGS 84 ellipsoid;
+    /// the scene's y = 0 at ALT). The scene is the tangent plane there.
+    #[arg(long, value_parser = precip_viewer::cigi_view::parse_origin, allow_negative_numbers = true)]
+    origin: Option<precip_cigi::GeodeticOrigin>,
+    /// The CIGI view this IG draws (View Control and View Definition of this view;
+    /// the ownship's eyepoint before any).
+    #[arg(long, default_value_t = 0)]
+    cigi_view: u16,
+    /// Headless: run in lockstep with a CIGI host running synchronously — each
+    /// frame waits (up to 5 s) for the host's next frame.
+    #[arg(long)]
+    cigi_lockstep: bool,
     /// Take the weather (precipitation, temperature, wind, fog) from the
     /// Environment/Weather of an OpenSCENARIO 1.x file instead of a preset.
     #[arg(long)]
@@ -336,7 +355,26 @@ fn preset_of(args: &WeatherArgs) -> anyhow::Result<Preset> {
     preset.cloud_cover = args.cloud_cover.or(preset.cloud_cover);
     preset.cloud_base_m = args.cloud_base.or(preset.cloud_base_m);
     preset.cloud_thickness_m = args.cloud_thickness.or(preset.cloud_thickness_m);
+    preset.more_clouds.extend(args.more_clouds.iter().copied());
     Ok(preset)
+}
+
+/// The CIGI receiver `--cigi` asks for, drawing `--cigi-view` on the tangent
+/// plane at `--origin`.
+fn cigi_receiver(
+    args: &RunArgs,
+    weather: precip_model::Weather,
+) -> anyhow::Result<Option<precip_cigi::CigiReceiver>> {
+    let Some(port) = args.cigi else {
+        if args.origin.is_some() || args.cigi_lockstep {
+            eprintln!("warning: --origin and --cigi-lockstep do nothing without --cigi PORT");
+        }
+        return Ok(None);
+    };
+    let mut receiver = precip_cigi::CigiReceiver::bind(port, weather)?;
+    receiver.set_view(args.origin.unwrap_or_default(), args.cigi_view);
+    eprintln!("CIGI: listening on {}", receiver.local_addr()?);
+    Ok(Some(receiver))
 }
 
 fn run(args: &RunArgs) -> anyhow::Result<()> {
@@ -350,16 +388,37 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     let scenario = args
         .scenario
         .as_deref()
-        .map(precip_viewer::scenario::load_scenario_weather)
+        .map(precip_viewer::scenario::load_scenario)
         .transpose()?;
-    let (weather, fog_layer, cloud_layer) = match &scenario {
-        Some(s) => (s.weather, s.fog_layer, s.cloud_layer),
+    if let Some(s) = &scenario {
+        eprintln!(
+            "scenario: from the start {}",
+            precip_viewer::scenario::apply::describe(&s.initial)
+        );
+        for change in &s.changes {
+            eprintln!(
+                "scenario: at {} s {}: {}",
+                change.at_s,
+                change.event,
+                precip_viewer::scenario::apply::describe(&change.weather)
+            );
+        }
+        for note in &s.notes {
+            eprintln!("warning: scenario: {note}");
+        }
+    }
+    let (weather, fog_layer, cloud_layers) = match &scenario {
+        Some(s) => (
+            s.initial.weather,
+            s.initial.fog_layer,
+            s.initial.cloud_layer.into(),
+        ),
         None => {
             let preset = preset_of(&args.weather)?;
             (
                 preset.weather().context("the weather")?,
                 preset.fog_layer()?,
-                preset.cloud_layer()?,
+                preset.cloud_layers()?,
             )
         }
     };
@@ -384,11 +443,25 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         camera,
     };
     let mut setup = scene_setup(loaded.scene, &options)?;
-    if let Some(fog) = scenario.and_then(|s| s.fog_extinction_per_m) {
-        setup.render.clear_air_extinction_per_m = fog;
+    // The clear air's haze a scenario's environment without a Fog returns to.
+    let clear_air_extinction_per_m = setup.render.clear_air_extinction_per_m;
+    if let Some(s) = &scenario {
+        if let Some(fog) = s.initial.fog_extinction_per_m {
+            setup.render.clear_air_extinction_per_m = fog;
+        }
+        if let Some(sun) = s.initial.to_sun {
+            setup.render.to_sun = sun;
+        }
     }
+    let scenario_clock = scenario.map(|s| {
+        precip_viewer::scenario::apply::ScenarioClock::new(
+            s.changes,
+            setup.render.to_sun,
+            clear_air_extinction_per_m,
+        )
+    });
     setup.render.fog_layer = fog_layer;
-    setup.render.cloud_layer = cloud_layer;
+    setup.render.cloud_layers = cloud_layers;
     setup.camera.forward =
         channel_forward(setup.camera.forward, args.channel_yaw, args.channel_pitch);
     if let Some(shift) = args.channel_shift {
@@ -429,14 +502,12 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             if args.lidar {
                 eprintln!("warning: --lidar scans in headless runs only (give --frames N)");
             }
-            let cigi = match args.cigi {
-                Some(port) => {
-                    let receiver = precip_cigi::CigiReceiver::bind(port, setup.weather)?;
-                    eprintln!("CIGI: listening on {}", receiver.local_addr()?);
-                    Some(receiver)
-                }
-                None => None,
-            };
+            if args.cigi_lockstep {
+                eprintln!(
+                    "warning: --cigi-lockstep paces headless runs only (give --frames N); the window draws as fast as it can"
+                );
+            }
+            let cigi = cigi_receiver(args, setup.weather)?;
             if !(args.target_fps.is_finite() && args.target_fps > 0.0) {
                 anyhow::bail!(
                     "--target-fps {} must be a positive number of frames a second",
@@ -450,6 +521,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
                 args.backend,
                 args.quit_after,
                 cigi,
+                scenario_clock.clone(),
                 hold_fps,
             ) {
                 Ok(shown) => {
@@ -500,14 +572,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         width_px: args.size.0,
         height_px: args.size.1,
     };
-    let mut cigi = match args.cigi {
-        Some(port) => {
-            let receiver = precip_cigi::CigiReceiver::bind(port, setup.weather)?;
-            eprintln!("CIGI: listening on {}", receiver.local_addr()?);
-            Some(receiver)
-        }
-        None => None,
-    };
+    let mut cigi = cigi_receiver(args, setup.weather)?;
     let summary = run_headless_with(
         backend.as_mut(),
         &view,
@@ -517,11 +582,16 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         true,
         precip_viewer::headless::HeadlessExtras {
             cigi: cigi.as_mut(),
+            lockstep: args.cigi_lockstep,
+            scenario: scenario_clock,
             lidar: args.lidar.then(|| {
                 precip_viewer::lidar_scan::SpinningLidar::automotive(view.camera.position_m)
             }),
         },
     )?;
+    for line in &summary.scenario_log {
+        println!("{line}");
+    }
     if let Some((points, echoes)) = summary.lidar_points {
         println!(
             "LiDAR: {points} points in {frames} scans (scan_NNNN.ply), {echoes} of them echoes from particles"
@@ -544,6 +614,31 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             w.intensity_mm_per_h,
             w.air_temperature_c,
             w.wind.mean_wind_mps.length()
+        );
+        let eye = summary.last_camera;
+        let forward = eye.forward.normalize_or_zero();
+        let other: Vec<String> = receiver
+            .other_opcodes()
+            .iter()
+            .map(|(opcode, n)| format!("{n}× opcode {opcode}"))
+            .collect();
+        println!(
+            "CIGI: Entity Control {} placed, View Control/Definition {} taken, {} not used; last eyepoint ({:.1}, {:.1}, {:.1}) m looking ({:.3}, {:.3}, {:.3}); {} host frames missed in lockstep; packets not used: {}",
+            c.entity_control,
+            c.view_control,
+            c.view_ignored,
+            eye.position_m.x,
+            eye.position_m.y,
+            eye.position_m.z,
+            forward.x,
+            forward.y,
+            forward.z,
+            summary.host_frames_missed,
+            if other.is_empty() {
+                "none".to_owned()
+            } else {
+                other.join(", ")
+            }
         );
         if let Some(e) = receiver.last_error() {
             println!("CIGI: the last malformed datagram: {e}");

@@ -1,11 +1,11 @@
-//! Weather presets: TOML files (serde) naming the weather in physical units. Eleven
+//! Weather presets: TOML files (serde) naming the weather in physical units. Twelve
 //! ship with the viewer (`presets/*.toml` at the repository root, also built in by
 //! name).
 
 use std::path::Path;
 
 use glam::Vec3;
-use precip_model::drawing::clouds::{CloudKind, CloudLayer};
+use precip_model::drawing::clouds::{CloudKind, CloudLayer, CloudLayers, MAX_CLOUD_LAYERS};
 use precip_model::drawing::fog_layer::FogLayer;
 use precip_model::physics::grain::Grain;
 use precip_model::wind::WindField;
@@ -13,7 +13,7 @@ use precip_model::{PrecipitationKind, Weather};
 use serde::{Deserialize, Serialize};
 
 /// The weather of a preset.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Preset {
     /// "dry-snow", "wet-snow", "rain", "sleet", "sand" or "dust".
@@ -62,6 +62,79 @@ pub struct Preset {
     /// The cloud layer's thickness, m; optional (the type's typical thickness).
     #[serde(default)]
     pub cloud_thickness_m: Option<f32>,
+    /// More cloud layers, above or below the first (up to three in all, none
+    /// reaching into another): `more_clouds = [{ type = "stratus", cover = 0.9,
+    /// base_m = 4000, thickness_m = 400 }]`, cover, base and thickness optional.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub more_clouds: Vec<MoreClouds>,
+}
+
+/// Another cloud layer of a preset (`more_clouds`) or of the command line
+/// (`--more-clouds TYPE[:COVER[:BASE_M[:THICKNESS_M]]]`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MoreClouds {
+    /// Its type.
+    #[serde(rename = "type")]
+    pub kind: CloudTypeName,
+    /// The share of the sky it covers, `[0, 1]` (0.6 when absent).
+    #[serde(default)]
+    pub cover: Option<f32>,
+    /// Its base, m (the type's typical base when absent).
+    #[serde(default)]
+    pub base_m: Option<f32>,
+    /// Its thickness, m (the type's typical thickness when absent).
+    #[serde(default)]
+    pub thickness_m: Option<f32>,
+}
+
+impl MoreClouds {
+    /// The layer.
+    #[must_use]
+    pub fn layer(&self) -> CloudLayer {
+        let typical =
+            CloudLayer::typical(self.kind.into(), self.cover.unwrap_or(DEFAULT_CLOUD_COVER));
+        CloudLayer {
+            base_m: self.base_m.unwrap_or(typical.base_m),
+            thickness_m: self.thickness_m.unwrap_or(typical.thickness_m),
+            ..typical
+        }
+    }
+}
+
+impl std::str::FromStr for MoreClouds {
+    type Err = String;
+
+    /// `TYPE[:COVER[:BASE_M[:THICKNESS_M]]]`, e.g. `stratus:0.9:4000:400`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let mut parts = s.split(':');
+        let kind = parts.next().unwrap_or_default();
+        let kind = <CloudTypeName as clap::ValueEnum>::from_str(kind, true).map_err(|_| {
+            format!(
+                "`{kind}` is not a cloud type: write stratus, nimbostratus, cumulus or cumulonimbus, then :COVER:BASE_M:THICKNESS_M if wanted"
+            )
+        })?;
+        let mut number = |what: &str| -> Result<Option<f32>, String> {
+            parts
+                .next()
+                .map(|t| {
+                    t.trim()
+                        .parse::<f32>()
+                        .map_err(|e| format!("{what} `{t}` in `{s}`: {e}"))
+                })
+                .transpose()
+        };
+        let more = Self {
+            kind,
+            cover: number("the cover (0–1)")?,
+            base_m: number("the base, m")?,
+            thickness_m: number("the thickness, m")?,
+        };
+        if parts.next().is_some() {
+            return Err(format!("`{s}` has more than TYPE:COVER:BASE_M:THICKNESS_M"));
+        }
+        Ok(more)
+    }
 }
 
 /// A cloud type, as written in presets and on the command line.
@@ -131,7 +204,7 @@ impl From<KindName> for PrecipitationKind {
 }
 
 /// The shipped presets, by name.
-pub const BUILT_IN: [(&str, &str); 11] = [
+pub const BUILT_IN: [(&str, &str); 12] = [
     (
         "light-snow",
         include_str!("../../../presets/light-snow.toml"),
@@ -154,6 +227,10 @@ pub const BUILT_IN: [(&str, &str); 11] = [
     (
         "thunderstorm",
         include_str!("../../../presets/thunderstorm.toml"),
+    ),
+    (
+        "layered-sky",
+        include_str!("../../../presets/layered-sky.toml"),
     ),
 ];
 
@@ -263,6 +340,25 @@ impl Preset {
         Ok(Some(layer))
     }
 
+    /// Every cloud layer: the first ([`Preset::cloud_layer`]) and `more_clouds`,
+    /// validated together (at most three, none reaching into another).
+    pub fn cloud_layers(&self) -> Result<CloudLayers, PresetError> {
+        let problem = |problem: String| PresetError {
+            name: "cloud layers (--cloud-*, --more-clouds or the preset's cloud_*, more_clouds)"
+                .to_owned(),
+            problem,
+        };
+        let mut layers: Vec<CloudLayer> = self.cloud_layer()?.into_iter().collect();
+        layers.extend(self.more_clouds.iter().map(MoreClouds::layer));
+        if layers.len() > MAX_CLOUD_LAYERS {
+            return Err(problem(format!(
+                "{} layers given: at most {MAX_CLOUD_LAYERS} are drawn at once",
+                layers.len()
+            )));
+        }
+        CloudLayers::new(&layers).map_err(|e| problem(e.to_string()))
+    }
+
     /// The weather, validated.
     pub fn weather(&self) -> Result<Weather, precip_model::WeatherError> {
         let weather = Weather {
@@ -305,8 +401,30 @@ mod tests {
         for (name, text) in BUILT_IN {
             let preset = Preset::parse(text, name).expect("parses");
             preset
-                .cloud_layer()
+                .cloud_layers()
                 .unwrap_or_else(|e| panic!("{name}: {e}"));
+        }
+        let sky = Preset::load("layered-sky").expect("shipped");
+        let layers = sky.cloud_layers().expect("valid");
+        let kinds: Vec<CloudKind> = layers.iter().map(|l| l.kind).collect();
+        assert_eq!(kinds, [CloudKind::Cumulus, CloudKind::Stratus]);
+        // More clouds from the command line: a third layer, then one too many, then
+        // one reaching into another.
+        let mut p = sky.clone();
+        p.more_clouds
+            .push("nimbostratus:1:300:200".parse().expect("a layer"));
+        let three = p.cloud_layers().expect("three");
+        assert_eq!(three.lowest().map(|l| l.base_m), Some(300.0));
+        p.more_clouds.push("stratus".parse().expect("a layer"));
+        let e = p.cloud_layers().expect_err("four");
+        assert!(e.to_string().contains("at most 3"), "{e}");
+        let mut p = sky.clone();
+        p.more_clouds
+            .push("stratus:0.5:1500".parse().expect("a layer"));
+        let e = p.cloud_layers().expect_err("inside the cumulus");
+        assert!(e.to_string().contains("raise its base"), "{e}");
+        for bad in ["cirrus", "stratus:lots", "stratus:0.5:1:2:3"] {
+            assert!(bad.parse::<MoreClouds>().is_err(), "{bad}");
         }
         let storm = Preset::load("thunderstorm").expect("shipped");
         let layer = storm.cloud_layer().expect("valid").expect("a layer");

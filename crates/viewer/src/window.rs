@@ -7,7 +7,8 @@
 //! faster; 1 dry snow, 2 wet snow, 3 rain, 4 sleet, 5 sand, 6 dust; +/− intensity ×1.5;
 //! [ ] wind speed
 //! −/+ 1 m/s; , . wind direction −/+ 15°; T/G cover time scale ×2 / ÷2; C culling;
-//! Escape quits.
+//! Escape quits. Once a CIGI host places the view (Entity Control), it flies the
+//! camera and the keys no longer move it.
 
 use std::collections::HashSet;
 use std::sync::Arc;
@@ -127,6 +128,9 @@ struct Running {
     size: (u32, u32),
     fly: FlyCamera,
     lens: precip_model::Camera,
+    /// The camera a CIGI host flies, once it placed the view (the keys and mouse
+    /// then do not move it).
+    host_camera: Option<precip_model::Camera>,
     weather: Weather,
     time_scale: f32,
     keys: HashSet<KeyCode>,
@@ -165,6 +169,8 @@ struct App {
     validation: Option<crate::backends::ValidationLog>,
     /// A CIGI host's messages, read before each frame.
     cigi: Option<precip_cigi::CigiReceiver>,
+    /// An OpenSCENARIO timeline, played on the simulated clock.
+    scenario: Option<crate::scenario::apply::ScenarioClock>,
     /// `--quality auto`: the frame rate to hold.
     hold_fps: Option<f32>,
 }
@@ -235,6 +241,7 @@ impl App {
         Ok(Running {
             fly: FlyCamera::from_camera(&self.setup.camera),
             lens: self.setup.camera,
+            host_camera: None,
             weather: self.setup.weather,
             time_scale: self.setup.cover.time_scale,
             window,
@@ -397,7 +404,9 @@ impl Running {
             held(self, KeyCode::KeyW, KeyCode::KeyS),
         );
         let view = View {
-            camera: self.fly.camera(&self.lens),
+            camera: self
+                .host_camera
+                .unwrap_or_else(|| self.fly.camera(&self.lens)),
             width_px: self.size.0,
             height_px: self.size.1,
         };
@@ -525,10 +534,33 @@ impl ApplicationHandler for App {
                 if let Some(clouds) = self
                     .cigi
                     .as_mut()
-                    .and_then(precip_cigi::CigiReceiver::take_cloud_layer)
+                    .and_then(precip_cigi::CigiReceiver::take_cloud_layers)
                 {
                     // Likewise: an invalid layer was refused when it arrived.
-                    let _ = r.presenter.backend().set_cloud_layer(clouds);
+                    let _ = r.presenter.backend().set_cloud_layers(clouds);
+                }
+                if let Some(clock) = self.scenario.as_mut() {
+                    match clock.advance(r.simulated_s, r.presenter.backend()) {
+                        Ok(lines) => {
+                            for line in lines {
+                                eprintln!("{line}");
+                            }
+                            if let Ok(w) = r.presenter.backend().weather() {
+                                r.weather = w;
+                            }
+                        }
+                        Err(e) => {
+                            self.error = Some(e.into());
+                            event_loop.exit();
+                        }
+                    }
+                }
+                let aspect = r.size.0 as f32 / r.size.1.max(1) as f32;
+                if let Some(eye) = self.cigi.as_mut().and_then(|c| c.take_eyepoint(aspect)) {
+                    r.host_camera = Some(crate::cigi_view::camera_at_eyepoint(
+                        &eye,
+                        &r.host_camera.unwrap_or(r.lens),
+                    ));
                 }
                 if let Err(e) = r.frame() {
                     self.error = Some(e);
@@ -586,6 +618,7 @@ pub fn run_window(
     backend: BackendName,
     quit_after: Option<u32>,
     cigi: Option<precip_cigi::CigiReceiver>,
+    scenario: Option<crate::scenario::apply::ScenarioClock>,
     hold_fps: Option<f32>,
 ) -> Result<WindowSummary, WindowError> {
     if !display_available() {
@@ -604,6 +637,7 @@ pub fn run_window(
         shown: None,
         validation: None,
         cigi,
+        scenario,
         hold_fps,
     };
     event_loop

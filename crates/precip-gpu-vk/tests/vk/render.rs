@@ -140,10 +140,12 @@ fn vk_and_wgpu_mirror_the_house_in_a_pond_alike() {
     // Through a fog layer over the pond, which the mirror reflects with the camera,
     // under cumulus (the clouds' pass and image).
     setup.render.fog_layer = Some(precip_model::drawing::fog_layer::FogLayer::new(2.5, 60.0));
-    setup.render.cloud_layer = Some(precip_model::drawing::clouds::CloudLayer::typical(
-        precip_model::drawing::clouds::CloudKind::Cumulus,
-        0.5,
-    ));
+    setup.render.cloud_layers = precip_model::drawing::clouds::CloudLayers::one(
+        precip_model::drawing::clouds::CloudLayer::typical(
+            precip_model::drawing::clouds::CloudKind::Cumulus,
+            0.5,
+        ),
+    );
     let position = Vec3::new(0.0, 0.8, 18.0);
     let camera = Camera {
         position_m: position,

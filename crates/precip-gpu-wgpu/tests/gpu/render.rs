@@ -484,7 +484,7 @@ fn a_fog_layer_dims_below_its_top_and_scatters_the_sun() {
 
 #[test]
 fn seen_from_above_a_cloud_layer_hides_its_coverage_of_the_ground() {
-    use precip_model::drawing::clouds::{CloudKind, CloudLayer};
+    use precip_model::drawing::clouds::{CloudKind, CloudLayer, CloudLayers};
     // 20 km up looking straight down over 24 km of a cumulus layer (two periods of
     // the coverage map): the share of pixels whose clouds are at least 0.4 opaque
     // (an optical depth of 0.5, as the model's test counts a column clouded) is the
@@ -497,22 +497,34 @@ fn seen_from_above_a_cloud_layer_hides_its_coverage_of_the_ground() {
     };
     let view = view(camera, 96, 96);
     for (name, mut gpu) in common::gpu_backends("seen_from_above_a_cloud_layer") {
-        let frame = |gpu: &mut WgpuBackend, coverage: f32| {
+        let frame = |gpu: &mut WgpuBackend, layers: &[CloudLayer]| {
             let (mut setup, _) =
                 Setup::over_scene(black_walls(&[10.0]), 16, 5.0, 1).expect("valid");
             setup.weather.intensity_mm_per_h = 0.0;
             // No haze, and a black sky: only the sun's light on the clouds shows.
             setup.render.clear_air_extinction_per_m = 0.0;
             setup.render.sky_colour = Vec3::ZERO;
-            setup.render.cloud_layer = Some(CloudLayer::typical(CloudKind::Cumulus, coverage));
+            setup.render.cloud_layers = CloudLayers::new(layers).expect("valid layers");
             setup.camera = camera;
             common::run(gpu, &setup, 1, 0.05);
             gpu.render(&view).expect("renders");
             gpu.read_image().expect("an image")
         };
-        let full = frame(&mut gpu, 1.0);
-        for coverage in [0.3f32, 0.7] {
-            let clouded = frame(&mut gpu, coverage);
+        let cumulus = |coverage| CloudLayer::typical(CloudKind::Cumulus, coverage);
+        let full = frame(&mut gpu, &[cumulus(1.0)]);
+        // Two layers of 0.3 each read the map apart (docs/model.md (6.15)): their
+        // clouds stand independently, clouding 1 − 0.7² = 0.51 of the view (0.3
+        // if they stood one above the other).
+        let upper = CloudLayer {
+            base_m: 3_000.0,
+            ..cumulus(0.3)
+        };
+        for (coverage, layers) in [
+            (0.3f32, vec![cumulus(0.3)]),
+            (0.7, vec![cumulus(0.7)]),
+            (0.51, vec![cumulus(0.3), upper]),
+        ] {
+            let clouded = frame(&mut gpu, &layers);
             keep(&clouded, &format!("clouds_from_above_{coverage}"));
             let changed = full
                 .rgba8
@@ -531,7 +543,7 @@ fn seen_from_above_a_cloud_layer_hides_its_coverage_of_the_ground() {
 
 #[test]
 fn turning_under_clouds_reuses_the_frame_before_s_clouds_where_it_saw_them() {
-    use precip_model::drawing::clouds::{CloudKind, CloudLayer};
+    use precip_model::drawing::clouds::{CloudKind, CloudLayer, CloudLayers};
     // Turning a degree a frame under a cumulus layer for 17 frames, a frame marches
     // one tile of the clouds' image in 16 and takes the rest from the frame before's
     // image where its camera saw them (docs/model.md (6.14)): the last frame looks
@@ -550,7 +562,7 @@ fn turning_under_clouds_reuses_the_frame_before_s_clouds_where_it_saw_them() {
     };
     let (mut setup, _) = Setup::over_scene(black_walls(&[10.0]), 16, 5.0, 1).expect("valid");
     setup.weather.intensity_mm_per_h = 0.0;
-    setup.render.cloud_layer = Some(CloudLayer::typical(CloudKind::Cumulus, 0.5));
+    setup.render.cloud_layers = CloudLayers::one(CloudLayer::typical(CloudKind::Cumulus, 0.5));
     for (name, mut gpu) in common::gpu_backends("turning_under_clouds") {
         common::run(&mut gpu, &setup, 1, 0.05);
         let mut ran = Vec::new();

@@ -146,11 +146,21 @@ pub trait Backend {
         let _ = frames;
         Ok(())
     }
-    /// Takes a cloud layer, or none, from the next frame on (what a host's cloud
-    /// layers set while running; validated as `RenderSettings::cloud_layer`).
-    fn set_cloud_layer(
+    /// Takes the direction toward the sun (any length but zero) and the clear air's
+    /// extinction per m from the next frame, beam query and optics on (what a
+    /// scenario's `Sun` and `Fog` change while running; validated as
+    /// `RenderSettings::to_sun` and `RenderSettings::clear_air_extinction_per_m`).
+    fn set_atmosphere(
         &mut self,
-        cloud_layer: Option<crate::drawing::clouds::CloudLayer>,
+        to_sun: glam::Vec3,
+        clear_air_extinction_per_m: f32,
+    ) -> Result<(), BackendError>;
+    /// Takes cloud layers (up to three; none: no clouds) from the next frame on
+    /// (what a host's cloud layers set while running; validated as
+    /// `RenderSettings::cloud_layers`).
+    fn set_cloud_layers(
+        &mut self,
+        cloud_layers: crate::drawing::clouds::CloudLayers,
     ) -> Result<(), BackendError>;
     /// Takes a fog layer, or none, from the next frame, beam query and optics on
     /// (what a host's ground-fog layer sets while running; validated as

@@ -179,13 +179,23 @@ impl Backend for CpuBackend {
         })
     }
 
-    fn set_cloud_layer(
+    fn set_atmosphere(
         &mut self,
-        cloud_layer: Option<crate::drawing::clouds::CloudLayer>,
+        to_sun: glam::Vec3,
+        clear_air_extinction_per_m: f32,
     ) -> Result<(), BackendError> {
-        self.state_mut("set_cloud_layer")?
+        self.state_mut("set_atmosphere")?
             .host
-            .set_cloud_layer(cloud_layer)
+            .set_atmosphere(to_sun, clear_air_extinction_per_m)
+    }
+
+    fn set_cloud_layers(
+        &mut self,
+        cloud_layers: crate::drawing::clouds::CloudLayers,
+    ) -> Result<(), BackendError> {
+        self.state_mut("set_cloud_layers")?
+            .host
+            .set_cloud_layers(cloud_layers)
     }
 
     fn set_fog_layer(

@@ -46,6 +46,14 @@ use glam::{Mat4, UVec2, Vec2, Vec3};
 
 use crate::BackendError;
 
+mod layers;
+mod shafts;
+pub use layers::{CloudLayers, MAX_CLOUD_LAYERS, cloud_layer_map_offset_m};
+pub use shafts::{
+    CLOUD_BASE_SKY_SHARE, LOCAL_WEATHER_RADIUS_M, MIN_SHAFT_COVERAGE, RAIN_SHAFT_SAMPLES,
+    precipitation_path_m, shaft_extinction_per_m,
+};
+
 /// The cloud types the layer can have (WMO genera).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum CloudKind {
@@ -174,19 +182,19 @@ impl CloudLayer {
         let bad = |field, problem: String| Err(BackendError::Setup { field, problem });
         if !(self.base_m.is_finite() && self.base_m.abs() <= 20_000.0) {
             return bad(
-                "render.cloud_layer.base_m",
+                "render.cloud_layers[].base_m",
                 format!("= {} must be a height within ±20 000 m", self.base_m),
             );
         }
         if !(self.thickness_m.is_finite() && (10.0..=15_000.0).contains(&self.thickness_m)) {
             return bad(
-                "render.cloud_layer.thickness_m",
+                "render.cloud_layers[].thickness_m",
                 format!("= {} must be in [10, 15000] m", self.thickness_m),
             );
         }
         if !(self.coverage.is_finite() && (0.0..=1.0).contains(&self.coverage)) {
             return bad(
-                "render.cloud_layer.coverage",
+                "render.cloud_layers[].coverage",
                 format!(
                     "= {} must be in [0, 1] (a fraction of the sky: oktas / 8)",
                     self.coverage
@@ -244,11 +252,18 @@ pub fn cloud_profile(kind: CloudKind, h: f32) -> f32 {
     smoothstep(0.0, a, h) * (1.0 - smoothstep(b, 1.0, h))
 }
 
+/// How much a column whose coverage-map value is `m` stands under a cloud of a
+/// layer covering `coverage`: 1 inside, 0 outside, a narrow edge between.
+#[must_use]
+pub fn cloud_column(coverage: f32, m: f32) -> f32 {
+    smoothstep(0.0, CLOUD_EDGE, coverage - m)
+}
+
 /// The density `[0, 1]` at height fraction `h` of a column whose coverage-map value
 /// is `m`, with detail `d`, in a layer covering `coverage` (module docs).
 #[must_use]
 pub fn cloud_density(kind: CloudKind, coverage: f32, m: f32, d: f32, h: f32) -> f32 {
-    let column = smoothstep(0.0, CLOUD_EDGE, coverage - m);
+    let column = cloud_column(coverage, m);
     let reach = ((coverage - m) / CLOUD_DOME).clamp(0.05, 1.0);
     let raw = column
         * cloud_profile(kind, h / reach)

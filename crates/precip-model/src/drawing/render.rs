@@ -16,7 +16,8 @@ use precip_cover::{CoverParams, GridFrame};
 use crate::backend::camera::{Camera, View};
 use crate::backend::error::BackendError;
 use crate::drawing::clouds::{
-    CloudLayer, cloud_drift_m, cloud_extinction_at, cloud_sun_transmittance, coverage_map,
+    CloudLayers, MAX_CLOUD_LAYERS, cloud_drift_m, cloud_extinction_at, coverage_map,
+    shaft_extinction_per_m,
 };
 use crate::drawing::fog_layer::{FOG_LAYER_BOTTOM_M, FogLayer};
 use crate::drawing::multiplicity::PoolDrawing;
@@ -140,9 +141,9 @@ pub struct RenderSettings {
     /// A layer of fog up to a height (valley and ground fog), lit by the sky and
     /// the sun ([`crate::drawing::fog_layer`]); `None`: no fog but the uniform haze.
     pub fog_layer: Option<FogLayer>,
-    /// A layer of volumetric clouds ([`crate::drawing::clouds`]); `None`: the
-    /// overcast sky alone.
-    pub cloud_layer: Option<CloudLayer>,
+    /// Layers of volumetric clouds ([`crate::drawing::clouds`], up to three);
+    /// none: the overcast sky alone.
+    pub cloud_layers: CloudLayers,
 }
 
 impl Default for RenderSettings {
@@ -173,7 +174,7 @@ impl Default for RenderSettings {
             mirrors: Mirrors::Auto,
             particle_resolution: ParticleResolution::Full,
             fog_layer: None,
-            cloud_layer: None,
+            cloud_layers: CloudLayers::NONE,
         }
     }
 }
@@ -292,9 +293,7 @@ impl RenderSettings {
         if let Some(fog) = &self.fog_layer {
             fog.validate()?;
         }
-        if let Some(clouds) = &self.cloud_layer {
-            clouds.validate()?;
-        }
+        self.cloud_layers.validate()?;
         if self.max_scene_triangles == 0 {
             return Err(bad(
                 "render.max_scene_triangles",
@@ -376,11 +375,18 @@ pub struct RenderParams {
     /// below the ground; the mirror's pass reflects the layer about the water), its
     /// extinction B per m (0: none), the sun's scattered light on (1/0).
     pub fog_layer: Vec4,
-    /// The cloud layer ([`crate::drawing::clouds`]): its base m, top m, coverage,
-    /// kind ([`crate::drawing::clouds::CloudKind::index`]).
-    pub clouds: Vec4,
-    /// The clouds' drift with the wind (x, z m), their most extinction per m, 1
-    /// when a layer is drawn (else 0).
+    /// The cloud layers ([`crate::drawing::clouds::CloudLayers`]), lowest first:
+    /// each one's base m, top m, coverage, kind
+    /// ([`crate::drawing::clouds::CloudKind::index`]); zeros past the last.
+    pub clouds: [Vec4; MAX_CLOUD_LAYERS],
+    /// Each layer's most extinction per m
+    /// ([`crate::drawing::clouds::CloudKind::extinction_per_m`]); the
+    /// precipitation's extinction per m, what falls from the lowest layer (rain and
+    /// snow, not sand or dust: its shafts, [`crate::drawing::clouds::precipitation_path_m`]).
+    pub cloud_extinction: Vec4,
+    /// The clouds' drift with the wind (x, z m), the extinction per m under a
+    /// shaft of the lowest layer ([`crate::drawing::clouds::shaft_extinction_per_m`]),
+    /// 1 when a layer is drawn (else 0).
     pub cloud_drift: Vec4,
     /// The share of the sun's light that reaches the ground under the camera through
     /// the cloud layer ([`crate::drawing::clouds::cloud_sun_transmittance`]: the
@@ -391,7 +397,29 @@ pub struct RenderParams {
     /// drift since that image (x, z m).
     pub cloud_shadow: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 736);
+const _: () = assert!(size_of::<RenderParams>() == 784);
+
+/// The block's rows of the cloud layers: base m, top m, coverage, kind each.
+fn cloud_layer_rows(layers: &CloudLayers) -> [Vec4; MAX_CLOUD_LAYERS] {
+    let mut rows = [Vec4::ZERO; MAX_CLOUD_LAYERS];
+    for (row, c) in rows.iter_mut().zip(layers.iter()) {
+        *row = Vec4::new(c.base_m, c.top_m(), c.coverage, c.kind.index() as f32);
+    }
+    rows
+}
+
+/// The block's row of the layers' most extinction per m and the precipitation's
+/// extinction `falling_per_m` (0 without a layer to fall from).
+fn cloud_extinction_row(layers: &CloudLayers, falling_per_m: f32) -> Vec4 {
+    let mut row = [0.0; 4];
+    for (e, c) in row.iter_mut().zip(layers.iter()) {
+        *e = c.kind.extinction_per_m();
+    }
+    if !layers.is_empty() {
+        row[3] = falling_per_m.max(0.0);
+    }
+    Vec4::from_array(row)
+}
 
 /// The camera's world → clip matrix for a target of `aspect` (width / height).
 #[must_use]
@@ -523,10 +551,10 @@ fn air_layer(settings: &RenderSettings, weather: &Weather, time_s: f32, camera_m
     let fog = settings.fog_layer.map_or(Vec4::ZERO, |fog| {
         Vec4::new(fog.top_m, FOG_LAYER_BOTTOM_M, fog.extinction_per_m(), 1.0)
     });
-    let Some(layer) = settings.cloud_layer else {
+    let drift = cloud_drift_m(weather.wind.mean_wind_mps, time_s);
+    let Some((layer, offset)) = settings.cloud_layers.containing(camera_m.y, drift) else {
         return fog;
     };
-    let offset = cloud_drift_m(weather.wind.mean_wind_mps, time_s);
     let in_cloud = cloud_extinction_at(coverage_map(), &layer, offset, camera_m);
     if in_cloud > fog.z {
         Vec4::new(layer.top_m(), layer.base_m, in_cloud, 0.0)
@@ -661,25 +689,28 @@ impl RenderParams {
             previous_view_proj: view_projection(camera, aspect),
             mirror_view_proj: view_projection(camera, aspect),
             mirror: Vec4::ZERO,
-            clouds: f.settings.cloud_layer.map_or(Vec4::ZERO, |c| {
-                Vec4::new(c.base_m, c.top_m(), c.coverage, c.kind.index() as f32)
-            }),
-            cloud_drift: f.settings.cloud_layer.map_or(Vec4::ZERO, |c| {
-                cloud_drift_m(f.weather.wind.mean_wind_mps, f.time_s)
-                    .extend(c.kind.extinction_per_m())
-                    .extend(1.0)
-            }),
+            clouds: cloud_layer_rows(&f.settings.cloud_layers),
+            cloud_extinction: cloud_extinction_row(
+                &f.settings.cloud_layers,
+                f.weather.extinction_per_m() - f.weather.grain_extinction_per_m(),
+            ),
+            cloud_drift: f
+                .settings
+                .cloud_layers
+                .lowest()
+                .map_or(Vec4::ZERO, |lowest| {
+                    cloud_drift_m(f.weather.wind.mean_wind_mps, f.time_s)
+                        .extend(shaft_extinction_per_m(f.weather, &lowest))
+                        .extend(1.0)
+                }),
             fog_layer: air_layer(f.settings, f.weather, f.time_s, camera.position_m),
             cloud_shadow: Vec4::new(
-                f.settings.cloud_layer.map_or(1.0, |layer| {
-                    cloud_sun_transmittance(
-                        coverage_map(),
-                        &layer,
-                        cloud_drift_m(f.weather.wind.mean_wind_mps, f.time_s),
-                        Vec3::new(camera.position_m.x, 0.0, camera.position_m.z),
-                        f.settings.to_sun.normalize(),
-                    )
-                }),
+                f.settings.cloud_layers.sun_transmittance(
+                    coverage_map(),
+                    cloud_drift_m(f.weather.wind.mean_wind_mps, f.time_s),
+                    Vec3::new(camera.position_m.x, 0.0, camera.position_m.z),
+                    f.settings.to_sun.normalize(),
+                ),
                 crate::drawing::clouds::CLOUD_MARCH_ALL as f32,
                 0.0,
                 0.0,

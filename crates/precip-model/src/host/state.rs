@@ -135,13 +135,27 @@ impl HostState {
         })
     }
 
-    /// Takes a cloud layer (validated) or none, from the next frame on.
-    pub fn set_cloud_layer(
+    /// Takes the sun's direction and the clear air's extinction (validated), from
+    /// the next frame on.
+    pub fn set_atmosphere(
         &mut self,
-        cloud_layer: Option<crate::drawing::clouds::CloudLayer>,
+        to_sun: Vec3,
+        clear_air_extinction_per_m: f32,
     ) -> Result<(), BackendError> {
         self.set_look(RenderSettings {
-            cloud_layer,
+            to_sun,
+            clear_air_extinction_per_m,
+            ..self.setup.render
+        })
+    }
+
+    /// Takes cloud layers (validated; none: no clouds), from the next frame on.
+    pub fn set_cloud_layers(
+        &mut self,
+        cloud_layers: crate::drawing::clouds::CloudLayers,
+    ) -> Result<(), BackendError> {
+        self.set_look(RenderSettings {
+            cloud_layers,
             ..self.setup.render
         })
     }
@@ -239,14 +253,14 @@ impl HostState {
         )
     }
 
-    /// `optics` with the fog layer's and the cloud layer's droplets where the camera
+    /// `optics` with the fog layer's and a cloud layer's droplets where the camera
     /// is in them ([`Optics::in_fog`], [`Optics::in_cloud`]).
     #[must_use]
     pub fn with_layers(&self, optics: Optics) -> Optics {
         let render = &self.setup.render;
         let at = self.camera.position_m;
         optics.in_fog(render.fog_layer, at).in_cloud(
-            render.cloud_layer.as_ref(),
+            &render.cloud_layers,
             crate::drawing::clouds::cloud_drift_m(
                 self.weather.wind.mean_wind_mps,
                 self.time_s as f32,

@@ -5,13 +5,13 @@ use std::process::Command;
 
 use crate::xvfb::Xvfb;
 
-fn precip() -> Command {
+pub(crate) fn precip() -> Command {
     Command::new(env!("CARGO_BIN_EXE_precip"))
 }
 
 /// Whether a wgpu adapter exists; without one, prints why `test` did nothing (a
 /// failure under `PRECIP_REQUIRE_GPU=1`).
-fn gpu_or_skip(test: &str) -> bool {
+pub(crate) fn gpu_or_skip(test: &str) -> bool {
     if !precip_gpu_wgpu::adapters().is_empty() {
         return true;
     }
@@ -23,7 +23,7 @@ fn gpu_or_skip(test: &str) -> bool {
     false
 }
 
-fn temp_dir(name: &str) -> std::path::PathBuf {
+pub(crate) fn temp_dir(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("precip-cli-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");

@@ -2,11 +2,13 @@
 //! windows under Xvfb.
 
 mod bad_files;
+mod cigi_host;
 mod cli;
 mod compressed;
 mod fixtures;
 mod graphs;
 mod headless;
 mod loading;
+mod scenario_run;
 mod swapchain;
 mod xvfb;

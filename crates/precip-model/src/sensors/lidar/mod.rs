@@ -32,8 +32,8 @@
 //! band ([`crate::sensors::optics`]; by default the weather's spectra: pass
 //! [`crate::Backend::optics`]' live value to follow the particles), times a fog
 //! layer's `e^(−2B·ℓ)` over the part `ℓ` of the path in it ([`fog_layer_two_way`])
-//! and a cloud layer's `e^(−2τ)` over its optical depth along the path
-//! ([`crate::drawing::clouds::cloud_optical_depth`]).
+//! and the cloud layers' `e^(−2τ)` over their optical depth along the path
+//! ([`crate::drawing::clouds::CloudLayers::optical_depth`]).
 //!
 //! ## Cost
 //!
@@ -313,14 +313,14 @@ impl BeamQuery {
                 }
             }
         }
-        if let Some((layer, offset)) = air.cloud_layer {
+        let (clouds, drift) = air.cloud_layers;
+        if !clouds.is_empty() {
             let map = crate::drawing::clouds::coverage_map();
             for (beam, r) in beams.iter().zip(&mut returns) {
                 if let Some(t) = r.target.as_mut() {
-                    let tau = crate::drawing::clouds::cloud_optical_depth(
+                    let tau = clouds.optical_depth(
                         map,
-                        &layer,
-                        offset,
+                        drift,
                         beam.origin_m,
                         beam.direction.normalize_or_zero(),
                         t.range_m,

@@ -48,9 +48,9 @@ pub struct UnresolvedAir {
     /// A fog layer's droplets, far too many and too small to draw one by one: their
     /// extinction dims what lies behind ([`BeamQuery::answer`](super::BeamQuery::answer)).
     pub fog_layer: Option<crate::drawing::fog_layer::FogLayer>,
-    /// A cloud layer and how far it has drifted, m: its extinction dims what lies
-    /// behind it, too.
-    pub cloud_layer: Option<(crate::drawing::clouds::CloudLayer, glam::Vec2)>,
+    /// The cloud layers and how far they have drifted, m: their extinction dims
+    /// what lies behind them, too.
+    pub cloud_layers: (crate::drawing::clouds::CloudLayers, glam::Vec2),
 }
 
 /// A strike drawn from the spectrum.
@@ -92,7 +92,7 @@ impl UnresolvedAir {
             // backend at the same time.
             key: particle_key(seed ^ STRIKE_SEED, (time_s * 1000.0).round() as u32, 0),
             fog_layer: None,
-            cloud_layer: None,
+            cloud_layers: (crate::drawing::clouds::CloudLayers::NONE, glam::Vec2::ZERO),
         }
     }
 
@@ -119,15 +119,10 @@ impl UnresolvedAir {
         });
         Self {
             fog_layer: setup.render.fog_layer,
-            cloud_layer: setup.render.cloud_layer.map(|c| {
-                (
-                    c,
-                    crate::drawing::clouds::cloud_drift_m(
-                        weather.wind.mean_wind_mps,
-                        time_s as f32,
-                    ),
-                )
-            }),
+            cloud_layers: (
+                setup.render.cloud_layers,
+                crate::drawing::clouds::cloud_drift_m(weather.wind.mean_wind_mps, time_s as f32),
+            ),
             ..Self::new(
                 weather.simulated_number_density_per_m3(),
                 (camera_m, half_extent, particles),

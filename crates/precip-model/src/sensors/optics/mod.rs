@@ -314,23 +314,18 @@ impl Optics {
         self
     }
 
-    /// These optics with a cloud's droplets added where `at_m` lies in `layer`
-    /// (drifted by `offset_m`): its extinction there in every band and backscatter
-    /// over [`FOG_LIDAR_RATIO_SR`], as [`Optics::in_fog`]'s.
+    /// These optics with a cloud's droplets added where `at_m` lies in one of
+    /// `layers` (drifted by `drift_m`): its extinction there in every band and
+    /// backscatter over [`FOG_LIDAR_RATIO_SR`], as [`Optics::in_fog`]'s.
     #[must_use]
     pub fn in_cloud(
         mut self,
-        layer: Option<&crate::drawing::clouds::CloudLayer>,
-        offset_m: glam::Vec2,
+        layers: &crate::drawing::clouds::CloudLayers,
+        drift_m: glam::Vec2,
         at_m: glam::Vec3,
     ) -> Self {
-        if let Some(layer) = layer {
-            let sigma = crate::drawing::clouds::cloud_extinction_at(
-                crate::drawing::clouds::coverage_map(),
-                layer,
-                offset_m,
-                at_m,
-            );
+        if !layers.is_empty() {
+            let sigma = layers.extinction_at(crate::drawing::clouds::coverage_map(), drift_m, at_m);
             for band in &mut self.bands {
                 band.extinction_per_m += sigma;
                 band.backscatter_per_m_sr += sigma / FOG_LIDAR_RATIO_SR;

@@ -1,0 +1,157 @@
+//! Rain and snow shafts (docs/model.md (6.16)): the weather a user sets is the
+//! weather around the camera — within [`LOCAL_WEATHER_RADIUS_M`], where its
+//! particles fall and its cover lies — and beyond it the same mean rate falls only
+//! from the lowest layer's clouds, under the columns they stand over
+//! ([`super::cloud_column`]), from their base to the ground: `rate/c` under a layer
+//! covering `c` ([`shaft_extinction_per_m`]), none between. Seen from under the
+//! deck, the far air between the camera and the clouds is grey where a shaft hangs
+//! and clear between them; the haze of sand and dust, which no cloud drops, stays
+//! everywhere.
+//!
+//! WGSL twin: `precipitation_path_m` (render_clouds.wgsl), with the map read by
+//! the sampler instead of [`super::sample_coverage_map`].
+
+use glam::{Vec2, Vec3};
+
+use super::{CloudLayer, cloud_column, cloud_map_uvs, sample_coverage_map};
+use crate::Weather;
+
+/// The distance from the camera within which the weather is the one set, m.
+pub const LOCAL_WEATHER_RADIUS_M: f32 = 3_000.0;
+/// Samples of the shafts along a path beyond [`LOCAL_WEATHER_RADIUS_M`].
+pub const RAIN_SHAFT_SAMPLES: u32 = 8;
+/// The share of the horizon's sky light a layer's base and the shafts under it
+/// scatter (in their clouds' shade; docs/model.md (6.10), (6.16)): a look.
+pub const CLOUD_BASE_SKY_SHARE: f32 = 0.4;
+
+/// The least coverage a shaft's rate is concentrated by (`rate/c`, at most 20×).
+pub const MIN_SHAFT_COVERAGE: f32 = 0.05;
+
+/// The extinction per m of what falls under one of `lowest`'s clouds: `weather`'s
+/// rain and snow at `rate/c` (capped at the largest rate a weather may have), so the
+/// mean over the layer's area is the rate set; sand and dust do not fall from
+/// clouds (0).
+#[must_use]
+pub fn shaft_extinction_per_m(weather: &Weather, lowest: &CloudLayer) -> f32 {
+    let concentrated = Weather {
+        intensity_mm_per_h: (weather.intensity_mm_per_h / lowest.coverage.max(MIN_SHAFT_COVERAGE))
+            .min(Weather::MAX_INTENSITY_MM_PER_H),
+        ..*weather
+    };
+    (concentrated.extinction_per_m() - concentrated.grain_extinction_per_m()).max(0.0)
+}
+
+/// How much of the path from `camera` along the unit `dir` over `[0, t_end]` m lies
+/// in falling precipitation, m: `(local, shafts)` — all of it within
+/// [`LOCAL_WEATHER_RADIUS_M`] (local), beyond only the part below `lowest`'s base
+/// under its clouds (its map read at `offset_m`), by the midpoints of
+/// [`RAIN_SHAFT_SAMPLES`] steps (shafts). From at or above the base, all of it is
+/// local (the shafts lie below, where the camera's rays toward the sky do not go).
+#[must_use]
+pub fn precipitation_path_m(
+    map: &[u8],
+    lowest: &CloudLayer,
+    offset_m: Vec2,
+    camera: Vec3,
+    dir: Vec3,
+    t_end: f32,
+) -> (f32, f32) {
+    let r = LOCAL_WEATHER_RADIUS_M;
+    if t_end <= r || camera.y >= lowest.base_m {
+        return (t_end.max(0.0), 0.0);
+    }
+    // Where the ray rises through the base (never, going level or down).
+    let t_base = if dir.y > 0.0 {
+        ((lowest.base_m - camera.y) / dir.y).clamp(r, t_end)
+    } else {
+        t_end
+    };
+    let n = RAIN_SHAFT_SAMPLES;
+    let dt = (t_base - r) / n as f32;
+    let covered: f32 = (0..n)
+        .map(|k| {
+            let p = camera + dir * (r + (k as f32 + 0.5) * dt);
+            let (column, _) = cloud_map_uvs(p, offset_m);
+            cloud_column(lowest.coverage, sample_coverage_map(map, column))
+        })
+        .sum();
+    (r, covered * dt)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{CloudKind, coverage_map};
+    use super::*;
+
+    #[test]
+    fn near_the_camera_it_falls_everywhere_beyond_only_under_the_clouds() {
+        let map = coverage_map();
+        let camera = Vec3::new(0.0, 2.0, 0.0);
+        let level = Vec3::X;
+        let layer = |coverage| CloudLayer::typical(CloudKind::Cumulonimbus, coverage);
+        // Within the radius, the whole path.
+        let path = |l: &CloudLayer, offset, camera, dir, t| {
+            let (local, shafts) = precipitation_path_m(map, l, offset, camera, dir, t);
+            local + shafts
+        };
+        let near = path(&layer(0.3), Vec2::ZERO, camera, level, 2_500.0);
+        assert!((near - 2_500.0).abs() < 1e-3);
+        // Beyond it, a full deck rains everywhere (but for its columns' soft edges,
+        // 2 % of the map), none rains nowhere.
+        let far = 20_000.0;
+        let full = path(&layer(1.0), Vec2::ZERO, camera, level, far);
+        assert!((full - far).abs() < 0.04 * far, "{full}");
+        let none = path(&layer(0.0), Vec2::ZERO, camera, level, far);
+        assert!((none - LOCAL_WEATHER_RADIUS_M).abs() < 1.0, "{none}");
+        // Half a deck: over many directions about half the far path.
+        let mut share = 0.0;
+        let n = 200;
+        for i in 0..n {
+            let a = i as f32 * 0.0314;
+            let dir = Vec3::new(a.cos(), 0.0, a.sin());
+            let offset = Vec2::new(i as f32 * 977.0, 0.0);
+            let p = path(&layer(0.5), offset, camera, dir, far);
+            share += (p - LOCAL_WEATHER_RADIUS_M) / (far - LOCAL_WEATHER_RADIUS_M);
+        }
+        share /= n as f32;
+        assert!((share - 0.5).abs() < 0.1, "{share}");
+        // Rising through the base 800 m up at 3°, the shafts end where it enters
+        // the cloud (15.3 km): nothing beyond counts.
+        let up = Vec3::new(3f32.to_radians().cos(), 3f32.to_radians().sin(), 0.0);
+        let through = path(&layer(1.0), Vec2::ZERO, camera, up, 40_000.0);
+        let to_base = 798.0 / 3f32.to_radians().sin();
+        assert!((through - to_base).abs() < 0.04 * to_base, "{through}");
+        // From above the base: as before, the whole path.
+        let above = Vec3::new(0.0, 900.0, 0.0);
+        let all = precipitation_path_m(map, &layer(0.0), Vec2::ZERO, above, level, far);
+        assert_eq!(all, (far, 0.0));
+    }
+
+    #[test]
+    fn a_shaft_rains_the_mean_rate_over_its_cloud_s_share_of_the_sky() {
+        let weather = Weather {
+            kind: crate::PrecipitationKind::Rain,
+            intensity_mm_per_h: 2.0,
+            ..Weather::default()
+        };
+        let cell = CloudLayer::typical(CloudKind::Cumulonimbus, 0.4);
+        let under = Weather {
+            intensity_mm_per_h: 5.0,
+            ..weather
+        };
+        assert!((shaft_extinction_per_m(&weather, &cell) - under.extinction_per_m()).abs() < 1e-9);
+        // A full deck rains the rate itself; sand falls from no cloud.
+        let deck = CloudLayer {
+            coverage: 1.0,
+            ..cell
+        };
+        assert!(
+            (shaft_extinction_per_m(&weather, &deck) - weather.extinction_per_m()).abs() < 1e-9
+        );
+        let sand = Weather {
+            kind: crate::PrecipitationKind::Sand,
+            ..weather
+        };
+        assert!(shaft_extinction_per_m(&sand, &cell) < 1e-12);
+    }
+}
