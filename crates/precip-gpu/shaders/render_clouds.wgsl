@@ -49,9 +49,28 @@ fn cloud_density_at(p: vec3<f32>, layer: vec4<f32>, offset_m: vec2<f32>) -> f32 
     return cloud_density(u32(layer.w), layer.z, m, d, h);
 }
 
+// Layer `i`'s row (base, top, coverage, kind), its most extinction and where it
+// reads the map. A switch of constant indices: an index the compiler cannot see
+// is the same for every pixel costs each pixel a gather on a CPU rasteriser.
+fn layer_row(i: u32) -> vec4<f32> {
+    switch i {
+        case 0u: { return switches.clouds[0]; }
+        case 1u: { return switches.clouds[1]; }
+        default: { return switches.clouds[2]; }
+    }
+}
+
+fn layer_extinction(i: u32) -> f32 {
+    switch i {
+        case 0u: { return switches.cloud_extinction.x; }
+        case 1u: { return switches.cloud_extinction.y; }
+        default: { return switches.cloud_extinction.z; }
+    }
+}
+
 // Where the ray crosses layer `i` (empty past the last layer: its rows are zeros).
 fn layer_slab(i: u32, camera: vec3<f32>, ray: vec3<f32>) -> vec2<f32> {
-    let layer = switches.clouds[i];
+    let layer = layer_row(i);
     return cloud_slab(camera.y, ray.y, layer.x, layer.y);
 }
 
@@ -62,9 +81,12 @@ fn clouds_with_history(in: SkyVarying) -> vec4<f32> {
     let far = switches.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let camera = switches.camera_m_cone_cos.xyz;
     let ray = normalize_or_zero(far.xyz / far.w - camera);
-    // The ray's entry into the nearest layer it crosses.
-    var nearest = -1.0;
-    for (var i = 0u; i < MAX_CLOUD_LAYERS; i += 1u) {
+    // The ray's entry into the nearest layer it crosses (one layer, the common
+    // case, without a loop: a CPU rasteriser pays for each).
+    let count = cloud_layer_count();
+    let first = layer_slab(0u, camera, ray);
+    var nearest = select(-1.0, first.x, first.y > first.x);
+    for (var i = 1u; i < count; i += 1u) {
         let slab = layer_slab(i, camera, ray);
         if (slab.y > slab.x && (nearest < 0.0 || slab.x < nearest)) {
             nearest = slab.x;
@@ -85,27 +107,42 @@ fn clouds_with_history(in: SkyVarying) -> vec4<f32> {
             return textureSampleLevel(cloud_image, cover_sampler, history.xy, 0.0);
         }
     }
-    return march_clouds(in, camera, ray, nearest);
+    return march_clouds(in, camera, ray, nearest, count);
+}
+
+// How many layers there are (their rows are packed lowest first; past the last a
+// row is zeros).
+fn cloud_layer_count() -> u32 {
+    let first = switches.clouds[0];
+    let second = switches.clouds[1];
+    let third = switches.clouds[2];
+    return select(0u, 1u, first.y > first.x) + select(0u, 1u, second.y > second.x)
+        + select(0u, 1u, third.y > third.x);
 }
 
 // The layers marched along the pixel's ray in the order it meets them (upward the
 // lowest first, downward the highest), `nearest` the first one's entry. Each
 // layer's light is dimmed by the layers in front of it and by the haze up to its
 // entry; the haze's own light is laid in front of the first.
-fn march_clouds(in: SkyVarying, camera: vec3<f32>, ray: vec3<f32>, nearest: f32) -> vec4<f32> {
+fn march_clouds(in: SkyVarying, camera: vec3<f32>, ray: vec3<f32>, nearest: f32, count: u32) -> vec4<f32> {
     // A fixed jitter per pixel hides the steps' banding.
     let pixel = vec2<u32>(in.clip.xy);
     let jitter = f32(pcg_hash(pixel.x * 7919u + pixel.y * 104729u) >> 8u) / 16777216.0;
     var light_transmittance = vec4<f32>(0.0, 0.0, 0.0, 1.0);
-    for (var n = 0u; n < MAX_CLOUD_LAYERS; n += 1u) {
-        let i = select(MAX_CLOUD_LAYERS - 1u - n, n, ray.y >= 0.0);
+    // The precipitation's part of the path to the first layer: the same to every
+    // layer behind it from below the lowest base; from above, all of it is local.
+    let paths = precipitation_paths(camera, ray, nearest);
+    let above = camera.y >= layer_row(0u).x;
+    for (var n = 0u; n < count; n += 1u) {
+        let i = select(count - 1u - n, n, ray.y >= 0.0);
         let slab = layer_slab(i, camera, ray);
         if (slab.y <= slab.x) {
             continue;
         }
         let before = light_transmittance;
         let lit = march_layer(i, camera, ray, slab, jitter, before.w);
-        let haze = haze_transmittance(camera, ray, slab.x);
+        let local = select(paths.x, slab.x, above);
+        let haze = haze_transmittance(slab.x, vec2<f32>(local, paths.y));
         light_transmittance = vec4<f32>(before.xyz + lit.xyz * haze.x * haze.y, lit.w);
         if (lit.w < 0.01) {
             break;
@@ -117,7 +154,7 @@ fn march_clouds(in: SkyVarying, camera: vec3<f32>, ray: vec3<f32>, nearest: f32)
     // sky behind. The shafts beyond the camera's surroundings hang in their
     // clouds' shade: they scatter the sky's light as a layer's base does, 0.4 of
     // the horizon's ((6.10)), behind the rest of the haze.
-    let haze = haze_transmittance(camera, ray, nearest);
+    let haze = haze_transmittance(nearest, paths);
     let horizon = switches.sky_colour_time.xyz;
     let in_scattered = horizon * (1.0 - haze.x) + CLOUD_BASE_SKY_SHARE * horizon * haze.x * (1.0 - haze.y);
     return vec4<f32>(
@@ -130,24 +167,29 @@ fn march_clouds(in: SkyVarying, camera: vec3<f32>, ray: vec3<f32>, nearest: f32)
 // grains' everywhere with the precipitation's (cloud_extinction.w) near the camera,
 // y the shafts' beyond, under the lowest layer's clouds (cloud_drift.z;
 // docs/model.md (6.16)).
-fn haze_transmittance(camera: vec3<f32>, ray: vec3<f32>, t: f32) -> vec2<f32> {
+fn haze_transmittance(t: f32, path: vec2<f32>) -> vec2<f32> {
     let sigma_p = switches.cloud_extinction.w;
     let sigma_rest = max(switches.to_sun_extinction.w - sigma_p, 0.0);
-    var path = vec2<f32>(max(t, 0.0), 0.0);
-    if (sigma_p > 0.0) {
-        path = precipitation_path_m(camera, ray, t);
-    }
     return vec2<f32>(
         exp(-sigma_rest * max(t, 0.0) - sigma_p * path.x),
         exp(-switches.cloud_drift.z * path.y),
     );
 }
 
+// The precipitation's parts of the ray's first `t` m (precipitation_path_m), or all
+// of it local without precipitation.
+fn precipitation_paths(camera: vec3<f32>, ray: vec3<f32>, t: f32) -> vec2<f32> {
+    if (switches.cloud_extinction.w > 0.0) {
+        return precipitation_path_m(camera, ray, t);
+    }
+    return vec2<f32>(max(t, 0.0), 0.0);
+}
+
 // precipitation_path_m (precip_model::drawing::clouds::precipitation_path_m): how
 // much of the ray's first `t_end` m lies in the camera's precipitation (x) and in
 // the shafts beyond (y).
 fn precipitation_path_m(camera: vec3<f32>, ray: vec3<f32>, t_end: f32) -> vec2<f32> {
-    let lowest = switches.clouds[0];
+    let lowest = layer_row(0u);
     if (t_end <= LOCAL_WEATHER_RADIUS_M || camera.y >= lowest.x) {
         return vec2<f32>(max(t_end, 0.0), 0.0);
     }
@@ -172,9 +214,9 @@ fn precipitation_path_m(camera: vec3<f32>, ray: vec3<f32>, t_end: f32) -> vec2<f
 // two-lobe phase function, and by the sky's light, weaker with depth below the top;
 // each step's light integrated over it, S·(1 − e^(−σΔ)).
 fn march_layer(i: u32, camera: vec3<f32>, ray: vec3<f32>, slab: vec2<f32>, jitter: f32, transmittance_in: f32) -> vec4<f32> {
-    let layer = switches.clouds[i];
+    let layer = layer_row(i);
     let offset = switches.cloud_drift.xy + cloud_layer_map_offset_m(i);
-    let sigma_max = switches.cloud_extinction[i];
+    let sigma_max = layer_extinction(i);
     let to_sun = switches.to_sun_extinction.xyz;
     let sin_sun = max(to_sun.y, 0.05);
     // The sun's light a unit of extinction scatters toward the camera is
