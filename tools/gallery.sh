@@ -18,8 +18,29 @@ views=(
   "pond -17,0.5,21 0,2.5,0"
 )
 weathers=(light-snow blizzard drizzle downpour sleet sandstorm valley-fog fair-cumulus thunderstorm)
-# Only some of them: tools/gallery.sh blizzard valley-fog
+# The sky from the lawn and from the air: name, preset, extra options, eye, look-at.
+sky_shots=(
+  "fair-cumulus-up fair-cumulus - 5,1.7,25 0,60,-80"
+  "fair-cumulus-below fair-cumulus --cloud-cover=0.95 0,900,0 100,950,-1000"
+  "fair-cumulus-inside fair-cumulus --cloud-cover=0.95 0,1300,0 100,1250,-1000"
+  "fair-cumulus-above fair-cumulus - 0,4500,3000 0,0,-6000"
+  "layered-sky-up layered-sky - 5,1.7,25 0,60,-80"
+  "layered-sky-above layered-sky - 0,4500,3000 0,0,-6000"
+)
+# Only some of them: tools/gallery.sh blizzard valley-fog (sky: tools/gallery.sh sky)
 if [ "$#" -gt 0 ]; then weathers=("$@"); fi
+if [ "${weathers[*]}" = "sky" ] || [ "$#" -eq 0 ]; then
+  for shot in "${sky_shots[@]}"; do
+    read -r name preset extra eye at <<<"$shot"
+    args=()
+    [ "$extra" = "-" ] || args+=("$extra")
+    "$precip" --preset "presets/$preset.toml" "${args[@]}" --camera "$eye" --look-at "$at" \
+      --size 640x360 --frames 45 --dt 0.0667 --out "$work/sky-$name" >/dev/null 2>&1
+    cp "$work/sky-$name/frame_0044.png" "$out/sky-$name.png"
+    echo "$out/sky-$name.png"
+  done
+  [ "${weathers[*]}" = "sky" ] && exit 0
+fi
 for weather in "${weathers[@]}"; do
   for view in "${views[@]}"; do
     read -r name eye at <<<"$view"
