@@ -140,10 +140,16 @@ fn rain_vertex(vertex: u32, instance: u32) -> ParticleVarying {
     // Out of focus: the streak widened by the lens's blur circle, the ink kept.
     let wide = defocused(sharp.y, sharp.z, defocus_blur_m(params.lens.x, params.lens.y, distance_m), 1);
     let size = vec3<f32>(sharp.x, wide.x, wide.y);
-    let v = raindrop_vertex(p.position_m, p.velocity_mps, size.x, size.y, rain_tetrahedron_face_vertex(vertex));
+    let k = rain_tetrahedron_face_vertex(vertex);
+    let v = raindrop_vertex(p.position_m, p.velocity_mps, size.x, size.y, k);
     var out: ParticleVarying;
     out.clip = params.view_proj * vec4<f32>(v.position_m, 1.0);
-    out.uv = vec2<f32>(0.0);
+    // The drop's oscillation along its streak (docs/model.md (5.4b)): its phase (a
+    // hash of its index) at the head, the cycles it rang through over the streak's
+    // time (h/|v|) more at the tail (vertex 0), interpolated along the axis.
+    let cycles = drop_oscillation_hz(p.diameter_m) * size.x / max(length(p.velocity_mps), 1.0e-3);
+    let phase = f32(pcg_hash(i) >> 8u) / 16777216.0;
+    out.uv = vec2<f32>(phase + select(0.0, cycles, k == 0u), 0.0);
     // What the drop refracts: the sky and the ground over its field of view, the
     // ground's albedo the cover's around the camera (drop_ground, once a frame).
     let view_sin_elevation = (p.position_m.y - camera.y) / max(distance_m, 1.0e-6);
@@ -178,7 +184,8 @@ fn rain_fragment(in: ParticleVarying) -> vec4<f32> {
     if (dot(n, to_viewer) < 0.0) {
         n = -n;
     }
-    return vec4<f32>(rain_colour(n, to_viewer, in.shade.x, vec2<f32>(in.shade.y, in.stretch), in.shade.z), in.shade.w);
+    let colour = rain_colour(n, to_viewer, in.shade.x, vec2<f32>(in.shade.y, in.stretch), in.shade.z);
+    return vec4<f32>(colour * drop_oscillation_brightness(in.uv.x), in.shade.w);
 }
 
 // Particles at a reduced resolution (precip_model::ParticleResolution): the share of

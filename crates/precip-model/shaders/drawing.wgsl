@@ -201,6 +201,19 @@ fn in_view_cone(position_m: vec3<f32>, camera_m: vec3<f32>, view_dir: vec3<f32>,
     return dot(d * inverseSqrt(l2), view_dir) >= cone_cos;
 }
 
+// drop_oscillation_hz, drop_oscillation_brightness
+// (precip_model::drawing::drop_oscillation): a drop's fundamental oscillation,
+// √(8σ/(ρ_w r³))/2π, and its brightness 1 + A·cos(2π·cycles).
+const WATER_SURFACE_TENSION_N_PER_M: f32 = 0.074;
+const DROP_OSCILLATION_CONTRAST: f32 = 0.25;
+fn drop_oscillation_hz(diameter_m: f32) -> f32 {
+    let r = 0.5 * max(diameter_m, 1.0e-5);
+    return sqrt(8.0 * WATER_SURFACE_TENSION_N_PER_M / (1000.0 * r * r * r)) / 6.2831855;
+}
+fn drop_oscillation_brightness(cycles: f32) -> f32 {
+    return 1.0 + DROP_OSCILLATION_CONTRAST * cos(6.2831855 * cycles);
+}
+
 // flake_sun_phase (precip_model::drawing::flake_sun_phase): ½ Henyey–Greenstein of
 // the delta-Eddington asymmetry g/(1 + g), g = FLAKE_ASYMMETRY.
 const FLAKE_ASYMMETRY: f32 = 0.75;

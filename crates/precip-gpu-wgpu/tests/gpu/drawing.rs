@@ -54,7 +54,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             Program::ProbeDrawing,
             bytemuck::cast_slice(&inputs),
             inputs.len() as u32,
-            (inputs.len() * 20 * 16) as u64,
+            (inputs.len() * 21 * 16) as u64,
         );
         let got: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
         for (i, q) in inputs.iter().enumerate() {
@@ -76,7 +76,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 .chain(&tetra.normals)
                 .copied();
             for (k, want) in expected.enumerate() {
-                let g = got[20 * i + k];
+                let g = got[21 * i + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 // The four face normals (values 8–11) of a drop's thin tetrahedron are
                 // cross products of nearly parallel edges: a driver that fuses a
@@ -89,7 +89,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                     "{name}: input {i} value {k}: WGSL {have} vs Rust {want}"
                 );
             }
-            let cover = got[20 * i + 12];
+            let cover = got[21 * i + 12];
             let want = [
                 snow_cover_fraction(q.h_m, q.cover[0], q.a_m, q.cover[1]),
                 sub_texel_threshold(q.tumble, [centre.x, centre.z]),
@@ -115,7 +115,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             let blur = defocus_blur_m(q.a_m, 10.0, 50.0 * q.h_m);
             let sprite = defocused(q.side_m, 0.8, blur, 2);
             let streak_opacity = defocused(q.side_m, 0.8, blur, 1).1;
-            let g = got[20 * i + 17];
+            let g = got[21 * i + 17];
             for (k, want) in [blur, sprite.0, sprite.1, streak_opacity]
                 .into_iter()
                 .enumerate()
@@ -127,7 +127,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 );
             }
             let warp = cover_warp_m([centre.x, centre.z], [q.a_m + 0.1, q.side_m + 0.1]);
-            let g = got[20 * i + 18];
+            let g = got[21 * i + 18];
             assert!(
                 (g[0] - warp[0]).abs() <= 2e-5 && (g[1] - warp[1]).abs() <= 2e-5,
                 "{name}: input {i} cover warp: WGSL {g:?} vs Rust {warp:?}"
@@ -145,8 +145,21 @@ fn wgsl_drawing_equals_rust_drawing() {
                 "{name}: input {i} drop environment: WGSL {} vs Rust {drop}",
                 g[3]
             );
+            // A drop's oscillation, a cloud column, a layer's map offset.
+            let g = got[21 * i + 20];
+            let hz = precip_model::drawing::drop_oscillation_hz(q.a_m / 20.0);
+            let bright = precip_model::drawing::drop_oscillation_brightness(q.spin_rad);
+            let column = precip_model::drawing::clouds::cloud_column(q.tumble, q.side_m);
+            let offset = precip_model::drawing::clouds::cloud_layer_map_offset_m(i as u32 % 3);
+            assert!(
+                (g[0] - hz).abs() <= 1e-5 * hz
+                    && (g[1] - bright).abs() <= 1e-4
+                    && (g[2] - column).abs() <= 1e-6
+                    && (g[3] - (offset.x + offset.y)).abs() <= 1e-3,
+                "{name}: input {i} oscillation, column, offset: WGSL {g:?} vs Rust {hz} {bright} {column} {offset}"
+            );
             // The clouds' march slot and the history's uv.
-            let g = got[20 * i + 19];
+            let g = got[21 * i + 19];
             let slot = cloud_march_slot(glam::UVec2::new(
                 centre.x.abs() as u32,
                 centre.z.abs() as u32,
@@ -167,7 +180,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 None => assert!(g[3] < 0.5, "{name}: input {i} history: WGSL {g:?} vs none"),
             }
             for (k, (want, uv)) in streak.iter().enumerate() {
-                let g = got[20 * i + 13 + k];
+                let g = got[21 * i + 13 + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 let tolerance = 1e-5 * (1.0 + want.abs().max_element());
                 assert!(

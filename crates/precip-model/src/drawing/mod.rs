@@ -15,6 +15,7 @@
 
 pub mod clouds;
 mod drop_environment;
+mod drop_oscillation;
 pub mod fog_layer;
 pub mod frame_rate_control;
 pub mod multiplicity;
@@ -30,6 +31,10 @@ pub use drop_environment::{
     BARE_GROUND_ALBEDO, DROP_GROUND_RADIUS_M, DROP_GROUND_SAMPLES_PER_SIDE, DROP_HALF_FIELD_RAD,
     DROP_REFRACTED_SHARE, OVERCAST_GROUND_RADIANCE_PER_ALBEDO, drop_environment_factor,
     drop_field_shares, drop_ground_albedo, drop_ground_offset_m,
+};
+pub use drop_oscillation::{
+    DROP_OSCILLATION_CONTRAST, WATER_SURFACE_TENSION_N_PER_M, drop_oscillation_brightness,
+    drop_oscillation_hz,
 };
 
 /// The four corners of a camera-facing snow sprite of side `side_m` centred at
