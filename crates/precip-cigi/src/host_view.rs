@@ -121,6 +121,17 @@ pub fn attitude(yaw_deg: f64, pitch_deg: f64, roll_deg: f64) -> DMat3 {
         * DMat3::from_rotation_x(roll_deg.to_radians())
 }
 
+/// The world's forward and up (unit) of a body turned by a heading (clockwise from
+/// north), pitch (nose up) and roll (right wing down), degrees.
+#[must_use]
+pub fn view_axes(yaw_deg: f64, pitch_deg: f64, roll_deg: f64) -> (Vec3, Vec3) {
+    let r = attitude(yaw_deg, pitch_deg, roll_deg);
+    (
+        world_of_ned(r * DVec3::X).normalize().as_vec3(),
+        world_of_ned(-(r * DVec3::Z)).normalize().as_vec3(),
+    )
+}
+
 /// Where the view precip draws stands and looks, in the scene's world.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Eyepoint {

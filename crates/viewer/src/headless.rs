@@ -51,6 +51,9 @@ pub struct HeadlessExtras<'a> {
     /// frame; a change takes effect in it) and answer it with Start of Frame after
     /// each frame.
     pub cigi: Option<&'a mut precip_cigi::CigiReceiver>,
+    /// A flight: the camera where it is at each frame's simulated time (a CIGI
+    /// host's eyepoint, once placed, wins).
+    pub flight: Option<crate::flight::Flight>,
     /// An OpenSCENARIO timeline: each change applied when the simulated clock
     /// (frames × `dt_s`) reaches it.
     pub scenario: Option<crate::scenario::apply::ScenarioClock>,
@@ -121,6 +124,7 @@ pub fn run_headless_with(
         lidar,
         lockstep,
         mut scenario,
+        flight,
     } = extras;
     let mut scenario_log = Vec::new();
     let mut view = *view;
@@ -173,6 +177,9 @@ pub fn run_headless_with(
         }
         if let Some(clock) = scenario.as_mut() {
             scenario_log.extend(clock.advance(f64::from(frame) * f64::from(dt_s), backend)?);
+        }
+        if let Some(flight) = &flight {
+            view.camera = flight.camera_at(f64::from(frame) * f64::from(dt_s), &view.camera);
         }
         let aspect = view.width_px as f32 / view.height_px.max(1) as f32;
         if let Some(eye) = cigi.as_deref_mut().and_then(|r| r.take_eyepoint(aspect)) {

@@ -11,6 +11,7 @@ pub mod cigi_view;
 pub mod demo;
 pub mod eligibility;
 pub mod error;
+pub mod flight;
 pub mod fly_camera;
 pub mod frame_stats;
 pub mod glb;

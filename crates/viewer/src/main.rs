@@ -193,6 +193,11 @@ struct RunArgs {
     /// the scene's y = 0 at ALT). The scene is the tangent plane there.
     #[arg(long, value_parser = precip_viewer::cigi_view::parse_origin, allow_negative_numbers = true)]
     origin: Option<precip_cigi::GeodeticOrigin>,
+    /// Fly the camera along waypoints: a file of `t_s x_m y_m z_m heading_deg
+    /// pitch_deg [roll_deg]` lines, or `orbit` (once around the demo house in 24 s);
+    /// on the simulated clock, headless and in the window.
+    #[arg(long, value_parser = precip_viewer::flight::Flight::load)]
+    flight: Option<precip_viewer::flight::Flight>,
     /// The CIGI view this IG draws (View Control and View Definition of this view;
     /// the ownship's eyepoint before any).
     #[arg(long, default_value_t = 0)]
@@ -520,8 +525,11 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
                 args.size,
                 args.backend,
                 args.quit_after,
-                cigi,
-                scenario_clock.clone(),
+                precip_viewer::window::WindowDrivers {
+                    cigi,
+                    scenario: scenario_clock.clone(),
+                    flight: args.flight.clone(),
+                },
                 hold_fps,
             ) {
                 Ok(shown) => {
@@ -584,6 +592,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             cigi: cigi.as_mut(),
             lockstep: args.cigi_lockstep,
             scenario: scenario_clock,
+            flight: args.flight.clone(),
             lidar: args.lidar.then(|| {
                 precip_viewer::lidar_scan::SpinningLidar::automotive(view.camera.position_m)
             }),

@@ -171,6 +171,8 @@ struct App {
     cigi: Option<precip_cigi::CigiReceiver>,
     /// An OpenSCENARIO timeline, played on the simulated clock.
     scenario: Option<crate::scenario::apply::ScenarioClock>,
+    /// A flight the camera follows on the simulated clock.
+    flight: Option<crate::flight::Flight>,
     /// `--quality auto`: the frame rate to hold.
     hold_fps: Option<f32>,
 }
@@ -555,6 +557,9 @@ impl ApplicationHandler for App {
                         }
                     }
                 }
+                if let Some(flight) = &self.flight {
+                    r.host_camera = Some(flight.camera_at(r.simulated_s, &r.lens));
+                }
                 let aspect = r.size.0 as f32 / r.size.1.max(1) as f32;
                 if let Some(eye) = self.cigi.as_mut().and_then(|c| c.take_eyepoint(aspect)) {
                     r.host_camera = Some(crate::cigi_view::camera_at_eyepoint(
@@ -607,20 +612,34 @@ pub struct WindowSummary {
     pub validation_messages: Vec<String>,
 }
 
+/// What drives a window besides its keys.
+#[derive(Debug, Default)]
+pub struct WindowDrivers {
+    /// A CIGI host: its weather and eyepoint take effect at the next frame.
+    pub cigi: Option<precip_cigi::CigiReceiver>,
+    /// An OpenSCENARIO timeline, played on the simulated clock.
+    pub scenario: Option<crate::scenario::apply::ScenarioClock>,
+    /// A flight the camera follows on the simulated clock.
+    pub flight: Option<crate::flight::Flight>,
+}
+
 /// Opens a window of `size` over `setup`, drawing with `backend`, and runs until it
-/// is closed (or, with `quit_after`, after that many frames).
-/// With `cigi`, a host's weather takes effect at the next frame; with `hold_fps`,
-/// the particles' resolution and the shadow map's refresh follow the frame rate
-/// ([`FrameRateControl`]).
+/// is closed (or, with `quit_after`, after that many frames), driven by `drivers`;
+/// with `hold_fps`, the particles' resolution and the shadow map's refresh follow
+/// the frame rate ([`FrameRateControl`]).
 pub fn run_window(
     setup: Setup,
     size: (u32, u32),
     backend: BackendName,
     quit_after: Option<u32>,
-    cigi: Option<precip_cigi::CigiReceiver>,
-    scenario: Option<crate::scenario::apply::ScenarioClock>,
+    drivers: WindowDrivers,
     hold_fps: Option<f32>,
 ) -> Result<WindowSummary, WindowError> {
+    let WindowDrivers {
+        cigi,
+        scenario,
+        flight,
+    } = drivers;
     if !display_available() {
         return Err(WindowError::NoDisplay(
             "neither DISPLAY nor WAYLAND_DISPLAY is set".into(),
@@ -638,6 +657,7 @@ pub fn run_window(
         validation: None,
         cigi,
         scenario,
+        flight,
         hold_fps,
     };
     event_loop
