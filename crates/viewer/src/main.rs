@@ -395,6 +395,25 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         .as_deref()
         .map(precip_viewer::scenario::load_scenario)
         .transpose()?;
+    let mut scenario = scenario;
+    if let Some(s) = scenario.as_mut() {
+        let origin = args.origin.unwrap_or_default();
+        s.light_by_time_of_day(origin.latitude_deg, origin.longitude_deg)
+            .map_err(|e| {
+                anyhow::anyhow!(
+                    "{}: {e}",
+                    args.scenario
+                        .as_deref()
+                        .unwrap_or(std::path::Path::new("?"))
+                        .display()
+                )
+            })?;
+        if args.origin.is_none() && s.initial.time_of_day.is_some() {
+            eprintln!(
+                "note: the scenario's TimeOfDay places the sun as seen from 0° N 0° E; give the scene's place with --origin LAT,LON"
+            );
+        }
+    }
     if let Some(s) = &scenario {
         eprintln!(
             "scenario: from the start {}",

@@ -1,5 +1,6 @@
 //! [`Weather`]: what the user sets, in physical units, validated at the boundary.
 
+pub mod sun;
 pub mod visibility;
 
 use precip_wind::WindField;

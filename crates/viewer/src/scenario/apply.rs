@@ -114,7 +114,7 @@ pub fn describe(w: &ScenarioWeather) -> String {
         line += &format!(", road friction ×{f:.2} (reported only)");
     }
     if let Some(t) = &w.time_of_day {
-        line += &format!(", time of day {t} (the light follows Sun)");
+        line += &format!(", time of day {t}");
     }
     line
 }

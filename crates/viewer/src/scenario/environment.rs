@@ -41,7 +41,8 @@ pub struct ScenarioWeather {
     pub cloud_layer: Option<CloudLayer>,
     /// Toward the sun (unit), from its `Sun`'s azimuth and elevation.
     pub to_sun: Option<Vec3>,
-    /// `TimeOfDay@dateTime`, as written (reported: the light follows `Sun`).
+    /// `TimeOfDay@dateTime`, as written: the sun's direction where no `Sun` gives
+    /// it ([`super::Scenario::light_by_time_of_day`]).
     pub time_of_day: Option<String>,
     /// `RoadCondition@frictionScaleFactor` (reported: precip has no tyres).
     pub friction_scale: Option<f32>,

@@ -351,3 +351,34 @@ fn an_environment_comes_from_a_catalog_with_its_parameters_assigned() {
 fn expressions_are_checked() {
     assert!(expressions::evaluate("1 +", &|_| Ok(0.0)).is_err());
 }
+
+#[test]
+fn the_time_of_day_places_the_sun_where_no_sun_is_given() {
+    let text = TIMELINE.replace(
+        r#"<Sun azimuth="1.5707963" elevation="0.5236" illuminance="20000"/>"#,
+        "",
+    );
+    let mut s = scenario_from_text(&text, Path::new("t.xosc")).expect("valid");
+    assert_eq!(s.initial.to_sun, None);
+    // Zürich, 26 November, 08:00 UTC (09:00 there): the sun some 9° up in the
+    // south-east, an hour and a half after it rose.
+    s.light_by_time_of_day(47.4, 8.5).expect("a date");
+    let sun = s.initial.to_sun.expect("placed");
+    let elevation = sun.y.asin().to_degrees();
+    assert!((elevation - 9.2).abs() < 1.5, "{elevation}");
+    assert!(sun.x > 0.0 && sun.z > 0.0, "south-east: {sun}");
+    // The events without a TimeOfDay keep theirs (none).
+    assert!(s.changes.iter().all(|c| c.weather.to_sun.is_none()));
+    let bad = TIMELINE
+        .replace(
+            r#"<Sun azimuth="1.5707963" elevation="0.5236" illuminance="20000"/>"#,
+            "",
+        )
+        .replace("2026-11-26T08:00:00", "the morning");
+    let mut s = scenario_from_text(&bad, Path::new("t.xosc")).expect("read");
+    let e = s.light_by_time_of_day(0.0, 0.0).expect_err("not a date");
+    assert!(
+        e.contains("TimeOfDay@dateTime") && e.contains("the morning"),
+        "{e}"
+    );
+}

@@ -43,6 +43,33 @@ pub struct Scenario {
     pub notes: Vec<String>,
 }
 
+impl Scenario {
+    /// Each environment's light from its `TimeOfDay` where it names no `Sun`: the
+    /// sun's direction at that time seen from `latitude_deg`, `longitude_deg` (the
+    /// scene's origin; precip_model::weather::sun). A `dateTime` that is not one is
+    /// an error naming it.
+    pub fn light_by_time_of_day(
+        &mut self,
+        latitude_deg: f64,
+        longitude_deg: f64,
+    ) -> Result<(), String> {
+        let weathers = std::iter::once(&mut self.initial)
+            .chain(self.changes.iter_mut().map(|c| &mut c.weather));
+        for w in weathers {
+            if let (None, Some(text)) = (w.to_sun, &w.time_of_day) {
+                let time = precip_model::weather::sun::UtcTime::parse_iso8601(text)
+                    .map_err(|e| format!("TimeOfDay@dateTime: {e}"))?;
+                w.to_sun = Some(precip_model::weather::sun::to_sun_at(
+                    &time,
+                    latitude_deg,
+                    longitude_deg,
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 fn children<'a, 'i: 'a>(node: Node<'a, 'i>, tag: &'a str) -> impl Iterator<Item = Node<'a, 'i>> {
     node.children().filter(move |c| c.has_tag_name(tag))
 }
