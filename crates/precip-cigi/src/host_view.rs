@@ -23,7 +23,7 @@ use std::collections::BTreeMap;
 
 use glam::{DMat3, DVec3, Vec2, Vec3};
 
-use crate::packet::{EntityControl, ViewControl, ViewDefinition};
+use crate::packet::{CelestialSphereControl, EntityControl, ViewControl, ViewDefinition};
 
 /// WGS 84 semi-major axis, m.
 pub const WGS84_A_M: f64 = 6_378_137.0;
@@ -224,6 +224,30 @@ impl HostView {
         }
         self.entities.insert(packet.entity_id, pose);
         true
+    }
+
+    /// Toward the sun at the date and time of a Celestial Sphere Control, seen from
+    /// the origin (precip_model::weather::sun); `None` when the host does not ask
+    /// for the ephemeris model or sends no valid date (MMDDYYYY).
+    #[must_use]
+    pub fn sun(&self, packet: &CelestialSphereControl) -> Option<Vec3> {
+        if !(packet.ephemeris && packet.date_valid) || packet.hour > 23 || packet.minute > 59 {
+            return None;
+        }
+        let time = precip_model::weather::sun::UtcTime {
+            year: (packet.date % 10_000) as i32,
+            month: packet.date / 1_000_000,
+            day: (packet.date / 10_000) % 100,
+            hour: f64::from(packet.hour) + f64::from(packet.minute) / 60.0,
+        };
+        if !((1..=12).contains(&time.month) && (1..=31).contains(&time.day)) {
+            return None;
+        }
+        Some(precip_model::weather::sun::to_sun_at(
+            &time,
+            self.origin.latitude_deg,
+            self.origin.longitude_deg,
+        ))
     }
 
     /// Takes a View Control; false when it is for another view.

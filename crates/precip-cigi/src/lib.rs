@@ -17,7 +17,8 @@
 //! The host flies the eyepoint ([`HostView`]): Entity Control places the ownship
 //! (and other entities) by latitude, longitude, altitude and attitude on the
 //! scene's local tangent plane ([`GeodeticOrigin`]), View Control hangs the view
-//! drawn on an entity, View Definition sets its field of view;
+//! drawn on an entity, View Definition sets its field of view, and Celestial Sphere
+//! Control's date and time place the sun ([`HostView::sun`]);
 //! [`CigiReceiver::take_eyepoint`] hands the camera over, and
 //! [`CigiReceiver::wait_for_host_frame`] keeps the IG in lockstep with a host
 //! running synchronously.

@@ -20,6 +20,7 @@ use crate::error::CigiError;
 
 mod view;
 pub use view::{
+    CELESTIAL_SPHERE_CONTROL_OPCODE, CELESTIAL_SPHERE_CONTROL_SIZE, CelestialSphereControl,
     ENTITY_CONTROL_OPCODE, ENTITY_CONTROL_SIZE, EntityControl, VIEW_CONTROL_OPCODE,
     VIEW_CONTROL_SIZE, VIEW_DEFINITION_OPCODE, VIEW_DEFINITION_SIZE, ViewControl, ViewDefinition,
 };
@@ -197,6 +198,8 @@ pub enum Packet {
     WeatherControl(WeatherControl),
     /// Entity Control.
     EntityControl(EntityControl),
+    /// Celestial Sphere Control.
+    CelestialSphereControl(CelestialSphereControl),
     /// View Control.
     ViewControl(ViewControl),
     /// View Definition.
@@ -351,6 +354,7 @@ pub fn parse_message(datagram: &[u8]) -> Result<Vec<Packet>, CigiError> {
             IG_CONTROL_OPCODE => Some(IG_CONTROL_SIZE),
             WEATHER_CONTROL_OPCODE => Some(WEATHER_CONTROL_SIZE),
             ENTITY_CONTROL_OPCODE => Some(ENTITY_CONTROL_SIZE),
+            CELESTIAL_SPHERE_CONTROL_OPCODE => Some(CELESTIAL_SPHERE_CONTROL_SIZE),
             VIEW_CONTROL_OPCODE => Some(VIEW_CONTROL_SIZE),
             VIEW_DEFINITION_OPCODE => Some(VIEW_DEFINITION_SIZE),
             _ => None,
@@ -367,6 +371,9 @@ pub fn parse_message(datagram: &[u8]) -> Result<Vec<Packet>, CigiError> {
             IG_CONTROL_OPCODE => Packet::IgControl(ig_control(&r, order)?),
             WEATHER_CONTROL_OPCODE => Packet::WeatherControl(weather_control(&r)?),
             ENTITY_CONTROL_OPCODE => Packet::EntityControl(view::entity_control(&r)?),
+            CELESTIAL_SPHERE_CONTROL_OPCODE => {
+                Packet::CelestialSphereControl(view::celestial_sphere_control(&r))
+            }
             VIEW_CONTROL_OPCODE => Packet::ViewControl(view::view_control(&r)?),
             VIEW_DEFINITION_OPCODE => Packet::ViewDefinition(view::view_definition(&r)?),
             _ => Packet::Other { opcode },

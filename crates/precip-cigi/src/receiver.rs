@@ -30,8 +30,11 @@ pub struct PacketCounts {
     pub entity_control: u64,
     /// View Control and View Definition packets taken for the view drawn.
     pub view_control: u64,
-    /// Entity, View Control and View Definition packets not used (another view, a
-    /// standby entity, an unknown parent, a field of view that is none).
+    /// Celestial Sphere Control packets that placed the sun.
+    pub celestial: u64,
+    /// Entity, View Control, View Definition and Celestial Sphere Control packets
+    /// not used (another view, a standby entity, an unknown parent, a field of view
+    /// that is none, no ephemeris or date).
     pub view_ignored: u64,
     /// Other packets, skipped by their size ([`CigiReceiver::other_opcodes`]).
     pub other: u64,
@@ -76,6 +79,10 @@ pub struct CigiReceiver {
     other_opcodes: BTreeMap<u8, u64>,
     /// The host frame [`CigiReceiver::wait_for_host_frame`] last returned.
     waited_host_frame: Option<u32>,
+    /// The sun a Celestial Sphere Control placed, not yet taken.
+    sun_news: Option<glam::Vec3>,
+    /// The sun last taken.
+    announced_sun: Option<glam::Vec3>,
 }
 
 impl CigiReceiver {
@@ -105,6 +112,8 @@ impl CigiReceiver {
             view_news: false,
             other_opcodes: BTreeMap::new(),
             waited_host_frame: None,
+            sun_news: None,
+            announced_sun: None,
         })
     }
 
@@ -123,6 +132,14 @@ impl CigiReceiver {
             return None;
         }
         self.view.eyepoint(aspect)
+    }
+
+    /// Toward the sun, if a Celestial Sphere Control moved it since the last call
+    /// (its date and time at the scene's origin); read after [`CigiReceiver::poll`].
+    pub fn take_sun(&mut self) -> Option<glam::Vec3> {
+        let sun = self.sun_news.take()?;
+        self.announced_sun = Some(sun);
+        Some(sun)
     }
 
     /// Packets skipped, by opcode, and how many of each.
@@ -241,6 +258,13 @@ impl CigiReceiver {
                 self.counts.other += 1;
                 *self.other_opcodes.entry(*opcode).or_default() += 1;
             }
+            Packet::CelestialSphereControl(c) => match self.view.sun(c) {
+                Some(sun) => {
+                    self.counts.celestial += 1;
+                    self.sun_news = (Some(sun) != self.announced_sun).then_some(sun);
+                }
+                None => self.counts.view_ignored += 1,
+            },
             Packet::EntityControl(e) => {
                 let placed = self.view.apply_entity(e);
                 self.count_view(placed, true);

@@ -622,12 +622,17 @@ fn a_host_flies_the_eyepoint_in_either_byte_order_and_the_ig_keeps_step() {
             build(&mut w);
             host.send_to(&w.bytes, ("127.0.0.1", port)).expect("sent");
         };
-        // Frame 1: the ownship 300 m above the origin heading east, and a packet
-        // precip does not use (Celestial Sphere Control, opcode 9, 16 bytes).
+        // Frame 1: the ownship 300 m above the origin heading east, a packet precip
+        // does not use (Sensor Control, opcode 17, 24 bytes), and the date and time
+        // (Celestial Sphere Control: 11:30 UTC, ephemeris and date valid, 21 June
+        // 2026 as MMDDYYYY).
         send(1, &|w| {
             w.entity(0, [0.0, 0.0, 90.0], [47.0, 8.0, 700.0]);
-            w.bytes.extend([9u8, 16]);
-            w.bytes.extend([0u8; 14]);
+            w.bytes.extend([17u8, 24]);
+            w.bytes.extend([0u8; 22]);
+            w.bytes.extend([9u8, 16, 11, 30, 0x13, 0, 0, 0]);
+            w.u32(6_212_026);
+            w.f32(0.0);
         });
         assert!(
             receiver.wait_for_host_frame(Duration::from_secs(5)),
@@ -637,6 +642,13 @@ fn a_host_flies_the_eyepoint_in_either_byte_order_and_the_ig_keeps_step() {
         assert!((eye.position_m - Vec3::new(0.0, 300.0, 0.0)).length() < 1e-3);
         assert!((eye.forward - Vec3::X).length() < 1e-5, "{eye:?}");
         assert_eq!(receiver.take_eyepoint(1.0), None, "only news");
+        // The solstice's solar noon at 47° N 8° E: 66° up, due south (+z).
+        let sun = receiver.take_sun().expect("placed");
+        assert!(
+            (sun.y.asin().to_degrees() - 66.4).abs() < 0.6 && sun.z > 0.9 * sun.z.hypot(sun.x),
+            "{sun}"
+        );
+        assert_eq!(receiver.take_sun(), None, "only news");
         // Nothing new: the wait times out.
         assert!(!receiver.wait_for_host_frame(Duration::from_millis(50)));
         // Frame 2: 0.01° further east, a pilot's eye looking 10° down, 60° × 40°.
@@ -663,7 +675,8 @@ fn a_host_flies_the_eyepoint_in_either_byte_order_and_the_ig_keeps_step() {
             (2, 2, 1),
             "{order:?}"
         );
-        assert_eq!(receiver.other_opcodes().get(&9), Some(&1));
+        assert_eq!(receiver.other_opcodes().get(&17), Some(&1));
+        assert_eq!(receiver.counts().celestial, 1);
         assert_eq!(receiver.weather(), Weather::default());
     }
 }

@@ -228,8 +228,8 @@ impl<G: Gpu> Backend for GpuBackend<G> {
 
     fn set_atmosphere(
         &mut self,
-        to_sun: glam::Vec3,
-        clear_air_extinction_per_m: f32,
+        to_sun: Option<glam::Vec3>,
+        clear_air_extinction_per_m: Option<f32>,
     ) -> Result<(), BackendError> {
         let state = self.state.as_mut().ok_or(BackendError::NotConfigured {
             operation: "set_atmosphere",
@@ -401,8 +401,8 @@ macro_rules! delegate_backend {
             }
             fn set_atmosphere(
                 &mut self,
-                to_sun: ::glam::Vec3,
-                clear_air_extinction_per_m: f32,
+                to_sun: Option<::glam::Vec3>,
+                clear_air_extinction_per_m: Option<f32>,
             ) -> Result<(), ::precip_model::BackendError> {
                 self.0.set_atmosphere(to_sun, clear_air_extinction_per_m)
             }

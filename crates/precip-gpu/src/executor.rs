@@ -441,8 +441,8 @@ impl<G: Gpu> Simulation<G> {
     /// ([`HostState::set_atmosphere`]).
     pub fn set_atmosphere(
         &mut self,
-        to_sun: glam::Vec3,
-        clear_air_extinction_per_m: f32,
+        to_sun: Option<glam::Vec3>,
+        clear_air_extinction_per_m: Option<f32>,
     ) -> Result<(), BackendError> {
         self.host.set_atmosphere(to_sun, clear_air_extinction_per_m)
     }

@@ -181,6 +181,12 @@ pub fn run_headless_with(
         if let Some(flight) = &flight {
             view.camera = flight.camera_at(f64::from(frame) * f64::from(dt_s), &view.camera);
         }
+        if let Some(sun) = cigi
+            .as_deref_mut()
+            .and_then(precip_cigi::CigiReceiver::take_sun)
+        {
+            backend.set_atmosphere(Some(sun), None)?;
+        }
         let aspect = view.width_px as f32 / view.height_px.max(1) as f32;
         if let Some(eye) = cigi.as_deref_mut().and_then(|r| r.take_eyepoint(aspect)) {
             view.camera = crate::cigi_view::camera_at_eyepoint(&eye, &view.camera);

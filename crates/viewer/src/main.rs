@@ -651,9 +651,10 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             .map(|(opcode, n)| format!("{n}× opcode {opcode}"))
             .collect();
         println!(
-            "CIGI: Entity Control {} placed, View Control/Definition {} taken, {} not used; last eyepoint ({:.1}, {:.1}, {:.1}) m looking ({:.3}, {:.3}, {:.3}); {} host frames missed in lockstep; packets not used: {}",
+            "CIGI: Entity Control {} placed, View Control/Definition {} taken, Celestial Sphere Control {} placed the sun, {} not used; last eyepoint ({:.1}, {:.1}, {:.1}) m looking ({:.3}, {:.3}, {:.3}); {} host frames missed in lockstep; packets not used: {}",
             c.entity_control,
             c.view_control,
+            c.celestial,
             c.view_ignored,
             eye.position_m.x,
             eye.position_m.y,

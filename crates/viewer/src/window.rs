@@ -560,6 +560,14 @@ impl ApplicationHandler for App {
                 if let Some(flight) = &self.flight {
                     r.host_camera = Some(flight.camera_at(r.simulated_s, &r.lens));
                 }
+                if let Some(sun) = self
+                    .cigi
+                    .as_mut()
+                    .and_then(precip_cigi::CigiReceiver::take_sun)
+                {
+                    // A valid direction: the receiver made it from a date and time.
+                    let _ = r.presenter.backend().set_atmosphere(Some(sun), None);
+                }
                 let aspect = r.size.0 as f32 / r.size.1.max(1) as f32;
                 if let Some(eye) = self.cigi.as_mut().and_then(|c| c.take_eyepoint(aspect)) {
                     r.host_camera = Some(crate::cigi_view::camera_at_eyepoint(

@@ -6,6 +6,41 @@
 use super::Reader;
 use crate::error::CigiError;
 
+/// Opcode of Celestial Sphere Control.
+pub const CELESTIAL_SPHERE_CONTROL_OPCODE: u8 = 9;
+/// Size of Celestial Sphere Control, bytes.
+pub const CELESTIAL_SPHERE_CONTROL_SIZE: usize = 16;
+
+/// Celestial Sphere Control (§4.1.9): the time of day and date the IG draws the
+/// sky for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CelestialSphereControl {
+    /// Hour, 0–23 (UTC).
+    pub hour: u8,
+    /// Minute, 0–59.
+    pub minute: u8,
+    /// The IG places the sun (and moon) from the date and time (ephemeris model).
+    pub ephemeris: bool,
+    /// The sun is drawn.
+    pub sun: bool,
+    /// The date field holds a date.
+    pub date_valid: bool,
+    /// The date as MMDDYYYY.
+    pub date: u32,
+}
+
+pub(super) fn celestial_sphere_control(r: &Reader<'_>) -> CelestialSphereControl {
+    let flags = r.u8(4);
+    CelestialSphereControl {
+        hour: r.u8(2),
+        minute: r.u8(3),
+        ephemeris: flags & 0x01 != 0,
+        sun: flags & 0x02 != 0,
+        date_valid: flags & 0x10 != 0,
+        date: r.u32(8),
+    }
+}
+
 /// Opcode of Entity Control.
 pub const ENTITY_CONTROL_OPCODE: u8 = 2;
 /// Size of Entity Control, bytes.

@@ -147,13 +147,14 @@ pub trait Backend {
         Ok(())
     }
     /// Takes the direction toward the sun (any length but zero) and the clear air's
-    /// extinction per m from the next frame, beam query and optics on (what a
-    /// scenario's `Sun` and `Fog` change while running; validated as
-    /// `RenderSettings::to_sun` and `RenderSettings::clear_air_extinction_per_m`).
+    /// extinction per m (`None`: the one in effect) from the next frame, beam query
+    /// and optics on (what a scenario's `Sun` and `Fog` or a CIGI host's date and
+    /// time change while running; validated as `RenderSettings::to_sun` and
+    /// `RenderSettings::clear_air_extinction_per_m`).
     fn set_atmosphere(
         &mut self,
-        to_sun: glam::Vec3,
-        clear_air_extinction_per_m: f32,
+        to_sun: Option<glam::Vec3>,
+        clear_air_extinction_per_m: Option<f32>,
     ) -> Result<(), BackendError>;
     /// Takes cloud layers (up to three; none: no clouds) from the next frame on
     /// (what a host's cloud layers set while running; validated as

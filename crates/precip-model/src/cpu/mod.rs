@@ -181,8 +181,8 @@ impl Backend for CpuBackend {
 
     fn set_atmosphere(
         &mut self,
-        to_sun: glam::Vec3,
-        clear_air_extinction_per_m: f32,
+        to_sun: Option<glam::Vec3>,
+        clear_air_extinction_per_m: Option<f32>,
     ) -> Result<(), BackendError> {
         self.state_mut("set_atmosphere")?
             .host

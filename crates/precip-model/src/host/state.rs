@@ -135,17 +135,19 @@ impl HostState {
         })
     }
 
-    /// Takes the sun's direction and the clear air's extinction (validated), from
-    /// the next frame on.
+    /// Takes the sun's direction and the clear air's extinction (validated; `None`
+    /// keeps the one in effect), from the next frame on.
     pub fn set_atmosphere(
         &mut self,
-        to_sun: Vec3,
-        clear_air_extinction_per_m: f32,
+        to_sun: Option<Vec3>,
+        clear_air_extinction_per_m: Option<f32>,
     ) -> Result<(), BackendError> {
+        let render = self.setup.render;
         self.set_look(RenderSettings {
-            to_sun,
-            clear_air_extinction_per_m,
-            ..self.setup.render
+            to_sun: to_sun.unwrap_or(render.to_sun),
+            clear_air_extinction_per_m: clear_air_extinction_per_m
+                .unwrap_or(render.clear_air_extinction_per_m),
+            ..render
         })
     }
 

@@ -78,8 +78,8 @@ fn apply(
     backend.set_fog_layer(w.fog_layer)?;
     backend.set_cloud_layers(w.cloud_layer.into())?;
     backend.set_atmosphere(
-        to_sun,
-        w.fog_extinction_per_m.unwrap_or(clear_air_extinction_per_m),
+        Some(to_sun),
+        Some(w.fog_extinction_per_m.unwrap_or(clear_air_extinction_per_m)),
     )
 }
 
