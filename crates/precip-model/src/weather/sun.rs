@@ -72,7 +72,9 @@ impl UtcTime {
         const BEFORE: [u32; 12] = [0, 31, 59, 90, 120, 151, 181, 212, 243, 273, 304, 334];
         let leap = (self.year % 4 == 0 && self.year % 100 != 0) || self.year % 400 == 0;
         let m = self.month.clamp(1, 12) as usize;
-        BEFORE[m - 1] + self.day + u32::from(leap && m > 2)
+        BEFORE[m - 1]
+            .saturating_add(self.day)
+            .saturating_add(u32::from(leap && m > 2))
     }
 }
 

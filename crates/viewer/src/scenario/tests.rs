@@ -348,11 +348,6 @@ fn an_environment_comes_from_a_catalog_with_its_parameters_assigned() {
 }
 
 #[test]
-fn expressions_are_checked() {
-    assert!(expressions::evaluate("1 +", &|_| Ok(0.0)).is_err());
-}
-
-#[test]
 fn the_time_of_day_places_the_sun_where_no_sun_is_given() {
     let text = TIMELINE.replace(
         r#"<Sun azimuth="1.5707963" elevation="0.5236" illuminance="20000"/>"#,
