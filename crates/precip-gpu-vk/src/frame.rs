@@ -231,7 +231,8 @@ unsafe fn viewport(
 
 /// Records `frame` into `cb` (see the module docs); `begins` holds, for each pass,
 /// how it begins if it is a render pass that runs; `target` is the colour target's
-/// image.
+/// image and `target_final` the layout the frame's last pass on it leaves it in
+/// (a copy of it after that pass finds it there).
 ///
 /// # Safety
 /// - `cb` is a command buffer of `hal`'s device in the recording state, outside a
@@ -246,11 +247,15 @@ pub unsafe fn record_frame(
     hal: &Hal,
     cb: vk::CommandBuffer,
     frame: &FrameWork<'_, Hal>,
-    target: vk::Image,
+    target: (vk::Image, vk::ImageLayout),
     begins: &[Option<PassBegin>],
     stamps: Option<&QueryPool>,
 ) {
     use vk::AccessFlags as A;
+    let (target, target_final) = target;
+    // The target rests in the colour attachment layout between render passes,
+    // and in its final one after the last.
+    let mut target_layout = vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL;
     use vk::PipelineStageFlags as S;
     let device = &hal.device;
     let stamp = |i, stage| {
@@ -284,12 +289,17 @@ pub unsafe fn record_frame(
         let (start, end) = (2 * index, 2 * index + 1);
         stamp(start, S::TOP_OF_PIPE);
         if let (true, PassKind::CopyTarget { colour, depth }) = (pass.runs, &pass.kind) {
-            // SAFETY: outside a render pass; `target` rests in the colour
-            // attachment layout between render passes, the depth buffer in its
-            // resting layout, and the copies are live images of their sizes and
-            // formats (the caller's and the renderer's guarantees).
-            unsafe { copy_target(device, cb, target, colour, *depth) };
+            // SAFETY: outside a render pass; `target` is in `target_layout`, the
+            // depth buffer in its resting layout, and the copies are live images
+            // of their sizes and formats (the caller's and the renderer's
+            // guarantees).
+            unsafe { copy_target(device, cb, (target, target_layout), colour, *depth) };
         } else if pass.runs {
+            if let PassKind::Render(a) = &pass.kind
+                && a.colour_last
+            {
+                target_layout = target_final;
+            }
             let (bind_point, begin) = match (&pass.kind, begin) {
                 (PassKind::Render(_), Some(begin)) => {
                     let clears = [
@@ -360,11 +370,13 @@ pub unsafe fn record_frame(
     }
 }
 
-/// Copies the colour target `target` (in `COLOR_ATTACHMENT_OPTIMAL`, as a render
-/// pass that is not the frame's last left it) into `colour`, and the depth buffer
-/// `depth.0` (resting in `DEPTH_STENCIL_READ_ONLY_OPTIMAL`) into `depth.1`; the
-/// copies' old contents are dropped. Leaves the target and the depth buffer as
-/// they were, and the copies in their resting layouts for the fragment shaders after.
+/// Copies the colour target `target.0` (in layout `target.1`:
+/// `COLOR_ATTACHMENT_OPTIMAL` as a render pass that is not the frame's last left
+/// it, or the final layout the last left it in) into `colour`, and the depth
+/// buffer `depth.0` (resting in `DEPTH_STENCIL_READ_ONLY_OPTIMAL`) into `depth.1`;
+/// the copies' old contents are dropped. Leaves the target and the depth buffer
+/// as they were, and the copies in their resting layouts for the fragment shaders
+/// after.
 ///
 /// # Safety
 /// `cb` is recording outside a render pass; all four images are live, each copy of
@@ -373,10 +385,11 @@ pub unsafe fn record_frame(
 unsafe fn copy_target(
     device: &Device,
     cb: vk::CommandBuffer,
-    target: vk::Image,
+    target: (vk::Image, vk::ImageLayout),
     colour: &Texture,
     depth: (&Texture, &Texture),
 ) {
+    let (target, target_layout) = target;
     use vk::AccessFlags as A;
     use vk::ImageLayout as L;
     use vk::PipelineStageFlags as S;
@@ -388,7 +401,7 @@ unsafe fn copy_target(
         barrier(
             target,
             colour_range,
-            (L::COLOR_ATTACHMENT_OPTIMAL, A::COLOR_ATTACHMENT_WRITE),
+            (target_layout, A::COLOR_ATTACHMENT_WRITE),
             (L::TRANSFER_SRC_OPTIMAL, A::TRANSFER_READ),
         ),
         barrier(
@@ -416,7 +429,7 @@ unsafe fn copy_target(
             colour_range,
             (L::TRANSFER_SRC_OPTIMAL, A::empty()),
             (
-                L::COLOR_ATTACHMENT_OPTIMAL,
+                target_layout,
                 A::COLOR_ATTACHMENT_READ | A::COLOR_ATTACHMENT_WRITE,
             ),
         ),

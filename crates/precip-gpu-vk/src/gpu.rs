@@ -724,7 +724,7 @@ impl Gpu for Hal {
             // SAFETY: `cb` is recording outside a render pass (`submit_synced`); the
             // frame's objects are the executor's, live until it destroys them (which
             // waits for this submission); the framebuffers are retired after it.
-            unsafe { record_frame(hal, cb, frame, image, &begins, stamps) };
+            unsafe { record_frame(hal, cb, frame, (image, colour.2), &begins, stamps) };
         });
         let in_flight = match submitted {
             Ok(f) => f,

@@ -170,6 +170,65 @@ fn vk_and_wgpu_mirror_the_house_in_a_pond_alike() {
 }
 
 #[test]
+fn vk_and_wgpu_reuse_the_clouds_alike_with_no_rain_falling() {
+    let (Some(mut vk), Some(mut wgpu)) = (
+        vk("vk_and_wgpu_reuse_the_clouds_alike_with_no_rain_falling"),
+        wgpu(),
+    ) else {
+        return;
+    };
+    // No rain: the scene is the last pass on the target, and the pond's copy of
+    // it comes after (the target is copied in its final layout). Turning under
+    // cumulus: the clouds' fresh pixels, the frame before's image and the march
+    // of what it did not see.
+    let (mut setup, _) = Setup::over_scene(
+        precip_model::scene::builtin::house_with_pond(),
+        64,
+        6.0,
+        500,
+    )
+    .expect("valid");
+    setup.weather.intensity_mm_per_h = 0.0;
+    setup.render.cloud_layers = precip_model::drawing::clouds::CloudLayers::one(
+        precip_model::drawing::clouds::CloudLayer::typical(
+            precip_model::drawing::clouds::CloudKind::Cumulus,
+            0.5,
+        ),
+    );
+    let view_at = |k: usize| {
+        let yaw = (3.0 * k as f32).to_radians();
+        View {
+            camera: Camera {
+                position_m: Vec3::new(0.0, 1.5, 18.0),
+                forward: Vec3::new(yaw.sin(), 0.35, -yaw.cos()).normalize(),
+                ..Camera::default()
+            },
+            width_px: 160,
+            height_px: 96,
+        }
+    };
+    let mut images = Vec::new();
+    for backend in [&mut vk as &mut dyn Backend, &mut wgpu] {
+        backend.configure(&setup).expect("valid");
+        backend.step(0.08).expect("valid step");
+        for k in 0..6 {
+            backend
+                .set_camera(&view_at(k).camera)
+                .expect("valid camera");
+            backend.render(&view_at(k)).expect("renders");
+        }
+        images.push(backend.read_image().expect("an image"));
+    }
+    let (close, worst) = agreement(&images[0], &images[1]);
+    assert!(
+        close >= 0.999,
+        "{:.4} % of pixels within 1/255 (worst {worst}/255)",
+        close * 100.0
+    );
+    assert_clean(&vk, "reusing the clouds with no rain");
+}
+
+#[test]
 fn resizing_reconfiguring_and_dropping_leave_nothing_behind() {
     for round in 0..2u32 {
         let Some(mut vk) = vk("resizing_reconfiguring_and_dropping_leave_nothing_behind") else {
@@ -276,9 +335,16 @@ fn timings_name_every_pass_of_a_frame() {
                 "water_mirror",
                 "clouds",
                 "clouds_b",
+                "clouds_fresh",
             ]
         } else {
-            &["particles", "water_mirror", "clouds", "clouds_b"]
+            &[
+                "particles",
+                "water_mirror",
+                "clouds",
+                "clouds_b",
+                "clouds_fresh",
+            ]
         };
         for pass in ["step_particles"]
             .into_iter()
