@@ -4,11 +4,21 @@
 //
 // Temporal reuse (docs/model.md (6.14)): there are two images, written on
 // alternate frames (pass "clouds" into A, "clouds_b" into B), each reading the other
-// as the frame before's (`cloud_image`, group 1). A frame marches one tile in 16
-// (cloud_march_slot, switches.cloud_shadow.y; CLOUD_MARCH_ALL: every tile, when
-// there is no history) and takes every other pixel from where the frame before's
-// camera saw its ray's entry into the nearest layer; where that lies outside the image it
-// marches.
+// as the frame before's (`cloud_image`, group 1). First the pass "clouds_fresh"
+// marches one pixel of each 4 × 4 block (cloud_fresh_pixel, slot
+// switches.cloud_shadow.y) into the fresh image, a quarter of the side (group 2);
+// then the clouds' pass takes those, and every other pixel from where the frame
+// before's camera saw its ray's entry into the nearest layer, clamped to the range
+// of the fresh pixels around it (cloud_history_clamped) as far as the camera
+// moved across the ray (cloud_history_clamp_weight); where that lies outside
+// the image, it leaves the pixel (discard) to the march that follows in the same
+// pass (fs_clouds_all at the far plane: the depth test lets it through only where
+// the reuse wrote nothing, at depth 0). With no history (slot CLOUD_MARCH_ALL) the
+// fresh pass and the reuse do not run and the march covers every pixel. The reuse
+// has no march in it: a CPU rasteriser pays for the code of a loop in every
+// fragment, run or not.
+
+@group(2) @binding(8) var cloud_fresh: texture_2d<f32>;
 
 // The clear sky between the clouds: the haze's colour at the horizon, deeper blue
 // toward the zenith (a look, not a sky model).
@@ -17,10 +27,17 @@ fn clear_sky(horizon: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
     return mix(horizon, zenith, 1.0 - exp(-3.0 * max(dir.y, 0.0)));
 }
 
-// The triangle covering the clouds' image (as vs_sky's): into image A, reading B.
+// The triangle covering the clouds' image at depth 0 (the march after it fills
+// what it leaves): into image A, reading B.
 @vertex
 fn vs_clouds(@builtin(vertex_index) v: u32) -> SkyVarying {
-    return sky_triangle(v);
+    return near_triangle(v);
+}
+
+fn near_triangle(v: u32) -> SkyVarying {
+    var out = sky_triangle(v);
+    out.clip.z = 0.0;
+    return out;
 }
 
 @fragment
@@ -28,15 +45,45 @@ fn fs_clouds(in: SkyVarying) -> @location(0) vec4<f32> {
     return clouds_with_history(in);
 }
 
+// Every pixel the reuse left marched, into A or B: all of them without history
+// (the first frame, a new layer, a jump, inside a layer).
+@vertex
+fn vs_clouds_all(@builtin(vertex_index) v: u32) -> SkyVarying {
+    return sky_triangle(v);
+}
+
+@fragment
+fn fs_clouds_all(in: SkyVarying) -> @location(0) vec4<f32> {
+    return clouds_marched(in);
+}
+
 // The same into image B, reading A.
 @vertex
 fn vs_clouds_b(@builtin(vertex_index) v: u32) -> SkyVarying {
-    return sky_triangle(v);
+    return near_triangle(v);
 }
 
 @fragment
 fn fs_clouds_b(in: SkyVarying) -> @location(0) vec4<f32> {
     return clouds_with_history(in);
+}
+
+// The frame's pixel of each block of the clouds' image, marched into the fresh
+// image (`cloud_image` only for the images' size).
+@vertex
+fn vs_clouds_fresh(@builtin(vertex_index) v: u32) -> SkyVarying {
+    return sky_triangle(v);
+}
+
+@fragment
+fn fs_clouds_fresh(in: SkyVarying) -> @location(0) vec4<f32> {
+    let size = vec2<f32>(textureDimensions(cloud_image));
+    let pixel = cloud_fresh_pixel(vec2<u32>(in.clip.xy), u32(switches.cloud_shadow.y));
+    let uv = (vec2<f32>(pixel) + 0.5) / size;
+    var at: SkyVarying;
+    at.clip = vec4<f32>(vec2<f32>(pixel) + 0.5, 1.0, 1.0);
+    at.ndc = vec2<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
+    return clouds_marched(at);
 }
 
 // The density at p of the layer `layer` (base, top, coverage, kind), its map read
@@ -74,16 +121,9 @@ fn layer_slab(i: u32, camera: vec3<f32>, ray: vec3<f32>) -> vec2<f32> {
     return cloud_slab(camera.y, ray.y, layer.x, layer.y);
 }
 
-// The light the layers and the haze in front of them send along the pixel's ray
-// (premultiplied) and their opacity, marched (march_clouds) or taken from the frame
-// before's image.
-fn clouds_with_history(in: SkyVarying) -> vec4<f32> {
-    let far = switches.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
-    let camera = switches.camera_m_cone_cos.xyz;
-    let ray = normalize_or_zero(far.xyz / far.w - camera);
-    // The ray's entry into the nearest layer it crosses (one layer, the common
-    // case, without a loop: a CPU rasteriser pays for each).
-    let count = cloud_layer_count();
+// The ray's entry into the nearest layer it crosses, m (< 0: none). One layer, the
+// common case, without a loop: a CPU rasteriser pays for each.
+fn nearest_layer_entry(camera: vec3<f32>, ray: vec3<f32>, count: u32) -> f32 {
     let first = layer_slab(0u, camera, ray);
     var nearest = select(-1.0, first.x, first.y > first.x);
     for (var i = 1u; i < count; i += 1u) {
@@ -92,22 +132,68 @@ fn clouds_with_history(in: SkyVarying) -> vec4<f32> {
             nearest = slab.x;
         }
     }
+    return nearest;
+}
+
+// The camera's ray through the pixel at `ndc`.
+fn pixel_ray(ndc: vec2<f32>) -> vec3<f32> {
+    let far = switches.inverse_view_proj * vec4<f32>(ndc, 1.0, 1.0);
+    return normalize_or_zero(far.xyz / far.w - switches.camera_m_cone_cos.xyz);
+}
+
+// The pixel's clouds marched (march_clouds), transparent where its ray meets none.
+fn clouds_marched(in: SkyVarying) -> vec4<f32> {
+    let camera = switches.camera_m_cone_cos.xyz;
+    let ray = pixel_ray(in.ndc);
+    let count = cloud_layer_count();
+    let nearest = nearest_layer_entry(camera, ray, count);
     if (nearest < 0.0) {
         return vec4<f32>(0.0);
     }
-    // Not this tile's frame: the frame before's image where its camera saw the
-    // ray's entry into the nearest layer, moved with the clouds' drift since
-    // (cloud_shadow.zw: the map is read at p + drift, so what lies at p now lay
-    // there at p + Δ).
-    let slot = u32(switches.cloud_shadow.y);
-    if (slot < CLOUD_MARCH_ALL && cloud_march_slot(vec2<u32>(in.clip.xy)) != slot) {
-        let moved = vec3<f32>(switches.cloud_shadow.z, 0.0, switches.cloud_shadow.w);
-        let history = cloud_history_uv(switches.previous_view_proj, camera + ray * nearest + moved);
-        if (history.z > 0.5) {
-            return textureSampleLevel(cloud_image, cover_sampler, history.xy, 0.0);
-        }
-    }
     return march_clouds(in, camera, ray, nearest, count);
+}
+
+// The light the layers and the haze in front of them send along the pixel's ray
+// (premultiplied) and their opacity: this frame's fresh pixel where it is the one
+// of its block the frame marched; else the frame before's image clamped to the
+// fresh pixels around; where that image did not see the point, nothing
+// (discarded: the march that follows fills it).
+fn clouds_with_history(in: SkyVarying) -> vec4<f32> {
+    let camera = switches.camera_m_cone_cos.xyz;
+    let ray = pixel_ray(in.ndc);
+    let nearest = nearest_layer_entry(camera, ray, cloud_layer_count());
+    if (nearest < 0.0) {
+        return vec4<f32>(0.0);
+    }
+    let slot = u32(switches.cloud_shadow.y);
+    let pixel = vec2<u32>(in.clip.xy);
+    if (cloud_march_slot(pixel) == slot) {
+        return textureLoad(cloud_fresh, pixel / CLOUD_MARCH_BLOCK_PX, 0);
+    }
+    // The fresh pixels around: the four whose places (4·f + the slot's place in
+    // the block) surround this pixel.
+    let own = vec2<f32>(cloud_fresh_pixel(vec2<u32>(0u), slot));
+    let at = (vec2<f32>(pixel) - own) / f32(CLOUD_MARCH_BLOCK_PX);
+    let last = vec2<i32>(textureDimensions(cloud_fresh)) - 1;
+    let f = vec2<i32>(floor(at));
+    let a = textureLoad(cloud_fresh, clamp(f, vec2<i32>(0), last), 0);
+    let b = textureLoad(cloud_fresh, clamp(f + vec2<i32>(1, 0), vec2<i32>(0), last), 0);
+    let c = textureLoad(cloud_fresh, clamp(f + vec2<i32>(0, 1), vec2<i32>(0), last), 0);
+    let d = textureLoad(cloud_fresh, clamp(f + vec2<i32>(1, 1), vec2<i32>(0), last), 0);
+    // The frame before's image where its camera saw the ray's entry into the
+    // nearest layer, moved with the clouds' drift since (cloud_shadow.zw: the map
+    // is read at p + drift, so what lies at p now lay there at p + Δ).
+    let moved = vec3<f32>(switches.cloud_shadow.z, 0.0, switches.cloud_shadow.w);
+    let history = cloud_history_uv(switches.previous_view_proj, camera + ray * nearest + moved);
+    if (history.z < 0.5) {
+        discard;
+    }
+    let seen = textureSampleLevel(cloud_image, cover_sampler, history.xy, 0.0);
+    let clamped = cloud_history_clamped(seen, min(min(a, b), min(c, d)), max(max(a, b), max(c, d)));
+    let entry = camera + ray * nearest + moved;
+    let deeper = entry + ray * CLOUD_PARALLAX_DEPTH_M;
+    let size = vec2<f32>(textureDimensions(cloud_image));
+    return mix(seen, clamped, cloud_history_clamp_weight(switches.previous_view_proj, entry, deeper, size));
 }
 
 // How many layers there are (their rows are packed lowest first; past the last a

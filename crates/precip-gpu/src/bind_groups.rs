@@ -303,6 +303,13 @@ pub const CLOUD_IMAGE_B: GroupLayout = GroupLayout {
     ..CLOUD_IMAGE
 };
 
+/// Group 2 of the clouds' passes: the pixels the frame marched
+/// (`TargetResource::CloudFresh`).
+pub const CLOUD_FRESH: GroupLayout = GroupLayout {
+    name: "precip cloud fresh image",
+    bindings: &[binding(rb::CLOUD_FRESH, FILTERED_2D, Stages::Draw)],
+};
+
 /// Group 1: light and the flake's opacity.
 pub const RENDER_LIGHT: GroupLayout = GroupLayout {
     name: "precip render light",
@@ -453,14 +460,20 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::Render, "cover_texture" | "drop_ground") => &[COVER_TEXTURE],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
-        (Program::Render, "vs_sky" | "fs_sky") => &[RENDER_FRAME],
-        // The sky reads the image its frame marched; the clouds' pass the other.
-        (Program::Render, "vs_sky_clouds" | "fs_sky_clouds" | "vs_clouds_b" | "fs_clouds_b") => {
-            &[RENDER_FRAME, CLOUD_IMAGE]
+        (Program::Render, "vs_sky" | "fs_sky" | "vs_clouds_all" | "fs_clouds_all") => {
+            &[RENDER_FRAME]
         }
-        (Program::Render, "vs_sky_clouds_b" | "fs_sky_clouds_b" | "vs_clouds" | "fs_clouds") => {
-            &[RENDER_FRAME, CLOUD_IMAGE_B]
+        // The sky reads the image its frame made; the clouds' pass the other and
+        // the pixels the frame marched; the march the size of the images.
+        (
+            Program::Render,
+            "vs_sky_clouds" | "fs_sky_clouds" | "vs_clouds_fresh" | "fs_clouds_fresh",
+        ) => &[RENDER_FRAME, CLOUD_IMAGE],
+        (Program::Render, "vs_sky_clouds_b" | "fs_sky_clouds_b") => &[RENDER_FRAME, CLOUD_IMAGE_B],
+        (Program::Render, "vs_clouds_b" | "fs_clouds_b") => {
+            &[RENDER_FRAME, CLOUD_IMAGE, CLOUD_FRESH]
         }
+        (Program::Render, "vs_clouds" | "fs_clouds") => &[RENDER_FRAME, CLOUD_IMAGE_B, CLOUD_FRESH],
         (Program::Render, "vs_mirror" | "fs_mirror") => {
             &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL]
         }

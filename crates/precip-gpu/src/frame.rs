@@ -48,9 +48,13 @@ pub enum DepthTarget {
     Particles,
     /// The water mirror's depth buffer ([`ColourTarget::Mirror`]'s size).
     Mirror,
-    /// The clouds' image's depth buffer ([`ColourTarget::Clouds`]'s size): cleared
-    /// and never written.
+    /// The clouds' image's depth buffer ([`ColourTarget::Clouds`]'s size): cleared,
+    /// then written (depth 0) where the frame before's image is reused, so the
+    /// march that follows shades only the rest.
     Clouds,
+    /// The clouds' fresh image's depth buffer ([`ColourTarget::CloudsFresh`]'s
+    /// size): cleared and never written.
+    CloudsFresh,
 }
 
 impl DepthTarget {
@@ -64,6 +68,7 @@ impl DepthTarget {
             Self::Particles => Some(TargetResource::ParticleDepth),
             Self::Mirror => Some(TargetResource::MirrorDepth),
             Self::Clouds => Some(TargetResource::CloudDepth),
+            Self::CloudsFresh => Some(TargetResource::CloudFreshDepth),
         }
     }
 }
@@ -79,6 +84,7 @@ impl ColourTarget {
             Self::Mirror => Some(TargetResource::MirrorImage),
             Self::Clouds => Some(TargetResource::CloudImage),
             Self::CloudsB => Some(TargetResource::CloudImageB),
+            Self::CloudsFresh => Some(TargetResource::CloudFresh),
         }
     }
 }
@@ -104,6 +110,9 @@ pub enum ColourTarget {
     /// The clouds' second image (`…::CloudImageB`): the images alternate by frame,
     /// each pass reading the other as the frame before's.
     CloudsB,
+    /// The clouds' fresh image (`…::CloudFresh`): the one pixel of each 4 × 4
+    /// block of the clouds' image the frame marches, read by the clouds' pass.
+    CloudsFresh,
 }
 
 /// Which of the scene's meshes a draw draws.
@@ -254,9 +263,12 @@ pub enum PassWhen {
     WaterMirrored,
     /// While it is not (the water bodies follow their rays over the frame before).
     WaterMirroredNot,
-    /// While a cloud layer is set (`RenderSettings::cloud_layer`) and the frame
+    /// While a cloud layer is set (`RenderSettings::cloud_layers`) and the frame
     /// writes the clouds' image A (frames alternate between A and B).
     CloudsA,
+    /// While one is set and the frame marches one pixel per block (the frame
+    /// before's image is there to take the rest from).
+    CloudsFresh,
     /// While one is set and the frame writes image B.
     CloudsB,
     /// While none is.
@@ -339,10 +351,19 @@ const MIRROR_DRAW: Draw = Draw {
     ..SCENE_DRAW
 };
 
-// The cloud layer marched at a quarter of the frame's side (render_clouds.wgsl),
-// into its own image, which the sky then reads; A and B alternate by frame.
+// The cloud layers at a quarter of the frame's side (render_clouds.wgsl), into
+// their own image, which the sky then reads; A and B alternate by frame. The
+// fresh pixels and the frame before's image at depth 0 (written), then the march
+// at the far plane where that left a pixel (all of them without a history).
 const CLOUDS_DRAW: Draw = Draw {
     entry_points: render_passes::CLOUDS,
+    depth_write: true,
+    when: PassWhen::CloudsFresh,
+    ..SKY_DRAW
+};
+
+const CLOUDS_ALL_DRAW: Draw = Draw {
+    entry_points: render_passes::CLOUDS_ALL,
     when: PassWhen::Always,
     ..SKY_DRAW
 };
@@ -350,6 +371,13 @@ const CLOUDS_DRAW: Draw = Draw {
 const CLOUDS_B_DRAW: Draw = Draw {
     entry_points: render_passes::CLOUDS_B,
     ..CLOUDS_DRAW
+};
+
+// The frame's one pixel per 4 × 4 block of the clouds' image marched into the
+// fresh image, which the clouds' pass then reads.
+const CLOUDS_FRESH_DRAW: Draw = Draw {
+    entry_points: render_passes::CLOUDS_FRESH,
+    ..CLOUDS_ALL_DRAW
 };
 
 // At the far plane (depth 1), less-or-equal: only where no mesh stands.
@@ -453,14 +481,14 @@ const OVER_THE_FRAME: RenderPassRecipe = RenderPassRecipe {
 const CLOUDS_PASS: RenderPassRecipe = RenderPassRecipe {
     depth: DepthTarget::Clouds,
     depth_load: AttachmentLoad::Clear,
-    depth_stored: false,
+    depth_stored: true,
     colour: Some(AttachmentLoad::Clear),
     colour_target: ColourTarget::Clouds,
-    draws: &[CLOUDS_DRAW],
+    draws: &[CLOUDS_DRAW, CLOUDS_ALL_DRAW],
 };
 
 /// The frame, in order (see the module docs and [`crate::renderer`]).
-pub const FRAME_PASSES: [FramePass; 12] = [
+pub const FRAME_PASSES: [FramePass; 13] = [
     FramePass {
         name: "cover_texture",
         work: PassWork::Kernels(&[COVER_TEXTURE_PASS, DROP_GROUND_PASS]),
@@ -491,6 +519,17 @@ pub const FRAME_PASSES: [FramePass; 12] = [
         when: PassWhen::WaterMirrored,
     },
     FramePass {
+        name: "clouds_fresh",
+        work: PassWork::Render(RenderPassRecipe {
+            depth: DepthTarget::CloudsFresh,
+            colour_target: ColourTarget::CloudsFresh,
+            draws: &[CLOUDS_FRESH_DRAW],
+            depth_stored: false,
+            ..CLOUDS_PASS
+        }),
+        when: PassWhen::CloudsFresh,
+    },
+    FramePass {
         name: "clouds",
         work: PassWork::Render(CLOUDS_PASS),
         when: PassWhen::CloudsA,
@@ -499,7 +538,7 @@ pub const FRAME_PASSES: [FramePass; 12] = [
         name: "clouds_b",
         work: PassWork::Render(RenderPassRecipe {
             colour_target: ColourTarget::CloudsB,
-            draws: &[CLOUDS_B_DRAW],
+            draws: &[CLOUDS_B_DRAW, CLOUDS_ALL_DRAW],
             ..CLOUDS_PASS
         }),
         when: PassWhen::CloudsB,
@@ -620,6 +659,9 @@ pub struct FrameConditions {
     /// The frame marches the clouds into their image B (reading A), else into A
     /// (reading B).
     pub clouds_into_b: bool,
+    /// The frame marches one pixel per block of the clouds' image and takes the
+    /// rest from the frame before's ([`PassWhen::CloudsFresh`]).
+    pub clouds_fresh: bool,
 }
 
 impl PassWhen {
@@ -640,6 +682,7 @@ impl PassWhen {
             Self::WaterMirrored => conditions.water_mirrored,
             Self::WaterMirroredNot => !conditions.water_mirrored,
             Self::CloudsA => conditions.clouds && !conditions.clouds_into_b,
+            Self::CloudsFresh => conditions.clouds && conditions.clouds_fresh,
             Self::CloudsB => conditions.clouds && conditions.clouds_into_b,
             Self::CloudsNot => !conditions.clouds,
         }
@@ -807,6 +850,7 @@ impl FrameHost {
                 water_mirrored: mirror.is_some(),
                 clouds: !setup.render.cloud_layers.is_empty(),
                 clouds_into_b: false,
+                clouds_fresh: false,
             },
             sky_colour: haze_colour(&setup.render, host.weather()),
             mirror_rect_px: mirror.map(|m| m.rect_px),
@@ -878,6 +922,7 @@ mod tests {
                     water_mirrored,
                     clouds,
                     clouds_into_b: into_b,
+                    clouds_fresh: into_b,
                 })
                 .collect();
                 assert_eq!(plan.len(), FRAME_PASSES.len());
@@ -892,7 +937,7 @@ mod tests {
                         }
                         "water_mirror" => water_mirrored,
                         "clouds" => clouds && !into_b,
-                        "clouds_b" => clouds && into_b,
+                        "clouds_b" | "clouds_fresh" => clouds && into_b,
                         _ => true,
                     };
                     assert_eq!(p.runs, expected, "{}", p.pass.name);
@@ -924,6 +969,7 @@ mod tests {
                 water_mirrored: false,
                 clouds: false,
                 clouds_into_b: false,
+                clouds_fresh: false,
             };
             let ground: Vec<_> = recipe
                 .draws
@@ -943,6 +989,48 @@ mod tests {
     }
 
     #[test]
+    fn a_clouds_pass_either_reuses_or_marches_every_pixel() {
+        for into_b in [false, true] {
+            for fresh in [false, true] {
+                let conditions = FrameConditions {
+                    shadow_redrawn: false,
+                    water_shows: false,
+                    ground_mirrors: false,
+                    particles_in_the_air: false,
+                    particles_reduced: false,
+                    water_mirrored: false,
+                    clouds: true,
+                    clouds_into_b: into_b,
+                    clouds_fresh: fresh,
+                };
+                let ran: Vec<_> = frame_plan(conditions)
+                    .filter(|p| p.runs && p.pass.name.starts_with("clouds"))
+                    .collect();
+                let names: Vec<_> = ran.iter().map(|p| p.pass.name).collect();
+                let made = if into_b { "clouds_b" } else { "clouds" };
+                if fresh {
+                    assert_eq!(names, ["clouds_fresh", made]);
+                } else {
+                    assert_eq!(names, [made]);
+                }
+                let draws: Vec<_> = ran
+                    .iter()
+                    .filter(|p| p.pass.name == made)
+                    .flat_map(|p| p.draws())
+                    .filter(|d| d.draw.when.holds(conditions))
+                    .map(|d| d.draw.entry_points.0)
+                    .collect();
+                let expected: &[&str] = match (fresh, into_b) {
+                    (false, _) => &["vs_clouds_all"],
+                    (true, false) => &["vs_clouds", "vs_clouds_all"],
+                    (true, true) => &["vs_clouds_b", "vs_clouds_all"],
+                };
+                assert_eq!(draws, expected);
+            }
+        }
+    }
+
+    #[test]
     fn the_timed_names_are_the_passes_in_order() {
         assert_eq!(
             TIMED_RENDER_PASSES,
@@ -950,6 +1038,7 @@ mod tests {
                 "cover_texture",
                 "shadow",
                 "water_mirror",
+                "clouds_fresh",
                 "clouds",
                 "clouds_b",
                 "scene",

@@ -12,8 +12,8 @@ use precip_model::drawing::render::RenderParams;
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 
 use crate::bind_groups::{
-    CLOUD_IMAGE, CLOUD_IMAGE_B, COVER_TEXTURE, CULL, GroupLayout, PARTICLE_DEPTH, PARTICLE_IMAGE,
-    REFLECTIONS, RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
+    CLOUD_FRESH, CLOUD_IMAGE, CLOUD_IMAGE_B, COVER_TEXTURE, CULL, GroupLayout, PARTICLE_DEPTH,
+    PARTICLE_IMAGE, REFLECTIONS, RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
 };
 use crate::recipe::{
     DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
@@ -276,6 +276,14 @@ pub enum TargetResource {
     CloudImageB,
     /// Its depth buffer ([`crate::frame::DepthTarget::Clouds`]), of its size.
     CloudDepth,
+    /// The clouds' fresh image ([`crate::frame::ColourTarget::CloudsFresh`]):
+    /// `Rgba16Float`, [`precip_model::drawing::clouds::CLOUD_MARCH_BLOCK_PX`] times
+    /// smaller along each side than the clouds' image: the one pixel of each
+    /// block a frame marches, which the clouds' pass takes and clamps the rest's
+    /// history to.
+    CloudFresh,
+    /// Its depth buffer ([`crate::frame::DepthTarget::CloudsFresh`]), of its size.
+    CloudFreshDepth,
 }
 
 /// A texture a target of one size adds.
@@ -296,15 +304,16 @@ pub struct TargetTextureSpec {
 /// The textures a `size` target adds: the camera's depth, the copies of the scene
 /// (in `copy_format`) and of the depth, the particles' image at `particles` (1 × 1
 /// at the frame's resolution: unused), the water bodies' mirror image
-/// (1 × 1 unless `mirrors`) and the clouds' image (a quarter of the side: a cloud
-/// layer may come while running), each image with its depth buffer.
+/// (1 × 1 unless `mirrors`), the clouds' two images (a quarter of the side: a cloud
+/// layer may come while running) and their fresh image (a quarter of that), each
+/// image with its depth buffer.
 #[must_use]
 pub fn target_textures(
     size: (u32, u32),
     copy_format: TexelFormat,
     particles: precip_model::ParticleResolution,
     mirrors: bool,
-) -> [TargetTextureSpec; 10] {
+) -> [TargetTextureSpec; 12] {
     use TargetResource as R;
     use TexelFormat::{Depth32Float, Rgba16Float};
     use TextureUsage::{CopyOfTarget, DepthAttachment, DrawnThenSampled};
@@ -322,6 +331,8 @@ pub fn target_textures(
         size.0.div_ceil(CLOUD_DOWNSCALE),
         size.1.div_ceil(CLOUD_DOWNSCALE),
     );
+    let block = precip_model::drawing::clouds::CLOUD_MARCH_BLOCK_PX;
+    let fresh_size = (cloud_size.0.div_ceil(block), cloud_size.1.div_ceil(block));
     let spec = |resource, label, size, format, usage| TargetTextureSpec {
         resource,
         label,
@@ -397,6 +408,20 @@ pub fn target_textures(
             R::CloudDepth,
             "precip cloud depth",
             cloud_size,
+            Depth32Float,
+            DepthAttachment,
+        ),
+        spec(
+            R::CloudFresh,
+            "precip cloud fresh image",
+            fresh_size,
+            Rgba16Float,
+            DrawnThenSampled,
+        ),
+        spec(
+            R::CloudFreshDepth,
+            "precip cloud fresh depth",
+            fresh_size,
             Depth32Float,
             DepthAttachment,
         ),
@@ -517,7 +542,7 @@ pub const FRAME_GROUPS: [FrameGroupFill; 4] = [
 
 /// The groups made for a target's size (the splat kernel's, its resolve's, the
 /// reflections', the reduced particles' and their composite's).
-pub const TARGET_GROUPS: [FrameGroupFill; 7] = [
+pub const TARGET_GROUPS: [FrameGroupFill; 8] = [
     FrameGroupFill {
         layout: &SPLAT,
         bound: &[
@@ -578,6 +603,13 @@ pub const TARGET_GROUPS: [FrameGroupFill; 7] = [
         )],
     },
     FrameGroupFill {
+        layout: &CLOUD_FRESH,
+        bound: &[(
+            rb::CLOUD_FRESH,
+            FrameBound::Target(TargetResource::CloudFresh),
+        )],
+    },
+    FrameGroupFill {
         layout: &PARTICLE_IMAGE,
         bound: &[
             (
@@ -633,6 +665,7 @@ mod tests {
                                     | TargetResource::MirrorImage
                                     | TargetResource::CloudImage
                                     | TargetResource::CloudImageB
+                                    | TargetResource::CloudFresh
                             ),
                     ) | (
                         BindingKind::StorageTextureRgba16Float,
@@ -681,6 +714,9 @@ mod tests {
         // The clouds' image is always a quarter of the side (a layer may come).
         assert_eq!(size_of(&full, TargetResource::CloudImage), (320, 180));
         assert_eq!(size_of(&full, TargetResource::CloudImageB), (320, 180));
+        // Its fresh image a quarter of that.
+        assert_eq!(size_of(&full, TargetResource::CloudFresh), (80, 45));
+        assert_eq!(size_of(&full, TargetResource::CloudFreshDepth), (80, 45));
         let reduced = target_textures(
             size,
             TexelFormat::Rgba8UnormSrgb,

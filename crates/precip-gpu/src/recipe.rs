@@ -538,7 +538,7 @@ pub const FEATURES: [(&str, &[&str]); 7] = [
             "water_mirror",
         ],
     ),
-    ("sky", &["clouds", "clouds_b"]),
+    ("sky", &["clouds_fresh", "clouds", "clouds_b"]),
     ("scene", &["scene"]),
     ("shadow", &["shadow"]),
 ];
@@ -750,6 +750,11 @@ pub mod render_passes {
     pub const CLOUDS: (&str, Option<&str>) = ("vs_clouds", Some("fs_clouds"));
     /// The same into the clouds' image B, reading A as the frame before's.
     pub const CLOUDS_B: (&str, Option<&str>) = ("vs_clouds_b", Some("fs_clouds_b"));
+    /// Every pixel of the clouds' image marched (no history), into A or B.
+    pub const CLOUDS_ALL: (&str, Option<&str>) = ("vs_clouds_all", Some("fs_clouds_all"));
+    /// The one pixel of each 4 × 4 block of the clouds' image the frame marches,
+    /// into the clouds' fresh image: one triangle of 3 vertices covering it.
+    pub const CLOUDS_FRESH: (&str, Option<&str>) = ("vs_clouds_fresh", Some("fs_clouds_fresh"));
     /// The splat sums blended over the frame: one triangle of 3 vertices covering the
     /// target, no depth test (the splat kernel tested each particle), alpha blending;
     /// first in the particles' pass.
@@ -942,6 +947,10 @@ pub mod render_bindings {
     /// bindings): the clouds' image, `texture_2d<f32>` (`Rgba16Float`: their light,
     /// premultiplied, and opacity), read through [`COVER_SAMPLER`].
     pub const CLOUD_IMAGE: u32 = 4;
+    /// Group 2 of the clouds' passes (numbered apart from the material's and the
+    /// splat's bindings): the clouds' fresh image, `texture_2d<f32>`
+    /// (`Rgba16Float`), read with `textureLoad`.
+    pub const CLOUD_FRESH: u32 = 8;
 }
 
 /// One input of the `probe_drawing` test kernel (64 bytes). WGSL: `ProbeDrawing`.

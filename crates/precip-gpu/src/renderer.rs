@@ -156,7 +156,8 @@ impl<G: Gpu> Drawing<G> {
                         ColourTarget::Particles
                         | ColourTarget::Mirror
                         | ColourTarget::Clouds
-                        | ColourTarget::CloudsB => image_format,
+                        | ColourTarget::CloudsB
+                        | ColourTarget::CloudsFresh => image_format,
                     };
                     gpu.draw_pipeline(draw, recipe, &layouts, recipe.colour.map(|_| colour))
                 });
@@ -685,11 +686,13 @@ impl<G: Gpu> FrameState<G> {
         Ok(())
     }
 
-    /// Which clouds' image the frame marches into (the other than the last frame's)
-    /// and which of its tiles: one in [`CLOUD_MARCH_ALL`] where the other holds the
-    /// frame before's clouds of the same layers seen from nearby (its camera in
-    /// `previous_view_proj`, the clouds' drift since in `cloud_shadow.zw`), every
-    /// tile otherwise, or from inside a layer (render_clouds.wgsl).
+    /// Which clouds' image the frame makes (the other than the last frame's) and
+    /// which of its pixels it marches: one per 4 × 4 block (slot `cloud_shadow.y`
+    /// of [`CLOUD_MARCH_ALL`], into the fresh image, `clouds_fresh`) where the
+    /// other holds the frame before's clouds of the same layers seen from nearby
+    /// (its camera in `previous_view_proj`, the clouds' drift since in
+    /// `cloud_shadow.zw`); every pixel otherwise, or from inside a layer
+    /// (render_clouds.wgsl).
     fn reuse_clouds(&self, decision: &mut FrameDecision, view: &View) {
         let params = &mut decision.params;
         let camera_m = view.camera.position_m;
@@ -714,6 +717,7 @@ impl<G: Gpu> FrameState<G> {
             }
             None => CLOUD_MARCH_ALL as f32,
         };
+        decision.conditions.clouds_fresh = reusable.is_some();
     }
 
     /// The frame plan under `decision` as commands.
@@ -955,9 +959,10 @@ fn tile_cull(depth: DepthTarget, decision: &FrameDecision) -> TileCull {
     let p = &decision.params;
     match depth {
         DepthTarget::ShadowMap => TileCull::whole(p.sun_view_proj),
-        DepthTarget::Camera | DepthTarget::Particles | DepthTarget::Clouds => {
-            TileCull::whole(p.view_proj)
-        }
+        DepthTarget::Camera
+        | DepthTarget::Particles
+        | DepthTarget::Clouds
+        | DepthTarget::CloudsFresh => TileCull::whole(p.view_proj),
         DepthTarget::Mirror => {
             let whole = TileCull::whole(p.mirror_view_proj);
             match (decision.mirror_rect_px, decision.target_px) {

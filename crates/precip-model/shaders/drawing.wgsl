@@ -343,8 +343,12 @@ const CLOUD_VIEW_STEPS: u32 = 20u;
 const CLOUD_SUN_SAMPLES: u32 = 3u;
 const CLOUD_MAX_PATH_M: f32 = 30000.0;
 const CLOUD_INSIDE_PATH_M: f32 = 2000.0;
-const CLOUD_MARCH_TILE_PX: u32 = 4u;
+const CLOUD_MARCH_BLOCK_PX: u32 = 4u;
 const CLOUD_MARCH_ALL: u32 = 16u;
+const CLOUD_HISTORY_MARGIN: f32 = 0.25;
+const CLOUD_HISTORY_SLACK: f32 = 0.02;
+const CLOUD_PARALLAX_DEPTH_M: f32 = 500.0;
+const CLOUD_PARALLAX_FULL_PX: f32 = 0.25;
 const MAX_CLOUD_LAYERS: u32 = 3u;
 const LOCAL_WEATHER_RADIUS_M: f32 = 3000.0;
 const RAIN_SHAFT_SAMPLES: u32 = 8u;
@@ -357,11 +361,41 @@ fn cloud_layer_map_offset_m(index: u32) -> vec2<f32> {
     return vec2<f32>((i * 4100.0) % CLOUD_MAP_PERIOD_M, (i * 7300.0) % CLOUD_MAP_PERIOD_M);
 }
 
-// cloud_march_slot: the frame of CLOUD_MARCH_ALL that marches pixel's tile (4 × 4 Bayer).
+// cloud_march_slot: the frame of CLOUD_MARCH_ALL that marches the pixel (4 × 4 Bayer
+// within its block; precip_model::drawing::clouds::cloud_march_slot).
 fn cloud_march_slot(pixel: vec2<u32>) -> u32 {
     let bayer = array<u32, 16>(0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);
-    let tile = pixel / CLOUD_MARCH_TILE_PX;
-    return bayer[(tile.y % 4u) * 4u + tile.x % 4u];
+    return bayer[(pixel.y % 4u) * 4u + pixel.x % 4u];
+}
+
+// cloud_fresh_pixel: the pixel of the clouds' image that pixel `fresh` of the fresh
+// image marches in frame `slot` (the Bayer order inverted).
+fn cloud_fresh_pixel(fresh: vec2<u32>, slot: u32) -> vec2<u32> {
+    let cell = array<u32, 16>(0u, 10u, 2u, 8u, 5u, 15u, 7u, 13u, 1u, 11u, 3u, 9u, 4u, 14u, 6u, 12u);
+    let k = cell[slot % CLOUD_MARCH_ALL];
+    return fresh * CLOUD_MARCH_BLOCK_PX + vec2<u32>(k % 4u, k / 4u);
+}
+
+// cloud_history_clamped: a pixel's history clamped to the range low … high of the
+// fresh pixels around it, widened by CLOUD_HISTORY_MARGIN of it, at least
+// CLOUD_HISTORY_SLACK.
+fn cloud_history_clamped(history: vec4<f32>, low: vec4<f32>, high: vec4<f32>) -> vec4<f32> {
+    let slack = max((high - low) * CLOUD_HISTORY_MARGIN, vec4<f32>(CLOUD_HISTORY_SLACK));
+    return clamp(history, low - slack, high + slack);
+}
+
+// cloud_history_clamp_weight: how much of the clamp a reused pixel takes: how far
+// apart the frame before's camera saw the ray's entry and a point
+// CLOUD_PARALLAX_DEPTH_M deeper, over CLOUD_PARALLAX_FULL_PX px of an image of
+// `image_px` (1 behind that camera).
+fn cloud_history_clamp_weight(previous_view_proj: mat4x4<f32>, entry_m: vec3<f32>, deeper_m: vec3<f32>, image_px: vec2<f32>) -> f32 {
+    let a = previous_view_proj * vec4<f32>(entry_m, 1.0);
+    let b = previous_view_proj * vec4<f32>(deeper_m, 1.0);
+    if (a.w <= 0.0 || b.w <= 0.0) {
+        return 1.0;
+    }
+    let apart_px = length((a.xy / a.w - b.xy / b.w) * 0.5 * image_px);
+    return clamp(apart_px / CLOUD_PARALLAX_FULL_PX, 0.0, 1.0);
 }
 
 // cloud_history_uv: where the frame before's clouds' image holds p_m (xy), and

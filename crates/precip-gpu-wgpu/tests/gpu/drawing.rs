@@ -6,7 +6,10 @@ use glam::Vec3;
 use precip_gpu::recipe::ProbeDrawing;
 use precip_gpu::shaders::Program;
 use precip_model::cover::{cover_warp_m, snow_cover_fraction, sub_texel_threshold, value_noise};
-use precip_model::drawing::clouds::{cloud_history_uv, cloud_march_slot};
+use precip_model::drawing::clouds::{
+    cloud_fresh_pixel, cloud_history_clamp_weight, cloud_history_clamped, cloud_history_uv,
+    cloud_march_slot,
+};
 use precip_model::drawing::multiplicity::drawn_weight;
 use precip_model::drawing::{
     defocus_blur_m, defocused, drop_environment_factor, flake_sun_phase,
@@ -54,7 +57,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             Program::ProbeDrawing,
             bytemuck::cast_slice(&inputs),
             inputs.len() as u32,
-            (inputs.len() * 21 * 16) as u64,
+            (inputs.len() * 23 * 16) as u64,
         );
         let got: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
         for (i, q) in inputs.iter().enumerate() {
@@ -76,7 +79,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 .chain(&tetra.normals)
                 .copied();
             for (k, want) in expected.enumerate() {
-                let g = got[21 * i + k];
+                let g = got[23 * i + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 // The four face normals (values 8–11) of a drop's thin tetrahedron are
                 // cross products of nearly parallel edges: a driver that fuses a
@@ -89,7 +92,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                     "{name}: input {i} value {k}: WGSL {have} vs Rust {want}"
                 );
             }
-            let cover = got[21 * i + 12];
+            let cover = got[23 * i + 12];
             let want = [
                 snow_cover_fraction(q.h_m, q.cover[0], q.a_m, q.cover[1]),
                 sub_texel_threshold(q.tumble, [centre.x, centre.z]),
@@ -115,7 +118,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             let blur = defocus_blur_m(q.a_m, 10.0, 50.0 * q.h_m);
             let sprite = defocused(q.side_m, 0.8, blur, 2);
             let streak_opacity = defocused(q.side_m, 0.8, blur, 1).1;
-            let g = got[21 * i + 17];
+            let g = got[23 * i + 17];
             for (k, want) in [blur, sprite.0, sprite.1, streak_opacity]
                 .into_iter()
                 .enumerate()
@@ -127,7 +130,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 );
             }
             let warp = cover_warp_m([centre.x, centre.z], [q.a_m + 0.1, q.side_m + 0.1]);
-            let g = got[21 * i + 18];
+            let g = got[23 * i + 18];
             assert!(
                 (g[0] - warp[0]).abs() <= 2e-5 && (g[1] - warp[1]).abs() <= 2e-5,
                 "{name}: input {i} cover warp: WGSL {g:?} vs Rust {warp:?}"
@@ -146,7 +149,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 g[3]
             );
             // A drop's oscillation, a cloud column, a layer's map offset.
-            let g = got[21 * i + 20];
+            let g = got[23 * i + 20];
             let hz = precip_model::drawing::drop_oscillation_hz(q.a_m / 20.0);
             let bright = precip_model::drawing::drop_oscillation_brightness(q.spin_rad);
             let column = precip_model::drawing::clouds::cloud_column(q.tumble, q.side_m);
@@ -159,7 +162,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 "{name}: input {i} oscillation, column, offset: WGSL {g:?} vs Rust {hz} {bright} {column} {offset}"
             );
             // The clouds' march slot and the history's uv.
-            let g = got[21 * i + 19];
+            let g = got[23 * i + 19];
             let slot = cloud_march_slot(glam::UVec2::new(
                 centre.x.abs() as u32,
                 centre.z.abs() as u32,
@@ -179,8 +182,38 @@ fn wgsl_drawing_equals_rust_drawing() {
                 ),
                 None => assert!(g[3] < 0.5, "{name}: input {i} history: WGSL {g:?} vs none"),
             }
+            // The fresh image's pixel and the history's clamp.
+            let g = got[23 * i + 21];
+            let fresh = cloud_fresh_pixel(
+                glam::UVec2::new(centre.x.abs() as u32, centre.z.abs() as u32),
+                i as u32 % 16,
+            );
+            let clamped = cloud_history_clamped(
+                glam::Vec4::new(q.tumble, 0.0, 0.0, q.spin_rad),
+                glam::Vec4::splat(0.3),
+                glam::Vec4::splat(0.6),
+            );
+            assert!(
+                g[0] as u32 == fresh.x
+                    && g[1] as u32 == fresh.y
+                    && (g[2] - clamped.x).abs() <= 1e-6
+                    && (g[3] - clamped.w).abs() <= 1e-6,
+                "{name}: input {i} fresh pixel, clamp: WGSL {g:?} vs Rust {fresh} {clamped}"
+            );
+            let weight = cloud_history_clamp_weight(
+                camera,
+                centre,
+                centre + Vec3::from(q.velocity_mps),
+                glam::Vec2::new(320.0, 180.0),
+            );
+            let g = got[23 * i + 22];
+            assert!(
+                (g[0] - weight).abs() <= 1e-4,
+                "{name}: input {i} clamp weight: WGSL {} vs Rust {weight}",
+                g[0]
+            );
             for (k, (want, uv)) in streak.iter().enumerate() {
-                let g = got[21 * i + 13 + k];
+                let g = got[23 * i + 13 + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 let tolerance = 1e-5 * (1.0 + want.abs().max_element());
                 assert!(

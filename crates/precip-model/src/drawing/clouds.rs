@@ -34,15 +34,19 @@
 //!
 //! ## A sixteenth a frame
 //!
-//! A frame marches one tile in [`CLOUD_MARCH_ALL`] of the clouds' image
-//! ([`cloud_march_slot`]) and takes the other pixels from the frame before's image
-//! where its camera saw them ([`cloud_history_uv`]; docs/model.md (6.14)).
+//! A frame marches one pixel in each block of 4 × 4 of the clouds' image
+//! ([`cloud_march_slot`], [`cloud_fresh_pixel`]) into a small image of its own,
+//! and takes every other pixel from the frame before's image where its camera saw
+//! it ([`cloud_history_uv`]), clamped to what this frame marched around it
+//! ([`cloud_history_clamped`]) as far as the camera's move makes the history
+//! stale ([`cloud_history_clamp_weight`]; docs/model.md (6.14)).
 //!
 //! WGSL twins: `cloud_profile`, `cloud_density`, `cloud_phase`, `cloud_slab`,
-//! `cloud_march_slot`, `cloud_history_uv` in drawing.wgsl, `clouds_with_history` in
+//! `cloud_march_slot`, `cloud_fresh_pixel`, `cloud_history_uv`,
+//! `cloud_history_clamped`, `cloud_history_clamp_weight` in drawing.wgsl, `clouds_with_history` in
 //! render_clouds.wgsl.
 
-use glam::{Mat4, UVec2, Vec2, Vec3};
+use glam::{Mat4, UVec2, Vec2, Vec3, Vec4};
 
 use crate::BackendError;
 
@@ -329,24 +333,90 @@ pub fn cloud_slab(camera_y_m: f32, dir_y: f32, base_m: f32, top_m: f32) -> (f32,
     (s0, s1.min(s0 + longest))
 }
 
-/// Side of a tile of the clouds' image marched as one, px: a CPU rasteriser shades
-/// a 4 × 4 block of pixels as one vector and runs a loop as long as any of them
-/// needs it, so what is marched a frame is whole tiles (on a GPU a warp holds two).
-pub const CLOUD_MARCH_TILE_PX: u32 = 4;
-/// Frames over which every tile is marched once; the slot that marches every tile
-/// (no history to reproject).
+/// Side of the block of the clouds' image one pixel of which a frame marches, px:
+/// the clouds' fresh image is this many times smaller along each side.
+pub const CLOUD_MARCH_BLOCK_PX: u32 = 4;
+/// Frames over which every pixel is marched once; the slot that marches every
+/// pixel (no history to reproject).
 pub const CLOUD_MARCH_ALL: u32 = 16;
+/// How far past the range of the freshly marched neighbours a pixel's history may
+/// lie, as a share of that range (plus [`CLOUD_HISTORY_SLACK`]): a pixel's own
+/// light is often just outside its neighbours' (a bright rim), and clamping it
+/// there would flicker.
+pub const CLOUD_HISTORY_MARGIN: f32 = 0.25;
+/// The least slack of the clamp, in the image's units (light and opacity, 0 … 1).
+pub const CLOUD_HISTORY_SLACK: f32 = 0.02;
+/// How deep behind a ray's entry into a layer its parallax is measured, m (about
+/// as deep as a ray sees into a cumulus).
+pub const CLOUD_PARALLAX_DEPTH_M: f32 = 500.0;
+/// The parallax a frame, px of the clouds' image, at which a reused pixel is
+/// clamped fully: over the [`CLOUD_MARCH_ALL`] frames it may be reused, 4 px.
+pub const CLOUD_PARALLAX_FULL_PX: f32 = 0.25;
 
-/// Which frame of [`CLOUD_MARCH_ALL`] marches the tile of the clouds' image holding
-/// `pixel`: the 4 × 4 Bayer order over the tiles, so each frame's tiles are spread
-/// evenly over the image (Schneider & Vos 2015, *The real-time volumetric
-/// cloudscapes of Horizon Zero Dawn*: one pixel in 16 a frame). WGSL twin:
-/// `cloud_march_slot` (drawing.wgsl).
+/// The 4 × 4 Bayer order: the frame of [`CLOUD_MARCH_ALL`] that marches the pixel
+/// at `(x mod 4, y mod 4)` of its block, row by row.
+const BAYER: [u32; 16] = [0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5];
+
+/// Which frame of [`CLOUD_MARCH_ALL`] marches `pixel` of the clouds' image: the
+/// 4 × 4 Bayer order within each block, so a frame's pixels are one per block and
+/// consecutive frames' lie far apart (Schneider & Vos 2015, *The real-time
+/// volumetric cloudscapes of Horizon Zero Dawn*: one pixel in 16 a frame). WGSL
+/// twin: `cloud_march_slot` (drawing.wgsl).
 #[must_use]
 pub fn cloud_march_slot(pixel: UVec2) -> u32 {
-    const BAYER: [u32; 16] = [0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5];
-    let tile = pixel / CLOUD_MARCH_TILE_PX;
-    BAYER[((tile.y % 4) * 4 + tile.x % 4) as usize]
+    BAYER[((pixel.y % 4) * 4 + pixel.x % 4) as usize]
+}
+
+/// The pixel of the clouds' image that pixel `fresh` of the fresh image marches in
+/// frame `slot` (below [`CLOUD_MARCH_ALL`]): the one of block `fresh` whose
+/// [`cloud_march_slot`] is `slot`. WGSL twin: `cloud_fresh_pixel` (drawing.wgsl).
+#[must_use]
+pub fn cloud_fresh_pixel(fresh: UVec2, slot: u32) -> UVec2 {
+    let k = BAYER
+        .iter()
+        .position(|&b| b == slot % CLOUD_MARCH_ALL)
+        .unwrap_or(0) as u32;
+    fresh * CLOUD_MARCH_BLOCK_PX + UVec2::new(k % 4, k / 4)
+}
+
+/// A pixel's history (light premultiplied, opacity) clamped to the range `low …
+/// high` of this frame's freshly marched pixels around it, widened by
+/// [`CLOUD_HISTORY_MARGIN`] of the range and at least [`CLOUD_HISTORY_SLACK`]:
+/// what the frame before saw there but the clouds no longer show (they moved,
+/// grew, or the camera saw them from elsewhere) cannot stay (the neighbourhood
+/// clamp of temporal reprojection, Karis 2014, *High-quality temporal
+/// supersampling*). WGSL twin: `cloud_history_clamped` (drawing.wgsl).
+#[must_use]
+pub fn cloud_history_clamped(history: Vec4, low: Vec4, high: Vec4) -> Vec4 {
+    let slack = ((high - low) * CLOUD_HISTORY_MARGIN).max(Vec4::splat(CLOUD_HISTORY_SLACK));
+    history.clamp(low - slack, high + slack)
+}
+
+/// How much of the clamp ([`cloud_history_clamped`]) a reused pixel takes, 0 … 1:
+/// where the frame before's camera (`previous_view_proj`) saw the ray's entry
+/// into the layer `entry_m` and the point [`CLOUD_PARALLAX_DEPTH_M`] deeper along
+/// it `deeper_m` at one place of its image (`image_px` its size), the history is
+/// this ray's (the camera turned, or the clouds drifted: both are reprojected
+/// exactly) and is kept as it is: clamping it to the fresh pixels, 4 pixels
+/// apart, would blur what lies between them. As the two part (the camera moved
+/// across the ray: the history mixes in columns this ray does not cross), the
+/// clamp takes over, fully at [`CLOUD_PARALLAX_FULL_PX`]. Behind that camera: 1.
+/// WGSL twin: `cloud_history_clamp_weight` (drawing.wgsl).
+#[must_use]
+pub fn cloud_history_clamp_weight(
+    previous_view_proj: Mat4,
+    entry_m: Vec3,
+    deeper_m: Vec3,
+    image_px: Vec2,
+) -> f32 {
+    let a = previous_view_proj * entry_m.extend(1.0);
+    let b = previous_view_proj * deeper_m.extend(1.0);
+    if a.w <= 0.0 || b.w <= 0.0 {
+        return 1.0;
+    }
+    let apart_px =
+        ((Vec2::new(a.x, a.y) / a.w - Vec2::new(b.x, b.y) / b.w) * 0.5 * image_px).length();
+    (apart_px / CLOUD_PARALLAX_FULL_PX).clamp(0.0, 1.0)
 }
 
 /// Where the clouds' image of the frame before (its camera `previous_view_proj`)
@@ -557,29 +627,100 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_tile_is_marched_once_in_sixteen_frames_and_each_frame_s_are_spread() {
-        // A 64 × 48 image (a quarter of 256 × 192).
+    fn every_pixel_is_marched_once_in_sixteen_frames_one_per_block_a_frame() {
+        // A 64 × 48 image (a quarter of 256 × 192): 16 × 12 blocks.
         let mut marched = vec![0u32; 64 * 48];
         for slot in 0..CLOUD_MARCH_ALL {
-            let mut tiles = Vec::new();
+            let mut blocks = Vec::new();
             for y in 0..48u32 {
                 for x in 0..64u32 {
-                    if cloud_march_slot(UVec2::new(x, y)) == slot {
+                    let pixel = UVec2::new(x, y);
+                    if cloud_march_slot(pixel) == slot {
                         marched[(y * 64 + x) as usize] += 1;
-                        tiles.push(UVec2::new(x, y) / CLOUD_MARCH_TILE_PX);
+                        blocks.push(pixel / CLOUD_MARCH_BLOCK_PX);
+                        // The fresh image's pixel of the block marches this one.
+                        assert_eq!(cloud_fresh_pixel(pixel / CLOUD_MARCH_BLOCK_PX, slot), pixel);
                     }
                 }
             }
-            // Whole tiles: each a frame's has all its 16 pixels.
-            assert_eq!(tiles.len() % 16, 0);
-            // One tile in every 4 × 4 block of tiles (16 × 12 tiles: 12 blocks).
-            tiles.dedup();
-            let mut blocks: Vec<_> = tiles.iter().map(|t| *t / 4).collect();
+            assert_eq!(blocks.len(), 16 * 12, "slot {slot}");
             blocks.sort_by_key(|b| (b.y, b.x));
             blocks.dedup();
-            assert_eq!(blocks.len(), 12, "slot {slot}");
+            assert_eq!(blocks.len(), 16 * 12, "slot {slot}: one pixel per block");
         }
         assert!(marched.iter().all(|&n| n == 1));
+        // Consecutive frames' pixels are not neighbours.
+        for slot in 0..CLOUD_MARCH_ALL - 1 {
+            let a = cloud_fresh_pixel(UVec2::ZERO, slot).as_ivec2();
+            let b = cloud_fresh_pixel(UVec2::ZERO, slot + 1).as_ivec2();
+            assert!(
+                (a - b).abs().max_element() >= 1 && (a - b).length_squared() >= 2,
+                "{slot}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_history_is_clamped_only_as_far_as_the_camera_moved_across_the_ray() {
+        let camera = |position_m: Vec3, yaw_rad: f32| {
+            let camera = crate::Camera {
+                position_m,
+                forward: Vec3::new(yaw_rad.sin(), 0.4, -yaw_rad.cos()).normalize(),
+                up: Vec3::Y,
+                ..crate::Camera::default()
+            };
+            crate::drawing::render::view_projection(&camera, 16.0 / 9.0)
+        };
+        let image = Vec2::new(320.0, 180.0);
+        let here = Vec3::new(0.0, 2.0, 0.0);
+        let ray = Vec3::new(0.1, 0.5, -1.0).normalize();
+        let entry = here + ray * 3000.0;
+        let deeper = entry + ray * CLOUD_PARALLAX_DEPTH_M;
+        // Turned: the same ray, no parallax.
+        let turned = cloud_history_clamp_weight(camera(here, 0.02), entry, deeper, image);
+        assert!(turned < 1e-3, "{turned}");
+        // Moved along the ray: nearly none.
+        let along =
+            cloud_history_clamp_weight(camera(here - ray * 30.0, 0.0), entry, deeper, image);
+        assert!(along < 0.05, "{along}");
+        // Moved 50 m across it (a frame at 3 000 m/s, or 16 frames at 190 m/s):
+        // clamped fully.
+        let across =
+            cloud_history_clamp_weight(camera(here + Vec3::X * 50.0, 0.0), entry, deeper, image);
+        assert!((across - 1.0).abs() < 1e-6, "{across}");
+        // A metre across: partly.
+        let metre = cloud_history_clamp_weight(camera(here + Vec3::X, 0.0), entry, deeper, image);
+        assert!(metre > 0.01 && metre < 0.2, "{metre}");
+    }
+
+    #[test]
+    fn the_history_is_clamped_to_the_fresh_neighbourhood_with_a_margin() {
+        let low = Vec4::new(0.2, 0.2, 0.2, 0.5);
+        let high = Vec4::new(0.6, 0.6, 0.6, 0.9);
+        // Inside the range, or within its margin: kept.
+        let inside = Vec4::new(0.3, 0.65, 0.1 + 0.2, 0.95);
+        assert_eq!(cloud_history_clamped(inside, low, high), inside);
+        // A cloud the frame before saw where now there is clear sky: pulled to the
+        // fresh range's edge plus its margin.
+        let ghost = Vec4::new(0.9, 0.9, 0.9, 1.0);
+        let clamped = cloud_history_clamped(ghost, low, high);
+        assert!(
+            (clamped - Vec4::new(0.7, 0.7, 0.7, 1.0))
+                .abs()
+                .max_element()
+                < 1e-6
+        );
+        // An even neighbourhood keeps the slack.
+        let even = Vec4::splat(0.5);
+        let near = cloud_history_clamped(Vec4::splat(0.51), even, even);
+        assert!((near - Vec4::splat(0.51)).abs().max_element() < 1e-6);
+        let far = cloud_history_clamped(Vec4::ZERO, even, even);
+        assert!(
+            (far - Vec4::splat(0.5 - CLOUD_HISTORY_SLACK))
+                .abs()
+                .max_element()
+                < 1e-6
+        );
     }
 
     #[test]
