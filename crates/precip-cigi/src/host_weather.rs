@@ -24,7 +24,8 @@
 //! whatever layer sends it. The ground fog (layer 0) is a fog layer from the ground
 //! up to its base elevation + thickness, of the visibility range the host sends (by
 //! severity when it sends 0: 1 000, 500, 300, 200, 100, 50 m); disabling it clears
-//! it. Cloud layers 1–3 (base elevation, thickness, coverage, cloud type: [`cloud_kind`])
+//! it. Cloud layers 1–3 (base elevation, thickness, coverage, cloud type: [`cloud_kind`],
+//! transition band: the air thickening toward the layer within it, above and below)
 //! are kept and every one that is on is drawn, lowest first; a layer reaching into
 //! the one below it starts at that one's top (dropped where less than 10 m of it is
 //! left). Hail (layer 7) and the regional and entity scopes are counted as ignored.
@@ -237,6 +238,7 @@ impl HostWeather {
             thickness_m: packet.thickness_m,
             coverage: (packet.coverage_percent / 100.0).clamp(0.0, 1.0),
             kind: cloud_kind(packet.cloud_type),
+            transition_band_m: packet.transition_band_m,
         });
         if layer.as_ref().is_some_and(|l| l.validate().is_err()) {
             return Applied::Refused;

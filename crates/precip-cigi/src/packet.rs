@@ -100,6 +100,9 @@ pub struct WeatherControl {
     pub base_elevation_m: f32,
     /// Thickness of the layer, m.
     pub thickness_m: f32,
+    /// Height of the band above and below the layer over which its visibility
+    /// turns into the air's around it, m.
+    pub transition_band_m: f32,
     /// Horizontal wind speed, m/s.
     pub horizontal_wind_mps: f32,
     /// Vertical wind speed, m/s (up positive).
@@ -307,6 +310,7 @@ fn weather_control(r: &Reader<'_>) -> Result<WeatherControl, CigiError> {
         coverage_percent: r.f32(20, "coverage")?,
         base_elevation_m: r.f32(24, "base elevation")?,
         thickness_m: r.f32(28, "thickness")?,
+        transition_band_m: r.f32(32, "transition band")?,
         horizontal_wind_mps: r.f32(36, "horizontal wind speed")?,
         vertical_wind_mps: r.f32(40, "vertical wind speed")?,
         wind_from_deg: r.f32(44, "wind direction")?,

@@ -156,6 +156,7 @@ fn both_byte_orders_read_the_same_packets() {
     assert_eq!((w.layer, w.severity, w.scope, w.enabled), (4, 3, 0, true));
     assert!((w.air_temperature_c - 12.0).abs() < 1e-6 && (w.wind_from_deg - 270.0).abs() < 1e-6);
     assert!((w.base_elevation_m - 800.0).abs() < 1e-6 && (w.thickness_m - 1_500.0).abs() < 1e-6);
+    assert!((w.transition_band_m - 100.0).abs() < 1e-6);
 }
 
 #[test]
@@ -235,6 +236,7 @@ fn disabling_the_layer_clears_it_and_other_layers_and_scopes_are_ignored() {
         coverage_percent: 50.0,
         base_elevation_m: 0.0,
         thickness_m: 0.0,
+        transition_band_m: 0.0,
         horizontal_wind_mps: 3.0,
         vertical_wind_mps: 0.0,
         wind_from_deg: 0.0,
@@ -477,6 +479,7 @@ fn the_ground_fog_layer_is_fog_up_to_its_top_and_only_news_is_announced() {
         coverage_percent: 100.0,
         base_elevation_m: 0.0,
         thickness_m: 30.0,
+        transition_band_m: 0.0,
         horizontal_wind_mps: 0.0,
         vertical_wind_mps: 0.0,
         wind_from_deg: 0.0,
@@ -520,6 +523,7 @@ fn cloud_layers_one_to_three_are_drawn_together_lowest_first() {
         coverage_percent: coverage,
         base_elevation_m: base,
         thickness_m: 1_200.0,
+        transition_band_m: 0.0,
         horizontal_wind_mps: 0.0,
         vertical_wind_mps: 0.0,
         wind_from_deg: 0.0,
@@ -529,7 +533,29 @@ fn cloud_layers_one_to_three_are_drawn_together_lowest_first() {
         thickness_m: 1_200.0,
         coverage: 0.4,
         kind: CloudKind::Cumulus,
+        transition_band_m: 0.0,
     };
+    assert_eq!(
+        host.apply(&layer(2, true, 7, 1_500.0, 40.0)),
+        Applied::Clouds(CloudLayers::one(cumulus))
+    );
+    // The transition band is the layer's; a negative one is refused.
+    let banded = WeatherControl {
+        transition_band_m: 250.0,
+        ..layer(2, true, 7, 1_500.0, 40.0)
+    };
+    assert_eq!(
+        host.apply(&banded),
+        Applied::Clouds(CloudLayers::one(CloudLayer {
+            transition_band_m: 250.0,
+            ..cumulus
+        }))
+    );
+    let negative = WeatherControl {
+        transition_band_m: -5.0,
+        ..banded
+    };
+    assert_eq!(host.apply(&negative), Applied::Refused);
     assert_eq!(
         host.apply(&layer(2, true, 7, 1_500.0, 40.0)),
         Applied::Clouds(CloudLayers::one(cumulus))
@@ -598,6 +624,8 @@ fn cloud_layers_one_to_three_are_drawn_together_lowest_first() {
             thickness_m: 1_500.0,
             coverage: 0.5,
             kind: CloudKind::Cumulonimbus,
+            // The writer's band (its offset 32, between thickness and wind).
+            transition_band_m: 100.0,
         }))
     );
 }

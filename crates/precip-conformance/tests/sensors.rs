@@ -300,6 +300,7 @@ fn a_cloud_the_camera_is_in_reaches_the_optics_and_the_beams_on_every_backend() 
         thickness_m: 2_500.0,
         coverage: 1.0,
         kind: CloudKind::Nimbostratus,
+        transition_band_m: 0.0,
     };
     let query = beam_to_the_wall();
     for mut s in all_subjects("cloud_layer") {
@@ -316,6 +317,7 @@ fn a_cloud_the_camera_is_in_reaches_the_optics_and_the_beams_on_every_backend() 
             thickness_m: 400.0,
             coverage: 1.0,
             kind: CloudKind::Stratus,
+            transition_band_m: 0.0,
         };
         s.backend
             .set_cloud_layers(CloudLayers::new(&[sheet, deck]).expect("valid layers"))
@@ -353,6 +355,27 @@ fn a_cloud_the_camera_is_in_reaches_the_optics_and_the_beams_on_every_backend() 
             "{}: a coverage of 2 is refused",
             s.name
         );
+        // 300 m below a deck, in its transition band of 400 m (CIGI's): three
+        // quarters of the way out, the air has a quarter of the deck's mean
+        // extinction.
+        let above = CloudLayer {
+            base_m: 301.7,
+            transition_band_m: 400.0,
+            ..deck
+        };
+        s.backend
+            .set_cloud_layers(CloudLayers::one(above))
+            .expect("valid layer");
+        let banded = s.backend.optics().expect("optics");
+        let quarter = 0.25 * above.mean_extinction_per_m();
+        for band in Band::ALL {
+            let added = banded.band(band).extinction_per_m - clear.band(band).extinction_per_m;
+            assert!(
+                (added - quarter).abs() < 1e-3 * quarter,
+                "{} {band:?} in the transition band: {added} against {quarter}",
+                s.name
+            );
+        }
         s.check_clean("cloud_layer");
     }
 }

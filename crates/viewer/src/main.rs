@@ -101,6 +101,10 @@ struct WeatherArgs {
     /// The cloud layer's thickness, m (the type's typical thickness).
     #[arg(long)]
     cloud_thickness: Option<f32>,
+    /// The band below and above the cloud layer over which the air thickens toward
+    /// it, m (CIGI's transition band; 0, a sharp edge, by default).
+    #[arg(long)]
+    cloud_transition_band: Option<f32>,
     /// Another cloud layer, TYPE[:COVER[:BASE_M[:THICKNESS_M]]] (e.g.
     /// stratus:0.9:4000:400); repeat for a third. Added to the preset's; at most
     /// three layers in all, none reaching into another (docs/model.md (6.15)).
@@ -360,6 +364,9 @@ fn preset_of(args: &WeatherArgs) -> anyhow::Result<Preset> {
     preset.cloud_cover = args.cloud_cover.or(preset.cloud_cover);
     preset.cloud_base_m = args.cloud_base.or(preset.cloud_base_m);
     preset.cloud_thickness_m = args.cloud_thickness.or(preset.cloud_thickness_m);
+    preset.cloud_transition_band_m = args
+        .cloud_transition_band
+        .or(preset.cloud_transition_band_m);
     preset.more_clouds.extend(args.more_clouds.iter().copied());
     Ok(preset)
 }

@@ -62,6 +62,10 @@ pub struct Preset {
     /// The cloud layer's thickness, m; optional (the type's typical thickness).
     #[serde(default)]
     pub cloud_thickness_m: Option<f32>,
+    /// The height of the band below and above the cloud layer over which the air
+    /// thickens toward it, m (CIGI's transition band); optional (0: a sharp edge).
+    #[serde(default)]
+    pub cloud_transition_band_m: Option<f32>,
     /// More cloud layers, above or below the first (up to three in all, none
     /// reaching into another): `more_clouds = [{ type = "stratus", cover = 0.9,
     /// base_m = 4000, thickness_m = 400 }]`, cover, base and thickness optional.
@@ -331,6 +335,7 @@ impl Preset {
         let layer = CloudLayer {
             base_m: self.cloud_base_m.unwrap_or(typical.base_m),
             thickness_m: self.cloud_thickness_m.unwrap_or(typical.thickness_m),
+            transition_band_m: self.cloud_transition_band_m.unwrap_or(0.0),
             ..typical
         };
         layer.validate().map_err(|e| PresetError {

@@ -142,6 +142,10 @@ pub struct CloudLayer {
     pub coverage: f32,
     /// Its type.
     pub kind: CloudKind,
+    /// The height of the band below its base and above its top over which the air
+    /// thickens from clear to the layer's ([`CloudLayer::mean_extinction_per_m`]),
+    /// m: CIGI's transition band; 0 for a sharp edge (docs/model.md (6.13)).
+    pub transition_band_m: f32,
 }
 
 impl CloudLayer {
@@ -154,6 +158,7 @@ impl CloudLayer {
             thickness_m,
             coverage,
             kind,
+            transition_band_m: 0.0,
         }
     }
 
@@ -181,6 +186,33 @@ impl CloudLayer {
         self.base_m + self.thickness_m
     }
 
+    /// The layer's extinction spread over its area, per m: its clouds' most
+    /// extinction times its coverage (what the air of its transition band tends
+    /// to at the layer).
+    #[must_use]
+    pub fn mean_extinction_per_m(&self) -> f32 {
+        self.kind.extinction_per_m() * self.coverage
+    }
+
+    /// How much of [`CloudLayer::mean_extinction_per_m`] the air at height `y_m`
+    /// outside the layer has: `1 − d/b` within its transition band `b`, `d` the
+    /// distance to the layer, 0 beyond and within the layer (its clouds are there).
+    #[must_use]
+    pub fn band_share(&self, y_m: f32) -> f32 {
+        let d = (self.base_m - y_m).max(y_m - self.top_m());
+        if d <= 0.0 || self.transition_band_m <= 0.0 {
+            return 0.0;
+        }
+        (1.0 - d / self.transition_band_m).max(0.0)
+    }
+
+    /// The heights its clouds and its transition band span, m.
+    #[must_use]
+    pub fn extent_with_band_m(&self) -> (f32, f32) {
+        let b = self.transition_band_m.max(0.0);
+        (self.base_m - b, self.top_m() + b)
+    }
+
     /// Checks the base (within ±20 km), thickness (`[10, 15 000]` m) and coverage.
     pub fn validate(&self) -> Result<(), BackendError> {
         let bad = |field, problem: String| Err(BackendError::Setup { field, problem });
@@ -202,6 +234,17 @@ impl CloudLayer {
                 format!(
                     "= {} must be in [0, 1] (a fraction of the sky: oktas / 8)",
                     self.coverage
+                ),
+            );
+        }
+        if !(self.transition_band_m.is_finite()
+            && (0.0..=5_000.0).contains(&self.transition_band_m))
+        {
+            return bad(
+                "render.cloud_layers[].transition_band_m",
+                format!(
+                    "= {} must be in [0, 5000] m (0: a sharp edge)",
+                    self.transition_band_m
                 ),
             );
         }
@@ -537,12 +580,14 @@ pub fn cloud_drift_m(wind_mps: Vec3, time_s: f32) -> Vec2 {
     )
 }
 
-/// The cloud's extinction at `p`, per m (0 outside the layer).
+/// The cloud's extinction at `p`, per m: its clouds' within the layer, the
+/// thickening air of its transition band around it ([`CloudLayer::band_share`]),
+/// 0 beyond.
 #[must_use]
 pub fn cloud_extinction_at(map: &[u8], layer: &CloudLayer, offset_m: Vec2, p: Vec3) -> f32 {
     let h = (p.y - layer.base_m) / layer.thickness_m;
     if !(0.0..=1.0).contains(&h) {
-        return 0.0;
+        return layer.band_share(p.y) * layer.mean_extinction_per_m();
     }
     let (c, d) = cloud_map_uvs(p, offset_m);
     layer.kind.extinction_per_m()
@@ -559,7 +604,8 @@ pub fn cloud_extinction_at(map: &[u8], layer: &CloudLayer, offset_m: Vec2, p: Ve
 pub const CLOUD_PATH_STEPS: u32 = 32;
 
 /// The cloud's optical depth from `origin` along the unit `dir` for `length_m`
-/// (midpoints of [`CLOUD_PATH_STEPS`] steps over the path's part in the layer).
+/// (midpoints of [`CLOUD_PATH_STEPS`] steps over the path's part in the layer and
+/// its transition band).
 #[must_use]
 pub fn cloud_optical_depth(
     map: &[u8],
@@ -569,13 +615,9 @@ pub fn cloud_optical_depth(
     dir: Vec3,
     length_m: f32,
 ) -> f32 {
-    let (s0, s1) = crate::drawing::fog_layer::fog_layer_segment(
-        origin.y,
-        dir.y,
-        length_m,
-        layer.base_m,
-        layer.top_m(),
-    );
+    let (low_m, high_m) = layer.extent_with_band_m();
+    let (s0, s1) =
+        crate::drawing::fog_layer::fog_layer_segment(origin.y, dir.y, length_m, low_m, high_m);
     if s1 <= s0 {
         return 0.0;
     }
@@ -657,6 +699,74 @@ mod tests {
                 (a - b).abs().max_element() >= 1 && (a - b).length_squared() >= 2,
                 "{slot}"
             );
+        }
+    }
+
+    #[test]
+    fn a_transition_band_thickens_the_air_toward_the_layer() {
+        let map = cloud_coverage_map();
+        let layer = CloudLayer {
+            transition_band_m: 200.0,
+            ..CloudLayer::typical(CloudKind::Nimbostratus, 0.9)
+        };
+        let (base, top) = (layer.base_m, layer.top_m());
+        let mean = layer.mean_extinction_per_m();
+        assert!((mean - CloudKind::Nimbostratus.extinction_per_m() * 0.9).abs() < 1e-9);
+        // Linear from the layer's mean at its edges to clear air a band away.
+        for (y, share) in [
+            (base - 1e-3, 1.0),
+            (base - 50.0, 0.75),
+            (base - 100.0, 0.5),
+            (top + 150.0, 0.25),
+            (base - 200.0, 0.0),
+            (top + 300.0, 0.0),
+        ] {
+            assert!(
+                (layer.band_share(y) - share).abs() < 1e-4,
+                "{y}: {}",
+                layer.band_share(y)
+            );
+            let p = Vec3::new(10.0, y, -20.0);
+            let sigma = cloud_extinction_at(&map, &layer, Vec2::ZERO, p);
+            assert!(
+                (sigma - share * mean).abs() < 1e-6 * mean.max(1.0),
+                "{y}: {sigma}"
+            );
+        }
+        // Inside, the clouds' own; without a band, clear air at once.
+        assert!(layer.band_share(base + 10.0).abs() < f32::EPSILON);
+        let sharp = CloudLayer {
+            transition_band_m: 0.0,
+            ..layer
+        };
+        assert!(
+            cloud_extinction_at(&map, &sharp, Vec2::ZERO, Vec3::new(0.0, base - 1.0, 0.0)) == 0.0
+        );
+        // A vertical path up through the band to the base: the triangle's area.
+        let depth = cloud_optical_depth(
+            &map,
+            &layer,
+            Vec2::ZERO,
+            Vec3::new(0.0, base - 300.0, 0.0),
+            Vec3::Y,
+            300.0,
+        );
+        assert!(
+            (depth - mean * 100.0).abs() < 0.01 * mean * 100.0,
+            "{depth}"
+        );
+        // The layers find the layer a height is in the band of; bad bands refused.
+        let layers = CloudLayers::one(layer);
+        assert!(layers.containing(base - 50.0, Vec2::ZERO).is_some());
+        assert!(layers.containing(base - 250.0, Vec2::ZERO).is_none());
+        for bad in [-1.0, f32::NAN, 6_000.0] {
+            let err = CloudLayer {
+                transition_band_m: bad,
+                ..layer
+            }
+            .validate()
+            .expect_err("refused");
+            assert!(err.to_string().contains("transition_band_m"), "{err}");
         }
     }
 
@@ -891,6 +1001,7 @@ mod tests {
             thickness_m: 2_500.0,
             coverage: 1.0,
             kind: CloudKind::Nimbostratus,
+            transition_band_m: 0.0,
         };
         let at = Vec3::new(10.0, 1_200.0, 10.0);
         let sigma = cloud_extinction_at(map, &layer, Vec2::ZERO, at);

@@ -546,7 +546,9 @@ impl crate::Setup {
 /// The fog layer of the frame's block: the settings' fog layer, or where the camera
 /// is inside a cloud and its extinction there is the larger, the cloud's layer as a
 /// fog of that extinction (the camera flying through a cloud sees the scene fade;
-/// docs/model.md (6.13)), its sun's share left out.
+/// docs/model.md (6.13)), its sun's share left out; in a layer's transition band,
+/// the band's side (below the base or above the top) as a fog of the band's air
+/// at the camera.
 fn air_layer(settings: &RenderSettings, weather: &Weather, time_s: f32, camera_m: Vec3) -> Vec4 {
     let fog = settings.fog_layer.map_or(Vec4::ZERO, |fog| {
         Vec4::new(fog.top_m, FOG_LAYER_BOTTOM_M, fog.extinction_per_m(), 1.0)
@@ -556,8 +558,16 @@ fn air_layer(settings: &RenderSettings, weather: &Weather, time_s: f32, camera_m
         return fog;
     };
     let in_cloud = cloud_extinction_at(coverage_map(), &layer, offset, camera_m);
+    let (low_m, high_m) = layer.extent_with_band_m();
+    let (top_m, bottom_m) = if camera_m.y < layer.base_m {
+        (layer.base_m, low_m)
+    } else if camera_m.y > layer.top_m() {
+        (high_m, layer.top_m())
+    } else {
+        (layer.top_m(), layer.base_m)
+    };
     if in_cloud > fog.z {
-        Vec4::new(layer.top_m(), layer.base_m, in_cloud, 0.0)
+        Vec4::new(top_m, bottom_m, in_cloud, 0.0)
     } else {
         fog
     }

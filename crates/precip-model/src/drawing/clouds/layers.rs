@@ -136,12 +136,18 @@ impl CloudLayers {
         self.layers[0]
     }
 
-    /// The layer whose `[base, top]` holds the height `y_m`, with its map offset
-    /// plus `drift_m`.
+    /// The layer whose `[base, top]` holds the height `y_m`, else the one whose
+    /// transition band gives it the largest share ([`CloudLayer::band_share`]),
+    /// with its map offset plus `drift_m`.
     #[must_use]
     pub fn containing(&self, y_m: f32, drift_m: Vec2) -> Option<(CloudLayer, Vec2)> {
         self.with_offsets(drift_m)
             .find(|(l, _)| (l.base_m..=l.top_m()).contains(&y_m))
+            .or_else(|| {
+                self.with_offsets(drift_m)
+                    .filter(|(l, _)| l.band_share(y_m) > 0.0)
+                    .max_by(|a, b| a.0.band_share(y_m).total_cmp(&b.0.band_share(y_m)))
+            })
             .map(|(l, o)| (*l, o))
     }
 
@@ -198,6 +204,7 @@ mod tests {
                 thickness_m: 500.0,
                 coverage: 0.6,
                 kind: CloudKind::Stratus,
+                transition_band_m: 0.0,
             },
             CloudLayer::typical(CloudKind::Cumulus, 0.5),
         ])
