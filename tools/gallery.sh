@@ -26,6 +26,7 @@ sky_shots=(
   "fair-cumulus-above fair-cumulus - 0,4500,3000 0,0,-6000"
   "layered-sky-up layered-sky - 5,1.7,25 0,60,-80"
   "layered-sky-above layered-sky - 0,4500,3000 0,0,-6000"
+  "showers-around showers-around - 5,30,25 0,150,-2000"
 )
 # Only some of them: tools/gallery.sh blizzard valley-fog (sky: tools/gallery.sh sky)
 if [ "$#" -gt 0 ]; then weathers=("$@"); fi

@@ -167,9 +167,7 @@ fn clouds_with_history(in: SkyVarying) -> vec4<f32> {
     }
     let slot = u32(switches.cloud_shadow.y);
     let pixel = vec2<u32>(in.clip.xy);
-    if (cloud_march_slot(pixel) == slot) {
-        return textureLoad(cloud_fresh, pixel / CLOUD_MARCH_BLOCK_PX, 0);
-    }
+    let marched = cloud_march_slot(pixel) == slot;
     // The fresh pixels around: the four whose places (4·f + the slot's place in
     // the block) surround this pixel.
     let own = vec2<f32>(cloud_fresh_pixel(vec2<u32>(0u), slot));
@@ -186,6 +184,9 @@ fn clouds_with_history(in: SkyVarying) -> vec4<f32> {
     let moved = vec3<f32>(switches.cloud_shadow.z, 0.0, switches.cloud_shadow.w);
     let history = cloud_history_uv(switches.previous_view_proj, camera + ray * nearest + moved);
     if (history.z < 0.5) {
+        if (marched) {
+            return a;
+        }
         discard;
     }
     let seen = textureSampleLevel(cloud_image, cover_sampler, history.xy, 0.0);
@@ -193,7 +194,11 @@ fn clouds_with_history(in: SkyVarying) -> vec4<f32> {
     let entry = camera + ray * nearest + moved;
     let deeper = entry + ray * CLOUD_PARALLAX_DEPTH_M;
     let size = vec2<f32>(textureDimensions(cloud_image));
-    return mix(seen, clamped, cloud_history_clamp_weight(switches.previous_view_proj, entry, deeper, size));
+    let stale = cloud_history_clamp_weight(switches.previous_view_proj, entry, deeper, size);
+    let kept = mix(seen, clamped, stale);
+    // The frame's own pixel: its march averaged into its history where that is
+    // its own (cloud_fresh_weight), else taken.
+    return select(kept, mix(kept, a, cloud_fresh_weight(stale, history.xy * size)), marched);
 }
 
 // How many layers there are (their rows are packed lowest first; past the last a
@@ -213,12 +218,21 @@ fn cloud_layer_count() -> u32 {
 fn march_clouds(in: SkyVarying, camera: vec3<f32>, ray: vec3<f32>, nearest: f32, count: u32) -> vec4<f32> {
     // A fixed jitter per pixel hides the steps' banding.
     let pixel = vec2<u32>(in.clip.xy);
-    let jitter = f32(pcg_hash(pixel.x * 7919u + pixel.y * 104729u) >> 8u) / 16777216.0;
+    // A jitter per pixel hides the steps' banding; it moves on each round of 16
+    // frames (cloud_drift.w), so a pixel marched again samples between its last
+    // march's steps and the reuse averages them.
+    let jitter = fract(f32(pcg_hash(pixel.x * 7919u + pixel.y * 104729u) >> 8u) / 16777216.0 + switches.cloud_drift.w);
     var light_transmittance = vec4<f32>(0.0, 0.0, 0.0, 1.0);
-    // The precipitation's part of the path to the first layer: the same to every
-    // layer behind it from below the lowest base; from above, all of it is local.
-    let paths = precipitation_paths(camera, ray, nearest);
+    // The air between the camera and the first layer (precipitation_haze): its
+    // light as a share of the horizon's, and its transmittance. Past the first
+    // entry there are no shafts (they hang under the lowest base): a layer
+    // further on is dimmed by the clear air between (and from above the base by
+    // the precipitation, which falls everywhere there).
+    let sigma_p = switches.cloud_extinction.w;
+    let sigma_rest = max(switches.to_sun_extinction.w - sigma_p, 0.0);
+    let haze = air_to_clouds(camera, ray, nearest, sigma_rest, sigma_p);
     let above = camera.y >= layer_row(0u).x;
+    let sigma_on = sigma_rest + select(0.0, sigma_p, above);
     for (var n = 0u; n < count; n += 1u) {
         let i = select(count - 1u - n, n, ray.y >= 0.0);
         let slab = layer_slab(i, camera, ray);
@@ -227,70 +241,64 @@ fn march_clouds(in: SkyVarying, camera: vec3<f32>, ray: vec3<f32>, nearest: f32,
         }
         let before = light_transmittance;
         let lit = march_layer(i, camera, ray, slab, jitter, before.w);
-        let local = select(paths.x, slab.x, above);
-        let haze = haze_transmittance(slab.x, vec2<f32>(local, paths.y));
-        light_transmittance = vec4<f32>(before.xyz + lit.xyz * haze.x * haze.y, lit.w);
+        let dim = haze.y * exp(-sigma_on * max(slab.x - nearest, 0.0));
+        light_transmittance = vec4<f32>(before.xyz + lit.xyz * dim, lit.w);
         if (lit.w < 0.01) {
             break;
         }
     }
-    // The haze between the camera and the first layer (clear air and the
-    // precipitation falling from it) dims the clouds and what lies behind them,
-    // and adds its own light: premultiplied h·L + (1 − h)·A over (1 − h·T) of the
-    // sky behind. The shafts beyond the camera's surroundings hang in their
-    // clouds' shade: they scatter the sky's light as a layer's base does, 0.4 of
-    // the horizon's ((6.10)), behind the rest of the haze.
-    let haze = haze_transmittance(nearest, paths);
+    // The air's own light in front of the clouds, premultiplied, over the share
+    // h·T of the sky behind that passes.
     let horizon = switches.sky_colour_time.xyz;
-    let in_scattered = horizon * (1.0 - haze.x) + CLOUD_BASE_SKY_SHARE * horizon * haze.x * (1.0 - haze.y);
     return vec4<f32>(
-        light_transmittance.xyz + in_scattered,
-        1.0 - haze.x * haze.y * light_transmittance.w,
+        light_transmittance.xyz + horizon * haze.x,
+        1.0 - haze.y * light_transmittance.w,
     );
 }
 
-// The haze's transmittance over the ray's first `t` m: x the clear air's and the
-// grains' everywhere with the precipitation's (cloud_extinction.w) near the camera,
-// y the shafts' beyond, under the lowest layer's clouds (cloud_drift.z;
-// docs/model.md (6.16)).
-fn haze_transmittance(t: f32, path: vec2<f32>) -> vec2<f32> {
-    let sigma_p = switches.cloud_extinction.w;
-    let sigma_rest = max(switches.to_sun_extinction.w - sigma_p, 0.0);
-    return vec2<f32>(
-        exp(-sigma_rest * max(t, 0.0) - sigma_p * path.x),
-        exp(-switches.cloud_drift.z * path.y),
-    );
-}
-
-// The precipitation's parts of the ray's first `t` m (precipitation_path_m), or all
-// of it local without precipitation.
-fn precipitation_paths(camera: vec3<f32>, ray: vec3<f32>, t: f32) -> vec2<f32> {
-    if (switches.cloud_extinction.w > 0.0) {
-        return precipitation_path_m(camera, ray, t);
+// The air over the ray's first `t` m (precipitation_haze), uniform where nothing
+// falls here or beyond (no texture loop run: the branch reads `switches`).
+fn air_to_clouds(camera: vec3<f32>, ray: vec3<f32>, t: f32, sigma_rest: f32, sigma_p: f32) -> vec2<f32> {
+    if (sigma_p > 0.0 || switches.cloud_drift.z > 0.0) {
+        return precipitation_haze(camera, ray, t, sigma_rest, sigma_p, switches.cloud_drift.z);
     }
-    return vec2<f32>(max(t, 0.0), 0.0);
+    let transmittance = exp(-sigma_rest * max(t, 0.0));
+    return vec2<f32>(1.0 - transmittance, transmittance);
 }
 
-// precipitation_path_m (precip_model::drawing::clouds::precipitation_path_m): how
-// much of the ray's first `t_end` m lies in the camera's precipitation (x) and in
-// the shafts beyond (y).
-fn precipitation_path_m(camera: vec3<f32>, ray: vec3<f32>, t_end: f32) -> vec2<f32> {
+// precipitation_haze (precip_model::drawing::clouds::precipitation_haze): what the
+// air between the camera and `t_end` along the ray does to what lies behind it —
+// its light as a share of the horizon's (x) and its transmittance (y): the clear
+// air and the precipitation within LOCAL_WEATHER_RADIUS_M, the clear air and the
+// shafts under the lowest layer's clouds beyond (docs/model.md (6.16)).
+fn precipitation_haze(camera: vec3<f32>, ray: vec3<f32>, t_end: f32, rest: f32, local: f32, shaft_max: f32) -> vec2<f32> {
     let lowest = layer_row(0u);
+    let near = rest + local;
     if (t_end <= LOCAL_WEATHER_RADIUS_M || camera.y >= lowest.x) {
-        return vec2<f32>(max(t_end, 0.0), 0.0);
+        let t = exp(-near * max(t_end, 0.0));
+        return vec2<f32>(1.0 - t, t);
     }
+    var transmittance = exp(-near * LOCAL_WEATHER_RADIUS_M);
+    var light = 1.0 - transmittance;
     var t_base = t_end;
     if (ray.y > 0.0) {
         t_base = clamp((lowest.x - camera.y) / ray.y, LOCAL_WEATHER_RADIUS_M, t_end);
     }
     let dt = (t_base - LOCAL_WEATHER_RADIUS_M) / f32(RAIN_SHAFT_SAMPLES);
-    var covered = 0.0;
     for (var k = 0u; k < RAIN_SHAFT_SAMPLES; k += 1u) {
         let p = camera + ray * (LOCAL_WEATHER_RADIUS_M + (f32(k) + 0.5) * dt);
         let uv = cloud_map_uvs(p, switches.cloud_drift.xy).xy;
-        covered += cloud_column(lowest.z, textureSampleLevel(cloud_map, cloud_sampler, uv, 0.0).r);
+        let shaft = shaft_max * cloud_column(lowest.z, textureSampleLevel(cloud_map, cloud_sampler, uv, 0.0).r);
+        let sigma = rest + shaft;
+        let step = exp(-sigma * dt);
+        if (sigma > 0.0) {
+            light += transmittance * (1.0 - step) * (rest + CLOUD_BASE_SKY_SHARE * shaft) / sigma;
+        }
+        transmittance *= step;
     }
-    return vec2<f32>(LOCAL_WEATHER_RADIUS_M, covered * dt);
+    let step = exp(-rest * (t_end - t_base));
+    light += transmittance * (1.0 - step);
+    return vec2<f32>(light, transmittance * step);
 }
 
 // Layer `i` marched over `slab` behind a transmittance `transmittance_in`: the light

@@ -713,6 +713,9 @@ impl<G: Gpu> FrameState<G> {
                 let moved = drift_m - h.drift_m;
                 params.cloud_shadow.z = moved.x;
                 params.cloud_shadow.w = moved.y;
+                params.cloud_drift.w = precip_model::drawing::clouds::cloud_march_round_offset(
+                    self.frames_drawn / u64::from(CLOUD_MARCH_ALL),
+                );
                 (self.frames_drawn % u64::from(CLOUD_MARCH_ALL)) as f32
             }
             None => CLOUD_MARCH_ALL as f32,

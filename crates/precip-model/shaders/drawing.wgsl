@@ -346,6 +346,7 @@ const CLOUD_INSIDE_PATH_M: f32 = 2000.0;
 const CLOUD_MARCH_BLOCK_PX: u32 = 4u;
 const CLOUD_MARCH_ALL: u32 = 16u;
 const CLOUD_HISTORY_MARGIN: f32 = 0.25;
+const CLOUD_FRESH_WEIGHT: f32 = 0.25;
 const CLOUD_HISTORY_SLACK: f32 = 0.02;
 const CLOUD_PARALLAX_DEPTH_M: f32 = 500.0;
 const CLOUD_PARALLAX_FULL_PX: f32 = 0.25;
@@ -382,6 +383,16 @@ fn cloud_fresh_pixel(fresh: vec2<u32>, slot: u32) -> vec2<u32> {
 fn cloud_history_clamped(history: vec4<f32>, low: vec4<f32>, high: vec4<f32>) -> vec4<f32> {
     let slack = max((high - low) * CLOUD_HISTORY_MARGIN, vec4<f32>(CLOUD_HISTORY_SLACK));
     return clamp(history, low - slack, high + slack);
+}
+
+// cloud_fresh_weight: the weight of a pixel's new march against its history:
+// CLOUD_FRESH_WEIGHT where the history is read at a texel's centre unclamped, up to
+// 1 a quarter texel off or clamped.
+fn cloud_fresh_weight(clamp_weight: f32, history_px: vec2<f32>) -> f32 {
+    let from_centre = history_px - vec2<f32>(0.5);
+    let off = from_centre - round(from_centre);
+    let resampled = clamp(length(off) * 4.0, 0.0, 1.0);
+    return max(CLOUD_FRESH_WEIGHT, max(clamp_weight, resampled));
 }
 
 // cloud_history_clamp_weight: how much of the clamp a reused pixel takes: how far

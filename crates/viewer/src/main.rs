@@ -59,7 +59,7 @@ enum Command {
 struct WeatherArgs {
     /// A weather preset: a TOML file or a shipped name (light-snow, blizzard,
     /// wet-snow, drizzle, downpour, sleet, sandstorm, dust-haze, valley-fog,
-    /// fair-cumulus, thunderstorm, layered-sky); the options
+    /// fair-cumulus, thunderstorm, layered-sky, showers-around); the options
     /// below override it.
     #[arg(long)]
     preset: Option<String>,
@@ -105,6 +105,11 @@ struct WeatherArgs {
     /// it, m (CIGI's transition band; 0, a sharp edge, by default).
     #[arg(long)]
     cloud_transition_band: Option<f32>,
+    /// The rate falling beyond the camera's 3 km, averaged over the land, mm/h:
+    /// shafts of rain or snow under the lowest cloud layer's clouds, seen from afar
+    /// (the weather's own rate by default; docs/model.md (6.16)).
+    #[arg(long)]
+    rate_beyond: Option<f32>,
     /// Another cloud layer, TYPE[:COVER[:BASE_M[:THICKNESS_M]]] (e.g.
     /// stratus:0.9:4000:400); repeat for a third. Added to the preset's; at most
     /// three layers in all, none reaching into another (docs/model.md (6.15)).
@@ -367,6 +372,7 @@ fn preset_of(args: &WeatherArgs) -> anyhow::Result<Preset> {
     preset.cloud_transition_band_m = args
         .cloud_transition_band
         .or(preset.cloud_transition_band_m);
+    preset.rate_beyond_mm_per_h = args.rate_beyond.or(preset.rate_beyond_mm_per_h);
     preset.more_clouds.extend(args.more_clouds.iter().copied());
     Ok(preset)
 }
@@ -438,11 +444,12 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             eprintln!("warning: scenario: {note}");
         }
     }
-    let (weather, fog_layer, cloud_layers) = match &scenario {
+    let (weather, fog_layer, cloud_layers, rate_beyond) = match &scenario {
         Some(s) => (
             s.initial.weather,
             s.initial.fog_layer,
             s.initial.cloud_layer.into(),
+            args.weather.rate_beyond,
         ),
         None => {
             let preset = preset_of(&args.weather)?;
@@ -450,6 +457,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
                 preset.weather().context("the weather")?,
                 preset.fog_layer()?,
                 preset.cloud_layers()?,
+                preset.rate_beyond_mm_per_h,
             )
         }
     };
@@ -493,6 +501,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     });
     setup.render.fog_layer = fog_layer;
     setup.render.cloud_layers = cloud_layers;
+    setup.render.rate_beyond_mm_per_h = rate_beyond;
     setup.camera.forward =
         channel_forward(setup.camera.forward, args.channel_yaw, args.channel_pitch);
     if let Some(shift) = args.channel_shift {

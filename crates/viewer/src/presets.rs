@@ -66,6 +66,12 @@ pub struct Preset {
     /// thickens toward it, m (CIGI's transition band); optional (0: a sharp edge).
     #[serde(default)]
     pub cloud_transition_band_m: Option<f32>,
+    /// The rate falling beyond the camera's 3 km, averaged over the land, mm/h of
+    /// water, in shafts under the lowest cloud layer's clouds; optional (the
+    /// weather's own). Showers around a dry place: `intensity = 0`,
+    /// `rate_beyond_mm_per_h = 20`.
+    #[serde(default)]
+    pub rate_beyond_mm_per_h: Option<f32>,
     /// More cloud layers, above or below the first (up to three in all, none
     /// reaching into another): `more_clouds = [{ type = "stratus", cover = 0.9,
     /// base_m = 4000, thickness_m = 400 }]`, cover, base and thickness optional.
@@ -208,7 +214,7 @@ impl From<KindName> for PrecipitationKind {
 }
 
 /// The shipped presets, by name.
-pub const BUILT_IN: [(&str, &str); 12] = [
+pub const BUILT_IN: [(&str, &str); 13] = [
     (
         "light-snow",
         include_str!("../../../presets/light-snow.toml"),
@@ -235,6 +241,10 @@ pub const BUILT_IN: [(&str, &str); 12] = [
     (
         "layered-sky",
         include_str!("../../../presets/layered-sky.toml"),
+    ),
+    (
+        "showers-around",
+        include_str!("../../../presets/showers-around.toml"),
     ),
 ];
 

@@ -212,6 +212,15 @@ fn wgsl_drawing_equals_rust_drawing() {
                 "{name}: input {i} clamp weight: WGSL {} vs Rust {weight}",
                 g[0]
             );
+            let fresh_weight = precip_model::drawing::clouds::cloud_fresh_weight(
+                q.tumble - 0.3,
+                glam::Vec2::new(centre.x, centre.z),
+            );
+            assert!(
+                (g[1] - fresh_weight).abs() <= 1e-4,
+                "{name}: input {i} fresh weight: WGSL {} vs Rust {fresh_weight}",
+                g[1]
+            );
             for (k, (want, uv)) in streak.iter().enumerate() {
                 let g = got[23 * i + 13 + k];
                 let have = Vec3::new(g[0], g[1], g[2]);

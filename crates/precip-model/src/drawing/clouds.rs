@@ -54,8 +54,8 @@ mod layers;
 mod shafts;
 pub use layers::{CloudLayers, MAX_CLOUD_LAYERS, cloud_layer_map_offset_m};
 pub use shafts::{
-    CLOUD_BASE_SKY_SHARE, LOCAL_WEATHER_RADIUS_M, MIN_SHAFT_COVERAGE, RAIN_SHAFT_SAMPLES,
-    precipitation_path_m, shaft_extinction_per_m,
+    CLOUD_BASE_SKY_SHARE, HazeExtinctions, LOCAL_WEATHER_RADIUS_M, MIN_SHAFT_COVERAGE,
+    RAIN_SHAFT_SAMPLES, precipitation_haze, shaft_extinction_per_m,
 };
 
 /// The cloud types the layer can have (WMO genera).
@@ -395,6 +395,36 @@ pub const CLOUD_PARALLAX_DEPTH_M: f32 = 500.0;
 /// The parallax a frame, px of the clouds' image, at which a reused pixel is
 /// clamped fully: over the [`CLOUD_MARCH_ALL`] frames it may be reused, 4 px.
 pub const CLOUD_PARALLAX_FULL_PX: f32 = 0.25;
+
+/// The weight of a pixel's new march against its history (an exponential mean
+/// over its marches, one every [`CLOUD_MARCH_ALL`] frames, each at other depths:
+/// [`cloud_march_round_offset`]): the grain of a march at grazing angles, where a
+/// step spans kilometres, averages out over about `2/w − 1` marches.
+pub const CLOUD_FRESH_WEIGHT: f32 = 0.25;
+
+/// The weight of a pixel's new march against its history: [`CLOUD_FRESH_WEIGHT`]
+/// where the history is this pixel's own, unchanged (the camera still, the history
+/// read at a texel's centre, `history_px` its place in texels), rising to 1 — the
+/// new march alone — as the history is read a quarter of a texel or more off a
+/// centre (a bilinear read of a moving camera's image blurs, and would blur again
+/// at each frame it is kept) or is clamped (`clamp_weight`,
+/// [`cloud_history_clamp_weight`]). WGSL twin: `cloud_fresh_weight` (drawing.wgsl).
+#[must_use]
+pub fn cloud_fresh_weight(clamp_weight: f32, history_px: Vec2) -> f32 {
+    let from_centre = history_px - Vec2::splat(0.5);
+    let off = from_centre - from_centre.round();
+    let resampled = (off.length() * 4.0).clamp(0.0, 1.0);
+    CLOUD_FRESH_WEIGHT.max(clamp_weight).max(resampled)
+}
+
+/// The offset of the march's jitter in round `round` (`frame / CLOUD_MARCH_ALL`),
+/// `[0, 1)`: the golden ratio's multiples, so a pixel's successive marches fall
+/// between each other's steps. WGSL reads it from `cloud_drift.w`.
+#[must_use]
+pub fn cloud_march_round_offset(round: u64) -> f32 {
+    const GOLDEN: f64 = 0.618_033_988_749_895;
+    ((round % 1_000_003) as f64 * GOLDEN).fract() as f32
+}
 
 /// The 4 × 4 Bayer order: the frame of [`CLOUD_MARCH_ALL`] that marches the pixel
 /// at `(x mod 4, y mod 4)` of its block, row by row.
@@ -801,6 +831,34 @@ mod tests {
         // A metre across: partly.
         let metre = cloud_history_clamp_weight(camera(here + Vec3::X, 0.0), entry, deeper, image);
         assert!(metre > 0.01 && metre < 0.2, "{metre}");
+    }
+
+    #[test]
+    fn a_new_march_is_averaged_in_only_where_the_history_is_the_pixel_s_own() {
+        // Read at a texel's centre, not clamped: a quarter.
+        let still = cloud_fresh_weight(0.0, Vec2::new(12.5, 7.5));
+        assert!((still - CLOUD_FRESH_WEIGHT).abs() < 1e-6);
+        // A tenth of a texel off: in between; a quarter or more, or clamped: 1.
+        let near = cloud_fresh_weight(0.0, Vec2::new(12.6, 7.5));
+        assert!(near > CLOUD_FRESH_WEIGHT && near < 1.0, "{near}");
+        assert!((cloud_fresh_weight(0.0, Vec2::new(12.75, 7.5)) - 1.0).abs() < 1e-6);
+        assert!((cloud_fresh_weight(0.0, Vec2::new(12.0, 7.0)) - 1.0).abs() < 1e-6);
+        assert!((cloud_fresh_weight(1.0, Vec2::new(12.5, 7.5)) - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn successive_marches_of_a_pixel_fall_between_each_other_s_steps() {
+        // Eight rounds' offsets: in [0, 1), none within 1/20 (a twentieth of a
+        // step) of another.
+        let offsets: Vec<f32> = (0..8).map(cloud_march_round_offset).collect();
+        assert!(offsets[0].abs() < f32::EPSILON);
+        for (i, a) in offsets.iter().enumerate() {
+            assert!((0.0..1.0).contains(a));
+            for b in &offsets[..i] {
+                assert!((a - b).abs() > 0.05, "{offsets:?}");
+            }
+        }
+        assert!((0.0..1.0).contains(&cloud_march_round_offset(u64::MAX)));
     }
 
     #[test]

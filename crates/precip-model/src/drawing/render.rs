@@ -144,6 +144,12 @@ pub struct RenderSettings {
     /// Layers of volumetric clouds ([`crate::drawing::clouds`], up to three);
     /// none: the overcast sky alone.
     pub cloud_layers: CloudLayers,
+    /// The rate of rain or snow (the weather's kind) averaged over the land beyond
+    /// the camera's surroundings ([`crate::drawing::clouds::LOCAL_WEATHER_RADIUS_M`]),
+    /// mm/h of water, falling in shafts under the lowest cloud layer's clouds
+    /// (docs/model.md (6.16)); `None`: the weather's own (it rains as much there
+    /// as here). Showers seen from a dry place: 0 mm/h here, 20 there.
+    pub rate_beyond_mm_per_h: Option<f32>,
 }
 
 impl Default for RenderSettings {
@@ -175,6 +181,7 @@ impl Default for RenderSettings {
             particle_resolution: ParticleResolution::Full,
             fog_layer: None,
             cloud_layers: CloudLayers::NONE,
+            rate_beyond_mm_per_h: None,
         }
     }
 }
@@ -252,6 +259,12 @@ impl RenderSettings {
                 1.0,
             ),
             ("render.rain_opacity", self.rain_opacity, 0.0, 1.0),
+            (
+                "render.rate_beyond_mm_per_h",
+                self.rate_beyond_mm_per_h.unwrap_or(0.0),
+                0.0,
+                Weather::MAX_INTENSITY_MM_PER_H,
+            ),
             (
                 "render.water_body_depth_m",
                 self.water_body_depth_m,
@@ -382,11 +395,13 @@ pub struct RenderParams {
     /// Each layer's most extinction per m
     /// ([`crate::drawing::clouds::CloudKind::extinction_per_m`]); the
     /// precipitation's extinction per m, what falls from the lowest layer (rain and
-    /// snow, not sand or dust: its shafts, [`crate::drawing::clouds::precipitation_path_m`]).
+    /// snow, not sand or dust: its shafts, [`crate::drawing::clouds::precipitation_haze`]).
     pub cloud_extinction: Vec4,
     /// The clouds' drift with the wind (x, z m), the extinction per m under a
     /// shaft of the lowest layer ([`crate::drawing::clouds::shaft_extinction_per_m`]),
-    /// 1 when a layer is drawn (else 0).
+    /// the offset of the march's jitter in `[0, 1)` (0 here; the renderer moves it
+    /// on every [`crate::drawing::clouds::CLOUD_MARCH_ALL`] frames,
+    /// [`crate::drawing::clouds::cloud_march_round_offset`]).
     pub cloud_drift: Vec4,
     /// The share of the sun's light that reaches the ground under the camera through
     /// the cloud layer ([`crate::drawing::clouds::cloud_sun_transmittance`]: the
@@ -709,9 +724,16 @@ impl RenderParams {
                 .cloud_layers
                 .lowest()
                 .map_or(Vec4::ZERO, |lowest| {
+                    let beyond = Weather {
+                        intensity_mm_per_h: f
+                            .settings
+                            .rate_beyond_mm_per_h
+                            .unwrap_or(f.weather.intensity_mm_per_h),
+                        ..*f.weather
+                    };
                     cloud_drift_m(f.weather.wind.mean_wind_mps, f.time_s)
-                        .extend(shaft_extinction_per_m(f.weather, &lowest))
-                        .extend(1.0)
+                        .extend(shaft_extinction_per_m(&beyond, &lowest))
+                        .extend(0.0)
                 }),
             fog_layer: air_layer(f.settings, f.weather, f.time_s, camera.position_m),
             cloud_shadow: Vec4::new(

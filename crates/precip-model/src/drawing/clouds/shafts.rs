@@ -8,7 +8,7 @@
 //! and clear between them; the haze of sand and dust, which no cloud drops, stays
 //! everywhere.
 //!
-//! WGSL twin: `precipitation_path_m` (render_clouds.wgsl), with the map read by
+//! WGSL twin: `precipitation_haze` (render_clouds.wgsl), with the map read by
 //! the sampler instead of [`super::sample_coverage_map`].
 
 use glam::{Vec2, Vec3};
@@ -41,25 +41,49 @@ pub fn shaft_extinction_per_m(weather: &Weather, lowest: &CloudLayer) -> f32 {
     (concentrated.extinction_per_m() - concentrated.grain_extinction_per_m()).max(0.0)
 }
 
-/// How much of the path from `camera` along the unit `dir` over `[0, t_end]` m lies
-/// in falling precipitation, m: `(local, shafts)` — all of it within
-/// [`LOCAL_WEATHER_RADIUS_M`] (local), beyond only the part below `lowest`'s base
-/// under its clouds (its map read at `offset_m`), by the midpoints of
-/// [`RAIN_SHAFT_SAMPLES`] steps (shafts). From at or above the base, all of it is
-/// local (the shafts lie below, where the camera's rays toward the sky do not go).
+/// The extinctions of the air a sky ray crosses under the clouds, per m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HazeExtinctions {
+    /// The clear air's and the grains', everywhere.
+    pub rest_per_m: f32,
+    /// The precipitation's around the camera (within [`LOCAL_WEATHER_RADIUS_M`]).
+    pub local_per_m: f32,
+    /// The precipitation's in a shaft beyond ([`shaft_extinction_per_m`]).
+    pub shaft_per_m: f32,
+}
+
+/// What the air between `camera` and `t_end` m along the unit `dir` does to what
+/// lies behind it: `(light, transmittance)`, the light it scatters toward the
+/// camera as a share of the horizon's sky light `A`, and the share of what lies
+/// behind that passes. Piecewise along the ray: within [`LOCAL_WEATHER_RADIUS_M`]
+/// the clear air and the precipitation set (scattering `A`); beyond, under
+/// `lowest`'s base, the clear air (`A`) and the shafts under its clouds (its map
+/// read at `offset_m`, [`cloud_column`]), which hang in their clouds' shade and
+/// scatter [`CLOUD_BASE_SKY_SHARE`]`·A`, by the midpoints of [`RAIN_SHAFT_SAMPLES`]
+/// steps up to where the ray rises through the base; each step's light
+/// `T·(1 − e^(−σΔ))·S/σ` behind the transmittance `T` in front of it, so a shaft
+/// 10 km off stands out of the haze beyond it. From at or above the base, or
+/// within the radius, the air is uniform: `(1 − e^(−σt), e^(−σt))`, σ the clear
+/// air's and the precipitation's. WGSL twin: `precipitation_haze`
+/// (render_clouds.wgsl), the map read by the sampler.
 #[must_use]
-pub fn precipitation_path_m(
+pub fn precipitation_haze(
     map: &[u8],
     lowest: &CloudLayer,
     offset_m: Vec2,
     camera: Vec3,
     dir: Vec3,
     t_end: f32,
+    air: HazeExtinctions,
 ) -> (f32, f32) {
     let r = LOCAL_WEATHER_RADIUS_M;
+    let near = air.rest_per_m + air.local_per_m;
     if t_end <= r || camera.y >= lowest.base_m {
-        return (t_end.max(0.0), 0.0);
+        let t = (-near * t_end.max(0.0)).exp();
+        return (1.0 - t, t);
     }
+    let mut transmittance = (-near * r).exp();
+    let mut light = 1.0 - transmittance;
     // Where the ray rises through the base (never, going level or down).
     let t_base = if dir.y > 0.0 {
         ((lowest.base_m - camera.y) / dir.y).clamp(r, t_end)
@@ -68,14 +92,23 @@ pub fn precipitation_path_m(
     };
     let n = RAIN_SHAFT_SAMPLES;
     let dt = (t_base - r) / n as f32;
-    let covered: f32 = (0..n)
-        .map(|k| {
-            let p = camera + dir * (r + (k as f32 + 0.5) * dt);
-            let (column, _) = cloud_map_uvs(p, offset_m);
-            cloud_column(lowest.coverage, sample_coverage_map(map, column))
-        })
-        .sum();
-    (r, covered * dt)
+    for k in 0..n {
+        let p = camera + dir * (r + (k as f32 + 0.5) * dt);
+        let (column, _) = cloud_map_uvs(p, offset_m);
+        let shaft =
+            air.shaft_per_m * cloud_column(lowest.coverage, sample_coverage_map(map, column));
+        let sigma = air.rest_per_m + shaft;
+        let step = (-sigma * dt).exp();
+        if sigma > 0.0 {
+            light += transmittance * (1.0 - step) * (air.rest_per_m + CLOUD_BASE_SKY_SHARE * shaft)
+                / sigma;
+        }
+        transmittance *= step;
+    }
+    // Past the base's height (a level ray's far end): the clear air.
+    let step = (-air.rest_per_m * (t_end - t_base)).exp();
+    light += transmittance * (1.0 - step);
+    (light, transmittance * step)
 }
 
 #[cfg(test)]
@@ -90,12 +123,18 @@ mod tests {
         let level = Vec3::X;
         let layer = |coverage| CloudLayer::typical(CloudKind::Cumulonimbus, coverage);
         // Within the radius, the whole path.
+        // The path in falling precipitation, from the transmittance of a thin one.
+        let thin = HazeExtinctions {
+            rest_per_m: 0.0,
+            local_per_m: 1e-6,
+            shaft_per_m: 1e-6,
+        };
         let path = |l: &CloudLayer, offset, camera, dir, t| {
-            let (local, shafts) = precipitation_path_m(map, l, offset, camera, dir, t);
-            local + shafts
+            let (_, transmittance) = precipitation_haze(map, l, offset, camera, dir, t, thin);
+            -f64::from(transmittance).ln() as f32 / 1e-6
         };
         let near = path(&layer(0.3), Vec2::ZERO, camera, level, 2_500.0);
-        assert!((near - 2_500.0).abs() < 1e-3);
+        assert!((near - 2_500.0).abs() < 1.0, "{near}");
         // Beyond it, a full deck rains everywhere (but for its columns' soft edges,
         // 2 % of the map), none rains nowhere.
         let far = 20_000.0;
@@ -123,8 +162,57 @@ mod tests {
         assert!((through - to_base).abs() < 0.04 * to_base, "{through}");
         // From above the base: as before, the whole path.
         let above = Vec3::new(0.0, 900.0, 0.0);
-        let all = precipitation_path_m(map, &layer(0.0), Vec2::ZERO, above, level, far);
-        assert_eq!(all, (far, 0.0));
+        let all = path(&layer(0.0), Vec2::ZERO, above, level, far);
+        assert!((all - far).abs() < 0.01 * far, "{all}");
+    }
+
+    #[test]
+    fn from_a_dry_place_a_shaft_stands_out_of_the_haze_behind_it() {
+        let map = coverage_map();
+        let camera = Vec3::new(0.0, 30.0, 0.0);
+        let level = Vec3::X;
+        let far = 30_000.0;
+        // Clear air of 30 km visibility, nothing falling here, a shaft's
+        // extinction of heavy rain (a kilometre's visibility) under a full deck.
+        let air = HazeExtinctions {
+            rest_per_m: 3.912 / 30_000.0,
+            local_per_m: 0.0,
+            shaft_per_m: 3.912 / 1_000.0,
+        };
+        let deck = CloudLayer::typical(CloudKind::Cumulonimbus, 1.0);
+        let clear = CloudLayer::typical(CloudKind::Cumulonimbus, 0.0);
+        let (light_clear, t_clear) =
+            precipitation_haze(map, &clear, Vec2::ZERO, camera, level, far, air);
+        // Clear air alone: Beer–Lambert, its light the rest.
+        let beer = (-air.rest_per_m * far).exp();
+        assert!((t_clear - beer).abs() < 1e-5 && (light_clear - (1.0 - beer)).abs() < 1e-5);
+        // Under the deck the shafts beyond 3 km hide the far air and, in the
+        // clouds' shade, send 0.4 of its light: the horizon is darker (against
+        // 1 for the clear air with nothing behind it).
+        let (light, t) = precipitation_haze(map, &deck, Vec2::ZERO, camera, level, far, air);
+        assert!(t < 1e-6, "{t}");
+        let near_air = 1.0 - (-air.rest_per_m * LOCAL_WEATHER_RADIUS_M).exp();
+        let expected = near_air + (1.0 - near_air) * CLOUD_BASE_SKY_SHARE;
+        assert!(
+            (light - expected).abs() < 0.02,
+            "{light} against {expected}"
+        );
+        // Never more light than the air's, whatever falls.
+        for shaft_per_m in [0.0, 1e-4, 1e-3, 1e-2] {
+            let (light, t) = precipitation_haze(
+                map,
+                &deck,
+                Vec2::ZERO,
+                camera,
+                level,
+                far,
+                HazeExtinctions { shaft_per_m, ..air },
+            );
+            assert!(
+                light + t <= 1.0 + 1e-5 && light >= 0.0 && t >= 0.0,
+                "{shaft_per_m}"
+            );
+        }
     }
 
     #[test]
