@@ -38,26 +38,33 @@ fn cover_texture(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_i
 // albedo (shading.wgsl's ground_albedo) over the lattice within DROP_GROUND_RADIUS_M
 // of the camera (drawing.wgsl's drop_ground_offset_m), bare off the grid. Rust:
 // precip_model::drawing::drop_ground_albedo (summed in order; here per invocation,
-// then in a tree: equal within rounding).
-var<workgroup> drop_ground_sums: array<vec2<f32>, 64>;
+// then in a tree: equal within rounding). Then the land's beyond the scene: the
+// same albedo's mean over a lattice spread over the whole grid
+// (precip_model::drawing::far_ground::far_ground_albedo).
+var<workgroup> drop_ground_sums: array<vec4<f32>, 64>;
+
+fn cover_albedo_at(xz_m: vec2<f32>) -> f32 {
+    let i = grid_texel_index(params.cover, xz_m);
+    if (i >= 0 && u32(i) < arrayLength(&cover)) {
+        let t = cover[i];
+        return ground_albedo(t, surface_snow_roughness_m(t.surface), params.cover_look.z, params.cover_look.w, params.cover_look2.y, BARE_GROUND_ALBEDO);
+    }
+    return BARE_GROUND_ALBEDO;
+}
 
 @compute @workgroup_size(64)
 fn drop_ground(@builtin(local_invocation_index) lid: u32) {
     let n = DROP_GROUND_SAMPLES_PER_SIDE * DROP_GROUND_SAMPLES_PER_SIDE;
     let camera = params.camera_m_cone_cos.xz;
-    var sum = vec2<f32>(0.0);
+    var sum = vec4<f32>(0.0);
     for (var k = lid; k < n; k += 64u) {
+        let land = cover_albedo_at(far_ground_lattice_m(params.cover.origin_m, params.cover.size_m, k));
+        sum += vec4<f32>(0.0, 0.0, land, 1.0);
         let offset = drop_ground_offset_m(k);
         if (dot(offset, offset) > DROP_GROUND_RADIUS_M * DROP_GROUND_RADIUS_M) {
             continue;
         }
-        var albedo = BARE_GROUND_ALBEDO;
-        let i = grid_texel_index(params.cover, camera + offset);
-        if (i >= 0 && u32(i) < arrayLength(&cover)) {
-            let t = cover[i];
-            albedo = ground_albedo(t, surface_snow_roughness_m(t.surface), params.cover_look.z, params.cover_look.w, params.cover_look2.y, BARE_GROUND_ALBEDO);
-        }
-        sum += vec2<f32>(albedo, 1.0);
+        sum += vec4<f32>(cover_albedo_at(camera + offset), 1.0, 0.0, 0.0);
     }
     drop_ground_sums[lid] = sum;
     workgroupBarrier();
@@ -70,5 +77,6 @@ fn drop_ground(@builtin(local_invocation_index) lid: u32) {
     if (lid == 0u) {
         let total = drop_ground_sums[0];
         drop_ground_out[0] = total.x / max(total.y, 1.0);
+        drop_ground_out[1] = total.z / max(total.w, 1.0);
     }
 }

@@ -53,8 +53,11 @@ struct RenderParams {
     // the clouds' drift x, z m, the extinction per m under a shaft of the lowest
     // layer, drawn (1/0)
     cloud_drift: vec4<f32>,
-    // the share of the sun's light the clouds let through (their shadow), 0, 0, 0
+    // the share of the sun's light the clouds let through (their shadow), the
+    // clouds' march slot, their drift since the image reused (x, z m)
     cloud_shadow: vec4<f32>,
+    // the land beyond the scene: its height m, drawn (1/0), 0, 0
+    far_ground: vec4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

@@ -107,7 +107,26 @@ fn sky_triangle(v: u32) -> SkyVarying {
 fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let ray = normalize_or_zero(far.xyz / far.w - switches.camera_m_cone_cos.xyz);
+    let land = far_ground_seen(ray);
+    if (land.w > 0.5) {
+        return vec4<f32>(land.rgb, 1.0);
+    }
     return sky_through_air(overcast_sky(params.sky_colour_time.xyz, ray), ray);
+}
+
+// The land beyond the scene where `ray` points below the horizon and meets it
+// (precip_model::drawing::far_ground; docs/model.md (6.18)): lit as level ground,
+// its albedo the cover's over the whole grid (drop_ground's second number),
+// through the air; w 1 where it is, else 0.
+fn far_ground_seen(ray: vec3<f32>) -> vec4<f32> {
+    let camera = switches.camera_m_cone_cos.xyz;
+    let t = far_ground_distance_m(camera.y, ray.y, switches.far_ground.x);
+    if (switches.far_ground.y < 0.5 || t < 0.0) {
+        return vec4<f32>(0.0);
+    }
+    let lit = far_ground_colour(drop_ground_albedo[1], params.light.xy, params.to_sun_extinction.y, params.cloud_shadow.x);
+    let air = air_between(camera, camera + ray * t, switches.fog_layer);
+    return vec4<f32>(with_air(lit, air), 1.0);
 }
 
 // The sky under a drawn cloud layer (a pipeline of its own, so frames without one
@@ -138,6 +157,10 @@ fn sky_under_clouds(in: SkyVarying) -> vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let ray = normalize_or_zero(far.xyz / far.w - switches.camera_m_cone_cos.xyz);
     let cloud = textureSampleLevel(cloud_image, cover_sampler, in.ndc * vec2<f32>(0.5, -0.5) + 0.5, 0.0);
+    let land = far_ground_seen(ray);
+    if (land.w > 0.5) {
+        return vec4<f32>(land.rgb * (1.0 - cloud.a) + cloud.rgb, 1.0);
+    }
     let sky = clear_sky(params.sky_colour_time.xyz, ray) * (1.0 - cloud.a) + cloud.rgb;
     return sky_through_air(sky, ray);
 }

@@ -118,9 +118,10 @@ impl<G: Gpu> GpuBackend<G> {
         }
     }
 
-    /// The albedo of the ground the last frame's drops refracted (tests and tools;
-    /// see [`FrameState::drop_ground_albedo`]); `None` before a frame.
-    pub fn read_drop_ground_albedo(&mut self) -> Result<Option<f32>, BackendError> {
+    /// The albedo of the ground the last frame's drops refracted and of the land
+    /// beyond the scene (tests and tools; see [`FrameState::drop_ground_albedo`]);
+    /// `None` before a frame.
+    pub fn read_drop_ground_albedo(&mut self) -> Result<Option<[f32; 2]>, BackendError> {
         let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
             operation: "read_drop_ground_albedo",
         })?;

@@ -97,7 +97,7 @@ pub fn frame_buffers(particle_count: u32) -> [FrameBufferSpec; 6] {
         spec(
             FrameBuffer::DropGround,
             "precip drop ground",
-            4,
+            8,
             BufferUsage::Storage,
         ),
     ]

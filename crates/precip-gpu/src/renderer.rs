@@ -890,19 +890,24 @@ impl<G: Gpu> FrameState<G> {
         ))
     }
 
-    /// The albedo of the ground the last frame's drops refracted (the `drop_ground`
-    /// kernel's, [`precip_model::drawing::drop_ground_albedo`]); `None` before a
+    /// The albedo of the ground the last frame's drops refracted and of the land
+    /// beyond the scene (the `drop_ground` kernel's,
+    /// [`precip_model::drawing::drop_ground_albedo`],
+    /// [`precip_model::drawing::far_ground::far_ground_albedo`]); `None` before a
     /// frame.
-    pub fn drop_ground_albedo(&self, gpu: &mut G) -> Result<Option<f32>, BackendError> {
+    pub fn drop_ground_albedo(&self, gpu: &mut G) -> Result<Option<[f32; 2]>, BackendError> {
         if self.frames_drawn == 0 {
             return Ok(None);
         }
         let buffer = find(&self.buffers, &FrameBuffer::DropGround)
             .ok_or_else(|| missing("the drops' ground"))?;
-        let bytes = gpu.read_buffer(buffer, 4)?;
-        Ok(bytes
-            .get(..4)
-            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])))
+        let bytes = gpu.read_buffer(buffer, 8)?;
+        let at = |i: usize| {
+            bytes
+                .get(4 * i..4 * i + 4)
+                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        };
+        Ok(at(0).zip(at(1)).map(|(near, land)| [near, land]))
     }
 
     /// The last frame's time per pass that ran.

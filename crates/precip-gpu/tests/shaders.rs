@@ -279,7 +279,8 @@ fn rust_and_wgsl_layouts_match() {
             fog_layer,
             clouds,
             cloud_drift,
-            cloud_shadow
+            cloud_shadow,
+            far_ground
         }),
         rust_layout!(DrawArgs {
             vertex_count,

@@ -502,3 +502,35 @@ fn multiplicity_rank(index: u32) -> f32 {
 fn drawn_weight(index: u32, multiplicity: f32) -> f32 {
     return select(0.0, max(multiplicity, 1.0), multiplicity_rank(index) < multiplicity);
 }
+
+// The land beyond the scene (precip_model::drawing::far_ground; docs/model.md (6.18)).
+const FAR_GROUND_BARE_COLOUR: vec3<f32> = vec3<f32>(0.2, 0.28, 0.12);
+const FAR_GROUND_SNOW_TINT: vec3<f32> = vec3<f32>(1.0, 1.0, 1.03);
+
+// far_ground_lattice_m: point k of the DROP_GROUND_SAMPLES_PER_SIDE² lattice spread
+// over the grid at origin_m of size_m (cell centres, row by row).
+fn far_ground_lattice_m(origin_m: vec2<f32>, size_m: vec2<f32>, k: u32) -> vec2<f32> {
+    let n = DROP_GROUND_SAMPLES_PER_SIDE;
+    let cell = vec2<f32>(f32(k % n), f32(k / n)) + 0.5;
+    return origin_m + size_m * cell / f32(n);
+}
+
+// far_ground_distance_m: how far along the ray (unit, vertical part dir_y) from a
+// camera at camera_y_m it meets the land at level_m; negative for never.
+fn far_ground_distance_m(camera_y_m: f32, dir_y: f32, level_m: f32) -> f32 {
+    if (dir_y < -1.0e-4 && camera_y_m > level_m) {
+        return (level_m - camera_y_m) / dir_y;
+    }
+    return -1.0;
+}
+
+// far_ground_colour: the land's colour before the air: bare land to snow as the
+// ground's albedo goes from bare to old snow's 0.4 (snow as the scene's, min(1, 1.2·albedo)),
+// lit by the ambient and diffuse light (lighting), the sun sun_y up with sun_share
+// of its light through the clouds.
+fn far_ground_colour(albedo: f32, lighting: vec2<f32>, sun_y: f32, sun_share: f32) -> vec3<f32> {
+    let snow = clamp((albedo - BARE_GROUND_ALBEDO) / (0.4 - BARE_GROUND_ALBEDO), 0.0, 1.0);
+    let white = min(1.2 * max(albedo, 0.4), 1.0);
+    let base = mix(FAR_GROUND_BARE_COLOUR, FAR_GROUND_SNOW_TINT * white, snow);
+    return base * (lighting.x + lighting.y * max(sun_y, 0.0) * clamp(sun_share, 0.0, 1.0));
+}

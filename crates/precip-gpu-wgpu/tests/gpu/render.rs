@@ -595,6 +595,45 @@ fn clouds_reused_against_whole(
 }
 
 #[test]
+fn from_above_the_land_goes_on_beyond_the_scene() {
+    // 300 m over a 40 m patch of flat ground, 1 km off it, looking 10° down: the
+    // rays below the horizon meet the land beyond the scene (docs/model.md
+    // (6.18)), bare fields seen through the air — darker and greener than the sky
+    // above the horizon, and lighter toward the horizon as the air thickens.
+    let mut setup = Setup::over_flat_ground(40.0, 32, 12.0, 1_000);
+    setup.weather.intensity_mm_per_h = 0.0;
+    let camera = Camera {
+        position_m: Vec3::new(0.0, 300.0, 1_000.0),
+        forward: Vec3::new(0.0, -10f32.to_radians().tan(), -1.0),
+        ..Camera::default()
+    };
+    let view = view(camera, 96, 64);
+    for (name, mut gpu) in common::gpu_backends("from_above_the_land_goes_on") {
+        common::run(&mut gpu, &setup, 1, 0.05);
+        gpu.set_camera(&view.camera).expect("valid camera");
+        gpu.render(&view).expect("renders");
+        let image = gpu.read_image().expect("an image");
+        keep(&image, "far_ground");
+        let sky = luma(&image, 10, 2);
+        let near_land = crate::images::rgb(&image, 10, 60);
+        let far_land = luma(&image, 10, 30);
+        println!("{name}: sky {sky}, land far {far_land}, near {near_land:?}");
+        assert!(
+            luma(&image, 10, 60) < 0.7 * sky,
+            "{name}: the land {near_land:?} against the sky {sky}"
+        );
+        assert!(
+            near_land[1] > near_land[0] && near_land[1] > near_land[2],
+            "{name}: fields are green: {near_land:?}"
+        );
+        assert!(
+            far_land > luma(&image, 10, 60),
+            "{name}: the air thickens toward the horizon"
+        );
+    }
+}
+
+#[test]
 fn a_still_camera_s_clouds_lose_the_grain_of_the_march() {
     use precip_model::drawing::clouds::{CloudKind, CloudLayer, CloudLayers};
     // Looking at cumulonimbus bases near the horizon from 30 m, a march's steps
@@ -1285,7 +1324,8 @@ fn the_cover_textures_match_the_cover_texels() {
 /// A drop refracts the ground over its lower field: the `drop_ground` kernel gives
 /// every frame the cover's ground albedo around the camera, as
 /// `precip_model::drawing::drop_ground_albedo` computes it from the cover read back
-/// (bare ground 0.2 before the snow; brighter under a day of it).
+/// (bare ground 0.2 before the snow; brighter under a day of it), and the land's
+/// beyond the scene, as `far_ground_albedo` does over the whole grid.
 #[test]
 fn the_drops_refract_the_cover_around_the_camera() {
     let (setup, _) = snowed_house();
@@ -1296,11 +1336,17 @@ fn the_drops_refract_the_cover_around_the_camera() {
             common::run(&mut gpu, &setup, steps, 0.1);
             assert_eq!(gpu.read_drop_ground_albedo().expect("reads"), None);
             gpu.render(&view).expect("renders");
-            let got = gpu
+            let [got, land] = gpu
                 .read_drop_ground_albedo()
                 .expect("reads")
                 .expect("a frame wrote it");
             let cover = gpu.read_cover().expect("the cover");
+            let want_land =
+                precip_model::drawing::far_ground::far_ground_albedo(&cover, &setup.cover.params);
+            assert!(
+                (land - want_land).abs() < 1.0e-4,
+                "{name} after {steps} steps: the land's, kernel {land}, model {want_land}"
+            );
             let camera = view.camera.position_m;
             let want = precip_model::drawing::drop_ground_albedo(
                 &cover,

@@ -16,6 +16,7 @@
 pub mod clouds;
 mod drop_environment;
 mod drop_oscillation;
+pub mod far_ground;
 pub mod fog_layer;
 pub mod frame_rate_control;
 pub mod multiplicity;

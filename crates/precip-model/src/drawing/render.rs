@@ -411,8 +411,11 @@ pub struct RenderParams {
     /// renderer sets it where the frame before's image can be reused); the clouds'
     /// drift since that image (x, z m).
     pub cloud_shadow: Vec4,
+    /// The land beyond the scene ([`crate::drawing::far_ground`]): its height m,
+    /// 1 when it is drawn (the scene has a ground map), 0, 0.
+    pub far_ground: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 784);
+const _: () = assert!(size_of::<RenderParams>() == 800);
 
 /// The block's rows of the cloud layers: base m, top m, coverage, kind each.
 fn cloud_layer_rows(layers: &CloudLayers) -> [Vec4; MAX_CLOUD_LAYERS] {
@@ -518,6 +521,9 @@ pub struct FrameInputs<'a> {
     pub cull_groups: u32,
     /// How each pool's particles are weighed ([`crate::drawing::multiplicity`]).
     pub pools: PoolDrawing,
+    /// The height of the land beyond the scene, m
+    /// ([`crate::drawing::far_ground::far_ground_level_m`]); `None`: none drawn.
+    pub far_ground_level_m: Option<f32>,
 }
 
 impl crate::Setup {
@@ -554,6 +560,7 @@ impl crate::Setup {
             particle_count,
             cull_groups: crate::host::cull_groups(particle_count),
             pools,
+            far_ground_level_m: Some(crate::drawing::far_ground::far_ground_level_m(&self.ground)),
         })
     }
 }
@@ -747,6 +754,9 @@ impl RenderParams {
                 0.0,
                 0.0,
             ),
+            far_ground: f
+                .far_ground_level_m
+                .map_or(Vec4::ZERO, |level| Vec4::new(level, 1.0, 0.0, 0.0)),
         }
     }
 }
