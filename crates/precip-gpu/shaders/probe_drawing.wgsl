@@ -30,7 +30,8 @@ struct ProbeDrawing {
 // 16, a history (tumble, 0, 0, spin) clamped to 0.3 … 0.6: its x and w), then (the
 // clamp's weight from centre to centre + velocity through probe_history_camera(camera)
 // on a 320 × 180 image, the new march's weight at clamp weight tumble − 0.3 and
-// history at centre.xz px, 0, 0).
+// history at centre.xz px, the clouds' shadow map's weight at uv centre.xz/60 + ½,
+// its texel |centre.xz|'s point's x + z on a map at camera.xz).
 @group(0) @binding(1) var<storage, read_write> probe_drawing_out: array<vec4<f32>>;
 
 // A projection-like matrix from a point: clip = (p.x + c.x/100, p.y + c.y/100, p.z, −p.z)
@@ -88,6 +89,12 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
     let clamped = cloud_history_clamped(vec4<f32>(q.tumble, 0.0, 0.0, q.spin_rad), vec4<f32>(0.3), vec4<f32>(0.6));
     probe_drawing_out[23u * i + 21u] = vec4<f32>(vec2<f32>(fresh), clamped.x, clamped.w);
     let weight = cloud_history_clamp_weight(probe_history_camera(q.camera_m), q.centre_m, q.centre_m + q.velocity_mps, vec2<f32>(320.0, 180.0));
-    probe_drawing_out[23u * i + 22u] = vec4<f32>(weight, cloud_fresh_weight(q.tumble - 0.3, q.centre_m.xz), 0.0, 0.0);
+    let shadow_texel = vec2<u32>(abs(q.centre_m.xz));
+    probe_drawing_out[23u * i + 22u] = vec4<f32>(
+        weight,
+        cloud_fresh_weight(q.tumble - 0.3, q.centre_m.xz),
+        cloud_shadow_map_weight(q.centre_m.xz / 60.0 + 0.5),
+        cloud_shadow_map_point_m(q.camera_m.xz, shadow_texel).x + cloud_shadow_map_point_m(q.camera_m.xz, shadow_texel).y,
+    );
     probe_drawing_out[23u * i + 18u] = vec4<f32>(cover_warp_m(q.centre_m.xz, vec2<f32>(q.a_m + 0.1, q.side_m + 0.1)), flake_sun_phase(q.spin_rad / 6.0), drop_environment_factor(q.spin_rad / 6.0, q.tumble));
 }

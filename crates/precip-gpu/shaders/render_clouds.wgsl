@@ -19,6 +19,47 @@
 // fragment, run or not.
 
 @group(2) @binding(8) var cloud_fresh: texture_2d<f32>;
+// The clouds' shadow map the cloud_shadow_map kernel writes.
+@group(0) @binding(20) var cloud_shadow_out: texture_storage_2d<rgba16float, write>;
+
+// The clouds' shadow map: each texel the share of the sun's light that reaches its
+// ground point (at the land's height) through every layer (docs/model.md (6.12)),
+// one invocation a texel. Rust: precip_model::drawing::clouds::cloud_shadow_map.
+@compute @workgroup_size(64)
+fn cloud_shadow_map(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = (wid.x + wid.y * groups.x) * 64u + lid;
+    if (i >= CLOUD_SHADOW_MAP_PX * CLOUD_SHADOW_MAP_PX) {
+        return;
+    }
+    let texel = vec2<u32>(i % CLOUD_SHADOW_MAP_PX, i / CLOUD_SHADOW_MAP_PX);
+    let xz = cloud_shadow_map_point_m(switches.cloud_shadow_map.xy, texel);
+    let p = vec3<f32>(xz.x, switches.far_ground.x, xz.y);
+    let to_sun = switches.to_sun_extinction.xyz;
+    var share = 1.0;
+    let count = cloud_layer_count();
+    for (var l = 0u; l < count; l += 1u) {
+        share *= cloud_sun_transmittance(l, p, to_sun);
+    }
+    textureStore(cloud_shadow_out, texel, vec4<f32>(share, 0.0, 0.0, 1.0));
+}
+
+// cloud_sun_transmittance (precip_model::drawing::clouds::cloud_sun_transmittance):
+// the share of the sun's light that reaches `p` through layer `i`: Beer's law over
+// CLOUD_SHADOW_SAMPLES points of the sun's ray's part in it.
+fn cloud_sun_transmittance(i: u32, p: vec3<f32>, to_sun: vec3<f32>) -> f32 {
+    let layer = layer_row(i);
+    let slab = cloud_slab(p.y, to_sun.y, layer.x, layer.y);
+    if (slab.y <= slab.x) {
+        return 1.0;
+    }
+    let offset = switches.cloud_drift.xy + cloud_layer_map_offset_m(i);
+    var density = 0.0;
+    for (var k = 0u; k < CLOUD_SHADOW_SAMPLES; k += 1u) {
+        let q = p + to_sun * (slab.x + (slab.y - slab.x) * (f32(k) + 0.5) / f32(CLOUD_SHADOW_SAMPLES));
+        density += cloud_density_at(q, layer, offset);
+    }
+    return exp(-layer_extinction(i) * density * (slab.y - slab.x) / f32(CLOUD_SHADOW_SAMPLES));
+}
 
 // The clear sky between the clouds: the haze's colour at the horizon, deeper blue
 // toward the zenith (a look, not a sky model).

@@ -58,6 +58,8 @@ struct RenderParams {
     cloud_shadow: vec4<f32>,
     // the land beyond the scene: its height m, drawn (1/0), 0, 0
     far_ground: vec4<f32>,
+    // the clouds' shadow map: its corner x, z m, written and read (1/0), 0
+    cloud_shadow_map: vec4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

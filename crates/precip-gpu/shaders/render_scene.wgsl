@@ -43,6 +43,8 @@ fn frame_pools() -> vec4<u32> {
 // tiling, and the clouds' image the sky lays over itself.
 @group(0) @binding(17) var cloud_map: texture_2d<f32>;
 @group(0) @binding(18) var cloud_sampler: sampler;
+// The clouds' shadow map (render_clouds.wgsl's cloud_shadow_map kernel).
+@group(0) @binding(19) var cloud_shadow: texture_2d<f32>;
 // The clouds' pass reads the other image there: the frame before's.
 @group(1) @binding(4) var cloud_image: texture_2d<f32>;
 // Group 1: light and the flake's opacity.
@@ -61,10 +63,26 @@ struct Material {
 // Depth offset (NDC) of the shadow test, against acne.
 const SHADOW_BIAS: f32 = 0.0005;
 
-// Visibility of the sun at `world_m`: the scene's shadow times a cloud layer's.
+// Visibility of the sun at `world_m` near the camera (the particles): the scene's
+// shadow times the clouds' at the camera. The scene's surfaces take the clouds'
+// shadow map at their vertices (SceneVarying::cloud_sun).
 fn shadow_lit(world_m: vec3<f32>) -> f32 {
-    // Under a cloud layer, its shadow: one share for the frame, the host's.
     return params.cloud_shadow.x * scene_shadow_lit(world_m);
+}
+
+// The share of the sun's light the clouds let through to `world_m` (docs/model.md
+// (6.12)): the clouds' shadow map where it lies (the branch reads `switches`: no
+// sample without a layer), fading at its edges into the frame's one share at the
+// camera, which stands in beyond. Read per vertex by the scene (a sampling
+// instruction costs a CPU rasteriser in every fragment of a shader that has it,
+// taken or not) and per pixel by the land beyond the scene.
+fn cloud_sun_share(world_m: vec3<f32>) -> f32 {
+    if (switches.cloud_shadow_map.z < 0.5) {
+        return params.cloud_shadow.x;
+    }
+    let uv = (world_m.xz - params.cloud_shadow_map.xy) / CLOUD_SHADOW_MAP_SPAN_M;
+    let mapped = textureSampleLevel(cloud_shadow, cover_sampler, clamp(uv, vec2<f32>(0.0), vec2<f32>(1.0)), 0.0).r;
+    return mix(params.cloud_shadow.x, mapped, cloud_shadow_map_weight(uv));
 }
 
 // The shadow map's: one comparison sample, which the sampler's linear filter turns
@@ -107,26 +125,23 @@ fn sky_triangle(v: u32) -> SkyVarying {
 fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let ray = normalize_or_zero(far.xyz / far.w - switches.camera_m_cone_cos.xyz);
-    let land = far_ground_seen(ray);
-    if (land.w > 0.5) {
-        return vec4<f32>(land.rgb, 1.0);
-    }
-    return sky_through_air(overcast_sky(params.sky_colour_time.xyz, ray), ray);
+    return sky_through_air(land_or_sky(overcast_sky(params.sky_colour_time.xyz, ray), ray), ray);
 }
 
 // The land beyond the scene where `ray` points below the horizon and meets it
-// (precip_model::drawing::far_ground; docs/model.md (6.18)): lit as level ground,
-// its albedo the cover's over the whole grid (drop_ground's second number),
-// through the air; w 1 where it is, else 0.
-fn far_ground_seen(ray: vec3<f32>) -> vec4<f32> {
+// (precip_model::drawing::far_ground; docs/model.md (6.18)), else `sky`: lit as
+// level ground, its albedo the cover's over the whole grid (drop_ground's second
+// number), through the clear air's haze (a fog layer then lies over it as over the
+// sky: sky_through_air; one path through the layer's code, which a CPU rasteriser
+// pays for at every call site).
+fn land_or_sky(sky: vec3<f32>, ray: vec3<f32>) -> vec3<f32> {
     let camera = switches.camera_m_cone_cos.xyz;
-    let t = far_ground_distance_m(camera.y, ray.y, switches.far_ground.x);
-    if (switches.far_ground.y < 0.5 || t < 0.0) {
-        return vec4<f32>(0.0);
+    let t = far_ground_distance_m(camera.y, ray.y, params.far_ground.x);
+    if (params.far_ground.y < 0.5 || t < 0.0) {
+        return sky;
     }
-    let lit = far_ground_colour(drop_ground_albedo[1], params.light.xy, params.to_sun_extinction.y, params.cloud_shadow.x);
-    let air = air_between(camera, camera + ray * t, switches.fog_layer);
-    return vec4<f32>(with_air(lit, air), 1.0);
+    let lit = far_ground_colour(drop_ground_albedo[1], params.light.xy, params.to_sun_extinction.y, cloud_sun_share(camera + ray * t));
+    return with_air(lit, vec2<f32>(fog_transmittance(t, params.to_sun_extinction.w), 0.0));
 }
 
 // The sky under a drawn cloud layer (a pipeline of its own, so frames without one
@@ -157,11 +172,7 @@ fn sky_under_clouds(in: SkyVarying) -> vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let ray = normalize_or_zero(far.xyz / far.w - switches.camera_m_cone_cos.xyz);
     let cloud = textureSampleLevel(cloud_image, cover_sampler, in.ndc * vec2<f32>(0.5, -0.5) + 0.5, 0.0);
-    let land = far_ground_seen(ray);
-    if (land.w > 0.5) {
-        return vec4<f32>(land.rgb * (1.0 - cloud.a) + cloud.rgb, 1.0);
-    }
-    let sky = clear_sky(params.sky_colour_time.xyz, ray) * (1.0 - cloud.a) + cloud.rgb;
+    let sky = land_or_sky(clear_sky(params.sky_colour_time.xyz, ray), ray) * (1.0 - cloud.a) + cloud.rgb;
     return sky_through_air(sky, ray);
 }
 
@@ -306,6 +317,8 @@ struct SceneVarying {
     @location(3) eligibility: f32,
     // The surface before displacement: where the cover is looked up.
     @location(4) surface_m: vec3<f32>,
+    // The share of the sun's light the clouds let through to it (cloud_sun_share).
+    @location(5) cloud_sun: f32,
 }
 
 // The vertex raised by the snow on it (upward, eligible, exposed surfaces).
@@ -347,6 +360,7 @@ fn scene_varying(v: SceneVertex, view_proj: mat4x4<f32>) -> SceneVarying {
     out.uv = v.uv;
     out.eligibility = v.eligibility;
     out.surface_m = v.position_m;
+    out.cloud_sun = cloud_sun_share(p);
     return out;
 }
 
@@ -429,7 +443,7 @@ fn surface_look(in: SceneVarying, camera: vec3<f32>) -> SurfaceLook {
         puddle_ratio = texel.standing_mm;
         wetness = texel.wetness;
     }
-    let lit = shadow_lit(in.world_m);
+    let lit = in.cloud_sun * scene_shadow_lit(in.world_m);
     let intensity = blinn_phong(params.light, params.shadow, n, params.to_sun_extinction.xyz, to_viewer, lit);
     var look: SurfaceLook;
     look.shaded = colour * intensity;

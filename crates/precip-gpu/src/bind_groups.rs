@@ -287,6 +287,28 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
         binding(rb::DROP_GROUND, storage(true), Stages::DrawAndCompute),
         binding(rb::CLOUD_MAP, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::CLOUD_SAMPLER, FILTERING, Stages::DrawAndCompute),
+        binding(rb::CLOUD_SHADOW, FILTERED_2D, Stages::DrawAndCompute),
+    ],
+};
+
+/// Group 0 of the `cloud_shadow_map` kernel: the frame's block (and its storage
+/// copy), the coverage map and the shadow map it writes.
+pub const CLOUD_SHADOW_KERNEL: GroupLayout = GroupLayout {
+    name: "precip cloud shadow map",
+    bindings: &[
+        binding(
+            rb::PARAMS,
+            uniform(size_of::<RenderParams>(), true),
+            Stages::Compute,
+        ),
+        binding(rb::PARAMS_SWITCHES, RENDER_PARAMS, Stages::Compute),
+        binding(rb::CLOUD_MAP, FILTERED_2D, Stages::Compute),
+        binding(rb::CLOUD_SAMPLER, FILTERING, Stages::Compute),
+        binding(
+            rb::CLOUD_SHADOW_OUT,
+            BindingKind::StorageTextureRgba16Float,
+            Stages::Compute,
+        ),
     ],
 };
 
@@ -458,6 +480,7 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::QueryBeams, _) => &[BEAMS],
         (Program::OpticsSums, _) => &[OPTICS],
         (Program::Render, "cover_texture" | "drop_ground") => &[COVER_TEXTURE],
+        (Program::Render, "cloud_shadow_map") => &[CLOUD_SHADOW_KERNEL],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
         (Program::Render, "vs_sky" | "fs_sky" | "vs_clouds_all" | "fs_clouds_all") => {

@@ -21,8 +21,8 @@ use crate::executor::Simulation;
 use crate::frame_resources::TargetResource;
 use crate::gpu::Gpu;
 use crate::recipe::{
-    COVER_TEXTURE_PASS, CULL_PASSES, DROP_GROUND_PASS, DispatchCounts, FrameDraws, KernelPass,
-    SPLAT_PASS, dispatch_size, render_passes,
+    CLOUD_SHADOW_PASS, COVER_TEXTURE_PASS, CULL_PASSES, DROP_GROUND_PASS, DispatchCounts,
+    FrameDraws, KernelPass, SPLAT_PASS, dispatch_size, render_passes,
 };
 use crate::shaders::Program;
 
@@ -269,6 +269,8 @@ pub enum PassWhen {
     /// While one is set and the frame marches one pixel per block (the frame
     /// before's image is there to take the rest from).
     CloudsFresh,
+    /// While one is set (the clouds' shadow map).
+    Clouds,
     /// While one is set and the frame writes image B.
     CloudsB,
     /// While none is.
@@ -488,7 +490,7 @@ const CLOUDS_PASS: RenderPassRecipe = RenderPassRecipe {
 };
 
 /// The frame, in order (see the module docs and [`crate::renderer`]).
-pub const FRAME_PASSES: [FramePass; 13] = [
+pub const FRAME_PASSES: [FramePass; 14] = [
     FramePass {
         name: "cover_texture",
         work: PassWork::Kernels(&[COVER_TEXTURE_PASS, DROP_GROUND_PASS]),
@@ -517,6 +519,11 @@ pub const FRAME_PASSES: [FramePass; 13] = [
             draws: &[MIRROR_DRAW],
         }),
         when: PassWhen::WaterMirrored,
+    },
+    FramePass {
+        name: "cloud_shadow",
+        work: PassWork::Kernels(&[CLOUD_SHADOW_PASS]),
+        when: PassWhen::Clouds,
     },
     FramePass {
         name: "clouds_fresh",
@@ -683,6 +690,7 @@ impl PassWhen {
             Self::WaterMirroredNot => !conditions.water_mirrored,
             Self::CloudsA => conditions.clouds && !conditions.clouds_into_b,
             Self::CloudsFresh => conditions.clouds && conditions.clouds_fresh,
+            Self::Clouds => conditions.clouds,
             Self::CloudsB => conditions.clouds && conditions.clouds_into_b,
             Self::CloudsNot => !conditions.clouds,
         }
@@ -938,6 +946,7 @@ mod tests {
                         "water_mirror" => water_mirrored,
                         "clouds" => clouds && !into_b,
                         "clouds_b" | "clouds_fresh" => clouds && into_b,
+                        "cloud_shadow" => clouds,
                         _ => true,
                     };
                     assert_eq!(p.runs, expected, "{}", p.pass.name);
@@ -1038,6 +1047,7 @@ mod tests {
                 "cover_texture",
                 "shadow",
                 "water_mirror",
+                "cloud_shadow",
                 "clouds_fresh",
                 "clouds",
                 "clouds_b",

@@ -7,13 +7,13 @@
 //! where is decided here, once.
 
 use precip_model::Setup;
-use precip_model::drawing::clouds::{CLOUD_MAP_PX, cloud_coverage_map};
+use precip_model::drawing::clouds::{CLOUD_MAP_PX, CLOUD_SHADOW_MAP_PX, cloud_coverage_map};
 use precip_model::drawing::render::RenderParams;
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 
 use crate::bind_groups::{
-    CLOUD_FRESH, CLOUD_IMAGE, CLOUD_IMAGE_B, COVER_TEXTURE, CULL, GroupLayout, PARTICLE_DEPTH,
-    PARTICLE_IMAGE, REFLECTIONS, RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
+    CLOUD_FRESH, CLOUD_IMAGE, CLOUD_IMAGE_B, CLOUD_SHADOW_KERNEL, COVER_TEXTURE, CULL, GroupLayout,
+    PARTICLE_DEPTH, PARTICLE_IMAGE, REFLECTIONS, RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
 };
 use crate::recipe::{
     DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
@@ -118,6 +118,9 @@ pub enum FrameTexture {
     Flake,
     /// The clouds' coverage map.
     CloudMap,
+    /// The clouds' shadow map: written by a kernel while a layer is drawn, sampled
+    /// by the lit draws.
+    CloudShadow,
 }
 
 /// A texel format of the frame.
@@ -226,6 +229,14 @@ pub fn frame_textures(setup: &Setup) -> Vec<TextureSpec> {
             format: TexelFormat::R8Unorm,
             usage: TextureUsage::Sampled,
             contents: Some(cloud_coverage_map()),
+        },
+        TextureSpec {
+            texture: FrameTexture::CloudShadow,
+            label: "precip cloud shadow map",
+            size: [CLOUD_SHADOW_MAP_PX, CLOUD_SHADOW_MAP_PX],
+            format: TexelFormat::Rgba16Float,
+            usage: TextureUsage::StorageAndSampled,
+            contents: None,
         },
     ]
 }
@@ -464,7 +475,7 @@ pub struct FrameGroupFill {
 }
 
 /// The groups made once per configuration (the material group is the scene's).
-pub const FRAME_GROUPS: [FrameGroupFill; 4] = [
+pub const FRAME_GROUPS: [FrameGroupFill; 5] = [
     FrameGroupFill {
         layout: &RENDER_FRAME,
         bound: &[
@@ -486,6 +497,29 @@ pub const FRAME_GROUPS: [FrameGroupFill; 4] = [
             (
                 rb::CLOUD_SAMPLER,
                 FrameBound::Sampler(Sampler::LinearRepeat),
+            ),
+            (
+                rb::CLOUD_SHADOW,
+                FrameBound::Texture(FrameTexture::CloudShadow),
+            ),
+        ],
+    },
+    FrameGroupFill {
+        layout: &CLOUD_SHADOW_KERNEL,
+        bound: &[
+            (rb::PARAMS, FrameBound::Buffer(FrameBuffer::RenderParams)),
+            (
+                rb::PARAMS_SWITCHES,
+                FrameBound::Buffer(FrameBuffer::RenderParams),
+            ),
+            (rb::CLOUD_MAP, FrameBound::Texture(FrameTexture::CloudMap)),
+            (
+                rb::CLOUD_SAMPLER,
+                FrameBound::Sampler(Sampler::LinearRepeat),
+            ),
+            (
+                rb::CLOUD_SHADOW_OUT,
+                FrameBound::StorageTexture(FrameTexture::CloudShadow),
             ),
         ],
     },

@@ -94,6 +94,9 @@ pub enum DispatchOver {
     ParticleList,
     /// One invocation per cell of the water bodies' wave grid.
     WaveCells,
+    /// One invocation per texel of the clouds' shadow map
+    /// ([`precip_model::drawing::clouds::CLOUD_SHADOW_MAP_PX`] squared).
+    CloudShadowTexels,
     /// One workgroup per cover tile ([`COVER_TILE_SIDE`]) on a GPU, per
     /// [`COVER_TILES_PER_WORKGROUP`] on a device that computes on the CPU, a texel
     /// an invocation, each workgroup taking a listed tile at a time with the
@@ -147,6 +150,10 @@ impl DispatchOver {
             Self::SteppedParticles => counts.stepped_particles,
             Self::CoverTexels => counts.cover_texels,
             Self::OneWorkgroup => 1,
+            Self::CloudShadowTexels => {
+                precip_model::drawing::clouds::CLOUD_SHADOW_MAP_PX
+                    * precip_model::drawing::clouds::CLOUD_SHADOW_MAP_PX
+            }
             // A list holds particles in the air only (births come from the ones
             // stepped, the splat's from the ones drawn).
             Self::ParticleList => list_invocations(counts.stepped_particles),
@@ -538,7 +545,10 @@ pub const FEATURES: [(&str, &[&str]); 7] = [
             "water_mirror",
         ],
     ),
-    ("sky", &["clouds_fresh", "clouds", "clouds_b"]),
+    (
+        "sky",
+        &["cloud_shadow", "clouds_fresh", "clouds", "clouds_b"],
+    ),
     ("scene", &["scene"]),
     ("shadow", &["shadow"]),
 ];
@@ -772,6 +782,16 @@ pub mod render_passes {
         ("vs_particles_composite", Some("fs_particles_composite"));
 }
 
+/// The clouds' shadow map: the share of the sun's light through every layer over
+/// the land around the camera ([`render_bindings::CLOUD_SHADOW`]), while a layer is
+/// drawn, before any draw.
+pub const CLOUD_SHADOW_PASS: KernelPass = KernelPass {
+    program: Program::Render,
+    entry_point: "cloud_shadow_map",
+    over: DispatchOver::CloudShadowTexels,
+    when: KernelWhen::Always,
+};
+
 /// The cover texels into the three filtered textures the surfaces read
 /// ([`render_bindings::COVER_A`], [`render_bindings::COVER_B`],
 /// [`render_bindings::COVER_C`]): first in a frame.
@@ -943,6 +963,13 @@ pub mod render_bindings {
     pub const CLOUD_MAP: u32 = 17;
     /// Group 0: its sampler (linear, repeating: the map tiles).
     pub const CLOUD_SAMPLER: u32 = 18;
+    /// Group 0: the clouds' shadow map
+    /// ([`precip_model::drawing::clouds::cloud_shadow_map`]), `texture_2d<f32>`
+    /// (`Rgba16Float`, the share in `r`), read through [`COVER_SAMPLER`].
+    pub const CLOUD_SHADOW: u32 = 19;
+    /// Group 0 of the `cloud_shadow_map` kernel: [`CLOUD_SHADOW`] as a write-only
+    /// storage texture.
+    pub const CLOUD_SHADOW_OUT: u32 = 20;
     /// Group 1 of the sky's draw (its own group, numbered apart from the light's
     /// bindings): the clouds' image, `texture_2d<f32>` (`Rgba16Float`: their light,
     /// premultiplied, and opacity), read through [`COVER_SAMPLER`].

@@ -280,7 +280,8 @@ fn rust_and_wgsl_layouts_match() {
             clouds,
             cloud_drift,
             cloud_shadow,
-            far_ground
+            far_ground,
+            cloud_shadow_map
         }),
         rust_layout!(DrawArgs {
             vertex_count,

@@ -534,3 +534,23 @@ fn far_ground_colour(albedo: f32, lighting: vec2<f32>, sun_y: f32, sun_share: f3
     let base = mix(FAR_GROUND_BARE_COLOUR, FAR_GROUND_SNOW_TINT * white, snow);
     return base * (lighting.x + lighting.y * max(sun_y, 0.0) * clamp(sun_share, 0.0, 1.0));
 }
+
+// The clouds' shadow map (precip_model::drawing::clouds::shadow_map).
+const CLOUD_SHADOW_MAP_PX: u32 = 128u;
+const CLOUD_SHADOW_MAP_SPAN_M: f32 = 16000.0;
+const CLOUD_SHADOW_MAP_FADE: f32 = 0.15;
+const CLOUD_SHADOW_SAMPLES: u32 = 3u;
+
+// cloud_shadow_map_weight: how much of the map a point at `uv` on it takes against
+// the frame's one share: 1 within, 0 beyond, fading over the outer
+// CLOUD_SHADOW_MAP_FADE of each side.
+fn cloud_shadow_map_weight(uv: vec2<f32>) -> f32 {
+    let inside = min(min(uv.x, uv.y), min(1.0 - uv.x, 1.0 - uv.y));
+    return clamp(inside / CLOUD_SHADOW_MAP_FADE, 0.0, 1.0);
+}
+
+// cloud_shadow_map_point_m: the ground point texel `texel` of the map at
+// `origin_m` stands for (its centre), m.
+fn cloud_shadow_map_point_m(origin_m: vec2<f32>, texel: vec2<u32>) -> vec2<f32> {
+    return origin_m + (vec2<f32>(texel) + 0.5) * (CLOUD_SHADOW_MAP_SPAN_M / f32(CLOUD_SHADOW_MAP_PX));
+}

@@ -336,6 +336,7 @@ fn timings_name_every_pass_of_a_frame() {
                 "clouds",
                 "clouds_b",
                 "clouds_fresh",
+                "cloud_shadow",
             ]
         } else {
             &[
@@ -344,6 +345,7 @@ fn timings_name_every_pass_of_a_frame() {
                 "clouds",
                 "clouds_b",
                 "clouds_fresh",
+                "cloud_shadow",
             ]
         };
         for pass in ["step_particles"]

@@ -221,6 +221,16 @@ fn wgsl_drawing_equals_rust_drawing() {
                 "{name}: input {i} fresh weight: WGSL {} vs Rust {fresh_weight}",
                 g[1]
             );
+            let uv = glam::Vec2::new(centre.x, centre.z) / 60.0 + 0.5;
+            let map_weight = precip_model::drawing::clouds::cloud_shadow_map_weight(uv);
+            let point = precip_model::drawing::clouds::cloud_shadow_map_point_m(
+                glam::Vec2::new(q.camera_m[0], q.camera_m[2]),
+                glam::UVec2::new(centre.x.abs() as u32, centre.z.abs() as u32),
+            );
+            assert!(
+                (g[2] - map_weight).abs() <= 1e-5 && (g[3] - (point.x + point.y)).abs() <= 1e-2,
+                "{name}: input {i} shadow map: WGSL {g:?} vs Rust {map_weight} {point}"
+            );
             for (k, (want, uv)) in streak.iter().enumerate() {
                 let g = got[23 * i + 13 + k];
                 let have = Vec3::new(g[0], g[1], g[2]);

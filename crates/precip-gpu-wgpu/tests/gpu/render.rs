@@ -15,9 +15,12 @@ use crate::common;
 use crate::images::{keep, linear, luma, max_difference, mean_luma, pixel_of, project};
 
 /// A dark sky so every particle shows.
+/// A dark sky, on below the horizon (no land beyond the scene): the particles
+/// stand out against it alone.
 fn dark_sky(setup: &mut Setup) {
     setup.render.sky_colour = Vec3::new(0.02, 0.02, 0.03);
     setup.render.sizing.min_opacity = 0.6;
+    setup.render.land_beyond = false;
 }
 
 fn view(camera: Camera, width_px: u32, height_px: u32) -> View {
@@ -501,9 +504,11 @@ fn seen_from_above_a_cloud_layer_hides_its_coverage_of_the_ground() {
             let (mut setup, _) =
                 Setup::over_scene(black_walls(&[10.0]), 16, 5.0, 1).expect("valid");
             setup.weather.intensity_mm_per_h = 0.0;
-            // No haze, and a black sky: only the sun's light on the clouds shows.
+            // No haze, a black sky and no land: only the sun's light on the
+            // clouds shows.
             setup.render.clear_air_extinction_per_m = 0.0;
             setup.render.sky_colour = Vec3::ZERO;
+            setup.render.land_beyond = false;
             setup.render.cloud_layers = CloudLayers::new(layers).expect("valid layers");
             setup.camera = camera;
             common::run(gpu, &setup, 1, 0.05);
@@ -629,6 +634,91 @@ fn from_above_the_land_goes_on_beyond_the_scene() {
         assert!(
             far_land > luma(&image, 10, 60),
             "{name}: the air thickens toward the horizon"
+        );
+    }
+}
+
+#[test]
+fn the_clouds_shadows_lie_on_the_land_where_the_model_puts_them() {
+    use precip_model::drawing::clouds::{
+        CloudKind, CloudLayer, CloudLayers, cloud_drift_m, coverage_map,
+    };
+    // Looking down from 3 km on the land under broken cumulus 5 km up, the sun
+    // high: each ground point's brightness follows the share of the sun's light
+    // the model gives it through the layer (the clouds' shadow map,
+    // docs/model.md (6.12)), not one share for the whole view.
+    let mut setup = Setup::over_flat_ground(40.0, 32, 12.0, 1_000);
+    setup.weather.intensity_mm_per_h = 0.0;
+    setup.render.to_sun = Vec3::new(0.1, 1.0, 0.05);
+    let layer = CloudLayer {
+        base_m: 5_000.0,
+        thickness_m: 1_500.0,
+        ..CloudLayer::typical(CloudKind::Cumulus, 0.5)
+    };
+    setup.render.cloud_layers = CloudLayers::one(layer);
+    let camera = Camera {
+        position_m: Vec3::new(0.0, 3_000.0, 0.0),
+        forward: Vec3::new(0.0, -1.0, -0.02),
+        ..Camera::default()
+    };
+    let view = view(camera, 96, 64);
+    for (name, mut gpu) in common::gpu_backends("the_clouds_shadows_lie_on_the_land") {
+        common::run(&mut gpu, &setup, 1, 0.05);
+        gpu.set_camera(&view.camera).expect("valid camera");
+        gpu.render(&view).expect("renders");
+        let image = gpu.read_image().expect("an image");
+        keep(&image, "cloud_shadows");
+        let drift = cloud_drift_m(setup.weather.wind.mean_wind_mps, 0.05);
+        let to_sun = setup.render.to_sun.normalize();
+        let (mut shares, mut lumas) = (Vec::new(), Vec::new());
+        for gz in -12..=12 {
+            for gx in -18..=18 {
+                let ground = Vec3::new(gx as f32 * 80.0, 0.0, gz as f32 * 80.0);
+                let Some(px) = project(&view, ground) else {
+                    continue;
+                };
+                if px.x < 1.0 || px.y < 1.0 || px.x > 94.0 || px.y > 62.0 {
+                    continue;
+                }
+                // The scene's own 40 m patch in the middle aside.
+                if ground.x.abs() < 30.0 && ground.z.abs() < 30.0 {
+                    continue;
+                }
+                shares.push(CloudLayers::one(layer).sun_transmittance(
+                    coverage_map(),
+                    drift,
+                    ground,
+                    to_sun,
+                ));
+                lumas.push(luma(&image, px.x as u32, px.y as u32));
+            }
+        }
+        let n = shares.len() as f32;
+        let (ms, ml) = (
+            shares.iter().sum::<f32>() / n,
+            lumas.iter().sum::<f32>() / n,
+        );
+        let cov: f32 = shares
+            .iter()
+            .zip(&lumas)
+            .map(|(s, l)| (s - ms) * (l - ml))
+            .sum();
+        let vs: f32 = shares.iter().map(|s| (s - ms) * (s - ms)).sum();
+        let vl: f32 = lumas.iter().map(|l| (l - ml) * (l - ml)).sum();
+        let r = cov / (vs * vl).sqrt();
+        let shaded = shares.iter().filter(|&&s| s < 0.5).count();
+        println!(
+            "{name}: {} points, {shaded} shaded, correlation {r}",
+            shares.len()
+        );
+        assert!(
+            shaded > 20 && shaded + 20 < shares.len(),
+            "{name}: {shaded} of {}",
+            shares.len()
+        );
+        assert!(
+            r > 0.8,
+            "{name}: the land's brightness follows the shade by {r}"
         );
     }
 }
@@ -900,6 +990,7 @@ fn timings_name_every_pass_of_a_frame() {
                     "clouds",
                     "clouds_b",
                     "clouds_fresh",
+                    "cloud_shadow",
                 ]
             } else {
                 &[
@@ -909,6 +1000,7 @@ fn timings_name_every_pass_of_a_frame() {
                     "clouds",
                     "clouds_b",
                     "clouds_fresh",
+                    "cloud_shadow",
                 ]
             };
             for pass in precip_gpu::recipe::TIMED_RENDER_PASSES

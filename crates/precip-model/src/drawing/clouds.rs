@@ -51,8 +51,13 @@ use glam::{Mat4, UVec2, Vec2, Vec3, Vec4};
 use crate::BackendError;
 
 mod layers;
+mod shadow_map;
 mod shafts;
 pub use layers::{CloudLayers, MAX_CLOUD_LAYERS, cloud_layer_map_offset_m};
+pub use shadow_map::{
+    CLOUD_SHADOW_MAP_FADE, CLOUD_SHADOW_MAP_PX, CLOUD_SHADOW_MAP_SPAN_M, cloud_shadow_map,
+    cloud_shadow_map_origin_m, cloud_shadow_map_point_m, cloud_shadow_map_weight,
+};
 pub use shafts::{
     CLOUD_BASE_SKY_SHARE, HazeExtinctions, LOCAL_WEATHER_RADIUS_M, MIN_SHAFT_COVERAGE,
     RAIN_SHAFT_SAMPLES, precipitation_haze, shaft_extinction_per_m,

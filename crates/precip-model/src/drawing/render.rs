@@ -150,6 +150,10 @@ pub struct RenderSettings {
     /// (docs/model.md (6.16)); `None`: the weather's own (it rains as much there
     /// as here). Showers seen from a dry place: 0 mm/h here, 20 there.
     pub rate_beyond_mm_per_h: Option<f32>,
+    /// Draw the land beyond the scene below the horizon
+    /// ([`crate::drawing::far_ground`]); off, the sky goes on below it (a scene
+    /// that carries its own horizon, an island in a sea of sky).
+    pub land_beyond: bool,
 }
 
 impl Default for RenderSettings {
@@ -182,6 +186,7 @@ impl Default for RenderSettings {
             fog_layer: None,
             cloud_layers: CloudLayers::NONE,
             rate_beyond_mm_per_h: None,
+            land_beyond: true,
         }
     }
 }
@@ -414,8 +419,13 @@ pub struct RenderParams {
     /// The land beyond the scene ([`crate::drawing::far_ground`]): its height m,
     /// 1 when it is drawn (the scene has a ground map), 0, 0.
     pub far_ground: Vec4,
+    /// The clouds' shadow map ([`crate::drawing::clouds::cloud_shadow_map`]): its
+    /// corner x, z m ([`crate::drawing::clouds::cloud_shadow_map_origin_m`]), 1
+    /// while a layer is drawn (the kernel writes it and the lit fragments read it;
+    /// else 0), 0.
+    pub cloud_shadow_map: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 800);
+const _: () = assert!(size_of::<RenderParams>() == 816);
 
 /// The block's rows of the cloud layers: base m, top m, coverage, kind each.
 fn cloud_layer_rows(layers: &CloudLayers) -> [Vec4; MAX_CLOUD_LAYERS] {
@@ -560,7 +570,10 @@ impl crate::Setup {
             particle_count,
             cull_groups: crate::host::cull_groups(particle_count),
             pools,
-            far_ground_level_m: Some(crate::drawing::far_ground::far_ground_level_m(&self.ground)),
+            far_ground_level_m: self
+                .render
+                .land_beyond
+                .then(|| crate::drawing::far_ground::far_ground_level_m(&self.ground)),
         })
     }
 }
@@ -757,6 +770,15 @@ impl RenderParams {
             far_ground: f
                 .far_ground_level_m
                 .map_or(Vec4::ZERO, |level| Vec4::new(level, 1.0, 0.0, 0.0)),
+            cloud_shadow_map: if f.settings.cloud_layers.is_empty() {
+                Vec4::ZERO
+            } else {
+                let origin = crate::drawing::clouds::cloud_shadow_map_origin_m(glam::Vec2::new(
+                    camera.position_m.x,
+                    camera.position_m.z,
+                ));
+                Vec4::new(origin.x, origin.y, 1.0, 0.0)
+            },
         }
     }
 }
