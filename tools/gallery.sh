@@ -27,6 +27,9 @@ sky_shots=(
   "layered-sky-up layered-sky - 5,1.7,25 0,60,-80"
   "layered-sky-above layered-sky - 0,4500,3000 0,0,-6000"
   "showers-around showers-around - 5,30,25 0,150,-2000"
+  "nimbostratus-snow light-snow --cloud-type=nimbostratus 5,1.7,25 0,60,-80"
+  "valley-fog-above valley-fog - 0,300,400 0,0,-300"
+  "cumulus-shadows fair-cumulus - 0,1500,1500 0,0,-1500"
 )
 # Only some of them: tools/gallery.sh blizzard valley-fog (sky: tools/gallery.sh sky)
 if [ "$#" -gt 0 ]; then weathers=("$@"); fi

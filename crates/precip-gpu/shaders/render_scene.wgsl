@@ -125,23 +125,32 @@ fn sky_triangle(v: u32) -> SkyVarying {
 fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let ray = normalize_or_zero(far.xyz / far.w - switches.camera_m_cone_cos.xyz);
-    return sky_through_air(land_or_sky(overcast_sky(params.sky_colour_time.xyz, ray), ray), ray);
+    let land_m = land_distance_m(ray);
+    return sky_through_air(land_or_sky(overcast_sky(params.sky_colour_time.xyz, ray), ray, land_m), ray, land_m);
 }
 
-// The land beyond the scene where `ray` points below the horizon and meets it
-// (precip_model::drawing::far_ground; docs/model.md (6.18)), else `sky`: lit as
-// level ground, its albedo the cover's over the whole grid (drop_ground's second
-// number), through the clear air's haze (a fog layer then lies over it as over the
-// sky: sky_through_air; one path through the layer's code, which a CPU rasteriser
+// How far along `ray` it meets the land beyond the scene (docs/model.md (6.18)),
+// m; negative for never (looking up, no land drawn).
+fn land_distance_m(ray: vec3<f32>) -> f32 {
+    if (params.far_ground.y < 0.5) {
+        return -1.0;
+    }
+    return far_ground_distance_m(switches.camera_m_cone_cos.y, ray.y, params.far_ground.x);
+}
+
+// The land beyond the scene where `ray` meets it `land_m` along (land_distance_m;
+// precip_model::drawing::far_ground), else `sky`: lit as level ground, its albedo
+// the cover's over the whole grid (drop_ground's second number), through the clear
+// air's haze (a fog layer then lies over it up to the land as over the sky:
+// sky_through_air; one path through the layer's code, which a CPU rasteriser
 // pays for at every call site).
-fn land_or_sky(sky: vec3<f32>, ray: vec3<f32>) -> vec3<f32> {
-    let camera = switches.camera_m_cone_cos.xyz;
-    let t = far_ground_distance_m(camera.y, ray.y, params.far_ground.x);
-    if (params.far_ground.y < 0.5 || t < 0.0) {
+fn land_or_sky(sky: vec3<f32>, ray: vec3<f32>, land_m: f32) -> vec3<f32> {
+    if (land_m < 0.0) {
         return sky;
     }
-    let lit = far_ground_colour(drop_ground_albedo[1], params.light.xy, params.to_sun_extinction.y, cloud_sun_share(camera + ray * t));
-    return with_air(lit, vec2<f32>(fog_transmittance(t, params.to_sun_extinction.w), 0.0));
+    let camera = switches.camera_m_cone_cos.xyz;
+    let lit = far_ground_colour(drop_ground_albedo[1], params.light.xy, params.to_sun_extinction.y, cloud_sun_share(camera + ray * land_m));
+    return with_air(lit, vec2<f32>(fog_transmittance(land_m, params.to_sun_extinction.w), 0.0));
 }
 
 // The sky under a drawn cloud layer (a pipeline of its own, so frames without one
@@ -172,12 +181,14 @@ fn sky_under_clouds(in: SkyVarying) -> vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let ray = normalize_or_zero(far.xyz / far.w - switches.camera_m_cone_cos.xyz);
     let cloud = textureSampleLevel(cloud_image, cover_sampler, in.ndc * vec2<f32>(0.5, -0.5) + 0.5, 0.0);
-    let sky = land_or_sky(clear_sky(params.sky_colour_time.xyz, ray), ray) * (1.0 - cloud.a) + cloud.rgb;
-    return sky_through_air(sky, ray);
+    let land_m = land_distance_m(ray);
+    let sky = land_or_sky(clear_sky(params.sky_colour_time.xyz, ray), ray, land_m) * (1.0 - cloud.a) + cloud.rgb;
+    return sky_through_air(sky, ray, land_m);
 }
 
-// `sky` seen along `ray` through the fog layer.
-fn sky_through_air(sky: vec3<f32>, ray: vec3<f32>) -> vec4<f32> {
+// `sky` (or the land `land_m` along, where that is not negative) seen along `ray`
+// through the fog layer.
+fn sky_through_air(sky: vec3<f32>, ray: vec3<f32>, land_m: f32) -> vec4<f32> {
     let camera = switches.camera_m_cone_cos.xyz;
     // Inside a cloud (a fog layer without the sun's share, precip_model's air_layer)
     // the clouds' image has marched the sky's rays through it already.
@@ -185,7 +196,8 @@ fn sky_through_air(sky: vec3<f32>, ray: vec3<f32>) -> vec4<f32> {
         return vec4<f32>(sky, 1.0);
     }
     // Through the fog layer only (the haze's colour is the horizon's already).
-    let air = air_path(camera, ray, SKY_DISTANCE_M, 0.0, switches.fog_layer, switches.to_sun_extinction.xyz);
+    let distance = select(SKY_DISTANCE_M, land_m, land_m >= 0.0);
+    let air = air_path(camera, ray, distance, 0.0, switches.fog_layer, switches.to_sun_extinction.xyz);
     return vec4<f32>(with_air(sky, air), 1.0);
 }
 
