@@ -612,6 +612,20 @@ pub const FRAME_PASSES: [FramePass; 14] = [
     },
 ];
 
+/// The names of the passes that run only while a cloud layer is drawn (a frame
+/// without clouds reports none of them).
+pub fn cloud_passes() -> impl Iterator<Item = &'static str> {
+    FRAME_PASSES
+        .iter()
+        .filter(|p| {
+            matches!(
+                p.when,
+                PassWhen::CloudsA | PassWhen::CloudsB | PassWhen::CloudsFresh | PassWhen::Clouds
+            )
+        })
+        .map(|p| p.name)
+}
+
 /// The names of [`FRAME_PASSES`], in order: the passes a frame's timings report.
 pub const TIMED_RENDER_PASSES: [&str; FRAME_PASSES.len()] = {
     let mut names = [""; FRAME_PASSES.len()];

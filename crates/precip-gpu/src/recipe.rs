@@ -828,7 +828,7 @@ pub const SPLAT_PASS: KernelPass = KernelPass {
 
 /// The passes of a frame as data, and their timed names
 /// ([`crate::frame`]).
-pub use crate::frame::{FRAME_PASSES, TIMED_RENDER_PASSES};
+pub use crate::frame::{FRAME_PASSES, TIMED_RENDER_PASSES, cloud_passes};
 
 /// Bytes of the cull kernels' per-workgroup counts (`vec4<u32>` each).
 pub const GROUP_COUNT_BYTES: u64 = 16;

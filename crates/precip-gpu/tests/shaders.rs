@@ -472,3 +472,83 @@ fn the_cover_tiles_are_the_same_in_wgsl_and_rust() {
         CoverTileSet::Snow as i64
     );
 }
+
+/// A WGSL module's `const NAME` as a number (a literal).
+fn wgsl_constant(module: &naga::Module, name: &str) -> f64 {
+    let (_, constant) = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("no const {name}"));
+    match module.global_expressions[constant.init] {
+        naga::Expression::Literal(naga::Literal::F32(v)) => f64::from(v),
+        naga::Expression::Literal(naga::Literal::U32(v)) => f64::from(v),
+        naga::Expression::Literal(naga::Literal::I32(v)) => f64::from(v),
+        ref other => panic!("const {name} is not a literal: {other:?}"),
+    }
+}
+
+#[test]
+#[expect(
+    clippy::float_cmp,
+    reason = "a twin's constant is the same literal, bit for bit"
+)]
+fn the_clouds_constants_are_their_rust_twins() {
+    use precip_model::drawing::clouds as c;
+    use precip_model::drawing::far_ground as g;
+    let module = parse(Program::Render);
+    for (name, rust) in [
+        ("CLOUD_MARCH_BLOCK_PX", f64::from(c::CLOUD_MARCH_BLOCK_PX)),
+        ("CLOUD_MARCH_ALL", f64::from(c::CLOUD_MARCH_ALL)),
+        ("CLOUD_HISTORY_MARGIN", f64::from(c::CLOUD_HISTORY_MARGIN)),
+        ("CLOUD_HISTORY_SLACK", f64::from(c::CLOUD_HISTORY_SLACK)),
+        ("CLOUD_FRESH_WEIGHT", f64::from(c::CLOUD_FRESH_WEIGHT)),
+        (
+            "CLOUD_PARALLAX_DEPTH_M",
+            f64::from(c::CLOUD_PARALLAX_DEPTH_M),
+        ),
+        (
+            "CLOUD_PARALLAX_FULL_PX",
+            f64::from(c::CLOUD_PARALLAX_FULL_PX),
+        ),
+        ("CLOUD_SHADOW_MAP_PX", f64::from(c::CLOUD_SHADOW_MAP_PX)),
+        (
+            "CLOUD_SHADOW_MAP_SPAN_M",
+            f64::from(c::CLOUD_SHADOW_MAP_SPAN_M),
+        ),
+        ("CLOUD_SHADOW_MAP_FADE", f64::from(c::CLOUD_SHADOW_MAP_FADE)),
+        ("CLOUD_SHADOW_SAMPLES", f64::from(c::CLOUD_SHADOW_SAMPLES)),
+        (
+            "LOCAL_WEATHER_RADIUS_M",
+            f64::from(c::LOCAL_WEATHER_RADIUS_M),
+        ),
+        ("RAIN_SHAFT_SAMPLES", f64::from(c::RAIN_SHAFT_SAMPLES)),
+        ("CLOUD_BASE_SKY_SHARE", f64::from(c::CLOUD_BASE_SKY_SHARE)),
+        ("MAX_CLOUD_LAYERS", c::MAX_CLOUD_LAYERS as f64),
+    ] {
+        assert_eq!(wgsl_constant(&module, name), rust, "{name}");
+    }
+    for (name, rust) in [
+        ("FAR_GROUND_BARE_COLOUR", g::FAR_GROUND_BARE_COLOUR),
+        ("FAR_GROUND_SNOW_TINT", g::FAR_GROUND_SNOW_TINT),
+    ] {
+        let (_, constant) = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("no const {name}"));
+        let naga::Expression::Compose { ref components, .. } =
+            module.global_expressions[constant.init]
+        else {
+            panic!("const {name} is not a vector");
+        };
+        let wgsl: Vec<f32> = components
+            .iter()
+            .map(|&e| match module.global_expressions[e] {
+                naga::Expression::Literal(naga::Literal::F32(v)) => v,
+                ref other => panic!("{name}: {other:?}"),
+            })
+            .collect();
+        assert_eq!(wgsl, rust.to_array(), "{name}");
+    }
+}

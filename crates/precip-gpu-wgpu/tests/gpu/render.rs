@@ -982,30 +982,17 @@ fn timings_name_every_pass_of_a_frame() {
                 eprintln!("{name}: no timestamps on this adapter");
                 continue;
             }
-            // The particles are drawn one way or the other; no water to mirror.
+            // The particles are drawn one way or the other; no water to mirror, no
+            // clouds.
+            let cloudless: Vec<&str> = precip_gpu::recipe::cloud_passes().collect();
             let skipped: &[&str] = if reduced {
-                &[
-                    "particles",
-                    "water_mirror",
-                    "clouds",
-                    "clouds_b",
-                    "clouds_fresh",
-                    "cloud_shadow",
-                ]
+                &["particles", "water_mirror"]
             } else {
-                &[
-                    "particles_reduced",
-                    "particles_composite",
-                    "water_mirror",
-                    "clouds",
-                    "clouds_b",
-                    "clouds_fresh",
-                    "cloud_shadow",
-                ]
+                &["particles_reduced", "particles_composite", "water_mirror"]
             };
             for pass in precip_gpu::recipe::TIMED_RENDER_PASSES
                 .into_iter()
-                .filter(|p| !skipped.contains(p))
+                .filter(|p| !skipped.contains(p) && !cloudless.contains(p))
             {
                 let t = timings
                     .passes
