@@ -290,7 +290,7 @@ fn a_fog_layer_set_while_running_reaches_the_optics_and_the_beams_on_every_backe
 #[test]
 fn a_cloud_the_camera_is_in_reaches_the_optics_and_the_beams_on_every_backend() {
     use precip_model::drawing::clouds::{
-        CloudKind, CloudLayer, CloudLayers, cloud_drift_m, cloud_extinction_at, coverage_map,
+        CloudKind, CloudLayer, CloudLayers, cloud_drift_m, cloud_extinction_at, cloud_noise,
     };
     let setup = snow_before_a_wall();
     // A full nimbostratus deck from 500 m below the ground (the camera, at 1.7 m, a
@@ -325,7 +325,7 @@ fn a_cloud_the_camera_is_in_reaches_the_optics_and_the_beams_on_every_backend() 
         let cloudy = s.backend.optics().expect("optics");
         // The clock after one step of 0.05 s: the deck drifted with the calm wind.
         let offset = cloud_drift_m(setup.weather.wind.mean_wind_mps, 0.05);
-        let sigma = cloud_extinction_at(coverage_map(), &deck, offset, setup.camera.position_m);
+        let sigma = cloud_extinction_at(cloud_noise(), &deck, offset, setup.camera.position_m);
         assert!(sigma > 0.01, "the camera is in the cloud: {sigma}");
         for band in Band::ALL {
             let added = cloudy.band(band).extinction_per_m - clear.band(band).extinction_per_m;

@@ -857,6 +857,7 @@ fn texel_format(format: TexelFormat) -> vk::Format {
         TexelFormat::Depth32Float => DEPTH_FORMAT,
         TexelFormat::Rgba16Float => vk::Format::R16G16B16A16_SFLOAT,
         TexelFormat::R8Unorm => vk::Format::R8_UNORM,
+        TexelFormat::Rgba8Unorm => vk::Format::R8G8B8A8_UNORM,
         TexelFormat::Rgba8UnormSrgb => OFFSCREEN_FORMAT,
         TexelFormat::Bgra8UnormSrgb => vk::Format::B8G8R8A8_SRGB,
     }

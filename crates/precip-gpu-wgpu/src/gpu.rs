@@ -638,6 +638,7 @@ fn texel_format(format: TexelFormat) -> wgpu::TextureFormat {
         TexelFormat::Depth32Float => DEPTH_FORMAT,
         TexelFormat::Rgba16Float => wgpu::TextureFormat::Rgba16Float,
         TexelFormat::R8Unorm => wgpu::TextureFormat::R8Unorm,
+        TexelFormat::Rgba8Unorm => wgpu::TextureFormat::Rgba8Unorm,
         TexelFormat::Rgba8UnormSrgb => wgpu::TextureFormat::Rgba8UnormSrgb,
         TexelFormat::Bgra8UnormSrgb => wgpu::TextureFormat::Bgra8UnormSrgb,
     }

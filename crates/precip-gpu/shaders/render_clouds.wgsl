@@ -131,9 +131,9 @@ fn fs_clouds_fresh(in: SkyVarying) -> @location(0) vec4<f32> {
 // at `offset_m` (the drift plus the layer's own offset).
 fn cloud_density_at(p: vec3<f32>, layer: vec4<f32>, offset_m: vec2<f32>) -> f32 {
     let h = (p.y - layer.x) / max(layer.y - layer.x, 1.0);
-    let uvs = cloud_map_uvs(p, offset_m);
-    let m = textureSampleLevel(cloud_map, cloud_sampler, uvs.xy, 0.0).r;
-    let d = textureSampleLevel(cloud_map, cloud_sampler, uvs.zw, 0.0).r;
+    let m = textureSampleLevel(cloud_map, cloud_sampler, cloud_map_uv(p, offset_m), 0.0).r;
+    let at = cloud_detail_atlas(cloud_detail_point(p, offset_m));
+    let d = cloud_detail(textureSampleLevel(cloud_detail_atlas_texture, cloud_sampler, at.xy, 0.0), at.z);
     return cloud_density(u32(layer.w), layer.z, m, d, h);
 }
 
@@ -328,7 +328,7 @@ fn precipitation_haze(camera: vec3<f32>, ray: vec3<f32>, t_end: f32, rest: f32, 
     let dt = (t_base - LOCAL_WEATHER_RADIUS_M) / f32(RAIN_SHAFT_SAMPLES);
     for (var k = 0u; k < RAIN_SHAFT_SAMPLES; k += 1u) {
         let p = camera + ray * (LOCAL_WEATHER_RADIUS_M + (f32(k) + 0.5) * dt);
-        let uv = cloud_map_uvs(p, switches.cloud_drift.xy).xy;
+        let uv = cloud_map_uv(p, switches.cloud_drift.xy);
         let shaft = shaft_max * cloud_column(lowest.z, textureSampleLevel(cloud_map, cloud_sampler, uv, 0.0).r);
         let sigma = rest + shaft;
         let step = exp(-sigma * dt);

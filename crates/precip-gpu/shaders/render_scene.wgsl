@@ -43,6 +43,8 @@ fn frame_pools() -> vec4<u32> {
 // tiling, and the clouds' image the sky lays over itself.
 @group(0) @binding(17) var cloud_map: texture_2d<f32>;
 @group(0) @binding(18) var cloud_sampler: sampler;
+// The clouds' detail: a tiling 3D noise's slices side by side (clouds/detail.rs).
+@group(0) @binding(21) var cloud_detail_atlas_texture: texture_2d<f32>;
 // The clouds' shadow map (render_clouds.wgsl's cloud_shadow_map kernel).
 @group(0) @binding(19) var cloud_shadow: texture_2d<f32>;
 // The clouds' pass reads the other image there: the frame before's.

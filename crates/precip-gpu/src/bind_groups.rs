@@ -286,6 +286,7 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
         binding(rb::WAVES, storage(true), Stages::DrawAndCompute),
         binding(rb::DROP_GROUND, storage(true), Stages::DrawAndCompute),
         binding(rb::CLOUD_MAP, FILTERED_2D, Stages::DrawAndCompute),
+        binding(rb::CLOUD_DETAIL, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::CLOUD_SAMPLER, FILTERING, Stages::DrawAndCompute),
         binding(rb::CLOUD_SHADOW, FILTERED_2D, Stages::DrawAndCompute),
     ],
@@ -303,6 +304,7 @@ pub const CLOUD_SHADOW_KERNEL: GroupLayout = GroupLayout {
         ),
         binding(rb::PARAMS_SWITCHES, RENDER_PARAMS, Stages::Compute),
         binding(rb::CLOUD_MAP, FILTERED_2D, Stages::Compute),
+        binding(rb::CLOUD_DETAIL, FILTERED_2D, Stages::Compute),
         binding(rb::CLOUD_SAMPLER, FILTERING, Stages::Compute),
         binding(
             rb::CLOUD_SHADOW_OUT,

@@ -7,7 +7,9 @@
 //! where is decided here, once.
 
 use precip_model::Setup;
-use precip_model::drawing::clouds::{CLOUD_MAP_PX, CLOUD_SHADOW_MAP_PX, cloud_coverage_map};
+use precip_model::drawing::clouds::{
+    CLOUD_DETAIL_ATLAS_PX, CLOUD_MAP_PX, CLOUD_SHADOW_MAP_PX, cloud_noise,
+};
 use precip_model::drawing::render::RenderParams;
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 
@@ -118,6 +120,8 @@ pub enum FrameTexture {
     Flake,
     /// The clouds' coverage map.
     CloudMap,
+    /// The clouds' detail: the slices of a tiling 3D noise side by side.
+    CloudDetail,
     /// The clouds' shadow map: written by a kernel while a layer is drawn, sampled
     /// by the lit draws.
     CloudShadow,
@@ -132,6 +136,8 @@ pub enum TexelFormat {
     Rgba16Float,
     /// One 8-bit unsigned normalised channel.
     R8Unorm,
+    /// Four 8-bit unsigned normalised channels (linear).
+    Rgba8Unorm,
     /// Four 8-bit sRGB channels (base colour textures, the offscreen image).
     Rgba8UnormSrgb,
     /// Four 8-bit sRGB channels, blue first (a window's usual format: the copy of
@@ -144,7 +150,9 @@ impl TexelFormat {
     #[must_use]
     pub const fn texel_bytes(self) -> u32 {
         match self {
-            Self::Depth32Float | Self::Rgba8UnormSrgb | Self::Bgra8UnormSrgb => 4,
+            Self::Depth32Float | Self::Rgba8Unorm | Self::Rgba8UnormSrgb | Self::Bgra8UnormSrgb => {
+                4
+            }
             Self::Rgba16Float => 8,
             Self::R8Unorm => 1,
         }
@@ -228,7 +236,15 @@ pub fn frame_textures(setup: &Setup) -> Vec<TextureSpec> {
             size: [CLOUD_MAP_PX, CLOUD_MAP_PX],
             format: TexelFormat::R8Unorm,
             usage: TextureUsage::Sampled,
-            contents: Some(cloud_coverage_map()),
+            contents: Some(cloud_noise().coverage.clone()),
+        },
+        TextureSpec {
+            texture: FrameTexture::CloudDetail,
+            label: "precip cloud detail",
+            size: [CLOUD_DETAIL_ATLAS_PX, CLOUD_DETAIL_ATLAS_PX],
+            format: TexelFormat::Rgba8Unorm,
+            usage: TextureUsage::Sampled,
+            contents: Some(cloud_noise().detail.clone()),
         },
         TextureSpec {
             texture: FrameTexture::CloudShadow,
@@ -495,6 +511,10 @@ pub const FRAME_GROUPS: [FrameGroupFill; 5] = [
             (rb::DROP_GROUND, FrameBound::Buffer(FrameBuffer::DropGround)),
             (rb::CLOUD_MAP, FrameBound::Texture(FrameTexture::CloudMap)),
             (
+                rb::CLOUD_DETAIL,
+                FrameBound::Texture(FrameTexture::CloudDetail),
+            ),
+            (
                 rb::CLOUD_SAMPLER,
                 FrameBound::Sampler(Sampler::LinearRepeat),
             ),
@@ -513,6 +533,10 @@ pub const FRAME_GROUPS: [FrameGroupFill; 5] = [
                 FrameBound::Buffer(FrameBuffer::RenderParams),
             ),
             (rb::CLOUD_MAP, FrameBound::Texture(FrameTexture::CloudMap)),
+            (
+                rb::CLOUD_DETAIL,
+                FrameBound::Texture(FrameTexture::CloudDetail),
+            ),
             (
                 rb::CLOUD_SAMPLER,
                 FrameBound::Sampler(Sampler::LinearRepeat),

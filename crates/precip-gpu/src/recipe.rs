@@ -963,6 +963,10 @@ pub mod render_bindings {
     pub const CLOUD_MAP: u32 = 17;
     /// Group 0: its sampler (linear, repeating: the map tiles).
     pub const CLOUD_SAMPLER: u32 = 18;
+    /// Group 0: the clouds' detail, the slices of a tiling 3D noise side by side
+    /// ([`precip_model::drawing::clouds::cloud_detail_atlas_texels`]),
+    /// `texture_2d<f32>` (`Rgba8Unorm`), read through [`CLOUD_SAMPLER`].
+    pub const CLOUD_DETAIL: u32 = 21;
     /// Group 0: the clouds' shadow map
     /// ([`precip_model::drawing::clouds::cloud_shadow_map`]), `texture_2d<f32>`
     /// (`Rgba16Float`, the share in `r`), read through [`COVER_SAMPLER`].

@@ -525,6 +525,15 @@ fn the_clouds_constants_are_their_rust_twins() {
         ("RAIN_SHAFT_SAMPLES", f64::from(c::RAIN_SHAFT_SAMPLES)),
         ("CLOUD_BASE_SKY_SHARE", f64::from(c::CLOUD_BASE_SKY_SHARE)),
         ("MAX_CLOUD_LAYERS", c::MAX_CLOUD_LAYERS as f64),
+        ("CLOUD_DETAIL_PERIOD_M", f64::from(c::CLOUD_DETAIL_PERIOD_M)),
+        ("CLOUD_DETAIL_PX", f64::from(c::CLOUD_DETAIL_PX)),
+        (
+            "CLOUD_DETAIL_ATLAS_COLUMNS",
+            f64::from(c::CLOUD_DETAIL_ATLAS_COLUMNS),
+        ),
+        ("CLOUD_DETAIL_TILE_PX", f64::from(c::CLOUD_DETAIL_TILE_PX)),
+        ("CLOUD_DETAIL_ATLAS_PX", f64::from(c::CLOUD_DETAIL_ATLAS_PX)),
+        ("CLOUD_BILLOW_SHARE", f64::from(c::CLOUD_BILLOW_SHARE)),
     ] {
         assert_eq!(wgsl_constant(&module, name), rust, "{name}");
     }

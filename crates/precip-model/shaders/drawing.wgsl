@@ -335,7 +335,12 @@ fn air_path(camera_m: vec3<f32>, dir: vec3<f32>, distance_m: f32, extinction_per
 // The cloud layer (precip_model::drawing::clouds; docs/model.md (6.9)-(6.12)).
 const CLOUD_MAP_PERIOD_M: f32 = 12000.0;
 const CLOUD_DETAIL_PERIOD_M: f32 = 1700.0;
-const CLOUD_DETAIL_SHARE: f32 = 0.45;
+const CLOUD_DETAIL_DEPTH: f32 = 0.12;
+const CLOUD_DETAIL_PX: u32 = 64u;
+const CLOUD_DETAIL_ATLAS_COLUMNS: u32 = 8u;
+const CLOUD_DETAIL_TILE_PX: u32 = 66u;
+const CLOUD_DETAIL_ATLAS_PX: u32 = 528u;
+const CLOUD_BILLOW_SHARE: f32 = 0.35;
 const CLOUD_THRESHOLD: f32 = 0.12;
 const CLOUD_EDGE: f32 = 0.04;
 const CLOUD_DOME: f32 = 0.25;
@@ -441,9 +446,10 @@ fn cloud_column(coverage: f32, m: f32) -> f32 {
 
 // cloud_density: [0, 1] at height fraction h of a column of map value m, detail d.
 fn cloud_density(kind: u32, coverage: f32, m: f32, d: f32, h: f32) -> f32 {
-    let column = cloud_column(coverage, m);
-    let reach = clamp((coverage - m) / CLOUD_DOME, 0.05, 1.0);
-    let raw = column * cloud_profile(kind, h / reach) * (1.0 - CLOUD_DETAIL_SHARE + CLOUD_DETAIL_SHARE * d);
+    let carved = m + CLOUD_DETAIL_DEPTH * d;
+    let column = cloud_column(coverage, carved);
+    let reach = clamp((coverage - carved) / CLOUD_DOME, 0.05, 1.0);
+    let raw = column * cloud_profile(kind, h / reach);
     return max((raw - CLOUD_THRESHOLD) / (1.0 - CLOUD_THRESHOLD), 0.0);
 }
 
@@ -480,11 +486,34 @@ fn cloud_slab(camera_y_m: f32, dir_y: f32, base_m: f32, top_m: f32) -> vec2<f32>
     return vec2<f32>(s.x, min(s.y, s.x + select(CLOUD_MAX_PATH_M, CLOUD_INSIDE_PATH_M, inside)));
 }
 
-// cloud_map_uvs: the column's uv (drifting by offset_m) and the detail's.
-fn cloud_map_uvs(p: vec3<f32>, offset_m: vec2<f32>) -> vec4<f32> {
-    let ground = p.xz + offset_m;
-    let detail = vec2<f32>(ground.x + 0.6 * p.y, ground.y - 0.8 * p.y);
-    return vec4<f32>(ground / CLOUD_MAP_PERIOD_M, detail / CLOUD_DETAIL_PERIOD_M);
+// cloud_map_uv: where the point's column reads the coverage map (drifting by offset_m).
+fn cloud_map_uv(p: vec3<f32>, offset_m: vec2<f32>) -> vec2<f32> {
+    return (p.xz + offset_m) / CLOUD_MAP_PERIOD_M;
+}
+
+// cloud_detail_point (clouds/detail.rs): where p reads the detail volume, in periods.
+fn cloud_detail_point(p: vec3<f32>, offset_m: vec2<f32>) -> vec3<f32> {
+    return vec3<f32>(p.x + offset_m.x, p.y, p.z + offset_m.y) / CLOUD_DETAIL_PERIOD_M;
+}
+
+// cloud_detail_atlas: the atlas uv of the slice below q and the weight of the one above.
+fn cloud_detail_atlas(q: vec3<f32>) -> vec3<f32> {
+    let n = f32(CLOUD_DETAIL_PX);
+    let s = fract(q) * n;
+    let z = s.z - 0.5;
+    let below = floor(z);
+    let k = u32(below + n) % CLOUD_DETAIL_PX;
+    let tile = vec2<f32>(f32(k % CLOUD_DETAIL_ATLAS_COLUMNS), f32(k / CLOUD_DETAIL_ATLAS_COLUMNS));
+    let uv = (tile * f32(CLOUD_DETAIL_TILE_PX) + 1.0 + s.xy) / f32(CLOUD_DETAIL_ATLAS_PX);
+    return vec3<f32>(uv, z - below);
+}
+
+// cloud_detail: the detail d from the atlas's texel (Perlin-Worley and billows of
+// the slice below and above) and the weight w of the one above.
+fn cloud_detail(texel: vec4<f32>, w: f32) -> f32 {
+    let pw = mix(texel.r, texel.g, w);
+    let billows = mix(texel.b, texel.a, w);
+    return mix(pw, billows, CLOUD_BILLOW_SHARE);
 }
 
 // multiplicity_rank (precip_model::drawing::multiplicity): a particle's rank in [0, 1).

@@ -7,8 +7,9 @@ use precip_gpu::recipe::ProbeDrawing;
 use precip_gpu::shaders::Program;
 use precip_model::cover::{cover_warp_m, snow_cover_fraction, sub_texel_threshold, value_noise};
 use precip_model::drawing::clouds::{
+    CloudKind, cloud_density, cloud_detail, cloud_detail_atlas, cloud_detail_point,
     cloud_fresh_pixel, cloud_history_clamp_weight, cloud_history_clamped, cloud_history_uv,
-    cloud_march_slot,
+    cloud_map_uv, cloud_march_slot,
 };
 use precip_model::drawing::multiplicity::drawn_weight;
 use precip_model::drawing::{
@@ -57,7 +58,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             Program::ProbeDrawing,
             bytemuck::cast_slice(&inputs),
             inputs.len() as u32,
-            (inputs.len() * 23 * 16) as u64,
+            (inputs.len() * 25 * 16) as u64,
         );
         let got: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
         for (i, q) in inputs.iter().enumerate() {
@@ -79,7 +80,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 .chain(&tetra.normals)
                 .copied();
             for (k, want) in expected.enumerate() {
-                let g = got[23 * i + k];
+                let g = got[25 * i + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 // The four face normals (values 8–11) of a drop's thin tetrahedron are
                 // cross products of nearly parallel edges: a driver that fuses a
@@ -92,7 +93,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                     "{name}: input {i} value {k}: WGSL {have} vs Rust {want}"
                 );
             }
-            let cover = got[23 * i + 12];
+            let cover = got[25 * i + 12];
             let want = [
                 snow_cover_fraction(q.h_m, q.cover[0], q.a_m, q.cover[1]),
                 sub_texel_threshold(q.tumble, [centre.x, centre.z]),
@@ -118,7 +119,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             let blur = defocus_blur_m(q.a_m, 10.0, 50.0 * q.h_m);
             let sprite = defocused(q.side_m, 0.8, blur, 2);
             let streak_opacity = defocused(q.side_m, 0.8, blur, 1).1;
-            let g = got[23 * i + 17];
+            let g = got[25 * i + 17];
             for (k, want) in [blur, sprite.0, sprite.1, streak_opacity]
                 .into_iter()
                 .enumerate()
@@ -130,7 +131,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 );
             }
             let warp = cover_warp_m([centre.x, centre.z], [q.a_m + 0.1, q.side_m + 0.1]);
-            let g = got[23 * i + 18];
+            let g = got[25 * i + 18];
             assert!(
                 (g[0] - warp[0]).abs() <= 2e-5 && (g[1] - warp[1]).abs() <= 2e-5,
                 "{name}: input {i} cover warp: WGSL {g:?} vs Rust {warp:?}"
@@ -149,7 +150,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 g[3]
             );
             // A drop's oscillation, a cloud column, a layer's map offset.
-            let g = got[23 * i + 20];
+            let g = got[25 * i + 20];
             let hz = precip_model::drawing::drop_oscillation_hz(q.a_m / 20.0);
             let bright = precip_model::drawing::drop_oscillation_brightness(q.spin_rad);
             let column = precip_model::drawing::clouds::cloud_column(q.tumble, q.side_m);
@@ -162,7 +163,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 "{name}: input {i} oscillation, column, offset: WGSL {g:?} vs Rust {hz} {bright} {column} {offset}"
             );
             // The clouds' march slot and the history's uv.
-            let g = got[23 * i + 19];
+            let g = got[25 * i + 19];
             let slot = cloud_march_slot(glam::UVec2::new(
                 centre.x.abs() as u32,
                 centre.z.abs() as u32,
@@ -183,7 +184,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 None => assert!(g[3] < 0.5, "{name}: input {i} history: WGSL {g:?} vs none"),
             }
             // The fresh image's pixel and the history's clamp.
-            let g = got[23 * i + 21];
+            let g = got[25 * i + 21];
             let fresh = cloud_fresh_pixel(
                 glam::UVec2::new(centre.x.abs() as u32, centre.z.abs() as u32),
                 i as u32 % 16,
@@ -206,7 +207,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 centre + Vec3::from(q.velocity_mps),
                 glam::Vec2::new(320.0, 180.0),
             );
-            let g = got[23 * i + 22];
+            let g = got[25 * i + 22];
             assert!(
                 (g[0] - weight).abs() <= 1e-4,
                 "{name}: input {i} clamp weight: WGSL {} vs Rust {weight}",
@@ -231,8 +232,38 @@ fn wgsl_drawing_equals_rust_drawing() {
                 (g[2] - map_weight).abs() <= 1e-5 && (g[3] - (point.x + point.y)).abs() <= 1e-2,
                 "{name}: input {i} shadow map: WGSL {g:?} vs Rust {map_weight} {point}"
             );
+            // The clouds' detail atlas and density.
+            let camera_xz = glam::Vec2::new(q.camera_m[0], q.camera_m[2]);
+            let (uv, w) = cloud_detail_atlas(cloud_detail_point(centre, camera_xz));
+            let detail = cloud_detail(
+                glam::Vec4::new(q.side_m, q.tumble, q.a_m, q.spin_rad / 6.0),
+                w,
+            );
+            let g = got[25 * i + 23];
+            assert!(
+                (g[0] - uv.x).abs() <= 1e-5
+                    && (g[1] - uv.y).abs() <= 1e-5
+                    && (g[2] - w).abs() <= 1e-3
+                    && (g[3] - detail).abs() <= 1e-3,
+                "{name}: input {i} cloud detail: WGSL {g:?} vs Rust {uv} {w} {detail}"
+            );
+            let density = cloud_density(
+                CloudKind::ALL[i % 4],
+                q.tumble,
+                q.side_m,
+                q.a_m * 5.0,
+                q.h_m / 2.0,
+            );
+            let map_uv = cloud_map_uv(centre, camera_xz);
+            let g = got[25 * i + 24];
+            assert!(
+                (g[0] - density).abs() <= 1e-4
+                    && (g[1] - map_uv.x).abs() <= 1e-6
+                    && (g[2] - map_uv.y).abs() <= 1e-6,
+                "{name}: input {i} cloud density: WGSL {g:?} vs Rust {density} {map_uv}"
+            );
             for (k, (want, uv)) in streak.iter().enumerate() {
-                let g = got[23 * i + 13 + k];
+                let g = got[25 * i + 13 + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 let tolerance = 1e-5 * (1.0 + want.abs().max_element());
                 assert!(

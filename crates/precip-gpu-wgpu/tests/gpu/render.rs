@@ -641,7 +641,7 @@ fn from_above_the_land_goes_on_beyond_the_scene() {
 #[test]
 fn the_clouds_shadows_lie_on_the_land_where_the_model_puts_them() {
     use precip_model::drawing::clouds::{
-        CloudKind, CloudLayer, CloudLayers, cloud_drift_m, coverage_map,
+        CloudKind, CloudLayer, CloudLayers, cloud_drift_m, cloud_noise,
     };
     // Looking down from 3 km on the land under broken cumulus 5 km up, the sun
     // high: each ground point's brightness follows the share of the sun's light
@@ -685,7 +685,7 @@ fn the_clouds_shadows_lie_on_the_land_where_the_model_puts_them() {
                     continue;
                 }
                 shares.push(CloudLayers::one(layer).sun_transmittance(
-                    coverage_map(),
+                    cloud_noise(),
                     drift,
                     ground,
                     to_sun,

@@ -11,16 +11,18 @@
 //!
 //! A point `p` of the layer `[base, base + thickness]` is in a cloudy column when the
 //! coverage map `m(x, z)` (tiling Perlin noise whose values are replaced by their rank,
-//! so they are spread evenly over `[0, 1)`) is below the coverage `c`: the share of
-//! the sky the layer covers is `c` whatever the noise. Inside a column the density
-//! is `edge(c − m)·profile(h/r)·(1 − E + E·d(p))`, `r = clamp((c − m)/D, 0.05, 1)`
-//! the share of the layer the column reaches (domes rising from their edges), cut by
-//! the seed's threshold τ and
-//! rescaled: `max(0, (ρ − τ)/(1 − τ))`; `h` is the height in the layer (0 at its base,
-//! 1 at its top), `profile` the kind's (stratus thin and flat, cumulus rising from
-//! a flat base to a rounded top, cumulonimbus filling the whole depth), `d` the same
-//! map read across a tilted plane (detail that changes with height), `E` its share.
-//! The clouds drift with the mean wind.
+//! so they are spread evenly over `[0, 1)`), raised by the detail, `m′ = m + A·d(p)`,
+//! is below the coverage `c`: the share of the sky the layer covers is about `c`
+//! whatever the noise. Inside a column the density is `edge(c − m′)·profile(h/r)`,
+//! `r = clamp((c − m′)/D, 0.05, 1)` the share of the layer the column reaches
+//! (domes rising from their edges), cut by the seed's threshold τ and rescaled:
+//! `max(0, (ρ − τ)/(1 − τ))`; `h` is the height in the layer (0 at its base, 1 at
+//! its top), `profile` the kind's (stratus thin and flat, cumulus rising from a flat
+//! base to a rounded top, cumulonimbus filling the whole depth), `d` the tiling 3D
+//! Perlin–Worley detail at `p` (`detail`, docs/model.md (6.9b)): where it is high
+//! the column's side and its dome's top move in by up to [`CLOUD_DETAIL_DEPTH`] of
+//! the map's range, so billows are carved into them. The map and the detail drift
+//! with the mean wind. Both textures are [`CloudNoise`].
 //!
 //! ## How it is lit
 //!
@@ -41,7 +43,7 @@
 //! ([`cloud_history_clamped`]) as far as the camera's move makes the history
 //! stale ([`cloud_history_clamp_weight`]; docs/model.md (6.14)).
 //!
-//! WGSL twins: `cloud_profile`, `cloud_density`, `cloud_phase`, `cloud_slab`,
+//! WGSL twins: `cloud_profile`, `cloud_density`, `cloud_map_uv`, `cloud_phase`, `cloud_slab`,
 //! `cloud_march_slot`, `cloud_fresh_pixel`, `cloud_history_uv`,
 //! `cloud_history_clamped`, `cloud_history_clamp_weight` in drawing.wgsl, `clouds_with_history` in
 //! render_clouds.wgsl.
@@ -50,9 +52,15 @@ use glam::{Mat4, UVec2, Vec2, Vec3, Vec4};
 
 use crate::BackendError;
 
+mod detail;
 mod layers;
 mod shadow_map;
 mod shafts;
+pub use detail::{
+    CLOUD_BILLOW_SHARE, CLOUD_DETAIL_ATLAS_COLUMNS, CLOUD_DETAIL_ATLAS_PX, CLOUD_DETAIL_PX,
+    CLOUD_DETAIL_TILE_PX, cloud_detail, cloud_detail_at, cloud_detail_atlas,
+    cloud_detail_atlas_texels, cloud_detail_point, sample_cloud_detail_atlas,
+};
 pub use layers::{CloudLayers, MAX_CLOUD_LAYERS, cloud_layer_map_offset_m};
 pub use shadow_map::{
     CLOUD_SHADOW_MAP_FADE, CLOUD_SHADOW_MAP_PX, CLOUD_SHADOW_MAP_SPAN_M, cloud_shadow_map,
@@ -261,10 +269,11 @@ impl CloudLayer {
 pub const CLOUD_MAP_PX: u32 = 256;
 /// The ground distance one period of the coverage map spans, m.
 pub const CLOUD_MAP_PERIOD_M: f32 = 12_000.0;
-/// The detail's period across its tilted plane, m.
+/// The detail volume's period along each axis, m.
 pub const CLOUD_DETAIL_PERIOD_M: f32 = 1_700.0;
-/// The detail's share `E` of the density.
-pub const CLOUD_DETAIL_SHARE: f32 = 0.45;
+/// How far the detail `d` raises a point's map value, `A` (its column's edge and
+/// its dome's top move by up to this much of the map's range: billows).
+pub const CLOUD_DETAIL_DEPTH: f32 = 0.12;
 /// The seed's threshold τ: density below it is cut.
 pub const CLOUD_THRESHOLD: f32 = 0.12;
 /// The width of a column's edge in the coverage map's values.
@@ -315,11 +324,10 @@ pub fn cloud_column(coverage: f32, m: f32) -> f32 {
 /// is `m`, with detail `d`, in a layer covering `coverage` (module docs).
 #[must_use]
 pub fn cloud_density(kind: CloudKind, coverage: f32, m: f32, d: f32, h: f32) -> f32 {
-    let column = cloud_column(coverage, m);
-    let reach = ((coverage - m) / CLOUD_DOME).clamp(0.05, 1.0);
-    let raw = column
-        * cloud_profile(kind, h / reach)
-        * (1.0 - CLOUD_DETAIL_SHARE + CLOUD_DETAIL_SHARE * d);
+    let carved = m + CLOUD_DETAIL_DEPTH * d;
+    let column = cloud_column(coverage, carved);
+    let reach = ((coverage - carved) / CLOUD_DOME).clamp(0.05, 1.0);
+    let raw = column * cloud_profile(kind, h / reach);
     ((raw - CLOUD_THRESHOLD) / (1.0 - CLOUD_THRESHOLD)).max(0.0)
 }
 
@@ -517,23 +525,33 @@ pub fn cloud_history_uv(previous_view_proj: Mat4, p_m: Vec3) -> Option<Vec2> {
 #[must_use]
 pub fn cloud_coverage_map() -> Vec<u8> {
     let n = CLOUD_MAP_PX as usize;
-    let mut values: Vec<(f32, usize)> = (0..n * n)
+    let values: Vec<f32> = (0..n * n)
         .map(|i| {
             let p = Vec2::new((i % n) as f32, (i / n) as f32) / n as f32;
-            let mut sum = 0.0;
-            let mut amplitude = 1.0;
-            for octave in 0..5u32 {
-                let period = 4u32 << octave;
-                sum += amplitude * tiling_perlin(p * period as f32, period, octave);
-                amplitude *= 0.5;
-            }
-            (sum, i)
+            octaves(5, |period, octave| {
+                tiling_perlin(p * period as f32, period, octave)
+            })
         })
         .collect();
-    values.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut bytes = vec![0u8; n * n];
-    for (rank, &(_, i)) in values.iter().enumerate() {
-        bytes[i] = ((rank * 256) / (n * n)) as u8;
+    ranks(&values)
+}
+
+/// `Σ 2⁻ᵏ·noise(4·2ᵏ, k)` over `count` octaves `k`: a tiling noise's sum over
+/// periods of 4, 8, 16, … lattice cells.
+fn octaves(count: u32, noise: impl Fn(u32, u32) -> f32) -> f32 {
+    (0..count)
+        .map(|octave| noise(4u32 << octave, octave) / (1u32 << octave) as f32)
+        .sum()
+}
+
+/// Each value replaced by its rank, as a byte: the values spread evenly over
+/// `[0, 255]` (ties in the order of their index).
+fn ranks(values: &[f32]) -> Vec<u8> {
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]).then(a.cmp(&b)));
+    let mut bytes = vec![0u8; values.len()];
+    for (rank, &i) in order.iter().enumerate() {
+        bytes[i] = ((rank * 256) / values.len()) as u8;
     }
     bytes
 }
@@ -569,7 +587,7 @@ pub const CLOUD_SHADOW_SAMPLES: u32 = 3;
 /// `to_sun` a unit vector, the map drifted by `offset_m`.
 #[must_use]
 pub fn cloud_sun_transmittance(
-    map: &[u8],
+    noise: &CloudNoise,
     layer: &CloudLayer,
     offset_m: Vec2,
     p: Vec3,
@@ -583,25 +601,49 @@ pub fn cloud_sun_transmittance(
     let density: f32 = (0..n)
         .map(|k| {
             let q = p + to_sun * (t0 + (t1 - t0) * (k as f32 + 0.5) / n as f32);
-            let h = (q.y - layer.base_m) / layer.thickness_m;
-            let (c, d) = cloud_map_uvs(q, offset_m);
-            cloud_density(
-                layer.kind,
-                layer.coverage,
-                sample_coverage_map(map, c),
-                sample_coverage_map(map, d),
-                h,
-            )
+            noise.density(layer, offset_m, q)
         })
         .sum();
     (-layer.kind.extinction_per_m() * density * (t1 - t0) / n as f32).exp()
 }
 
-/// [`cloud_coverage_map`], made once.
+/// The clouds' two textures as the GPU holds them: the coverage map
+/// ([`cloud_coverage_map`], R8) and the detail volume's atlas
+/// ([`cloud_detail_atlas_texels`], RGBA8).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CloudNoise {
+    /// The coverage map's texels.
+    pub coverage: Vec<u8>,
+    /// The detail atlas's texels.
+    pub detail: Vec<u8>,
+}
+
+impl CloudNoise {
+    /// Both textures, made (deterministic).
+    #[must_use]
+    pub fn make() -> Self {
+        Self {
+            coverage: cloud_coverage_map(),
+            detail: cloud_detail_atlas_texels(),
+        }
+    }
+
+    /// `layer`'s density `[0, 1]` at `p`, its map and detail drifted by `offset_m`,
+    /// read as the GPU reads them (WGSL: `cloud_density_at`).
+    #[must_use]
+    pub fn density(&self, layer: &CloudLayer, offset_m: Vec2, p: Vec3) -> f32 {
+        let h = (p.y - layer.base_m) / layer.thickness_m;
+        let m = sample_coverage_map(&self.coverage, cloud_map_uv(p, offset_m));
+        let d = cloud_detail_at(&self.detail, p, offset_m);
+        cloud_density(layer.kind, layer.coverage, m, d, h)
+    }
+}
+
+/// [`CloudNoise`], made once.
 #[must_use]
-pub fn coverage_map() -> &'static [u8] {
-    static MAP: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
-    MAP.get_or_init(cloud_coverage_map)
+pub fn cloud_noise() -> &'static CloudNoise {
+    static NOISE: std::sync::OnceLock<CloudNoise> = std::sync::OnceLock::new();
+    NOISE.get_or_init(CloudNoise::make)
 }
 
 /// How far the clouds have drifted by `time_s` in a mean wind `wind_mps`, m,
@@ -619,20 +661,12 @@ pub fn cloud_drift_m(wind_mps: Vec3, time_s: f32) -> Vec2 {
 /// thickening air of its transition band around it ([`CloudLayer::band_share`]),
 /// 0 beyond.
 #[must_use]
-pub fn cloud_extinction_at(map: &[u8], layer: &CloudLayer, offset_m: Vec2, p: Vec3) -> f32 {
+pub fn cloud_extinction_at(noise: &CloudNoise, layer: &CloudLayer, offset_m: Vec2, p: Vec3) -> f32 {
     let h = (p.y - layer.base_m) / layer.thickness_m;
     if !(0.0..=1.0).contains(&h) {
         return layer.band_share(p.y) * layer.mean_extinction_per_m();
     }
-    let (c, d) = cloud_map_uvs(p, offset_m);
-    layer.kind.extinction_per_m()
-        * cloud_density(
-            layer.kind,
-            layer.coverage,
-            sample_coverage_map(map, c),
-            sample_coverage_map(map, d),
-            h,
-        )
+    layer.kind.extinction_per_m() * noise.density(layer, offset_m, p)
 }
 
 /// Steps of [`cloud_optical_depth`] along a path.
@@ -643,7 +677,7 @@ pub const CLOUD_PATH_STEPS: u32 = 32;
 /// its transition band).
 #[must_use]
 pub fn cloud_optical_depth(
-    map: &[u8],
+    noise: &CloudNoise,
     layer: &CloudLayer,
     offset_m: Vec2,
     origin: Vec3,
@@ -661,7 +695,7 @@ pub fn cloud_optical_depth(
     (0..n)
         .map(|k| {
             cloud_extinction_at(
-                map,
+                noise,
                 layer,
                 offset_m,
                 origin + dir * (s0 + (k as f32 + 0.5) * ds),
@@ -674,29 +708,34 @@ pub fn cloud_optical_depth(
 /// The coverage map's value at `uv` (texels wrap), bilinear as the GPU's sampler.
 #[must_use]
 pub fn sample_coverage_map(map: &[u8], uv: Vec2) -> f32 {
-    let n = i64::from(CLOUD_MAP_PX);
-    let p = uv * CLOUD_MAP_PX as f32 - Vec2::splat(0.5);
+    sample_repeating(CLOUD_MAP_PX, uv, |i| {
+        Vec4::splat(map.get(i).map_or(0.0, |&b| f32::from(b) / 255.0))
+    })
+    .x
+}
+
+/// A square texture of `side`² texels read at `uv` as a GPU's linear, repeating
+/// sampler reads it; `texel(i)` is the value of texel `i` (rows packed).
+fn sample_repeating(side: u32, uv: Vec2, texel: impl Fn(usize) -> Vec4) -> Vec4 {
+    let n = i64::from(side);
+    let p = uv * side as f32 - Vec2::splat(0.5);
     let cell = p.floor();
     let f = p - cell;
     let at = |dx: i64, dy: i64| {
         let x = (cell.x as i64 + dx).rem_euclid(n);
         let y = (cell.y as i64 + dy).rem_euclid(n);
-        map.get((y * n + x) as usize)
-            .map_or(0.0, |&b| f32::from(b) / 255.0)
+        texel((y * n + x) as usize)
     };
-    let a = at(0, 0) + f.x * (at(1, 0) - at(0, 0));
-    let b = at(0, 1) + f.x * (at(1, 1) - at(0, 1));
-    a + f.y * (b - a)
+    let a = at(0, 0).lerp(at(1, 0), f.x);
+    let b = at(0, 1).lerp(at(1, 1), f.x);
+    a.lerp(b, f.y)
 }
 
-/// Where a point samples the map: the column's `uv` (drifting with `offset_m`, the
-/// wind's travel) and the detail's, across a plane tilted with height.
+/// Where a point's column samples the coverage map (drifting with `offset_m`, the
+/// wind's travel).
 #[must_use]
-pub fn cloud_map_uvs(p: Vec3, offset_m: Vec2) -> (Vec2, Vec2) {
-    let ground = Vec2::new(p.x, p.z) + offset_m;
-    let column = ground / CLOUD_MAP_PERIOD_M;
-    let detail = Vec2::new(ground.x + 0.6 * p.y, ground.y - 0.8 * p.y) / CLOUD_DETAIL_PERIOD_M;
-    (column, detail)
+pub fn cloud_map_uv(p: Vec3, offset_m: Vec2) -> Vec2 {
+    (Vec2::new(p.x, p.z) + offset_m) / CLOUD_MAP_PERIOD_M
 }
 
 #[cfg(test)]
@@ -739,7 +778,7 @@ mod tests {
 
     #[test]
     fn a_transition_band_thickens_the_air_toward_the_layer() {
-        let map = cloud_coverage_map();
+        let map = cloud_noise();
         let layer = CloudLayer {
             transition_band_m: 200.0,
             ..CloudLayer::typical(CloudKind::Nimbostratus, 0.9)
@@ -762,7 +801,7 @@ mod tests {
                 layer.band_share(y)
             );
             let p = Vec3::new(10.0, y, -20.0);
-            let sigma = cloud_extinction_at(&map, &layer, Vec2::ZERO, p);
+            let sigma = cloud_extinction_at(map, &layer, Vec2::ZERO, p);
             assert!(
                 (sigma - share * mean).abs() < 1e-6 * mean.max(1.0),
                 "{y}: {sigma}"
@@ -775,11 +814,11 @@ mod tests {
             ..layer
         };
         assert!(
-            cloud_extinction_at(&map, &sharp, Vec2::ZERO, Vec3::new(0.0, base - 1.0, 0.0)) == 0.0
+            cloud_extinction_at(map, &sharp, Vec2::ZERO, Vec3::new(0.0, base - 1.0, 0.0)) == 0.0
         );
         // A vertical path up through the band to the base: the triangle's area.
         let depth = cloud_optical_depth(
-            &map,
+            map,
             &layer,
             Vec2::ZERO,
             Vec3::new(0.0, base - 300.0, 0.0),
@@ -936,7 +975,7 @@ mod tests {
 
     #[test]
     fn looking_up_the_layer_covers_its_coverage_of_the_sky() {
-        let map = cloud_coverage_map();
+        let noise = cloud_noise();
         for kind in CloudKind::ALL {
             for coverage in [0.125f32, 0.375, 0.625, 0.875] {
                 let layer = CloudLayer::typical(kind, coverage);
@@ -952,12 +991,7 @@ mod tests {
                             let h = (k as f32 + 0.5) / steps as f32;
                             let p =
                                 Vec3::new(ground.x, layer.base_m + h * layer.thickness_m, ground.y);
-                            let (c, d) = cloud_map_uvs(p, Vec2::ZERO);
-                            let m = sample_coverage_map(&map, c);
-                            let detail = sample_coverage_map(&map, d);
-                            kind.extinction_per_m()
-                                * cloud_density(kind, coverage, m, detail, h)
-                                * dy
+                            kind.extinction_per_m() * noise.density(&layer, Vec2::ZERO, p) * dy
                         })
                         .sum();
                     if tau > 0.5 {
@@ -1031,7 +1065,7 @@ mod tests {
 
     #[test]
     fn clouds_shade_their_coverage_of_the_ground() {
-        let map = cloud_coverage_map();
+        let map = cloud_noise();
         let sun = Vec3::new(0.3, 0.8, 0.2).normalize();
         for coverage in [0.0f32, 0.3, 0.7, 1.0] {
             let layer = CloudLayer::typical(CloudKind::Cumulus, coverage);
@@ -1039,7 +1073,7 @@ mod tests {
             let shaded = (0..n * n)
                 .filter(|i| {
                     let p = Vec3::new((i % n) as f32 * 113.0, 0.0, (i / n) as f32 * 113.0);
-                    cloud_sun_transmittance(&map, &layer, Vec2::ZERO, p, sun) < 0.5
+                    cloud_sun_transmittance(map, &layer, Vec2::ZERO, p, sun) < 0.5
                 })
                 .count() as f32
                 / (n * n) as f32;
@@ -1051,12 +1085,12 @@ mod tests {
         // Above the layer the sun is not dimmed.
         let layer = CloudLayer::typical(CloudKind::Nimbostratus, 1.0);
         let above = Vec3::new(0.0, layer.top_m() + 10.0, 0.0);
-        assert!((cloud_sun_transmittance(&map, &layer, Vec2::ZERO, above, sun) - 1.0).abs() < 1e-6);
+        assert!((cloud_sun_transmittance(map, &layer, Vec2::ZERO, above, sun) - 1.0).abs() < 1e-6);
     }
 
     #[test]
     fn a_path_s_optical_depth_is_its_extinction_summed() {
-        let map = coverage_map();
+        let map = cloud_noise();
         // A full nimbostratus deck from 0 to 2 500 m: inside it the extinction is
         // up to its most, outside none; a level path of 100 m inside sums it.
         let layer = CloudLayer {

@@ -16,7 +16,7 @@ use precip_cover::{CoverParams, GridFrame};
 use crate::backend::camera::{Camera, View};
 use crate::backend::error::BackendError;
 use crate::drawing::clouds::{
-    CloudLayers, MAX_CLOUD_LAYERS, cloud_drift_m, cloud_extinction_at, coverage_map,
+    CloudLayers, MAX_CLOUD_LAYERS, cloud_drift_m, cloud_extinction_at, cloud_noise,
     shaft_extinction_per_m,
 };
 use crate::drawing::fog_layer::{FOG_LAYER_BOTTOM_M, FogLayer};
@@ -592,7 +592,7 @@ fn air_layer(settings: &RenderSettings, weather: &Weather, time_s: f32, camera_m
     let Some((layer, offset)) = settings.cloud_layers.containing(camera_m.y, drift) else {
         return fog;
     };
-    let in_cloud = cloud_extinction_at(coverage_map(), &layer, offset, camera_m);
+    let in_cloud = cloud_extinction_at(cloud_noise(), &layer, offset, camera_m);
     let (low_m, high_m) = layer.extent_with_band_m();
     let (top_m, bottom_m) = if camera_m.y < layer.base_m {
         (layer.base_m, low_m)
@@ -758,7 +758,7 @@ impl RenderParams {
             fog_layer: air_layer(f.settings, f.weather, f.time_s, camera.position_m),
             cloud_shadow: Vec4::new(
                 f.settings.cloud_layers.sun_transmittance(
-                    coverage_map(),
+                    cloud_noise(),
                     cloud_drift_m(f.weather.wind.mean_wind_mps, f.time_s),
                     Vec3::new(camera.position_m.x, 0.0, camera.position_m.z),
                     f.settings.to_sun.normalize(),

@@ -154,18 +154,24 @@ impl CloudLayers {
     /// The share of the sun's light that reaches `p` through every layer
     /// ([`cloud_sun_transmittance`] of each, multiplied).
     #[must_use]
-    pub fn sun_transmittance(&self, map: &[u8], drift_m: Vec2, p: Vec3, to_sun: Vec3) -> f32 {
+    pub fn sun_transmittance(
+        &self,
+        noise: &super::CloudNoise,
+        drift_m: Vec2,
+        p: Vec3,
+        to_sun: Vec3,
+    ) -> f32 {
         self.with_offsets(drift_m)
-            .map(|(layer, offset)| cloud_sun_transmittance(map, layer, offset, p, to_sun))
+            .map(|(layer, offset)| cloud_sun_transmittance(noise, layer, offset, p, to_sun))
             .product()
     }
 
     /// The clouds' extinction at `p`, per m (0 outside every layer).
     #[must_use]
-    pub fn extinction_at(&self, map: &[u8], drift_m: Vec2, p: Vec3) -> f32 {
+    pub fn extinction_at(&self, noise: &super::CloudNoise, drift_m: Vec2, p: Vec3) -> f32 {
         self.containing(p.y, drift_m)
             .map_or(0.0, |(layer, offset)| {
-                cloud_extinction_at(map, &layer, offset, p)
+                cloud_extinction_at(noise, &layer, offset, p)
             })
     }
 
@@ -174,14 +180,14 @@ impl CloudLayers {
     #[must_use]
     pub fn optical_depth(
         &self,
-        map: &[u8],
+        noise: &super::CloudNoise,
         drift_m: Vec2,
         origin: Vec3,
         dir: Vec3,
         length_m: f32,
     ) -> f32 {
         self.with_offsets(drift_m)
-            .map(|(layer, offset)| cloud_optical_depth(map, layer, offset, origin, dir, length_m))
+            .map(|(layer, offset)| cloud_optical_depth(noise, layer, offset, origin, dir, length_m))
             .sum()
     }
 }
@@ -194,7 +200,7 @@ impl From<Option<CloudLayer>> for CloudLayers {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{CloudKind, coverage_map};
+    use super::super::{CloudKind, cloud_noise};
     use super::*;
 
     fn cumulus_under_stratus() -> CloudLayers {
@@ -252,7 +258,7 @@ mod tests {
         }
         // So two equal layers' cloudy columns are independent: over a 200 × 200
         // lattice half-covered layers share about a quarter of the columns.
-        let map = coverage_map();
+        let map = cloud_noise();
         let layer = CloudLayer::typical(CloudKind::Cumulus, 0.5);
         let (mut both, mut n) = (0usize, 0usize);
         for i in 0..200 {
@@ -270,7 +276,7 @@ mod tests {
 
     #[test]
     fn the_layers_dim_the_sun_and_add_their_depths_together() {
-        let map = coverage_map();
+        let map = cloud_noise();
         let two = cumulus_under_stratus();
         let drift = Vec2::new(300.0, -50.0);
         let up = Vec3::new(0.3, 0.9, 0.1).normalize();

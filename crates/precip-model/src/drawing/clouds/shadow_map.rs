@@ -12,7 +12,7 @@
 
 use glam::{UVec2, Vec2, Vec3};
 
-use super::{CloudLayers, coverage_map};
+use super::{CloudLayers, cloud_noise};
 
 /// Texels of the clouds' shadow map along each side.
 pub const CLOUD_SHADOW_MAP_PX: u32 = 128;
@@ -67,7 +67,7 @@ pub fn cloud_shadow_map(
         .map(|i| {
             let xz = cloud_shadow_map_point_m(origin_m, UVec2::new(i % n, i / n));
             layers.sun_transmittance(
-                coverage_map(),
+                cloud_noise(),
                 drift_m,
                 Vec3::new(xz.x, ground_y_m, xz.y),
                 to_sun,

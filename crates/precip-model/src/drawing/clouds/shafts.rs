@@ -13,7 +13,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{CloudLayer, cloud_column, cloud_map_uvs, sample_coverage_map};
+use super::{CloudLayer, cloud_column, cloud_map_uv, sample_coverage_map};
 use crate::Weather;
 
 /// The distance from the camera within which the weather is the one set, m.
@@ -94,7 +94,7 @@ pub fn precipitation_haze(
     let dt = (t_base - r) / n as f32;
     for k in 0..n {
         let p = camera + dir * (r + (k as f32 + 0.5) * dt);
-        let (column, _) = cloud_map_uvs(p, offset_m);
+        let column = cloud_map_uv(p, offset_m);
         let shaft =
             air.shaft_per_m * cloud_column(lowest.coverage, sample_coverage_map(map, column));
         let sigma = air.rest_per_m + shaft;
@@ -113,12 +113,12 @@ pub fn precipitation_haze(
 
 #[cfg(test)]
 mod tests {
-    use super::super::{CloudKind, coverage_map};
+    use super::super::{CloudKind, cloud_noise};
     use super::*;
 
     #[test]
     fn near_the_camera_it_falls_everywhere_beyond_only_under_the_clouds() {
-        let map = coverage_map();
+        let map = &cloud_noise().coverage;
         let camera = Vec3::new(0.0, 2.0, 0.0);
         let level = Vec3::X;
         let layer = |coverage| CloudLayer::typical(CloudKind::Cumulonimbus, coverage);
@@ -168,7 +168,7 @@ mod tests {
 
     #[test]
     fn from_a_dry_place_a_shaft_stands_out_of_the_haze_behind_it() {
-        let map = coverage_map();
+        let map = &cloud_noise().coverage;
         let camera = Vec3::new(0.0, 30.0, 0.0);
         let level = Vec3::X;
         let far = 30_000.0;

@@ -315,7 +315,7 @@ impl BeamQuery {
         }
         let (clouds, drift) = air.cloud_layers;
         if !clouds.is_empty() {
-            let map = crate::drawing::clouds::coverage_map();
+            let map = crate::drawing::clouds::cloud_noise();
             for (beam, r) in beams.iter().zip(&mut returns) {
                 if let Some(t) = r.target.as_mut() {
                     let tau = clouds.optical_depth(

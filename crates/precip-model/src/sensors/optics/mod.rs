@@ -325,7 +325,7 @@ impl Optics {
         at_m: glam::Vec3,
     ) -> Self {
         if !layers.is_empty() {
-            let sigma = layers.extinction_at(crate::drawing::clouds::coverage_map(), drift_m, at_m);
+            let sigma = layers.extinction_at(crate::drawing::clouds::cloud_noise(), drift_m, at_m);
             for band in &mut self.bands {
                 band.extinction_per_m += sigma;
                 band.backscatter_per_m_sr += sigma / FOG_LIDAR_RATIO_SR;
