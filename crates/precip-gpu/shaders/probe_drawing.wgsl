@@ -36,7 +36,9 @@ struct ProbeDrawing {
 // the weight of the slice above; the detail of a texel (side, tumble, a, spin/6) at
 // that weight), then (the density of cloud kind i mod 4 covering tumble at map value
 // side, detail a·5, height fraction h/2; the map's uv of the centre drifted by
-// camera.xz; 0).
+// camera.xz; 0), then (the streaks' H at 4·side, the unresolved ink's variance of a
+// grain (tumble, 100·a + 1, h, 5) out to |centre.x| + 1, the grain at the pixel
+// 10·centre.xz along the unit (velocity.xy) streaks 20·side + 1 long in exposure i, 0).
 @group(0) @binding(1) var<storage, read_write> probe_drawing_out: array<vec4<f32>>;
 
 // A projection-like matrix from a point: clip = (p.x + c.x/100, p.y + c.y/100, p.z, −p.z)
@@ -58,12 +60,12 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let q = probe_drawing_in[i];
     for (var k = 0u; k < 4u; k++) {
-        probe_drawing_out[25u * i + k] = vec4<f32>(snow_sprite_corner(q.centre_m, q.camera_m, q.side_m, q.spin_rad, q.tumble, k), 0.0);
+        probe_drawing_out[26u * i + k] = vec4<f32>(snow_sprite_corner(q.centre_m, q.camera_m, q.side_m, q.spin_rad, q.tumble, k), 0.0);
         let v = raindrop_vertex(q.centre_m, q.velocity_mps, q.h_m, q.a_m, k);
-        probe_drawing_out[25u * i + 4u + k] = vec4<f32>(v.position_m, 0.0);
-        probe_drawing_out[25u * i + 8u + k] = vec4<f32>(v.normal, 0.0);
+        probe_drawing_out[26u * i + 4u + k] = vec4<f32>(v.position_m, 0.0);
+        probe_drawing_out[26u * i + 8u + k] = vec4<f32>(v.normal, 0.0);
     }
-    probe_drawing_out[25u * i + 12u] = vec4<f32>(
+    probe_drawing_out[26u * i + 12u] = vec4<f32>(
         snow_cover_fraction(q.h_m, q.cover.x, q.a_m, q.cover.y),
         sub_texel_threshold(q.tumble, q.centre_m.xz),
         value_noise(q.centre_m.x, q.centre_m.z),
@@ -71,20 +73,20 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
     );
     for (var k = 0u; k < 4u; k++) {
         let s = snow_streak_corner(q.centre_m, q.camera_m, q.side_m, vec2<f32>(q.spin_rad, q.tumble), q.velocity_mps, 1.0 / 60.0, k);
-        probe_drawing_out[25u * i + 13u + k] = vec4<f32>(s.position_m, s.uv.y);
+        probe_drawing_out[26u * i + 13u + k] = vec4<f32>(s.position_m, s.uv.y);
     }
     let blur = defocus_blur_m(q.a_m, 10.0, 50.0 * q.h_m);
-    probe_drawing_out[25u * i + 17u] = vec4<f32>(
+    probe_drawing_out[26u * i + 17u] = vec4<f32>(
         blur,
         defocused(q.side_m, 0.8, blur, 2),
         defocused(q.side_m, 0.8, blur, 1).y,
     );
     let history = cloud_history_uv(probe_history_camera(q.camera_m), q.centre_m);
-    probe_drawing_out[25u * i + 19u] = vec4<f32>(f32(cloud_march_slot(vec2<u32>(abs(q.centre_m.xz)))), history.xy, history.z);
+    probe_drawing_out[26u * i + 19u] = vec4<f32>(f32(cloud_march_slot(vec2<u32>(abs(q.centre_m.xz)))), history.xy, history.z);
     // A drop of a_m/20 (0–1 cm) rings at drop_oscillation_hz; its brightness at
     // spin cycles; the cloud column of a layer covering tumble at map value side; the
     // map offset of layer i mod 3 (x).
-    probe_drawing_out[25u * i + 20u] = vec4<f32>(
+    probe_drawing_out[26u * i + 20u] = vec4<f32>(
         drop_oscillation_hz(q.a_m / 20.0),
         drop_oscillation_brightness(q.spin_rad),
         cloud_column(q.tumble, q.side_m),
@@ -92,24 +94,30 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
     );
     let fresh = cloud_fresh_pixel(vec2<u32>(abs(q.centre_m.xz)), i % 16u);
     let clamped = cloud_history_clamped(vec4<f32>(q.tumble, 0.0, 0.0, q.spin_rad), vec4<f32>(0.3), vec4<f32>(0.6));
-    probe_drawing_out[25u * i + 21u] = vec4<f32>(vec2<f32>(fresh), clamped.x, clamped.w);
+    probe_drawing_out[26u * i + 21u] = vec4<f32>(vec2<f32>(fresh), clamped.x, clamped.w);
     let weight = cloud_history_clamp_weight(probe_history_camera(q.camera_m), q.centre_m, q.centre_m + q.velocity_mps, vec2<f32>(320.0, 180.0));
     let shadow_texel = vec2<u32>(abs(q.centre_m.xz));
-    probe_drawing_out[25u * i + 22u] = vec4<f32>(
+    probe_drawing_out[26u * i + 22u] = vec4<f32>(
         weight,
         cloud_fresh_weight(q.tumble - 0.3, q.centre_m.xz),
         cloud_shadow_map_weight(q.centre_m.xz / 60.0 + 0.5),
         cloud_shadow_map_point_m(q.camera_m.xz, shadow_texel).x + cloud_shadow_map_point_m(q.camera_m.xz, shadow_texel).y,
     );
     let atlas = cloud_detail_atlas(cloud_detail_point(q.centre_m, q.camera_m.xz));
-    probe_drawing_out[25u * i + 23u] = vec4<f32>(
+    probe_drawing_out[26u * i + 23u] = vec4<f32>(
         atlas,
         cloud_detail(vec4<f32>(q.side_m, q.tumble, q.a_m, q.spin_rad / 6.0), atlas.z),
     );
-    probe_drawing_out[25u * i + 24u] = vec4<f32>(
+    probe_drawing_out[26u * i + 24u] = vec4<f32>(
         cloud_density(i % 4u, q.tumble, q.side_m, q.a_m * 5.0, q.h_m / 2.0),
         cloud_map_uv(q.centre_m, q.camera_m.xz),
         0.0,
     );
-    probe_drawing_out[25u * i + 18u] = vec4<f32>(cover_warp_m(q.centre_m.xz, vec2<f32>(q.a_m + 0.1, q.side_m + 0.1)), flake_sun_phase(q.spin_rad / 6.0), drop_environment_factor(q.spin_rad / 6.0, q.tumble));
+    probe_drawing_out[26u * i + 25u] = vec4<f32>(
+        streak_h(4.0 * q.side_m),
+        unresolved_streak_variance(vec4<f32>(q.tumble, 100.0 * q.a_m + 1.0, q.h_m, 5.0), abs(q.centre_m.x) + 1.0),
+        streak_grain(10.0 * q.centre_m.xz, normalize(q.velocity_mps.xy), 20.0 * q.side_m + 1.0, i),
+        0.0,
+    );
+    probe_drawing_out[26u * i + 18u] = vec4<f32>(cover_warp_m(q.centre_m.xz, vec2<f32>(q.a_m + 0.1, q.side_m + 0.1)), flake_sun_phase(q.spin_rad / 6.0), drop_environment_factor(q.spin_rad / 6.0, q.tumble));
 }

@@ -60,6 +60,14 @@ struct RenderParams {
     far_ground: vec4<f32>,
     // the clouds' shadow map: its corner x, z m, written and read (1/0), 0
     cloud_shadow_map: vec4<f32>,
+    // the grain of what the budget does not draw one by one: its scale (0: none),
+    // reach m, near end m, streak length px
+    unresolved_streaks: vec4<f32>,
+    // the streaks' unit direction on screen (px, y down), the exposure's number, 0
+    streak_direction: vec4<f32>,
+    // the target's corner from the lens's axis, px (the grain is laid from the axis,
+    // alike in every channel of a rig), 0, 0
+    streak_origin: vec4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

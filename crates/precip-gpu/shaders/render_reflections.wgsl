@@ -136,7 +136,8 @@ fn fs_water_body_planar(in: SceneVarying) -> @location(0) vec4<f32> {
         let to_viewer = normalize_or_zero(camera - in.world_m);
         look.shaded += look.mirror * planar_mirrored_scene(in.clip.xy, to_viewer, look.water_slope);
     }
-    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, switches.fog_layer)), 1.0);
+    let seen = with_air(look.shaded, air_between(camera, in.world_m, switches.fog_layer));
+    return vec4<f32>(with_unresolved_streaks(seen, in.clip.xy, distance(camera, in.world_m)), 1.0);
 }
 
 // What the mirror shows instead of the sky at pixel `frag_xy`: (the mirror image

@@ -128,7 +128,8 @@ fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
     let far = params.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let ray = normalize_or_zero(far.xyz / far.w - switches.camera_m_cone_cos.xyz);
     let land_m = land_distance_m(ray);
-    return sky_through_air(land_or_sky(overcast_sky(params.sky_colour_time.xyz, ray), ray, land_m), ray, land_m);
+    let seen = sky_through_air(land_or_sky(overcast_sky(params.sky_colour_time.xyz, ray), ray, land_m), ray, land_m);
+    return vec4<f32>(with_unresolved_streaks(seen.rgb, in.clip.xy, select(SKY_DISTANCE_M, land_m, land_m >= 0.0)), 1.0);
 }
 
 // How far along `ray` it meets the land beyond the scene (docs/model.md (6.18)),
@@ -185,7 +186,8 @@ fn sky_under_clouds(in: SkyVarying) -> vec4<f32> {
     let cloud = textureSampleLevel(cloud_image, cover_sampler, in.ndc * vec2<f32>(0.5, -0.5) + 0.5, 0.0);
     let land_m = land_distance_m(ray);
     let sky = land_or_sky(clear_sky(params.sky_colour_time.xyz, ray), ray, land_m) * (1.0 - cloud.a) + cloud.rgb;
-    return sky_through_air(sky, ray, land_m);
+    let seen = sky_through_air(sky, ray, land_m);
+    return vec4<f32>(with_unresolved_streaks(seen.rgb, in.clip.xy, select(SKY_DISTANCE_M, land_m, land_m >= 0.0)), 1.0);
 }
 
 // `sky` (or the land `land_m` along, where that is not negative) seen along `ray`
@@ -215,6 +217,22 @@ fn air_between(camera: vec3<f32>, world_m: vec3<f32>, layer: vec4<f32>) -> vec2<
         return vec2<f32>(fog_transmittance(d, params.to_sun_extinction.w), 0.0);
     }
     return air_path(camera, offset / max(d, 1.0e-6), d, switches.to_sun_extinction.w, layer, switches.to_sun_extinction.xyz);
+}
+
+// The grain of the flakes and drops the budget does not draw one by one, from the
+// camera volume's reach to `distance_m` (precip_model::drawing::unresolved_streaks;
+// docs/model.md (5.15b)): `colour` moved toward the haze's by the deviation of their
+// ink at `pixel`. Without it (no precipitation, or all of it drawn) the branch reads
+// the storage copy, so every invocation skips it alike.
+fn with_unresolved_streaks(colour: vec3<f32>, pixel: vec2<f32>, distance_m: f32) -> vec3<f32> {
+    let grain = switches.unresolved_streaks;
+    if (grain.x <= 0.0) {
+        return colour;
+    }
+    let along = switches.streak_direction;
+    let deviation = sqrt(max(unresolved_streak_variance(grain, distance_m), 0.0))
+        * streak_grain(pixel + switches.streak_origin.xy, along.xy, grain.w, u32(along.z));
+    return colour + (params.sky_colour_time.xyz - colour) * clamp(deviation, -1.0, 1.0);
 }
 
 // `shaded` seen through the air `air` (air_between): what passes, the sky's light
@@ -392,7 +410,8 @@ struct SurfaceLook {
 fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
     let camera = params.camera_m_cone_cos.xyz;
     let look = surface_look(in, camera);
-    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, switches.fog_layer)), 1.0);
+    let seen = with_air(look.shaded, air_between(camera, in.world_m, switches.fog_layer));
+    return vec4<f32>(with_unresolved_streaks(seen, in.clip.xy, distance(camera, in.world_m)), 1.0);
 }
 
 // The water bodies: as fs_scene, their sharp mirror showing the scene where its ray
@@ -406,7 +425,8 @@ fn fs_water_body(in: SceneVarying) -> @location(0) vec4<f32> {
         let to_viewer = normalize_or_zero(camera - in.world_m);
         look.shaded += look.mirror * mirrored_scene(in.world_m, to_viewer, look.water_slope);
     }
-    return vec4<f32>(with_air(look.shaded, air_between(camera, in.world_m, switches.fog_layer)), 1.0);
+    let seen = with_air(look.shaded, air_between(camera, in.world_m, switches.fog_layer));
+    return vec4<f32>(with_unresolved_streaks(seen, in.clip.xy, distance(camera, in.world_m)), 1.0);
 }
 
 // The look of a surface seen from `camera` (the camera, or its reflection about the

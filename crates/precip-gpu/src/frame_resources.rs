@@ -806,7 +806,12 @@ mod tests {
         let textures = frame_textures(&setup);
         for t in &textures {
             if let Some(c) = &t.contents {
-                assert_eq!(c.len() as u32, t.size[0] * t.size[1], "{:?}", t.texture);
+                assert_eq!(
+                    c.len() as u32,
+                    t.size[0] * t.size[1] * t.format.texel_bytes(),
+                    "{:?}",
+                    t.texture
+                );
             }
         }
         let cover = textures.iter().find(|t| t.texture == FrameTexture::CoverA);

@@ -180,6 +180,7 @@ impl Program {
             ],
             Self::CullParticles => &[
                 LAYOUT,
+                RNG,
                 RENDER_LAYOUT,
                 DRAWING,
                 PARTICLE_LISTS,
@@ -187,6 +188,7 @@ impl Program {
             ],
             Self::ProbeDrawing => &[
                 LAYOUT,
+                RNG,
                 DRAWING,
                 WATER_PHYSICS,
                 COVER,

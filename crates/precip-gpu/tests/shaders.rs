@@ -281,7 +281,10 @@ fn rust_and_wgsl_layouts_match() {
             cloud_drift,
             cloud_shadow,
             far_ground,
-            cloud_shadow_map
+            cloud_shadow_map,
+            unresolved_streaks,
+            streak_direction,
+            streak_origin
         }),
         rust_layout!(DrawArgs {
             vertex_count,

@@ -516,6 +516,37 @@ fn cloud_detail(texel: vec4<f32>, w: f32) -> f32 {
     return mix(pw, billows, CLOUD_BILLOW_SHARE);
 }
 
+// streak_h (precip_model::drawing::unresolved_streaks): H(w) of the ink's variance.
+fn streak_h(w: f32) -> f32 {
+    if (w <= 1.0) {
+        return log(max(w, 1.0e-12)) - w / 3.0;
+    }
+    return 0.5 - 1.0 / w + 1.0 / (6.0 * w * w);
+}
+
+// unresolved_streak_variance (UnresolvedStreaks::variance): the unresolved ink's
+// variance from the grain's near end to far_m; grain = (scale, reach m, near m, length px).
+fn unresolved_streak_variance(grain: vec4<f32>, far_m: f32) -> f32 {
+    if (far_m <= grain.z) {
+        return 0.0;
+    }
+    return grain.x * (streak_h(far_m / grain.y) - streak_h(grain.z / grain.y));
+}
+
+// streak_grain: unit variance, zero mean, constant along streaks length_px long in
+// the unit screen direction `along`, one pixel wide, new for each exposure number.
+fn streak_grain(pixel: vec2<f32>, along: vec2<f32>, length_px: f32, exposure: u32) -> f32 {
+    let w = dot(pixel, along);
+    let c = pixel.x * along.y - pixel.y * along.x;
+    let column = bitcast<u32>(i32(floor(c)));
+    let offset = f32(pcg_hash(column ^ 0x5bd1e995u) >> 8u) / 16777216.0;
+    let cell = bitcast<u32>(i32(floor(w / max(length_px, 1.0) + offset)));
+    let h = pcg_hash((column * 0x9e3779b1u) ^ (cell * 0x85ebca77u) ^ exposure);
+    // Three uniforms of ten bits each from the one hash.
+    let parts = vec3<f32>(vec3<u32>(h, h >> 10u, h >> 20u) & vec3<u32>(1023u)) / 1023.0;
+    return 2.0 * (parts.x + parts.y + parts.z - 1.5);
+}
+
 // multiplicity_rank (precip_model::drawing::multiplicity): a particle's rank in [0, 1).
 fn multiplicity_rank(index: u32) -> f32 {
     var h = index * 0x9e3779b9u;

@@ -12,6 +12,7 @@ use precip_model::drawing::clouds::{
     cloud_map_uv, cloud_march_slot,
 };
 use precip_model::drawing::multiplicity::drawn_weight;
+use precip_model::drawing::unresolved_streaks::{UnresolvedStreaks, streak_grain, streak_h};
 use precip_model::drawing::{
     defocus_blur_m, defocused, drop_environment_factor, flake_sun_phase,
     raindrop_tetrahedron_sized, snow_sprite_corners_turned, snow_streak_corners,
@@ -58,7 +59,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             Program::ProbeDrawing,
             bytemuck::cast_slice(&inputs),
             inputs.len() as u32,
-            (inputs.len() * 25 * 16) as u64,
+            (inputs.len() * 26 * 16) as u64,
         );
         let got: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
         for (i, q) in inputs.iter().enumerate() {
@@ -80,7 +81,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 .chain(&tetra.normals)
                 .copied();
             for (k, want) in expected.enumerate() {
-                let g = got[25 * i + k];
+                let g = got[26 * i + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 // The four face normals (values 8–11) of a drop's thin tetrahedron are
                 // cross products of nearly parallel edges: a driver that fuses a
@@ -93,7 +94,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                     "{name}: input {i} value {k}: WGSL {have} vs Rust {want}"
                 );
             }
-            let cover = got[25 * i + 12];
+            let cover = got[26 * i + 12];
             let want = [
                 snow_cover_fraction(q.h_m, q.cover[0], q.a_m, q.cover[1]),
                 sub_texel_threshold(q.tumble, [centre.x, centre.z]),
@@ -119,7 +120,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             let blur = defocus_blur_m(q.a_m, 10.0, 50.0 * q.h_m);
             let sprite = defocused(q.side_m, 0.8, blur, 2);
             let streak_opacity = defocused(q.side_m, 0.8, blur, 1).1;
-            let g = got[25 * i + 17];
+            let g = got[26 * i + 17];
             for (k, want) in [blur, sprite.0, sprite.1, streak_opacity]
                 .into_iter()
                 .enumerate()
@@ -131,7 +132,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 );
             }
             let warp = cover_warp_m([centre.x, centre.z], [q.a_m + 0.1, q.side_m + 0.1]);
-            let g = got[25 * i + 18];
+            let g = got[26 * i + 18];
             assert!(
                 (g[0] - warp[0]).abs() <= 2e-5 && (g[1] - warp[1]).abs() <= 2e-5,
                 "{name}: input {i} cover warp: WGSL {g:?} vs Rust {warp:?}"
@@ -150,7 +151,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 g[3]
             );
             // A drop's oscillation, a cloud column, a layer's map offset.
-            let g = got[25 * i + 20];
+            let g = got[26 * i + 20];
             let hz = precip_model::drawing::drop_oscillation_hz(q.a_m / 20.0);
             let bright = precip_model::drawing::drop_oscillation_brightness(q.spin_rad);
             let column = precip_model::drawing::clouds::cloud_column(q.tumble, q.side_m);
@@ -163,7 +164,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 "{name}: input {i} oscillation, column, offset: WGSL {g:?} vs Rust {hz} {bright} {column} {offset}"
             );
             // The clouds' march slot and the history's uv.
-            let g = got[25 * i + 19];
+            let g = got[26 * i + 19];
             let slot = cloud_march_slot(glam::UVec2::new(
                 centre.x.abs() as u32,
                 centre.z.abs() as u32,
@@ -184,7 +185,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 None => assert!(g[3] < 0.5, "{name}: input {i} history: WGSL {g:?} vs none"),
             }
             // The fresh image's pixel and the history's clamp.
-            let g = got[25 * i + 21];
+            let g = got[26 * i + 21];
             let fresh = cloud_fresh_pixel(
                 glam::UVec2::new(centre.x.abs() as u32, centre.z.abs() as u32),
                 i as u32 % 16,
@@ -207,7 +208,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 centre + Vec3::from(q.velocity_mps),
                 glam::Vec2::new(320.0, 180.0),
             );
-            let g = got[25 * i + 22];
+            let g = got[26 * i + 22];
             assert!(
                 (g[0] - weight).abs() <= 1e-4,
                 "{name}: input {i} clamp weight: WGSL {} vs Rust {weight}",
@@ -239,7 +240,7 @@ fn wgsl_drawing_equals_rust_drawing() {
                 glam::Vec4::new(q.side_m, q.tumble, q.a_m, q.spin_rad / 6.0),
                 w,
             );
-            let g = got[25 * i + 23];
+            let g = got[26 * i + 23];
             assert!(
                 (g[0] - uv.x).abs() <= 1e-5
                     && (g[1] - uv.y).abs() <= 1e-5
@@ -255,15 +256,43 @@ fn wgsl_drawing_equals_rust_drawing() {
                 q.h_m / 2.0,
             );
             let map_uv = cloud_map_uv(centre, camera_xz);
-            let g = got[25 * i + 24];
+            let g = got[26 * i + 24];
             assert!(
                 (g[0] - density).abs() <= 1e-4
                     && (g[1] - map_uv.x).abs() <= 1e-6
                     && (g[2] - map_uv.y).abs() <= 1e-6,
                 "{name}: input {i} cloud density: WGSL {g:?} vs Rust {density} {map_uv}"
             );
+            // The unresolved streaks' grain.
+            let grain = UnresolvedStreaks {
+                scale: q.tumble,
+                reach_m: 100.0 * q.a_m + 1.0,
+                near_m: q.h_m,
+                length_px: 5.0,
+                velocity_mps: Vec3::ZERO,
+            };
+            let h = streak_h(4.0 * q.side_m);
+            let variance = grain.variance(centre.x.abs() + 1.0);
+            let along = glam::Vec2::new(q.velocity_mps[0], q.velocity_mps[1]).normalize();
+            let pixel = 10.0 * glam::Vec2::new(centre.x, centre.z);
+            let g = got[26 * i + 25];
+            // A pixel within a rounding of a cell's edge may fall in either cell.
+            let g_value = streak_grain(pixel, along, 20.0 * q.side_m + 1.0, i as u32);
+            let near_edge = [(1e-3, 0.0), (-1e-3, 0.0), (0.0, 1e-3), (0.0, -1e-3)]
+                .iter()
+                .map(|&(a, c)| {
+                    let p = pixel + along * a + along.perp() * c;
+                    streak_grain(p, along, 20.0 * q.side_m + 1.0, i as u32)
+                })
+                .any(|v| (g[2] - v).abs() <= 1e-5);
+            assert!(
+                (g[0] - h).abs() <= 1e-4 * (1.0 + h.abs())
+                    && (g[1] - variance).abs() <= 1e-4 * (1.0 + variance.abs())
+                    && ((g[2] - g_value).abs() <= 1e-5 || near_edge),
+                "{name}: input {i} unresolved streaks: WGSL {g:?} vs Rust {h} {variance} {g_value}"
+            );
             for (k, (want, uv)) in streak.iter().enumerate() {
-                let g = got[25 * i + 13 + k];
+                let g = got[26 * i + 13 + k];
                 let have = Vec3::new(g[0], g[1], g[2]);
                 let tolerance = 1e-5 * (1.0 + want.abs().max_element());
                 assert!(

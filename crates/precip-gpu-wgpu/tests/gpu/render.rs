@@ -337,6 +337,97 @@ fn rain_frames_show_streaks_along_the_velocity() {
     }
 }
 
+#[test]
+fn the_flakes_the_budget_leaves_undrawn_grain_the_view_as_the_model_says() {
+    use precip_model::drawing::unresolved_streaks::UnresolvedStreaks;
+    // A blizzard with one simulated particle (far behind the camera): the air's
+    // flakes are all unresolved. A black wall 12 m off shows the haze's colour
+    // times (1 − T) and, over it, the grain of the flakes between: each pixel moved
+    // toward the haze by σ(z)·g, g new each exposure (docs/model.md (5.15b)). Two
+    // frames three exposures apart: their difference's variance over the wall is
+    // 2·σ²·(sky·T)².
+    let camera = Camera {
+        position_m: Vec3::new(-4.0, 3.0, 0.0),
+        forward: Vec3::NEG_Z,
+        vertical_fov_rad: 30f32.to_radians(),
+        ..Camera::default()
+    };
+    let view = view(camera, 128, 96);
+    let (mut setup, _) = Setup::over_scene(black_walls(&[12.0]), 32, 5.0, 1).expect("valid");
+    setup.world_emitter = setup.world_emitter.map(|mut e| {
+        e.emitter = WorldEmitter::horizontal(Vec3::new(0.0, 10.0, 500.0), 1.0, 1.0, 10.0);
+        e
+    });
+    setup.weather.intensity_mm_per_h = 6.0;
+    setup.weather.wind = WindField {
+        mean_wind_mps: Vec3::new(14.0, 0.0, 0.0),
+        ..WindField::calm()
+    };
+    setup.camera = camera;
+    // The grain the frame's block carries.
+    let pools = setup.pool_drawing(&setup.weather, camera.position_m);
+    let params = setup.render_params(
+        &view,
+        &setup.weather,
+        (Vec3::splat(-1.0), Vec3::ONE),
+        0.05,
+        1,
+        setup.frames().waves,
+        pools,
+    );
+    let g = params.unresolved_streaks;
+    assert!(g.x > 0.0, "a blizzard's unresolved flakes grain the view");
+    let grain = UnresolvedStreaks {
+        scale: g.x,
+        reach_m: g.y,
+        near_m: g.z,
+        length_px: g.w,
+        velocity_mps: Vec3::ZERO,
+    };
+    let sky = precip_model::drawing::render::haze_colour(&setup.render, &setup.weather).x;
+    let extinction = setup.render.clear_air_extinction_per_m + setup.weather.extinction_per_m();
+    for (name, mut gpu) in common::gpu_backends("the_flakes_the_budget_leaves_undrawn") {
+        common::run(&mut gpu, &setup, 1, 0.05);
+        gpu.set_camera(&camera).expect("valid camera");
+        gpu.render(&view).expect("renders");
+        let first = gpu.read_image().expect("an image");
+        gpu.step(0.05).expect("steps");
+        gpu.render(&view).expect("renders");
+        let second = gpu.read_image().expect("an image");
+        keep(&first, "unresolved_grain");
+        let (mut sum, mut sum2, mut expected, mut n) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for y in 0..96u32 {
+            for x in 0..128u32 {
+                // The wall's pixels: its plane z = −12 within its 6 × 6 m.
+                let ndc = Vec2::new((x as f32 + 0.5) / 64.0 - 1.0, 1.0 - (y as f32 + 0.5) / 48.0);
+                let half_h = (15f32.to_radians()).tan();
+                let ray = Vec3::new(ndc.x * half_h * 128.0 / 96.0, ndc.y * half_h, -1.0);
+                let hit = camera.position_m + ray * 12.0;
+                if (hit.x + 4.0).abs() > 2.8 || hit.y < 0.2 || hit.y > 5.8 {
+                    continue;
+                }
+                let z = (hit - camera.position_m).length();
+                let t = precip_model::drawing::fog_transmittance(z, extinction);
+                let a = linear(crate::images::rgb(&first, x, y)[0]);
+                let b = linear(crate::images::rgb(&second, x, y)[0]);
+                let d = f64::from(a - b);
+                sum += d;
+                sum2 += d * d;
+                expected += f64::from(2.0 * grain.variance(z) * (sky * t).powi(2));
+                n += 1.0;
+            }
+        }
+        let measured = sum2 / n - (sum / n).powi(2);
+        let want = expected / n;
+        println!("{name}: {n} wall pixels, difference variance {measured:.3e}, model {want:.3e}");
+        assert!(n > 2_000.0, "{name}: the wall fills the view ({n} pixels)");
+        assert!(
+            (measured / want - 1.0).abs() < 0.15,
+            "{name}: the grain's variance {measured:.3e} against the model's {want:.3e}"
+        );
+    }
+}
+
 /// Black walls facing the camera at `distances_m` along −Z, 6 m wide and tall.
 fn black_walls(distances_m: &[f32]) -> Scene {
     Scene {
@@ -400,7 +491,12 @@ fn fog_lowers_contrast_with_distance_and_with_the_precipitation() {
                 let x = 8.0 * i as f32 - 4.0;
                 let centre = Vec3::new(x, 3.0, -d);
                 let (px, py) = pixel_of(&view, centre).expect("wall in view");
-                let wall = linear(crate::images::rgb(&image, px, py)[0]);
+                // The mean over 5 × 5 of the wall's pixels: the grain of the flakes
+                // not drawn one by one scatters each about it (docs/model.md (5.15b)).
+                let wall = (0..25)
+                    .map(|k| linear(crate::images::rgb(&image, px + k % 5 - 2, py + k / 5 - 2)[0]))
+                    .sum::<f32>()
+                    / 25.0;
                 // A black wall shows the sky's colour times (1 − T): contrast is T.
                 let contrast = 1.0 - wall / sky;
                 let along_ray = (centre - camera.position_m).length();

@@ -23,6 +23,7 @@ pub mod multiplicity;
 pub mod render;
 pub mod shadow_cache;
 pub mod shadow_fit;
+pub mod unresolved_streaks;
 pub mod water_look;
 pub mod water_mirror;
 

@@ -424,8 +424,20 @@ pub struct RenderParams {
     /// while a layer is drawn (the kernel writes it and the lit fragments read it;
     /// else 0), 0.
     pub cloud_shadow_map: Vec4,
+    /// The grain of what the budget does not draw one by one
+    /// ([`crate::drawing::unresolved_streaks::UnresolvedStreaks`]): its scale `C`
+    /// (0: none), reach `ū` m, near end `z₁` m, streak length px.
+    pub unresolved_streaks: Vec4,
+    /// The streaks' direction on screen (a unit vector in pixels, y down), the
+    /// exposure's number (`⌊t/T⌋`, a new grain each), 0.
+    pub streak_direction: Vec4,
+    /// Where the lens's axis is from the target's corner, px (x right, y down),
+    /// negated: the grain is laid in pixels from the axis, so the channels of a
+    /// rig (lens shifts of one image plane) draw the same grain where they
+    /// overlap; 0, 0.
+    pub streak_origin: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 816);
+const _: () = assert!(size_of::<RenderParams>() == 864);
 
 /// The block's rows of the cloud layers: base m, top m, coverage, kind each.
 fn cloud_layer_rows(layers: &CloudLayers) -> [Vec4; MAX_CLOUD_LAYERS] {
@@ -779,7 +791,68 @@ impl RenderParams {
                 ));
                 Vec4::new(origin.x, origin.y, 1.0, 0.0)
             },
+            unresolved_streaks: Vec4::ZERO,
+            streak_direction: Vec4::ZERO,
+            streak_origin: Vec4::ZERO,
         }
+        .with_unresolved_streaks(f, pixel_angle, aspect)
+    }
+
+    /// The block with the grain of `f`'s weather beyond its camera volume
+    /// ([`crate::drawing::unresolved_streaks`]).
+    fn with_unresolved_streaks(
+        mut self,
+        f: &FrameInputs<'_>,
+        pixel_angle: f32,
+        aspect: f32,
+    ) -> Self {
+        use crate::drawing::unresolved_streaks::{UnresolvedStreaks, unresolved_size_classes};
+        let m_world = f.pools.world_multiplicity;
+        let unresolved = if m_world > 1.0 {
+            1.0 - 1.0 / m_world
+        } else {
+            0.0
+        };
+        let classes = unresolved_size_classes(f.weather, unresolved);
+        let exposure_s = f.view.camera.lens.exposure_s;
+        let near_m = f
+            .pools
+            .camera_box_m
+            .map_or(0.0, |(_, half)| half.x.min(half.z));
+        let grain = UnresolvedStreaks::of(&classes, exposure_s, pixel_angle, near_m);
+        if grain.scale <= 0.0 {
+            return self;
+        }
+        // The fall's direction on screen at the grain's depth ahead of the camera.
+        let camera = &f.view.camera;
+        let ahead = camera.position_m + camera.forward.normalize() * grain.near_m;
+        let moved = ahead + grain.velocity_mps.normalize_or_zero() * 0.01 * grain.near_m;
+        let view_proj = view_projection(camera, aspect);
+        let screen = |p: Vec3| {
+            let clip = view_proj * p.extend(1.0);
+            glam::Vec2::new(clip.x, -clip.y) / clip.w.max(1.0e-6)
+                * glam::Vec2::new(f.view.width_px as f32, f.view.height_px as f32)
+        };
+        let along = (screen(moved) - screen(ahead))
+            .try_normalize()
+            .unwrap_or(glam::Vec2::Y);
+        let exposure = if exposure_s > 0.0 {
+            (f.time_s / exposure_s).floor()
+        } else {
+            0.0
+        };
+        self.unresolved_streaks =
+            Vec4::new(grain.scale, grain.reach_m, grain.near_m, grain.length_px);
+        self.streak_direction = Vec4::new(along.x, along.y, exposure % 16_777_216.0, 0.0);
+        let (w, h) = (f.view.width_px as f32, f.view.height_px as f32);
+        let shift = camera.lens_shift;
+        self.streak_origin = Vec4::new(
+            0.5 * w * (shift.x - 1.0),
+            -0.5 * h * (1.0 + shift.y),
+            0.0,
+            0.0,
+        );
+        self
     }
 }
 
