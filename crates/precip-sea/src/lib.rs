@@ -1,0 +1,15 @@
+//! The sea and the shore (docs/model.md §13).
+//!
+//! [`shore`]: the coastal zone by the nonlinear shallow-water equations over the
+//! scene's bathymetry — waves entering from the open sea, running up beaches,
+//! reflected by walls — solved by a well-balanced, positivity-preserving
+//! finite-volume scheme (the hydrostatic reconstruction of Audusse et al. 2004 with
+//! an HLL flux, MUSCL slopes and a two-stage Runge–Kutta step). This crate is the
+//! CPU reference the GPU kernels are to be checked against; it holds no GPU code.
+
+pub mod shore;
+
+pub use shore::{
+    Bathymetry, COURANT, DRY_DEPTH_M, Edge, GRAVITY_MPS2, IncomingWaves, Shore, ShoreError,
+    ShoreState, WaveComponent,
+};
