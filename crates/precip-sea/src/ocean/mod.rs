@@ -1,0 +1,15 @@
+//! The open sea (docs/model.md (13.5)–(13.7)): wind-wave spectra (Phillips as
+//! Tessendorf 2001 uses it, JONSWAP with a fetch and a directional spreading), and
+//! the surface synthesised from one by the inverse FFT on a tiling patch, with its
+//! choppy displacement and the Jacobian where it folds (foam). The CPU reference of
+//! the GPU's FFT kernel (radix-2 Stockham, one stage a dispatch).
+
+pub mod fft;
+pub mod spectrum;
+pub mod synthesis;
+
+pub use spectrum::{
+    PHILLIPS_AMPLITUDE, SPREADING_EXPONENT, SpectrumKind, WindSea, deep_group_speed_mps,
+    directional_spreading, dispersion_rad_per_s, jonswap_peak_rad_per_s, jonswap_rad,
+};
+pub use synthesis::{OceanCascade, OceanSurface};
