@@ -149,24 +149,46 @@ impl InFlight {
 /// `commands` is a command buffer of `device` in the recording state, outside a
 /// render pass.
 pub unsafe fn compute_barrier(device: &Device, commands: vk::CommandBuffer) {
-    let barrier = vk::MemoryBarrier::default()
-        .src_access_mask(vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE)
-        .dst_access_mask(
-            vk::AccessFlags::SHADER_READ
-                | vk::AccessFlags::SHADER_WRITE
-                | vk::AccessFlags::TRANSFER_READ,
-        );
-    // SAFETY: the caller guarantees `commands` is recording outside a render pass.
+    let (stages, a) = (
+        vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER,
+        vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
+    );
+    let written = vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE;
+    // SAFETY: the caller's guarantees, passed on.
     unsafe {
-        device.raw.cmd_pipeline_barrier(
+        memory_barrier(
+            device,
             commands,
-            vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER,
-            vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER,
-            vk::DependencyFlags::empty(),
-            &[barrier],
-            &[],
-            &[],
+            (stages, written),
+            (stages, a | vk::AccessFlags::TRANSFER_READ),
         );
+    }
+}
+
+/// The stages that read images in shaders.
+pub const SHADER_STAGES: vk::PipelineStageFlags = vk::PipelineStageFlags::from_raw(
+    vk::PipelineStageFlags::COMPUTE_SHADER.as_raw()
+        | vk::PipelineStageFlags::VERTEX_SHADER.as_raw()
+        | vk::PipelineStageFlags::FRAGMENT_SHADER.as_raw(),
+);
+
+/// Image barriers from the stages `src` to `dst`.
+///
+/// # Safety
+/// `commands` is a command buffer of `device` in the recording state, outside a
+/// render pass; the images the barriers name are live.
+pub unsafe fn image_barriers(
+    device: &Device,
+    commands: vk::CommandBuffer,
+    (src, dst): (vk::PipelineStageFlags, vk::PipelineStageFlags),
+    barriers: &[vk::ImageMemoryBarrier<'_>],
+) {
+    let none = vk::DependencyFlags::empty();
+    // SAFETY: the caller's guarantees.
+    unsafe {
+        device
+            .raw
+            .cmd_pipeline_barrier(commands, src, dst, none, &[], &[], barriers);
     }
 }
 

@@ -29,7 +29,7 @@ use precip_gpu::frame::AttachmentLoad;
 use precip_gpu::gpu::{Command, FrameWork, PassKind};
 use precip_model::BackendError;
 
-use crate::commands::memory_barrier;
+use crate::commands::{image_barriers, memory_barrier};
 use crate::device::Device;
 use crate::error::map_vk;
 use crate::gpu::Hal;
@@ -476,15 +476,8 @@ unsafe fn copy_target(
     // (fragment shaders) are ordered before their overwrite by the first barrier's
     // stages, and the copies' writes before the next frame's reads by the second.
     unsafe {
-        device.raw.cmd_pipeline_barrier(
-            cb,
-            S::COLOR_ATTACHMENT_OUTPUT | fragment_tests | S::FRAGMENT_SHADER,
-            S::TRANSFER,
-            vk::DependencyFlags::empty(),
-            &[],
-            &[],
-            &before,
-        );
+        let drawing = S::COLOR_ATTACHMENT_OUTPUT | fragment_tests | S::FRAGMENT_SHADER;
+        image_barriers(device, cb, (drawing, S::TRANSFER), &before);
         device.raw.cmd_copy_image(
             cb,
             target,
@@ -501,13 +494,10 @@ unsafe fn copy_target(
             L::TRANSFER_DST_OPTIMAL,
             &[region(vk::ImageAspectFlags::DEPTH)],
         );
-        device.raw.cmd_pipeline_barrier(
+        image_barriers(
+            device,
             cb,
-            S::TRANSFER,
-            S::COLOR_ATTACHMENT_OUTPUT | fragment_tests | S::FRAGMENT_SHADER | S::COMPUTE_SHADER,
-            vk::DependencyFlags::empty(),
-            &[],
-            &[],
+            (S::TRANSFER, drawing | S::COMPUTE_SHADER),
             &after,
         );
     }

@@ -6,7 +6,7 @@ use gpu_allocator::MemoryLocation;
 use precip_model::BackendError;
 
 use crate::buffer::Buffer;
-use crate::commands::{compute_barrier, submit};
+use crate::commands::{SHADER_STAGES, compute_barrier, image_barriers, submit};
 use crate::device::Device;
 use crate::image::Image;
 
@@ -159,15 +159,11 @@ pub fn upload_image(device: &Device, image: &Image, bytes: &[u8]) -> Result<(), 
         // need (the earlier contents are discarded: UNDEFINED), after any earlier
         // work that read it.
         unsafe {
-            device.raw.cmd_pipeline_barrier(
-                cb,
+            let stages = (
                 vk::PipelineStageFlags::ALL_COMMANDS,
                 vk::PipelineStageFlags::TRANSFER,
-                vk::DependencyFlags::empty(),
-                &[],
-                &[],
-                &[to_transfer],
             );
+            image_barriers(device, cb, stages, &[to_transfer]);
             device.raw.cmd_copy_buffer_to_image(
                 cb,
                 staging.raw,
@@ -175,17 +171,8 @@ pub fn upload_image(device: &Device, image: &Image, bytes: &[u8]) -> Result<(), 
                 vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                 &[region],
             );
-            device.raw.cmd_pipeline_barrier(
-                cb,
-                vk::PipelineStageFlags::TRANSFER,
-                vk::PipelineStageFlags::COMPUTE_SHADER
-                    | vk::PipelineStageFlags::VERTEX_SHADER
-                    | vk::PipelineStageFlags::FRAGMENT_SHADER,
-                vk::DependencyFlags::empty(),
-                &[],
-                &[],
-                &[to_shader],
-            );
+            let stages = (vk::PipelineStageFlags::TRANSFER, SHADER_STAGES);
+            image_barriers(device, cb, stages, &[to_shader]);
         }
     })
     .and_then(|f| f.wait(device));
@@ -216,17 +203,8 @@ pub fn to_layout(
     submit(device, |cb| {
         // SAFETY: `cb` is recording; the images are live and unused (just made).
         unsafe {
-            device.raw.cmd_pipeline_barrier(
-                cb,
-                vk::PipelineStageFlags::TOP_OF_PIPE,
-                vk::PipelineStageFlags::COMPUTE_SHADER
-                    | vk::PipelineStageFlags::VERTEX_SHADER
-                    | vk::PipelineStageFlags::FRAGMENT_SHADER,
-                vk::DependencyFlags::empty(),
-                &[],
-                &[],
-                &barriers,
-            );
+            let stages = (vk::PipelineStageFlags::TOP_OF_PIPE, SHADER_STAGES);
+            image_barriers(device, cb, stages, &barriers);
         }
     })
     .and_then(|f| f.wait(device))
