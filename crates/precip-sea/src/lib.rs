@@ -6,6 +6,10 @@
 //! 2001) on a tiling patch, with its choppy displacement and the Jacobian where it
 //! folds.
 //!
+//! [`optics`]: the colour of water by wavelength — absorption and scattering of
+//! pure water, dissolved organic matter and particles, deep water's reflectance,
+//! spectra to linear sRGB.
+//!
 //! [`shore`]: the coastal zone by the nonlinear shallow-water equations over the
 //! scene's bathymetry — waves entering from the open sea, running up beaches,
 //! reflected by walls — solved by a well-balanced, positivity-preserving
@@ -14,6 +18,7 @@
 //! CPU reference the GPU kernels are to be checked against; it holds no GPU code.
 
 pub mod ocean;
+pub mod optics;
 pub mod shore;
 
 pub use shore::{
