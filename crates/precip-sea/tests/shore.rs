@@ -317,3 +317,27 @@ proptest! {
         prop_assert!(((after - before) / before.max(1e-9)).abs() < 1e-5, "{} → {}", before, after);
     }
 }
+
+#[test]
+fn the_open_sea_s_waves_enter_with_its_energy() {
+    use precip_sea::ocean::WindSea;
+    // A 12 m/s wind over 30 km: the incoming edge's surface over ten minutes has the
+    // spectrum's variance (H_s within 5 %).
+    let sea = WindSea::jonswap(12.0, 30_000.0, [1.0, 0.0]);
+    let waves = IncomingWaves::from_sea(&sea, 0.0, 64, 5);
+    let n = 60_000;
+    let variance = (0..n)
+        .map(|i| f64::from(waves.elevation_m(f64::from(i) * 0.01)).powi(2))
+        .sum::<f64>()
+        / f64::from(n);
+    let hs = 4.0 * variance.sqrt() as f32;
+    let want = sea.significant_height_m(1.0e-4, 50.0);
+    println!("incoming H_s {hs:.3} m against the spectrum's {want:.3} m");
+    assert!((hs / want - 1.0).abs() < 0.05, "{hs} against {want}");
+    assert!(
+        waves
+            .components
+            .iter()
+            .all(|c| c.period_s > 1.0 && c.period_s < 20.0)
+    );
+}

@@ -10,6 +10,7 @@ pub mod synthesis;
 
 pub use spectrum::{
     PHILLIPS_AMPLITUDE, SPREADING_EXPONENT, SpectrumKind, WindSea, deep_group_speed_mps,
-    directional_spreading, dispersion_rad_per_s, jonswap_peak_rad_per_s, jonswap_rad,
+    directional_spreading, dispersion_rad_per_s, frequency_spectrum_rad, jonswap_peak_rad_per_s,
+    jonswap_rad, whitecap_cover,
 };
 pub use synthesis::{OceanCascade, OceanSurface};

@@ -59,6 +59,21 @@ pub struct WindSea {
 }
 
 impl WindSea {
+    /// A JONSWAP sea (γ = 3.3) of a wind `wind_mps` blowing toward `direction` over
+    /// `fetch_m`, every wave length kept.
+    #[must_use]
+    pub const fn jonswap(wind_mps: f32, fetch_m: f32, direction: [f32; 2]) -> Self {
+        Self {
+            kind: SpectrumKind::Jonswap {
+                fetch_m,
+                peak_enhancement: 3.3,
+            },
+            wind_speed_mps: wind_mps,
+            wind_direction: direction,
+            shortest_m: 0.0,
+        }
+    }
+
     /// The spectrum's density over the wavenumber plane at `(kx, kz)`, m⁴ (so that
     /// `∫∫ F dk_x dk_z` is the surface's variance, m²).
     #[must_use]
@@ -163,6 +178,34 @@ fn ln_gamma(x: f64) -> f64 {
     0.5 * std::f64::consts::TAU.ln() + (x + 0.5) * t.ln() - t + a.ln()
 }
 
+/// The share of the sea's surface covered by whitecaps in a wind of `wind_mps` 10 m
+/// above it: `W = 3.84·10⁻⁶·U^3.41` (Monahan & O'Muircheartaigh 1980), at most 1.
+#[must_use]
+pub fn whitecap_cover(wind_mps: f32) -> f32 {
+    (3.84e-6 * wind_mps.max(0.0).powf(3.41)).min(1.0)
+}
+
+/// The frequency spectrum of a sea, `S(ω) = ∫ F(k)·k dθ · dk/dω` in deep water,
+/// m²·s/rad: [`jonswap_rad`] for JONSWAP, Phillips's over its directions.
+#[must_use]
+pub fn frequency_spectrum_rad(sea: &WindSea, omega: f32) -> f32 {
+    if omega <= 0.0 {
+        return 0.0;
+    }
+    let k = omega * omega / G;
+    let n = 90;
+    let dt = std::f32::consts::TAU / n as f32;
+    let around: f32 = (0..n)
+        .map(|i| {
+            let t = (i as f32 + 0.5) * dt;
+            sea.density_m4(k * t.cos(), k * t.sin())
+        })
+        .sum::<f32>()
+        * dt;
+    // dk/dω = 1/c_g.
+    around * k / deep_group_speed_mps(k)
+}
+
 /// JONSWAP's peak frequency for a wind `wind_mps` over `fetch_m`:
 /// `ω_p = 22·(g²/(U·F))^(1/3)`, rad/s.
 #[must_use]
@@ -222,15 +265,7 @@ mod tests {
         // apart from the energy) carries 20–25 % more height than the energy law:
         // within 30 %.
         for (u, fetch) in [(10.0f32, 20_000.0f32), (20.0, 100_000.0), (15.0, 50_000.0)] {
-            let sea = WindSea {
-                kind: SpectrumKind::Jonswap {
-                    fetch_m: fetch,
-                    peak_enhancement: 3.3,
-                },
-                wind_speed_mps: u,
-                wind_direction: [1.0, 0.0],
-                shortest_m: 0.0,
-            };
+            let sea = WindSea::jonswap(u, fetch, [1.0, 0.0]);
             let hs = sea.significant_height_m(1.0e-4, 50.0);
             let law = 1.6e-3 * (G * fetch / (u * u)).sqrt() * u * u / G;
             println!("U {u} m/s over {fetch} m: Hs {hs:.2} m, fetch law {law:.2} m");
@@ -244,6 +279,35 @@ mod tests {
                 })
                 .unwrap_or(0.0);
             assert!((top / peak - 1.0).abs() < 0.01, "{top} against {peak}");
+        }
+    }
+
+    #[test]
+    fn whitecaps_cover_more_of_the_sea_as_the_wind_rises() {
+        // Monahan & O'Muircheartaigh's fit: 0.2 % at 6 m/s, 14 % at 22 m/s.
+        assert!(
+            (whitecap_cover(6.0) - 0.0017).abs() < 2e-4,
+            "{}",
+            whitecap_cover(6.0)
+        );
+        assert!(
+            (whitecap_cover(22.0) - 0.14).abs() < 0.01,
+            "{}",
+            whitecap_cover(22.0)
+        );
+        assert!(whitecap_cover(0.0) == 0.0 && whitecap_cover(80.0) <= 1.0);
+    }
+
+    #[test]
+    fn the_frequency_spectrum_is_jonswap_s_over_its_directions() {
+        let sea = WindSea::jonswap(12.0, 30_000.0, [1.0, 0.0]);
+        for omega in [0.8f32, 1.2, 2.0] {
+            let got = frequency_spectrum_rad(&sea, omega);
+            let want = jonswap_rad(omega, 12.0, 30_000.0, 3.3);
+            assert!(
+                (got / want - 1.0).abs() < 0.01,
+                "{omega}: {got} against {want}"
+            );
         }
     }
 

@@ -141,14 +141,16 @@ fn wavenumber(i: usize, n: usize) -> f32 {
     }
 }
 
+/// The PCG hash (Jarzynski & Olano 2020), as precip's other crates use it.
+pub(crate) const fn hash(x: u32) -> u32 {
+    let state = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+    (word >> 22) ^ word
+}
+
 /// Two independent standard normal numbers for point `index` of `seed` (Box–Muller
-/// over PCG hashes, Jarzynski & Olano 2020).
+/// over PCG hashes).
 fn normal_pair(seed: u32, index: u32) -> (f32, f32) {
-    let hash = |x: u32| {
-        let state = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
-        let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
-        (word >> 22) ^ word
-    };
     let a = hash(hash(seed) ^ index);
     let b = hash(a ^ 0x9e37_79b9);
     let u1 = ((a >> 8) as f32 + 0.5) / 16_777_216.0;
@@ -160,18 +162,12 @@ fn normal_pair(seed: u32, index: u32) -> (f32, f32) {
 
 #[cfg(test)]
 mod tests {
-    use super::super::spectrum::SpectrumKind;
     use super::*;
 
     fn jonswap(wind: f32) -> WindSea {
         WindSea {
-            kind: SpectrumKind::Jonswap {
-                fetch_m: 50_000.0,
-                peak_enhancement: 3.3,
-            },
-            wind_speed_mps: wind,
-            wind_direction: [0.8, 0.6],
             shortest_m: 0.5,
+            ..WindSea::jonswap(wind, 50_000.0, [0.8, 0.6])
         }
     }
 

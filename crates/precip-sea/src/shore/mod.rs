@@ -170,6 +170,54 @@ impl IncomingWaves {
             .sum()
     }
 
+    /// The open sea's waves `sea` as `components` sinusoids (its frequency spectrum,
+    /// [`crate::ocean::frequency_spectrum_rad`], cut into bins of equal width over
+    /// the frequencies holding all but 1 % of its energy at each end, each bin's
+    /// energy in one sinusoid of amplitude `√(2·S(ω)·Δω)` at a phase drawn from
+    /// `seed`): their variance is the spectrum's (docs/model.md (13.3)). The shore's
+    /// equations carry them without dispersion: they stand for the sea's long
+    /// waves and swell.
+    #[must_use]
+    pub fn from_sea(
+        sea: &crate::ocean::WindSea,
+        still_level_m: f32,
+        components: usize,
+        seed: u32,
+    ) -> Self {
+        let spectrum = |w: f32| crate::ocean::frequency_spectrum_rad(sea, w);
+        // The cumulative energy over a fine grid, to find the 1 % and 99 % points.
+        let (lo, hi, steps) = (0.02f32, 20.0f32, 4_000);
+        let dw = (hi - lo) / steps as f32;
+        let mut cumulative = Vec::with_capacity(steps);
+        let mut total = 0.0f32;
+        for i in 0..steps {
+            total += spectrum(lo + (i as f32 + 0.5) * dw) * dw;
+            cumulative.push(total);
+        }
+        let at = |share: f32| {
+            let i = cumulative.partition_point(|&c| c < share * total);
+            lo + i as f32 * dw
+        };
+        let (first, last) = (at(0.01), at(0.99));
+        let n = components.max(1);
+        let width = (last - first) / n as f32;
+        let components = (0..n)
+            .map(|i| {
+                let omega = first + (i as f32 + 0.5) * width;
+                let h = crate::ocean::synthesis::hash(seed ^ (i as u32).wrapping_mul(0x9e37_79b9));
+                WaveComponent {
+                    amplitude_m: (2.0 * spectrum(omega) * width).sqrt(),
+                    period_s: std::f32::consts::TAU / omega,
+                    phase_rad: (h >> 8) as f32 / 16_777_216.0 * std::f32::consts::TAU,
+                }
+            })
+            .collect();
+        Self {
+            still_level_m,
+            components,
+        }
+    }
+
     fn validate(&self) -> Result<(), ShoreError> {
         if !self.still_level_m.is_finite() {
             return Err(ShoreError::Waves("still_level_m must be finite"));
