@@ -65,7 +65,8 @@ impl std::ops::Sub for Complex {
 /// One Stockham stage `stage` (0-based) of an inverse transform of `input.len()`
 /// points: `output[j·2m + k] = a + w·b`, `output[j·2m + k + m] = a − w·b`, with
 /// `a = input[j·m + k]`, `b = input[j·m + k + N/2]`, `m = 2^stage`, `w =
-/// e^(iπk/m)` (the twiddle of the inverse). WGSL twin: `fft_stage`.
+/// e^(iπk/m)` (the twiddle of the inverse): the step a GPU kernel takes per stage
+/// (its WGSL twin is still to be written, issue 28).
 pub fn inverse_stage(input: &[Complex], output: &mut [Complex], stage: u32) {
     let n = input.len();
     let half = n / 2;

@@ -27,7 +27,8 @@ pub const PHILLIPS_AMPLITUDE: f32 = 2.0 * (0.21 / 4.0) * (0.21 / 4.0) / std::f32
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SpectrumKind {
     /// Phillips (Tessendorf 2001): a fully developed sea of the wind's speed,
-    /// `P(k) = A·e^(−1/(kL)²)/k⁴·|k̂·ŵ|²·e^(−k²l²)`, `L = U²/g`.
+    /// `P(k) = A·e^(−1/(kL)²)/k⁴·|k̂·ŵ|²`, `L = U²/g` (the short waves rolled off by
+    /// `e^(−(k·ℓ/2π)²)`, `ℓ` = [`WindSea::shortest_m`], as every spectrum here).
     Phillips {
         /// Tessendorf's amplitude `A` (dimensionless; 8.1·10⁻³ is Phillips's
         /// constant).

@@ -15,7 +15,8 @@
 //!
 //! Finite volumes on square cells (cell-centred `b`, `h`, `hu`, `hv`):
 //!
-//! - **MUSCL reconstruction**: in each cell, minmod-limited slopes of `h`, the
+//! - **MUSCL reconstruction**: in each cell, monotonized-central-limited slopes
+//!   (van Leer 1977) of `h`, the
 //!   surface `η = h + b`, `u` and `v` give the values at its faces, the bed at a face
 //!   `η − h` (so a surface at rest stays flat to its faces, and `h ≥ 0` there);
 //! - **hydrostatic reconstruction** (Audusse, Bouchut, Bristeau, Klein & Perthame
