@@ -341,3 +341,57 @@ fn the_open_sea_s_waves_enter_with_its_energy() {
             .all(|c| c.period_s > 1.0 && c.period_s < 20.0)
     );
 }
+
+#[test]
+fn a_breakwater_reflects_the_wave_and_shelters_the_water_behind_it() {
+    // 2 m of water, a long wave 2 cm high running +x; a breakwater (its top 1 m above
+    // the water) across the lower two thirds of the channel at x = 80 m, a gap above.
+    // Before its face the wave stands twice as high; in its lee far less comes; through
+    // the gap the wave passes.
+    let (nx, ny, a) = (140usize, 45usize, 0.02f32);
+    let bed = Bathymetry::from_fn(nx, ny, 1.0, |x, y| {
+        if (80.0..82.0).contains(&x) && y < 30.0 {
+            1.0
+        } else {
+            -2.0
+        }
+    });
+    let mut state = ShoreState::at_rest(&bed, 0.0);
+    let c = (G * 2.0).sqrt();
+    for j in 0..ny {
+        for i in 0..nx {
+            let k = j * nx + i;
+            if state.depth_m[k] > 0.0 {
+                let x = i as f32 + 0.5;
+                let eta = a * (-((x - 40.0) / 8.0).powi(2)).exp();
+                state.depth_m[k] += eta;
+                state.discharge_x_m2ps[k] = state.depth_m[k] * eta * c / 2.0;
+            }
+        }
+    }
+    let mut shore = Shore::new(bed, WALLS, state).expect("valid");
+    let (mut face, mut lee, mut gap) = (0.0f32, 0.0f32, 0.0f32);
+    while shore.time_s() < 25.0 {
+        let dt = shore.stable_dt_s();
+        shore.step(dt).expect("steps");
+        for j in 5..20 {
+            face = face.max(shore.surface_m(79, j));
+        }
+        // Before the reflections from the channel's far walls come back (18 s): the
+        // lee behind the breakwater, far from its tip, and the water past the gap.
+        if shore.time_s() < 18.0 {
+            for j in 1..8 {
+                lee = lee.max(shore.surface_m(88, j));
+            }
+            gap = gap.max(shore.surface_m(95, 38));
+        }
+    }
+    let top = shore.state().depth_m[20 * nx + 80];
+    println!("before the face {face:.4} m, in the lee {lee:.4} m, past the gap {gap:.4} m");
+    assert!(top <= DRY_DEPTH_M, "the breakwater's top stays dry: {top}");
+    assert!((face / (2.0 * a) - 1.0).abs() < 0.1, "{face}");
+    assert!(
+        lee < 0.6 * a && lee < 0.75 * gap && gap > 0.6 * a,
+        "{lee} {gap}"
+    );
+}
