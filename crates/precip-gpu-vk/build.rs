@@ -22,8 +22,9 @@ const BOUNDS_CHECKS: naga::proc::BoundsCheckPolicies = naga::proc::BoundsCheckPo
     binding_array: naga::proc::BoundsCheckPolicy::Unchecked,
 };
 
-/// Programs this backend never runs: the drawing probe is a wgpu test kernel.
-const NOT_ON_VULKAN: [Program; 1] = [Program::ProbeDrawing];
+/// Programs this backend never runs: the drawing and ocean probes are wgpu test
+/// kernels.
+const NOT_ON_VULKAN: [Program; 2] = [Program::ProbeDrawing, Program::ProbeOcean];
 
 fn main() {
     let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));

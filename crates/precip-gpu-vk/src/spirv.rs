@@ -31,8 +31,8 @@ mod tests {
         }
         assert_eq!(
             compiled,
-            Program::ALL.len() - 1,
-            "all but the drawing probe"
+            Program::ALL.len() - 2,
+            "all but the drawing and ocean probes"
         );
     }
 }

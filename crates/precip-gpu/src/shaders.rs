@@ -105,6 +105,10 @@ pub const OPTICS: ShaderFile = twin_file!("optics.wgsl", precip_model::wgsl::OPT
 pub const OPTICS_SUMS: ShaderFile = shader_file!("optics_sums.wgsl");
 /// Test kernel `probe_drawing`.
 pub const PROBE_DRAWING: ShaderFile = shader_file!("probe_drawing.wgsl");
+/// The open sea's formulas (precip-sea).
+pub const OCEAN: ShaderFile = twin_file!("ocean.wgsl", precip_sea::wgsl::OCEAN);
+/// Test kernel `probe_ocean`.
+pub const PROBE_OCEAN: ShaderFile = shader_file!("probe_ocean.wgsl");
 
 /// A GPU program: the files it is joined from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -122,6 +126,8 @@ pub enum Program {
     CullParticles,
     /// A test probe of the drawing formulas.
     ProbeDrawing,
+    /// A test probe of the open sea's formulas.
+    ProbeOcean,
     /// LiDAR beams against the particles and the ground.
     QueryBeams,
     /// The camera volume's cross-sections summed per workgroup (`Backend::optics`).
@@ -130,13 +136,14 @@ pub enum Program {
 
 impl Program {
     /// Every program.
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 9] = [
         Self::StepParticles,
         Self::CoverUpdate,
         Self::ProbeRng,
         Self::Render,
         Self::CullParticles,
         Self::ProbeDrawing,
+        Self::ProbeOcean,
         Self::QueryBeams,
         Self::OpticsSums,
     ];
@@ -195,6 +202,7 @@ impl Program {
                 SHADING,
                 PROBE_DRAWING,
             ],
+            Self::ProbeOcean => &[OCEAN, PROBE_OCEAN],
             Self::QueryBeams => &[LAYOUT, GROUND_MAP, LIDAR],
             Self::OpticsSums => &[LAYOUT, OPTICS, OPTICS_SUMS],
         }
@@ -222,6 +230,7 @@ impl Program {
             Self::Render => "precip render",
             Self::CullParticles => "precip cull_particles",
             Self::ProbeDrawing => "precip probe_drawing",
+            Self::ProbeOcean => "precip probe_ocean",
             Self::QueryBeams => "precip query_beams",
             Self::OpticsSums => "precip optics_sums",
         }

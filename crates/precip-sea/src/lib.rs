@@ -20,6 +20,7 @@
 pub mod ocean;
 pub mod optics;
 pub mod shore;
+pub mod wgsl;
 
 pub use shore::{
     Bathymetry, COURANT, DRY_DEPTH_M, Edge, GRAVITY_MPS2, IncomingWaves, Shore, ShoreError,

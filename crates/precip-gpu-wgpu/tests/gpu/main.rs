@@ -7,5 +7,6 @@ mod common;
 mod drawing;
 mod equivalence;
 mod images;
+mod ocean;
 mod render;
 mod rng;

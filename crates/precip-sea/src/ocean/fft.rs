@@ -73,12 +73,19 @@ pub fn inverse_stage(input: &[Complex], output: &mut [Complex], stage: u32) {
     let m = 1usize << stage;
     for p in 0..half {
         let (j, k) = (p / m, p % m);
-        let w = Complex::cis(std::f32::consts::PI * k as f32 / m as f32);
-        let a = input[j * m + k];
-        let b = input[j * m + k + half] * w;
-        output[j * 2 * m + k] = a + b;
-        output[j * 2 * m + k + m] = a - b;
+        let (sum, difference) = butterfly(input[j * m + k], input[j * m + k + half], k, m);
+        output[j * 2 * m + k] = sum;
+        output[j * 2 * m + k + m] = difference;
     }
+}
+
+/// One butterfly of a stage `m = 2^stage`: `(a + w·b, a − w·b)`, `w = e^(iπk/m)`.
+/// WGSL twin: `sea_butterfly` (on two complex numbers at once).
+#[must_use]
+pub fn butterfly(a: Complex, b: Complex, k: usize, m: usize) -> (Complex, Complex) {
+    let w = Complex::cis(std::f32::consts::PI * k as f32 / m as f32);
+    let wb = b * w;
+    (a + wb, a - wb)
 }
 
 /// The inverse transform `x[n] = Σ_k X[k]·e^(2πi·kn/N)` (no 1/N) of `data`, in

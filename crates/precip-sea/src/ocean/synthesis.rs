@@ -58,7 +58,7 @@ impl OceanCascade {
             for i in 0..n {
                 let (kx, kz) = (wavenumber(i, n) * dk, wavenumber(j, n) * dk);
                 let f = sea.density_m4(kx, kz);
-                let (g1, g2) = normal_pair(seed, (j * n + i) as u32);
+                let (g1, g2) = amplitude_normals(seed, (j * n + i) as u32);
                 // E|h₀|² = F·Δk²/2: with its mirror's, each wavenumber carries
                 // the spectrum's variance over its cell.
                 let scale = (f * dk * dk * 0.25).sqrt();
@@ -153,8 +153,9 @@ pub(crate) const fn hash(x: u32) -> u32 {
 }
 
 /// Two independent standard normal numbers for point `index` of `seed` (Box–Muller
-/// over PCG hashes).
-fn normal_pair(seed: u32, index: u32) -> (f32, f32) {
+/// over PCG hashes): the amplitudes' draws. WGSL twin: `sea_normal_pair`.
+#[must_use]
+pub fn amplitude_normals(seed: u32, index: u32) -> (f32, f32) {
     let a = hash(hash(seed) ^ index);
     let b = hash(a ^ 0x9e37_79b9);
     let u1 = ((a >> 8) as f32 + 0.5) / 16_777_216.0;
