@@ -154,7 +154,7 @@ const XYZ_TO_SRGB: [[f32; 3]; 3] = [
 ];
 
 /// The sRGB channels' sensitivities at `nm`: the colour-matching functions through
-/// [`XYZ_TO_SRGB`], their negative lobes cut.
+/// the XYZ → linear sRGB matrix, their negative lobes cut.
 #[must_use]
 pub fn channel_sensitivity(nm: f32) -> [f32; 3] {
     let c = colour_matching(nm);
