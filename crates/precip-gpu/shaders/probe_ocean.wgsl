@@ -1,6 +1,6 @@
 // probe_ocean.wgsl: a test kernel that evaluates the open sea's formulas
 // (ocean.wgsl, twins of precip_sea::ocean) for a list of inputs, so tests compare
-// them with the Rust ones. Program: ocean, this file.
+// them with the Rust ones. Program: rng, ocean, this file.
 
 struct ProbeOcean {
     k: vec2<f32>,

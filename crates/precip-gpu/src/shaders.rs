@@ -202,7 +202,7 @@ impl Program {
                 SHADING,
                 PROBE_DRAWING,
             ],
-            Self::ProbeOcean => &[OCEAN, PROBE_OCEAN],
+            Self::ProbeOcean => &[RNG, OCEAN, PROBE_OCEAN],
             Self::QueryBeams => &[LAYOUT, GROUND_MAP, LIDAR],
             Self::OpticsSums => &[LAYOUT, OPTICS, OPTICS_SUMS],
         }

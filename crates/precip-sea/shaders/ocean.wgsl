@@ -63,18 +63,12 @@ fn sea_density(k_vec: vec2<f32>, wind: vec2<f32>, direction: vec2<f32>, shortest
     return PHILLIPS_AMPLITUDE * exp(-1.0 / (kl * kl)) / (k2 * k2) * c * c * cut;
 }
 
-// The PCG hash (rng.wgsl's pcg_hash), for the amplitudes' draws.
-fn sea_hash(input: u32) -> u32 {
-    let state = input * 747796405u + 2891336453u;
-    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
 // synthesis.rs amplitude_normals: two standard normal numbers for point `index`
-// of `seed` (Box-Muller).
+// of `seed` (Box-Muller over rng.wgsl's pcg_hash, which a program joining this file
+// joins first).
 fn sea_normal_pair(seed: u32, index: u32) -> vec2<f32> {
-    let a = sea_hash(sea_hash(seed) ^ index);
-    let b = sea_hash(a ^ 0x9e3779b9u);
+    let a = pcg_hash(pcg_hash(seed) ^ index);
+    let b = pcg_hash(a ^ 0x9e3779b9u);
     let u1 = (f32(a >> 8u) + 0.5) / 16777216.0;
     let u2 = f32(b >> 8u) / 16777216.0;
     let r = sqrt(-2.0 * log(u1));

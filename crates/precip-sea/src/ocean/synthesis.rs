@@ -145,7 +145,9 @@ fn wavenumber(i: usize, n: usize) -> f32 {
     }
 }
 
-/// The PCG hash (Jarzynski & Olano 2020), as precip's other crates use it.
+/// The PCG hash (Jarzynski & Olano 2020): `precip_model::particles::rng::pcg_hash`
+/// (whose WGSL the GPU's draws use), copied here so this crate stays free of the
+/// model's.
 pub(crate) const fn hash(x: u32) -> u32 {
     let state = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
     let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);

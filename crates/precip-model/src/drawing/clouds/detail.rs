@@ -29,6 +29,7 @@
 //! (drawing.wgsl).
 
 use glam::{IVec3, UVec3, Vec2, Vec3, Vec4};
+use rayon::prelude::*;
 
 use super::{CLOUD_DETAIL_PERIOD_M, ranks};
 use crate::particles::rng::pcg_hash;
@@ -111,20 +112,22 @@ pub fn cloud_detail_atlas_texels() -> Vec<u8> {
     let n = CLOUD_DETAIL_PX;
     let count = (n * n * n) as usize;
     let index = |t: UVec3| (t.x + n * (t.y + n * t.z)) as usize;
-    let mut perlin_worley = vec![0.0f32; count];
-    let mut billows = vec![0.0f32; count];
-    for z in 0..n {
-        for y in 0..n {
-            for x in 0..n {
-                let t = UVec3::new(x, y, z);
-                let p = (t.as_vec3() + 0.5) / n as f32;
-                let perlin = 0.5 + perlin_octaves(p);
-                let worley = worley_octaves(p, 2);
-                perlin_worley[index(t)] = (perlin - (worley - 1.0)) / (2.0 - worley);
-                billows[index(t)] = worley_octaves(p, 4);
-            }
-        }
-    }
+    let (coarse, fine) = (WorleyCells::octaves(2), WorleyCells::octaves(4));
+    // Each texel on its own (made at the first configure: in parallel, the same
+    // values whatever the threads).
+    let (perlin_worley, billows): (Vec<f32>, Vec<f32>) = (0..count)
+        .into_par_iter()
+        .map(|i| {
+            let t = UVec3::new(i as u32 % n, (i as u32 / n) % n, i as u32 / (n * n));
+            let p = (t.as_vec3() + 0.5) / n as f32;
+            let perlin = 0.5 + perlin_octaves(p);
+            let worley = worley_octaves(p, &coarse);
+            (
+                (perlin - (worley - 1.0)) / (2.0 - worley),
+                worley_octaves(p, &fine),
+            )
+        })
+        .unzip();
     let pw = ranks(&perlin_worley);
     let w = ranks(&billows);
     let side = CLOUD_DETAIL_ATLAS_PX as usize;
@@ -160,10 +163,48 @@ fn perlin_octaves(p: Vec3) -> f32 {
 /// Three octaves of inverted tiling Worley noise (`1 − F1`, cells `cells`, twice
 /// and four times as many along each axis, weights 0.625, 0.25, 0.125) at `p` in
 /// `[0, 1)³`, in `[0, 1]`.
-fn worley_octaves(p: Vec3, cells: u32) -> f32 {
-    0.625 * (1.0 - tiling_worley(p, cells, 11))
-        + 0.25 * (1.0 - tiling_worley(p, cells * 2, 12))
-        + 0.125 * (1.0 - tiling_worley(p, cells * 4, 13))
+fn worley_octaves(p: Vec3, octaves: &[WorleyCells; 3]) -> f32 {
+    0.625 * (1.0 - tiling_worley(p, &octaves[0]))
+        + 0.25 * (1.0 - tiling_worley(p, &octaves[1]))
+        + 0.125 * (1.0 - tiling_worley(p, &octaves[2]))
+}
+
+/// The random point of each cell of a tiling Worley lattice, drawn once: its
+/// offset in the cell, by wrapped cell.
+struct WorleyCells {
+    cells: u32,
+    offsets: Vec<Vec3>,
+}
+
+impl WorleyCells {
+    /// `cells` along each axis of the unit cube, the points of `seed`.
+    fn new(cells: u32, seed: u32) -> Self {
+        let offsets = (0..cells * cells * cells)
+            .map(|i| {
+                let c = IVec3::new(
+                    (i % cells) as i32,
+                    ((i / cells) % cells) as i32,
+                    (i / (cells * cells)) as i32,
+                );
+                let h = cell_hash(c, cells, seed);
+                Vec3::new(
+                    unit(h),
+                    unit(pcg_hash(h ^ 0x68e3_1da4)),
+                    unit(pcg_hash(h ^ 0xb529_7a4d)),
+                )
+            })
+            .collect();
+        Self { cells, offsets }
+    }
+
+    /// Three octaves from `cells` (twice and four times as many), seeds 11–13.
+    fn octaves(cells: u32) -> [Self; 3] {
+        [
+            Self::new(cells, 11),
+            Self::new(cells * 2, 12),
+            Self::new(cells * 4, 13),
+        ]
+    }
 }
 
 /// A lattice hash of a cell wrapped to `period`.
@@ -233,21 +274,23 @@ fn tiling_perlin_3d(p: Vec3, period: u32, seed: u32) -> f32 {
 /// Worley's F1 (the distance to the nearest of one random point a cell, in cells,
 /// at most 1) of `cells` cells along each axis of the unit cube, tiling, at `p` in
 /// `[0, 1)³`.
-fn tiling_worley(p: Vec3, cells: u32, seed: u32) -> f32 {
+fn tiling_worley(p: Vec3, lattice: &WorleyCells) -> f32 {
+    let cells = lattice.cells;
     let q = p * cells as f32;
     let base = q.floor().as_ivec3();
+    let period = cells as i32;
     let mut nearest = f32::MAX;
     for dz in -1..=1 {
         for dy in -1..=1 {
             for dx in -1..=1 {
                 let cell = base + IVec3::new(dx, dy, dz);
-                let h = cell_hash(cell, cells, seed);
-                let point = cell.as_vec3()
-                    + Vec3::new(
-                        unit(h),
-                        unit(pcg_hash(h ^ 0x68e3_1da4)),
-                        unit(pcg_hash(h ^ 0xb529_7a4d)),
-                    );
+                let w = IVec3::new(
+                    cell.x.rem_euclid(period),
+                    cell.y.rem_euclid(period),
+                    cell.z.rem_euclid(period),
+                );
+                let k = (w.x + period * (w.y + period * w.z)) as usize;
+                let point = cell.as_vec3() + lattice.offsets[k];
                 nearest = nearest.min(point.distance_squared(q));
             }
         }
