@@ -228,13 +228,40 @@ pub fn download_image(
         MemoryLocation::GpuToCpu,
     )?;
     let region = whole_image(image.extent);
+    // An image resting in another layout (a storage image's GENERAL) is moved to
+    // the one copies read best from, and back.
+    let src = vk::ImageLayout::TRANSFER_SRC_OPTIMAL;
+    let moved = layout != src;
+    let all = vk::AccessFlags::MEMORY_READ | vk::AccessFlags::MEMORY_WRITE;
+    let read = vk::AccessFlags::TRANSFER_READ;
+    let stages = (
+        vk::PipelineStageFlags::ALL_COMMANDS,
+        vk::PipelineStageFlags::TRANSFER,
+    );
     let result = submit(device, |cb| {
-        // SAFETY: `cb` is recording; the image rests in `layout` (a layout copies
-        // read from) and the staging buffer is live and large enough.
+        // SAFETY: `cb` is recording, outside a render pass; the image rests in
+        // `layout` and the barrier names it; the staging buffer is live and large
+        // enough; the second barrier puts the image back where it rests.
         unsafe {
+            if moved {
+                image_barriers(
+                    device,
+                    cb,
+                    stages,
+                    &[layout_barrier(image, (layout, all), (src, read))],
+                );
+            }
             device
                 .raw
-                .cmd_copy_image_to_buffer(cb, image.raw, layout, staging.raw, &[region]);
+                .cmd_copy_image_to_buffer(cb, image.raw, src, staging.raw, &[region]);
+            if moved {
+                image_barriers(
+                    device,
+                    cb,
+                    (stages.1, stages.0),
+                    &[layout_barrier(image, (src, read), (layout, all))],
+                );
+            }
         }
     })
     .and_then(|f| f.wait(device))

@@ -68,6 +68,16 @@ struct RenderParams {
     // the target's corner from the lens's axis, px (the grain is laid from the axis,
     // alike in every channel of a rig), 0, 0
     streak_origin: vec4<f32>,
+    // the sea's wind: speed m/s, fetch m, the direction it blows toward (x, z)
+    ocean_wind: vec4<f32>,
+    // the sea: choppiness, depth m, seed (an integer), 0
+    ocean: vec4<f32>,
+    // the colour deep sea water sends out (linear RGB), the whitecaps' share
+    sea_colour: vec4<f32>,
+    // the sea's diffuse attenuation per m (RGB), 0
+    sea_attenuation: vec4<f32>,
+    // the seabed's colour seen through the surface (RGB), 0
+    sea_bed: vec4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

@@ -118,6 +118,18 @@ impl<G: Gpu> GpuBackend<G> {
         }
     }
 
+    /// The sea's atlases as the last frame wrote them (tests and tools; see
+    /// [`FrameState::sea_atlases`]); `None` before a frame.
+    pub fn read_sea_atlases(&mut self) -> Result<Option<[Vec<[f32; 4]>; 2]>, BackendError> {
+        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
+            operation: "read_sea_atlases",
+        })?;
+        match &state.frame {
+            Some(frame) => frame.sea_atlases(&mut self.gpu),
+            None => Ok(None),
+        }
+    }
+
     /// The albedo of the ground the last frame's drops refracted and of the land
     /// beyond the scene (tests and tools; see [`FrameState::drop_ground_albedo`]);
     /// `None` before a frame.

@@ -289,6 +289,34 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
         binding(rb::CLOUD_DETAIL, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::CLOUD_SAMPLER, FILTERING, Stages::DrawAndCompute),
         binding(rb::CLOUD_SHADOW, FILTERED_2D, Stages::DrawAndCompute),
+        binding(rb::OCEAN_DISPLACEMENT, FILTERED_2D, Stages::DrawAndCompute),
+        binding(rb::OCEAN_SLOPE, FILTERED_2D, Stages::DrawAndCompute),
+        binding(rb::SEA_DEPTH, FILTERED_2D, Stages::DrawAndCompute),
+    ],
+};
+
+/// Group 0 of the open sea's kernels: the frame's block (and its storage copy), the
+/// spectra they transform and the atlases they write.
+pub const OCEAN_KERNEL: GroupLayout = GroupLayout {
+    name: "precip ocean",
+    bindings: &[
+        binding(
+            rb::PARAMS,
+            uniform(size_of::<RenderParams>(), true),
+            Stages::Compute,
+        ),
+        binding(rb::PARAMS_SWITCHES, RENDER_PARAMS, Stages::Compute),
+        binding(rb::OCEAN_SPECTRA, storage(false), Stages::Compute),
+        binding(
+            rb::OCEAN_DISPLACEMENT_OUT,
+            BindingKind::StorageTextureRgba16Float,
+            Stages::Compute,
+        ),
+        binding(
+            rb::OCEAN_SLOPE_OUT,
+            BindingKind::StorageTextureRgba16Float,
+            Stages::Compute,
+        ),
     ],
 };
 
@@ -483,6 +511,10 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::OpticsSums, _) => &[OPTICS],
         (Program::Render, "cover_texture" | "drop_ground") => &[COVER_TEXTURE],
         (Program::Render, "cloud_shadow_map") => &[CLOUD_SHADOW_KERNEL],
+        (
+            Program::Render,
+            "ocean_spectrum" | "ocean_fft_rows" | "ocean_fft_columns" | "ocean_resolve",
+        ) => &[OCEAN_KERNEL],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
         (Program::Render, "vs_sky" | "fs_sky" | "vs_clouds_all" | "fs_clouds_all") => {
@@ -502,9 +534,15 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::Render, "vs_mirror" | "fs_mirror") => {
             &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL]
         }
-        (Program::Render, "vs_scene" | "fs_scene" | "fs_water_body" | "fs_water_body_planar") => {
-            &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL, REFLECTIONS]
-        }
+        (
+            Program::Render,
+            "vs_scene"
+            | "fs_scene"
+            | "fs_water_body"
+            | "fs_water_body_planar"
+            | "vs_sea"
+            | "fs_sea",
+        ) => &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL, REFLECTIONS],
         (Program::Render, "vs_splat_resolve" | "fs_splat_resolve") => {
             &[RENDER_FRAME, RENDER_LIGHT, SPLAT_RESOLVE]
         }

@@ -22,7 +22,7 @@ use crate::frame_resources::TargetResource;
 use crate::gpu::Gpu;
 use crate::recipe::{
     CLOUD_SHADOW_PASS, COVER_TEXTURE_PASS, CULL_PASSES, DROP_GROUND_PASS, DispatchCounts,
-    FrameDraws, KernelPass, SPLAT_PASS, dispatch_size, render_passes,
+    FrameDraws, KernelPass, OCEAN_PASSES, SPLAT_PASS, dispatch_size, render_passes,
 };
 use crate::shaders::Program;
 
@@ -120,8 +120,11 @@ pub enum ColourTarget {
 pub enum MeshesOf {
     /// Every mesh.
     All,
-    /// The water bodies (meshes tagged water): their fragments mirror the scene.
+    /// The water bodies (meshes tagged water) but the sea: their fragments mirror
+    /// the scene.
     WaterBodies,
+    /// The sea (meshes tagged `"water": "sea"`).
+    Sea,
     /// Every mesh but the water bodies.
     AllButWaterBodies,
 }
@@ -275,6 +278,8 @@ pub enum PassWhen {
     CloudsB,
     /// While none is.
     CloudsNot,
+    /// While the scene has a sea (a mesh tagged `"water": "sea"`).
+    Sea,
 }
 
 /// One pass of the frame.
@@ -334,6 +339,18 @@ const WATER_BODY_DRAW: Draw = Draw {
         which: MeshesOf::WaterBodies,
     },
     when: PassWhen::WaterMirroredNot,
+    ..SCENE_DRAW
+};
+
+// The sea: its still surface moved by the waves, its fragments shaded by their
+// slopes and foam, following their mirrored rays (a pipeline of its own).
+const SEA_DRAW: Draw = Draw {
+    entry_points: render_passes::SEA,
+    of: DrawOf::SceneMeshes {
+        materials: true,
+        which: MeshesOf::Sea,
+    },
+    when: PassWhen::Sea,
     ..SCENE_DRAW
 };
 
@@ -490,11 +507,16 @@ const CLOUDS_PASS: RenderPassRecipe = RenderPassRecipe {
 };
 
 /// The frame, in order (see the module docs and [`crate::renderer`]).
-pub const FRAME_PASSES: [FramePass; 14] = [
+pub const FRAME_PASSES: [FramePass; 15] = [
     FramePass {
         name: "cover_texture",
         work: PassWork::Kernels(&[COVER_TEXTURE_PASS, DROP_GROUND_PASS]),
         when: PassWhen::Always,
+    },
+    FramePass {
+        name: "ocean",
+        work: PassWork::Kernels(&OCEAN_PASSES),
+        when: PassWhen::Sea,
     },
     FramePass {
         name: "shadow",
@@ -563,6 +585,7 @@ pub const FRAME_PASSES: [FramePass; 14] = [
                 GROUND_MIRROR_DRAW,
                 WATER_BODY_DRAW,
                 WATER_BODY_PLANAR_DRAW,
+                SEA_DRAW,
                 SKY_DRAW,
                 SKY_CLOUDS_DRAW,
                 SKY_CLOUDS_B_DRAW,
@@ -683,6 +706,8 @@ pub struct FrameConditions {
     /// The frame marches one pixel per block of the clouds' image and takes the
     /// rest from the frame before's ([`PassWhen::CloudsFresh`]).
     pub clouds_fresh: bool,
+    /// The scene has a sea ([`PassWhen::Sea`]).
+    pub sea: bool,
 }
 
 impl PassWhen {
@@ -707,6 +732,7 @@ impl PassWhen {
             Self::Clouds => conditions.clouds,
             Self::CloudsB => conditions.clouds && conditions.clouds_into_b,
             Self::CloudsNot => !conditions.clouds,
+            Self::Sea => conditions.sea,
         }
     }
 }
@@ -808,6 +834,8 @@ pub struct FrameHost {
     shadow_cache: ShadowCache,
     /// The scene has a water body (a mesh tagged water).
     water_bodies: bool,
+    /// The scene has a sea.
+    sea: bool,
     /// Its water bodies' level surfaces (the planar mirror's candidates).
     water_levels: Vec<WaterLevel>,
 }
@@ -823,6 +851,10 @@ impl FrameHost {
                 .scene
                 .as_ref()
                 .is_some_and(|s| s.meshes.iter().any(precip_model::Mesh::is_water_body)),
+            sea: setup
+                .scene
+                .as_ref()
+                .is_some_and(|s| s.meshes.iter().any(precip_model::Mesh::is_sea)),
             water_levels: setup
                 .scene
                 .as_ref()
@@ -873,6 +905,7 @@ impl FrameHost {
                 clouds: !setup.render.cloud_layers.is_empty(),
                 clouds_into_b: false,
                 clouds_fresh: false,
+                sea: self.sea,
             },
             sky_colour: haze_colour(&setup.render, host.weather()),
             mirror_rect_px: mirror.map(|m| m.rect_px),
@@ -945,6 +978,7 @@ mod tests {
                     clouds,
                     clouds_into_b: into_b,
                     clouds_fresh: into_b,
+                    sea: into_b,
                 })
                 .collect();
                 assert_eq!(plan.len(), FRAME_PASSES.len());
@@ -961,6 +995,7 @@ mod tests {
                         "clouds" => clouds && !into_b,
                         "clouds_b" | "clouds_fresh" => clouds && into_b,
                         "cloud_shadow" => clouds,
+                        "ocean" => into_b,
                         _ => true,
                     };
                     assert_eq!(p.runs, expected, "{}", p.pass.name);
@@ -993,6 +1028,7 @@ mod tests {
                 clouds: false,
                 clouds_into_b: false,
                 clouds_fresh: false,
+                sea: false,
             };
             let ground: Vec<_> = recipe
                 .draws
@@ -1025,6 +1061,7 @@ mod tests {
                     clouds: true,
                     clouds_into_b: into_b,
                     clouds_fresh: fresh,
+                    sea: false,
                 };
                 let ran: Vec<_> = frame_plan(conditions)
                     .filter(|p| p.runs && p.pass.name.starts_with("clouds"))
@@ -1059,6 +1096,7 @@ mod tests {
             TIMED_RENDER_PASSES,
             [
                 "cover_texture",
+                "ocean",
                 "shadow",
                 "water_mirror",
                 "cloud_shadow",

@@ -11,15 +11,18 @@ use precip_model::drawing::clouds::{
     CLOUD_DETAIL_ATLAS_PX, CLOUD_MAP_PX, CLOUD_SHADOW_MAP_PX, cloud_noise,
 };
 use precip_model::drawing::render::RenderParams;
+use precip_model::drawing::sea::sea_depth_map;
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 
 use crate::bind_groups::{
     CLOUD_FRESH, CLOUD_IMAGE, CLOUD_IMAGE_B, CLOUD_SHADOW_KERNEL, COVER_TEXTURE, CULL, GroupLayout,
-    PARTICLE_DEPTH, PARTICLE_IMAGE, REFLECTIONS, RENDER_FRAME, RENDER_LIGHT, SPLAT, SPLAT_RESOLVE,
+    OCEAN_KERNEL, PARTICLE_DEPTH, PARTICLE_IMAGE, REFLECTIONS, RENDER_FRAME, RENDER_LIGHT, SPLAT,
+    SPLAT_RESOLVE,
 };
 use crate::recipe::{
-    DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, SPLAT_BYTES_PER_PIXEL,
-    cull_bindings as cb, cull_groups, render_bindings as rb,
+    DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, OCEAN_ATLAS_PX,
+    OCEAN_SPECTRA_BYTES, SPLAT_BYTES_PER_PIXEL, cull_bindings as cb, cull_groups,
+    render_bindings as rb,
 };
 use crate::resources::{BufferUsage, SimBuffer};
 
@@ -40,6 +43,8 @@ pub enum FrameBuffer {
     Draws,
     /// The albedo of the ground the drops refract (`drop_ground` kernel).
     DropGround,
+    /// The sea's spectra, transformed in place by the ocean kernels.
+    OceanSpectra,
 }
 
 /// A row of the frame's buffers.
@@ -57,7 +62,7 @@ pub struct FrameBufferSpec {
 
 /// The frame's buffers for `particle_count` particles.
 #[must_use]
-pub fn frame_buffers(particle_count: u32) -> [FrameBufferSpec; 6] {
+pub fn frame_buffers(particle_count: u32) -> [FrameBufferSpec; 7] {
     let count = u64::from(particle_count);
     let spec = |buffer, label, bytes: u64, usage| FrameBufferSpec {
         buffer,
@@ -102,6 +107,12 @@ pub fn frame_buffers(particle_count: u32) -> [FrameBufferSpec; 6] {
             8,
             BufferUsage::Storage,
         ),
+        spec(
+            FrameBuffer::OceanSpectra,
+            "precip ocean spectra",
+            OCEAN_SPECTRA_BYTES,
+            BufferUsage::Storage,
+        ),
     ]
 }
 
@@ -125,6 +136,14 @@ pub enum FrameTexture {
     /// The clouds' shadow map: written by a kernel while a layer is drawn, sampled
     /// by the lit draws.
     CloudShadow,
+    /// The sea's displacement atlas: written by `ocean_resolve` while a sea is
+    /// drawn, read by its draw.
+    OceanDisplacement,
+    /// The sea's slope atlas (slopes and the Jacobian), likewise.
+    OceanSlope,
+    /// The water's depth under the sea's level over the ground grid
+    /// (`precip_model::drawing::sea::sea_depth_map`): where the waves shoal.
+    SeaDepth,
 }
 
 /// A texel format of the frame.
@@ -254,7 +273,47 @@ pub fn frame_textures(setup: &Setup) -> Vec<TextureSpec> {
             usage: TextureUsage::StorageAndSampled,
             contents: None,
         },
+        TextureSpec {
+            texture: FrameTexture::OceanDisplacement,
+            label: "precip ocean displacement",
+            size: OCEAN_ATLAS_PX,
+            format: TexelFormat::Rgba16Float,
+            usage: TextureUsage::StorageAndSampled,
+            contents: None,
+        },
+        TextureSpec {
+            texture: FrameTexture::OceanSlope,
+            label: "precip ocean slope",
+            size: OCEAN_ATLAS_PX,
+            format: TexelFormat::Rgba16Float,
+            usage: TextureUsage::StorageAndSampled,
+            contents: None,
+        },
+        sea_depth(setup),
     ]
+}
+
+/// The sea's depth map over the ground grid; one deep texel without a sea.
+fn sea_depth(setup: &Setup) -> TextureSpec {
+    let frame = setup.ground.frame;
+    let depths = setup
+        .scene
+        .as_ref()
+        .map(|s| sea_depth_map(s, frame))
+        .unwrap_or_default();
+    let (size, contents) = if depths.is_empty() {
+        ([1, 1], vec![u8::MAX])
+    } else {
+        ([frame.texels.x, frame.texels.y], depths)
+    };
+    TextureSpec {
+        texture: FrameTexture::SeaDepth,
+        label: "precip sea depth",
+        size,
+        format: TexelFormat::R8Unorm,
+        usage: TextureUsage::Sampled,
+        contents: Some(contents),
+    }
 }
 
 /// A sampler of the frame.
@@ -491,7 +550,7 @@ pub struct FrameGroupFill {
 }
 
 /// The groups made once per configuration (the material group is the scene's).
-pub const FRAME_GROUPS: [FrameGroupFill; 5] = [
+pub const FRAME_GROUPS: [FrameGroupFill; 6] = [
     FrameGroupFill {
         layout: &RENDER_FRAME,
         bound: &[
@@ -521,6 +580,37 @@ pub const FRAME_GROUPS: [FrameGroupFill; 5] = [
             (
                 rb::CLOUD_SHADOW,
                 FrameBound::Texture(FrameTexture::CloudShadow),
+            ),
+            (
+                rb::OCEAN_DISPLACEMENT,
+                FrameBound::Texture(FrameTexture::OceanDisplacement),
+            ),
+            (
+                rb::OCEAN_SLOPE,
+                FrameBound::Texture(FrameTexture::OceanSlope),
+            ),
+            (rb::SEA_DEPTH, FrameBound::Texture(FrameTexture::SeaDepth)),
+        ],
+    },
+    FrameGroupFill {
+        layout: &OCEAN_KERNEL,
+        bound: &[
+            (rb::PARAMS, FrameBound::Buffer(FrameBuffer::RenderParams)),
+            (
+                rb::PARAMS_SWITCHES,
+                FrameBound::Buffer(FrameBuffer::RenderParams),
+            ),
+            (
+                rb::OCEAN_SPECTRA,
+                FrameBound::Buffer(FrameBuffer::OceanSpectra),
+            ),
+            (
+                rb::OCEAN_DISPLACEMENT_OUT,
+                FrameBound::StorageTexture(FrameTexture::OceanDisplacement),
+            ),
+            (
+                rb::OCEAN_SLOPE_OUT,
+                FrameBound::StorageTexture(FrameTexture::OceanSlope),
             ),
         ],
     },

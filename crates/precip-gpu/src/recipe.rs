@@ -7,6 +7,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use precip_cover::GridFrame;
+use precip_sea::ocean::{OCEAN_CASCADES, OCEAN_N};
 
 use crate::shaders::Program;
 
@@ -97,6 +98,14 @@ pub enum DispatchOver {
     /// One invocation per texel of the clouds' shadow map
     /// ([`precip_model::drawing::clouds::CLOUD_SHADOW_MAP_PX`] squared).
     CloudShadowTexels,
+    /// One invocation per point of the sea's cascades
+    /// (`precip_sea::ocean::OCEAN_CASCADES` × `OCEAN_N`²).
+    OceanPoints,
+    /// One workgroup of [`WORKGROUP_SIZE`] (= `OCEAN_N / 2`) per line of a field of
+    /// a cascade (cascades × 2 fields × `OCEAN_N` lines): the FFT's.
+    OceanLines,
+    /// One invocation per texel of the sea's atlases ([`OCEAN_ATLAS_PX`]).
+    OceanTexels,
     /// One workgroup per cover tile ([`COVER_TILE_SIDE`]) on a GPU, per
     /// [`COVER_TILES_PER_WORKGROUP`] on a device that computes on the CPU, a texel
     /// an invocation, each workgroup taking a listed tile at a time with the
@@ -158,6 +167,9 @@ impl DispatchOver {
             // stepped, the splat's from the ones drawn).
             Self::ParticleList => list_invocations(counts.stepped_particles),
             Self::WaveCells => counts.wave_cells,
+            Self::OceanPoints => (OCEAN_CASCADES * OCEAN_N * OCEAN_N) as u32,
+            Self::OceanLines => (OCEAN_CASCADES * 2 * OCEAN_N) as u32 * WORKGROUP_SIZE,
+            Self::OceanTexels => OCEAN_ATLAS_PX[0] * OCEAN_ATLAS_PX[1],
             Self::CoverTiles => {
                 let per_workgroup = match counts.cover_tiles_per_workgroup {
                     0 => 1,
@@ -508,7 +520,7 @@ pub fn substep_timings(
 /// serve it (every kernel of [`SUBSTEP_PASSES`] and pass of
 /// [`crate::frame::FRAME_PASSES`] is in exactly one): what the viewer's summary and
 /// the report add up into each feature's share of the frame.
-pub const FEATURES: [(&str, &[&str]); 7] = [
+pub const FEATURES: [(&str, &[&str]); 8] = [
     (
         "particles",
         &[
@@ -549,6 +561,7 @@ pub const FEATURES: [(&str, &[&str]); 7] = [
         "sky",
         &["cloud_shadow", "clouds_fresh", "clouds", "clouds_b"],
     ),
+    ("sea", &["ocean"]),
     ("scene", &["scene"]),
     ("shadow", &["shadow"]),
 ];
@@ -741,6 +754,9 @@ pub mod render_passes {
     /// The water bodies where the planar mirror is drawn: its image sampled.
     pub const WATER_BODIES_PLANAR: (&str, Option<&str>) =
         ("vs_scene", Some("fs_water_body_planar"));
+    /// The open sea: its still surface moved by the waves, shaded by their slopes
+    /// and foam (render_ocean.wgsl).
+    pub const SEA: (&str, Option<&str>) = ("vs_sea", Some("fs_sea"));
     /// The scene but the water bodies, reflected about their level, into the
     /// mirror image.
     pub const MIRROR: (&str, Option<&str>) = ("vs_mirror", Some("fs_mirror"));
@@ -781,6 +797,49 @@ pub mod render_passes {
     pub const PARTICLES_COMPOSITE: (&str, Option<&str>) =
         ("vs_particles_composite", Some("fs_particles_composite"));
 }
+
+/// The sea's atlases' size, px: each cascade's `OCEAN_N`² square with a border
+/// texel each side, side by side (render_ocean.wgsl `OCEAN_ATLAS_SIDE`).
+pub const OCEAN_ATLAS_PX: [u32; 2] = [
+    (OCEAN_CASCADES * (OCEAN_N + 2)) as u32,
+    (OCEAN_N + 2) as u32,
+];
+
+/// The sea's spectra: per cascade two fields of `OCEAN_N`² `vec4<f32>`, bytes.
+pub const OCEAN_SPECTRA_BYTES: u64 = (OCEAN_CASCADES * 2 * OCEAN_N * OCEAN_N * 16) as u64;
+
+// The FFT takes a line of OCEAN_N points in one workgroup, a butterfly an
+// invocation.
+const _: () = assert!(OCEAN_N as u32 == 2 * WORKGROUP_SIZE);
+
+/// The open sea's kernels, in order (render_ocean.wgsl): the spectra at the frame's
+/// time, the inverse FFT's rows and columns, the surfaces into the atlases.
+pub const OCEAN_PASSES: [KernelPass; 4] = [
+    KernelPass {
+        program: Program::Render,
+        entry_point: "ocean_spectrum",
+        over: DispatchOver::OceanPoints,
+        when: KernelWhen::Always,
+    },
+    KernelPass {
+        program: Program::Render,
+        entry_point: "ocean_fft_rows",
+        over: DispatchOver::OceanLines,
+        when: KernelWhen::Always,
+    },
+    KernelPass {
+        program: Program::Render,
+        entry_point: "ocean_fft_columns",
+        over: DispatchOver::OceanLines,
+        when: KernelWhen::Always,
+    },
+    KernelPass {
+        program: Program::Render,
+        entry_point: "ocean_resolve",
+        over: DispatchOver::OceanTexels,
+        when: KernelWhen::Always,
+    },
+];
 
 /// The clouds' shadow map: the share of the sun's light through every layer over
 /// the land around the camera ([`render_bindings::CLOUD_SHADOW`]), while a layer is
@@ -974,6 +1033,18 @@ pub mod render_bindings {
     /// Group 0 of the `cloud_shadow_map` kernel: [`CLOUD_SHADOW`] as a write-only
     /// storage texture.
     pub const CLOUD_SHADOW_OUT: u32 = 20;
+    /// The sea's displacement atlas (λ·Dx, h, λ·Dz) m, as the sea's draw reads it.
+    pub const OCEAN_DISPLACEMENT: u32 = 22;
+    /// The sea's slope atlas (∂h/∂x, ∂h/∂z, the Jacobian).
+    pub const OCEAN_SLOPE: u32 = 23;
+    /// The sea's spectra the ocean kernels transform in place.
+    pub const OCEAN_SPECTRA: u32 = 24;
+    /// The displacement atlas as `ocean_resolve` writes it.
+    pub const OCEAN_DISPLACEMENT_OUT: u32 = 25;
+    /// The slope atlas as `ocean_resolve` writes it.
+    pub const OCEAN_SLOPE_OUT: u32 = 26;
+    /// The water's depth under the sea's level over the ground grid.
+    pub const SEA_DEPTH: u32 = 27;
     /// Group 1 of the sky's draw (its own group, numbered apart from the light's
     /// bindings): the clouds' image, `texture_2d<f32>` (`Rgba16Float`: their light,
     /// premultiplied, and opacity), read through [`COVER_SAMPLER`].

@@ -927,6 +927,31 @@ impl<G: Gpu> FrameState<G> {
             .collect())
     }
 
+    /// The sea's atlases as the last frame wrote them (`crate::recipe::OCEAN_ATLAS_PX`,
+    /// rows in order): per texel `(λ·Dx, h, λ·Dz, 0)` m and `(∂h/∂x, ∂h/∂z, J, 0)`
+    /// (render_ocean.wgsl); `None` before a frame.
+    pub fn sea_atlases(&self, gpu: &mut G) -> Result<Option<[Vec<[f32; 4]>; 2]>, BackendError> {
+        if self.frames_drawn == 0 {
+            return Ok(None);
+        }
+        let mut texels = |t: FrameTexture| -> Result<Vec<[f32; 4]>, BackendError> {
+            let texture = find(&self.textures, &t).ok_or_else(|| missing("a sea atlas"))?;
+            Ok(gpu
+                .read_texture(texture)?
+                .chunks_exact(8)
+                .map(|h| {
+                    std::array::from_fn(|i| {
+                        f16_to_f32(u16::from_le_bytes([h[2 * i], h[2 * i + 1]]))
+                    })
+                })
+                .collect())
+        };
+        Ok(Some([
+            texels(FrameTexture::OceanDisplacement)?,
+            texels(FrameTexture::OceanSlope)?,
+        ]))
+    }
+
     /// The cover's three filtered textures as the last frame wrote them: per texel
     /// `[depth mm, SWE mm, peak SWE mm, wetness, accumulation mask, melt mask, age
     /// days, puddle ratio, sand and dust kg/m², the surface's roughness length under

@@ -24,6 +24,8 @@ struct Material<G: Gpu> {
     group: Option<G::BindGroup>,
     /// The mesh is a water body (tagged water).
     water_body: bool,
+    /// The mesh is the sea (tagged `"water": "sea"`).
+    sea: bool,
 }
 
 /// The uploaded scene.
@@ -119,6 +121,7 @@ impl<G: Gpu> SceneGpu<G> {
                 texture,
                 group: None,
                 water_body: mesh.is_water_body(),
+                sea: mesh.is_sea(),
             });
             let Some(material) = self.materials.last_mut() else {
                 continue;
@@ -161,7 +164,8 @@ impl<G: Gpu> SceneGpu<G> {
         };
         let picked = |m: &Material<G>| match which {
             MeshesOf::All => true,
-            MeshesOf::WaterBodies => m.water_body,
+            MeshesOf::WaterBodies => m.water_body && !m.sea,
+            MeshesOf::Sea => m.sea,
             MeshesOf::AllButWaterBodies => !m.water_body,
         };
         if !self.materials.iter().any(picked) {

@@ -95,6 +95,9 @@ pub const PARTICLE_LISTS: ShaderFile = shader_file!("particle_lists.wgsl");
 pub const RENDER_SPLAT: ShaderFile = shader_file!("render_splat.wgsl");
 /// The scene mirrored in standing water (the scene pass calls it).
 pub const RENDER_REFLECTIONS: ShaderFile = shader_file!("render_reflections.wgsl");
+/// The open sea: kernels `ocean_spectrum`, `ocean_fft_rows`, `ocean_fft_columns`,
+/// `ocean_resolve`, and the sea's draw.
+pub const RENDER_OCEAN: ShaderFile = shader_file!("render_ocean.wgsl");
 /// The cloud layer marched into the clouds' image.
 pub const RENDER_CLOUDS: ShaderFile = shader_file!("render_clouds.wgsl");
 /// Kernels `cull_count`, `cull_scan`, `cull_write`.
@@ -182,6 +185,8 @@ impl Program {
                 RENDER_PARTICLES,
                 RENDER_SPLAT,
                 RENDER_REFLECTIONS,
+                OCEAN,
+                RENDER_OCEAN,
                 RENDER_CLOUDS,
                 COVER_TEXTURE,
             ],

@@ -284,7 +284,12 @@ fn rust_and_wgsl_layouts_match() {
             cloud_shadow_map,
             unresolved_streaks,
             streak_direction,
-            streak_origin
+            streak_origin,
+            ocean_wind,
+            ocean,
+            sea_colour,
+            sea_attenuation,
+            sea_bed
         }),
         rust_layout!(DrawArgs {
             vertex_count,
@@ -488,6 +493,28 @@ fn wgsl_constant(module: &naga::Module, name: &str) -> f64 {
         naga::Expression::Literal(naga::Literal::U32(v)) => f64::from(v),
         naga::Expression::Literal(naga::Literal::I32(v)) => f64::from(v),
         ref other => panic!("const {name} is not a literal: {other:?}"),
+    }
+}
+
+#[test]
+#[expect(
+    clippy::float_cmp,
+    reason = "a twin's constant is the same literal, bit for bit"
+)]
+fn the_sea_s_constants_are_their_rust_twins() {
+    use precip_gpu::recipe::OCEAN_ATLAS_PX;
+    use precip_model::drawing::sea as s;
+    let module = parse(Program::Render);
+    for (name, rust) in [
+        ("BREAKER_INDEX", f64::from(s::BREAKER_INDEX)),
+        ("SEA_DEPTH_RANGE_M", f64::from(s::SEA_DEPTH_RANGE_M)),
+        ("OCEAN_ATLAS_SIDE", f64::from(OCEAN_ATLAS_PX[1])),
+        (
+            "OCEAN_FFT_STAGES",
+            f64::from(precip_sea::ocean::OCEAN_N.trailing_zeros()),
+        ),
+    ] {
+        assert_eq!(wgsl_constant(&module, name), rust, "{name}");
     }
 }
 

@@ -112,6 +112,36 @@ impl WaterContent {
     }
 }
 
+/// The seabed a coast's shallow water shows: wet sand's albedo, linear sRGB (dry
+/// quartz sand reflects 0.3–0.45; wetting darkens it by about half: Lekner & Dorf
+/// 1988).
+pub const SEABED_ALBEDO: [f32; 3] = [0.22, 0.19, 0.14];
+
+impl WaterContent {
+    /// The diffuse attenuation of each channel's light going down and coming back,
+    /// m⁻¹: `K ≈ a + b_b` (Gordon 1989, a sun high in the sky), the absorption over
+    /// a metre's path ([`WaterContent::rgb_absorption_per_m`]) plus the
+    /// backscattering at the channel's middle (600, 550, 450 nm).
+    #[must_use]
+    pub fn rgb_attenuation_per_m(&self) -> [f32; 3] {
+        let a = self.rgb_absorption_per_m(1.0);
+        let nm = [600.0, 550.0, 450.0];
+        std::array::from_fn(|c| a[c] + self.backscattering_per_m(nm[c]))
+    }
+}
+
+/// The colour shallow water `depth_m` deep over a bottom sends out, each channel:
+/// `R = R∞ + (A − R∞)·e^(−2·K·d)` (Maritorena, Morel & Gentili 1994), with `deep`
+/// the deep water's colour, `bottom` the bottom's as seen through the surface (its
+/// albedo times [`WATER_LEAVING_FACTOR`]) and `k` the diffuse attenuation.
+/// WGSL twin: `sea_shallow_colour`.
+#[must_use]
+pub fn shallow_colour(deep: [f32; 3], bottom: [f32; 3], k: [f32; 3], depth_m: f32) -> [f32; 3] {
+    std::array::from_fn(|c| {
+        deep[c] + (bottom[c] - deep[c]) * (-2.0 * k[c] * depth_m.max(0.0)).exp()
+    })
+}
+
 /// Water-leaving radiance over the reflectance beneath the surface, each as a
 /// share of a white diffuser's: `t/(n²·Q)·π ≈ 0.54` (transmission 0.98 up through
 /// the surface, `n² = 1.78`, an upwelling light as even as a diffuser's; Austin 1974).
@@ -231,6 +261,28 @@ mod tests {
         assert!(w.iter().all(|c| (c - 1.0).abs() < 1e-5), "{w:?}");
         let g = reflectance_to_rgb(|_| 0.18);
         assert!(g.iter().all(|c| (c - 0.18).abs() < 1e-5), "{g:?}");
+    }
+
+    #[test]
+    fn shallow_water_shows_its_bottom_and_fades_to_the_deep_s_colour() {
+        let water = WaterContent::COASTAL;
+        let deep = water.water_leaving_colour();
+        let bottom = SEABED_ALBEDO.map(|a| a * WATER_LEAVING_FACTOR);
+        let k = water.rgb_attenuation_per_m();
+        // Red dies first; in coastal water the dissolved organic matter takes the
+        // blue, so green goes deepest (in clear water blue does).
+        assert!(k[0] > k[2] && k[2] > k[1] && k[0] > 0.2, "{k:?}");
+        let clear = WaterContent::CLEAR.rgb_attenuation_per_m();
+        assert!(clear[0] > clear[1] && clear[1] > clear[2], "{clear:?}");
+        assert!(shallow_colour(deep, bottom, k, 0.0).map(f32::to_bits) == bottom.map(f32::to_bits));
+        let mid = shallow_colour(deep, bottom, k, 1.5);
+        let far = shallow_colour(deep, bottom, k, 60.0);
+        for c in 0..3 {
+            assert!((far[c] - deep[c]).abs() < 1e-4, "{far:?} {deep:?}");
+            assert!(mid[c] < bottom[c] && mid[c] > deep[c], "{mid:?}");
+        }
+        // Over sand 1.5 m down the water is turquoise: green over red.
+        assert!(mid[1] > mid[0], "{mid:?}");
     }
 
     #[test]

@@ -13,7 +13,7 @@ use glam::{Vec2, Vec3};
 use precip_model::scene::builtin::{HousePlan, house};
 use serde_json::json;
 
-use crate::glb::{GlbMesh, write_glb};
+use crate::glb::{GlbMesh, height_grid, write_glb};
 
 /// The shipped demo file.
 pub const DEMO_GLB: &[u8] = include_bytes!("../assets/demo.glb");
@@ -88,37 +88,12 @@ fn grid(
     (nx, nz): (u32, u32),
     lift_m: f32,
 ) -> GlbMesh {
-    let mut m = GlbMesh {
-        name: name.to_owned(),
-        ..GlbMesh::default()
+    let steps = |a: f32, b: f32, n: u32| -> Vec<f32> {
+        (0..=n).map(|i| a + (b - a) * i as f32 / n as f32).collect()
     };
-    for j in 0..=nz {
-        for i in 0..=nx {
-            let x = x0 + (x1 - x0) * i as f32 / nx as f32;
-            let z = z0 + (z1 - z0) * j as f32 / nz as f32;
-            let h = |x: f32, z: f32| terrain_height_m(x, z) + lift_m;
-            let e = 0.05;
-            let normal = Vec3::new(
-                h(x - e, z) - h(x + e, z),
-                2.0 * e,
-                h(x, z - e) - h(x, z + e),
-            )
-            .normalize();
-            m.positions.push([x, h(x, z), z]);
-            m.normals.push(normal.to_array());
-            m.uvs.push([x / 4.0, z / 4.0]);
-        }
-    }
-    let row = nx + 1;
-    for j in 0..nz {
-        for i in 0..nx {
-            let a = j * row + i;
-            // Counter-clockwise seen from above (+Y).
-            m.indices
-                .extend_from_slice(&[a, a + row, a + 1, a + 1, a + row, a + row + 1]);
-        }
-    }
-    m
+    height_grid(name, &steps(x0, x1, nx), &steps(z0, z1, nz), |x, z| {
+        terrain_height_m(x, z) + lift_m
+    })
 }
 
 fn post(name: &str, at: Vec2) -> GlbMesh {
@@ -212,30 +187,7 @@ pub fn demo_meshes() -> Vec<GlbMesh> {
     sand.node_extras = Some(json!({ "surface": "sand" }));
 
     let mut meshes = vec![terrain, road, sand, pond()];
-    let plan = HousePlan::default();
-    for mesh in house(&plan)
-        .meshes
-        .into_iter()
-        .filter(|m| m.name != "ground")
-    {
-        let material_extras = match mesh.name.as_str() {
-            "walls" => Some(json!({ "snow": false })),
-            "roof" => Some(json!({ "surface": "roof" })),
-            _ => None,
-        };
-        let c = mesh.material.base_colour;
-        meshes.push(GlbMesh {
-            name: format!("house {}", mesh.name),
-            positions: mesh.positions_m.iter().map(|p| p.to_array()).collect(),
-            normals: mesh.normals.iter().map(|n| n.to_array()).collect(),
-            uvs: mesh.uvs.iter().map(|u| u.to_array()).collect(),
-            indices: mesh.indices,
-            snow_mask: Vec::new(),
-            base_colour: c,
-            material_extras,
-            node_extras: None,
-        });
-    }
+    meshes.extend(house_meshes(Vec3::ZERO));
     for (k, z) in [-12.0f32, -6.0, 0.0, 6.0, 12.0].into_iter().enumerate() {
         meshes.push(post(&format!("post {k}"), Vec2::new(ROAD_X_M.0 - 1.0, z)));
     }
@@ -244,6 +196,37 @@ pub fn demo_meshes() -> Vec<GlbMesh> {
         m.uvs.clear();
     }
     meshes
+}
+
+/// The house of `precip_model::scene::builtin` (its walls' material says
+/// `"snow": false`, its roof's `"surface": "roof"`) moved by `shift_m`, without
+/// its ground.
+#[must_use]
+pub fn house_meshes(shift_m: Vec3) -> Vec<GlbMesh> {
+    house(&HousePlan::default())
+        .meshes
+        .into_iter()
+        .filter(|m| m.name != "ground")
+        .map(|mesh| GlbMesh {
+            name: format!("house {}", mesh.name),
+            positions: mesh
+                .positions_m
+                .iter()
+                .map(|p| (*p + shift_m).to_array())
+                .collect(),
+            normals: mesh.normals.iter().map(|n| n.to_array()).collect(),
+            uvs: Vec::new(),
+            snow_mask: Vec::new(),
+            base_colour: mesh.material.base_colour,
+            material_extras: match mesh.name.as_str() {
+                "walls" => Some(json!({ "snow": false })),
+                "roof" => Some(json!({ "surface": "roof" })),
+                _ => None,
+            },
+            node_extras: None,
+            indices: mesh.indices,
+        })
+        .collect()
 }
 
 /// The demo as GLB bytes (deterministic: the same bytes every time).

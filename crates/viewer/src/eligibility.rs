@@ -1,8 +1,9 @@
 //! Snow eligibility from glTF `extras` (docs/architecture.md §6, rule 2): `{"snow": false}`,
 //! `{"snow": true}` or `{"snow": 0.0..1.0}` on a material, mesh or node; and the
 //! surface a mesh is made of: `{"surface": "asphalt" | "soil" | "grass" | "roof" |
-//! "water"}` or `{"water": true}`, with the same precedence (material, then mesh,
-//! then the nearest node up the hierarchy).
+//! "water"}` or `{"water": true}` (a pond, a lake) or `{"water": "sea"}` (the open
+//! sea, drawn with the wind's waves), with the same precedence (material, then
+//! mesh, then the nearest node up the hierarchy).
 
 use precip_model::cover::Surface;
 
@@ -15,29 +16,53 @@ fn extras_object(extras: &gltf::json::Extras) -> Result<Option<serde_json::Value
         .map_err(|e| e.to_string())
 }
 
-/// The `surface` (or `water: true`) of an `extras` object: `Ok(None)` when absent,
-/// `Err` with a message when present but not a known name.
-pub fn surface_extra(extras: &gltf::json::Extras) -> Result<Option<Surface>, String> {
+/// What a primitive is made of, as its `extras` say.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SurfaceTag {
+    /// The surface.
+    pub surface: Surface,
+    /// The open sea (`"water": "sea"`; its surface is water).
+    pub sea: bool,
+}
+
+impl From<Surface> for SurfaceTag {
+    fn from(surface: Surface) -> Self {
+        Self {
+            surface,
+            sea: false,
+        }
+    }
+}
+
+/// The `surface` (or `water: true`, `water: "sea"`) of an `extras` object:
+/// `Ok(None)` when absent, `Err` with a message when present but not a known name.
+pub fn surface_extra(extras: &gltf::json::Extras) -> Result<Option<SurfaceTag>, String> {
     let Some(value) = extras_object(extras)? else {
         return Ok(None);
     };
     if let Some(water) = value.get("water") {
         return match water {
-            serde_json::Value::Bool(true) => Ok(Some(Surface::Water)),
+            serde_json::Value::Bool(true) => Ok(Some(Surface::Water.into())),
+            serde_json::Value::String(s) if s == "sea" => Ok(Some(SurfaceTag {
+                surface: Surface::Water,
+                sea: true,
+            })),
             serde_json::Value::Bool(false) => Ok(None),
-            other => Err(format!("extras.water = {other} must be true or false")),
+            other => Err(format!(
+                "extras.water = {other} must be true, false or \"sea\""
+            )),
         };
     }
     match value.get("surface") {
         None => Ok(None),
-        Some(serde_json::Value::String(name)) => {
-            Surface::from_name(name).map(Some).ok_or_else(|| {
+        Some(serde_json::Value::String(name)) => Surface::from_name(name)
+            .map(|s| Some(s.into()))
+            .ok_or_else(|| {
                 format!(
                     "extras.surface = \"{name}\" is not a surface: use one of {}",
                     Surface::NAMES.join(", ")
                 )
-            })
-        }
+            }),
         Some(other) => Err(format!(
             "extras.surface = {other} must be a string: one of {}",
             Surface::NAMES.join(", ")
@@ -90,11 +115,18 @@ mod tests {
         assert_eq!(surface_extra(&extras(r#"{"snow": false}"#)), Ok(None));
         assert_eq!(
             surface_extra(&extras(r#"{"surface": "asphalt"}"#)),
-            Ok(Some(Surface::Asphalt))
+            Ok(Some(Surface::Asphalt.into()))
         );
         assert_eq!(
             surface_extra(&extras(r#"{"water": true}"#)),
-            Ok(Some(Surface::Water))
+            Ok(Some(Surface::Water.into()))
+        );
+        assert_eq!(
+            surface_extra(&extras(r#"{"water": "sea"}"#)),
+            Ok(Some(SurfaceTag {
+                surface: Surface::Water,
+                sea: true
+            }))
         );
         let unknown = surface_extra(&extras(r#"{"surface": "lava"}"#)).unwrap_err();
         assert!(
@@ -102,6 +134,7 @@ mod tests {
             "{unknown}"
         );
         assert!(surface_extra(&extras(r#"{"surface": 3}"#)).is_err());
-        assert!(surface_extra(&extras(r#"{"water": "yes"}"#)).is_err());
+        let yes = surface_extra(&extras(r#"{"water": "yes"}"#)).unwrap_err();
+        assert!(yes.contains("\"sea\""), "{yes}");
     }
 }

@@ -3,6 +3,7 @@
 //! indexed triangle primitive (POSITION with min/max, NORMAL, optional TEXCOORD_0 and
 //! `_SNOW_MASK`) and one material; `extras` can go on the material or the node.
 
+use glam::Vec3;
 use serde_json::{Value, json};
 
 /// One mesh to write.
@@ -26,6 +27,44 @@ pub struct GlbMesh {
     pub material_extras: Option<Value>,
     /// `extras` of the node.
     pub node_extras: Option<Value>,
+}
+
+/// A mesh over the grid of the given x and z positions (each increasing), its
+/// heights by `height`, its normals from the height's slope, facing up.
+#[must_use]
+pub fn height_grid(
+    name: &str,
+    xs: &[f32],
+    zs: &[f32],
+    height: impl Fn(f32, f32) -> f32,
+) -> GlbMesh {
+    let mut m = GlbMesh {
+        name: name.to_owned(),
+        ..GlbMesh::default()
+    };
+    for &z in zs {
+        for &x in xs {
+            let e = 0.05;
+            let normal = Vec3::new(
+                height(x - e, z) - height(x + e, z),
+                2.0 * e,
+                height(x, z - e) - height(x, z + e),
+            )
+            .normalize();
+            m.positions.push([x, height(x, z), z]);
+            m.normals.push(normal.to_array());
+        }
+    }
+    let row = xs.len() as u32;
+    for j in 0..zs.len() as u32 - 1 {
+        for i in 0..row - 1 {
+            let a = j * row + i;
+            // Counter-clockwise seen from above (+Y) for x and z increasing.
+            m.indices
+                .extend_from_slice(&[a, a + row, a + 1, a + 1, a + row, a + row + 1]);
+        }
+    }
+    m
 }
 
 /// Layout of the growing binary chunk.

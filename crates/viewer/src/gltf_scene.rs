@@ -25,13 +25,12 @@ use gltf::accessor::DataType;
 use gltf::mesh::Mode;
 use precip_model::{Material, Mesh, PreparedScene, Scene, SceneReport, TextureRgba8};
 
-use crate::eligibility::{snow_extra, surface_extra};
+use crate::eligibility::{SurfaceTag, snow_extra, surface_extra};
 use crate::error::LoadError;
 use crate::gltf_data::{
     DracoPrimitive, Views, decode_draco, load_buffers, read_floats, read_indices,
 };
 use crate::node_graph::{find_cycle, walk_order};
-use precip_model::cover::Surface;
 
 /// What loading skipped or changed.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -376,7 +375,7 @@ struct Converter<'a> {
 #[derive(Debug, Clone, Copy, Default)]
 struct Inherited {
     snow: Option<f32>,
-    surface: Option<Surface>,
+    surface: Option<SurfaceTag>,
 }
 
 impl Converter<'_> {
@@ -675,6 +674,7 @@ impl Converter<'_> {
             }
         }
         let f = pbr.base_color_factor();
+        let tag = surface_extra(material.extras())?.or(outer.surface);
         Ok(Some(Mesh {
             name: name.to_owned(),
             positions_m,
@@ -682,7 +682,8 @@ impl Converter<'_> {
             uvs: if texture.is_some() { uvs } else { Vec::new() },
             indices,
             snow_eligibility,
-            surface: surface_extra(material.extras())?.or(outer.surface),
+            surface: tag.map(|t| t.surface),
+            sea: tag.is_some_and(|t| t.sea),
             material: Material {
                 base_colour: f,
                 base_colour_texture: texture,

@@ -8,6 +8,7 @@
 
 pub mod backends;
 pub mod cigi_view;
+pub mod coast;
 pub mod demo;
 pub mod eligibility;
 pub mod error;

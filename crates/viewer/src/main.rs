@@ -9,6 +9,7 @@ use clap::{Parser, Subcommand};
 use glam::Vec3;
 use precip_model::{Camera, View};
 use precip_viewer::backends::{BackendName, open_headless};
+use precip_viewer::coast::{BEACH_VIEW, coast_glb};
 use precip_viewer::demo::{DEMO_GLB, demo_glb};
 use precip_viewer::headless::run_headless_with;
 use precip_viewer::presets::{KindName, Preset};
@@ -48,9 +49,13 @@ enum Command {
     },
     /// Write the built-in demo scene as a .glb.
     Demo {
-        /// Where to write it.
-        #[arg(long, default_value = "crates/viewer/assets/demo.glb")]
-        out: PathBuf,
+        /// Where to write it (default: crates/viewer/assets/demo.glb, or coast.glb
+        /// with --coast).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// The coastal scene instead.
+        #[arg(long)]
+        coast: bool,
     },
 }
 
@@ -121,6 +126,14 @@ struct WeatherArgs {
 struct RunArgs {
     /// The scene (.gltf or .glb); the built-in demo when absent.
     scene: Option<PathBuf>,
+    /// The built-in coastal scene (the open sea, a beach, a breakwater, a pier)
+    /// instead of the demo; its view from the beach unless --camera is given.
+    #[arg(long, conflicts_with = "scene")]
+    coast: bool,
+    /// The distance the wind has blown over open water to the scene, km (how high
+    /// a wind raises the sea: 10 a bay, 100 and more the open ocean).
+    #[arg(long, default_value_t = 100.0)]
+    sea_fetch_km: f32,
     /// The GPU backend: wgpu, or vk (precip's own Vulkan backend; with
     /// PRECIP_VK_VALIDATION=1 it runs under the Khronos validation layer).
     #[arg(long, value_enum, default_value_t = BackendName::Wgpu)]
@@ -398,6 +411,7 @@ fn cigi_receiver(
 fn run(args: &RunArgs) -> anyhow::Result<()> {
     let loaded = match &args.scene {
         Some(path) => load_scene(path)?,
+        None if args.coast => load_scene_from_slice(&coast_glb(), "built-in coast.glb")?,
         None => load_scene_from_slice(DEMO_GLB, "built-in demo.glb")?,
     };
     for line in &loaded.report.skipped {
@@ -471,6 +485,11 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             position_m: eye,
             ..Camera::default()
         }),
+        _ if args.coast => Some(Camera {
+            position_m: BEACH_VIEW.0,
+            forward: BEACH_VIEW.1 - BEACH_VIEW.0,
+            ..Camera::default()
+        }),
         _ => None,
     };
     let options = SceneOptions {
@@ -502,6 +521,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     setup.render.fog_layer = fog_layer;
     setup.render.cloud_layers = cloud_layers;
     setup.render.rate_beyond_mm_per_h = rate_beyond;
+    setup.render.sea.fetch_m = args.sea_fetch_km * 1000.0;
     setup.camera.forward =
         channel_forward(setup.camera.forward, args.channel_yaw, args.channel_pitch);
     if let Some(shift) = args.channel_shift {
@@ -792,9 +812,17 @@ fn main() -> ExitCode {
             let weather = p.weather().context("the weather")?;
             precip_viewer::optics_report::print_optics(&weather)
         }),
-        Some(Command::Demo { out }) => std::fs::write(out, demo_glb())
-            .with_context(|| format!("writing {}", out.display()))
-            .map(|()| println!("wrote {}", out.display())),
+        Some(Command::Demo { out, coast }) => {
+            let (bytes, default) = if *coast {
+                (coast_glb(), "crates/viewer/assets/coast.glb")
+            } else {
+                (demo_glb(), "crates/viewer/assets/demo.glb")
+            };
+            let out = out.clone().unwrap_or_else(|| PathBuf::from(default));
+            std::fs::write(&out, bytes)
+                .with_context(|| format!("writing {}", out.display()))
+                .map(|()| println!("wrote {}", out.display()))
+        }
         None => run(&cli.run),
     };
     match result {

@@ -214,12 +214,14 @@ impl From<KindName> for PrecipitationKind {
 }
 
 /// The shipped presets, by name.
-pub const BUILT_IN: [(&str, &str); 13] = [
+pub const BUILT_IN: [(&str, &str); 15] = [
     (
         "light-snow",
         include_str!("../../../presets/light-snow.toml"),
     ),
     ("blizzard", include_str!("../../../presets/blizzard.toml")),
+    ("calm-sea", include_str!("../../../presets/calm-sea.toml")),
+    ("gale", include_str!("../../../presets/gale.toml")),
     ("wet-snow", include_str!("../../../presets/wet-snow.toml")),
     ("drizzle", include_str!("../../../presets/drizzle.toml")),
     ("downpour", include_str!("../../../presets/downpour.toml")),

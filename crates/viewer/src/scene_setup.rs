@@ -47,7 +47,9 @@ pub struct SceneOptions {
 
 /// The setup for `scene` (prepared) under `options`.
 pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup, BackendError> {
-    let (lo, hi) = scene.bounds_m().ok_or(precip_model::SceneError::Empty)?;
+    let (lo, hi) = scene
+        .land_bounds_m()
+        .ok_or(precip_model::SceneError::Empty)?;
     let centre = Vec2::new(0.5 * (lo.x + hi.x), 0.5 * (lo.z + hi.z));
     let side = (hi.x - lo.x).max(hi.z - lo.z).max(1.0);
     let texel = if options.texel_m.is_finite() && options.texel_m > 0.0 {

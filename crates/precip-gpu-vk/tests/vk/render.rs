@@ -326,13 +326,18 @@ fn timings_name_every_pass_of_a_frame() {
             eprintln!("no timestamps on this device");
             return;
         }
-        // The particles are drawn one way or the other; the house has no water, the
-        // sky no clouds.
+        // The particles are drawn one way or the other; the house has no water and
+        // no sea, the sky no clouds.
         let cloudless: Vec<&str> = precip_gpu::recipe::cloud_passes().collect();
         let not_run: &[&str] = if resolution == precip_model::ParticleResolution::Full {
-            &["particles_reduced", "particles_composite", "water_mirror"]
+            &[
+                "particles_reduced",
+                "particles_composite",
+                "water_mirror",
+                "ocean",
+            ]
         } else {
-            &["particles", "water_mirror"]
+            &["particles", "water_mirror", "ocean"]
         };
         for pass in ["step_particles"]
             .into_iter()

@@ -1079,12 +1079,17 @@ fn timings_name_every_pass_of_a_frame() {
                 continue;
             }
             // The particles are drawn one way or the other; no water to mirror, no
-            // clouds.
+            // sea, no clouds.
             let cloudless: Vec<&str> = precip_gpu::recipe::cloud_passes().collect();
             let skipped: &[&str] = if reduced {
-                &["particles", "water_mirror"]
+                &["particles", "water_mirror", "ocean"]
             } else {
-                &["particles_reduced", "particles_composite", "water_mirror"]
+                &[
+                    "particles_reduced",
+                    "particles_composite",
+                    "water_mirror",
+                    "ocean",
+                ]
             };
             for pass in precip_gpu::recipe::TIMED_RENDER_PASSES
                 .into_iter()

@@ -149,7 +149,9 @@ impl Setup {
         particle_count: u32,
     ) -> Result<(Self, SceneReport), BackendError> {
         let (scene, report) = scene.prepare()?;
-        let (lo, hi) = scene.bounds_m().ok_or(crate::scene::SceneError::Empty)?;
+        let (lo, hi) = scene
+            .land_bounds_m()
+            .ok_or(crate::scene::SceneError::Empty)?;
         let centre = Vec2::new(0.5 * (lo.x + hi.x), 0.5 * (lo.z + hi.z));
         let side = (hi.x - lo.x).max(hi.z - lo.z).max(1.0) * 1.1;
         let frame = GridFrame::centred(centre, Vec2::splat(side), UVec2::splat(texels));
@@ -190,7 +192,7 @@ impl Setup {
     /// the ground map's area when there is no scene, m.
     #[must_use]
     pub fn scene_bounds_m(&self) -> (Vec3, Vec3) {
-        if let Some((lo, hi)) = self.scene.as_ref().and_then(|s| s.bounds_m()) {
+        if let Some((lo, hi)) = self.scene.as_ref().and_then(|s| s.land_bounds_m()) {
             return (lo, hi);
         }
         let f = self.ground.frame;

@@ -21,6 +21,7 @@ pub mod fog_layer;
 pub mod frame_rate_control;
 pub mod multiplicity;
 pub mod render;
+pub mod sea;
 pub mod shadow_cache;
 pub mod shadow_fit;
 pub mod unresolved_streaks;

@@ -154,6 +154,8 @@ pub struct RenderSettings {
     /// ([`crate::drawing::far_ground`]); off, the sky goes on below it (a scene
     /// that carries its own horizon, an island in a sea of sky).
     pub land_beyond: bool,
+    /// The open sea (drawn where a mesh is tagged `"water": "sea"`).
+    pub sea: crate::drawing::sea::SeaSettings,
 }
 
 impl Default for RenderSettings {
@@ -187,6 +189,7 @@ impl Default for RenderSettings {
             cloud_layers: CloudLayers::NONE,
             rate_beyond_mm_per_h: None,
             land_beyond: true,
+            sea: crate::drawing::sea::SeaSettings::default(),
         }
     }
 }
@@ -312,6 +315,7 @@ impl RenderSettings {
             fog.validate()?;
         }
         self.cloud_layers.validate()?;
+        self.sea.validate()?;
         if self.max_scene_triangles == 0 {
             return Err(bad(
                 "render.max_scene_triangles",
@@ -324,7 +328,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (736 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (944 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -436,8 +440,20 @@ pub struct RenderParams {
     /// rig (lens shifts of one image plane) draw the same grain where they
     /// overlap; 0, 0.
     pub streak_origin: Vec4,
+    /// The sea's wind: its speed m/s 10 m above the water, the fetch m, the unit
+    /// direction it blows toward (x, z) ([`crate::drawing::sea`]).
+    pub ocean_wind: Vec4,
+    /// The sea: its choppiness λ, depth m, seed (an integer), 0.
+    pub ocean: Vec4,
+    /// The colour deep sea water sends out (linear RGB, of a white diffuser's 1),
+    /// the share of the sea whitecaps cover.
+    pub sea_colour: Vec4,
+    /// The sea's diffuse attenuation per m (RGB), 0.
+    pub sea_attenuation: Vec4,
+    /// The seabed's colour seen through the surface (RGB), 0.
+    pub sea_bed: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 864);
+const _: () = assert!(size_of::<RenderParams>() == 944);
 
 /// The block's rows of the cloud layers: base m, top m, coverage, kind each.
 fn cloud_layer_rows(layers: &CloudLayers) -> [Vec4; MAX_CLOUD_LAYERS] {
@@ -656,6 +672,8 @@ impl RenderParams {
         let ground_cell = f.ground.cell_m();
         let extinction_per_m = s.clear_air_extinction_per_m + f.weather.extinction_per_m();
         let haze = haze_colour(s, f.weather);
+        let wind = f.weather.wind.mean_wind_mps;
+        let sea_rows = s.sea.rows([wind.x, wind.z]);
         Self {
             view_proj: view_projection(camera, aspect),
             sun_view_proj: crate::drawing::shadow_fit::fitted_sun_view_projection(
@@ -794,6 +812,11 @@ impl RenderParams {
             unresolved_streaks: Vec4::ZERO,
             streak_direction: Vec4::ZERO,
             streak_origin: Vec4::ZERO,
+            ocean_wind: sea_rows[0],
+            ocean: sea_rows[1],
+            sea_colour: sea_rows[2],
+            sea_attenuation: sea_rows[3],
+            sea_bed: sea_rows[4],
         }
         .with_unresolved_streaks(f, pixel_angle, aspect)
     }

@@ -50,7 +50,11 @@ pub struct WaterLevel {
 #[must_use]
 pub fn water_levels(scene: &Scene) -> Vec<WaterLevel> {
     let mut levels: Vec<WaterLevel> = Vec::new();
-    for mesh in scene.meshes.iter().filter(|m| m.is_water_body()) {
+    for mesh in scene
+        .meshes
+        .iter()
+        .filter(|m| m.is_water_body() && !m.is_sea())
+    {
         let Some(&first) = mesh.positions_m.first() else {
             continue;
         };
@@ -199,8 +203,23 @@ mod tests {
             indices: vec![0, 2, 1, 0, 3, 2],
             snow_eligibility: Vec::new(),
             surface: Some(precip_cover::Surface::Water),
+            sea: false,
             material: Material::default(),
         }
+    }
+
+    #[test]
+    fn the_sea_is_no_candidate_for_the_planar_mirror() {
+        // Its waves tilt it everywhere: it follows its own rays (render_ocean.wgsl).
+        let sea = Mesh {
+            sea: true,
+            ..pond(0.0, 0.0)
+        };
+        let scene = Scene {
+            meshes: vec![sea, pond(2.0, 10.0)],
+        };
+        let levels = water_levels(&scene);
+        assert_eq!(levels.len(), 1, "{levels:?}");
     }
 
     #[test]

@@ -68,6 +68,9 @@ pub struct Mesh {
     /// What the mesh is made of (glTF `extras.surface`, or `extras.water: true`);
     /// `None`: paved where it may hold no snow, else soil.
     pub surface: Option<precip_cover::Surface>,
+    /// The open sea (glTF `extras.water: "sea"`, a water body too): drawn with the
+    /// wind's waves ([`crate::drawing::sea`]).
+    pub sea: bool,
     /// The material.
     pub material: Material,
 }
@@ -196,6 +199,12 @@ impl Mesh {
     #[must_use]
     pub fn is_water_body(&self) -> bool {
         self.surface == Some(precip_cover::Surface::Water)
+    }
+
+    /// The open sea: a water body tagged `"water": "sea"`.
+    #[must_use]
+    pub fn is_sea(&self) -> bool {
+        self.sea && self.is_water_body()
     }
 
     /// Validates and completes one mesh; `None` when no triangle is left.
@@ -338,16 +347,26 @@ impl Scene {
         Ok((PreparedScene(Self { meshes }), report))
     }
 
+    /// Axis-aligned bounds `(min, max)` of the vertices of all but the sea, m (the
+    /// land and the shore the cover grid and the shadow map cover: the open sea
+    /// may run to the horizon); a scene of sea alone: its bounds; `None` for no
+    /// vertices.
+    #[must_use]
+    pub fn land_bounds_m(&self) -> Option<(Vec3, Vec3)> {
+        bounds_of(self.meshes.iter().filter(|m| !m.is_sea())).or_else(|| self.bounds_m())
+    }
+
     /// Axis-aligned bounds `(min, max)` of all vertices, m; `None` for no vertices.
     #[must_use]
     pub fn bounds_m(&self) -> Option<(Vec3, Vec3)> {
-        let mut points = self
-            .meshes
-            .iter()
-            .flat_map(|m| m.positions_m.iter().copied());
-        let first = points.next()?;
-        Some(points.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
+        bounds_of(self.meshes.iter())
     }
+}
+
+fn bounds_of<'a>(meshes: impl Iterator<Item = &'a Mesh>) -> Option<(Vec3, Vec3)> {
+    let mut points = meshes.flat_map(|m| m.positions_m.iter().copied());
+    let first = points.next()?;
+    Some(points.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
 }
 
 #[cfg(test)]

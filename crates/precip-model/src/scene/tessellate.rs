@@ -67,9 +67,11 @@ fn displaceable_triangles(scene: &Scene, max_edge_m: f32, ground: &GroundMap) ->
         .meshes
         .iter()
         .map(|m| {
+            // A water body holds no snow (its vertices carry no eligibility on the
+            // GPU): nothing raises it.
             m.indices
                 .chunks_exact(3)
-                .map(|t| displaceable(m, t, max_edge_m, ground))
+                .map(|t| !m.is_water_body() && displaceable(m, t, max_edge_m, ground))
                 .collect()
         })
         .collect()
@@ -128,6 +130,7 @@ fn tessellate_mesh(mesh: &Mesh, split: &[bool], max_edge_m: f32) -> (Mesh, Vec<P
         name: mesh.name.clone(),
         material: mesh.material.clone(),
         surface: mesh.surface,
+        sea: mesh.sea,
         ..Mesh::default()
     };
     for (t, &split) in mesh.indices.chunks_exact(3).zip(split) {
@@ -280,6 +283,22 @@ mod tests {
             let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.positions_m[i as usize]);
             assert!((b - a).cross(c - a).y * (plane_winding()) > 0.0);
         }
+    }
+
+    #[test]
+    fn water_bodies_are_kept_whole_and_the_sea_stays_the_sea() {
+        // A 10 m pond and a 10 m sea: nothing raises them, so neither is split, and
+        // the tags go through.
+        let mut scene = plane(10.0);
+        scene.meshes[0].surface = Some(precip_cover::Surface::Water);
+        let sea = Mesh {
+            sea: true,
+            ..scene.meshes[0].clone()
+        };
+        scene.meshes.push(sea);
+        let out = scene.tessellated(1.0, 1_000_000, &open_ground()).scene;
+        assert!(out.meshes.iter().all(|m| m.indices.len() == 6));
+        assert!(!out.meshes[0].is_sea() && out.meshes[1].is_sea());
     }
 
     fn plane_winding() -> f32 {

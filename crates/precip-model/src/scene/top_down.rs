@@ -38,16 +38,33 @@ impl GroundMap {
     #[must_use]
     pub fn from_scene(scene: &Scene, frame: GridFrame) -> Self {
         let floor = scene.bounds_m().map_or(0.0, |(lo, _)| lo.y);
+        Self::top_down(scene.meshes.iter(), frame, floor, None)
+    }
+
+    /// The top-most surface of `meshes` (prepared) over `frame`, `floor` m where
+    /// none lies; with `under`, the top-most upward face at or under that height
+    /// (the bed under a level: a deck or a wall's top above it is none).
+    #[must_use]
+    pub fn top_down<'a>(
+        meshes: impl Iterator<Item = &'a crate::scene::Mesh>,
+        frame: GridFrame,
+        floor: f32,
+        under: Option<f32>,
+    ) -> Self {
         let n = frame.texel_count();
         let mut height_m = vec![f32::NEG_INFINITY; n];
         let mut eligibility = vec![0.0; n];
         let mut surface = vec![Surface::default(); n];
         let cell = frame.cell_m();
         let (nx, nz) = (i64::from(frame.texels.x), i64::from(frame.texels.y));
-        for mesh in &scene.meshes {
+        for mesh in meshes {
             for t in mesh.indices.chunks_exact(3) {
                 let [ia, ib, ic] = [t[0], t[1], t[2]].map(|i| i as usize);
                 let [a, b, c] = [ia, ib, ic].map(|i| mesh.positions_m[i]);
+                if under.is_some() && (b - a).cross(c - a).y <= 0.0 {
+                    continue;
+                }
+                let ceiling = under.unwrap_or(f32::INFINITY);
                 let elig =
                     [ia, ib, ic].map(|i| mesh.snow_eligibility.get(i).copied().unwrap_or(0.0));
                 let [a2, b2, c2] = [a, b, c].map(|v| Vec2::new(v.x, v.z));
@@ -66,7 +83,7 @@ impl GroundMap {
                         };
                         let h = w.x * a.y + w.y * b.y + w.z * c.y;
                         let k = (i + nx * j) as usize;
-                        if h > height_m[k] {
+                        if h > height_m[k] && h <= ceiling {
                             height_m[k] = h;
                             eligibility[k] =
                                 (w.x * elig[0] + w.y * elig[1] + w.z * elig[2]).clamp(0.0, 1.0);

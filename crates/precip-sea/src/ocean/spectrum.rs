@@ -214,6 +214,15 @@ pub fn jonswap_peak_rad_per_s(wind_mps: f32, fetch_m: f32) -> f32 {
     22.0 * (G * G / (wind_mps * fetch_m)).cbrt()
 }
 
+/// The fetch over which a wind `wind_mps` raises a fully developed sea, m: where
+/// JONSWAP's peak falls to Pierson & Moskowitz's `ω_p = 0.877·g/U` (1964), at
+/// `F = (22/0.877)³·U²/g ≈ 1.6·10⁴·U²/g`. Beyond it the sea grows no more: a longer
+/// fetch is taken as this one (JONSWAP's fetch laws would raise it without end).
+#[must_use]
+pub fn fully_developed_fetch_m(wind_mps: f32) -> f32 {
+    (22.0f32 / 0.877).powi(3) * wind_mps * wind_mps / G
+}
+
 /// The JONSWAP frequency spectrum `S(ω)`, m²·s/rad.
 #[must_use]
 pub fn jonswap_rad(omega: f32, wind_mps: f32, fetch_m: f32, peak_enhancement: f32) -> f32 {

@@ -40,6 +40,10 @@ pub struct OceanSurface {
     pub displacement_z_m: Vec<f32>,
     /// The Jacobian of `x + λ·D` with the λ asked for: below 0 the surface folds.
     pub jacobian: Vec<f32>,
+    /// The slope `∂h/∂x` (of the undisplaced surface: the normal's tilt).
+    pub slope_x: Vec<f32>,
+    /// The slope `∂h/∂z`.
+    pub slope_z: Vec<f32>,
 }
 
 impl OceanCascade {
@@ -48,6 +52,21 @@ impl OceanCascade {
     /// least 4 or the size is not finite and positive.
     #[must_use]
     pub fn new(sea: &WindSea, n: usize, size_m: f32, depth_m: f32, seed: u32) -> Option<Self> {
+        Self::banded(sea, n, size_m, depth_m, seed, (0.0, f32::INFINITY))
+    }
+
+    /// As [`OceanCascade::new`], holding only the wavenumbers `|k|` in
+    /// `[band.0, band.1)` rad/m (one cascade of several:
+    /// [`super::cascades::cascade_band_per_m`]). WGSL twin: `sea_amplitude`.
+    #[must_use]
+    pub fn banded(
+        sea: &WindSea,
+        n: usize,
+        size_m: f32,
+        depth_m: f32,
+        seed: u32,
+        band: (f32, f32),
+    ) -> Option<Self> {
         if !(n >= 4 && n.is_power_of_two() && size_m.is_finite() && size_m > 0.0) {
             return None;
         }
@@ -57,12 +76,14 @@ impl OceanCascade {
         for j in 0..n {
             for i in 0..n {
                 let (kx, kz) = (wavenumber(i, n) * dk, wavenumber(j, n) * dk);
-                let f = sea.density_m4(kx, kz);
-                let (g1, g2) = amplitude_normals(seed, (j * n + i) as u32);
-                // E|h₀|² = F·Δk²/2: with its mirror's, each wavenumber carries
-                // the spectrum's variance over its cell.
-                let scale = (f * dk * dk * 0.25).sqrt();
-                amplitudes.push(Complex::new(g1 * scale, g2 * scale));
+                // The Nyquist lines hold no wave: a wavenumber there is its own
+                // mirror, so its choppy and slope fields (i·k·h̃) would not be real.
+                let nyquist = i == n / 2 || j == n / 2;
+                amplitudes.push(if nyquist {
+                    Complex::default()
+                } else {
+                    amplitude(sea, [kx, kz], dk, band, seed, (j * n + i) as u32)
+                });
                 frequencies.push(dispersion_rad_per_s(kx.hypot(kz), depth_m));
             }
         }
@@ -118,6 +139,8 @@ impl OceanCascade {
             field(&|kx, kz, c| Complex::new(-c.im, c.re).scale(kx * over_k(kx, kz)));
         let displacement_z_m =
             field(&|kx, kz, c| Complex::new(-c.im, c.re).scale(kz * over_k(kx, kz)));
+        let slope_x = field(&|kx, _, c| Complex::new(-c.im, c.re).scale(kx));
+        let slope_z = field(&|_, kz, c| Complex::new(-c.im, c.re).scale(kz));
         let dxx = field(&|kx, kz, c| c.scale(-kx * kx * over_k(kx, kz)));
         let dzz = field(&|kx, kz, c| c.scale(-kz * kz * over_k(kx, kz)));
         let dxz = field(&|kx, kz, c| c.scale(-kx * kz * over_k(kx, kz)));
@@ -132,12 +155,40 @@ impl OceanCascade {
             displacement_x_m,
             displacement_z_m,
             jacobian,
+            slope_x,
+            slope_z,
         }
     }
 }
 
-/// The signed wavenumber index of FFT index `i` of `n`.
-fn wavenumber(i: usize, n: usize) -> f32 {
+/// `h₀(k)` of the wavenumber `k` (rad/m) at point `index` of a grid of cells
+/// `dk` rad/m wide, 0 outside `band`: `(ξ₁ + iξ₂)·√(F(k)·Δk²/4)` — E|h₀|² = F·Δk²/2,
+/// so with its mirror's each wavenumber carries the spectrum's variance over its
+/// cell. WGSL twin: `sea_amplitude`.
+#[must_use]
+pub fn amplitude(
+    sea: &WindSea,
+    k: [f32; 2],
+    dk: f32,
+    band: (f32, f32),
+    seed: u32,
+    index: u32,
+) -> Complex {
+    let in_band = (band.0..band.1).contains(&k[0].hypot(k[1]));
+    let f = if in_band {
+        sea.density_m4(k[0], k[1])
+    } else {
+        0.0
+    };
+    let (g1, g2) = amplitude_normals(seed, index);
+    let scale = (f * dk * dk * 0.25).sqrt();
+    Complex::new(g1 * scale, g2 * scale)
+}
+
+/// The signed wavenumber index of FFT index `i` of `n`. WGSL twin:
+/// `sea_wavenumber`.
+#[must_use]
+pub fn wavenumber(i: usize, n: usize) -> f32 {
     if i < n / 2 {
         i as f32
     } else {

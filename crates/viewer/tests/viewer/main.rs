@@ -4,6 +4,7 @@
 mod bad_files;
 mod cigi_host;
 mod cli;
+mod coast;
 mod compressed;
 mod fixtures;
 mod graphs;
