@@ -248,8 +248,13 @@ fn fs_sea(in: SeaVarying) -> @location(0) vec4<f32> {
     let n = normalize(vec3<f32>(-slope.x, 1.0, -slope.y));
     let f = fresnel_unpolarised(max(dot(n, to_viewer), 0.0), WATER_REFRACTIVE_INDEX);
     var sky = overcast_sky(params.sky_colour_time.xyz, reflect(-to_viewer, n));
-    if (f > REFLECTION_LEAST) {
-        sky += mirrored_scene(in.world_m, to_viewer, slope);
+    // The scene it mirrors: the planar mirror's image at its level (the waves tilt
+    // the ray it is read along), where the frame draws one there (a ray followed
+    // over the frame before, as the ponds' without a mirror, would meet the waves'
+    // own crests and cost a march in every fragment of the sea).
+    let mirrored = switches.mirror.y > 0.5 && abs(in.surface_m.y - switches.mirror.x) <= MIRROR_LEVEL_TOLERANCE_M;
+    if (f > REFLECTION_LEAST && mirrored) {
+        sky += planar_mirrored_scene(in.clip.xy, to_viewer, slope);
     }
     let lit = in.cloud_sun * scene_shadow_lit(in.world_m);
     let to_sun = params.to_sun_extinction.xyz;

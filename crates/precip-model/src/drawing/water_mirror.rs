@@ -50,11 +50,7 @@ pub struct WaterLevel {
 #[must_use]
 pub fn water_levels(scene: &Scene) -> Vec<WaterLevel> {
     let mut levels: Vec<WaterLevel> = Vec::new();
-    for mesh in scene
-        .meshes
-        .iter()
-        .filter(|m| m.is_water_body() && !m.is_sea())
-    {
+    for mesh in scene.meshes.iter().filter(|m| m.is_water_body()) {
         let Some(&first) = mesh.positions_m.first() else {
             continue;
         };
@@ -133,9 +129,9 @@ pub fn frame_mirror(
 }
 
 /// The rectangle of a `size` target that `level`'s water covers through
-/// `view_proj`, widened by [`MIRROR_SLOPE_REACH`] (the whole target where the water
-/// reaches behind the camera); `None` out of view (wholly behind the camera, or
-/// projected off the target).
+/// `view_proj`, widened by [`MIRROR_SLOPE_REACH`] (where the water reaches behind
+/// the camera: the whole target below the horizon, [`horizon_top_px`]); `None` out
+/// of view (wholly behind the camera, or projected off the target).
 #[must_use]
 pub fn water_rect_px(level: &WaterLevel, view_proj: Mat4, size: (u32, u32)) -> Option<[u32; 4]> {
     let (width, height) = (size.0 as f32, size.1 as f32);
@@ -168,7 +164,12 @@ pub fn water_rect_px(level: &WaterLevel, view_proj: Mat4, size: (u32, u32)) -> O
     match behind {
         0 => {}
         4 => return None,
-        _ => return Some([0, 0, size.0, size.1]),
+        _ => {
+            let reach = MIRROR_SLOPE_REACH * height + 1.0;
+            let top = (horizon_top_px(view_proj, size) - reach).clamp(0.0, height);
+            let y0 = top.floor() as u32;
+            return (y0 < size.1).then_some([0, y0, size.0, size.1 - y0]);
+        }
     }
     let reach = MIRROR_SLOPE_REACH * height + 1.0;
     let lo = (lo - reach).max(glam::Vec2::ZERO);
@@ -179,6 +180,31 @@ pub fn water_rect_px(level: &WaterLevel, view_proj: Mat4, size: (u32, u32)) -> O
     let (x0, y0) = (lo.x.floor() as u32, lo.y.floor() as u32);
     let (x1, y1) = (hi.x.ceil() as u32, hi.y.ceil() as u32);
     Some([x0, y0, x1.min(size.0) - x0, y1.min(size.1) - y0])
+}
+
+/// The highest row of a `size` target (y down, px) a level plane below the camera
+/// reaches through `view_proj`: its horizon, where the horizontal directions ahead
+/// project (sampled every degree round the compass); 0 where the horizon lies above
+/// the target or no horizontal direction lies ahead (a camera looking straight
+/// down).
+#[must_use]
+pub fn horizon_top_px(view_proj: Mat4, size: (u32, u32)) -> f32 {
+    let (width, height) = (size.0 as f32, size.1 as f32);
+    let mut top: Option<f32> = None;
+    for degree in 0..360 {
+        let a = (degree as f32).to_radians();
+        let clip = view_proj * Vec4::new(a.cos(), 0.0, a.sin(), 0.0);
+        if clip.w <= 1.0e-4 {
+            continue;
+        }
+        let x = (clip.x / clip.w + 1.0) * 0.5 * width;
+        let y = (1.0 - clip.y / clip.w) * 0.5 * height;
+        // Beside the target the line goes on: what counts is over its width.
+        if (-0.5 * width..=1.5 * width).contains(&x) {
+            top = Some(top.map_or(y, |t| t.min(y)));
+        }
+    }
+    top.map_or(0.0, |t| t.max(0.0))
 }
 
 #[cfg(test)]
@@ -209,8 +235,35 @@ mod tests {
     }
 
     #[test]
-    fn the_sea_is_no_candidate_for_the_planar_mirror() {
-        // Its waves tilt it everywhere: it follows its own rays (render_ocean.wgsl).
+    fn a_sea_round_the_camera_is_mirrored_below_its_horizon_only() {
+        let level = WaterLevel {
+            level_m: 0.0,
+            lo_m: Vec3::new(-20_000.0, 0.0, -20_000.0),
+            hi_m: Vec3::new(20_000.0, 0.0, 20_000.0),
+        };
+        let size = (1280, 720);
+        let at = |forward: Vec3| {
+            let camera = Camera {
+                position_m: Vec3::new(0.0, 3.0, 0.0),
+                forward,
+                ..Camera::default()
+            };
+            water_rect_px(&level, view_projection(&camera, 1280.0 / 720.0), size).expect("in view")
+        };
+        // Level: the horizon mid-frame (the slope's reach above it).
+        let level_view = at(Vec3::X);
+        assert!((340..=360).contains(&level_view[1]), "{level_view:?}");
+        assert_eq!(level_view[1] + level_view[3], 720);
+        // Looking down a little: the horizon higher; straight down: all of it.
+        let down = at(Vec3::new(1.0, -0.3, 0.0));
+        assert!(down[1] < level_view[1], "{down:?}");
+        assert_eq!(at(Vec3::new(0.0, -1.0, 0.001)), [0, 0, 1280, 720]);
+    }
+
+    #[test]
+    fn the_sea_mirrors_the_scene_at_its_level_as_a_pond_does() {
+        // Its still level: the waves tilt the ray the image is read along
+        // (render_ocean.wgsl).
         let sea = Mesh {
             sea: true,
             ..pond(0.0, 0.0)
@@ -219,7 +272,8 @@ mod tests {
             meshes: vec![sea, pond(2.0, 10.0)],
         };
         let levels = water_levels(&scene);
-        assert_eq!(levels.len(), 1, "{levels:?}");
+        assert_eq!(levels.len(), 2, "{levels:?}");
+        assert!(levels.iter().any(|l| l.level_m.abs() < 0.01), "{levels:?}");
     }
 
     #[test]
