@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Renders docs/gallery/: close, mid, far and pond views of each weather over the built-in
-# demo, headless (the last of 45 frames of 1/15 s each, so the weather has set in
+# demo, the sky's shots and the coastal scene's, headless (the last of 45 frames of 1/15 s each, so the weather has set in
 # and the cover has started to build at the default time scale). Run from the
 # repository root after `cargo build --release`; about 4 minutes on lavapipe (name
 # presets as arguments to render only those).
@@ -31,8 +31,27 @@ sky_shots=(
   "valley-fog-above valley-fog - 0,300,400 0,0,-300"
   "cumulus-shadows fair-cumulus - 0,1500,1500 0,0,-1500"
 )
-# Only some of them: tools/gallery.sh blizzard valley-fog (sky: tools/gallery.sh sky)
+# The coastal scene (precip --coast): name, preset, eye, look-at.
+coast_shots=(
+  "calm-beach calm-sea -4,2.8,-18 -150,1.5,6"
+  "calm-above calm-sea 60,40,-20 -400,0,20"
+  "gale-beach gale -4,2.8,-18 -150,1.5,6"
+  "gale-above gale 60,40,-20 -400,0,20"
+  "gale-pier gale -68,3.6,-43 -40,1,70"
+)
+# Only some of them: tools/gallery.sh blizzard valley-fog (sky: tools/gallery.sh sky,
+# the coast: tools/gallery.sh coast)
 if [ "$#" -gt 0 ]; then weathers=("$@"); fi
+if [ "${weathers[*]}" = "coast" ] || [ "$#" -eq 0 ]; then
+  for shot in "${coast_shots[@]}"; do
+    read -r name preset eye at <<<"$shot"
+    "$precip" --coast --preset "presets/$preset.toml" --camera "$eye" --look-at "$at" \
+      --size 640x360 --frames 45 --dt 0.0667 --out "$work/coast-$name" >/dev/null 2>&1
+    cp "$work/coast-$name/frame_0044.png" "$out/coast-$name.png"
+    echo "$out/coast-$name.png"
+  done
+  [ "${weathers[*]}" = "coast" ] && exit 0
+fi
 if [ "${weathers[*]}" = "sky" ] || [ "$#" -eq 0 ]; then
   for shot in "${sky_shots[@]}"; do
     read -r name preset extra eye at <<<"$shot"

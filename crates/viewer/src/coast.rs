@@ -1,5 +1,5 @@
 //! The built-in coastal scene (`precip --coast`; `precip demo --coast --out FILE`
-//! writes it as a GLB): the open sea (`"water": "sea"`) running 20 km out to the
+//! writes it as a GLB): the open sea (`"water": "sea"`) running 60 km out to the
 //! horizon west of a sand beach (`"surface": "sand"`) that slopes 1 : 14 into it, a
 //! concrete breakwater wall (`"surface": "asphalt"`) and a timber pier on posts
 //! reaching out over the water, grass rising behind the beach, and the demo's house
@@ -16,7 +16,7 @@ use crate::demo::house_meshes;
 use crate::glb::{GlbMesh, height_grid as grid, write_glb};
 
 /// How far the sea runs out from the shore and along it, m.
-pub const SEA_REACH_M: f32 = 20_000.0;
+pub const SEA_REACH_M: f32 = 60_000.0;
 /// The beach: a point under the sea (x, m) and its height below the sea's level,
 /// and its landward edge and height above it (a 1 : 14 slope).
 pub const BEACH: ((f32, f32), (f32, f32)) = ((-40.0, -2.0), (30.0, 3.0));

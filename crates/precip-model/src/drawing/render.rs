@@ -152,7 +152,8 @@ pub struct RenderSettings {
     pub rate_beyond_mm_per_h: Option<f32>,
     /// Draw the land beyond the scene below the horizon
     /// ([`crate::drawing::far_ground`]); off, the sky goes on below it (a scene
-    /// that carries its own horizon, an island in a sea of sky).
+    /// that carries its own horizon, an island in a sea of sky). A scene with a sea
+    /// draws none (its sea runs to the horizon).
     pub land_beyond: bool,
     /// The open sea (drawn where a mesh is tagged `"water": "sea"`).
     pub sea: crate::drawing::sea::SeaSettings,
@@ -598,10 +599,13 @@ impl crate::Setup {
             particle_count,
             cull_groups: crate::host::cull_groups(particle_count),
             pools,
-            far_ground_level_m: self
-                .render
-                .land_beyond
-                .then(|| crate::drawing::far_ground::far_ground_level_m(&self.ground)),
+            // A scene with a sea: the sea runs to the horizon, no land beyond.
+            far_ground_level_m: (self.render.land_beyond
+                && !self
+                    .scene
+                    .as_ref()
+                    .is_some_and(|s| s.meshes.iter().any(crate::scene::Mesh::is_sea)))
+            .then(|| crate::drawing::far_ground::far_ground_level_m(&self.ground)),
         })
     }
 }
