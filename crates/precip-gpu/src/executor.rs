@@ -558,13 +558,19 @@ impl<G: Gpu> Simulation<G> {
             &self.host.setup().ground,
         );
         let hits = self.first_strikes(gpu, kernels, &params, &beams)?;
-        query.answer(
+        let mut returns = query.answer(
             backend,
             &beams,
             &hits,
             self.host.weather(),
             &self.host.unresolved_air(),
-        )
+        )?;
+        precip_model::sensors::lidar::label_targets(
+            &mut returns,
+            &beams,
+            &self.host.setup().ground,
+        );
+        Ok(returns)
     }
 
     /// Each beam's first strike: `query_beams` over the particles and the ground.

@@ -70,11 +70,13 @@ fn main() -> anyhow::Result<()> {
     let started = std::time::Instant::now();
     let returns = backend.query_beams(&query)?;
     let took = started.elapsed();
+    let wind = backend.weather()?.wind.mean_wind_mps;
     let points = point_cloud(
         &query.beams,
         &returns,
         query.band,
         lidar.detection_threshold(),
+        wind.x.hypot(wind.z),
     );
     write_ply(&out.join("scan.ply"), &points)?;
     let from_particles = points.iter().filter(|p| p.from_particle).count();

@@ -278,11 +278,13 @@ fn scan(
         sample_unresolved: true,
     };
     let returns = backend.query_beams(&query)?;
+    let wind = backend.weather()?.wind.mean_wind_mps;
     let points = crate::lidar_scan::point_cloud(
         &query.beams,
         &returns,
         query.band,
         lidar.detection_threshold(),
+        wind.x.hypot(wind.z),
     );
     crate::lidar_scan::write_ply(file, &points).map_err(|e| HeadlessError::Write {
         file: file.to_path_buf(),

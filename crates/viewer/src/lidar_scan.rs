@@ -5,8 +5,11 @@
 //! returns ([`precip_model::sensors::lidar::BeamReturn::strongest_echo_m`]): the first flake
 //! or drop struck, whose reflectance is its backscatter per area
 //! (`π·β_p/A_p`: about 0.22 for snow, whose lidar ratio is 29 sr, and 0.02 for
-//! rain at 905 nm), or the ground behind it at [`GROUND_REFLECTANCE`], seen through
-//! the air's two-way transmittance and what the particle leaves of the footprint.
+//! rain at 905 nm), or the ground behind it at [`GROUND_REFLECTANCE`] — water (a
+//! pond, a puddle, the sea) at its glint's and foam's
+//! ([`precip_model::sensors::lidar::water_echo`]: strong straight down, nothing
+//! aslant but foam) — seen through the air's two-way transmittance and what the
+//! particle leaves of the footprint.
 //! An echo weaker than the sensor's detection threshold — a [`RATED_REFLECTANCE`]
 //! target at its full range — gives no point: far flakes, which fill a sliver of the
 //! widened beam, are not seen; near ones are (the clutter LiDARs show in snow).
@@ -15,6 +18,7 @@ use std::io::Write as _;
 use std::path::Path;
 
 use glam::Vec3;
+use precip_model::sensors::lidar::water_echo::water_reflectance;
 use precip_model::sensors::lidar::{Beam, BeamReturn};
 use precip_model::sensors::optics::{Band, backscatter_cross_section_m2_sr};
 
@@ -111,14 +115,29 @@ pub struct LidarPoint {
     pub from_particle: bool,
 }
 
+/// The reflectance the target of `r` echoes with along `beam` in a wind of
+/// `wind_mps`: water's glint and foam, else [`GROUND_REFLECTANCE`].
+#[must_use]
+pub fn target_reflectance(beam: &Beam, r: &BeamReturn, wind_mps: f32) -> f32 {
+    match r.target {
+        Some(t) if t.surface == precip_model::cover::Surface::Water => {
+            let down = -beam.direction.normalize_or_zero().y;
+            water_reflectance(down, wind_mps)
+        }
+        _ => GROUND_REFLECTANCE,
+    }
+}
+
 /// The points of `returns` (one per beam of `beams`) in `band` whose echo reaches
-/// `detection_threshold` (1/m²; [`SpinningLidar::detection_threshold`]).
+/// `detection_threshold` (1/m²; [`SpinningLidar::detection_threshold`]), in a wind
+/// of `wind_mps` (water's echo).
 #[must_use]
 pub fn point_cloud(
     beams: &[Beam],
     returns: &[BeamReturn],
     band: Band,
     detection_threshold: f32,
+    wind_mps: f32,
 ) -> Vec<LidarPoint> {
     beams
         .iter()
@@ -129,12 +148,12 @@ pub fn point_cloud(
                 std::f32::consts::PI * backscatter_cross_section_m2_sr(p.kind, p.diameter_m, band)
                     / area.max(f32::MIN_POSITIVE)
             });
-            let (range, from_particle) =
-                r.strongest_echo_m(particle_reflectance, GROUND_REFLECTANCE)?;
+            let ground = target_reflectance(beam, r, wind_mps);
+            let (range, from_particle) = r.strongest_echo_m(particle_reflectance, ground)?;
             let intensity = if from_particle {
                 particle_reflectance * r.particle.map_or(0.0, |p| p.footprint_share)
             } else {
-                GROUND_REFLECTANCE
+                ground
                     * r.target.map_or(0.0, |t| t.two_way_transmittance)
                     * (1.0 - r.particle.map_or(0.0, |p| p.footprint_share))
             } / range.max(0.1).powi(2);
@@ -215,6 +234,7 @@ mod tests {
             target: Some(TargetEcho {
                 range_m: 60.0,
                 two_way_transmittance: 0.8,
+                surface: precip_model::cover::Surface::Grass,
             }),
         };
         let bare = BeamReturn {
@@ -230,11 +250,18 @@ mod tests {
             &[flake, bare, nothing],
             Band::NearInfrared,
             0.0,
+            3.0,
         );
         assert_eq!(points.len(), 2);
         // A 120 m sensor's threshold keeps the flake at 4 m and the ground at 60 m.
         let threshold = SpinningLidar::automotive(Vec3::ZERO).detection_threshold();
-        let seen = point_cloud(&[beam, beam], &[flake, bare], Band::NearInfrared, threshold);
+        let seen = point_cloud(
+            &[beam, beam],
+            &[flake, bare],
+            Band::NearInfrared,
+            threshold,
+            3.0,
+        );
         assert_eq!(seen.len(), 2);
         // The same flake at 40 m fills 1 % of the footprint's share: not seen.
         let far = BeamReturn {
@@ -245,7 +272,7 @@ mod tests {
             }),
             target: None,
         };
-        assert!(point_cloud(&[beam], &[far], Band::NearInfrared, threshold).is_empty());
+        assert!(point_cloud(&[beam], &[far], Band::NearInfrared, threshold, 3.0).is_empty());
         assert!(points[0].from_particle && (points[0].position_m.z + 4.0).abs() < 1e-6);
         assert!(!points[1].from_particle && (points[1].position_m.z + 60.0).abs() < 1e-4);
         let path = std::env::temp_dir().join(format!("precip-ply-{}.ply", std::process::id()));
@@ -256,5 +283,35 @@ mod tests {
         assert!(text.contains("element vertex 2\n"));
         assert_eq!(text.lines().count(), 10 + 2);
         assert!(text.lines().nth(10).expect("a point").ends_with(" 1"));
+    }
+
+    #[test]
+    fn water_echoes_to_a_beam_from_above_and_not_to_a_grazing_one() {
+        // 30 m to the target, looking straight down and 5° under the horizon.
+        let target = |surface| BeamReturn {
+            particle: None,
+            target: Some(TargetEcho {
+                range_m: 30.0,
+                two_way_transmittance: 1.0,
+                surface,
+            }),
+        };
+        let down = Beam::ray(Vec3::ZERO, Vec3::NEG_Y, 100.0);
+        let grazing = Beam::ray(
+            Vec3::ZERO,
+            Vec3::new(1.0, -5f32.to_radians().tan(), 0.0),
+            100.0,
+        );
+        let threshold = SpinningLidar::automotive(Vec3::ZERO).detection_threshold();
+        let water = target(precip_model::cover::Surface::Water);
+        let grass = target(precip_model::cover::Surface::Grass);
+        let seen = |beam: Beam, r: BeamReturn, wind: f32| {
+            point_cloud(&[beam], &[r], Band::NearInfrared, threshold, wind).len()
+        };
+        assert_eq!(seen(down, water, 5.0), 1);
+        assert_eq!(seen(grazing, water, 5.0), 0);
+        assert_eq!(seen(grazing, grass, 5.0), 1);
+        // A gale's whitecaps echo even aslant.
+        assert!(target_reflectance(&grazing, &water, 24.0) > 0.01);
     }
 }

@@ -336,8 +336,15 @@ fn inspect(file: &std::path::Path) -> anyhow::Result<()> {
     for m in &scene.meshes {
         let e = &m.snow_eligibility;
         let mean = e.iter().sum::<f32>() / e.len().max(1) as f32;
+        // What it is made of, as its extras said (or the default the slope picks).
+        let surface = match (m.surface, m.is_sea()) {
+            (_, true) => "the sea".to_owned(),
+            (Some(s), false) if m.is_water_body() => format!("water body ({})", s.name()),
+            (Some(s), false) => s.name().to_owned(),
+            (None, false) => "untagged (paved where no snow lies, else soil)".to_owned(),
+        };
         println!(
-            "    {}: {} triangles, eligibility mean {mean:.2}",
+            "    {}: {} triangles, eligibility mean {mean:.2}, surface {surface}",
             m.name,
             m.indices.len() / 3
         );

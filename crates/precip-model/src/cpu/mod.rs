@@ -236,7 +236,9 @@ impl Backend for CpuBackend {
         let params = query.params(&beams, state.host.particles_in_the_air(), ground);
         let hits = query_on_cpu(&beams, &params, &state.particles, ground);
         let air = state.host.unresolved_air();
-        query.answer(NAME, &beams, &hits, state.host.weather(), &air)
+        let mut returns = query.answer(NAME, &beams, &hits, state.host.weather(), &air)?;
+        crate::sensors::lidar::label_targets(&mut returns, &beams, ground);
+        Ok(returns)
     }
 
     fn read_cover(&mut self) -> Result<CoverGrid, BackendError> {

@@ -58,6 +58,7 @@ use crate::particles::particle::{Particle, ParticleKind, ParticleSource};
 use crate::sensors::optics::Band;
 
 pub mod unresolved;
+pub mod water_echo;
 
 pub use unresolved::{SampledStrike, UnresolvedAir};
 
@@ -440,6 +441,21 @@ pub struct TargetEcho {
     pub range_m: f32,
     /// `e^(−2σr)`: what the air lets through, out and back.
     pub two_way_transmittance: f32,
+    /// What it is made of: the ground map's surface where the beam meets it
+    /// ([`label_targets`]; water echoes as [`water_echo`] says).
+    pub surface: precip_cover::Surface,
+}
+
+/// Labels each target of `returns` (one per beam of `beams`) with the surface of
+/// `ground` where its beam meets it: what the backends do after
+/// [`BeamQuery::answer`].
+pub fn label_targets(returns: &mut [BeamReturn], beams: &[Beam], ground: &GroundMap) {
+    for (r, beam) in returns.iter_mut().zip(beams) {
+        if let Some(t) = r.target.as_mut() {
+            let at = beam.origin_m + beam.direction.normalize_or_zero() * t.range_m;
+            t.surface = ground.surface_at(Vec2::new(at.x, at.z));
+        }
+    }
 }
 
 /// One beam's answer.
@@ -477,6 +493,7 @@ impl BeamReturn {
         let target = (hit.target_range_m >= 0.0).then(|| TargetEcho {
             range_m: hit.target_range_m,
             two_way_transmittance: (-2.0 * extinction_per_m * hit.target_range_m).exp(),
+            surface: precip_cover::Surface::default(),
         });
         Self { particle, target }
     }

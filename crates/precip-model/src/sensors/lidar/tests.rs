@@ -92,6 +92,44 @@ fn the_hard_target_is_the_ground_where_the_beam_meets_it() {
 }
 
 #[test]
+fn a_target_is_labelled_with_the_surface_the_beam_meets() {
+    // Water west of x = 0, grass east: beams down either side.
+    let mut ground = GroundMap::flat(frame(200.0, 400), 0.0, 1.0);
+    ground.surface = (0..400 * 400)
+        .map(|k| {
+            if k % 400 < 200 {
+                precip_cover::Surface::Water
+            } else {
+                precip_cover::Surface::Grass
+            }
+        })
+        .collect();
+    let beams = [
+        Beam::ray(Vec3::new(-20.0, 30.0, 0.0), Vec3::NEG_Y, 100.0),
+        Beam::ray(Vec3::new(20.0, 30.0, 0.0), Vec3::NEG_Y, 100.0),
+    ];
+    let hit = |range| BeamHit {
+        particle_range_m: 0.0,
+        particle_diameter_m: 0.0,
+        particle_flags: NO_PARTICLE,
+        target_range_m: range,
+    };
+    let mut returns = BeamQuery::returns(&beams, &[hit(30.0), hit(-1.0)], 0.0, 0.0);
+    label_targets(&mut returns, &beams, &ground);
+    assert_eq!(
+        returns[0].target.map(|t| t.surface),
+        Some(precip_cover::Surface::Water)
+    );
+    assert!(returns[1].target.is_none());
+    let mut grass = BeamQuery::returns(&beams[1..], &[hit(30.0)], 0.0, 0.0);
+    label_targets(&mut grass, &beams[1..], &ground);
+    assert_eq!(
+        grass[0].target.map(|t| t.surface),
+        Some(precip_cover::Surface::Grass)
+    );
+}
+
+#[test]
 fn a_wall_stops_the_beam_and_hides_the_particles_behind_it() {
     let mut ground = GroundMap::flat(frame(40.0, 40), 0.0, 1.0);
     // A 3 m wall one texel thick at x ∈ [10, 11).
