@@ -1,7 +1,8 @@
 //! The open sea's kernels (render_ocean.wgsl: the spectra at the frame's time, the
 //! inverse FFT in workgroup memory, the atlases) give on every GPU backend the
 //! surfaces of the CPU reference, `precip_sea::ocean::SeaState::cascade(c)
-//! .surface_at(t, λ)`, for every cascade, to half precision; and the atlases' border
+//! .surface_at(t, λ)`, for every cascade and both spectra (JONSWAP, Phillips), to
+//! half precision; and the atlases' border
 //! texels wrap, so a bilinear read tiles without a seam.
 
 use glam::Vec3;
@@ -9,7 +10,7 @@ use precip_gpu_vk::VkBackend;
 use precip_gpu_wgpu::{WgpuBackend, adapters};
 use precip_model::cover::Surface;
 use precip_model::{Backend, Mesh, Scene, Setup, View, Weather};
-use precip_sea::ocean::{OCEAN_CASCADES, OCEAN_N};
+use precip_sea::ocean::{OCEAN_CASCADES, OCEAN_N, SeaSpectrum};
 
 /// A square of sea 120 m wide beside a strip of beach, in a 15 m/s wind.
 fn coast(wind_mps: Vec3) -> Setup {
@@ -147,22 +148,25 @@ fn check<B: Backend>(
     backend: &mut B,
     read: impl Fn(&mut B) -> Option<[Vec<[f32; 4]>; 2]>,
 ) {
-    let setup = coast(Vec3::new(12.0, 0.0, 9.0));
-    backend.configure(&setup).expect("configures");
-    for _ in 0..5 {
-        backend.step(0.1).expect("steps");
+    for spectrum in [SeaSpectrum::Jonswap, SeaSpectrum::Phillips] {
+        let mut setup = coast(Vec3::new(12.0, 0.0, 9.0));
+        setup.render.sea.spectrum = spectrum;
+        backend.configure(&setup).expect("configures");
+        for _ in 0..5 {
+            backend.step(0.1).expect("steps");
+        }
+        let mut camera = setup.camera;
+        camera.position_m = Vec3::new(50.0, 4.0, 0.0);
+        camera.forward = Vec3::new(-1.0, -0.1, 0.0);
+        let view = View {
+            camera,
+            width_px: 64,
+            height_px: 48,
+        };
+        backend.render(&view).expect("renders");
+        let atlases = read(backend).expect("a frame wrote the sea");
+        compare(&format!("{name}, {spectrum:?}"), &setup, &atlases, 0.5);
     }
-    let mut camera = setup.camera;
-    camera.position_m = Vec3::new(50.0, 4.0, 0.0);
-    camera.forward = Vec3::new(-1.0, -0.1, 0.0);
-    let view = View {
-        camera,
-        width_px: 64,
-        height_px: 48,
-    };
-    backend.render(&view).expect("renders");
-    let atlases = read(backend).expect("a frame wrote the sea");
-    compare(name, &setup, &atlases, 0.5);
 }
 
 #[test]

@@ -78,6 +78,8 @@ struct RenderParams {
     sea_attenuation: vec4<f32>,
     // the seabed's colour seen through the surface (RGB), 0
     sea_bed: vec4<f32>,
+    // the sea's spectrum: 0 JONSWAP, 1 Phillips; 0, 0, 0
+    ocean_spectrum: vec4<f32>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

@@ -93,10 +93,11 @@ fn ocean_spectrum(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_
     let seed = sea_cascade_seed(u32(switches.ocean.z), c);
     let wind = switches.ocean_wind.xy;
     let direction = switches.ocean_wind.zw;
+    let jonswap = switches.ocean_spectrum.x < 0.5;
     // The Nyquist lines hold no wave (synthesis.rs OceanCascade::banded).
     let nyquist = x == OCEAN_N / 2u || z == OCEAN_N / 2u;
-    let h0 = select(sea_amplitude(k, dk, band, seed, p, wind, direction, SHORTEST_WAVE_M), vec2<f32>(0.0), nyquist);
-    let h0_mirror = select(sea_amplitude(k_mirror, dk, band, seed, mz * OCEAN_N + mx, wind, direction, SHORTEST_WAVE_M), vec2<f32>(0.0), nyquist);
+    let h0 = select(sea_amplitude(k, dk, band, seed, p, wind, direction, SHORTEST_WAVE_M, jonswap), vec2<f32>(0.0), nyquist);
+    let h0_mirror = select(sea_amplitude(k_mirror, dk, band, seed, mz * OCEAN_N + mx, wind, direction, SHORTEST_WAVE_M, jonswap), vec2<f32>(0.0), nyquist);
     let omega = sea_dispersion(length(k), switches.ocean.y);
     let h = sea_evolved(h0, h0_mirror, omega, switches.sky_colour_time.w);
     let fields = sea_fields(k, h);

@@ -289,7 +289,8 @@ fn rust_and_wgsl_layouts_match() {
             ocean,
             sea_colour,
             sea_attenuation,
-            sea_bed
+            sea_bed,
+            ocean_spectrum
         }),
         rust_layout!(DrawArgs {
             vertex_count,

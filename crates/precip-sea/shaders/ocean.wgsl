@@ -104,11 +104,11 @@ fn sea_wavenumber(i: u32, n: u32) -> f32 {
 
 // synthesis.rs amplitude: h0(k) of the wavenumber k (rad/m) at point `index` of a
 // grid of cells dk rad/m wide, 0 outside band = [lo, hi) (hi < 0: no upper end);
-// the sea JONSWAP of wind = (speed m/s, fetch m) toward `direction`.
-fn sea_amplitude(k_vec: vec2<f32>, dk: f32, band: vec2<f32>, seed: u32, index: u32, wind: vec2<f32>, direction: vec2<f32>, shortest_m: f32) -> vec2<f32> {
+// the sea of wind = (speed m/s, fetch m) toward `direction`, JONSWAP or Phillips.
+fn sea_amplitude(k_vec: vec2<f32>, dk: f32, band: vec2<f32>, seed: u32, index: u32, wind: vec2<f32>, direction: vec2<f32>, shortest_m: f32, jonswap: bool) -> vec2<f32> {
     let k = length(k_vec);
     let in_band = k >= band.x && (band.y < 0.0 || k < band.y);
-    let f = select(0.0, sea_density(k_vec, wind, direction, shortest_m, true), in_band);
+    let f = select(0.0, sea_density(k_vec, wind, direction, shortest_m, jonswap), in_band);
     return sea_normal_pair(seed, index) * sqrt(f * dk * dk * 0.25);
 }
 

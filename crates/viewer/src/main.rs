@@ -134,6 +134,10 @@ struct RunArgs {
     /// a wind raises the sea: 10 a bay, 100 and more the open ocean).
     #[arg(long, default_value_t = 100.0)]
     sea_fetch_km: f32,
+    /// The sea's spectrum: JONSWAP over the fetch, or Phillips (a fully developed
+    /// sea, as Tessendorf's).
+    #[arg(long, value_enum, default_value_t = SeaSpectrumName::Jonswap)]
+    sea_spectrum: SeaSpectrumName,
     /// The GPU backend: wgpu, or vk (precip's own Vulkan backend; with
     /// PRECIP_VK_VALIDATION=1 it runs under the Khronos validation layer).
     #[arg(long, value_enum, default_value_t = BackendName::Wgpu)]
@@ -529,6 +533,10 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     setup.render.cloud_layers = cloud_layers;
     setup.render.rate_beyond_mm_per_h = rate_beyond;
     setup.render.sea.fetch_m = args.sea_fetch_km * 1000.0;
+    setup.render.sea.spectrum = match args.sea_spectrum {
+        SeaSpectrumName::Jonswap => precip_model::drawing::sea::SeaSpectrum::Jonswap,
+        SeaSpectrumName::Phillips => precip_model::drawing::sea::SeaSpectrum::Phillips,
+    };
     setup.camera.forward =
         channel_forward(setup.camera.forward, args.channel_yaw, args.channel_pitch);
     if let Some(shift) = args.channel_shift {
@@ -771,6 +779,15 @@ fn quiet_wayland_probe_without_a_session() {
         // thread reads the environment concurrently.
         unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
     }
+}
+
+/// `--sea-spectrum`: `precip_sea::ocean::SeaSpectrum`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum SeaSpectrumName {
+    /// JONSWAP over the fetch.
+    Jonswap,
+    /// Phillips (Tessendorf), a fully developed sea.
+    Phillips,
 }
 
 /// `--mirrors`: which water mirrors the scene (`precip_model::Mirrors`).

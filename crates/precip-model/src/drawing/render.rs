@@ -329,7 +329,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (944 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (960 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -453,8 +453,10 @@ pub struct RenderParams {
     pub sea_attenuation: Vec4,
     /// The seabed's colour seen through the surface (RGB), 0.
     pub sea_bed: Vec4,
+    /// The sea's spectrum (0 JONSWAP, 1 Phillips), 0, 0, 0.
+    pub ocean_spectrum: Vec4,
 }
-const _: () = assert!(size_of::<RenderParams>() == 944);
+const _: () = assert!(size_of::<RenderParams>() == 960);
 
 /// The block's rows of the cloud layers: base m, top m, coverage, kind each.
 fn cloud_layer_rows(layers: &CloudLayers) -> [Vec4; MAX_CLOUD_LAYERS] {
@@ -821,6 +823,7 @@ impl RenderParams {
             sea_colour: sea_rows[2],
             sea_attenuation: sea_rows[3],
             sea_bed: sea_rows[4],
+            ocean_spectrum: sea_rows[5],
         }
         .with_unresolved_streaks(f, pixel_angle, aspect)
     }

@@ -15,7 +15,10 @@
 
 use glam::Vec4;
 use precip_cover::GridFrame;
-use precip_sea::ocean::{SeaState, jonswap_peak_rad_per_s, jonswap_rad, whitecap_cover};
+pub use precip_sea::ocean::SeaSpectrum;
+use precip_sea::ocean::{
+    PHILLIPS_AMPLITUDE, SeaState, jonswap_peak_rad_per_s, jonswap_rad, whitecap_cover,
+};
 use precip_sea::optics::{SEABED_ALBEDO, WATER_LEAVING_FACTOR, WaterContent};
 
 use crate::BackendError;
@@ -73,12 +76,16 @@ pub fn sea_depth_map(scene: &Scene, frame: GridFrame) -> Vec<u8> {
         .collect()
 }
 
-/// The significant wave height `H_s = 4·√m₀` of JONSWAP for `state`, m: its
+/// The significant wave height `H_s = 4·√m₀` of `state`'s sea, m: JONSWAP's
 /// frequency spectrum's zeroth moment over 0.5 … 8 times the peak (the rest holds
-/// under 0.1 % of it).
+/// under 0.1 % of it); Phillips's `4·√(A·π/2)·U²/g` (its variance `A·π·L²/2`,
+/// docs/model.md (13.6)).
 #[must_use]
 pub fn significant_height_m(state: &SeaState) -> f32 {
     let (u, f) = (state.wind_speed_mps, state.fetch_m);
+    if let SeaSpectrum::Phillips = state.spectrum {
+        return 4.0 * (PHILLIPS_AMPLITUDE * std::f32::consts::FRAC_PI_2).sqrt() * u * u / 9.81;
+    }
     if u <= 0.0 || f <= 0.0 {
         return 0.0;
     }
@@ -106,6 +113,8 @@ pub struct SeaSettings {
     pub seed: u32,
     /// What the water holds besides water (its colour).
     pub content: WaterContent,
+    /// The spectrum (JONSWAP over the fetch by default).
+    pub spectrum: SeaSpectrum,
 }
 
 impl Default for SeaSettings {
@@ -116,6 +125,7 @@ impl Default for SeaSettings {
             choppiness: 1.0,
             seed: 1,
             content: WaterContent::COASTAL,
+            spectrum: SeaSpectrum::Jonswap,
         }
     }
 }
@@ -160,19 +170,23 @@ impl SeaSettings {
     /// The sea a wind of `wind_mps` (x, z, m/s, 10 m above the water) raises.
     #[must_use]
     pub fn state(&self, wind_mps: [f32; 2]) -> SeaState {
-        SeaState::of_wind(
-            wind_mps,
-            self.fetch_m,
-            self.depth_m,
-            self.choppiness,
-            self.seed,
-        )
+        SeaState {
+            spectrum: self.spectrum,
+            ..SeaState::of_wind(
+                wind_mps,
+                self.fetch_m,
+                self.depth_m,
+                self.choppiness,
+                self.seed,
+            )
+        }
     }
 
     /// The frame block's rows of the sea (`RenderParams::ocean_wind`, `ocean`,
-    /// `sea_colour`, `sea_attenuation`, `sea_bed`) in a wind of `wind_mps`.
+    /// `sea_colour`, `sea_attenuation`, `sea_bed`, `ocean_spectrum`) in a wind of
+    /// `wind_mps`.
     #[must_use]
-    pub fn rows(&self, wind_mps: [f32; 2]) -> [Vec4; 5] {
+    pub fn rows(&self, wind_mps: [f32; 2]) -> [Vec4; 6] {
         let s = self.state(wind_mps);
         let colour = self.content.water_leaving_colour();
         let k = self.content.rgb_attenuation_per_m();
@@ -198,6 +212,15 @@ impl SeaSettings {
             ),
             Vec4::new(k[0], k[1], k[2], 0.0),
             Vec4::new(bed[0], bed[1], bed[2], 0.0),
+            Vec4::new(
+                match s.spectrum {
+                    SeaSpectrum::Jonswap => 0.0,
+                    SeaSpectrum::Phillips => 1.0,
+                },
+                0.0,
+                0.0,
+                0.0,
+            ),
         ]
     }
 }
@@ -209,7 +232,8 @@ mod tests {
     #[test]
     fn a_gale_raises_whitecaps_a_breeze_hardly_any() {
         let sea = SeaSettings::default();
-        let [wind, row, colour, _, _] = sea.rows([3.0, 4.0]);
+        let [wind, row, colour, _, _, spectrum] = sea.rows([3.0, 4.0]);
+        assert!(spectrum.x.abs() < f32::EPSILON);
         assert!((wind.x - 5.0).abs() < 1e-6, "{wind}");
         assert!((wind.z - 0.6).abs() < 1e-6 && (wind.w - 0.8).abs() < 1e-6);
         assert!((row.z - 1.0).abs() < 1e-6, "{row}");

@@ -54,9 +54,23 @@ pub const fn cascade_seed(seed: u32, c: usize) -> u32 {
     seed.wrapping_add(c as u32)
 }
 
+/// Which spectrum raises the sea.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SeaSpectrum {
+    /// JONSWAP over the fetch (a sea still growing, or fully developed past the
+    /// fetch that develops it).
+    #[default]
+    Jonswap,
+    /// Phillips as Tessendorf uses it, scaled to Pierson & Moskowitz's fully
+    /// developed sea ([`super::PHILLIPS_AMPLITUDE`]); the fetch plays no part.
+    Phillips,
+}
+
 /// The sea the weather raises.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SeaState {
+    /// The spectrum.
+    pub spectrum: SeaSpectrum,
     /// The wind's speed 10 m above the water, m/s.
     pub wind_speed_mps: f32,
     /// The direction it blows toward, a unit vector on the water (x, z).
@@ -90,6 +104,7 @@ impl SeaState {
             [1.0, 0.0]
         };
         Self {
+            spectrum: SeaSpectrum::Jonswap,
             wind_speed_mps: speed,
             wind_direction,
             fetch_m: fetch_m.min(fully_developed_fetch_m(speed)),
@@ -99,11 +114,17 @@ impl SeaState {
         }
     }
 
-    /// Its spectrum: JONSWAP over the fetch, the capillaries rolled off.
+    /// Its spectrum (JONSWAP over the fetch, or Phillips), the capillaries rolled
+    /// off.
     #[must_use]
     pub const fn wind_sea(&self) -> WindSea {
         let mut sea = WindSea::jonswap(self.wind_speed_mps, self.fetch_m, self.wind_direction);
         sea.shortest_m = SHORTEST_WAVE_M;
+        if let SeaSpectrum::Phillips = self.spectrum {
+            sea.kind = super::SpectrumKind::Phillips {
+                amplitude: super::PHILLIPS_AMPLITUDE,
+            };
+        }
         sea
     }
 

@@ -10,8 +10,8 @@ pub mod spectrum;
 pub mod synthesis;
 
 pub use cascades::{
-    CASCADE_SIZES_M, OCEAN_CASCADES, OCEAN_N, SHORTEST_WAVE_M, SeaState, cascade_band_per_m,
-    cascade_seed,
+    CASCADE_SIZES_M, OCEAN_CASCADES, OCEAN_N, SHORTEST_WAVE_M, SeaSpectrum, SeaState,
+    cascade_band_per_m, cascade_seed,
 };
 pub use spectrum::{
     PHILLIPS_AMPLITUDE, SPREADING_EXPONENT, SpectrumKind, WindSea, deep_group_speed_mps,
