@@ -56,8 +56,9 @@ pub fn height_grid(
         }
     }
     let row = xs.len() as u32;
-    for j in 0..zs.len() as u32 - 1 {
-        for i in 0..row - 1 {
+    // (Fewer than two positions along an axis: no cell.)
+    for j in 0..(zs.len() as u32).saturating_sub(1) {
+        for i in 0..row.saturating_sub(1) {
             let a = j * row + i;
             // Counter-clockwise seen from above (+Y) for x and z increasing.
             m.indices

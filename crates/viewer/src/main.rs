@@ -532,6 +532,12 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     setup.render.fog_layer = fog_layer;
     setup.render.cloud_layers = cloud_layers;
     setup.render.rate_beyond_mm_per_h = rate_beyond;
+    if !(args.sea_fetch_km.is_finite() && (0.1..=10_000.0).contains(&args.sea_fetch_km)) {
+        anyhow::bail!(
+            "--sea-fetch-km {} must be in [0.1, 10000] km (10 a bay, 100 and more the open ocean)",
+            args.sea_fetch_km
+        );
+    }
     setup.render.sea.fetch_m = args.sea_fetch_km * 1000.0;
     setup.render.sea.spectrum = match args.sea_spectrum {
         SeaSpectrumName::Jonswap => precip_model::drawing::sea::SeaSpectrum::Jonswap,

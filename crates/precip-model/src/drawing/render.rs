@@ -565,6 +565,9 @@ pub struct FrameInputs<'a> {
     /// The height of the land beyond the scene, m
     /// ([`crate::drawing::far_ground::far_ground_level_m`]); `None`: none drawn.
     pub far_ground_level_m: Option<f32>,
+    /// The scene has a sea: the block's sea rows are made (else left zero: an idle
+    /// sea costs nothing, on the host either).
+    pub sea: bool,
 }
 
 impl crate::Setup {
@@ -588,6 +591,10 @@ impl crate::Setup {
         waves: GridFrame,
         pools: PoolDrawing,
     ) -> RenderParams {
+        let sea = self
+            .scene
+            .as_ref()
+            .is_some_and(|s| s.meshes.iter().any(crate::scene::Mesh::is_sea));
         RenderParams::new(&FrameInputs {
             view,
             weather,
@@ -602,12 +609,9 @@ impl crate::Setup {
             cull_groups: crate::host::cull_groups(particle_count),
             pools,
             // A scene with a sea: the sea runs to the horizon, no land beyond.
-            far_ground_level_m: (self.render.land_beyond
-                && !self
-                    .scene
-                    .as_ref()
-                    .is_some_and(|s| s.meshes.iter().any(crate::scene::Mesh::is_sea)))
-            .then(|| crate::drawing::far_ground::far_ground_level_m(&self.ground)),
+            far_ground_level_m: (self.render.land_beyond && !sea)
+                .then(|| crate::drawing::far_ground::far_ground_level_m(&self.ground)),
+            sea,
         })
     }
 }
@@ -679,7 +683,11 @@ impl RenderParams {
         let extinction_per_m = s.clear_air_extinction_per_m + f.weather.extinction_per_m();
         let haze = haze_colour(s, f.weather);
         let wind = f.weather.wind.mean_wind_mps;
-        let sea_rows = s.sea.rows([wind.x, wind.z]);
+        let sea_rows = if f.sea {
+            s.sea.rows([wind.x, wind.z])
+        } else {
+            [Vec4::ZERO; 6]
+        };
         Self {
             view_proj: view_projection(camera, aspect),
             sun_view_proj: crate::drawing::shadow_fit::fitted_sun_view_projection(
