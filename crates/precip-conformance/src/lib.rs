@@ -92,6 +92,42 @@ pub fn gpu_subjects(test: &str) -> Vec<Subject> {
     subjects
 }
 
+/// Runs `on_wgpu` on wgpu over every adapter, then `on_vk` on the Vulkan backend
+/// (validation on, its messages checked after), each with the backend's name: for
+/// suites that read what only the GPU backends give (their frame's buffers and
+/// textures), so they need the concrete types.
+pub fn each_gpu_backend(
+    test: &str,
+    mut on_wgpu: impl FnMut(&str, &mut WgpuBackend),
+    mut on_vk: impl FnMut(&str, &mut VkBackend),
+) {
+    let found = adapters();
+    if found.is_empty() {
+        missing(test, "no wgpu adapter found");
+    }
+    for adapter in &found {
+        let name = format!("wgpu: {}", adapter.get_info().name);
+        match WgpuBackend::on_adapter(adapter) {
+            Ok(mut backend) => on_wgpu(&name, &mut backend),
+            Err(e) => missing(test, &format!("{name}: {e}")),
+        }
+    }
+    match VkBackend::new(true) {
+        Ok(mut backend) => {
+            let log = backend.validation_log();
+            let name = format!("vk: {}", backend.device_name());
+            on_vk(&name, &mut backend);
+            let messages = log.lock().map(|m| m.clone()).unwrap_or_default();
+            assert!(
+                messages.is_empty(),
+                "{test}, {name}: the validation layer: {}",
+                messages.join("\n")
+            );
+        }
+        Err(e) => missing(test, &format!("vk: {e}")),
+    }
+}
+
 /// Every backend: the CPU reference first, then [`gpu_subjects`].
 #[must_use]
 pub fn all_subjects(test: &str) -> Vec<Subject> {

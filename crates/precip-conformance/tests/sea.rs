@@ -6,8 +6,7 @@
 //! texels wrap, so a bilinear read tiles without a seam.
 
 use glam::Vec3;
-use precip_gpu_vk::VkBackend;
-use precip_gpu_wgpu::{WgpuBackend, adapters};
+use precip_conformance::each_gpu_backend;
 use precip_model::cover::Surface;
 use precip_model::{Backend, Mesh, Scene, Setup, View, Weather};
 use precip_sea::ocean::{OCEAN_CASCADES, OCEAN_N, SeaSpectrum};
@@ -171,36 +170,9 @@ fn check<B: Backend>(
 
 #[test]
 fn the_sea_s_kernels_give_the_reference_surfaces_on_every_gpu_backend() {
-    let found = adapters();
-    let require = std::env::var("PRECIP_REQUIRE_GPU").as_deref() == Ok("1");
-    if found.is_empty() {
-        assert!(!require, "PRECIP_REQUIRE_GPU=1 but no wgpu adapter");
-        eprintln!("SKIPPED the sea's kernels on wgpu: no adapter");
-    }
-    for adapter in &found {
-        let name = format!("wgpu: {}", adapter.get_info().name);
-        let mut backend = WgpuBackend::on_adapter(adapter).expect("a backend");
-        check(&name, &mut backend, |b| {
-            b.read_sea_atlases().expect("reads")
-        });
-    }
-    match VkBackend::new(true) {
-        Ok(mut backend) => {
-            let log = backend.validation_log();
-            let name = format!("vk: {}", backend.device_name());
-            check(&name, &mut backend, |b| {
-                b.read_sea_atlases().expect("reads")
-            });
-            let messages = log.lock().map(|m| m.clone()).unwrap_or_default();
-            assert!(
-                messages.is_empty(),
-                "{name}: the validation layer: {}",
-                messages.join("\n")
-            );
-        }
-        Err(e) => {
-            assert!(!require, "PRECIP_REQUIRE_GPU=1 but vk: {e}");
-            eprintln!("SKIPPED the sea's kernels on vk: {e}");
-        }
-    }
+    each_gpu_backend(
+        "the sea's kernels",
+        |name, b| check(name, b, |b| b.read_sea_atlases().expect("reads")),
+        |name, b| check(name, b, |b| b.read_sea_atlases().expect("reads")),
+    );
 }

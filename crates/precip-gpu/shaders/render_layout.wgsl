@@ -80,6 +80,16 @@ struct RenderParams {
     sea_bed: vec4<f32>,
     // the sea's spectrum: 0 JONSWAP, 1 Phillips; 0, 0, 0
     ocean_spectrum: vec4<f32>,
+    // the shore's grid: its corner x, z m, its cell m, the still level m
+    shore_grid: vec4<f32>,
+    // its cells along x and z (0: no shore), this frame's shore step s, speed cap m/s
+    shore_size: vec4<f32>,
+    // each side's edge (west, east, south, north): 0 wall, 1 open, 2 the sea's waves
+    shore_edges: vec4<f32>,
+    // the shore's steps this frame, 0, 0, 0
+    shore_steps: vec4<f32>,
+    // the waves coming in: amplitude m, angular frequency rad/s, phase rad, 0
+    shore_waves: array<vec4<f32>, 8>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

@@ -61,6 +61,8 @@ struct SeaVarying {
     @location(3) depth_m: f32,
     @location(4) share: f32,
     @location(5) crest: f32,
+    // The foam of the shore's breaking water (its bores and swash).
+    @location(6) shore_foam: f32,
 }
 
 // An atlas's square per cascade: its points and a border texel each side.
@@ -180,20 +182,44 @@ fn ocean_atlas_uv(c: u32, xz_m: vec2<f32>) -> vec2<f32> {
 @vertex
 fn vs_sea(v: SceneVertex) -> SeaVarying {
     var moved = vec3<f32>(0.0);
+    var longest = vec3<f32>(0.0);
     for (var c = 0u; c < OCEAN_CASCADES; c += 1u) {
-        moved += textureSampleLevel(ocean_displacement, cover_sampler, ocean_atlas_uv(c, v.position_m.xz), 0.0).xyz;
+        let d = textureSampleLevel(ocean_displacement, cover_sampler, ocean_atlas_uv(c, v.position_m.xz), 0.0).xyz;
+        moved += d;
+        longest = select(longest, d, c == 0u);
     }
     // Toward the shore the waves shoal and break: cut to what the depth holds.
-    let depth = sea_depth_at(v.position_m.xz);
-    let share = sea_wave_share(depth);
-    let p = v.position_m + moved * share;
+    var depth = sea_depth_at(v.position_m.xz);
+    var share = sea_wave_share(depth);
+    var p = v.position_m + moved * share;
+    let significant = max(params.ocean.w, 1.0e-3);
+    var crest = moved.y / significant;
+    var foam = 0.0;
+    // Over the shore's grid its water stands for the sea's longest waves (it
+    // carries them in over its incoming edge, runs them up the beach and off the
+    // walls); the shorter ones ride on it as deep as its water holds them; dry
+    // land's cells sink out of sight under the ground (render_shore.wgsl).
+    if (switches.shore_size.x > 0.5) {
+        let w = shore_weight(v.position_m.xz);
+        if (w > 0.0) {
+            let s = shore_surface(v.position_m.xz);
+            let fine_share = sea_wave_share(s.y);
+            let on_shore = vec3<f32>(v.position_m.x, params.shore_grid.w + s.x, v.position_m.z) + (moved - longest) * fine_share;
+            p = mix(p, on_shore, w);
+            depth = mix(depth, s.y, w);
+            share = mix(share, fine_share, w);
+            crest = mix(crest, s.x / significant, w);
+            foam = w * shore_foam(s);
+        }
+    }
     var out: SeaVarying;
     out.clip = params.view_proj * vec4<f32>(p, 1.0);
     out.world_m = p;
     out.surface_m = v.position_m;
     out.depth_m = depth;
     out.share = share;
-    out.crest = moved.y / max(params.ocean.w, 1.0e-3);
+    out.crest = crest;
+    out.shore_foam = foam;
     out.cloud_sun = cloud_sun_share(p);
     return out;
 }
@@ -243,6 +269,8 @@ fn fs_sea(in: SeaVarying) -> @location(0) vec4<f32> {
     let crest = clamp(SEA_SURF_FOAM_TROUGH + 2.0 * in.crest, 0.0, 1.0);
     let grain = clamp(SEA_SURF_GRAIN_MEAN + SEA_SURF_GRAIN * fine_fold, 0.0, 1.5);
     fold += SEA_SURF_FOAM * (1.0 - share) * crest * grain;
+    // The shore's bores and swash, torn likewise.
+    fold += SEA_SURF_FOAM * in.shore_foam * grain;
     // The rain's rings on it, as on a pond.
     let ring_fade = clamp(1.0 - footprint_m / (0.5 * RING_WAVELENGTH_M), 0.0, 1.0);
     slope += water_slope(0.0, 1.0, in.surface_m.xz, ring_fade);

@@ -130,6 +130,20 @@ impl<G: Gpu> GpuBackend<G> {
         }
     }
 
+    /// The shore's grid and water as the last frame left them (tests and tools; see
+    /// [`FrameState::shore_state`]); `None` before a frame or without a shore.
+    pub fn read_shore(
+        &mut self,
+    ) -> Result<Option<precip_model::drawing::shore::ShoreGridState>, BackendError> {
+        let state = self.state.as_ref().ok_or(BackendError::NotConfigured {
+            operation: "read_shore",
+        })?;
+        match &state.frame {
+            Some(frame) => frame.shore_state(&mut self.gpu),
+            None => Ok(None),
+        }
+    }
+
     /// The albedo of the ground the last frame's drops refracted and of the land
     /// beyond the scene (tests and tools; see [`FrameState::drop_ground_albedo`]);
     /// `None` before a frame.

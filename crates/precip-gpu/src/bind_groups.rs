@@ -292,6 +292,24 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
         binding(rb::OCEAN_DISPLACEMENT, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::OCEAN_SLOPE, FILTERED_2D, Stages::DrawAndCompute),
         binding(rb::SEA_DEPTH, FILTERED_2D, Stages::DrawAndCompute),
+        // The draws' only: the splat kernel's stage holds as many storage buffers
+        // as WebGPU allows one stage.
+        binding(rb::SHORE, storage(true), Stages::Draw),
+    ],
+};
+
+/// Group 0 of the shore's kernels: the frame's block (and its storage copy) and
+/// the shore's buffer they step.
+pub const SHORE_KERNEL: GroupLayout = GroupLayout {
+    name: "precip shore",
+    bindings: &[
+        binding(
+            rb::PARAMS,
+            uniform(size_of::<RenderParams>(), true),
+            Stages::Compute,
+        ),
+        binding(rb::PARAMS_SWITCHES, RENDER_PARAMS, Stages::Compute),
+        binding(rb::SHORE_CELLS, storage(false), Stages::Compute),
     ],
 };
 
@@ -515,6 +533,13 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
             Program::Render,
             "ocean_spectrum" | "ocean_fft_rows" | "ocean_fft_columns" | "ocean_resolve",
         ) => &[OCEAN_KERNEL],
+        (
+            Program::Render,
+            "shore_faces_first"
+            | "shore_update_first"
+            | "shore_faces_second"
+            | "shore_update_second",
+        ) => &[SHORE_KERNEL],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
         (Program::Render, "vs_sky" | "fs_sky" | "vs_clouds_all" | "fs_clouds_all") => {

@@ -13,6 +13,7 @@
 use glam::Vec3;
 use precip_model::drawing::render::{RenderParams, haze_colour};
 use precip_model::drawing::shadow_cache::ShadowCache;
+use precip_model::drawing::shore::{ShoreFrames, ShoreGrid};
 use precip_model::drawing::water_mirror::{WaterLevel, frame_mirror, water_levels};
 use precip_model::{ParticleResolution, Setup, View};
 
@@ -22,7 +23,7 @@ use crate::frame_resources::TargetResource;
 use crate::gpu::Gpu;
 use crate::recipe::{
     CLOUD_SHADOW_PASS, COVER_TEXTURE_PASS, CULL_PASSES, DROP_GROUND_PASS, DispatchCounts,
-    FrameDraws, KernelPass, OCEAN_PASSES, SPLAT_PASS, dispatch_size, render_passes,
+    FrameDraws, KernelPass, OCEAN_PASSES, SHORE_PASSES, SPLAT_PASS, dispatch_size, render_passes,
 };
 use crate::shaders::Program;
 
@@ -280,6 +281,8 @@ pub enum PassWhen {
     CloudsNot,
     /// While the scene has a sea (a mesh tagged `"water": "sea"`).
     Sea,
+    /// While the sea has a shore ([`precip_model::drawing::shore::ShoreGrid`]).
+    Shore,
 }
 
 /// One pass of the frame.
@@ -507,7 +510,7 @@ const CLOUDS_PASS: RenderPassRecipe = RenderPassRecipe {
 };
 
 /// The frame, in order (see the module docs and [`crate::renderer`]).
-pub const FRAME_PASSES: [FramePass; 15] = [
+pub const FRAME_PASSES: [FramePass; 16] = [
     FramePass {
         name: "cover_texture",
         work: PassWork::Kernels(&[COVER_TEXTURE_PASS, DROP_GROUND_PASS]),
@@ -517,6 +520,11 @@ pub const FRAME_PASSES: [FramePass; 15] = [
         name: "ocean",
         work: PassWork::Kernels(&OCEAN_PASSES),
         when: PassWhen::Sea,
+    },
+    FramePass {
+        name: "shore",
+        work: PassWork::Kernels(&SHORE_PASSES),
+        when: PassWhen::Shore,
     },
     FramePass {
         name: "shadow",
@@ -708,6 +716,8 @@ pub struct FrameConditions {
     pub clouds_fresh: bool,
     /// The scene has a sea ([`PassWhen::Sea`]).
     pub sea: bool,
+    /// The sea has a shore ([`PassWhen::Shore`]).
+    pub shore: bool,
 }
 
 impl PassWhen {
@@ -733,6 +743,7 @@ impl PassWhen {
             Self::CloudsB => conditions.clouds && conditions.clouds_into_b,
             Self::CloudsNot => !conditions.clouds,
             Self::Sea => conditions.sea,
+            Self::Shore => conditions.shore,
         }
     }
 }
@@ -838,6 +849,8 @@ pub struct FrameHost {
     sea: bool,
     /// Its water bodies' level surfaces (the planar mirror's candidates).
     water_levels: Vec<WaterLevel>,
+    /// The sea's shore, stepped by the frame's `shore` pass.
+    shore: Option<ShoreFrames>,
 }
 
 impl FrameHost {
@@ -859,7 +872,27 @@ impl FrameHost {
                 .scene
                 .as_ref()
                 .map_or_else(Vec::new, |s| water_levels(s)),
+            shore: setup
+                .scene
+                .as_ref()
+                .and_then(|s| ShoreGrid::of_scene(s))
+                .and_then(|grid| {
+                    let w = setup.weather.wind.mean_wind_mps;
+                    ShoreFrames::new(grid, &setup.render.sea, [w.x, w.z]).ok()
+                }),
         }
+    }
+
+    /// The sea's shore, where the scene has one.
+    #[must_use]
+    pub fn shore(&self) -> Option<&ShoreFrames> {
+        self.shore.as_ref()
+    }
+
+    /// The sea's shore grid, where the scene has one.
+    #[must_use]
+    pub fn shore_grid(&self) -> Option<&ShoreGrid> {
+        self.shore.as_ref().map(ShoreFrames::grid)
     }
 
     /// Whether the scene has water bodies at a level (the mirror's image is made).
@@ -893,6 +926,14 @@ impl FrameHost {
         let shadow_redrawn =
             self.shadow_cache
                 .for_frame(setup, host.weather(), &mut params, host.time_s());
+        let wind = host.weather().wind.mean_wind_mps;
+        let shore = self
+            .shore
+            .as_mut()
+            .map(|s| s.next_frame(&setup.render.sea, [wind.x, wind.z], host.time_s()));
+        if let Some(frame) = &shore {
+            params = params.with_shore_rows(&frame.rows);
+        }
         FrameDecision {
             params,
             conditions: FrameConditions {
@@ -906,6 +947,7 @@ impl FrameHost {
                 clouds_into_b: false,
                 clouds_fresh: false,
                 sea: self.sea,
+                shore: shore.is_some(),
             },
             sky_colour: haze_colour(&setup.render, host.weather()),
             mirror_rect_px: mirror.map(|m| m.rect_px),
@@ -979,6 +1021,7 @@ mod tests {
                     clouds_into_b: into_b,
                     clouds_fresh: into_b,
                     sea: into_b,
+                    shore: into_b && particles,
                 })
                 .collect();
                 assert_eq!(plan.len(), FRAME_PASSES.len());
@@ -996,6 +1039,7 @@ mod tests {
                         "clouds_b" | "clouds_fresh" => clouds && into_b,
                         "cloud_shadow" => clouds,
                         "ocean" => into_b,
+                        "shore" => into_b && particles,
                         _ => true,
                     };
                     assert_eq!(p.runs, expected, "{}", p.pass.name);
@@ -1029,6 +1073,7 @@ mod tests {
                 clouds_into_b: false,
                 clouds_fresh: false,
                 sea: false,
+                shore: false,
             };
             let ground: Vec<_> = recipe
                 .draws
@@ -1062,6 +1107,7 @@ mod tests {
                     clouds_into_b: into_b,
                     clouds_fresh: fresh,
                     sea: false,
+                    shore: false,
                 };
                 let ran: Vec<_> = frame_plan(conditions)
                     .filter(|p| p.runs && p.pass.name.starts_with("clouds"))
@@ -1097,6 +1143,7 @@ mod tests {
             [
                 "cover_texture",
                 "ocean",
+                "shore",
                 "shadow",
                 "water_mirror",
                 "cloud_shadow",

@@ -12,12 +12,13 @@ use precip_model::drawing::clouds::{
 };
 use precip_model::drawing::render::RenderParams;
 use precip_model::drawing::sea::sea_depth_map;
+use precip_model::drawing::shore::ShoreFrames;
 use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 
 use crate::bind_groups::{
     CLOUD_FRESH, CLOUD_IMAGE, CLOUD_IMAGE_B, CLOUD_SHADOW_KERNEL, COVER_TEXTURE, CULL, GroupLayout,
-    OCEAN_KERNEL, PARTICLE_DEPTH, PARTICLE_IMAGE, REFLECTIONS, RENDER_FRAME, RENDER_LIGHT, SPLAT,
-    SPLAT_RESOLVE,
+    OCEAN_KERNEL, PARTICLE_DEPTH, PARTICLE_IMAGE, REFLECTIONS, RENDER_FRAME, RENDER_LIGHT,
+    SHORE_KERNEL, SPLAT, SPLAT_RESOLVE,
 };
 use crate::recipe::{
     DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, OCEAN_ATLAS_PX,
@@ -45,10 +46,14 @@ pub enum FrameBuffer {
     DropGround,
     /// The sea's spectra, transformed in place by the ocean kernels.
     OceanSpectra,
+    /// The shore's grid: a header, two states, faces and sources
+    /// ([`ShoreFrames::initial_buffer`]), stepped by the shore's kernels and read by
+    /// the sea's draw; 16 bytes without a shore.
+    Shore,
 }
 
 /// A row of the frame's buffers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct FrameBufferSpec {
     /// Which.
     pub buffer: FrameBuffer,
@@ -58,18 +63,23 @@ pub struct FrameBufferSpec {
     pub bytes: u64,
     /// Usage.
     pub usage: BufferUsage,
+    /// What it holds at first (`None`: undefined).
+    pub contents: Option<Vec<u8>>,
 }
 
-/// The frame's buffers for `particle_count` particles.
+/// The frame's buffers for `particle_count` particles and the sea's `shore`.
 #[must_use]
-pub fn frame_buffers(particle_count: u32) -> [FrameBufferSpec; 7] {
+pub fn frame_buffers(particle_count: u32, shore: Option<&ShoreFrames>) -> [FrameBufferSpec; 8] {
     let count = u64::from(particle_count);
     let spec = |buffer, label, bytes: u64, usage| FrameBufferSpec {
         buffer,
         label,
         bytes: bytes.max(16),
         usage,
+        contents: None,
     };
+    let shore_words = shore.map_or_else(|| vec![[0.0f32; 4]], ShoreFrames::initial_buffer);
+    let shore_bytes: Vec<u8> = bytemuck::cast_slice(&shore_words).to_vec();
     [
         spec(
             FrameBuffer::RenderParams,
@@ -113,6 +123,13 @@ pub fn frame_buffers(particle_count: u32) -> [FrameBufferSpec; 7] {
             OCEAN_SPECTRA_BYTES,
             BufferUsage::Storage,
         ),
+        FrameBufferSpec {
+            buffer: FrameBuffer::Shore,
+            label: "precip shore",
+            bytes: shore_bytes.len() as u64,
+            usage: BufferUsage::Storage,
+            contents: Some(shore_bytes),
+        },
     ]
 }
 
@@ -550,7 +567,7 @@ pub struct FrameGroupFill {
 }
 
 /// The groups made once per configuration (the material group is the scene's).
-pub const FRAME_GROUPS: [FrameGroupFill; 6] = [
+pub const FRAME_GROUPS: [FrameGroupFill; 7] = [
     FrameGroupFill {
         layout: &RENDER_FRAME,
         bound: &[
@@ -590,6 +607,18 @@ pub const FRAME_GROUPS: [FrameGroupFill; 6] = [
                 FrameBound::Texture(FrameTexture::OceanSlope),
             ),
             (rb::SEA_DEPTH, FrameBound::Texture(FrameTexture::SeaDepth)),
+            (rb::SHORE, FrameBound::Buffer(FrameBuffer::Shore)),
+        ],
+    },
+    FrameGroupFill {
+        layout: &SHORE_KERNEL,
+        bound: &[
+            (rb::PARAMS, FrameBound::Buffer(FrameBuffer::RenderParams)),
+            (
+                rb::PARAMS_SWITCHES,
+                FrameBound::Buffer(FrameBuffer::RenderParams),
+            ),
+            (rb::SHORE_CELLS, FrameBound::Buffer(FrameBuffer::Shore)),
         ],
     },
     FrameGroupFill {
@@ -887,7 +916,7 @@ mod tests {
     #[test]
     fn the_frame_is_sized_from_the_configuration() {
         let setup = Setup::over_flat_ground(20.0, 8, 10.0, 300);
-        let buffers = frame_buffers(300);
+        let buffers = frame_buffers(300, None);
         let drawn = buffers.iter().find(|b| b.buffer == FrameBuffer::Drawn);
         assert_eq!(
             drawn.map(|b| b.bytes),

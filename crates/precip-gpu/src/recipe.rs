@@ -106,6 +106,11 @@ pub enum DispatchOver {
     OceanLines,
     /// One invocation per texel of the sea's atlases ([`OCEAN_ATLAS_PX`]).
     OceanTexels,
+    /// One invocation per corner of the shore's cells (`(nx + 1)·(ny + 1)`): the
+    /// faces after and above each, and each cell's bed source.
+    ShoreFaces,
+    /// One invocation per cell of the shore's grid.
+    ShoreCells,
     /// One workgroup per cover tile ([`COVER_TILE_SIDE`]) on a GPU, per
     /// [`COVER_TILES_PER_WORKGROUP`] on a device that computes on the CPU, a texel
     /// an invocation, each workgroup taking a listed tile at a time with the
@@ -130,6 +135,10 @@ pub struct DispatchCounts {
     /// Tiles a workgroup of the flow or the drift takes ([`COVER_TILES_PER_WORKGROUP`]
     /// on a device that computes on the CPU, else 1; 0 reads as 1).
     pub cover_tiles_per_workgroup: u32,
+    /// The shore's cells (`nx·ny`; 0 without a shore).
+    pub shore_cells: u32,
+    /// The shore's cell corners (`(nx + 1)·(ny + 1)`; 0 without a shore).
+    pub shore_faces: u32,
 }
 
 impl DispatchCounts {
@@ -146,6 +155,8 @@ impl DispatchCounts {
             wave_cells: u32::try_from(waves.texel_count()).unwrap_or(u32::MAX),
             cover_tiles: x.saturating_mul(z),
             cover_tiles_per_workgroup: if on_cpu { COVER_TILES_PER_WORKGROUP } else { 1 },
+            shore_cells: 0,
+            shore_faces: 0,
         }
     }
 }
@@ -170,6 +181,8 @@ impl DispatchOver {
             Self::OceanPoints => (OCEAN_CASCADES * OCEAN_N * OCEAN_N) as u32,
             Self::OceanLines => (OCEAN_CASCADES * 2 * OCEAN_N) as u32 * WORKGROUP_SIZE,
             Self::OceanTexels => OCEAN_ATLAS_PX[0] * OCEAN_ATLAS_PX[1],
+            Self::ShoreFaces => counts.shore_faces,
+            Self::ShoreCells => counts.shore_cells,
             Self::CoverTiles => {
                 let per_workgroup = match counts.cover_tiles_per_workgroup {
                     0 => 1,
@@ -561,7 +574,7 @@ pub const FEATURES: [(&str, &[&str]); 8] = [
         "sky",
         &["cloud_shadow", "clouds_fresh", "clouds", "clouds_b"],
     ),
-    ("sea", &["ocean"]),
+    ("sea", &["ocean", "shore"]),
     ("scene", &["scene"]),
     ("shadow", &["shadow"]),
 ];
@@ -841,6 +854,54 @@ pub const OCEAN_PASSES: [KernelPass; 4] = [
     },
 ];
 
+/// One step of the shore (render_shore.wgsl): Heun's two stages, each the faces'
+/// fluxes and the cells' bed sources from a state, then the cells updated.
+const SHORE_STEP: [KernelPass; 4] = [
+    KernelPass {
+        program: Program::Render,
+        entry_point: "shore_faces_first",
+        over: DispatchOver::ShoreFaces,
+        when: KernelWhen::Always,
+    },
+    KernelPass {
+        program: Program::Render,
+        entry_point: "shore_update_first",
+        over: DispatchOver::ShoreCells,
+        when: KernelWhen::Always,
+    },
+    KernelPass {
+        program: Program::Render,
+        entry_point: "shore_faces_second",
+        over: DispatchOver::ShoreFaces,
+        when: KernelWhen::Always,
+    },
+    KernelPass {
+        program: Program::Render,
+        entry_point: "shore_update_second",
+        over: DispatchOver::ShoreCells,
+        when: KernelWhen::Always,
+    },
+];
+
+/// Kernels of a frame's shore pass.
+const SHORE_KERNELS: usize =
+    SHORE_STEP.len() * precip_model::drawing::shore::SHORE_STEPS_PER_FRAME as usize;
+
+/// `N` kernels of shore steps, one after the other.
+const fn shore_steps<const N: usize>() -> [KernelPass; N] {
+    let mut passes = [SHORE_STEP[0]; N];
+    let mut k = 0;
+    while k < N {
+        passes[k] = SHORE_STEP[k % SHORE_STEP.len()];
+        k += 1;
+    }
+    passes
+}
+
+/// The frame's shore: [`precip_model::drawing::shore::SHORE_STEPS_PER_FRAME`] steps
+/// of the shallow-water equations over the shore's grid, while the scene has one.
+pub const SHORE_PASSES: [KernelPass; SHORE_KERNELS] = shore_steps();
+
 /// The clouds' shadow map: the share of the sun's light through every layer over
 /// the land around the camera ([`render_bindings::CLOUD_SHADOW`]), while a layer is
 /// drawn, before any draw.
@@ -1045,6 +1106,12 @@ pub mod render_bindings {
     pub const OCEAN_SLOPE_OUT: u32 = 26;
     /// The water's depth under the sea's level over the ground grid.
     pub const SEA_DEPTH: u32 = 27;
+    /// The shore's buffer (`precip_model::drawing::shore::ShoreGrid::initial_buffer`:
+    /// a header, two states, faces, sources; `array<vec4<f32>>`) as the sea's draw
+    /// reads it, read-only storage (vertex and fragment stages).
+    pub const SHORE: u32 = 28;
+    /// The same buffer as the shore's kernels step it, read-write storage.
+    pub const SHORE_CELLS: u32 = 29;
     /// Group 1 of the sky's draw (its own group, numbered apart from the light's
     /// bindings): the clouds' image, `texture_2d<f32>` (`Rgba16Float`: their light,
     /// premultiplied, and opacity), read through [`COVER_SAMPLER`].

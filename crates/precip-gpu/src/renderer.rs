@@ -281,6 +281,8 @@ pub struct FrameState<G: Gpu> {
     frames_drawn: u64,
     params_stride: u64,
     cover_texels: u32,
+    /// The shore's cells and cell corners (0, 0 without a shore).
+    shore_cells: (u32, u32),
     /// Which passes of [`FRAME_PASSES`] the last frame ran.
     ran: [bool; FRAME_PASSES.len()],
     /// The last frame's camera (world → clip) where it copied its scene and depth
@@ -401,6 +403,7 @@ impl<G: Gpu> FrameState<G> {
             frames_drawn: 0,
             params_stride: 0,
             cover_texels: texels.x * texels.y,
+            shore_cells: (0, 0),
             ran: [false; FRAME_PASSES.len()],
             history: None,
             cloud_history: None,
@@ -423,7 +426,11 @@ impl<G: Gpu> FrameState<G> {
         sim: &Simulation<G>,
     ) -> Result<(), BackendError> {
         let setup = sim.host().setup();
-        for spec in frame_buffers(sim.particle_count()) {
+        if let Some(grid) = self.host.shore_grid() {
+            let (nx, ny) = (grid.bathymetry.nx as u32, grid.bathymetry.ny as u32);
+            self.shore_cells = (nx * ny, (nx + 1) * (ny + 1));
+        }
+        for spec in frame_buffers(sim.particle_count(), self.host.shore()) {
             let bytes = if spec.usage == BufferUsage::FrameBlocks {
                 let align = gpu.uniform_alignment().max(16);
                 self.params_stride = spec.bytes.div_ceil(align) * align;
@@ -431,7 +438,8 @@ impl<G: Gpu> FrameState<G> {
             } else {
                 spec.bytes
             };
-            let buffer = gpu.create_buffer(spec.label, bytes, spec.usage, None)?;
+            let buffer =
+                gpu.create_buffer(spec.label, bytes, spec.usage, spec.contents.as_deref())?;
             self.buffers.push((spec.buffer, buffer));
         }
         for spec in frame_textures(setup) {
@@ -746,6 +754,8 @@ impl<G: Gpu> FrameState<G> {
             wave_cells: 0,
             cover_tiles: 0,
             cover_tiles_per_workgroup: 0,
+            shore_cells: self.shore_cells.0,
+            shore_faces: self.shore_cells.1,
         };
         let detail = (
             view.camera.position_m,
@@ -950,6 +960,37 @@ impl<G: Gpu> FrameState<G> {
             texels(FrameTexture::OceanDisplacement)?,
             texels(FrameTexture::OceanSlope)?,
         ]))
+    }
+
+    /// The shore's water as the last frame left it (`None` before a frame or
+    /// without a shore; [`precip_model::drawing::shore`]).
+    pub fn shore_state(
+        &self,
+        gpu: &mut G,
+    ) -> Result<Option<precip_model::drawing::shore::ShoreGridState>, BackendError> {
+        let Some(grid) = self.host.shore_grid() else {
+            return Ok(None);
+        };
+        if self.frames_drawn == 0 {
+            return Ok(None);
+        }
+        let buffer =
+            find(&self.buffers, &FrameBuffer::Shore).ok_or_else(|| missing("the shore"))?;
+        let bytes = gpu.read_buffer(buffer, (grid.buffer_vec4s() * 16) as u64)?;
+        let words: Vec<[f32; 4]> = bytes
+            .chunks_exact(16)
+            .map(|c| {
+                std::array::from_fn(|i| {
+                    f32::from_le_bytes([c[4 * i], c[4 * i + 1], c[4 * i + 2], c[4 * i + 3]])
+                })
+            })
+            .collect();
+        Ok(grid
+            .state_of_buffer(&words)
+            .map(|state| precip_model::drawing::shore::ShoreGridState {
+                grid: grid.clone(),
+                state,
+            }))
     }
 
     /// The cover's three filtered textures as the last frame wrote them: per texel

@@ -98,6 +98,11 @@ pub const RENDER_REFLECTIONS: ShaderFile = shader_file!("render_reflections.wgsl
 /// The open sea: kernels `ocean_spectrum`, `ocean_fft_rows`, `ocean_fft_columns`,
 /// `ocean_resolve`, and the sea's draw.
 pub const RENDER_OCEAN: ShaderFile = shader_file!("render_ocean.wgsl");
+/// The shore's formulas (precip-sea).
+pub const SHORE: ShaderFile = twin_file!("shore.wgsl", precip_sea::wgsl::SHORE);
+/// The shore: kernels `shore_faces_first`, `shore_update_first`,
+/// `shore_faces_second`, `shore_update_second`, and its surface for the sea's draw.
+pub const RENDER_SHORE: ShaderFile = shader_file!("render_shore.wgsl");
 /// The cloud layer marched into the clouds' image.
 pub const RENDER_CLOUDS: ShaderFile = shader_file!("render_clouds.wgsl");
 /// Kernels `cull_count`, `cull_scan`, `cull_write`.
@@ -187,6 +192,8 @@ impl Program {
                 RENDER_REFLECTIONS,
                 OCEAN,
                 RENDER_OCEAN,
+                SHORE,
+                RENDER_SHORE,
                 RENDER_CLOUDS,
                 COVER_TEXTURE,
             ],

@@ -290,7 +290,12 @@ fn rust_and_wgsl_layouts_match() {
             sea_colour,
             sea_attenuation,
             sea_bed,
-            ocean_spectrum
+            ocean_spectrum,
+            shore_grid,
+            shore_size,
+            shore_edges,
+            shore_steps,
+            shore_waves
         }),
         rust_layout!(DrawArgs {
             vertex_count,

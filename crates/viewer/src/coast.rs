@@ -116,10 +116,16 @@ fn joined(name: &str, parts: Vec<GlbMesh>) -> GlbMesh {
 /// The coastal scene's meshes.
 #[must_use]
 pub fn coast_meshes() -> Vec<GlbMesh> {
-    // The sea: from under the beach out to the horizon, finest at the waterline and
+    // The sea: from over the beach's top (where the shore's run-up can reach; dry,
+    // it sinks under the sand) out to the horizon, finest at the waterline and
     // around z = 0 (the beach and the pier).
     let out = graded(1.5, 1.045, SEA_REACH_M);
-    let xs: Vec<f32> = out.iter().rev().map(|d| 5.0 - d).collect();
+    let xs: Vec<f32> = out
+        .iter()
+        .rev()
+        .map(|d| 5.0 - d)
+        .chain((1..=17).map(|i| 5.0 + 1.5 * i as f32))
+        .collect();
     let along = graded(1.5, 1.045, SEA_REACH_M);
     let zs: Vec<f32> = along
         .iter()

@@ -131,8 +131,16 @@ fn wgsl_ocean_equals_rust_ocean() {
                 n2,
             ];
             for v in 0..4 {
+                // The normals (O(1)) within 2e-4 of each other: a GPU's cosine is
+                // exact to an absolute, not a relative, error (NVIDIA H100: a
+                // normal near a zero of its cosine missed a relative 2e-4).
+                let ok = if v >= 2 {
+                    (g[v] - want[v]).abs() <= 2e-4
+                } else {
+                    close(g[v], want[v], 2e-4)
+                };
                 assert!(
-                    close(g[v], want[v], 2e-4),
+                    ok,
                     "{name}: input {i} row 1 [{v}]: WGSL {g:?} vs Rust {want:?}"
                 );
             }

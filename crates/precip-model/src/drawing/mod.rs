@@ -24,6 +24,7 @@ pub mod render;
 pub mod sea;
 pub mod shadow_cache;
 pub mod shadow_fit;
+pub mod shore;
 pub mod unresolved_streaks;
 pub mod water_look;
 pub mod water_mirror;

@@ -329,7 +329,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (960 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (1152 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -455,8 +455,21 @@ pub struct RenderParams {
     pub sea_bed: Vec4,
     /// The sea's spectrum (0 JONSWAP, 1 Phillips), 0, 0, 0.
     pub ocean_spectrum: Vec4,
+    /// The shore's grid ([`crate::drawing::shore`]): its corner x, z m, its cell m,
+    /// the still level m (zeros without a shore; the renderer sets the shore's rows).
+    pub shore_grid: Vec4,
+    /// The shore's cells along x and z, the step of this frame's shore steps s, the
+    /// water's speed cap m/s.
+    pub shore_size: Vec4,
+    /// Each side's edge: west, east, south, north ([`crate::drawing::shore::ShoreEdge`]).
+    pub shore_edges: Vec4,
+    /// The shore's steps this frame, 0, 0, 0.
+    pub shore_steps: Vec4,
+    /// The waves coming in: each sinusoid's amplitude m, angular frequency rad/s,
+    /// phase at this frame's first shore step rad, 0.
+    pub shore_waves: [Vec4; crate::drawing::shore::SHORE_WAVE_COMPONENTS],
 }
-const _: () = assert!(size_of::<RenderParams>() == 960);
+const _: () = assert!(size_of::<RenderParams>() == 1152);
 
 /// The block's rows of the cloud layers: base m, top m, coverage, kind each.
 fn cloud_layer_rows(layers: &CloudLayers) -> [Vec4; MAX_CLOUD_LAYERS] {
@@ -832,8 +845,24 @@ impl RenderParams {
             sea_attenuation: sea_rows[3],
             sea_bed: sea_rows[4],
             ocean_spectrum: sea_rows[5],
+            shore_grid: Vec4::ZERO,
+            shore_size: Vec4::ZERO,
+            shore_edges: Vec4::ZERO,
+            shore_steps: Vec4::ZERO,
+            shore_waves: [Vec4::ZERO; crate::drawing::shore::SHORE_WAVE_COMPONENTS],
         }
         .with_unresolved_streaks(f, pixel_angle, aspect)
+    }
+
+    /// The block with the shore's rows `rows` ([`crate::drawing::shore::ShoreFrames::next_rows`]).
+    #[must_use]
+    pub fn with_shore_rows(mut self, rows: &[Vec4; crate::drawing::shore::SHORE_ROWS]) -> Self {
+        self.shore_grid = rows[0];
+        self.shore_size = rows[1];
+        self.shore_edges = rows[2];
+        self.shore_steps = rows[3];
+        self.shore_waves.copy_from_slice(&rows[4..]);
+        self
     }
 
     /// The block with the grain of `f`'s weather beyond its camera volume

@@ -32,6 +32,54 @@ fn barycentric_xz(p: Vec2, a: Vec2, b: Vec2, c: Vec2) -> Option<Vec3> {
     (w_a >= tolerance && w_b >= tolerance && w_c >= tolerance).then_some(Vec3::new(w_a, w_b, w_c))
 }
 
+/// Calls `f(texel, weights)` for each texel centre of `frame` inside the XZ
+/// projection of the triangle `corners` (texels in row order, barycentric weights).
+fn for_each_centre(frame: GridFrame, corners: [Vec3; 3], mut f: impl FnMut(usize, Vec3)) {
+    let cell = frame.cell_m();
+    let (nx, nz) = (i64::from(frame.texels.x), i64::from(frame.texels.y));
+    let [a2, b2, c2] = corners.map(|v| Vec2::new(v.x, v.z));
+    let lo = (a2.min(b2).min(c2) - frame.origin_m) / cell;
+    let hi = (a2.max(b2).max(c2) - frame.origin_m) / cell;
+    // Texel centres (i + ½) inside [lo, hi].
+    let i0 = ((lo.x - 0.5).ceil() as i64).max(0);
+    let i1 = ((hi.x - 0.5).floor() as i64).min(nx - 1);
+    let j0 = ((lo.y - 0.5).ceil() as i64).max(0);
+    let j1 = ((hi.y - 0.5).floor() as i64).min(nz - 1);
+    for j in j0..=j1 {
+        for i in i0..=i1 {
+            let centre = frame.origin_m + (Vec2::new(i as f32, j as f32) + 0.5) * cell;
+            if let Some(w) = barycentric_xz(centre, a2, b2, c2) {
+                f((i + nx * j) as usize, w);
+            }
+        }
+    }
+}
+
+/// The lowest downward-facing face of `meshes` over each texel centre of `frame`,
+/// m (rows in order; `+∞` where none lies): the underside of a deck or a box,
+/// the bottom of a wall. What stands on the ground has its underside at or below
+/// the ground; what floats over it (a pier's deck) has it above.
+#[must_use]
+pub fn lowest_undersides<'a>(
+    meshes: impl Iterator<Item = &'a crate::scene::Mesh>,
+    frame: GridFrame,
+) -> Vec<f32> {
+    let mut lowest = vec![f32::INFINITY; frame.texel_count()];
+    for mesh in meshes {
+        for t in mesh.indices.chunks_exact(3) {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| mesh.positions_m[i as usize]);
+            if (b - a).cross(c - a).y >= 0.0 {
+                continue;
+            }
+            for_each_centre(frame, [a, b, c], |k, w| {
+                let h = w.x * a.y + w.y * b.y + w.z * c.y;
+                lowest[k] = lowest[k].min(h);
+            });
+        }
+    }
+    lowest
+}
+
 impl GroundMap {
     /// The top-most surface of a prepared `scene` over `frame` (see the module docs).
     /// `scene` must have been through [`Scene::prepare`] (complete attributes).
@@ -55,8 +103,6 @@ impl GroundMap {
         let mut height_m = vec![f32::NEG_INFINITY; n];
         let mut eligibility = vec![0.0; n];
         let mut surface = vec![Surface::default(); n];
-        let cell = frame.cell_m();
-        let (nx, nz) = (i64::from(frame.texels.x), i64::from(frame.texels.y));
         for mesh in meshes {
             for t in mesh.indices.chunks_exact(3) {
                 let [ia, ib, ic] = [t[0], t[1], t[2]].map(|i| i as usize);
@@ -67,32 +113,17 @@ impl GroundMap {
                 let ceiling = under.unwrap_or(f32::INFINITY);
                 let elig =
                     [ia, ib, ic].map(|i| mesh.snow_eligibility.get(i).copied().unwrap_or(0.0));
-                let [a2, b2, c2] = [a, b, c].map(|v| Vec2::new(v.x, v.z));
-                let lo = (a2.min(b2).min(c2) - frame.origin_m) / cell;
-                let hi = (a2.max(b2).max(c2) - frame.origin_m) / cell;
-                // Texel centres (i + ½) inside [lo, hi].
-                let i0 = ((lo.x - 0.5).ceil() as i64).max(0);
-                let i1 = ((hi.x - 0.5).floor() as i64).min(nx - 1);
-                let j0 = ((lo.y - 0.5).ceil() as i64).max(0);
-                let j1 = ((hi.y - 0.5).floor() as i64).min(nz - 1);
-                for j in j0..=j1 {
-                    for i in i0..=i1 {
-                        let centre = frame.origin_m + (Vec2::new(i as f32, j as f32) + 0.5) * cell;
-                        let Some(w) = barycentric_xz(centre, a2, b2, c2) else {
-                            continue;
-                        };
-                        let h = w.x * a.y + w.y * b.y + w.z * c.y;
-                        let k = (i + nx * j) as usize;
-                        if h > height_m[k] && h <= ceiling {
-                            height_m[k] = h;
-                            eligibility[k] =
-                                (w.x * elig[0] + w.y * elig[1] + w.z * elig[2]).clamp(0.0, 1.0);
-                            surface[k] = mesh
-                                .surface
-                                .unwrap_or_else(|| Surface::from_eligibility(eligibility[k]));
-                        }
+                for_each_centre(frame, [a, b, c], |k, w| {
+                    let h = w.x * a.y + w.y * b.y + w.z * c.y;
+                    if h > height_m[k] && h <= ceiling {
+                        height_m[k] = h;
+                        eligibility[k] =
+                            (w.x * elig[0] + w.y * elig[1] + w.z * elig[2]).clamp(0.0, 1.0);
+                        surface[k] = mesh
+                            .surface
+                            .unwrap_or_else(|| Surface::from_eligibility(eligibility[k]));
                     }
-                }
+                });
             }
         }
         for (h, s) in height_m.iter_mut().zip(&mut surface) {

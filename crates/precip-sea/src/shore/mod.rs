@@ -77,6 +77,9 @@ pub enum ShoreError {
         /// The stable step, s.
         stable_s: f32,
     },
+    /// A speed cap that is not finite and positive.
+    #[error("speed cap of {0} m/s: it must be finite and positive")]
+    SpeedCap(f32),
 }
 
 /// The bed's elevation over a grid of square cells, m (up), cell-centred, row by
@@ -282,6 +285,8 @@ pub struct Shore {
     edges: [Edge; 4],
     state: ShoreState,
     time_s: f64,
+    /// The fastest the water may move, m/s ([`Shore::with_speed_cap`]).
+    speed_cap_mps: Option<f32>,
 }
 
 impl Shore {
@@ -324,7 +329,40 @@ impl Shore {
             edges,
             state,
             time_s: 0.0,
+            speed_cap_mps: None,
         })
+    }
+
+    /// The same shore with the water's speed cut to `cap_mps` wherever a stage of a
+    /// step leaves it faster (its discharge scaled down, its depth kept: mass is
+    /// untouched). A real-time solver steps at a fixed step chosen before the
+    /// water moves; the cap keeps that step stable where a thin film on a beach
+    /// would otherwise race ahead (`u = q/h` as `h → 0`). Off by default; the GPU's
+    /// shore runs with it (`precip_model::drawing::shore`).
+    ///
+    /// # Errors
+    ///
+    /// [`ShoreError::SpeedCap`] for a cap that is not finite and positive.
+    pub fn with_speed_cap(mut self, cap_mps: f32) -> Result<Self, ShoreError> {
+        if !(cap_mps.is_finite() && cap_mps > 0.0) {
+            return Err(ShoreError::SpeedCap(cap_mps));
+        }
+        self.speed_cap_mps = Some(cap_mps);
+        Ok(self)
+    }
+
+    /// The same shore with its clock at `time_s` (the incoming waves' phases are
+    /// read at the shore's time).
+    #[must_use]
+    pub fn starting_at(mut self, time_s: f64) -> Self {
+        self.time_s = time_s;
+        self
+    }
+
+    /// The edges: west, east, south, north.
+    #[must_use]
+    pub fn edges(&self) -> &[Edge; 4] {
+        &self.edges
     }
 
     /// The grid.
@@ -388,6 +426,7 @@ impl Shore {
             &mut self.state,
             self.time_s,
             dt_s,
+            self.speed_cap_mps,
         );
         self.time_s += f64::from(dt_s);
         Ok(())

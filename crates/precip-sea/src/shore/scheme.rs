@@ -112,6 +112,7 @@ pub(super) fn step(
     state: &mut ShoreState,
     time_s: f64,
     dt_s: f32,
+    speed_cap_mps: Option<f32>,
 ) {
     let mut first = Padded::new(bathymetry, state);
     fill_edges(&mut first, bathymetry, edges, time_s);
@@ -122,6 +123,10 @@ pub(super) fn step(
         second.qx[k] = first.qx[k] + dt_s * rates[1][k];
         second.qy[k] = first.qy[k] + dt_s * rates[2][k];
         keep_dry_at_rest(&mut second, k);
+        if let Some(cap) = speed_cap_mps {
+            (second.qx[k], second.qy[k]) =
+                capped_discharge(second.h[k], second.qx[k], second.qy[k], cap);
+        }
     }
     fill_edges(&mut second, bathymetry, edges, time_s + f64::from(dt_s));
     let rates = rates_of(&second, bathymetry);
@@ -135,6 +140,9 @@ pub(super) fn step(
                 h = h.max(0.0);
                 qx = 0.0;
                 qy = 0.0;
+            }
+            if let Some(cap) = speed_cap_mps {
+                (qx, qy) = capped_discharge(h, qx, qy, cap);
             }
             let s = j * bathymetry.nx + i;
             state.depth_m[s] = h;
@@ -151,6 +159,19 @@ fn interior<'a>(
 ) -> impl Iterator<Item = usize> + 'a {
     (0..bathymetry.ny)
         .flat_map(move |j| (0..bathymetry.nx).map(move |i| padded.at(i + GHOSTS, j + GHOSTS)))
+}
+
+/// The discharge `(qx, qy)` of water `h` deep, its speed cut to `cap_mps` where it
+/// moves faster ([`super::Shore::with_speed_cap`]). WGSL twin: `shore_capped`.
+pub(super) fn capped_discharge(h: f32, qx: f32, qy: f32, cap_mps: f32) -> (f32, f32) {
+    let most = cap_mps * h;
+    let q = (qx * qx + qy * qy).sqrt();
+    if q > most && q > 0.0 {
+        let s = most / q;
+        (qx * s, qy * s)
+    } else {
+        (qx, qy)
+    }
 }
 
 /// A depth below nothing is none; a dry cell does not move.

@@ -146,3 +146,79 @@ fn a_gale_s_sea_is_rougher_and_whiter_than_a_calm_s_on_every_gpu_backend() {
         }
     }
 }
+
+#[test]
+fn the_coast_s_shore_runs_from_the_shoals_up_the_beach_past_the_pier_s_posts_to_the_wall() {
+    use precip_model::drawing::shore::{SHORE_DEPTH_M, ShoreEdge, ShoreGrid};
+    use precip_viewer::coast::{BREAKWATER, PIER, land_height_m};
+    let scene = load_scene_from_slice(&coast_glb(), "coast.glb")
+        .expect("loads")
+        .scene;
+    let grid = ShoreGrid::of_scene(&scene).expect("a shore");
+    let b = &grid.bathymetry;
+    println!(
+        "the coast's shore: {} × {} cells of {} m from {:?}, edges {:?}",
+        b.nx, b.ny, b.cell_m, grid.origin_m, grid.edges
+    );
+    // The sea's waves come in from the west; the beach's top is a wall; along the
+    // shore the water is open.
+    assert_eq!(
+        grid.edges,
+        [
+            ShoreEdge::Incoming,
+            ShoreEdge::Wall,
+            ShoreEdge::Open,
+            ShoreEdge::Open
+        ]
+    );
+    assert!(grid.still_level_m.abs() < 1e-3);
+    let bed = |x: f32, z: f32| {
+        let i = ((x - grid.origin_m.x) / b.cell_m) as usize;
+        let j = ((z - grid.origin_m.y) / b.cell_m) as usize;
+        b.bed_m[j * b.nx + i]
+    };
+    // The shoals to SHORE_DEPTH_M, the beach to its top.
+    let west = grid.origin_m.x;
+    let deepest = -land_height_m(west + 1.0, 0.0);
+    assert!(
+        (deepest - SHORE_DEPTH_M).abs() < 0.5,
+        "{deepest} m deep at the western edge"
+    );
+    // The breakwater stands on the bed: its top is the shore's bed (a wall).
+    let ((wx0, wx1), (wz0, wz1), top) = BREAKWATER;
+    let wall = bed(0.5 * (wx0 + wx1), 0.5 * (wz0 + wz1));
+    assert!(
+        (wall - top).abs() < 0.01,
+        "the breakwater's cell at {wall} m"
+    );
+    // The pier's deck floats: the water runs under it, over the beach's slope.
+    let ((px0, px1), (pz0, pz1), _) = PIER;
+    let (x, z) = (0.5 * (px0 + px1) - 3.0, 0.5 * (pz0 + pz1));
+    let under = bed(x, z);
+    assert!(
+        (under - land_height_m(x, z)).abs() < 0.2,
+        "under the pier's deck the bed is at {under} m"
+    );
+    // The gale's step and the spin-up's cost on the host.
+    let gale = setup(20.0);
+    let w = gale.weather.wind.mean_wind_mps;
+    let waves = grid.incoming_waves(&gale.render.sea.state([w.x, w.z]));
+    let (cap, dt) = grid.step_bounds(&waves);
+    let start = std::time::Instant::now();
+    let frames =
+        precip_model::drawing::shore::ShoreFrames::new(grid.clone(), &gale.render.sea, [w.x, w.z])
+            .expect("spins up");
+    println!(
+        "a gale: the step {:.1} ms, the speed cap {cap:.1} m/s, the spin-up {:.0} ms on the host",
+        1e3 * dt,
+        1e3 * start.elapsed().as_secs_f64()
+    );
+    assert!(
+        frames
+            .spun_up()
+            .state()
+            .depth_m
+            .iter()
+            .all(|h| h.is_finite())
+    );
+}
