@@ -168,10 +168,16 @@ fn check<B: Backend>(name: &str, backend: &mut B, read: impl Fn(&mut B) -> Optio
         discharge < 5e-3,
         "{name}: discharge off by {discharge} m²/s"
     );
-    // A calm sea over the slope stays flat.
+    // A calm sea over the slope stays flat: exactly on lavapipe; an NVIDIA H100,
+    // which fuses multiplies and adds, leaves discharges of 1.0e-5 m²/s where the
+    // bed's source and the faces' pressures no longer cancel to the bit (a
+    // current of 2 µm/s over 5 m of water), the surface still exact.
     let (surface, discharge, rise) = run(name, backend, &beach(0.0), &read);
     assert!(rise < 1e-5, "{name}: a calm sea moved {rise} m");
-    assert!(surface < 1e-5 && discharge < 1e-5, "{name}");
+    assert!(
+        surface < 1e-5 && discharge < 1e-4,
+        "{name}: surface {surface} m, discharge {discharge} m²/s"
+    );
 }
 
 #[test]

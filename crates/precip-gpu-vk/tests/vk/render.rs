@@ -335,9 +335,10 @@ fn timings_name_every_pass_of_a_frame() {
                 "particles_composite",
                 "water_mirror",
                 "ocean",
+                "shore",
             ]
         } else {
-            &["particles", "water_mirror", "ocean"]
+            &["particles", "water_mirror", "ocean", "shore"]
         };
         for pass in ["step_particles"]
             .into_iter()

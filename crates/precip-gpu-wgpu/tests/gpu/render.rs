@@ -1079,16 +1079,17 @@ fn timings_name_every_pass_of_a_frame() {
                 continue;
             }
             // The particles are drawn one way or the other; no water to mirror, no
-            // sea, no clouds.
+            // sea (nor its shore), no clouds.
             let cloudless: Vec<&str> = precip_gpu::recipe::cloud_passes().collect();
             let skipped: &[&str] = if reduced {
-                &["particles", "water_mirror", "ocean"]
+                &["particles", "water_mirror", "ocean", "shore"]
             } else {
                 &[
                     "particles_reduced",
                     "particles_composite",
                     "water_mirror",
                     "ocean",
+                    "shore",
                 ]
             };
             for pass in precip_gpu::recipe::TIMED_RENDER_PASSES

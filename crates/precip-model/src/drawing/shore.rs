@@ -620,10 +620,10 @@ mod tests {
         // A slow frame: the shore runs at most two steps of the most.
         let s = clock.advance(0.5, 0.05, 2);
         assert!((s.dt_s - 0.05).abs() < 1e-7, "{s:?}");
-        assert!((clock.time_s() - 0.14).abs() < 1e-9);
+        assert!((clock.time_s() - 0.14).abs() < 1e-7);
         // Far behind: the clock jumps.
         let s = clock.advance(100.0, 0.05, 2);
-        assert!((clock.time_s() - 100.0).abs() < 1e-9 && (s.dt_s - 0.05).abs() < 1e-7);
+        assert!((clock.time_s() - 100.0).abs() < 1e-7 && (s.dt_s - 0.05).abs() < 1e-7);
         // Time going back: no step.
         assert!(clock.advance(50.0, 0.05, 2).dt_s.abs() < f32::EPSILON);
     }
