@@ -86,7 +86,7 @@ struct RenderParams {
     shore_size: vec4<f32>,
     // each side's edge (west, east, south, north): 0 wall, 1 open, 2 the sea's waves
     shore_edges: vec4<f32>,
-    // the shore's steps this frame, 0, 0, 0
+    // the shore's steps this frame, its bed's Manning roughness s/m^(1/3), 0, 0
     shore_steps: vec4<f32>,
     // the waves coming in: amplitude m, angular frequency rad/s, phase rad, 0
     shore_waves: array<vec4<f32>, 8>,

@@ -9,7 +9,8 @@
 //                   (i, j)'s bed sources;
 //   shore_update_*  one invocation per cell: the rates from its four faces and its
 //                   sources, the stage's update (first: s1 = s0 + Δt·R(s0); second:
-//                   s0 = (s0 + s1 + Δt·R(s1))/2), dry cells at rest, the speed cap.
+//                   s0 = (s0 + s1 + Δt·R(s1))/2), dry cells at rest, the bed's
+//                   friction, the speed cap.
 // Each face's flux is computed once and read by both its cells: the mass leaving
 // one cell is the mass entering the next, bit for bit.
 // Rust reference: precip_sea::Shore::step (shore/scheme.rs), the same arithmetic.
@@ -191,7 +192,7 @@ fn shore_update(k: u32, second: bool) {
     if (s.x <= SHORE_DRY_DEPTH_M) {
         s = vec3<f32>(max(s.x, 0.0), 0.0, 0.0);
     }
-    let q = shore_capped(s.x, s.yz, switches.shore_size.w);
+    let q = shore_capped(s.x, shore_bed_friction(s.x, s.yz, dt, switches.shore_steps.y), switches.shore_size.w);
     let out = vec4<f32>(s.x, q, a.w);
     if (second) {
         shore_cells[1u + k] = out;

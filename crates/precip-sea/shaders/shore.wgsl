@@ -2,7 +2,7 @@
 // precip_sea::shore (src/shore/scheme.rs; docs/model.md (13.1)–(13.3)): MUSCL
 // faces with the monotonized-central limiter, the hydrostatic reconstruction at
 // each face (Audusse et al. 2004), the HLL flux, the centred bed source, the
-// open sea's waves at an incoming edge, the speed cap. The kernels that step a
+// open sea's waves at an incoming edge, the bed's friction, the speed cap. The kernels that step a
 // grid with them are precip-gpu's render_shore.wgsl.
 //
 // A cell's state is (h, q_normal, q_tangent, b) along the axis a sweep runs; a
@@ -101,6 +101,17 @@ fn shore_face_flux(left: vec4<f32>, right: vec4<f32>) -> vec4<f32> {
 // (`minus`) and after (`plus`); the normal momentum's rate loses it over Δx.
 fn shore_bed_source(minus: vec4<f32>, plus: vec4<f32>) -> f32 {
     return SHORE_G * 0.5 * (minus.x + plus.x) * (plus.y - minus.y);
+}
+
+// scheme.rs bed_friction: the discharge of water `h` deep after a step `dt` of the
+// bed's friction by Manning's n, implicitly.
+fn shore_bed_friction(h: f32, q: vec2<f32>, dt: f32, manning_n: f32) -> vec2<f32> {
+    if (h <= SHORE_DRY_DEPTH_M || manning_n <= 0.0) {
+        return q;
+    }
+    let n = sqrt(q.x * q.x + q.y * q.y);
+    let f = 1.0 + dt * SHORE_G * manning_n * manning_n * n / (h * h * pow(h, 1.0 / 3.0));
+    return q / f;
 }
 
 // scheme.rs capped_discharge: the discharge of water `h` deep with its speed cut

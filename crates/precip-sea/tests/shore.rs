@@ -163,8 +163,9 @@ fn a_long_wave_doubles_its_height_against_a_wall() {
     assert!((highest / (2.0 * a) - 1.0).abs() < 0.05, "{highest}");
 }
 
-#[test]
-fn a_solitary_wave_runs_up_a_plane_beach_as_synolakis_found() {
+/// The run-up of Synolakis's solitary wave (below) over a bed of Manning
+/// roughness `manning_n`, m.
+fn solitary_run_up(manning_n: f32) -> f32 {
     // Synolakis 1987 (J. Fluid Mech. 185): a solitary wave H/d = 0.0185 on depth d
     // over a 1:19.85 beach runs up R/d = 2.831·√(cot β)·(H/d)^(5/4) = 0.0860 (his
     // run-up law for waves that do not break, which his laboratory runs bear out).
@@ -189,7 +190,9 @@ fn a_solitary_wave_runs_up_a_plane_beach_as_synolakis_found() {
         }
     }
     let edges = [Edge::Wall, Edge::Open, Edge::Wall, Edge::Wall];
-    let mut shore = Shore::new(bed.clone(), edges, state).expect("valid");
+    let mut shore = Shore::new(bed.clone(), edges, state)
+        .and_then(|s| s.with_bed_friction(manning_n))
+        .expect("valid");
     let mut run_up = f32::MIN;
     while shore.time_s() < 30.0 {
         let dt = shore.stable_dt_s();
@@ -202,12 +205,55 @@ fn a_solitary_wave_runs_up_a_plane_beach_as_synolakis_found() {
             }
         }
     }
+    run_up
+}
+
+#[test]
+fn a_solitary_wave_runs_up_a_plane_beach_as_synolakis_found() {
+    let (d, ratio, cot) = (1.0f32, 0.0185f32, 19.85f32);
+    let run_up = solitary_run_up(0.0);
     let law = 2.831 * cot.sqrt() * ratio.powf(1.25) * d;
     println!(
         "run-up {run_up:.4} m against Synolakis's {law:.4} m ({:+.1} %)",
         100.0 * (run_up / law - 1.0)
     );
     assert!((run_up / law - 1.0).abs() < 0.1, "{run_up} against {law}");
+}
+
+#[test]
+fn a_rough_bed_holds_the_run_up_back_and_bad_roughness_is_refused() {
+    // The laboratory's glass beach (Manning's n about 0.01) against a sand beach
+    // (0.025): the film running up slows the more the rougher the bed.
+    let (smooth, glass, sand) = (
+        solitary_run_up(0.0),
+        solitary_run_up(0.01),
+        solitary_run_up(0.025),
+    );
+    println!("run-up {smooth:.4} m frictionless, {glass:.4} m at n = 0.01, {sand:.4} m at 0.025");
+    assert!(sand < glass && glass < smooth, "{smooth} {glass} {sand}");
+    assert!(
+        sand > 0.5 * smooth,
+        "friction holds it back, it does not stop it"
+    );
+    let bed = bumpy(8, 8);
+    let rest = ShoreState::at_rest(&bed, 0.0);
+    let shore = Shore::new(bed, WALLS, rest).expect("valid");
+    for bad in [-0.01, 0.5, f32::NAN] {
+        assert!(matches!(
+            shore.clone().with_bed_friction(bad),
+            Err(ShoreError::Friction(_))
+        ));
+    }
+    // A lake at rest stays at rest over a rough bed too.
+    let mut rough = shore.with_bed_friction(0.03).expect("valid");
+    rough.advance(10.0).expect("steps");
+    let moved = rough
+        .state()
+        .discharge_x_m2ps
+        .iter()
+        .chain(&rough.state().discharge_y_m2ps)
+        .fold(0.0f32, |m, q| m.max(q.abs()));
+    assert!(moved < 1e-5, "{moved}");
 }
 
 #[test]

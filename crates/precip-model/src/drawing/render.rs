@@ -463,7 +463,7 @@ pub struct RenderParams {
     pub shore_size: Vec4,
     /// Each side's edge: west, east, south, north ([`crate::drawing::shore::ShoreEdge`]).
     pub shore_edges: Vec4,
-    /// The shore's steps this frame, 0, 0, 0.
+    /// The shore's steps this frame, its bed's Manning roughness s/m^⅓, 0, 0.
     pub shore_steps: Vec4,
     /// The waves coming in: each sinusoid's amplitude m, angular frequency rad/s,
     /// phase at this frame's first shore step rad, 0.

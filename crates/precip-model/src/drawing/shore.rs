@@ -76,6 +76,9 @@ pub const SHORE_STEPS_PER_FRAME: u32 = 4;
 /// the beach before the first frame is seen (some 20 to 30 s of the shore's time,
 /// what the waves take to cross its shoaling water).
 pub const SHORE_SPIN_UP_STEPS: u32 = 1024;
+/// The shore's bed roughness, Manning's `n` in s/m^⅓: sand (Chow 1959, *Open-channel
+/// hydraulics*: 0.020–0.026 for a sand bed; a beach's ripples and shells at the top).
+pub const SHORE_MANNING_N: f32 = 0.025;
 /// Sinusoids of the waves coming in. WGSL twin: `shore_waves`' length.
 pub const SHORE_WAVE_COMPONENTS: usize = 8;
 /// A dry cell's surface is drawn this far under its bed (or under the still level,
@@ -312,9 +315,9 @@ impl ShoreGrid {
         (c, dt)
     }
 
-    /// The CPU reference of this shore: its bed, its edges with `waves` at the
-    /// incoming one, the water at rest at the still level, the speed cut to
-    /// `speed_cap_mps`.
+    /// The CPU reference of this shore: its bed of roughness [`SHORE_MANNING_N`],
+    /// its edges with `waves` at the incoming one, the water at rest at the still
+    /// level, the speed cut to `speed_cap_mps`.
     ///
     /// # Errors
     ///
@@ -330,7 +333,9 @@ impl ShoreGrid {
             ShoreEdge::Incoming => Edge::Incoming(waves.clone()),
         });
         let state = ShoreState::at_rest(&self.bathymetry, self.still_level_m);
-        Shore::new(self.bathymetry.clone(), edges, state)?.with_speed_cap(speed_cap_mps)
+        Shore::new(self.bathymetry.clone(), edges, state)?
+            .with_speed_cap(speed_cap_mps)?
+            .with_bed_friction(SHORE_MANNING_N)
     }
 
     /// The frame block's shore rows for `count` steps `steps` with `waves` coming
@@ -353,7 +358,7 @@ impl ShoreGrid {
         );
         rows[1] = Vec4::new(b.nx as f32, b.ny as f32, steps.dt_s, speed_cap_mps);
         rows[2] = Vec4::from_array(self.edges.map(|e| e as u32 as f32));
-        rows[3] = Vec4::new(count as f32, 0.0, 0.0, 0.0);
+        rows[3] = Vec4::new(count as f32, SHORE_MANNING_N, 0.0, 0.0);
         for (row, c) in rows[4..].iter_mut().zip(&waves.components) {
             let omega = std::f64::consts::TAU / f64::from(c.period_s);
             let phase =

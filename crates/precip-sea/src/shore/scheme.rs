@@ -113,6 +113,7 @@ pub(super) fn step(
     time_s: f64,
     dt_s: f32,
     speed_cap_mps: Option<f32>,
+    manning_n: f32,
 ) {
     let mut first = Padded::new(bathymetry, state);
     fill_edges(&mut first, bathymetry, edges, time_s);
@@ -123,6 +124,8 @@ pub(super) fn step(
         second.qx[k] = first.qx[k] + dt_s * rates[1][k];
         second.qy[k] = first.qy[k] + dt_s * rates[2][k];
         keep_dry_at_rest(&mut second, k);
+        (second.qx[k], second.qy[k]) =
+            bed_friction(second.h[k], second.qx[k], second.qy[k], dt_s, manning_n);
         if let Some(cap) = speed_cap_mps {
             (second.qx[k], second.qy[k]) =
                 capped_discharge(second.h[k], second.qx[k], second.qy[k], cap);
@@ -141,6 +144,7 @@ pub(super) fn step(
                 qx = 0.0;
                 qy = 0.0;
             }
+            (qx, qy) = bed_friction(h, qx, qy, dt_s, manning_n);
             if let Some(cap) = speed_cap_mps {
                 (qx, qy) = capped_discharge(h, qx, qy, cap);
             }
@@ -159,6 +163,20 @@ fn interior<'a>(
 ) -> impl Iterator<Item = usize> + 'a {
     (0..bathymetry.ny)
         .flat_map(move |j| (0..bathymetry.nx).map(move |i| padded.at(i + GHOSTS, j + GHOSTS)))
+}
+
+/// The discharge `(qx, qy)` of water `h` deep after a step `dt_s` of the bed's
+/// friction by Manning's `n` (s/m^⅓), taken implicitly:
+/// `q ← q / (1 + Δt·g·n²·|q|/h^(7/3))` (the friction slope `n²·|u|·u/h^(4/3)`; it
+/// slows a thin film on a beach, hardly a deep wave, and never reverses the flow).
+/// WGSL twin: `shore_bed_friction`.
+pub(super) fn bed_friction(h: f32, qx: f32, qy: f32, dt_s: f32, manning_n: f32) -> (f32, f32) {
+    if h <= DRY_DEPTH_M || manning_n <= 0.0 {
+        return (qx, qy);
+    }
+    let q = (qx * qx + qy * qy).sqrt();
+    let f = 1.0 + dt_s * G * manning_n * manning_n * q / (h * h * h.powf(1.0 / 3.0));
+    (qx / f, qy / f)
 }
 
 /// The discharge `(qx, qy)` of water `h` deep, its speed cut to `cap_mps` where it
