@@ -77,6 +77,9 @@ fn passes_text(passes: &[(&str, f64)]) -> String {
 
 /// Full frames on every backend that renders: wall-clock ms per frame and GPU ms
 /// per pass.
+/// Frames drawn after each configure before the measured ones.
+const WARM_UP_FRAMES: u32 = 10;
+
 fn measure_frames(rows: &mut Vec<serde_json::Value>) {
     for (name, mut backend) in backends() {
         if !backend.info().renders {
@@ -95,7 +98,12 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>) {
                 eprintln!("{name} frame at {count}: {e}");
                 continue;
             }
-            frame(backend.as_mut(), &view);
+            // Frames before the measured ones, so the measured ones are the steady
+            // state's (with one frame of warm-up an H100's vk frames measured 2.5–3.7×
+            // what criterion's later ones did).
+            for _ in 0..WARM_UP_FRAMES {
+                frame(backend.as_mut(), &view);
+            }
             let frames = match count {
                 10_000_000.. => 2,
                 1_000_000.. => 3,
