@@ -99,8 +99,7 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>) {
                 continue;
             }
             // Frames before the measured ones, so the measured ones are the steady
-            // state's (with one frame of warm-up an H100's vk frames measured 2.5–3.7×
-            // what criterion's later ones did).
+            // state's.
             for _ in 0..WARM_UP_FRAMES {
                 frame(backend.as_mut(), &view);
             }

@@ -144,14 +144,14 @@ struct RunArgs {
     backend: BackendName,
     #[command(flatten)]
     weather: WeatherArgs,
-    /// Particles in all.
-    #[arg(long, default_value_t = 300_000)]
+    /// Particles in all (at least 1).
+    #[arg(long, default_value_t = 300_000, value_parser = clap::value_parser!(u32).range(1..))]
     particles: u32,
     /// Seed of every random draw.
     #[arg(long, default_value_t = 1)]
     seed: u32,
-    /// Simulated cover days per real second (0.05 ≈ 1 h 12 min per second).
-    #[arg(long, default_value_t = 0.05)]
+    /// Simulated cover days per real second (0.05 ≈ 1 h 12 min per second), 0 to 2.
+    #[arg(long, default_value_t = 0.05, value_parser = parse_time_scale)]
     time_scale: f32,
     /// Ground and cover texel size, m.
     #[arg(long, default_value_t = 0.5)]
@@ -267,6 +267,23 @@ fn channel_forward(forward: Vec3, yaw_deg: f32, pitch_deg: f32) -> Vec3 {
     }
     glam::Quat::from_axis_angle(right, pitch_deg.to_radians()) * turned
 }
+
+/// Cover days per real second: 0 (the cover still) to
+/// [`precip_viewer::scene_setup::MOST_COVER_DAYS_PER_SECOND`].
+fn parse_time_scale(s: &str) -> Result<f32, String> {
+    let v: f32 = s
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number of days per second"))?;
+    if v.is_finite() && (0.0..=MOST_DAYS_PER_SECOND).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!(
+            "{s} days per second is outside 0 to {MOST_DAYS_PER_SECOND}: faster, a frame's step of the cover (melt, drift, flow) runs for hours and stops being physical"
+        ))
+    }
+}
+
+const MOST_DAYS_PER_SECOND: f32 = precip_viewer::scene_setup::MOST_COVER_DAYS_PER_SECOND;
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s

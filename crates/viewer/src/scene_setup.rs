@@ -18,6 +18,11 @@ use precip_model::{
     PreparedScene, Setup, Weather, WorldEmitter,
 };
 
+/// The fastest the cover's clock may run, simulated days per real second: faster,
+/// a frame's step of the cover (melt, drift, flow) runs for hours and stops being
+/// physical (at 15 frames a second this steps it over three hours a frame).
+pub const MOST_COVER_DAYS_PER_SECOND: f32 = 2.0;
+
 /// Fewest world-emitter particles per m² of scene for particles to feed the cover.
 pub const MIN_WORLD_DENSITY_PER_M2: f32 = 2.0;
 /// Most of the budget the camera volume takes when a world emitter runs.
@@ -116,7 +121,8 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
         }),
         ground,
         cover: CoverSetup {
-            time_scale: (options.cover_days_per_second * 86_400.0).clamp(0.0, 1.0e7),
+            time_scale: (options.cover_days_per_second * 86_400.0)
+                .clamp(0.0, MOST_COVER_DAYS_PER_SECOND * 86_400.0),
             ..CoverSetup::real_time(cover_frame)
         },
         wind_volume: precip_model::wind::WindVolumeSpec::default(),

@@ -485,7 +485,10 @@ impl ApplicationHandler for App {
                 } else if matches!(key, KeyCode::KeyT | KeyCode::KeyG) {
                     let factor = if key == KeyCode::KeyT { 2.0 } else { 0.5 };
                     let mut setup = self.setup.clone();
-                    setup.cover.time_scale = (r.time_scale * factor).clamp(1.0, 1.0e7);
+                    setup.cover.time_scale = (r.time_scale * factor).clamp(
+                        1.0,
+                        crate::scene_setup::MOST_COVER_DAYS_PER_SECOND * 86_400.0,
+                    );
                     setup.weather = r.weather;
                     setup.camera = r.fly.camera(&setup.camera);
                     // The time scale is part of the configuration: re-configure keeps

@@ -41,7 +41,33 @@ pub enum WeatherError {
     },
     /// The wind field was invalid.
     #[error("weather wind: {0}")]
-    Wind(#[from] WindError),
+    Wind(WindError),
+}
+
+// The variants that name their cause in their message do not also give it as their
+// `source`: an error chain printed whole (`anyhow`'s `{:#}`) would say it twice.
+impl From<WindError> for WeatherError {
+    fn from(e: WindError) -> Self {
+        Self::Wind(e)
+    }
+}
+
+impl From<WindError> for BackendError {
+    fn from(e: WindError) -> Self {
+        Self::Wind(e)
+    }
+}
+
+impl From<CoverError> for BackendError {
+    fn from(e: CoverError) -> Self {
+        Self::Cover(e)
+    }
+}
+
+impl From<crate::scene::SceneError> for BackendError {
+    fn from(e: crate::scene::SceneError) -> Self {
+        Self::Scene(e)
+    }
 }
 
 /// Everything a [`crate::Backend`] can refuse or fail at.
@@ -53,10 +79,10 @@ pub enum BackendError {
     Weather(#[from] WeatherError),
     /// Invalid wind volume size; nothing was changed.
     #[error("wind volume: {0}")]
-    Wind(#[from] WindError),
+    Wind(WindError),
     /// Invalid cover grid or parameters; nothing was changed.
     #[error("snow cover: {0}")]
-    Cover(#[from] CoverError),
+    Cover(CoverError),
     /// Some part of the setup is invalid; nothing was changed.
     #[error("invalid setup: `{field}` {problem}")]
     Setup {
@@ -101,7 +127,7 @@ pub enum BackendError {
     InvalidBeams(String),
     /// The scene cannot be used.
     #[error("scene: {0}")]
-    Scene(#[from] crate::scene::SceneError),
+    Scene(crate::scene::SceneError),
     /// Nothing has been rendered yet.
     #[error("read_image needs a rendered frame: call render(&view) first")]
     NothingRendered,

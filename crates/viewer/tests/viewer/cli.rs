@@ -447,3 +447,46 @@ fn a_headless_run_with_lidar_writes_a_point_cloud_beside_each_frame() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn bad_command_lines_are_refused_naming_the_value_and_what_is_allowed_once() {
+    let run = |args: &[&str]| {
+        let out = precip().args(args).output().expect("runs");
+        assert!(!out.status.success(), "{args:?} was accepted");
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let particles = run(&["--particles", "0", "--frames", "1"]);
+    assert!(
+        particles.contains("--particles") && particles.contains("1.."),
+        "{particles}"
+    );
+    let scale = run(&["--time-scale", "1e9", "--frames", "1"]);
+    assert!(
+        scale.contains("--time-scale") && scale.contains("0 to 2"),
+        "{scale}"
+    );
+    // A wind out of range: its field and range, said once (the error chain no
+    // longer repeats a cause its message already names).
+    let dir = temp_dir("bad-wind");
+    let wind = run(&[
+        "--wind",
+        "500",
+        "--frames",
+        "1",
+        "--size",
+        "32x24",
+        "--out",
+        dir.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(wind.matches("out of range").count(), 1, "{wind}");
+    assert!(wind.contains("[-100, 100] m/s"), "{wind}");
+    // A preset that is not TOML: the file and the line.
+    let bad = dir.join("not-a-preset.toml");
+    std::fs::write(&bad, "kind = \"snow\"\nroot:x:0:0:root:/root:/bin/bash\n").expect("writes");
+    let path = bad.to_str().expect("utf-8");
+    let preset = run(&["--preset", path, "--frames", "1"]);
+    assert!(
+        preset.contains(path) && preset.contains("line 2"),
+        "{preset}"
+    );
+}
