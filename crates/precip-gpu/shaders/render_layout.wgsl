@@ -88,7 +88,8 @@ struct RenderParams {
     shore_edges: vec4<f32>,
     // the shore's steps this frame, its bed's Manning roughness s/m^(1/3), 0, 0
     shore_steps: vec4<f32>,
-    // the waves coming in: amplitude m, angular frequency rad/s, phase rad, 0
+    // the waves coming in: amplitude m, angular frequency rad/s, phase rad,
+    // wavenumber along the incoming edge rad/m
     shore_waves: array<vec4<f32>, 8>,
 }
 

@@ -64,12 +64,13 @@ fn shore_sources_base() -> u32 {
 }
 
 // The surface's rise over the still level at the incoming edge `tau` s after this
-// frame's first shore step (IncomingWaves::elevation_m).
-fn shore_rise(tau: f32) -> f32 {
+// frame's first shore step, `along_m` along the edge from its start
+// (IncomingWaves::elevation_at_m).
+fn shore_rise(tau: f32, along_m: f32) -> f32 {
     var rise = 0.0;
     for (var c = 0u; c < SHORE_WAVE_COMPONENTS; c += 1u) {
         let w = switches.shore_waves[c];
-        rise += w.x * cos(w.z + w.y * tau);
+        rise += w.x * cos(w.z + w.y * tau - w.w * along_m);
     }
     return rise;
 }
@@ -115,7 +116,9 @@ fn shore_cell(base: u32, i: i32, j: i32, along_x: bool, tau: f32) -> vec4<f32> {
     if (kind == 1u) {
         return e;
     }
-    let g = shore_incoming(e.w, e.x, e.y, inward, switches.shore_grid.w, shore_rise(tau));
+    // The ghost's place along the edge: z on the west and east sides, x on the others.
+    let along = (f32(select(i, j, side < 2u)) + 0.5) * switches.shore_grid.z;
+    let g = shore_incoming(e.w, e.x, e.y, inward, switches.shore_grid.w, shore_rise(tau, along));
     return vec4<f32>(g.x, g.x * g.y, 0.0, e.w);
 }
 

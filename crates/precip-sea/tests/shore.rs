@@ -264,6 +264,7 @@ fn waves_come_in_from_the_open_sea_and_bad_input_is_refused() {
     let waves = IncomingWaves {
         still_level_m: 0.0,
         components: vec![WaveComponent {
+            along_edge_per_m: 0.0,
             amplitude_m: 0.02,
             period_s: 2.0,
             phase_rad: 0.0,
@@ -311,6 +312,7 @@ fn waves_come_in_from_the_open_sea_and_bad_input_is_refused() {
     let bad = IncomingWaves {
         still_level_m: 0.0,
         components: vec![WaveComponent {
+            along_edge_per_m: 0.0,
             amplitude_m: 0.02,
             period_s: 0.0,
             phase_rad: 0.0,
@@ -362,6 +364,39 @@ proptest! {
         let after = shore.volume_m3();
         prop_assert!(((after - before) / before.max(1e-9)).abs() < 1e-5, "{} → {}", before, after);
     }
+}
+
+#[test]
+fn an_oblique_wave_s_crests_run_along_the_edge_at_its_speed_there() {
+    // A 10 s wave heading 30° from the normal in deep water: along any straight
+    // shore its crests are 2π/κ apart, κ = ω²/g·sin 30°, and run along it at ω/κ.
+    let (period, angle) = (10.0f32, 30f32.to_radians());
+    let kappa = WaveComponent::along_edge_per_m(period, angle);
+    let omega = std::f32::consts::TAU / period;
+    assert!((kappa - omega * omega / G * 0.5).abs() < 1e-6, "{kappa}");
+    let waves = IncomingWaves {
+        still_level_m: 0.0,
+        components: vec![WaveComponent {
+            amplitude_m: 0.5,
+            period_s: period,
+            phase_rad: 0.3,
+            along_edge_per_m: kappa,
+        }],
+    };
+    // A crest at s = 0, t = t0 is at s = (ω/κ)·Δt a time Δt later.
+    let t0 = f64::from(-0.3 / omega);
+    assert!((waves.elevation_at_m(t0, 0.0) - 0.5).abs() < 1e-5);
+    let dt = 2.0f32;
+    let s = omega / kappa * dt;
+    assert!((waves.elevation_at_m(t0 + f64::from(dt), s) - 0.5).abs() < 1e-4);
+    // One wavelength along the edge: the same rise.
+    let wavelength = std::f32::consts::TAU / kappa;
+    for s in [3.0f32, 40.0] {
+        let a = waves.elevation_at_m(1.7, s);
+        let b = waves.elevation_at_m(1.7, s + wavelength);
+        assert!((a - b).abs() < 1e-4, "{a} {b}");
+    }
+    assert!((waves.elevation_m(1.7) - waves.elevation_at_m(1.7, 0.0)).abs() < 1e-7);
 }
 
 #[test]

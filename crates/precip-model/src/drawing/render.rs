@@ -466,7 +466,7 @@ pub struct RenderParams {
     /// The shore's steps this frame, its bed's Manning roughness s/m^⅓, 0, 0.
     pub shore_steps: Vec4,
     /// The waves coming in: each sinusoid's amplitude m, angular frequency rad/s,
-    /// phase at this frame's first shore step rad, 0.
+    /// phase at this frame's first shore step rad, wavenumber along the edge rad/m.
     pub shore_waves: [Vec4; crate::drawing::shore::SHORE_WAVE_COMPONENTS],
 }
 const _: () = assert!(size_of::<RenderParams>() == 1152);

@@ -48,6 +48,7 @@ use precip_cover::GridFrame;
 use precip_sea::ocean::SeaState;
 use precip_sea::{
     Bathymetry, COURANT, Edge, GRAVITY_MPS2, IncomingWaves, Shore, ShoreError, ShoreState,
+    WaveComponent,
 };
 
 use crate::drawing::sea::{BREAKER_INDEX, SEA_DEPTH_RANGE_M, SeaSettings, sea_level_m};
@@ -267,14 +268,17 @@ impl ShoreGrid {
             SHORE_WAVE_COMPONENTS,
             sea.seed,
         );
-        let inward = match self.edges.iter().position(|e| *e == ShoreEdge::Incoming) {
-            Some(0) => Vec2::X,
-            Some(1) => Vec2::NEG_X,
-            Some(2) => Vec2::Y,
-            Some(_) => Vec2::NEG_Y,
-            None => Vec2::ZERO,
+        // The incoming edge's inward normal and the way along it (cells counted
+        // from the grid's corner: z on the west and east sides, x on the others).
+        let (inward, along) = match self.edges.iter().position(|e| *e == ShoreEdge::Incoming) {
+            Some(0) => (Vec2::X, Vec2::Y),
+            Some(1) => (Vec2::NEG_X, Vec2::Y),
+            Some(2) => (Vec2::Y, Vec2::X),
+            Some(_) => (Vec2::NEG_Y, Vec2::X),
+            None => (Vec2::ZERO, Vec2::ZERO),
         };
-        let facing = Vec2::from_array(sea.wind_direction).dot(inward);
+        let wind = Vec2::from_array(sea.wind_direction);
+        let mean_rad = wind.dot(along).atan2(wind.dot(inward));
         let variance: f32 = waves
             .components
             .iter()
@@ -287,13 +291,23 @@ impl ShoreGrid {
         } else {
             1.0
         };
-        let scale = if inward == Vec2::ZERO {
-            0.0
-        } else {
-            depth_share * facing.max(0.1).sqrt()
-        };
-        for c in &mut waves.components {
+        let n = waves.components.len();
+        for (i, c) in waves.components.iter_mut().enumerate() {
+            // Each its own heading: the spreading's quantiles about the wind's,
+            // dealt out of step with the frequencies.
+            let quantile = (((i * 5 + 3) % n.max(1)) as f32 + 0.5) / n.max(1) as f32;
+            let heading = mean_rad + spreading_quantile_rad(quantile);
+            let toward_shore = heading.cos();
+            let scale = if inward == Vec2::ZERO {
+                0.0
+            } else {
+                depth_share * toward_shore.max(0.1).sqrt()
+            };
             c.amplitude_m *= scale;
+            c.along_edge_per_m = WaveComponent::along_edge_per_m(
+                c.period_s,
+                heading.clamp(-MOST_HEADING_RAD, MOST_HEADING_RAD),
+            );
         }
         waves
     }
@@ -363,7 +377,12 @@ impl ShoreGrid {
             let omega = std::f64::consts::TAU / f64::from(c.period_s);
             let phase =
                 (omega * steps.start_s + f64::from(c.phase_rad)).rem_euclid(std::f64::consts::TAU);
-            *row = Vec4::new(c.amplitude_m, omega as f32, phase as f32, 0.0);
+            *row = Vec4::new(
+                c.amplitude_m,
+                omega as f32,
+                phase as f32,
+                c.along_edge_per_m,
+            );
         }
         rows
     }
@@ -414,6 +433,29 @@ pub struct ShoreGridState {
     pub grid: ShoreGrid,
     /// The water.
     pub state: ShoreState,
+}
+
+/// The most a wave coming in turns from the shore's normal, rad (80°: beyond, it
+/// runs along the shore, not onto it).
+const MOST_HEADING_RAD: f32 = 1.4;
+
+/// The angle from the mean direction below which `quantile` of a wind sea's
+/// energy travels, rad: the spreading `cos²ˢ(θ/2)` ([`precip_sea::ocean::directional_spreading`],
+/// `s` = [`precip_sea::ocean::SPREADING_EXPONENT`]) summed over 720 steps of the
+/// circle.
+fn spreading_quantile_rad(quantile: f32) -> f32 {
+    use precip_sea::ocean::{SPREADING_EXPONENT, directional_spreading};
+    let steps = 720;
+    let d = std::f32::consts::TAU / steps as f32;
+    let mut sum = 0.0;
+    for i in 0..steps {
+        let theta = -std::f32::consts::PI + (i as f32 + 0.5) * d;
+        sum += directional_spreading(theta.cos(), SPREADING_EXPONENT) * d;
+        if sum >= quantile {
+            return theta;
+        }
+    }
+    std::f32::consts::PI
 }
 
 /// The cells along side `side` (west, east, south, north) of `b`.
@@ -616,6 +658,60 @@ impl ShoreFrames {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A 100 m square of grid whose west side lies 5 m deep.
+    fn sloping_grid() -> ShoreGrid {
+        let bathymetry = Bathymetry::from_fn(50, 50, 2.0, |x, _| -5.0 + x / 14.0);
+        ShoreGrid {
+            edges: side_edges(&bathymetry, 0.0),
+            bathymetry,
+            origin_m: Vec2::ZERO,
+            still_level_m: 0.0,
+        }
+    }
+
+    #[test]
+    fn the_waves_come_in_spread_about_the_wind_and_turned_by_it_along_the_shore() {
+        let grid = sloping_grid();
+        assert_eq!(grid.edges[0], ShoreEdge::Incoming);
+        let sea = SeaSettings::default();
+        // Onshore (+x, square to the western edge): headings either side of it.
+        let onshore = grid.incoming_waves(&sea.state([12.0, 0.0]));
+        let signs = |w: &IncomingWaves| {
+            (
+                w.components
+                    .iter()
+                    .filter(|c| c.along_edge_per_m > 0.0)
+                    .count(),
+                w.components
+                    .iter()
+                    .filter(|c| c.along_edge_per_m < 0.0)
+                    .count(),
+            )
+        };
+        let (up, down) = signs(&onshore);
+        assert!(up >= 3 && down >= 3, "{up} {down}");
+        // Blowing along the shore (+z): most run along +z, and less reaches it.
+        let along = grid.incoming_waves(&sea.state([0.0, 12.0]));
+        let (up, down) = signs(&along);
+        assert!(up > 2 * down, "{up} {down}");
+        let energy = |w: &IncomingWaves| {
+            w.components
+                .iter()
+                .map(|c| c.amplitude_m.powi(2))
+                .sum::<f32>()
+        };
+        assert!(energy(&along) < 0.8 * energy(&onshore));
+        // Snell's invariant: no wavenumber along the shore beyond the deep water's.
+        for c in &along.components {
+            let deep = (std::f32::consts::TAU / c.period_s).powi(2) / GRAVITY_MPS2;
+            assert!(c.along_edge_per_m.abs() <= deep * 1.0001, "{c:?}");
+        }
+        // The spreading's quantiles: the median at the mean, symmetric about it.
+        assert!(spreading_quantile_rad(0.5).abs() < 0.01);
+        let (lo, hi) = (spreading_quantile_rad(0.1), spreading_quantile_rad(0.9));
+        assert!((lo + hi).abs() < 0.01 && hi > 0.3 && hi < 1.2, "{lo} {hi}");
+    }
 
     #[test]
     fn the_clock_splits_a_frame_and_never_runs_more_than_its_steps() {

@@ -151,6 +151,24 @@ pub struct WaveComponent {
     pub period_s: f32,
     /// Its phase at time 0, rad.
     pub phase_rad: f32,
+    /// Its wavenumber along the edge, rad/m: `k·sin θ`, `θ` the angle its crests
+    /// make with the edge (0: square to the shore, the same all along the edge).
+    /// Snell's law keeps it from deep water to the shore: `ω²/g·sin θ_deep`
+    /// ([`WaveComponent::along_edge_per_m`]).
+    pub along_edge_per_m: f32,
+}
+
+impl WaveComponent {
+    /// The wavenumber along a straight shore of a wave of period `period_s`
+    /// heading `deep_angle_rad` from the shore's normal in deep water, rad/m: the
+    /// deep wavenumber `ω²/g` times `sin θ` — the same at every depth (Snell's law
+    /// over depth contours parallel to the shore: the wave turns toward the normal
+    /// as it slows, its crests' spacing along the shore unchanged).
+    #[must_use]
+    pub fn along_edge_per_m(period_s: f32, deep_angle_rad: f32) -> f32 {
+        let omega = std::f32::consts::TAU / period_s;
+        omega * omega / GRAVITY_MPS2 * deep_angle_rad.sin()
+    }
 }
 
 /// The open sea's waves at an edge: the still water's level and the sum of
@@ -164,14 +182,24 @@ pub struct IncomingWaves {
 }
 
 impl IncomingWaves {
-    /// The surface's rise above the still level at `time_s`, m.
+    /// The surface's rise above the still level at `time_s` at the edge's start
+    /// (along it 0 m), m.
     #[must_use]
     pub fn elevation_m(&self, time_s: f64) -> f32 {
+        self.elevation_at_m(time_s, 0.0)
+    }
+
+    /// The surface's rise above the still level at `time_s`, `along_m` along the
+    /// edge from its start, m: `Σ a·cos(ω·t + φ − κ·s)`, `κ` each component's
+    /// wavenumber along the edge. WGSL twin: `shore_rise` (render_shore.wgsl).
+    #[must_use]
+    pub fn elevation_at_m(&self, time_s: f64, along_m: f32) -> f32 {
         self.components
             .iter()
             .map(|c| {
-                let phase =
-                    std::f64::consts::TAU * time_s / f64::from(c.period_s) + f64::from(c.phase_rad);
+                let phase = std::f64::consts::TAU * time_s / f64::from(c.period_s)
+                    + f64::from(c.phase_rad)
+                    - f64::from(c.along_edge_per_m) * f64::from(along_m);
                 c.amplitude_m * phase.cos() as f32
             })
             .sum()
@@ -216,6 +244,7 @@ impl IncomingWaves {
                     amplitude_m: (2.0 * spectrum(omega) * width).sqrt(),
                     period_s: std::f32::consts::TAU / omega,
                     phase_rad: (h >> 8) as f32 / 16_777_216.0 * std::f32::consts::TAU,
+                    along_edge_per_m: 0.0,
                 }
             })
             .collect();
@@ -230,8 +259,13 @@ impl IncomingWaves {
             return Err(ShoreError::Waves("still_level_m must be finite"));
         }
         for c in &self.components {
-            if !(c.amplitude_m.is_finite() && c.phase_rad.is_finite()) {
-                return Err(ShoreError::Waves("amplitude and phase must be finite"));
+            if !(c.amplitude_m.is_finite()
+                && c.phase_rad.is_finite()
+                && c.along_edge_per_m.is_finite())
+            {
+                return Err(ShoreError::Waves(
+                    "amplitude, phase and wavenumber along the edge must be finite",
+                ));
             }
             if !(c.period_s.is_finite() && c.period_s > 0.0) {
                 return Err(ShoreError::Waves("period_s must be finite and positive"));

@@ -244,8 +244,11 @@ fn fill_edges(padded: &mut Padded, bathymetry: &Bathymetry, edges: &[Edge; 4], t
                     Edge::Wall => padded.mirror(ghost, mirrored, normal_x, true),
                     Edge::Open => padded.mirror(ghost, edge_cell, normal_x, false),
                     Edge::Incoming(waves) => {
+                        // The ghost's place along the edge, m from its start.
+                        let along = (a as f32 + 0.5) * bathymetry.cell_m;
+                        let rise = waves.elevation_at_m(time_s, along);
                         let (h, speed) =
-                            incoming_ghost(padded, edge_cell, waves, time_s, normal_x, inward);
+                            incoming_ghost(padded, edge_cell, waves, rise, normal_x, inward);
                         padded.h[ghost] = h;
                         padded.b[ghost] = padded.b[edge_cell];
                         padded.set_discharge(ghost, normal_x, h * speed, 0.0);
@@ -256,7 +259,7 @@ fn fill_edges(padded: &mut Padded, bathymetry: &Bathymetry, edges: &[Edge; 4], t
     }
 }
 
-/// The ghost's depth and normal velocity at an edge where `waves` come in: the
+/// The ghost's depth and normal velocity at an edge where `waves` come in, their surface `rise` over the still level there: the
 /// characteristic moving inward, `w + 2c`, the wave's (a linear long wave of rise
 /// `η`: `w = η·√(g/d)`, `c = √(g·(d + η))`), the one moving out, `w − 2c`, the edge
 /// cell's (`w` the velocity inward, `inward` its sign along the axis): so the waves
@@ -265,7 +268,7 @@ fn incoming_ghost(
     padded: &Padded,
     edge_cell: usize,
     waves: &super::IncomingWaves,
-    time_s: f64,
+    rise: f32,
     normal_x: bool,
     inward: f32,
 ) -> (f32, f32) {
@@ -274,7 +277,6 @@ fn incoming_ghost(
     if still <= DRY_DEPTH_M {
         return (0.0, 0.0);
     }
-    let rise = waves.elevation_m(time_s);
     let wave_depth = (still + rise).max(0.0);
     let coming = rise * (G / still).sqrt() + 2.0 * (G * wave_depth).sqrt();
     let h = padded.h[edge_cell];
