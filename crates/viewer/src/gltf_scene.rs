@@ -43,8 +43,45 @@ pub struct LoadReport {
     pub snow_mask_attribute: usize,
     /// Primitives whose eligibility came from `extras.snow`.
     pub snow_extras: usize,
+    /// Where each primitive's snow eligibility and surface came from, by the
+    /// primitive's name (`precip inspect` prints them).
+    pub tags: Vec<PrimitiveTags>,
     /// What `Scene::prepare` did (degenerate triangles, computed normals, slope).
     pub scene: SceneReport,
+}
+
+/// Where a primitive's tag came from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum TagSource {
+    /// The `_SNOW_MASK` vertex attribute (eligibility only).
+    Attribute,
+    /// `extras` on what the string names: `material 2 "Asphalt"`, `mesh "road"`,
+    /// `node 4 "terrain"` (the nearest of material, mesh, node up the hierarchy).
+    Extras(String),
+    /// No tag: eligibility from the slope, the surface by the default (paved
+    /// where no snow lies, else soil).
+    Untagged,
+}
+
+impl std::fmt::Display for TagSource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Attribute => f.write_str("the _SNOW_MASK attribute"),
+            Self::Extras(on) => write!(f, "extras on {on}"),
+            Self::Untagged => f.write_str("no tag"),
+        }
+    }
+}
+
+/// Where one primitive's tags came from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PrimitiveTags {
+    /// The primitive, as its mesh is named (`road primitive 0`).
+    pub primitive: String,
+    /// Its snow eligibility's.
+    pub eligibility: TagSource,
+    /// Its surface's.
+    pub surface: TagSource,
 }
 
 /// A loaded, prepared scene.
@@ -371,11 +408,19 @@ struct Converter<'a> {
 }
 
 /// What a node passes to its meshes and children: the nearest `extras` up the
-/// hierarchy.
-#[derive(Debug, Clone, Copy, Default)]
+/// hierarchy, each with what it was on.
+#[derive(Debug, Clone, Default)]
 struct Inherited {
-    snow: Option<f32>,
-    surface: Option<SurfaceTag>,
+    snow: Option<(f32, String)>,
+    surface: Option<(SurfaceTag, String)>,
+}
+
+/// `kind index "name"` (or `kind index` without a name) naming where a tag was.
+fn labelled(kind: &str, index: usize, name: Option<&str>) -> String {
+    name.map_or_else(
+        || format!("{kind} {index}"),
+        |n| format!("{kind} {index} \"{n}\""),
+    )
 }
 
 impl Converter<'_> {
@@ -412,7 +457,7 @@ impl Converter<'_> {
         for visit in order {
             let (parent, inherited) = visit
                 .parent
-                .and_then(|p| placed.get(p).copied())
+                .and_then(|p| placed.get(p).cloned())
                 .unwrap_or((Mat4::IDENTITY, Inherited::default()));
             let placement = self.node(&nodes[visit.node], parent, inherited)?;
             placed.push(placement);
@@ -430,15 +475,20 @@ impl Converter<'_> {
         let local = Mat4::from_cols_array_2d(&node.transform().matrix());
         let world = parent * local;
         let bad = |e: String| self.invalid(format!("node {}: {e}", node.index()));
+        let on = labelled("node", node.index(), node.name());
         let here = Inherited {
-            snow: snow_extra(node.extras()).map_err(bad)?.or(inherited.snow),
+            snow: snow_extra(node.extras())
+                .map_err(bad)?
+                .map(|s| (s, on.clone()))
+                .or(inherited.snow),
             surface: surface_extra(node.extras())
                 .map_err(bad)?
+                .map(|s| (s, on))
                 .or(inherited.surface),
         };
         if let Some(mesh) = node.mesh() {
             if world.is_finite() {
-                self.mesh(&mesh, world, here)?;
+                self.mesh(&mesh, world, here.clone())?;
             } else {
                 self.report
                     .skipped
@@ -464,13 +514,20 @@ impl Converter<'_> {
             .name()
             .map_or_else(|| format!("mesh {}", mesh.index()), str::to_owned);
         let bad = |e: String| self.invalid(format!("{mesh_name}: {e}"));
+        let on = labelled("mesh", mesh.index(), mesh.name());
         let outer = Inherited {
-            snow: snow_extra(mesh.extras()).map_err(bad)?.or(node.snow),
-            surface: surface_extra(mesh.extras()).map_err(bad)?.or(node.surface),
+            snow: snow_extra(mesh.extras())
+                .map_err(bad)?
+                .map(|s| (s, on.clone()))
+                .or(node.snow),
+            surface: surface_extra(mesh.extras())
+                .map_err(bad)?
+                .map(|s| (s, on))
+                .or(node.surface),
         };
         for primitive in mesh.primitives() {
             let name = format!("{mesh_name} primitive {}", primitive.index());
-            match self.primitive(&primitive, &name, world, outer) {
+            match self.primitive(&primitive, &name, world, outer.clone()) {
                 Ok(Some(m)) => {
                     self.report.primitives += 1;
                     self.meshes.push(m);
@@ -600,6 +657,11 @@ impl Converter<'_> {
             }
         }
         let mut snow_eligibility = Vec::new();
+        let mut eligibility_from = TagSource::Untagged;
+        let material_on = material.index().map_or_else(
+            || "the default material".to_owned(),
+            |i| labelled("material", i, material.name()),
+        );
         let mask = attribute(&gltf::Semantic::Extras("SNOW_MASK".into()));
         if let Some(values) = read::<1>(
             draco.as_ref(),
@@ -626,11 +688,13 @@ impl Converter<'_> {
                 })
                 .collect();
             self.report.snow_mask_attribute += 1;
+            eligibility_from = TagSource::Attribute;
         } else {
-            let material_snow = snow_extra(material.extras())?;
-            if let Some(e) = material_snow.or(outer.snow) {
+            let material_snow = snow_extra(material.extras())?.map(|s| (s, material_on.clone()));
+            if let Some((e, on)) = material_snow.or(outer.snow) {
                 snow_eligibility = vec![e; n];
                 self.report.snow_extras += 1;
+                eligibility_from = TagSource::Extras(on);
             }
         }
         let mut indices: Vec<u32> = match (&draco, primitive.indices()) {
@@ -674,7 +738,17 @@ impl Converter<'_> {
             }
         }
         let f = pbr.base_color_factor();
-        let tag = surface_extra(material.extras())?.or(outer.surface);
+        let tag = surface_extra(material.extras())?
+            .map(|s| (s, material_on))
+            .or(outer.surface);
+        self.report.tags.push(PrimitiveTags {
+            primitive: name.to_owned(),
+            eligibility: eligibility_from,
+            surface: tag
+                .as_ref()
+                .map_or(TagSource::Untagged, |(_, on)| TagSource::Extras(on.clone())),
+        });
+        let tag = tag.map(|(t, _)| t);
         Ok(Some(Mesh {
             name: name.to_owned(),
             positions_m,

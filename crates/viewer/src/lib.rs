@@ -32,4 +32,6 @@ pub mod window;
 
 pub use backends::BackendName;
 pub use error::LoadError;
-pub use gltf_scene::{LoadReport, LoadedScene, load_scene, load_scene_from_slice};
+pub use gltf_scene::{
+    LoadReport, LoadedScene, PrimitiveTags, TagSource, load_scene, load_scene_from_slice,
+};

@@ -364,8 +364,25 @@ fn inspect(file: &std::path::Path) -> anyhow::Result<()> {
             (Some(s), false) => s.name().to_owned(),
             (None, false) => "untagged (paved where no snow lies, else soil)".to_owned(),
         };
+        // Where each came from: an attribute, extras on a material, mesh or node,
+        // or nothing (the slope, the default).
+        let from = report.tags.iter().find(|t| t.primitive == m.name);
+        let (eligibility_from, surface_from) = from.map_or_else(
+            || ("the scene".to_owned(), String::new()),
+            |t| {
+                let eligibility = match t.eligibility {
+                    precip_viewer::TagSource::Untagged => "the slope (no tag)".to_owned(),
+                    ref other => other.to_string(),
+                };
+                let surface = match t.surface {
+                    precip_viewer::TagSource::Untagged => String::new(),
+                    ref other => format!(" from {other}"),
+                };
+                (eligibility, surface)
+            },
+        );
         println!(
-            "    {}: {} triangles, eligibility mean {mean:.2}, surface {surface}",
+            "    {}: {} triangles, eligibility mean {mean:.2} from {eligibility_from}, surface {surface}{surface_from}",
             m.name,
             m.indices.len() / 3
         );

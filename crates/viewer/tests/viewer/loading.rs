@@ -52,6 +52,29 @@ fn glb_gltf_with_bin_and_data_uri_load_alike() {
     check_masked(&from_glb.scene);
     assert_eq!(from_glb.report.snow_mask_attribute, 1);
     assert_eq!(from_glb.report.snow_extras, 2);
+    // Where each primitive's eligibility came from (`precip inspect` prints it).
+    let from = |name: &str| {
+        from_glb
+            .report
+            .tags
+            .iter()
+            .find(|t| t.primitive.starts_with(name))
+            .unwrap_or_else(|| panic!("{name}: no tags in {:?}", from_glb.report.tags))
+            .eligibility
+            .clone()
+    };
+    assert_eq!(from("ground"), precip_viewer::TagSource::Attribute);
+    assert_eq!(from("wall"), precip_viewer::TagSource::Untagged);
+    assert!(
+        matches!(from("heated"), precip_viewer::TagSource::Extras(ref on) if on.starts_with("material")),
+        "{:?}",
+        from("heated")
+    );
+    assert!(
+        matches!(from("half"), precip_viewer::TagSource::Extras(ref on) if on.starts_with("node")),
+        "{:?}",
+        from("half")
+    );
 
     let from_uri =
         load_scene_from_slice(&data_uri_gltf(&masked_meshes()), "masked.gltf").expect("loads");
@@ -116,6 +139,11 @@ fn non_indexed_primitives_hierarchies_and_textures() {
     assert!(
         m.snow_eligibility.iter().all(|e| (e - 0.25).abs() < 1e-6),
         "inherited extras"
+    );
+    // Inherited from the parent node, which says so.
+    assert_eq!(
+        loaded.report.tags[0].eligibility,
+        precip_viewer::TagSource::Extras("node 1 \"parent\"".into())
     );
     let t = m.material.base_colour_texture.as_ref().expect("a texture");
     assert_eq!((t.width_px, t.height_px), (2, 2));
