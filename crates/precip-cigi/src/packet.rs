@@ -7,7 +7,7 @@
 //! packets precip does not use are skipped by their size. Layouts: CIGI ICD 3.3,
 //! §4.1.1 (IG Control), §4.1.12 (Weather Control), and for the eyepoint §4.1.2
 //! (Entity Control), §4.1.16 (View Control), §4.1.21 (View Definition) in
-//! [`view`].
+//! `view`.
 //!
 //! The IG answers each frame with Start of Frame (§4.2.1, opcode 101, 24 bytes:
 //! major version, database, IG status, IG mode / timestamp valid / earth model /

@@ -36,11 +36,13 @@ impl VkBackend {
         Ok(Self(GpuBackend::new(Hal::new(device)?)?, None))
     }
 
-    /// Runs on a device the caller owns (an engine's renderer); see
-    /// [`Device::external`] for what the caller must guarantee.
+    /// Runs on a device the caller owns (an engine's renderer): precip makes its
+    /// own allocator and command pool on it and destroys only those.
     ///
     /// # Safety
-    /// As [`Device::external`].
+    /// `external` must hold live objects created from one another as its fields say,
+    /// the queue must not be used by another thread while precip submits, and the
+    /// device and instance must outlive the backend.
     pub unsafe fn on_external_device(
         external: crate::device::ExternalDevice,
     ) -> Result<Self, BackendError> {

@@ -47,7 +47,7 @@ pub struct Device {
     names: Option<ash::ext::debug_utils::Device>,
 }
 
-/// A device the caller owns (an engine's), for [`Device::external`].
+/// A device the caller owns (an engine's), for [`crate::VkBackend::on_external_device`].
 #[derive(Clone)]
 pub struct ExternalDevice {
     /// The loader the instance came from.

@@ -6,28 +6,28 @@
 //! The same WGSL as every backend: the build script compiles precip-gpu's programs
 //! to SPIR-V with naga. What a configuration allocates, how it is bound, what
 //! configure, a weather change, a step, a beam query and a frame run is
-//! `precip_gpu::GpuBackend`'s, over this crate's [`gpu`] calls, as on wgpu, so the
+//! `precip_gpu::GpuBackend`'s, over this crate's `gpu` calls, as on wgpu, so the
 //! two cannot drift apart.
 //! One file per Vulkan concept, in the spirit of wgpu-hal's `vulkan/` and kajiya:
 //!
-//! - [`instance`] — loader, validation layer, debug messenger (messages kept).
-//! - [`device`] — physical device choice, queue, allocator, command pool.
-//! - [`buffer`], [`image`] — memory through gpu-allocator.
-//! - [`commands`] — submissions behind fences (with semaphores for a swapchain);
+//! - `instance` — loader, validation layer, debug messenger (messages kept).
+//! - `device` — physical device choice, queue, allocator, command pool.
+//! - `buffer`, `image` — memory through gpu-allocator.
+//! - `commands` — submissions behind fences (with semaphores for a swapchain);
 //!   barriers.
-//! - [`descriptors`] — pools sized for their sets, allocation, write infos.
-//! - [`spirv`], [`programs`] — modules, pipeline layouts, compute pipelines.
-//! - [`pipelines`] — graphics pipelines from the frame's draws.
-//! - [`gpu`] — `Hal`, the device calls of `precip_gpu::Gpu` (wgpu twin:
+//! - `descriptors` — pools sized for their sets, allocation, write infos.
+//! - `spirv`, `programs` — modules, pipeline layouts, compute pipelines.
+//! - `pipelines` — graphics pipelines from the frame's draws.
+//! - `gpu` — `Hal`, the device calls of `precip_gpu::Gpu` (wgpu twin:
 //!   `precip_gpu_wgpu::gpu`), and the submissions in flight.
-//! - [`transfer`] — uploads, read-backs, image fills and layout changes.
-//! - [`query`] — timestamps per kernel and per pass.
-//! - [`frame`] — a frame's commands into a command buffer: render passes,
+//! - `transfer` — uploads, read-backs, image fills and layout changes.
+//! - `query` — timestamps per kernel and per pass.
+//! - `frame` — a frame's commands into a command buffer: render passes,
 //!   framebuffers, layouts, barriers.
-//! - [`swapchain`] — a window's surface and swapchain (raw-window-handle, ash-window).
-//! - [`retire`] — deferred release of objects in-flight work may still use.
-//! - [`error`] — pure `vk::Result` → `BackendError` conversions.
-//! - [`backend`] — [`VkBackend`].
+//! - `swapchain` — a window's surface and swapchain (raw-window-handle, ash-window).
+//! - `retire` — deferred release of objects in-flight work may still use.
+//! - `error` — pure `vk::Result` → `BackendError` conversions.
+//! - `backend` — [`VkBackend`].
 //!
 //! ## Public surface
 //!

@@ -115,7 +115,7 @@ struct WeatherArgs {
     /// (the weather's own rate by default; docs/model.md (6.16)).
     #[arg(long)]
     rate_beyond: Option<f32>,
-    /// Another cloud layer, TYPE[:COVER[:BASE_M[:THICKNESS_M]]] (e.g.
+    /// Another cloud layer, `TYPE[:COVER[:BASE_M[:THICKNESS_M]]]` (e.g.
     /// stratus:0.9:4000:400); repeat for a third. Added to the preset's; at most
     /// three layers in all, none reaching into another (docs/model.md (6.15)).
     #[arg(long, value_name = "TYPE[:COVER[:BASE_M[:THICKNESS_M]]]")]
@@ -215,7 +215,7 @@ struct RunArgs {
     #[arg(long)]
     cigi: Option<u16>,
     /// Where the scene's origin lies on the Earth for a CIGI host's geodetic
-    /// positions: LAT,LON[,ALT] (degrees, degrees, m above the WGS 84 ellipsoid;
+    /// positions: `LAT,LON[,ALT]` (degrees, degrees, m above the WGS 84 ellipsoid;
     /// the scene's y = 0 at ALT). The scene is the tangent plane there.
     #[arg(long, value_parser = precip_viewer::cigi_view::parse_origin, allow_negative_numbers = true)]
     origin: Option<precip_cigi::GeodeticOrigin>,

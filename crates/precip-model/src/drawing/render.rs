@@ -854,7 +854,7 @@ impl RenderParams {
         .with_unresolved_streaks(f, pixel_angle, aspect)
     }
 
-    /// The block with the shore's rows `rows` ([`crate::drawing::shore::ShoreFrames::next_rows`]).
+    /// The block with the shore's rows `rows` ([`crate::drawing::shore::ShoreFrames::next_frame`]).
     #[must_use]
     pub fn with_shore_rows(mut self, rows: &[Vec4; crate::drawing::shore::SHORE_ROWS]) -> Self {
         self.shore_grid = rows[0];

@@ -11,7 +11,7 @@
 //! up to [`SHORE_RUN_UP_M`] above the level within [`SHORE_LANDWARD_M`] of them
 //! (where they run up). Their bounding box, in cells of [`SHORE_CELL_M`] (larger
 //! where the box is longer than [`SHORE_MAX_CELLS_PER_SIDE`] cells), is the grid.
-//! Its bed at each cell centre ([`ShoreGrid::bed_m`]) is the top-most surface of
+//! Its bed at each cell centre ([`shore_bed_m`]) is the top-most surface of
 //! every mesh but the sea, except where that surface floats over the water: a
 //! deck whose underside lies above the bed under it (a pier) lets the water pass
 //! under it, a wall standing on the bed (a breakwater) does not.
