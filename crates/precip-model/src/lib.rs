@@ -32,6 +32,37 @@
 //!   (`precip-wind`), re-exported.
 //!
 //! The GPU's plan (programs, bindings, recipes) is in the `precip-gpu` crate.
+//!
+//! ## Example
+//!
+//! Snow at 2 mm/h and −3 °C over a flat 20 m square, on the CPU reference (a GPU
+//! backend — `precip_gpu_wgpu::WgpuBackend`, `precip_gpu_vk::VkBackend` — takes
+//! the same calls and draws frames too):
+//!
+//! ```
+//! use precip_model::{Backend, CpuBackend, PrecipitationKind, Setup, Weather};
+//!
+//! let mut setup = Setup::over_flat_ground(20.0, 16, 10.0, 2_000);
+//! setup.weather = Weather {
+//!     kind: PrecipitationKind::DrySnow,
+//!     intensity_mm_per_h: 2.0,
+//!     air_temperature_c: -3.0,
+//!     ..Weather::default()
+//! };
+//! let mut backend = CpuBackend::new();
+//! backend.configure(&setup)?;
+//! for _ in 0..40 {
+//!     backend.step(0.05)?; // s
+//! }
+//! let flakes = backend.read_particles()?;
+//! assert_eq!(flakes.len(), 2_000);
+//! let cover = backend.read_cover()?;
+//! assert!(cover.totals().mean_snow_depth_mm() >= 0.0);
+//! // Bad input is refused, naming the field and what is allowed.
+//! let hot = Weather { air_temperature_c: 30.0, ..setup.weather };
+//! assert!(backend.set_weather(&hot).is_err());
+//! # Ok::<(), precip_model::BackendError>(())
+//! ```
 
 pub mod backend;
 pub mod cpu;
