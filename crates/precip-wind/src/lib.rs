@@ -22,6 +22,29 @@
 //! trilinear weights in the position's fraction of the period, normalised by the root
 //! of the summed squared weights so that the blend keeps the noise's contrast. The
 //! result is a continuous periodic function, and so is the sampler.
+//!
+//! ## Example
+//!
+//! A 6 m/s wind toward the east, baked once, sampled where a flake is:
+//!
+//! ```
+//! use glam::Vec3;
+//! use precip_wind::{WindField, WindVolume, WindVolumeSpec, wind_velocity};
+//!
+//! let field = WindField::horizontal(6.0, 90.0); // m/s, toward 90° (east, +x)
+//! let spec = WindVolumeSpec {
+//!     texels: glam::UVec3::new(16, 8, 16),
+//!     extent_m: Vec3::new(64.0, 32.0, 64.0),
+//! };
+//! let volume = WindVolume::bake(&field, &spec)?;
+//! let gust = volume.sample(Vec3::new(3.0, 2.0, -7.0), 1.5); // m, s
+//! let v = wind_velocity(field.mean_wind_mps, field.gust_factor, gust);
+//! assert!(v.x > 5.0 && v.x < 7.0, "{v}");
+//! // A field out of range is refused, naming the field and the range.
+//! let storm = WindField::horizontal(500.0, 90.0);
+//! assert!(storm.validate().unwrap_err().to_string().contains("[-100, 100]"));
+//! # Ok::<(), precip_wind::WindError>(())
+//! ```
 
 mod bake;
 mod error;
