@@ -9,9 +9,10 @@
 //! [`BREAKER_INDEX`] times the depth (McCowan 1894), so the sea's waves are
 //! scaled down to `min(1, γ_b·d/H_s)` of their open-sea height over the depth `d`
 //! the scene's bed gives ([`sea_depth_map`]: sea level less the top-most surface of
-//! every mesh but the sea), and foam marks the surf where they are cut down. (The
-//! run-up on the beach and the reflection off walls are the shallow-water solver's,
-//! `precip_sea::shore`, whose GPU kernels are still to come.)
+//! every mesh but the sea), and foam marks the surf where they are cut down. Over
+//! the shore's grid the shallow-water solver's water takes the place of the longest
+//! waves: the run-up on the beach and the reflection off walls
+//! ([`crate::drawing::shore`]).
 
 use glam::Vec4;
 use precip_cover::GridFrame;
