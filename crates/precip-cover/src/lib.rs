@@ -23,6 +23,37 @@
 //! [`shade_texel`] composes coverage `A_S`, melted fraction `M_S`, the threshold masks
 //! (`A_M = T_M.g − A_S`, `M_M = T_M.r − M_S`) and wet darkening into the values a
 //! surface shader needs.
+//!
+//! ## Example
+//!
+//! A day of 10 mm/day of snow at −5 °C on a 16 m square, fed by the weather's rate:
+//!
+//! ```
+//! use glam::{UVec2, Vec2};
+//! use precip_cover::{
+//!     CoverAir, CoverFeed, CoverGrid, CoverParams, DepositBuffer, GridFrame,
+//!     generate_threshold_masks,
+//! };
+//!
+//! let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(16.0), UVec2::splat(8));
+//! let n = frame.texel_count();
+//! let masks = generate_threshold_masks(&frame, 1, 4.0);
+//! let mut cover = CoverGrid::new(frame, &vec![1.0; n], &masks, &vec![CoverFeed::WeatherRate; n])?;
+//! let air = CoverAir {
+//!     snow_rate_mm_per_day: 10.0,
+//!     air_temperature_c: -5.0,
+//!     relative_humidity: 0.8,
+//!     ..CoverAir::default()
+//! };
+//! let mut deposits = DepositBuffer::new(n);
+//! for _ in 0..24 {
+//!     cover.step(&mut deposits, air, 1.0 / 24.0, &CoverParams::default()); // days
+//! }
+//! let books = cover.totals();
+//! assert!(books.mean_snow_depth_mm() > 10.0, "fresh snow is deeper than its water");
+//! assert!(books.imbalance_kg().abs() < 1e-3, "the water's books close");
+//! # Ok::<(), precip_cover::CoverError>(())
+//! ```
 
 pub mod blowing;
 mod deposit;
