@@ -253,7 +253,8 @@ impl ShoreGrid {
         let n = cells.len().max(1) as f32;
         cells
             .iter()
-            .map(|&k| (self.still_level_m - b.bed_m[k]).max(0.0))
+            .filter_map(|&k| b.bed_m.get(k))
+            .map(|bed| (self.still_level_m - bed).max(0.0))
             .sum::<f32>()
             / n
     }
@@ -473,8 +474,13 @@ fn side_edges(b: &Bathymetry, level_m: f32) -> [ShoreEdge; 4] {
     std::array::from_fn(|side| {
         let cells = side_cells(b, side);
         let n = cells.len().max(1) as f32;
-        let share =
-            |f: &dyn Fn(f32) -> bool| cells.iter().filter(|&&k| f(b.bed_m[k])).count() as f32 / n;
+        let share = |f: &dyn Fn(f32) -> bool| {
+            cells
+                .iter()
+                .filter(|&&k| b.bed_m.get(k).is_some_and(|&bed| f(bed)))
+                .count() as f32
+                / n
+        };
         if share(&|bed| level_m - bed >= SHORE_INCOMING_DEPTH_M) >= SIDE_SHARE {
             ShoreEdge::Incoming
         } else if share(&|bed| bed >= level_m) >= SIDE_SHARE {
