@@ -1,7 +1,8 @@
 //! Renders the built-in scene (a plane and a gabled house) under falling snow (or
 //! rain) for N frames and writes them as PNGs, with GPU time per pass.
 //!
-//! `cargo run --release -p precip-gpu-wgpu --example render_house -- [frames] [snow|rain|sleet] [out_dir]`
+//! `cargo run --release -p precip-gpu-wgpu --example render_house -- [frames] [KIND] [out_dir]`
+//! (KIND: dry-snow, wet-snow, rain, sleet, sand or dust; `snow` is dry snow)
 //!
 //! The cover runs at 3 hours per simulated second, so the roof whitens within a few
 //! frames while the walls and the ground under the eaves stay bare.
@@ -20,9 +21,8 @@ fn main() -> Result<(), Box<dyn Error>> {
     let frames: u32 = args.next().map_or(Ok(8), |a| a.parse())?;
     let kind = match args.next().as_deref() {
         None | Some("snow") => PrecipitationKind::DrySnow,
-        Some("rain") => PrecipitationKind::Rain,
-        Some("sleet") => PrecipitationKind::Sleet,
-        Some(other) => return Err(format!("unknown kind {other}: snow, rain or sleet").into()),
+        Some(name) => PrecipitationKind::from_name(name)
+            .ok_or_else(|| format!("unknown kind {name}: {}", PrecipitationKind::names()))?,
     };
     let out = PathBuf::from(args.next().unwrap_or_else(|| "target/render_house".into()));
     std::fs::create_dir_all(&out)?;
@@ -31,11 +31,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     println!("scene: {report:?}");
     setup.weather.kind = kind;
     setup.weather.intensity_mm_per_h = 4.0;
-    setup.weather.air_temperature_c = match kind {
-        PrecipitationKind::Rain => 8.0,
-        PrecipitationKind::Sleet => 1.0,
-        _ => -4.0,
-    };
+    setup.weather.air_temperature_c = kind.default_air_temperature_c();
     setup.weather.wind = WindField {
         mean_wind_mps: Vec3::new(0.8, 0.0, 0.3),
         ..WindField::calm()

@@ -34,7 +34,7 @@ fn optics_sums(
     if i < optics_params.particle_count {
         let p = optics_particles[i];
         if (p.flags & FLAG_CAMERA_VOLUME) != 0u && p.diameter_m > 0.0 {
-            let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
+            let kind = particle_kind(p.flags);
             for (var band = 0u; band < 3u; band++) {
                 extinction[band] = extinction_cross_section_m2(kind, p.diameter_m, band);
                 backscatter[band] = backscatter_cross_section_m2_sr(kind, p.diameter_m, band);

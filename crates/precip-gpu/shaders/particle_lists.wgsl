@@ -57,8 +57,7 @@ fn particle_weight(i: u32, position_m: vec3<f32>) -> f32 {
 
 // The length drawn_as tests against min px: a flake's sprite side, a drop's streak.
 fn drawn_length_m(p: Particle) -> f32 {
-    let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-    if (kind == KIND_RAIN) {
+    if (kind_is_drop(particle_kind(p.flags))) {
         return params.sizing.w * length(p.velocity_mps);
     }
     return p.diameter_m * params.sizing.x;
@@ -103,18 +102,18 @@ fn drawn_as(i: u32) -> u32 {
     if (counts.y != 0u && !in_view_cone(p.position_m, camera, params.view_dir_pixel_angle.xyz, params.camera_m_cone_cos.w)) {
         return DRAWN_NOT;
     }
-    let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
+    let drop = kind_is_drop(particle_kind(p.flags));
     if (counts.w != 0u && !drawn_big_enough(p)) {
         return DRAWN_SPLAT;
     }
     // At a reduced resolution a drop narrower than the image's minimum would be
     // widened there into a soft blob: it is splatted along its streak at the
     // frame's resolution instead (render_splat.wgsl).
-    if (counts.w != 0u && kind == KIND_RAIN && params.lens.z > 1.0) {
+    if (counts.w != 0u && drop && params.lens.z > 1.0) {
         let distance_m = distance(p.position_m, camera);
         if (sub_pixel(p.diameter_m, distance_m, params.view_dir_pixel_angle.w, params.sizing.y)) {
             return DRAWN_SPLAT;
         }
     }
-    return select(DRAWN_SNOW, DRAWN_RAIN, kind == KIND_RAIN);
+    return select(DRAWN_SNOW, DRAWN_RAIN, drop);
 }

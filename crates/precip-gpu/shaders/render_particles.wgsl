@@ -16,9 +16,6 @@ struct ParticleVarying {
     @location(4) stretch: f32,
 }
 
-// Quartz sand and mineral dust in daylight (sRGB ~ #c8a878, linear).
-const GRAIN_COLOUR: vec3<f32> = vec3<f32>(0.58, 0.39, 0.19);
-
 // The light a snowflake (or a grain of sand or dust, drawn the same way) sends toward
 // the camera, fogged: a thin translucent plate facing the camera, its sunlight
 // scattered forward (flake_sun_phase of the angle between the sun's light and the
@@ -33,11 +30,7 @@ fn snow_colour(p: Particle) -> vec3<f32> {
     let sh = params.shadow.y * (1.0 - lit);
     let light = blinn_phong(no_diffuse, params.shadow, facing, to_sun, n, lit)
         + params.shadow.z * (1.0 - sh) * params.light.y * flake_sun_phase(dot(-to_sun, n));
-    let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-    var albedo = vec3<f32>(select(0.95, 0.85, kind == KIND_WET_SNOW));
-    if (kind == KIND_GRAIN) {
-        albedo = GRAIN_COLOUR;
-    }
+    let albedo = kind_albedo(particle_kind(p.flags));
     return with_air(albedo * light, air_between(switches.camera_m_cone_cos.xyz, p.position_m, switches.fog_layer));
 }
 

@@ -39,8 +39,7 @@ fn frame_sizing() -> vec4<f32> {
 fn splat_look(p: Particle, distance_m: f32, weight: f32) -> vec4<f32> {
     let pixel_angle = params.view_dir_pixel_angle.w;
     let sizing = frame_sizing();
-    let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-    if (kind == KIND_RAIN) {
+    if (kind_is_drop(particle_kind(p.flags))) {
         let size = raindrop_sizing(length(p.velocity_mps), p.diameter_m, distance_m, pixel_angle, sizing);
         let to_viewer = normalize_or_zero(params.camera_m_cone_cos.xyz - p.position_m);
         let air = air_between(switches.camera_m_cone_cos.xyz, p.position_m, switches.fog_layer);
@@ -82,10 +81,9 @@ fn splat_particle(i: u32) {
     // sub-pixel in the frame: what it stands for beyond itself is already in the
     // haze, whose extinction is the whole air's (precip_model::drawing::multiplicity).
     let look = splat_look(p, distance(p.position_m, camera), resolved_weight(i, p));
-    let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
     var from_m = p.position_m;
     var to_m = p.position_m;
-    let is_rain = kind == KIND_RAIN;
+    let is_rain = kind_is_drop(particle_kind(p.flags));
     if (is_rain) {
         to_m = p.position_m - normalize_or_zero(p.velocity_mps) * params.sizing.w * length(p.velocity_mps);
     } else {

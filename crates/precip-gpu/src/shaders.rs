@@ -37,6 +37,8 @@ macro_rules! shader_file {
 
 /// Structs shared with Rust, grid lookups.
 pub const LAYOUT: ShaderFile = twin_file!("layout.wgsl", precip_model::wgsl::LAYOUT);
+/// What a particle is: its kind's table (needs `DEPOSIT`).
+pub const KIND: ShaderFile = twin_file!("kind.wgsl", precip_model::wgsl::KIND);
 /// Counter-based RNG.
 pub const RNG: ShaderFile = twin_file!("rng.wgsl", precip_model::wgsl::RNG);
 /// Flakes, drops, drag, rotation.
@@ -162,6 +164,7 @@ impl Program {
         match self {
             Self::StepParticles => &[
                 LAYOUT,
+                KIND,
                 RNG,
                 PHYSICS,
                 WIND,
@@ -174,10 +177,20 @@ impl Program {
                 STEP_PARTICLES,
                 WATER_WAVES,
             ],
-            Self::CoverUpdate => &[LAYOUT, DEPOSIT, WATER_PHYSICS, COVER, BLOWING, COVER_UPDATE],
+            Self::CoverUpdate => &[
+                LAYOUT,
+                KIND,
+                DEPOSIT,
+                WATER_PHYSICS,
+                COVER,
+                BLOWING,
+                COVER_UPDATE,
+            ],
             Self::ProbeRng => &[RNG, PROBE_RNG],
             Self::Render => &[
                 LAYOUT,
+                KIND,
+                DEPOSIT,
                 RNG,
                 WATER_PHYSICS,
                 COVER,
@@ -199,6 +212,8 @@ impl Program {
             ],
             Self::CullParticles => &[
                 LAYOUT,
+                KIND,
+                DEPOSIT,
                 RNG,
                 RENDER_LAYOUT,
                 DRAWING,
@@ -207,6 +222,8 @@ impl Program {
             ],
             Self::ProbeDrawing => &[
                 LAYOUT,
+                KIND,
+                DEPOSIT,
                 RNG,
                 DRAWING,
                 WATER_PHYSICS,
@@ -215,8 +232,8 @@ impl Program {
                 PROBE_DRAWING,
             ],
             Self::ProbeOcean => &[RNG, OCEAN, PROBE_OCEAN],
-            Self::QueryBeams => &[LAYOUT, GROUND_MAP, LIDAR],
-            Self::OpticsSums => &[LAYOUT, OPTICS, OPTICS_SUMS],
+            Self::QueryBeams => &[LAYOUT, KIND, DEPOSIT, GROUND_MAP, LIDAR],
+            Self::OpticsSums => &[LAYOUT, KIND, DEPOSIT, OPTICS, OPTICS_SUMS],
         }
     }
 

@@ -13,6 +13,7 @@ use precip_gpu::shaders::Program;
 use precip_model::Particle;
 use precip_model::cover::{CoverStepParams, CoverTexel, GridFrame};
 use precip_model::drawing::render::RenderParams;
+use precip_model::particles::kind::SpeciesParams;
 use precip_model::particles::step::StepParams;
 use precip_model::sensors::lidar::{Beam, BeamHit, BeamParams};
 use precip_model::sensors::optics::OpticsPartial;
@@ -110,19 +111,15 @@ fn rust_and_wgsl_layouts_match() {
             camera_half_extent_m,
             time_s,
             mean_wind_mps,
-            snow_fraction,
+            air_temperature_c,
             world_rotation,
             camera_rotation,
             seed,
             world_count,
             particle_count,
             snow_is_wet,
-            air_temperature_c,
-            rain_slope_per_mm,
             deposit_scale_mm_per_kg,
             ground_floor_m,
-            grain_diameter_m,
-            grain_density_kg_m3,
             lift_from,
             lift_per_particle_kg_per_s,
             friction_velocity_mps,
@@ -134,7 +131,14 @@ fn rust_and_wgsl_layouts_match() {
             wall_rebound_speed_mps,
             step_first,
             step_end,
-            reserved2
+            reserved2,
+            species
+        }),
+        rust_layout!(SpeciesParams {
+            snow_fraction,
+            rain_slope_per_mm,
+            grain_diameter_m,
+            grain_density_kg_m3
         }),
         rust_layout!(Beam {
             origin_m,

@@ -17,19 +17,20 @@ struct Species {
     terminal_speed_mps: f32,
 }
 
+// Rust: precip_model::particles::kind::draw_species.
 fn draw_species(key: u32) -> Species {
-    if (step_params.grain_diameter_m > 0.0) {
-        let diameter = step_params.grain_diameter_m * (0.5 + random_unit(key, DRAW_GRAIN_SIZE));
-        return Species(KIND_GRAIN, diameter, grain_settling_speed_mps(diameter, step_params.grain_density_kg_m3));
+    if (step_params.species.grain_diameter_m > 0.0) {
+        let diameter = step_params.species.grain_diameter_m * (0.5 + random_unit(key, DRAW_GRAIN_SIZE));
+        return Species(KIND_GRAIN, diameter, grain_settling_speed_mps(diameter, step_params.species.grain_density_kg_m3));
     }
-    let is_snow = random_unit(key, DRAW_KIND) < step_params.snow_fraction;
-    if (is_snow) {
+    let which = random_unit(key, DRAW_KIND);
+    if (which < step_params.species.snow_fraction) {
         let wet = step_params.snow_is_wet != 0u;
         let diameter = snowflake_diameter_m(step_params.air_temperature_c, random_unit(key, DRAW_SNOW_SIZE));
         let speed = snow_terminal_speed_mps(wet, random_unit(key, DRAW_SNOW_SPEED));
         return Species(select(KIND_DRY_SNOW, KIND_WET_SNOW, wet), diameter, speed);
     }
-    let diameter_mm = draw_raindrop_diameter_mm(key, step_params.rain_slope_per_mm);
+    let diameter_mm = draw_raindrop_diameter_mm(key, step_params.species.rain_slope_per_mm);
     return Species(KIND_RAIN, diameter_mm * 1.0e-3, raindrop_terminal_speed_mps(diameter_mm));
 }
 
@@ -210,7 +211,7 @@ fn birth_drifting_snow(key: u32, generation: u32) -> Particle {
 // drifting snow).
 fn birth_lifted(index: u32, generation: u32) -> Particle {
     let key = particle_key(step_params.seed, index, generation);
-    if (step_params.grain_diameter_m <= 0.0) {
+    if (step_params.species.grain_diameter_m <= 0.0) {
         return birth_drifting_snow(key, generation);
     }
     let species = draw_species(key);
@@ -259,17 +260,18 @@ const STATIONARY_TRIES: u32 = 16u;
 
 // Rust: slowest_terminal_speed_mps.
 fn slowest_terminal_speed_mps() -> f32 {
-    if (step_params.grain_diameter_m > 0.0) {
-        return grain_settling_speed_mps(0.5 * step_params.grain_diameter_m, step_params.grain_density_kg_m3);
+    if (step_params.species.grain_diameter_m > 0.0) {
+        return grain_settling_speed_mps(0.5 * step_params.species.grain_diameter_m, step_params.species.grain_density_kg_m3);
     }
-    let snow = snow_terminal_speed_mps(step_params.snow_is_wet != 0u, 0.0);
-    let rain = raindrop_terminal_speed_mps(RAIN_DIAMETER_MIN_MM);
-    if (step_params.snow_fraction >= 1.0) {
-        return snow;
-    } else if (step_params.snow_fraction <= 0.0) {
-        return rain;
+    let species = step_params.species;
+    var slowest = 3.4e38;
+    if (species.snow_fraction > 0.0) {
+        slowest = min(slowest, snow_terminal_speed_mps(step_params.snow_is_wet != 0u, 0.0));
     }
-    return min(snow, rain);
+    if (species.snow_fraction < 1.0) {
+        slowest = min(slowest, raindrop_terminal_speed_mps(RAIN_DIAMETER_MIN_MM));
+    }
+    return slowest;
 }
 
 // Rust: stationary_generation (the volume starts as it will stay: species ∝ 1/v).

@@ -38,10 +38,7 @@ const FLAG_CAMERA_VOLUME: u32 = 256u;
 // then the landing point), read by birth_particles within the same sub-step.
 const FLAG_LANDED: u32 = 512u;
 const FLAG_SPLASH: u32 = 2048u;
-const KIND_DRY_SNOW: u32 = 0u;
-const KIND_WET_SNOW: u32 = 1u;
-const KIND_RAIN: u32 = 2u;
-const KIND_GRAIN: u32 = 3u;
+// The kinds (KIND_*) and SpeciesParams: kind.wgsl.
 
 struct StepParams {
     emitter_model: mat4x4<f32>,
@@ -55,19 +52,15 @@ struct StepParams {
     camera_half_extent_m: vec3<f32>,
     time_s: f32,
     mean_wind_mps: vec3<f32>,
-    snow_fraction: f32,
+    air_temperature_c: f32,
     world_rotation: vec2<f32>,
     camera_rotation: vec2<f32>,
     seed: u32,
     world_count: u32,
     particle_count: u32,
     snow_is_wet: u32,
-    air_temperature_c: f32,
-    rain_slope_per_mm: f32,
     deposit_scale_mm_per_kg: f32,
     ground_floor_m: f32,
-    grain_diameter_m: f32,
-    grain_density_kg_m3: f32,
     lift_from: u32,
     lift_per_particle_kg_per_s: f32,
     friction_velocity_mps: f32,
@@ -80,6 +73,7 @@ struct StepParams {
     step_first: u32,
     step_end: u32,
     reserved2: u32,
+    species: SpeciesParams,
 }
 
 // The particles to re-birth this sub-step (Rust: precip_gpu::recipe::pending_births_bytes).

@@ -27,10 +27,11 @@ fn band_wavelength_nm(band: u32) -> f32 {
     return 1550.0;
 }
 
-// Rust: Material::of(kind).refractive_index(band), as (n, k): water (Hale & Querry
-// 1973), ice (Warren & Brandt 2008), quartz's ordinary ray.
-fn refractive_index(kind: u32, band: u32) -> vec2<f32> {
-    if kind == KIND_RAIN {
+// Rust: Material::refractive_index(band), as (n, k), of a material (MATERIAL_*,
+// kind.wgsl): water (Hale & Querry 1973), ice (Warren & Brandt 2008), quartz's
+// ordinary ray.
+fn refractive_index(material: u32, band: u32) -> vec2<f32> {
+    if material == MATERIAL_WATER {
         if band == 0u {
             return vec2<f32>(1.333, 1.96e-9);
         }
@@ -39,7 +40,7 @@ fn refractive_index(kind: u32, band: u32) -> vec2<f32> {
         }
         return vec2<f32>(1.318, 9.9e-5);
     }
-    if kind == KIND_GRAIN {
+    if material == MATERIAL_MINERAL {
         if band == 0u {
             return vec2<f32>(1.546, 0.0);
         }
@@ -69,14 +70,14 @@ fn extinction_efficiency(diameter_m: f32, n: f32, wavelength_nm: f32) -> f32 {
 
 // Rust: extinction_cross_section_m2.
 fn extinction_cross_section_m2(kind: u32, diameter_m: f32, band: u32) -> f32 {
-    let index = refractive_index(kind, band);
+    let index = refractive_index(kind_material(kind), band);
     return extinction_efficiency(diameter_m, index.x, band_wavelength_nm(band))
         * 0.7853982 * diameter_m * diameter_m;
 }
 
 // Rust: drop_backscatter_m2_sr (the front reflection and the once-reflected axial ray).
 fn drop_backscatter_m2_sr(diameter_m: f32, band: u32) -> f32 {
-    let index = refractive_index(KIND_RAIN, band);
+    let index = refractive_index(MATERIAL_WATER, band);
     let n = index.x;
     let r = (n - 1.0) / (n + 1.0);
     let r0 = r * r;
@@ -91,10 +92,11 @@ fn drop_backscatter_m2_sr(diameter_m: f32, band: u32) -> f32 {
 
 // Rust: backscatter_cross_section_m2_sr.
 fn backscatter_cross_section_m2_sr(kind: u32, diameter_m: f32, band: u32) -> f32 {
-    if kind == KIND_RAIN {
+    let material = kind_material(kind);
+    if material == MATERIAL_WATER {
         return drop_backscatter_m2_sr(diameter_m, band);
     }
-    if kind == KIND_GRAIN {
+    if material == MATERIAL_MINERAL {
         return extinction_cross_section_m2(kind, diameter_m, band) / DUST_LIDAR_RATIO_SR;
     }
     return extinction_cross_section_m2(kind, diameter_m, band) / ICE_LIDAR_RATIO_SR;

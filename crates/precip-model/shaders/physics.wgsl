@@ -1,6 +1,6 @@
 // physics.wgsl: snowflakes, raindrops, grains, drag and rotation.
-// Rust twins, function for function: precip_model::{snowflake, raindrop, grain, drag,
-// rotation}.
+// Rust twins, function for function: precip_model::physics::{snowflake, raindrop,
+// grain, drag, rotation}.
 
 const GRAVITY_MPS2: f32 = 9.81;
 const GRAVITY: vec3<f32> = vec3<f32>(0.0, -9.81, 0.0);

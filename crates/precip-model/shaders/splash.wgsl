@@ -15,8 +15,7 @@ fn splash_number(diameter_m: f32, speed_mps: f32) -> f32 {
 }
 
 fn splashes(p: Particle) -> bool {
-    let kind = (p.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-    return kind == KIND_RAIN
+    return kind_is_drop(particle_kind(p.flags))
         && (p.flags & FLAG_SPLASH) == 0u
         && splash_number(p.diameter_m, length(p.velocity_mps)) > SPLASH_THRESHOLD_K;
 }

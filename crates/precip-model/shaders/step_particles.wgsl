@@ -101,8 +101,7 @@ fn step_particle(index: u32, particle: Particle) -> Particle {
     // Rust: rebounds_off_a_wall (snow blown against a wall faster than its transport
     // threshold rises along it from where it was).
     let speed_h = length(velocity.xz);
-    let kind = (particle.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-    let is_snow = kind == KIND_DRY_SNOW || kind == KIND_WET_SNOW;
+    let is_snow = kind_is_snow(particle_kind(particle.flags));
     if (landed && particle.position_m.y < ground.y && is_snow && speed_h > step_params.wall_rebound_speed_mps) {
         landed = false;
         next.position_m = particle.position_m;
@@ -168,11 +167,7 @@ fn birth_particle(index: u32, particle: Particle) -> Particle {
 // Deposits a landed particle's water where it landed (Rust: the deposit in
 // step_particle).
 fn deposit_landed(particle: Particle) {
-    let kind = (particle.flags >> FLAG_KIND_SHIFT) & FLAG_KIND_MASK;
-    var channel = select(DEPOSIT_SNOW, DEPOSIT_RAIN, kind == KIND_RAIN);
-    if (kind == KIND_GRAIN) {
-        channel = DEPOSIT_GRAINS;
-    }
+    let channel = kind_deposit_channel(particle_kind(particle.flags));
     let water_mm = particle.water_kg * step_params.deposit_scale_mm_per_kg;
     let texel = grid_texel_index(frames.cover, particle.position_m.xz);
     if (texel >= 0) {

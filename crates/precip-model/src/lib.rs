@@ -11,12 +11,15 @@
 //! source and the numbers it is tested against; `docs/architecture.md` the crates
 //! and how a frame runs.
 //!
-//! - [`weather`]: what the user sets ([`Weather`], validated) and what follows from
-//!   it (visibility, particle budgets).
+//! - [`weather`]: what the user sets ([`Weather`], validated), the table of what
+//!   falls ([`PrecipitationKind`]: one row a kind) and what follows from it
+//!   (visibility, particle budgets).
 //! - [`physics`]: snowflakes, raindrops, size spectra, drag, rotation, sand and dust,
 //!   splashes, waves on water bodies, the wind near the ground, drifting snow.
-//! - [`particles`]: the particle's GPU layout, counter-based random numbers, the
-//!   emitters, birth, one particle's step, the ground map they land on.
+//! - [`particles`]: the particle's GPU layout, the table of what each is and does
+//!   ([`ParticleKind`]: every per-kind decision, WGSL twin `kind.wgsl`),
+//!   counter-based random numbers, the emitters, birth, one particle's step, the
+//!   ground map they land on.
 //! - [`scene`]: the neutral triangle scene, its top-down ground map, tessellation
 //!   and displacement, the built-in demo, the scene packed for the GPU.
 //! - [`drawing`]: sprite, tetrahedron, lighting and fog; render settings and the

@@ -7,6 +7,25 @@
 /// ([`crate::particles::particle::Particle`], [`crate::particles::step::StepParams`],
 /// [`crate::host::Frames`], …), and grid lookups.
 pub const LAYOUT: &str = include_str!("../shaders/layout.wgsl");
+/// `kind.wgsl`: what a particle is and every per-kind decision, twin of
+/// [`crate::particles::kind`]; joined wherever `layout.wgsl` is.
+pub const KIND: &str = include_str!("../shaders/kind.wgsl");
+/// The value of `const NAME: u32 = …u;` in the WGSL `text` (tests check a Rust
+/// constant against its twin with it).
+#[cfg(test)]
+pub(crate) fn u32_const(text: &str, name: &str) -> u32 {
+    let line = text
+        .lines()
+        .find(|l| l.starts_with(&format!("const {name}: u32 = ")))
+        .unwrap_or_else(|| panic!("the WGSL declares no {name}"));
+    let value = line.rsplit("= ").next().unwrap_or_default();
+    value
+        .trim_end_matches(';')
+        .trim_end_matches('u')
+        .parse()
+        .expect("a u32")
+}
+
 /// `rng.wgsl`: counter-based random numbers, twin of [`crate::particles::rng`].
 pub const RNG: &str = include_str!("../shaders/rng.wgsl");
 /// `physics.wgsl`: flakes, drops, grains, drag and rotation, twins of

@@ -7,12 +7,12 @@ use std::process::ExitCode;
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
 use glam::Vec3;
-use precip_model::{Camera, View};
+use precip_model::{Camera, PrecipitationKind, View};
 use precip_viewer::backends::{BackendName, open_headless};
 use precip_viewer::coast::{BEACH_VIEW, coast_glb};
 use precip_viewer::demo::{DEMO_GLB, demo_glb};
 use precip_viewer::headless::run_headless_with;
-use precip_viewer::presets::{KindName, Preset};
+use precip_viewer::presets::{Preset, kind_name};
 use precip_viewer::scene_setup::{SceneOptions, scene_setup};
 use precip_viewer::window::{WindowError, display_available, run_window};
 use precip_viewer::{LoadedScene, load_scene, load_scene_from_slice};
@@ -62,15 +62,14 @@ enum Command {
 /// The weather, from a preset and the options that override it.
 #[derive(clap::Args, Debug)]
 struct WeatherArgs {
-    /// A weather preset: a TOML file or a shipped name (light-snow, blizzard,
-    /// wet-snow, drizzle, downpour, sleet, sandstorm, dust-haze, valley-fog,
-    /// fair-cumulus, thunderstorm, layered-sky, showers-around); the options
-    /// below override it.
+    /// A weather preset: a TOML file or a shipped name (a file of presets/:
+    /// light-snow, blizzard, downpour, sleet, sandstorm, thunderstorm, gale, …; an
+    /// unknown name lists them all); the options below override it.
     #[arg(long)]
     preset: Option<String>,
     /// Kind of precipitation.
-    #[arg(long, value_enum)]
-    kind: Option<KindName>,
+    #[arg(long, value_parser = kind_name::parser())]
+    kind: Option<PrecipitationKind>,
     /// Intensity as water, mm/h.
     #[arg(long)]
     intensity: Option<f32>,
@@ -407,13 +406,7 @@ fn preset_of(args: &WeatherArgs) -> anyhow::Result<Preset> {
         }
         preset.kind = k;
         if args.temperature.is_none() {
-            preset.air_temperature_c = match k {
-                KindName::DrySnow => -5.0,
-                KindName::WetSnow => 0.0,
-                KindName::Rain => 8.0,
-                KindName::Sleet => 1.0,
-                KindName::Sand | KindName::Dust => 30.0,
-            };
+            preset.air_temperature_c = k.default_air_temperature_c();
         }
     }
     preset.intensity_mm_per_h = args.intensity.unwrap_or(preset.intensity_mm_per_h);

@@ -1,6 +1,6 @@
-//! Weather presets: TOML files (serde) naming the weather in physical units. Twelve
-//! ship with the viewer (`presets/*.toml` at the repository root, also built in by
-//! name).
+//! Weather presets: TOML files (serde) naming the weather in physical units. Every
+//! file of `presets/` at the repository root ships built in by its name
+//! ([`BUILT_IN`], listed by `build.rs`).
 
 use std::path::Path;
 
@@ -16,8 +16,10 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Preset {
-    /// "dry-snow", "wet-snow", "rain", "sleet", "sand" or "dust".
-    pub kind: KindName,
+    /// The kind's name ([`PrecipitationKind::name`]): "dry-snow", "wet-snow", "rain",
+    /// "sleet", "sand" or "dust".
+    #[serde(with = "kind_name")]
+    pub kind: PrecipitationKind,
     /// Precipitation rate as water, mm/h; sand and dust: the grains settling from
     /// the air, kg/(m²·h).
     pub intensity_mm_per_h: f32,
@@ -182,73 +184,50 @@ fn default_relative_humidity() -> f32 {
     Weather::DEFAULT_RELATIVE_HUMIDITY
 }
 
-/// A kind of precipitation, as written in presets and on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
-#[serde(rename_all = "kebab-case")]
-pub enum KindName {
-    /// Dry snow.
-    DrySnow,
-    /// Wet snow.
-    WetSnow,
-    /// Rain.
-    Rain,
-    /// Sleet.
-    Sleet,
-    /// Blowing sand.
-    Sand,
-    /// Mineral dust.
-    Dust,
-}
+/// A kind of precipitation as written in presets and on the command line: its name
+/// ([`PrecipitationKind::name`]), read from the model's table of kinds, so a new kind
+/// needs nothing here.
+pub mod kind_name {
+    use precip_model::PrecipitationKind;
+    use serde::de::Error as _;
+    use serde::{Deserialize, Deserializer, Serializer};
 
-impl From<KindName> for PrecipitationKind {
-    fn from(k: KindName) -> Self {
-        match k {
-            KindName::DrySnow => Self::DrySnow,
-            KindName::WetSnow => Self::WetSnow,
-            KindName::Rain => Self::Rain,
-            KindName::Sleet => Self::Sleet,
-            KindName::Sand => Self::Sand,
-            KindName::Dust => Self::Dust,
-        }
+    /// Writes the kind's name.
+    ///
+    /// # Errors
+    /// The serializer's.
+    pub fn serialize<S: Serializer>(kind: &PrecipitationKind, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(kind.name())
+    }
+
+    /// Reads a kind's name; the error lists the names.
+    ///
+    /// # Errors
+    /// A name that is no kind's.
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<PrecipitationKind, D::Error> {
+        let name = String::deserialize(d)?;
+        PrecipitationKind::from_name(&name).ok_or_else(|| {
+            D::Error::custom(format!(
+                "`{name}` is not a kind of precipitation: write one of {}",
+                PrecipitationKind::names()
+            ))
+        })
+    }
+
+    /// The command line's parser: the kinds' names as its possible values.
+    #[must_use]
+    pub fn parser() -> impl clap::builder::TypedValueParser<Value = PrecipitationKind> {
+        use clap::builder::TypedValueParser as _;
+        clap::builder::PossibleValuesParser::new(
+            PrecipitationKind::ALL.map(PrecipitationKind::name),
+        )
+        .try_map(|name: String| {
+            PrecipitationKind::from_name(&name).ok_or(format!("no kind `{name}`"))
+        })
     }
 }
 
-/// The shipped presets, by name.
-pub const BUILT_IN: [(&str, &str); 15] = [
-    (
-        "light-snow",
-        include_str!("../../../presets/light-snow.toml"),
-    ),
-    ("blizzard", include_str!("../../../presets/blizzard.toml")),
-    ("calm-sea", include_str!("../../../presets/calm-sea.toml")),
-    ("gale", include_str!("../../../presets/gale.toml")),
-    ("wet-snow", include_str!("../../../presets/wet-snow.toml")),
-    ("drizzle", include_str!("../../../presets/drizzle.toml")),
-    ("downpour", include_str!("../../../presets/downpour.toml")),
-    ("sleet", include_str!("../../../presets/sleet.toml")),
-    ("sandstorm", include_str!("../../../presets/sandstorm.toml")),
-    ("dust-haze", include_str!("../../../presets/dust-haze.toml")),
-    (
-        "valley-fog",
-        include_str!("../../../presets/valley-fog.toml"),
-    ),
-    (
-        "fair-cumulus",
-        include_str!("../../../presets/fair-cumulus.toml"),
-    ),
-    (
-        "thunderstorm",
-        include_str!("../../../presets/thunderstorm.toml"),
-    ),
-    (
-        "layered-sky",
-        include_str!("../../../presets/layered-sky.toml"),
-    ),
-    (
-        "showers-around",
-        include_str!("../../../presets/showers-around.toml"),
-    ),
-];
+include!(concat!(env!("OUT_DIR"), "/built_in_presets.rs"));
 
 /// A preset that cannot be used.
 #[derive(Debug, thiserror::Error)]
@@ -296,9 +275,7 @@ impl Preset {
         if self.grain_diameter_mm.is_none() && self.grain_density_kg_m3.is_none() {
             return None;
         }
-        let default = PrecipitationKind::from(self.kind)
-            .default_grain()
-            .unwrap_or(Grain::SAND);
+        let default = self.kind.default_grain().unwrap_or(Grain::SAND);
         Some(Grain {
             diameter_m: self
                 .grain_diameter_mm
@@ -379,7 +356,7 @@ impl Preset {
     /// The weather, validated.
     pub fn weather(&self) -> Result<Weather, precip_model::WeatherError> {
         let weather = Weather {
-            kind: self.kind.into(),
+            kind: self.kind,
             intensity_mm_per_h: self.intensity_mm_per_h,
             air_temperature_c: self.air_temperature_c,
             wind: WindField {
@@ -398,6 +375,15 @@ impl Preset {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A shipped preset's text.
+    fn built_in(name: &str) -> &'static str {
+        BUILT_IN
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, text)| *text)
+            .unwrap_or_else(|| panic!("no preset {name}"))
+    }
 
     #[test]
     fn every_shipped_preset_gives_a_valid_weather() {
@@ -506,7 +492,7 @@ mod tests {
             "{}
 grain_diameter_mm = 9.0
 ",
-            BUILT_IN[7].1
+            built_in("sleet")
         );
         assert!(
             Preset::parse(&text, "x")
@@ -532,16 +518,15 @@ grain_diameter_mm = 9.0
     fn unknown_fields_and_bad_values_are_refused() {
         assert!(Preset::parse("kind = \"hail\"", "x").is_err());
         assert!(Preset::load("no-such-preset").is_err());
-        let text = BUILT_IN[0]
-            .1
-            .replace("intensity_mm_per_h = 0.5", "intensity_mm_per_h = -3.0");
+        let text =
+            built_in("light-snow").replace("intensity_mm_per_h = 0.5", "intensity_mm_per_h = -3.0");
         assert!(
             Preset::parse(&text, "x")
                 .expect("parses")
                 .weather()
                 .is_err()
         );
-        let text = format!("{}\ncolour = 1\n", BUILT_IN[0].1);
+        let text = format!("{}\ncolour = 1\n", built_in("light-snow"));
         assert!(Preset::parse(&text, "x").is_err());
     }
 }

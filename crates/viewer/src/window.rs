@@ -312,38 +312,59 @@ fn held(r: &Running, a: KeyCode, b: KeyCode) -> f32 {
     f32::from(u8::from(r.keys.contains(&a))) - f32::from(u8::from(r.keys.contains(&b)))
 }
 
+/// The digit keys, 1 to 9.
+const DIGITS: [KeyCode; 9] = [
+    KeyCode::Digit1,
+    KeyCode::Digit2,
+    KeyCode::Digit3,
+    KeyCode::Digit4,
+    KeyCode::Digit5,
+    KeyCode::Digit6,
+    KeyCode::Digit7,
+    KeyCode::Digit8,
+    KeyCode::Digit9,
+];
+
+/// The kind digit key `n` picks: the `n`-th of [`PrecipitationKind::ALL`].
+fn kind_key(key: KeyCode) -> Option<PrecipitationKind> {
+    let n = DIGITS.iter().position(|d| *d == key)?;
+    PrecipitationKind::ALL.get(n).copied()
+}
+
+#[cfg(test)]
+mod kind_key_tests {
+    use super::*;
+
+    #[test]
+    fn the_digits_pick_the_kinds_in_their_table_s_order() {
+        assert_eq!(kind_key(KeyCode::Digit1), Some(PrecipitationKind::ALL[0]));
+        for (n, kind) in PrecipitationKind::ALL.into_iter().enumerate() {
+            let w = weather_key(
+                DIGITS[n],
+                &Weather {
+                    air_temperature_c: 20.0,
+                    ..Weather::default()
+                },
+            )
+            .expect("a kind key");
+            assert_eq!(w.kind, kind);
+            // The temperature moves to where the kind falls: the weather is valid.
+            w.validate().expect("valid");
+        }
+        assert_eq!(kind_key(DIGITS[PrecipitationKind::ALL.len()]), None);
+    }
+}
+
 /// A weather key: returns the new weather, or `None` for other keys.
 fn weather_key(key: KeyCode, w: &Weather) -> Option<Weather> {
     let mut w = *w;
+    if let Some(kind) = kind_key(key) {
+        w.kind = kind;
+        w.grain = None;
+        w.air_temperature_c = kind.usual_air_temperature_c(w.air_temperature_c);
+        return Some(w);
+    }
     match key {
-        KeyCode::Digit1 => {
-            w.kind = PrecipitationKind::DrySnow;
-            w.grain = None;
-            w.air_temperature_c = w.air_temperature_c.min(-2.0);
-        }
-        KeyCode::Digit2 => {
-            w.kind = PrecipitationKind::WetSnow;
-            w.grain = None;
-            w.air_temperature_c = 0.0;
-        }
-        KeyCode::Digit3 => {
-            w.kind = PrecipitationKind::Rain;
-            w.grain = None;
-            w.air_temperature_c = w.air_temperature_c.max(5.0);
-        }
-        KeyCode::Digit4 => {
-            w.kind = PrecipitationKind::Sleet;
-            w.grain = None;
-            w.air_temperature_c = 1.0;
-        }
-        KeyCode::Digit5 => {
-            w.kind = PrecipitationKind::Sand;
-            w.grain = None;
-        }
-        KeyCode::Digit6 => {
-            w.kind = PrecipitationKind::Dust;
-            w.grain = None;
-        }
         KeyCode::Equal | KeyCode::NumpadAdd => {
             w.intensity_mm_per_h = (w.intensity_mm_per_h * 1.5).clamp(0.1, 100.0)
         }

@@ -165,13 +165,7 @@ fn scenario(
 ) -> Setup {
     let mut setup = Setup::over_flat_ground(40.0, 20, 10.0, count);
     setup.seed = seed;
-    let air_temperature_c = match kind {
-        PrecipitationKind::DrySnow => -6.0,
-        PrecipitationKind::WetSnow => -0.5,
-        PrecipitationKind::Sleet => 1.0,
-        PrecipitationKind::Rain => 9.0,
-        PrecipitationKind::Sand | PrecipitationKind::Dust => 30.0,
-    };
+    let air_temperature_c = kind.default_air_temperature_c();
     let wind = if windy {
         WindField {
             mean_wind_mps: Vec3::new(5.0, 0.0, -2.0),
@@ -191,7 +185,7 @@ fn scenario(
         grain: None,
     };
     setup.cover.time_scale = 500.0;
-    if matches!(kind, PrecipitationKind::Sand | PrecipitationKind::Dust) {
+    if kind.default_grain().is_some() {
         // Sand up-wind (x < −10 m): grains are lifted from it as well.
         let frame = setup.ground.frame;
         setup.ground.surface = (0..frame.texel_count())
@@ -407,6 +401,16 @@ fn channels_with_different_views_hold_the_same_particles() {
     );
 }
 
+/// Every kind of the weather's table, so a new one is checked without a test of
+/// its own.
+#[test]
+fn every_kind_matches_the_cpu_reference() {
+    for (i, kind) in PrecipitationKind::ALL.into_iter().enumerate() {
+        println!("{kind}");
+        check(&scenario(21 + i as u32, kind, true, 3_000, true), 30, 0.04);
+    }
+}
+
 #[test]
 fn initial_particles_match() {
     check(
@@ -433,14 +437,7 @@ proptest! {
     #[test]
     fn gpu_matches_the_cpu_reference(
         seed in any::<u32>(),
-        kind in prop_oneof![
-            Just(PrecipitationKind::DrySnow),
-            Just(PrecipitationKind::WetSnow),
-            Just(PrecipitationKind::Rain),
-            Just(PrecipitationKind::Sleet),
-            Just(PrecipitationKind::Sand),
-            Just(PrecipitationKind::Dust),
-        ],
+        kind in proptest::sample::select(PrecipitationKind::ALL.to_vec()),
         windy in any::<bool>(),
         count in 500u32..10_000,
         dt in 0.005f32..0.08,

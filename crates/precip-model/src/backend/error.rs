@@ -21,7 +21,7 @@ pub enum WeatherError {
     },
     /// The air temperature does not allow this kind of precipitation.
     #[error(
-        "{kind:?} at {air_temperature_c} °C is not physical: allowed {allowed}; pick another kind (sleet or rain near 0 °C)"
+        "{kind} at {air_temperature_c} °C is not physical: allowed {allowed}; pick another kind (sleet or rain near 0 °C)"
     )]
     KindTemperature {
         /// The kind asked for.
@@ -33,7 +33,7 @@ pub enum WeatherError {
     },
     /// Grains were given for a kind that has none.
     #[error(
-        "weather `grain` is given for {kind:?}, which has no grains: give it for sand or dust only, or leave it out"
+        "weather `grain` is given for {kind}, which has no grains: give it for sand or dust only, or leave it out"
     )]
     GrainWithoutGrains {
         /// The kind asked for.

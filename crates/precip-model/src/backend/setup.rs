@@ -15,10 +15,10 @@ use crate::backend::error::BackendError;
 use crate::drawing::render::RenderSettings;
 use crate::particles::emitter::{CameraVolume, WorldEmitter};
 use crate::particles::ground::GroundMap;
+use crate::particles::kind::SpeciesParams;
 use crate::particles::step::StepParams;
 use crate::physics::drifting_snow::{DRIFTING_SNOW_LAYER_TOP_M, DRIFTING_SNOW_SHARE};
 use crate::physics::grain::{Grain, lifted_flux_kg_per_m2_s, sand_friction_velocity_mps};
-use crate::physics::raindrop::marshall_palmer_slope_per_mm;
 use crate::scene::{PreparedScene, Scene, SceneReport};
 use crate::weather::Weather;
 
@@ -346,7 +346,6 @@ impl Setup {
     ) -> StepParams {
         let (world_count, camera_count) = self.particle_counts();
         let emitter = self.world_emitter.map(|e| e.emitter);
-        let rain_rate = weather.rain_rate_mm_per_h();
         let lift = self.grain_lift(weather, world_count);
         let sky_count = lift.lift_from;
         let water_per_particle_kg_per_s = match emitter {
@@ -370,7 +369,7 @@ impl Setup {
             camera_half_extent_m: volume.half_extent_m,
             time_s,
             mean_wind_mps: weather.wind.mean_wind_mps,
-            snow_fraction: weather.snow_fraction(),
+            air_temperature_c: weather.air_temperature_c,
             world_rotation: Vec2::new(e.rotation_amplitude_rad, e.rotation_speed_rad_per_s),
             camera_rotation: Vec2::new(
                 volume.rotation_amplitude_rad,
@@ -380,16 +379,8 @@ impl Setup {
             world_count,
             particle_count: world_count.saturating_add(camera_count),
             snow_is_wet: u32::from(weather.snow_is_wet()),
-            air_temperature_c: weather.air_temperature_c,
-            rain_slope_per_mm: marshall_palmer_slope_per_mm(if rain_rate > 0.0 {
-                rain_rate
-            } else {
-                1.0
-            }),
             deposit_scale_mm_per_kg: self.cover.time_scale / self.cover.frame.texel_area_m2(),
             ground_floor_m: self.ground.floor_m(),
-            grain_diameter_m: lift.grain.map_or(0.0, |g| g.diameter_m),
-            grain_density_kg_m3: lift.grain.map_or(0.0, |g| g.density_kg_m3),
             lift_from: lift.lift_from,
             lift_per_particle_kg_per_s: lift.per_particle_kg_per_s,
             friction_velocity_mps: lift.friction_velocity_mps,
@@ -412,6 +403,7 @@ impl Setup {
             },
             step_end: pools.camera_drawn_end,
             reserved2: 0,
+            species: SpeciesParams::of_weather(weather, lift.grain),
         }
     }
 

@@ -34,16 +34,8 @@
 
 use glam::{Vec2, Vec3};
 
-use crate::physics::raindrop::{
-    MARSHALL_PALMER_N0, RAIN_DIAMETER_MIN_MM, marshall_palmer_slope_per_mm,
-    raindrop_terminal_speed_mps,
-};
-use crate::physics::snowfall::{gunn_marshall_intercept, gunn_marshall_slope_per_mm};
-use crate::physics::snowflake::{
-    mean_snowflake_diameter_m, snow_terminal_speed_range_mps, snowflake_diameter_from_melted_m,
-};
+use crate::particles::kind::{ParticleKind, Spectrum};
 use crate::weather::Weather;
-use crate::weather::visibility::melted_diameter_mm;
 
 /// Sizes each spectrum is summed over.
 pub const UNRESOLVED_SIZES: u32 = 48;
@@ -104,50 +96,29 @@ pub fn unresolved_size_classes(weather: &Weather, unresolved_share: f32) -> Vec<
     let moving = |fall: f32| Vec3::new(wind.x, -fall, wind.z);
     let share = unresolved_share.clamp(0.0, 1.0);
     let mut classes = Vec::new();
-    // An exponential spectrum N0·e^(−Λd) (d mm) over [0, 8/Λ], midpoints.
-    let mut spectrum = |n0: f32, slope: f32, class: &dyn Fn(f32, f32) -> SizeClass| {
+    // Each exponential spectrum N0·e^(−Λd) (d mm) over [0, 8/Λ], midpoints; grains
+    // of one size are in the haze's extinction only.
+    for kind in ParticleKind::ALL {
+        let Some(Spectrum::Exponential {
+            n0_per_m3_mm: n0,
+            slope_per_mm: slope,
+            simulated_from_mm,
+            ..
+        }) = kind.spectrum_in(weather)
+        else {
+            continue;
+        };
         let width = 8.0 / slope / UNRESOLVED_SIZES as f32;
         for k in 0..UNRESOLVED_SIZES {
             let d = (k as f32 + 0.5) * width;
-            classes.push(class(d, n0 * (-slope * d).exp() * width));
+            let n = n0 * (-slope * d).exp() * width;
+            let diameter_m = kind.diameter_at_spectral_size_m(d);
+            classes.push(SizeClass {
+                n_per_m3: n * if d >= simulated_from_mm { share } else { 1.0 },
+                area_m2: std::f32::consts::FRAC_PI_4 * diameter_m * diameter_m,
+                velocity_mps: moving(kind.fall_speed_at_spectral_size_mps(d)),
+            });
         }
-    };
-    let snow_rate = weather.snow_rate_mm_per_h();
-    if snow_rate > 0.0 {
-        let wet = weather.snow_is_wet();
-        let (lo, hi) = snow_terminal_speed_range_mps(wet);
-        let smallest_mm = melted_diameter_mm(
-            0.5 * mean_snowflake_diameter_m(weather.air_temperature_c),
-            wet,
-        );
-        spectrum(
-            gunn_marshall_intercept(snow_rate),
-            gunn_marshall_slope_per_mm(snow_rate),
-            &|d, n| {
-                let flake_m = snowflake_diameter_from_melted_m(d * 1.0e-3, wet);
-                SizeClass {
-                    n_per_m3: n * if d >= smallest_mm { share } else { 1.0 },
-                    area_m2: std::f32::consts::FRAC_PI_4 * flake_m * flake_m,
-                    velocity_mps: moving(0.5 * (lo + hi)),
-                }
-            },
-        );
-    }
-    let rain_rate = weather.rain_rate_mm_per_h();
-    if rain_rate > 0.0 {
-        spectrum(
-            MARSHALL_PALMER_N0,
-            marshall_palmer_slope_per_mm(rain_rate),
-            &|d, n| SizeClass {
-                n_per_m3: n * if d >= RAIN_DIAMETER_MIN_MM {
-                    share
-                } else {
-                    1.0
-                },
-                area_m2: std::f32::consts::FRAC_PI_4 * (d * 1.0e-3).powi(2),
-                velocity_mps: moving(raindrop_terminal_speed_mps(d)),
-            },
-        );
     }
     classes
 }

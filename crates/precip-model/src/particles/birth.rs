@@ -4,6 +4,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::particles::ground::GroundMap;
+use crate::particles::kind::{draw_species, slowest_terminal_speed_mps, snow_kind};
 use crate::particles::particle::{Particle, ParticleKind, ParticleSource, pack_flags, rotation0};
 use crate::particles::rng::{draw, particle_key, random_unit};
 use crate::particles::step::StepParams;
@@ -15,10 +16,7 @@ use crate::physics::grain::{
     LAUNCH_HEIGHT_M, LAUNCH_SPEED_PER_FRICTION_VELOCITY, grain_settling_speed_mps, rouse_height_m,
     rouse_number,
 };
-use crate::physics::raindrop::{
-    RAIN_DIAMETER_MIN_MM, draw_raindrop_diameter_mm, raindrop_terminal_speed_mps,
-};
-use crate::physics::snowflake::{snow_terminal_speed_mps, snowflake_diameter_m};
+use crate::physics::snowflake::snowflake_diameter_m;
 
 /// `f − ½` for draw `d`.
 fn centred(key: u32, d: u32) -> f32 {
@@ -28,45 +26,6 @@ fn centred(key: u32, d: u32) -> f32 {
 /// `(f − ½, f − ½, f − ½)` from draws `d, d+1, d+2`: the seeds' `V_rand`.
 fn centred3(key: u32, d: u32) -> Vec3 {
     Vec3::new(centred(key, d), centred(key, d + 1), centred(key, d + 2))
-}
-
-/// Kind, diameter (m) and terminal speed (m/s) of a newborn particle.
-///
-/// Sand or dust weather: a grain, `d = d̄·(0.5 + f)`, falling at its settling speed
-/// ([`crate::physics::grain::grain_settling_speed_mps`]). Otherwise snow with probability
-/// `snow_fraction` (sleet), else rain. Snow: `D = D̄(T)·(0.5 + f)`,
-/// `V_pmax` across the dry/wet range. Rain: D from the flux-weighted Marshall–Palmer
-/// draw, `V_pmax = v(D)`.
-#[must_use]
-pub fn draw_species(key: u32, params: &StepParams) -> (ParticleKind, f32, f32) {
-    if params.grain_diameter_m > 0.0 {
-        let diameter = params.grain_diameter_m * (0.5 + random_unit(key, draw::GRAIN_SIZE));
-        return (
-            ParticleKind::Grain,
-            diameter,
-            grain_settling_speed_mps(diameter, params.grain_density_kg_m3),
-        );
-    }
-    let is_snow = random_unit(key, draw::KIND) < params.snow_fraction;
-    if is_snow {
-        let wet = params.snow_is_wet != 0;
-        let diameter =
-            snowflake_diameter_m(params.air_temperature_c, random_unit(key, draw::SNOW_SIZE));
-        let speed = snow_terminal_speed_mps(wet, random_unit(key, draw::SNOW_SPEED));
-        let kind = if wet {
-            ParticleKind::WetSnow
-        } else {
-            ParticleKind::DrySnow
-        };
-        (kind, diameter, speed)
-    } else {
-        let diameter_mm = draw_raindrop_diameter_mm(key, params.rain_slope_per_mm);
-        (
-            ParticleKind::Rain,
-            diameter_mm * 1.0e-3,
-            raindrop_terminal_speed_mps(diameter_mm),
-        )
-    }
 }
 
 /// Rotation at birth: `r0 = 2π·(f, f, f)` (packed, [`rotation0`]), `r = 4·k_rot·V_rand`
@@ -127,25 +86,6 @@ fn world_newborn(
 
 /// Tries of [`stationary_generation`] before the last is kept.
 pub const STATIONARY_TRIES: u32 = 16;
-
-/// The slowest terminal speed this weather's particles are born with, m/s (the
-/// slower of the snow's range floor and the smallest drop's speed, by the kinds that
-/// fall).
-#[must_use]
-pub fn slowest_terminal_speed_mps(params: &StepParams) -> f32 {
-    if params.grain_diameter_m > 0.0 {
-        return grain_settling_speed_mps(0.5 * params.grain_diameter_m, params.grain_density_kg_m3);
-    }
-    let snow = snow_terminal_speed_mps(params.snow_is_wet != 0, 0.0);
-    let rain = raindrop_terminal_speed_mps(RAIN_DIAMETER_MIN_MM);
-    if params.snow_fraction >= 1.0 {
-        snow
-    } else if params.snow_fraction <= 0.0 {
-        rain
-    } else {
-        snow.min(rain)
-    }
-}
 
 /// The generation a camera-volume particle starts in, so the volume starts as it
 /// will stay: births draw species as they fall through a plane (the flux), but the
@@ -230,7 +170,7 @@ pub fn birth_lifted(
     cover: &CoverView<'_>,
 ) -> Particle {
     let key = particle_key(params.seed, index, generation);
-    if params.grain_diameter_m <= 0.0 {
+    if params.species.grain_diameter_m <= 0.0 {
         return birth_drifting_snow(key, generation, params, ground, cover);
     }
     let species = draw_species(key, params);
@@ -297,11 +237,7 @@ pub fn birth_drifting_snow(
     // Drawn as the smallest flakes: each stands for a cloud of grains too small to
     // see one by one.
     let diameter = snowflake_diameter_m(params.air_temperature_c, 0.5 * f);
-    let kind = if params.snow_is_wet != 0 {
-        ParticleKind::WetSnow
-    } else {
-        ParticleKind::DrySnow
-    };
+    let kind = snow_kind(params);
     let position = if found {
         let surface_m =
             ground.height_at(at).unwrap_or(params.ground_floor_m) + cover.blowing_snow_at(at).1;

@@ -1,4 +1,5 @@
-//! The particles: their state on the GPU ([`particle`]), where they are born
+//! The particles: their state on the GPU ([`particle`]), what each kind is and does
+//! ([`kind`]: one table, every per-kind decision), where they are born
 //! ([`emitter`], [`birth`]), how one moves in a sub-step ([`step`]), what they land
 //! on ([`ground`]) and the counter-based random numbers every property is drawn
 //! from ([`rng`]), all with WGSL twins of the same names (`shaders/`).
@@ -7,6 +8,7 @@
 pub mod birth;
 pub mod emitter;
 pub mod ground;
+pub mod kind;
 pub mod particle;
 pub mod rng;
 pub mod step;

@@ -3,30 +3,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
-/// What a particle is.
-#[repr(u32)]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ParticleKind {
-    /// A dry snowflake.
-    DrySnow = 0,
-    /// A wet snowflake.
-    WetSnow = 1,
-    /// A raindrop.
-    Rain = 2,
-    /// A grain of sand or dust ([`crate::physics::grain`]).
-    Grain = 3,
-}
-
-impl ParticleKind {
-    /// Whether it is snow.
-    #[must_use]
-    pub const fn is_snow(self) -> bool {
-        matches!(self, Self::DrySnow | Self::WetSnow)
-    }
-
-    /// Every kind, in the order of their values.
-    pub const ALL: [Self; 4] = [Self::DrySnow, Self::WetSnow, Self::Rain, Self::Grain];
-}
+pub use crate::particles::kind::ParticleKind;
 
 /// Which volume a particle belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -42,7 +19,7 @@ pub mod flags {
     /// Bits 0–2: the rotation offset of axis X/Y/Z is increasing.
     pub const ROTATION_INCREASING_X: u32 = 1 << 0;
     /// Bits 4–7: [`super::ParticleKind`] (four taken of sixteen: a new kind, say
-    /// hail, needs no change of layout).
+    /// hail, needs no change of layout; `particle_kind` in kind.wgsl reads them).
     pub const KIND_SHIFT: u32 = 4;
     /// Mask of the kind bits after shifting.
     pub const KIND_MASK: u32 = 0b1111;
@@ -132,12 +109,7 @@ impl Particle {
     /// The particle's kind.
     #[must_use]
     pub const fn kind(&self) -> ParticleKind {
-        match (self.flags >> flags::KIND_SHIFT) & flags::KIND_MASK {
-            0 => ParticleKind::DrySnow,
-            1 => ParticleKind::WetSnow,
-            2 => ParticleKind::Rain,
-            _ => ParticleKind::Grain,
-        }
+        ParticleKind::from_bits((self.flags >> flags::KIND_SHIFT) & flags::KIND_MASK)
     }
 
     /// The volume it belongs to.
@@ -242,17 +214,7 @@ mod tests {
 
     /// The value of `const NAME: u32 = …u;` in layout.wgsl.
     fn wgsl_const(name: &str) -> u32 {
-        let layout = include_str!("../../shaders/layout.wgsl");
-        let line = layout
-            .lines()
-            .find(|l| l.starts_with(&format!("const {name}: u32 = ")))
-            .unwrap_or_else(|| panic!("layout.wgsl declares no {name}"));
-        let value = line.rsplit("= ").next().unwrap_or_default();
-        value
-            .trim_end_matches(';')
-            .trim_end_matches('u')
-            .parse()
-            .expect("a u32")
+        crate::wgsl::u32_const(crate::wgsl::LAYOUT, name)
     }
 
     #[test]
@@ -266,12 +228,6 @@ mod tests {
             wgsl_const("FLAG_ROTATION_INCREASING_X"),
             flags::ROTATION_INCREASING_X
         );
-        for (name, kind) in ["KIND_DRY_SNOW", "KIND_WET_SNOW", "KIND_RAIN", "KIND_GRAIN"]
-            .into_iter()
-            .zip(ParticleKind::ALL)
-        {
-            assert_eq!(wgsl_const(name), kind as u32, "{name}");
-        }
         // The kind's bits lie between the rotation's and the camera volume's.
         let kind_bits = flags::KIND_MASK << flags::KIND_SHIFT;
         assert_eq!(kind_bits & (flags::ROTATION_INCREASING_X * 0b111), 0);

@@ -54,7 +54,8 @@ use precip_wind::WindVolume;
 
 use crate::particles::birth::{birth_in_camera_volume, birth_in_world, is_lifted};
 use crate::particles::ground::GroundMap;
-use crate::particles::particle::{Particle, ParticleKind, ParticleSource, flags};
+use crate::particles::kind::SpeciesParams;
+use crate::particles::particle::{Particle, ParticleSource, flags};
 use crate::particles::rng::{draw, particle_key, random_unit};
 use crate::physics::drag::drag_velocity;
 use crate::physics::drifting_snow::CoverView;
@@ -90,8 +91,8 @@ pub struct StepParams {
     pub time_s: f32,
     /// Mean wind, m/s.
     pub mean_wind_mps: Vec3,
-    /// Fraction of births that are snow.
-    pub snow_fraction: f32,
+    /// Air temperature, °C.
+    pub air_temperature_c: f32,
     /// World emitter (k_rot rad, k_vel rad/s).
     pub world_rotation: Vec2,
     /// Camera volume (k_rot rad, k_vel rad/s).
@@ -104,18 +105,10 @@ pub struct StepParams {
     pub particle_count: u32,
     /// 1 when the snow is wet.
     pub snow_is_wet: u32,
-    /// Air temperature, °C.
-    pub air_temperature_c: f32,
-    /// Marshall–Palmer Λ for the rain part, mm⁻¹.
-    pub rain_slope_per_mm: f32,
     /// Cover mm per kg landed in one cover texel: cover time scale / texel area.
     pub deposit_scale_mm_per_kg: f32,
     /// Below this height a particle off the ground map has left the scene, m.
     pub ground_floor_m: f32,
-    /// Sand or dust weather: the grains' mean diameter, m; 0: snow and rain fall.
-    pub grain_diameter_m: f32,
-    /// The grains' density, kg/m³.
-    pub grain_density_kg_m3: f32,
     /// World particles `[lift_from, world_count)` are lifted by the wind from
     /// erodible ground ([`crate::physics::grain`]); `world_count`: none are.
     pub lift_from: u32,
@@ -146,6 +139,9 @@ pub struct StepParams {
     pub step_end: u32,
     /// Unused (`0`).
     pub reserved2: u32,
+    /// What the weather's kinds need to draw a newborn's species (the particle
+    /// kinds' table, [`crate::particles::kind`]); last, 16-byte aligned.
+    pub species: SpeciesParams,
 }
 const _: () = assert!(size_of::<StepParams>() == 256);
 
@@ -281,11 +277,7 @@ pub fn step_particle(
                     next.velocity_mps = Vec3::new(0.0, speed.max(next.velocity_mps.y), 0.0);
                 }
                 Some(ground_m) if position.y <= ground_m => {
-                    let channel = match next.kind() {
-                        ParticleKind::DrySnow | ParticleKind::WetSnow => DepositBuffer::SNOW,
-                        ParticleKind::Rain => DepositBuffer::RAIN,
-                        ParticleKind::Grain => DepositBuffer::GRAINS,
-                    };
+                    let channel = next.kind().deposit_channel();
                     let water_mm = next.water_kg * params.deposit_scale_mm_per_kg;
                     let from_side = particle.position_m.y < ground_m;
                     let at = if from_side {
@@ -421,16 +413,17 @@ mod tests {
         assert_eq!(std::mem::offset_of!(StepParams, camera_half_extent_m), 112);
         assert_eq!(std::mem::offset_of!(StepParams, mean_wind_mps), 128);
         assert_eq!(std::mem::offset_of!(StepParams, world_rotation), 144);
+        assert_eq!(std::mem::offset_of!(StepParams, air_temperature_c), 140);
         assert_eq!(std::mem::offset_of!(StepParams, seed), 160);
-        assert_eq!(std::mem::offset_of!(StepParams, air_temperature_c), 176);
-        assert_eq!(std::mem::offset_of!(StepParams, ground_floor_m), 188);
-        assert_eq!(std::mem::offset_of!(StepParams, grain_diameter_m), 192);
-        assert_eq!(std::mem::offset_of!(StepParams, flow_ceiling_m), 220);
-        assert_eq!(std::mem::offset_of!(StepParams, lift_area_max_m), 232);
+        assert_eq!(std::mem::offset_of!(StepParams, snow_is_wet), 172);
+        assert_eq!(std::mem::offset_of!(StepParams, ground_floor_m), 180);
+        assert_eq!(std::mem::offset_of!(StepParams, flow_ceiling_m), 204);
+        assert_eq!(std::mem::offset_of!(StepParams, lift_area_max_m), 216);
         assert_eq!(
             std::mem::offset_of!(StepParams, wall_rebound_speed_mps),
-            240
+            224
         );
+        assert_eq!(std::mem::offset_of!(StepParams, species), 240);
     }
 
     #[test]

@@ -24,7 +24,7 @@
 
 use glam::Vec3;
 
-use crate::particles::particle::{Particle, ParticleKind, flags};
+use crate::particles::particle::{Particle, flags};
 use crate::particles::rng::{draw, particle_key, random_unit};
 use crate::physics::raindrop::{RAIN_DIAMETER_MIN_MM, raindrop_terminal_speed_mps};
 use crate::physics::snowflake::WATER_DENSITY_KG_M3;
@@ -60,7 +60,7 @@ pub fn splash_number(diameter_m: f32, speed_mps: f32) -> f32 {
 /// not itself a splash droplet, above Mundo's threshold.
 #[must_use]
 pub fn splashes(particle: &Particle) -> bool {
-    particle.kind() == ParticleKind::Rain
+    particle.kind().is_drop()
         && particle.flags & flags::SPLASH == 0
         && splash_number(particle.diameter_m, particle.velocity_mps.length()) > SPLASH_THRESHOLD_K
 }

@@ -1,61 +1,16 @@
 //! [`Weather`]: what the user sets, in physical units, validated at the boundary.
 
+mod kind;
 pub mod sun;
 pub mod visibility;
+
+pub use kind::PrecipitationKind;
 
 use precip_wind::WindField;
 
 use crate::backend::error::WeatherError;
+use crate::particles::kind::ParticleKind;
 use crate::physics::grain::Grain;
-
-/// The kind of precipitation.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum PrecipitationKind {
-    /// Dry snow: `C = 0.170 kg/m²`, terminal speeds 0.5–1.5 m/s.
-    DrySnow,
-    /// Wet snow: `C = 0.724 kg/m²`, terminal speeds 1.0–2.0 m/s.
-    WetSnow,
-    /// Rain: Marshall–Palmer drops at their measured terminal speeds.
-    Rain,
-    /// Sleet: a mix of wet snow and rain whose snow fraction follows the air
-    /// temperature ([`sleet_snow_fraction`]).
-    Sleet,
-    /// Blowing sand ([`crate::physics::grain`]): grains settling from the air and lifted by
-    /// the wind from sand in the scene.
-    Sand,
-    /// Mineral dust ([`crate::physics::grain`]): a haze settling slowly, and dust thrown up
-    /// from sand in the scene by a strong wind.
-    Dust,
-}
-
-impl PrecipitationKind {
-    /// The air temperatures this kind may fall at, °C (inclusive), and in words.
-    #[must_use]
-    pub const fn temperature_range_c(self) -> (f32, f32, &'static str) {
-        match self {
-            Self::DrySnow => (-60.0, 2.0, "-60..=+2 °C for dry snow"),
-            Self::WetSnow => (-15.0, 6.0, "-15..=+6 °C for wet snow"),
-            Self::Rain => (
-                -10.0,
-                50.0,
-                "-10..=+50 °C for rain (freezing rain below 0 °C)",
-            ),
-            Self::Sleet => (-5.0, 6.0, "-5..=+6 °C for sleet"),
-            Self::Sand | Self::Dust => (-60.0, 50.0, "-60..=+50 °C for sand and dust"),
-        }
-    }
-
-    /// The grains of this kind when the weather names none: 0.2 mm quartz sand,
-    /// 10 µm quartz dust; `None` for water and ice.
-    #[must_use]
-    pub const fn default_grain(self) -> Option<Grain> {
-        match self {
-            Self::Sand => Some(Grain::SAND),
-            Self::Dust => Some(Grain::DUST),
-            Self::DrySnow | Self::WetSnow | Self::Rain | Self::Sleet => None,
-        }
-    }
-}
 
 /// Air temperature at and below which sleet is all snow, °C.
 pub const SLEET_ALL_SNOW_C: f32 = -1.0;
@@ -65,7 +20,7 @@ pub const SLEET_ALL_RAIN_C: f32 = 3.0;
 /// Fraction of sleet's water that falls as (wet) snow: 1 at ≤ −1 °C, 0 at ≥ +3 °C,
 /// linear between (the threshold-range rain/snow partition of hydrological models
 /// such as HBV, centred at +1 °C). Host-side only: the GPU reads the result as
-/// `StepParams::snow_fraction`.
+/// `SpeciesParams::snow_fraction` ([`crate::particles::kind`]).
 #[must_use]
 pub fn sleet_snow_fraction(air_temperature_c: f32) -> f32 {
     ((SLEET_ALL_RAIN_C - air_temperature_c) / (SLEET_ALL_RAIN_C - SLEET_ALL_SNOW_C)).clamp(0.0, 1.0)
@@ -191,17 +146,13 @@ impl Weather {
     /// Fraction of the water that falls as snow.
     #[must_use]
     pub fn snow_fraction(&self) -> f32 {
-        match self.kind {
-            PrecipitationKind::DrySnow | PrecipitationKind::WetSnow => 1.0,
-            PrecipitationKind::Rain | PrecipitationKind::Sand | PrecipitationKind::Dust => 0.0,
-            PrecipitationKind::Sleet => sleet_snow_fraction(self.air_temperature_c),
-        }
+        self.kind.snow_fraction(self.air_temperature_c)
     }
 
     /// Whether the snow part is wet snow (sleet's snow is wet).
     #[must_use]
     pub fn snow_is_wet(&self) -> bool {
-        !matches!(self.kind, PrecipitationKind::DrySnow)
+        self.kind.snow_is_wet()
     }
 
     /// Snow's water rate, mm/h.
@@ -213,7 +164,7 @@ impl Weather {
     /// Rain's water rate, mm/h.
     #[must_use]
     pub fn rain_rate_mm_per_h(&self) -> f32 {
-        self.intensity_mm_per_h - self.snow_rate_mm_per_h() - self.grain_rate_kg_per_m2_h()
+        ParticleKind::Rain.rate_in(self)
     }
 
     /// Mean horizontal wind speed near the ground, m/s (evaporation).

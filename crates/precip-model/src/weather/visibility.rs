@@ -4,7 +4,9 @@
 //! (extinction efficiency 2), summed over the size spectrum; visibility is
 //! Koschmieder's `V = 3.912/σ` (2 % contrast). Snow uses Gunn–Marshall in melted
 //! diameter `d` and the seed's `ρ = C/D` to get the flake's real diameter
-//! (`D² = ρ_w·d³/C`); rain uses Marshall–Palmer.
+//! (`D² = ρ_w·d³/C`); rain uses Marshall–Palmer. The weather's sums run over the
+//! particle kinds' rows ([`crate::particles::kind`]: each kind's share of the rate,
+//! spectrum, extinction and count), so they name no kind.
 //!
 //! ## What is simulated one by one
 //!
@@ -17,17 +19,11 @@
 //! which sums the whole spectrum. A camera volume holds that density up to its budget
 //! ([`Weather::simulated_particle_count`]).
 
+use crate::particles::kind::ParticleKind;
 use crate::physics::grain::{grain_extinction_per_m, settling_concentration_kg_m3};
-use crate::physics::raindrop::{
-    MARSHALL_PALMER_N0, RAIN_DIAMETER_MAX_MM, RAIN_DIAMETER_MIN_MM, marshall_palmer_slope_per_mm,
-    rain_number_density_per_m3,
-};
-use crate::physics::snowfall::{
-    gunn_marshall_intercept, gunn_marshall_slope_per_mm, snow_number_density_per_m3,
-};
-use crate::physics::snowflake::{
-    WATER_DENSITY_KG_M3, mean_snowflake_diameter_m, snow_density_constant_kg_m2,
-};
+use crate::physics::raindrop::{MARSHALL_PALMER_N0, marshall_palmer_slope_per_mm};
+use crate::physics::snowfall::{gunn_marshall_intercept, gunn_marshall_slope_per_mm};
+use crate::physics::snowflake::{WATER_DENSITY_KG_M3, snow_density_constant_kg_m2};
 use crate::weather::Weather;
 
 /// Visibility reported for clear air, m.
@@ -95,9 +91,10 @@ impl Weather {
     /// settling rate holds in the air ([`crate::physics::grain`]).
     #[must_use]
     pub fn extinction_per_m(&self) -> f32 {
-        snow_extinction_per_m(self.snow_rate_mm_per_h(), self.snow_is_wet())
-            + rain_extinction_per_m(self.rain_rate_mm_per_h())
-            + self.grain_extinction_per_m()
+        ParticleKind::ALL
+            .iter()
+            .map(|k| k.extinction_in(self))
+            .sum()
     }
 
     /// The sand's or dust's part of [`Weather::extinction_per_m`], per m: the mass
@@ -132,9 +129,10 @@ impl Weather {
     /// Physical number of particles per m³ (flakes plus drops).
     #[must_use]
     pub fn number_density_per_m3(&self) -> f32 {
-        snow_number_density_per_m3(self.snow_rate_mm_per_h())
-            + rain_number_density_per_m3(self.rain_rate_mm_per_h())
-            + self.grain_number_density_per_m3()
+        ParticleKind::ALL
+            .iter()
+            .map(|k| k.number_density_in(self))
+            .sum()
     }
 
     /// Flakes and drops per m³ of the sizes simulated one by one (module docs): the
@@ -142,30 +140,10 @@ impl Weather {
     /// law draws, and Marshall–Palmer between the drawn drop sizes.
     #[must_use]
     pub fn simulated_number_density_per_m3(&self) -> f32 {
-        let snow_rate = self.snow_rate_mm_per_h();
-        let snow = if snow_rate > 0.0 {
-            let smallest_m = 0.5 * mean_snowflake_diameter_m(self.air_temperature_c);
-            exponential_tail_per_m3(
-                gunn_marshall_intercept(snow_rate),
-                gunn_marshall_slope_per_mm(snow_rate),
-                melted_diameter_mm(smallest_m, self.snow_is_wet()),
-                f32::INFINITY,
-            )
-        } else {
-            0.0
-        };
-        let rain_rate = self.rain_rate_mm_per_h();
-        let rain = if rain_rate > 0.0 {
-            exponential_tail_per_m3(
-                MARSHALL_PALMER_N0,
-                marshall_palmer_slope_per_mm(rain_rate),
-                RAIN_DIAMETER_MIN_MM,
-                RAIN_DIAMETER_MAX_MM,
-            )
-        } else {
-            0.0
-        };
-        snow + rain + self.grain_number_density_per_m3()
+        ParticleKind::ALL
+            .iter()
+            .map(|k| k.spectrum_in(self).map_or(0.0, |s| s.simulated_per_m3()))
+            .sum()
     }
 
     /// How many particles a volume of `volume_m3` holds in reality, of the sizes
@@ -192,6 +170,7 @@ impl Weather {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::snowflake::mean_snowflake_diameter_m;
     use crate::weather::PrecipitationKind;
 
     #[test]

@@ -9,7 +9,7 @@
 //! (`k = tan(divergence/2)`) meets particles of mean radius `ρ` at the rate
 //! `λ(t) = n·π·(ρ + r(t))²`, whose integral `n·π·((c + k·t)³ − (c + k·t₀)³)/(3k)`
 //! (`c = ρ + a`) is inverted in closed form for the first strike. Its kind and size
-//! come from the same law particles are born with ([`crate::particles::birth::draw_species`]).
+//! come from the same law particles are born with ([`crate::particles::kind::draw_species`]).
 //! The draws are keyed by the seed, the beam's index and the simulation's clock, so
 //! every backend, given the same hits, draws the same strikes. Host-side and O(beams):
 //! the GPU does the O(beams × particles) part.
@@ -17,7 +17,7 @@
 use glam::Vec3;
 
 use crate::backend::setup::Setup;
-use crate::particles::birth::draw_species;
+use crate::particles::kind::draw_species;
 use crate::particles::particle::ParticleKind;
 use crate::particles::rng::{particle_key, random_unit};
 use crate::particles::step::StepParams;
@@ -320,8 +320,9 @@ mod tests {
     #[test]
     fn the_same_clock_draws_the_same_strikes_and_rain_draws_drops() {
         let mut rain = snow();
-        rain.snow_fraction = 0.0;
-        rain.rain_slope_per_mm = crate::physics::raindrop::marshall_palmer_slope_per_mm(10.0);
+        rain.species.snow_fraction = 0.0;
+        rain.species.rain_slope_per_mm =
+            crate::physics::raindrop::marshall_palmer_slope_per_mm(10.0);
         let a = UnresolvedAir::new(500.0, (Vec3::ZERO, Vec3::ZERO, 0), rain, 9, 2.0);
         let b = UnresolvedAir::new(500.0, (Vec3::ZERO, Vec3::ZERO, 0), rain, 9, 2.0);
         let later = UnresolvedAir::new(500.0, (Vec3::ZERO, Vec3::ZERO, 0), rain, 9, 2.1);

@@ -54,14 +54,10 @@
 //! After the weather changes, the particles not yet re-born keep their old kind and
 //! size, and the optics follow them.
 
+use crate::particles::kind::Spectrum;
 use crate::particles::particle::{Particle, ParticleKind, ParticleSource};
-use crate::physics::raindrop::{
-    MARSHALL_PALMER_N0, RAIN_DIAMETER_MAX_MM, RAIN_DIAMETER_MIN_MM, marshall_palmer_slope_per_mm,
-};
-use crate::physics::snowfall::{gunn_marshall_intercept, gunn_marshall_slope_per_mm};
-use crate::physics::snowflake::{mean_snowflake_diameter_m, snowflake_diameter_from_melted_m};
 use crate::weather::Weather;
-use crate::weather::visibility::{CLEAR_AIR_VISIBILITY_M, melted_diameter_mm};
+use crate::weather::visibility::CLEAR_AIR_VISIBILITY_M;
 
 /// A LiDAR's or camera's band.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -103,7 +99,9 @@ impl Band {
     }
 }
 
-/// What a particle is made of, for its optics.
+/// What a particle is made of, for its optics (a kind's:
+/// [`ParticleKind::material`]; WGSL twin: `MATERIAL_*` in `kind.wgsl`).
+#[repr(u32)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Material {
     /// Liquid water.
@@ -124,16 +122,6 @@ pub struct RefractiveIndex {
 }
 
 impl Material {
-    /// The material of a particle kind.
-    #[must_use]
-    pub const fn of(kind: ParticleKind) -> Self {
-        match kind {
-            ParticleKind::DrySnow | ParticleKind::WetSnow => Self::Ice,
-            ParticleKind::Rain => Self::Water,
-            ParticleKind::Grain => Self::Mineral,
-        }
-    }
-
     /// The refractive index in `band`: water from Hale & Querry (1973), ice from
     /// Warren & Brandt (2008, *J. Geophys. Res.* 113), quartz's ordinary ray from
     /// Ghosh (1999, *Opt. Commun.* 163) (its absorption is not used: mineral
@@ -180,7 +168,7 @@ pub fn extinction_efficiency(diameter_m: f32, n: f32, wavelength_nm: f32) -> f32
 /// Extinction cross-section of a particle, m².
 #[must_use]
 pub fn extinction_cross_section_m2(kind: ParticleKind, diameter_m: f32, band: Band) -> f32 {
-    let index = Material::of(kind).refractive_index(band);
+    let index = kind.material().refractive_index(band);
     extinction_efficiency(diameter_m, index.n, band.wavelength_nm())
         * std::f32::consts::FRAC_PI_4
         * diameter_m
@@ -204,12 +192,10 @@ pub fn drop_backscatter_m2_sr(diameter_m: f32, band: Band) -> f32 {
 /// Backscatter cross-section of a particle, m²/sr.
 #[must_use]
 pub fn backscatter_cross_section_m2_sr(kind: ParticleKind, diameter_m: f32, band: Band) -> f32 {
-    match kind {
-        ParticleKind::Rain => drop_backscatter_m2_sr(diameter_m, band),
-        ParticleKind::DrySnow | ParticleKind::WetSnow => {
-            extinction_cross_section_m2(kind, diameter_m, band) / ICE_LIDAR_RATIO_SR
-        }
-        ParticleKind::Grain => {
+    match kind.material() {
+        Material::Water => drop_backscatter_m2_sr(diameter_m, band),
+        Material::Ice => extinction_cross_section_m2(kind, diameter_m, band) / ICE_LIDAR_RATIO_SR,
+        Material::Mineral => {
             extinction_cross_section_m2(kind, diameter_m, band) / DUST_LIDAR_RATIO_SR
         }
     }
@@ -475,55 +461,39 @@ impl SpectrumParts {
             total: [BandOptics::default(); 3],
             unresolved: [BandOptics::default(); 3],
         };
-        let snow_rate = weather.snow_rate_mm_per_h();
-        if snow_rate > 0.0 {
-            let wet = weather.snow_is_wet();
-            let kind = if wet {
-                ParticleKind::WetSnow
-            } else {
-                ParticleKind::DrySnow
-            };
-            let smallest_melted_mm = melted_diameter_mm(
-                0.5 * mean_snowflake_diameter_m(weather.air_temperature_c),
-                wet,
-            );
-            // Gunn–Marshall counts melted diameters; the flake is larger.
-            parts.add_spectrum(
-                kind,
-                gunn_marshall_intercept(snow_rate),
-                gunn_marshall_slope_per_mm(snow_rate),
-                |melted_mm| snowflake_diameter_from_melted_m(melted_mm * 1.0e-3, wet),
-                |melted_mm| melted_mm < smallest_melted_mm,
-            );
-        }
-        let rain_rate = weather.rain_rate_mm_per_h();
-        if rain_rate > 0.0 {
-            parts.add_spectrum(
-                ParticleKind::Rain,
-                MARSHALL_PALMER_N0,
-                marshall_palmer_slope_per_mm(rain_rate),
-                |d_mm| d_mm * 1.0e-3,
-                |d_mm| !(RAIN_DIAMETER_MIN_MM..=RAIN_DIAMETER_MAX_MM).contains(&d_mm),
-            );
-        }
-        if let Some(grain) = weather.grains() {
-            let n = weather.grain_number_density_per_m3();
-            for band in Band::ALL {
-                parts.total[band.index()].add(
-                    BandOptics {
-                        extinction_per_m: extinction_cross_section_m2(
-                            ParticleKind::Grain,
-                            grain.diameter_m,
-                            band,
-                        ),
-                        backscatter_per_m_sr: backscatter_cross_section_m2_sr(
-                            ParticleKind::Grain,
-                            grain.diameter_m,
-                            band,
-                        ),
-                    },
-                    n,
-                );
+        for kind in ParticleKind::ALL {
+            match kind.spectrum_in(weather) {
+                Some(Spectrum::Exponential {
+                    n0_per_m3_mm,
+                    slope_per_mm,
+                    simulated_from_mm,
+                    simulated_to_mm,
+                }) => parts.add_spectrum(
+                    kind,
+                    n0_per_m3_mm,
+                    slope_per_mm,
+                    |d_mm| kind.diameter_at_spectral_size_m(d_mm),
+                    |d_mm| !(simulated_from_mm..=simulated_to_mm).contains(&d_mm),
+                ),
+                Some(Spectrum::OneSize {
+                    diameter_m,
+                    n_per_m3,
+                }) => {
+                    for band in Band::ALL {
+                        parts.total[band.index()].add(
+                            BandOptics {
+                                extinction_per_m: extinction_cross_section_m2(
+                                    kind, diameter_m, band,
+                                ),
+                                backscatter_per_m_sr: backscatter_cross_section_m2_sr(
+                                    kind, diameter_m, band,
+                                ),
+                            },
+                            n_per_m3,
+                        );
+                    }
+                }
+                None => {}
             }
         }
         parts

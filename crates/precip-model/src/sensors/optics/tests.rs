@@ -1,7 +1,9 @@
 #![expect(clippy::float_cmp, reason = "caps and limits the code returns exactly")]
 
 use super::*;
-use crate::physics::raindrop::RAIN_DIAMETER_MIN_MM;
+use crate::physics::raindrop::{
+    RAIN_DIAMETER_MAX_MM, RAIN_DIAMETER_MIN_MM, marshall_palmer_slope_per_mm,
+};
 use crate::weather::PrecipitationKind;
 use crate::weather::visibility::{rain_extinction_per_m, snow_extinction_per_m};
 
