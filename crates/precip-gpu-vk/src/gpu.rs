@@ -432,14 +432,8 @@ impl Gpu for Hal {
         )?;
         let filled = match (desc.contents, desc.usage) {
             (Some(texels), _) => upload_image(&self.device, &image, texels),
-            (
-                None,
-                TextureUsage::DepthAttachment
-                | TextureUsage::StorageAndSampled
-                | TextureUsage::CopyOfTarget
-                | TextureUsage::DrawnThenSampled,
-            ) => to_layout(&self.device, &[&image], layout),
-            (None, _) => Ok(()),
+            (None, TextureUsage::Sampled | TextureUsage::ColourTarget) => Ok(()),
+            (None, _) => to_layout(&self.device, &[&image], layout),
         };
         match filled {
             Ok(()) => Ok(Texture {

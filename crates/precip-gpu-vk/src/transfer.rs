@@ -218,6 +218,7 @@ pub fn download_image(
     layout: vk::ImageLayout,
     texel_bytes: u32,
 ) -> Result<Vec<u8>, BackendError> {
+    use vk::{ImageLayout as L, PipelineStageFlags as S};
     let (width, height) = image.size();
     let bytes = u64::from(width) * u64::from(height) * u64::from(texel_bytes);
     let staging = Buffer::new(
@@ -230,38 +231,27 @@ pub fn download_image(
     let region = whole_image(image.extent);
     // An image resting in another layout (a storage image's GENERAL) is moved to
     // the one copies read best from, and back.
-    let src = vk::ImageLayout::TRANSFER_SRC_OPTIMAL;
-    let moved = layout != src;
-    let all = vk::AccessFlags::MEMORY_READ | vk::AccessFlags::MEMORY_WRITE;
-    let read = vk::AccessFlags::TRANSFER_READ;
-    let stages = (
-        vk::PipelineStageFlags::ALL_COMMANDS,
-        vk::PipelineStageFlags::TRANSFER,
+    let copy = (L::TRANSFER_SRC_OPTIMAL, vk::AccessFlags::TRANSFER_READ);
+    let rest = (
+        layout,
+        vk::AccessFlags::MEMORY_READ | vk::AccessFlags::MEMORY_WRITE,
     );
+    let (any, transfer) = (S::ALL_COMMANDS, S::TRANSFER);
     let result = submit(device, |cb| {
         // SAFETY: `cb` is recording, outside a render pass; the image rests in
-        // `layout` and the barrier names it; the staging buffer is live and large
-        // enough; the second barrier puts the image back where it rests.
+        // `layout` and the barriers name it, there and back; the staging buffer is
+        // live and large enough.
         unsafe {
-            if moved {
-                image_barriers(
-                    device,
-                    cb,
-                    stages,
-                    &[layout_barrier(image, (layout, all), (src, read))],
-                );
-            }
+            let unless_there = |stages, from, to| {
+                if layout != copy.0 {
+                    image_barriers(device, cb, stages, &[layout_barrier(image, from, to)]);
+                }
+            };
+            unless_there((any, transfer), rest, copy);
             device
                 .raw
-                .cmd_copy_image_to_buffer(cb, image.raw, src, staging.raw, &[region]);
-            if moved {
-                image_barriers(
-                    device,
-                    cb,
-                    (stages.1, stages.0),
-                    &[layout_barrier(image, (src, read), (layout, all))],
-                );
-            }
+                .cmd_copy_image_to_buffer(cb, image.raw, copy.0, staging.raw, &[region]);
+            unless_there((transfer, any), copy, rest);
         }
     })
     .and_then(|f| f.wait(device))

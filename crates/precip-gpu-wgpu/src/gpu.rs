@@ -620,16 +620,6 @@ impl Gpu for Hal {
     fn destroy_texture(&mut self, texture: Texture) {
         texture.texture.destroy();
     }
-
-    fn destroy_sampler(&mut self, _sampler: wgpu::Sampler) {}
-
-    fn destroy_bind_group(&mut self, _group: wgpu::BindGroup) {}
-
-    fn destroy_kernel(&mut self, _kernel: wgpu::ComputePipeline) {}
-
-    fn destroy_draw_pipeline(&mut self, _pipeline: wgpu::RenderPipeline) {}
-
-    fn destroy_group_layout(&mut self, _layout: wgpu::BindGroupLayout) {}
 }
 
 /// The wgpu format of `format`.

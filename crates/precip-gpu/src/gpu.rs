@@ -365,14 +365,26 @@ pub trait Gpu {
     fn destroy_volume(&mut self, volume: Self::Volume);
     /// Hands back a texture.
     fn destroy_texture(&mut self, texture: Self::Texture);
-    /// Hands back a sampler.
-    fn destroy_sampler(&mut self, sampler: Self::Sampler);
+    /// Hands back a sampler (by default, dropping it: an API whose objects
+    /// free themselves, as wgpu's, needs nothing more; the same for the four
+    /// below).
+    fn destroy_sampler(&mut self, sampler: Self::Sampler) {
+        drop(sampler);
+    }
     /// Hands back a bind group.
-    fn destroy_bind_group(&mut self, group: Self::BindGroup);
+    fn destroy_bind_group(&mut self, group: Self::BindGroup) {
+        drop(group);
+    }
     /// Hands back a kernel.
-    fn destroy_kernel(&mut self, kernel: Self::Kernel);
+    fn destroy_kernel(&mut self, kernel: Self::Kernel) {
+        drop(kernel);
+    }
     /// Hands back a draw pipeline.
-    fn destroy_draw_pipeline(&mut self, pipeline: Self::DrawPipeline);
+    fn destroy_draw_pipeline(&mut self, pipeline: Self::DrawPipeline) {
+        drop(pipeline);
+    }
     /// Hands back a layout.
-    fn destroy_group_layout(&mut self, layout: Self::GroupLayout);
+    fn destroy_group_layout(&mut self, layout: Self::GroupLayout) {
+        drop(layout);
+    }
 }
