@@ -313,9 +313,12 @@ mod tests {
         assert_eq!(specs.len(), SimBuffer::ALL.len());
         let bytes = |b: SimBuffer| specs.iter().find(|s| s.buffer == b).map(|s| s.bytes);
         assert_eq!(bytes(SimBuffer::Particles), Some(300 * 64));
+        // A block a sub-step at the device's alignment, two rings.
+        let stride = uniform_stride(256);
+        assert!(stride >= size_of::<StepParams>() as u64 && stride.is_multiple_of(256));
         assert_eq!(
             bytes(SimBuffer::StepBlocks),
-            Some(256 * u64::from(MAX_SUBSTEPS) * 2)
+            Some(stride * u64::from(MAX_SUBSTEPS) * 2)
         );
         for s in &specs {
             if let Contents::Bytes(b) = &s.contents {

@@ -13,7 +13,6 @@ use precip_gpu::shaders::Program;
 use precip_model::Particle;
 use precip_model::cover::{CoverStepParams, CoverTexel, GridFrame};
 use precip_model::drawing::render::RenderParams;
-use precip_model::particles::kind::SpeciesParams;
 use precip_model::particles::step::StepParams;
 use precip_model::sensors::lidar::{Beam, BeamHit, BeamParams};
 use precip_model::sensors::optics::OpticsPartial;
@@ -133,12 +132,6 @@ fn rust_and_wgsl_layouts_match() {
             step_end,
             reserved2,
             species
-        }),
-        rust_layout!(SpeciesParams {
-            snow_fraction,
-            rain_slope_per_mm,
-            grain_diameter_m,
-            grain_density_kg_m3
         }),
         rust_layout!(Beam {
             origin_m,

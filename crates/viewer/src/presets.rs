@@ -516,7 +516,7 @@ grain_diameter_mm = 9.0
 
     #[test]
     fn unknown_fields_and_bad_values_are_refused() {
-        assert!(Preset::parse("kind = \"hail\"", "x").is_err());
+        assert!(Preset::parse("kind = \"graupel\"", "x").is_err());
         assert!(Preset::load("no-such-preset").is_err());
         let text =
             built_in("light-snow").replace("intensity_mm_per_h = 0.5", "intensity_mm_per_h = -3.0");

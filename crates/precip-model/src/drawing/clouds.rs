@@ -175,22 +175,14 @@ impl CloudLayer {
         }
     }
 
-    /// The deck `weather` falls from, covering `coverage` (WMO cloud atlas):
-    /// drizzle (rain under 1 mm/h) from stratus, heavy rain (10 mm/h and more) from
-    /// cumulonimbus, other rain, snow and sleet from nimbostratus; with nothing
-    /// falling, or sand and dust, cumulus.
+    /// The deck `weather` falls from, covering `coverage`: its kind's
+    /// ([`crate::PrecipitationKind::falls_from`]).
     #[must_use]
     pub fn implied_by(weather: &crate::Weather, coverage: f32) -> Self {
-        use crate::PrecipitationKind as K;
-        let rate = weather.intensity_mm_per_h;
-        let kind = match weather.kind {
-            _ if rate <= 0.0 => CloudKind::Cumulus,
-            K::Sand | K::Dust => CloudKind::Cumulus,
-            K::Rain if rate < 1.0 => CloudKind::Stratus,
-            K::Rain if rate >= 10.0 => CloudKind::Cumulonimbus,
-            K::Rain | K::Sleet | K::DrySnow | K::WetSnow => CloudKind::Nimbostratus,
-        };
-        Self::typical(kind, coverage)
+        Self::typical(
+            weather.kind.falls_from(weather.intensity_mm_per_h),
+            coverage,
+        )
     }
 
     /// Its top, m.

@@ -344,11 +344,49 @@ pub fn slowest_terminal_speed_mps(params: &StepParams) -> f32 {
 
 #[cfg(test)]
 mod tests {
+    use std::mem::offset_of;
+
     use super::*;
 
     /// The value of `const NAME: u32 = …u;` in kind.wgsl.
     fn wgsl_const(name: &str) -> u32 {
         crate::wgsl::u32_const(crate::wgsl::KIND, name)
+    }
+
+    /// `SpeciesParams` is checked here rather than with the other blocks
+    /// (precip-gpu's `tests/shaders.rs`, which checks where `StepParams` holds it),
+    /// so a kind's new field is an edit of this file and `kind.wgsl` only.
+    #[test]
+    fn species_params_is_its_wgsl_twin() {
+        let wgsl = crate::wgsl::KIND;
+        let start = wgsl.find("struct SpeciesParams {").expect("declared");
+        let end = start + wgsl[start..].find('}').expect("closed");
+        // Every member is an f32: 4 bytes apart, in order.
+        let members: Vec<&str> = wgsl[start..end]
+            .lines()
+            .skip(1)
+            .filter_map(|l| l.trim().strip_suffix(": f32,"))
+            .collect();
+        let rust = [
+            ("snow_fraction", offset_of!(SpeciesParams, snow_fraction)),
+            (
+                "rain_slope_per_mm",
+                offset_of!(SpeciesParams, rain_slope_per_mm),
+            ),
+            (
+                "grain_diameter_m",
+                offset_of!(SpeciesParams, grain_diameter_m),
+            ),
+            (
+                "grain_density_kg_m3",
+                offset_of!(SpeciesParams, grain_density_kg_m3),
+            ),
+        ];
+        assert_eq!(members.len() * 4, size_of::<SpeciesParams>(), "{members:?}");
+        assert_eq!(members.len(), rust.len(), "{members:?}");
+        for (i, (name, offset)) in rust.into_iter().enumerate() {
+            assert_eq!((members[i], 4 * i), (name, offset));
+        }
     }
 
     #[test]

@@ -5,6 +5,7 @@
 //! and a row here, not an edit in each front end. What each falling particle then is
 //! and does: [`crate::particles::kind`].
 
+use crate::drawing::clouds::CloudKind;
 use crate::particles::kind::ParticleKind;
 use crate::physics::grain::Grain;
 use crate::weather::sleet_snow_fraction;
@@ -178,6 +179,21 @@ impl PrecipitationKind {
             .filter(|p| p.is_snow())
             .map(|p| self.share_of(p, air_temperature_c))
             .sum()
+    }
+
+    /// The cloud deck it falls from at `rate_mm_per_h` (WMO cloud atlas): drizzle
+    /// (rain under 1 mm/h) from stratus, heavy rain (10 mm/h and more) from
+    /// cumulonimbus, other rain, snow and sleet from nimbostratus; with nothing
+    /// falling, or sand and dust, cumulus.
+    #[must_use]
+    pub fn falls_from(self, rate_mm_per_h: f32) -> CloudKind {
+        match self {
+            _ if rate_mm_per_h <= 0.0 => CloudKind::Cumulus,
+            Self::Sand | Self::Dust => CloudKind::Cumulus,
+            Self::Rain if rate_mm_per_h < 1.0 => CloudKind::Stratus,
+            Self::Rain if rate_mm_per_h >= 10.0 => CloudKind::Cumulonimbus,
+            Self::Rain | Self::Sleet | Self::DrySnow | Self::WetSnow => CloudKind::Nimbostratus,
+        }
     }
 
     /// Whether its snow, if any, is wet (sleet's snow is wet).
