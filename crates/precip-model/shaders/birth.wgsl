@@ -30,6 +30,10 @@ fn draw_species(key: u32) -> Species {
         let speed = snow_terminal_speed_mps(wet, random_unit(key, DRAW_SNOW_SPEED));
         return Species(select(KIND_DRY_SNOW, KIND_WET_SNOW, wet), diameter, speed);
     }
+    if (which < step_params.species.snow_fraction + step_params.species.hail_fraction) {
+        let stone_mm = draw_hail_diameter_mm(key, step_params.species.hail_slope_per_mm);
+        return Species(KIND_HAIL, stone_mm * 1.0e-3, hailstone_terminal_speed_mps(stone_mm));
+    }
     let diameter_mm = draw_raindrop_diameter_mm(key, step_params.species.rain_slope_per_mm);
     return Species(KIND_RAIN, diameter_mm * 1.0e-3, raindrop_terminal_speed_mps(diameter_mm));
 }
@@ -268,7 +272,10 @@ fn slowest_terminal_speed_mps() -> f32 {
     if (species.snow_fraction > 0.0) {
         slowest = min(slowest, snow_terminal_speed_mps(step_params.snow_is_wet != 0u, 0.0));
     }
-    if (species.snow_fraction < 1.0) {
+    if (species.hail_fraction > 0.0) {
+        slowest = min(slowest, hailstone_terminal_speed_mps(HAIL_DIAMETER_MIN_MM));
+    }
+    if (species.snow_fraction + species.hail_fraction < 1.0) {
         slowest = min(slowest, raindrop_terminal_speed_mps(RAIN_DIAMETER_MIN_MM));
     }
     return slowest;

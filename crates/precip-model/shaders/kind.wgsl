@@ -8,6 +8,7 @@ const KIND_DRY_SNOW: u32 = 0u;
 const KIND_WET_SNOW: u32 = 1u;
 const KIND_RAIN: u32 = 2u;
 const KIND_GRAIN: u32 = 3u;
+const KIND_HAIL: u32 = 4u;
 
 // Rust: precip_model::sensors::optics::Material as u32.
 const MATERIAL_WATER: u32 = 0u;
@@ -15,12 +16,16 @@ const MATERIAL_ICE: u32 = 1u;
 const MATERIAL_MINERAL: u32 = 2u;
 
 // What the weather's kinds need to draw a newborn's species (Rust: SpeciesParams,
-// 16 bytes, the last block of StepParams).
+// 32 bytes, the last block of StepParams).
 struct SpeciesParams {
     snow_fraction: f32,
     rain_slope_per_mm: f32,
     grain_diameter_m: f32,
     grain_density_kg_m3: f32,
+    hail_fraction: f32,
+    hail_slope_per_mm: f32,
+    reserved0: f32,
+    reserved1: f32,
 }
 
 // Rust: Particle::kind.
@@ -62,10 +67,14 @@ fn kind_material(kind: u32) -> u32 {
 
 // The colour a flake-drawn particle reflects (GPU only: the reference draws nothing):
 // dry snow 0.95, wet snow 0.85 (water in its pores darkens it), a grain of quartz
-// sand or mineral dust in daylight (sRGB ~ #c8a878, linear).
+// sand or mineral dust in daylight (sRGB ~ #c8a878, linear), a hailstone's milky
+// ice a little grey-blue (clear layers let the light through).
 fn kind_albedo(kind: u32) -> vec3<f32> {
     if (kind == KIND_GRAIN) {
         return vec3<f32>(0.58, 0.39, 0.19);
+    }
+    if (kind == KIND_HAIL) {
+        return vec3<f32>(0.78, 0.82, 0.86);
     }
     return vec3<f32>(select(0.95, 0.85, kind == KIND_WET_SNOW));
 }

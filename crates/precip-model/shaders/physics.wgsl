@@ -1,6 +1,6 @@
-// physics.wgsl: snowflakes, raindrops, grains, drag and rotation.
+// physics.wgsl: snowflakes, raindrops, hailstones, grains, drag and rotation.
 // Rust twins, function for function: precip_model::physics::{snowflake, raindrop,
-// grain, drag, rotation}.
+// hail, grain, drag, rotation}.
 
 const GRAVITY_MPS2: f32 = 9.81;
 const GRAVITY: vec3<f32> = vec3<f32>(0.0, -9.81, 0.0);
@@ -49,6 +49,34 @@ fn draw_raindrop_diameter_mm(key: u32, slope_per_mm: f32) -> f32 {
     for (var k = 0u; k < RAIN_DIAMETER_TRIES; k++) {
         d = marshall_palmer_diameter_mm(slope_per_mm, random_unit(key, DRAW_RAIN_DIAMETER + 2u * k));
         if (random_unit(key, DRAW_RAIN_DIAMETER + 2u * k + 1u) * v_max < raindrop_terminal_speed_mps(d)) {
+            break;
+        }
+    }
+    return d;
+}
+
+// hail.rs (the spectrum's Λ is solved on the host: SpeciesParams.hail_slope_per_mm)
+const HAIL_DIAMETER_MIN_MM: f32 = 5.0;
+const HAIL_DIAMETER_MAX_MM: f32 = 50.0;
+const HAIL_DIAMETER_TRIES: u32 = 32u;
+
+fn hailstone_terminal_speed_mps(diameter_mm: f32) -> f32 {
+    let d = clamp(diameter_mm, HAIL_DIAMETER_MIN_MM, HAIL_DIAMETER_MAX_MM);
+    return 11.45 * sqrt(0.1 * d);
+}
+
+fn hail_diameter_mm(slope_per_mm: f32, f: f32) -> f32 {
+    let span = HAIL_DIAMETER_MAX_MM - HAIL_DIAMETER_MIN_MM;
+    let tail = 1.0 - exp(-slope_per_mm * span);
+    return HAIL_DIAMETER_MIN_MM - log(1.0 - f * tail) / slope_per_mm;
+}
+
+fn draw_hail_diameter_mm(key: u32, slope_per_mm: f32) -> f32 {
+    let v_max = hailstone_terminal_speed_mps(HAIL_DIAMETER_MAX_MM);
+    var d = HAIL_DIAMETER_MIN_MM;
+    for (var k = 0u; k < HAIL_DIAMETER_TRIES; k++) {
+        d = hail_diameter_mm(slope_per_mm, random_unit(key, DRAW_RAIN_DIAMETER + 2u * k));
+        if (random_unit(key, DRAW_RAIN_DIAMETER + 2u * k + 1u) * v_max < hailstone_terminal_speed_mps(d)) {
             break;
         }
     }

@@ -19,6 +19,10 @@
 use crate::particles::rng::{draw, random_unit};
 use crate::particles::step::StepParams;
 use crate::physics::grain::{Grain, grain_settling_speed_mps};
+use crate::physics::hail::{
+    HAIL_DIAMETER_MAX_MM, HAIL_DIAMETER_MIN_MM, draw_hail_diameter_mm, hail_extinction_per_m,
+    hail_number_density_per_m3, hail_spectrum, hailstone_terminal_speed_mps,
+};
 use crate::physics::raindrop::{
     MARSHALL_PALMER_N0, RAIN_DIAMETER_MAX_MM, RAIN_DIAMETER_MIN_MM, draw_raindrop_diameter_mm,
     marshall_palmer_slope_per_mm, rain_number_density_per_m3, raindrop_terminal_speed_mps,
@@ -51,11 +55,19 @@ pub enum ParticleKind {
     Rain = 2,
     /// A grain of sand or dust ([`crate::physics::grain`]).
     Grain = 3,
+    /// A hailstone ([`crate::physics::hail`]).
+    Hail = 4,
 }
 
 impl ParticleKind {
     /// Every kind, in the order of their values.
-    pub const ALL: [Self; 4] = [Self::DrySnow, Self::WetSnow, Self::Rain, Self::Grain];
+    pub const ALL: [Self; 5] = [
+        Self::DrySnow,
+        Self::WetSnow,
+        Self::Rain,
+        Self::Grain,
+        Self::Hail,
+    ];
 
     /// The kind of the four bits' value `bits` (an unknown value reads as a grain).
     #[must_use]
@@ -64,6 +76,7 @@ impl ParticleKind {
             0 => Self::DrySnow,
             1 => Self::WetSnow,
             2 => Self::Rain,
+            4 => Self::Hail,
             _ => Self::Grain,
         }
     }
@@ -78,7 +91,8 @@ impl ParticleKind {
     #[must_use]
     pub const fn deposit_channel(self) -> usize {
         match self {
-            Self::DrySnow | Self::WetSnow => DepositBuffer::SNOW,
+            // Hail piles as ice and melts as the snow does.
+            Self::DrySnow | Self::WetSnow | Self::Hail => DepositBuffer::SNOW,
             Self::Rain => DepositBuffer::RAIN,
             Self::Grain => DepositBuffer::GRAINS,
         }
@@ -88,7 +102,7 @@ impl ParticleKind {
     #[must_use]
     pub const fn material(self) -> Material {
         match self {
-            Self::DrySnow | Self::WetSnow => Material::Ice,
+            Self::DrySnow | Self::WetSnow | Self::Hail => Material::Ice,
             Self::Rain => Material::Water,
             Self::Grain => Material::Mineral,
         }
@@ -138,6 +152,15 @@ impl ParticleKind {
                 diameter_m: g.diameter_m,
                 n_per_m3: weather.grain_number_density_per_m3(),
             }),
+            Self::Hail => {
+                let (n0, slope) = hail_spectrum(rate);
+                Some(Spectrum::Exponential {
+                    n0_per_m3_mm: n0,
+                    slope_per_mm: slope,
+                    simulated_from_mm: HAIL_DIAMETER_MIN_MM,
+                    simulated_to_mm: HAIL_DIAMETER_MAX_MM,
+                })
+            }
         }
     }
 
@@ -149,7 +172,7 @@ impl ParticleKind {
             Self::DrySnow | Self::WetSnow => {
                 snowflake_diameter_from_melted_m(d_mm * 1.0e-3, self == Self::WetSnow)
             }
-            Self::Rain | Self::Grain => d_mm * 1.0e-3,
+            Self::Rain | Self::Grain | Self::Hail => d_mm * 1.0e-3,
         }
     }
 
@@ -164,6 +187,7 @@ impl ParticleKind {
             }
             Self::Rain => raindrop_terminal_speed_mps(d_mm),
             Self::Grain => grain_settling_speed_mps(d_mm * 1.0e-3, Grain::SAND.density_kg_m3),
+            Self::Hail => hailstone_terminal_speed_mps(d_mm),
         }
     }
 
@@ -176,6 +200,7 @@ impl ParticleKind {
             Self::DrySnow | Self::WetSnow => snow_extinction_per_m(rate, self == Self::WetSnow),
             Self::Rain => rain_extinction_per_m(rate),
             Self::Grain => weather.grain_extinction_per_m(),
+            Self::Hail => hail_extinction_per_m(rate),
         }
     }
 
@@ -187,6 +212,7 @@ impl ParticleKind {
             Self::DrySnow | Self::WetSnow => snow_number_density_per_m3(rate),
             Self::Rain => rain_number_density_per_m3(rate),
             Self::Grain => weather.grain_number_density_per_m3(),
+            Self::Hail => hail_number_density_per_m3(rate),
         }
     }
 }
@@ -253,6 +279,14 @@ pub struct SpeciesParams {
     pub grain_diameter_m: f32,
     /// The grains' density, kg/m³.
     pub grain_density_kg_m3: f32,
+    /// Fraction of births that are hailstones (after the snow's).
+    pub hail_fraction: f32,
+    /// The hail spectrum's `Λ`, mm⁻¹ ([`crate::physics::hail::hail_spectrum`]).
+    pub hail_slope_per_mm: f32,
+    /// Unused (`0`).
+    pub reserved0: f32,
+    /// Unused (`0`).
+    pub reserved1: f32,
 }
 const _: () = assert!(size_of::<SpeciesParams>().is_multiple_of(16));
 
@@ -262,7 +296,18 @@ impl SpeciesParams {
     #[must_use]
     pub fn of_weather(weather: &Weather, grain: Option<Grain>) -> Self {
         let rain_rate = weather.rain_rate_mm_per_h();
+        let hail_rate = ParticleKind::Hail.rate_in(weather);
         Self {
+            hail_fraction: weather
+                .kind
+                .share_of(ParticleKind::Hail, weather.air_temperature_c),
+            hail_slope_per_mm: if hail_rate > 0.0 {
+                hail_spectrum(hail_rate).1
+            } else {
+                1.0
+            },
+            reserved0: 0.0,
+            reserved1: 0.0,
             snow_fraction: weather.snow_fraction(),
             rain_slope_per_mm: marshall_palmer_slope_per_mm(if rain_rate > 0.0 {
                 rain_rate
@@ -279,7 +324,8 @@ impl SpeciesParams {
 ///
 /// Sand or dust weather: a grain, `d = d̄·(0.5 + f)`, falling at its settling speed
 /// ([`crate::physics::grain::grain_settling_speed_mps`]). Otherwise snow with probability
-/// `snow_fraction` (sleet), else rain. Snow: `D = D̄(T)·(0.5 + f)`,
+/// `snow_fraction` (sleet), hail with `hail_fraction` (its stones drawn from the flux
+/// as the drops are: [`crate::physics::hail::draw_hail_diameter_mm`]), else rain. Snow: `D = D̄(T)·(0.5 + f)`,
 /// `V_pmax` across the dry/wet range. Rain: D from the flux-weighted Marshall–Palmer
 /// draw, `V_pmax = v(D)`. WGSL twin: `draw_species` in `shaders/birth.wgsl`.
 #[must_use]
@@ -300,6 +346,13 @@ pub fn draw_species(key: u32, params: &StepParams) -> (ParticleKind, f32, f32) {
             snowflake_diameter_m(params.air_temperature_c, random_unit(key, draw::SNOW_SIZE));
         let speed = snow_terminal_speed_mps(wet, random_unit(key, draw::SNOW_SPEED));
         (snow_kind(params), diameter, speed)
+    } else if which < species.snow_fraction + species.hail_fraction {
+        let diameter_mm = draw_hail_diameter_mm(key, species.hail_slope_per_mm);
+        (
+            ParticleKind::Hail,
+            diameter_mm * 1.0e-3,
+            hailstone_terminal_speed_mps(diameter_mm),
+        )
     } else {
         let diameter_mm = draw_raindrop_diameter_mm(key, species.rain_slope_per_mm);
         (
@@ -336,7 +389,10 @@ pub fn slowest_terminal_speed_mps(params: &StepParams) -> f32 {
     if species.snow_fraction > 0.0 {
         slowest = slowest.min(snow_terminal_speed_mps(params.snow_is_wet != 0, 0.0));
     }
-    if species.snow_fraction < 1.0 {
+    if species.hail_fraction > 0.0 {
+        slowest = slowest.min(hailstone_terminal_speed_mps(HAIL_DIAMETER_MIN_MM));
+    }
+    if species.snow_fraction + species.hail_fraction < 1.0 {
         slowest = slowest.min(raindrop_terminal_speed_mps(RAIN_DIAMETER_MIN_MM));
     }
     slowest
@@ -381,6 +437,13 @@ mod tests {
                 "grain_density_kg_m3",
                 offset_of!(SpeciesParams, grain_density_kg_m3),
             ),
+            ("hail_fraction", offset_of!(SpeciesParams, hail_fraction)),
+            (
+                "hail_slope_per_mm",
+                offset_of!(SpeciesParams, hail_slope_per_mm),
+            ),
+            ("reserved0", offset_of!(SpeciesParams, reserved0)),
+            ("reserved1", offset_of!(SpeciesParams, reserved1)),
         ];
         assert_eq!(members.len() * 4, size_of::<SpeciesParams>(), "{members:?}");
         assert_eq!(members.len(), rust.len(), "{members:?}");
@@ -391,9 +454,15 @@ mod tests {
 
     #[test]
     fn the_kinds_are_their_wgsl_twins() {
-        for (name, kind) in ["KIND_DRY_SNOW", "KIND_WET_SNOW", "KIND_RAIN", "KIND_GRAIN"]
-            .into_iter()
-            .zip(ParticleKind::ALL)
+        for (name, kind) in [
+            "KIND_DRY_SNOW",
+            "KIND_WET_SNOW",
+            "KIND_RAIN",
+            "KIND_GRAIN",
+            "KIND_HAIL",
+        ]
+        .into_iter()
+        .zip(ParticleKind::ALL)
         {
             assert_eq!(wgsl_const(name), kind as u32, "{name}");
             assert_eq!(ParticleKind::from_bits(kind as u32), kind);

@@ -7,7 +7,8 @@
 //!   (`docs/model.md` §2); [`snowfall`]: the flakes' size spectrum.
 //! - [`drag`]: gravity and drag toward the wind, the stable integrator;
 //!   [`rotation`]: the flakes' oscillation.
-//! - [`grain`]: sand and dust (fall speeds, the wind's threshold, saltation).
+//! - [`grain`]: sand and dust (fall speeds, the wind's threshold, saltation);
+//!   [`hail`]: hailstones' fall speeds and size spectrum.
 //! - [`splash`]: secondary droplets; [`water_waves`]: rain rings on water bodies.
 //! - [`terrain_flow`]: the wind near the ground; [`drifting_snow`]: blowing snow
 //!   made visible.
@@ -15,6 +16,7 @@
 pub mod drag;
 pub mod drifting_snow;
 pub mod grain;
+pub mod hail;
 pub mod raindrop;
 pub mod rotation;
 pub mod snowfall;

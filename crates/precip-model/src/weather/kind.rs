@@ -28,6 +28,10 @@ pub enum PrecipitationKind {
     /// Mineral dust ([`crate::physics::grain`]): a haze settling slowly, and dust thrown up
     /// from sand in the scene by a strong wind.
     Dust,
+    /// Hail ([`crate::physics::hail`]): stones of 5–50 mm at their measured fall
+    /// speeds, larger as the hailfall is heavier; they pile on the ground as ice and
+    /// melt.
+    Hail,
 }
 
 /// One kind's row.
@@ -47,13 +51,14 @@ struct Row {
 
 impl PrecipitationKind {
     /// Every kind, in the order the viewer's keys 1… select them.
-    pub const ALL: [Self; 6] = [
+    pub const ALL: [Self; 7] = [
         Self::DrySnow,
         Self::WetSnow,
         Self::Rain,
         Self::Sleet,
         Self::Sand,
         Self::Dust,
+        Self::Hail,
     ];
 
     const fn row(self) -> Row {
@@ -104,11 +109,20 @@ impl PrecipitationKind {
                 default_c: 30.0,
                 grain: Some(Grain::DUST),
             },
+            Self::Hail => Row {
+                name: "hail",
+                // Hail reaches the ground from thunderstorms in warm air; it falls
+                // too fast to melt on the way below 40 °C.
+                allowed_c: (-10.0, 40.0, "-10..=+40 °C for hail"),
+                usual_c: (5.0, 30.0),
+                default_c: 15.0,
+                grain: None,
+            },
         }
     }
 
     /// Its name in presets and on command lines: `dry-snow`, `wet-snow`, `rain`,
-    /// `sleet`, `sand`, `dust`.
+    /// `sleet`, `sand`, `dust`, `hail`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         self.row().name
@@ -164,7 +178,8 @@ impl PrecipitationKind {
             (Self::DrySnow, P::DrySnow)
             | (Self::WetSnow, P::WetSnow)
             | (Self::Rain, P::Rain)
-            | (Self::Sand | Self::Dust, P::Grain) => 1.0,
+            | (Self::Sand | Self::Dust, P::Grain)
+            | (Self::Hail, P::Hail) => 1.0,
             (Self::Sleet, P::WetSnow) => sleet_snow_fraction(air_temperature_c),
             (Self::Sleet, P::Rain) => 1.0 - sleet_snow_fraction(air_temperature_c),
             _ => 0.0,
@@ -182,7 +197,7 @@ impl PrecipitationKind {
     }
 
     /// The cloud deck it falls from at `rate_mm_per_h` (WMO cloud atlas): drizzle
-    /// (rain under 1 mm/h) from stratus, heavy rain (10 mm/h and more) from
+    /// (rain under 1 mm/h) from stratus, heavy rain (10 mm/h and more) and hail from
     /// cumulonimbus, other rain, snow and sleet from nimbostratus; with nothing
     /// falling, or sand and dust, cumulus.
     #[must_use]
@@ -192,6 +207,7 @@ impl PrecipitationKind {
             Self::Sand | Self::Dust => CloudKind::Cumulus,
             Self::Rain if rate_mm_per_h < 1.0 => CloudKind::Stratus,
             Self::Rain if rate_mm_per_h >= 10.0 => CloudKind::Cumulonimbus,
+            Self::Hail => CloudKind::Cumulonimbus,
             Self::Rain | Self::Sleet | Self::DrySnow | Self::WetSnow => CloudKind::Nimbostratus,
         }
     }
