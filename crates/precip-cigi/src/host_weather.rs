@@ -13,6 +13,7 @@
 //! | --- | --- | --- | --- | --- | --- | --- |
 //! | rain, mm/h | 0.5 | 1.5 | 4 | 10 | 25 | 60 |
 //! | snow and sleet, mm/h of water | 0.2 | 0.5 | 1 | 2 | 4 | 8 |
+//! | hail, mm/h of water | 1 | 2 | 5 | 10 | 20 | 40 |
 //! | sand and dust: visibility, m | 5 000 | 2 000 | 1 000 | 500 | 200 | 50 |
 //!
 //! Sand and dust are given by what one sees through them (WMO: a dust haze above
@@ -28,7 +29,9 @@
 //! transition band: the air thickening toward the layer within it, above and below)
 //! are kept and every one that is on is drawn, lowest first; a layer reaching into
 //! the one below it starts at that one's top (dropped where less than 10 m of it is
-//! left). Hail (layer 7) and the regional and entity scopes are counted as ignored.
+//! left). Hail (layer 7) falls as hail ([`precip_model::physics::hail`]: its stones
+//! grow with the rate, pea-sized at severity 0, walnuts at 5). The regional and
+//! entity scopes are counted as ignored.
 
 use glam::Vec3;
 use precip_model::drawing::clouds::{CloudKind, CloudLayer, CloudLayers};
@@ -43,6 +46,9 @@ use crate::packet::WeatherControl;
 pub const RAIN_MM_PER_H: [f32; 6] = [0.5, 1.5, 4.0, 10.0, 25.0, 60.0];
 /// Snow's and sleet's water rate by severity, mm/h.
 pub const SNOW_MM_PER_H: [f32; 6] = [0.2, 0.5, 1.0, 2.0, 4.0, 8.0];
+/// Hail's water rate by severity, mm/h (a hailfall's ice as water: a few mm/h of
+/// pea hail to the 40 mm/h of a severe storm's core).
+pub const HAIL_MM_PER_H: [f32; 6] = [1.0, 2.0, 5.0, 10.0, 20.0, 40.0];
 /// Sand's and dust's visibility by severity, m.
 pub const GRAIN_VISIBILITY_M: [f32; 6] = [5_000.0, 2_000.0, 1_000.0, 500.0, 200.0, 50.0];
 /// Ground fog's visibility by severity when the host sends none, m (WMO: fog is
@@ -77,6 +83,7 @@ pub const fn layer_kind(layer: u8) -> Option<PrecipitationKind> {
         4 => Some(PrecipitationKind::Rain),
         5 => Some(PrecipitationKind::DrySnow),
         6 => Some(PrecipitationKind::Sleet),
+        7 => Some(PrecipitationKind::Hail),
         8 => Some(PrecipitationKind::Sand),
         9 => Some(PrecipitationKind::Dust),
         _ => None,
@@ -207,6 +214,7 @@ impl HostWeather {
                     grain_rate_for_visibility(&grain, visibility)
                 }
                 None if kind == PrecipitationKind::Rain => RAIN_MM_PER_H[severity],
+                None if kind == PrecipitationKind::Hail => HAIL_MM_PER_H[severity],
                 None => SNOW_MM_PER_H[severity],
             };
             next.intensity_mm_per_h = rate * coverage;

@@ -24,8 +24,47 @@
 //! running synchronously.
 //!
 //! The viewer listens with `--cigi PORT` (headless and in the window; `--origin`,
-//! `--cigi-view`, `--cigi-lockstep`). Not yet here: hail, regional and entity
+//! `--cigi-view`, `--cigi-lockstep`). Not yet here: regional and entity
 //! weather scopes, the other views of a multi-channel rig in one IG.
+//!
+//! # Example
+//!
+//! A host's Weather Control for moderate hail over the whole area becomes a
+//! precip weather:
+//!
+//! ```
+//! use precip_cigi::packet::WeatherControl;
+//! use precip_cigi::{Applied, HostWeather};
+//! use precip_model::{PrecipitationKind, Weather};
+//!
+//! let hail = WeatherControl {
+//!     entity_region_id: 0,
+//!     layer: 7, // hail
+//!     humidity_percent: 80,
+//!     enabled: true,
+//!     random_winds: false,
+//!     cloud_type: 0,
+//!     scope: 0, // global
+//!     severity: 3,
+//!     air_temperature_c: 18.0,
+//!     visibility_m: 0.0,
+//!     coverage_percent: 100.0,
+//!     base_elevation_m: 0.0,
+//!     thickness_m: 0.0,
+//!     transition_band_m: 0.0,
+//!     horizontal_wind_mps: 12.0,
+//!     vertical_wind_mps: 0.0,
+//!     wind_from_deg: 250.0,
+//! };
+//! let mut host = HostWeather::new(Weather::default());
+//! let Applied::Changed(weather) = host.apply(&hail) else {
+//!     panic!("a global hail layer changes the weather");
+//! };
+//! assert_eq!(weather.kind, PrecipitationKind::Hail);
+//! assert!((weather.intensity_mm_per_h - 10.0).abs() < 1e-6); // severity 3
+//! // Stones are few: hail alone hardly hides the distance (a storm's rain does).
+//! assert!(weather.visibility_m() > 10_000.0);
+//! ```
 
 pub mod error;
 pub mod host_view;
