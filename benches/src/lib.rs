@@ -1,6 +1,21 @@
 //! What the benches and the report share: the step scenario (wind over flat ground,
 //! a 128² cover grid), the frame scenario (the built-in house, 1280×720), the
 //! backends present on this machine, and the report's plot ([`plot`]).
+//!
+//! # Example
+//!
+//! The benches' step scenario, stepped on the CPU reference as `cargo bench -p
+//! precip-benches --bench backends` steps it on every backend:
+//!
+//! ```
+//! use precip_model::{Backend, CpuBackend};
+//!
+//! let setup = precip_benches::scenario(1_000);
+//! let mut cpu = CpuBackend::new();
+//! cpu.configure(&setup).expect("configures");
+//! cpu.step(1.0 / 30.0).expect("steps");
+//! assert_eq!(cpu.read_particles().expect("reads back").len(), 1_000);
+//! ```
 
 pub mod peer;
 pub mod plot;

@@ -4,6 +4,24 @@
 //!
 //! Without a GPU the GPU subjects are left out with a printed reason, unless
 //! `PRECIP_REQUIRE_GPU=1`, which makes that a failure (CI sets it).
+//!
+//! # Example
+//!
+//! A contract case as the suites write them: the same set-up on every backend, the
+//! same answer (here, the same number of particles, and a clean validation log).
+//!
+//! ```
+//! use precip_model::Setup;
+//!
+//! let setup = Setup::over_flat_ground(10.0, 8, 6.0, 500);
+//! for mut subject in precip_conformance::all_subjects("crate example") {
+//!     subject.backend.configure(&setup).expect("configures");
+//!     subject.backend.step(0.1).expect("steps");
+//!     let particles = subject.backend.read_particles().expect("reads back");
+//!     assert_eq!(particles.len(), 500, "{}", subject.name);
+//!     subject.check_clean("the example");
+//! }
+//! ```
 
 use precip_gpu_vk::VkBackend;
 use precip_gpu_wgpu::{WgpuBackend, adapters};

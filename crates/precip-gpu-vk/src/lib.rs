@@ -45,6 +45,35 @@
 //! on precip's own device or the caller's ([`VkBackend::on_external_device`]; an
 //! engine's device renders offscreen, its engine presents). The validation layer is
 //! clean in every test, and the frames equal wgpu's bit for bit on lavapipe.
+//!
+//! # Example
+//!
+//! Rain over flat ground on precip's own Vulkan device, one frame read back
+//! (without a Vulkan device it says so and stops):
+//!
+//! ```
+//! use precip_gpu_vk::VkBackend;
+//! use precip_model::{Backend, PrecipitationKind, Setup, View};
+//!
+//! # fn main() -> Result<(), precip_model::BackendError> {
+//! let mut setup = Setup::over_flat_ground(20.0, 16, 8.0, 2_000);
+//! setup.weather.kind = PrecipitationKind::Rain;
+//! setup.weather.air_temperature_c = 12.0;
+//! setup.weather.intensity_mm_per_h = 8.0;
+//! let mut vk = match VkBackend::new(false) {
+//!     Ok(vk) => vk,
+//!     Err(e) => {
+//!         println!("no Vulkan device here: {e}");
+//!         return Ok(());
+//!     }
+//! };
+//! vk.configure(&setup)?;
+//! vk.step(0.5)?;
+//! vk.render(&View { camera: setup.camera, width_px: 64, height_px: 36 })?;
+//! assert_eq!(vk.read_image()?.rgba8.len(), 64 * 36 * 4);
+//! # Ok(())
+//! # }
+//! ```
 
 #![expect(
     unsafe_code,

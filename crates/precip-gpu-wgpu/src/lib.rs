@@ -7,6 +7,36 @@
 //! [`gpu::Hal`], the device calls of `precip_gpu::Gpu` on wgpu. The Vulkan backend
 //! (`precip-gpu-vk`) has the same files with the same jobs.
 //!
+//! # Example
+//!
+//! Snow over flat ground, a second of it, one frame read back (without an adapter
+//! it says so and stops):
+//!
+//! ```
+//! use precip_gpu_wgpu::WgpuBackend;
+//! use precip_model::{Backend, Setup, View};
+//!
+//! # fn main() -> Result<(), precip_model::BackendError> {
+//! let mut setup = Setup::over_flat_ground(20.0, 16, 8.0, 2_000);
+//! setup.weather.intensity_mm_per_h = 2.0; // mm/h of water, dry snow at −5 °C
+//! let mut gpu = match WgpuBackend::new() {
+//!     Ok(gpu) => gpu,
+//!     Err(e) => {
+//!         println!("no GPU here: {e}");
+//!         return Ok(());
+//!     }
+//! };
+//! gpu.configure(&setup)?;
+//! for _ in 0..30 {
+//!     gpu.step(1.0 / 30.0)?;
+//! }
+//! gpu.render(&View { camera: setup.camera, width_px: 64, height_px: 36 })?;
+//! let image = gpu.read_image()?;
+//! assert_eq!(image.rgba8.len(), 64 * 36 * 4);
+//! # Ok(())
+//! # }
+//! ```
+//!
 //! - [`device`] — finding adapters and opening a device (or adopting the caller's).
 //! - [`bind_groups`] — bind group layouts from `precip_gpu::bind_groups`' tables.
 //! - [`gpu`] — [`gpu::Hal`]: buffers, textures, samplers, layouts, kernels, draw

@@ -27,6 +27,27 @@
 //! The host state and the uniform blocks come from `precip_model::host`.
 //! `docs/architecture.md` describes how a backend executes this plan, and the
 //! walkthroughs for a new kernel, render pass or precipitation kind.
+//!
+//! # Example
+//!
+//! The plan is data a program can read: a sub-step's kernels, the frame's passes
+//! and when each runs, and every program's WGSL, joined from the twins' files.
+//!
+//! ```
+//! use precip_gpu::frame::FRAME_PASSES;
+//! use precip_gpu::recipe::SUBSTEP_PASSES;
+//! use precip_gpu::shaders::Program;
+//!
+//! // A sub-step moves the particles first.
+//! assert_eq!(SUBSTEP_PASSES[1].entry_point, "step_particles");
+//! for pass in &FRAME_PASSES {
+//!     println!("{:>16}: {:?}", pass.name, pass.when);
+//! }
+//! let step = Program::StepParticles;
+//! let wgsl = step.source();
+//! assert!(step.entry_points().contains(&"birth_particles"));
+//! assert!(wgsl.contains("// ---- kind.wgsl ----")); // the kinds' table is joined in
+//! ```
 
 pub mod backend;
 pub mod bind_groups;
