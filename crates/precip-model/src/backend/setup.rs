@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use glam::{UVec2, Vec2, Vec3};
 use precip_cover::{
-    CoverAir, CoverFeed, CoverGrid, CoverParams, CoverStepParams, GridFrame,
+    CoverAir, CoverFeed, CoverGrid, CoverParams, CoverStepParams, DepositBuffer, GridFrame,
     generate_threshold_masks,
 };
 use precip_wind::WindVolumeSpec;
@@ -305,8 +305,8 @@ impl Setup {
         CoverStepParams::new(
             &self.cover.params,
             CoverAir {
-                snow_rate_mm_per_day: weather.snow_rate_mm_per_h() * 24.0,
-                rain_rate_mm_per_day: weather.rain_rate_mm_per_h() * 24.0,
+                snow_rate_mm_per_day: weather.channel_rate_mm_per_h(DepositBuffer::SNOW) * 24.0,
+                rain_rate_mm_per_day: weather.channel_rate_mm_per_h(DepositBuffer::RAIN) * 24.0,
                 air_temperature_c: weather.air_temperature_c,
                 relative_humidity: weather.relative_humidity,
                 wind_speed_mps: weather.ground_wind_speed_mps(),

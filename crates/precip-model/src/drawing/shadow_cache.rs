@@ -53,7 +53,10 @@ pub const SHADOW_MAX_AGE_COVER_S: f64 = 900.0;
 pub fn snow_surface_speed_bound_mps(weather: &Weather, cover: &CoverParams) -> f32 {
     let density = new_snow_density(weather.air_temperature_c).max(1.0);
     let mm_per_h_to_mps = 1.0e-3 / 3600.0;
-    let rise = weather.snow_rate_mm_per_h() * LANDING_LUMP_FACTOR * 1000.0 / density;
+    let rise = weather.channel_rate_mm_per_h(precip_cover::DepositBuffer::SNOW)
+        * LANDING_LUMP_FACTOR
+        * 1000.0
+        / density;
     let excess = (weather.air_temperature_c - cover.melt_threshold_c).max(0.0);
     let melt_per_day = cover.melt_proportionality_mm_per_c_day
         * cover.solar_irradiance_factor.max(0.0)

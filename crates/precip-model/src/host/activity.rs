@@ -18,6 +18,8 @@
 //! The setup's cover starts bare and dry (`Setup::initial_cover`), so a clear sky,
 //! a sandstorm or a downpour (for the drift) runs none of an idle feature's kernels.
 
+use precip_cover::DepositBuffer;
+
 use crate::weather::Weather;
 
 /// What may have work on the ground.
@@ -33,8 +35,9 @@ impl Activity {
     /// The activity after `weather` has fallen (flags only turn on).
     #[must_use]
     pub fn after(self, weather: &Weather) -> Self {
-        let snow = weather.snow_rate_mm_per_h() > 0.0;
-        let rain = weather.rain_rate_mm_per_h() > 0.0;
+        // What lands as snow (hail too) or as rain.
+        let snow = weather.channel_rate_mm_per_h(DepositBuffer::SNOW) > 0.0;
+        let rain = weather.channel_rate_mm_per_h(DepositBuffer::RAIN) > 0.0;
         Self {
             snow_may_lie: self.snow_may_lie || snow,
             water_may_stand: self.water_may_stand || snow || rain,
@@ -75,6 +78,9 @@ mod tests {
         assert!(snow.snow_may_lie && snow.water_may_stand);
         let sleet = bare.after(&weather(PrecipitationKind::Sleet, 2.0, 1.0));
         assert!(sleet.snow_may_lie && sleet.water_may_stand);
+        // Hail lands as snow: it lies, and melts into water.
+        let hail = bare.after(&weather(PrecipitationKind::Hail, 20.0, 16.0));
+        assert!(hail.snow_may_lie && hail.water_may_stand);
         let sand = weather(PrecipitationKind::Sand, 5.0, 30.0);
         assert_eq!(bare.after(&sand), bare, "grains bring no water or snow");
         let clear = weather(PrecipitationKind::DrySnow, 0.0, -5.0);

@@ -155,6 +155,19 @@ impl Weather {
         self.kind.snow_is_wet()
     }
 
+    /// What lands in the cover's deposit channel `channel` (`DepositBuffer::SNOW`,
+    /// `RAIN`, `GRAINS`), mm/h of water: the rates of the particle kinds that land
+    /// there ([`ParticleKind::deposit_channel`]; hail lands as snow). The cover's
+    /// rate-fed texels, its activity and its shadow's bounds take this, not a kind.
+    #[must_use]
+    pub fn channel_rate_mm_per_h(&self, channel: usize) -> f32 {
+        ParticleKind::ALL
+            .into_iter()
+            .filter(|k| k.deposit_channel() == channel)
+            .map(|k| k.rate_in(self))
+            .sum()
+    }
+
     /// Snow's water rate, mm/h.
     #[must_use]
     pub fn snow_rate_mm_per_h(&self) -> f32 {
@@ -178,6 +191,24 @@ impl Weather {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The kinds' tables lose nothing: a weather's whole rate lands in the cover's
+    /// channels, for every kind (hail in the snow's).
+    #[test]
+    fn every_kind_s_rate_lands_in_the_cover_s_channels() {
+        for kind in PrecipitationKind::ALL {
+            let w = Weather {
+                kind,
+                intensity_mm_per_h: 4.0,
+                air_temperature_c: kind.default_air_temperature_c(),
+                ..Weather::default()
+            };
+            let landed: f32 = (0..precip_cover::DEPOSIT_CHANNELS)
+                .map(|c| w.channel_rate_mm_per_h(c))
+                .sum();
+            assert!((landed - 4.0).abs() < 1e-5, "{kind}: {landed} mm/h");
+        }
+    }
 
     #[test]
     fn sleet_turns_from_snow_to_rain_around_zero() {
