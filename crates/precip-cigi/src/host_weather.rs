@@ -30,7 +30,8 @@
 //! are kept and every one that is on is drawn, lowest first; a layer reaching into
 //! the one below it starts at that one's top (dropped where less than 10 m of it is
 //! left). Hail (layer 7) falls as hail ([`precip_model::physics::hail`]: its stones
-//! grow with the rate, pea-sized at severity 0, walnuts at 5). The regional and
+//! grow with the rate: pea-sized at severity 0, a median of 11 mm and one stone in
+//! twenty past 29 mm at 5). The regional and
 //! entity scopes are counted as ignored.
 
 use glam::Vec3;

@@ -16,8 +16,8 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Preset {
-    /// The kind's name ([`PrecipitationKind::name`]): "dry-snow", "wet-snow", "rain",
-    /// "sleet", "sand" or "dust".
+    /// The kind's name ([`PrecipitationKind::name`]: "dry-snow", "rain", "hail", …;
+    /// `PrecipitationKind::names` lists them).
     #[serde(with = "kind_name")]
     pub kind: PrecipitationKind,
     /// Precipitation rate as water, mm/h; sand and dust: the grains settling from

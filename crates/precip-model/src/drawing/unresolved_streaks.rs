@@ -96,21 +96,23 @@ pub fn unresolved_size_classes(weather: &Weather, unresolved_share: f32) -> Vec<
     let moving = |fall: f32| Vec3::new(wind.x, -fall, wind.z);
     let share = unresolved_share.clamp(0.0, 1.0);
     let mut classes = Vec::new();
-    // Each exponential spectrum N0·e^(−Λd) (d mm) over [0, 8/Λ], midpoints; grains
+    // Each exponential spectrum N0·e^(−Λd) (d mm) over its support, midpoints; grains
     // of one size are in the haze's extinction only.
     for kind in ParticleKind::ALL {
         let Some(Spectrum::Exponential {
             n0_per_m3_mm: n0,
             slope_per_mm: slope,
+            support_mm: (from_mm, to_mm),
             simulated_from_mm,
             ..
         }) = kind.spectrum_in(weather)
         else {
             continue;
         };
-        let width = 8.0 / slope / UNRESOLVED_SIZES as f32;
+        // Over the sizes that exist, to 8 mean sizes past the first.
+        let width = ((from_mm + 8.0 / slope).min(to_mm) - from_mm) / UNRESOLVED_SIZES as f32;
         for k in 0..UNRESOLVED_SIZES {
-            let d = (k as f32 + 0.5) * width;
+            let d = from_mm + (k as f32 + 0.5) * width;
             let n = n0 * (-slope * d).exp() * width;
             let diameter_m = kind.diameter_at_spectral_size_m(d);
             classes.push(SizeClass {

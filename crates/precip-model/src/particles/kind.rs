@@ -135,6 +135,7 @@ impl ParticleKind {
             Self::DrySnow | Self::WetSnow => Some(Spectrum::Exponential {
                 n0_per_m3_mm: gunn_marshall_intercept(rate),
                 slope_per_mm: gunn_marshall_slope_per_mm(rate),
+                support_mm: (0.0, f32::INFINITY),
                 // Flakes at least as large as the smallest the seed's law draws.
                 simulated_from_mm: melted_diameter_mm(
                     0.5 * mean_snowflake_diameter_m(weather.air_temperature_c),
@@ -145,6 +146,7 @@ impl ParticleKind {
             Self::Rain => Some(Spectrum::Exponential {
                 n0_per_m3_mm: MARSHALL_PALMER_N0,
                 slope_per_mm: marshall_palmer_slope_per_mm(rate),
+                support_mm: (0.0, f32::INFINITY),
                 simulated_from_mm: RAIN_DIAMETER_MIN_MM,
                 simulated_to_mm: RAIN_DIAMETER_MAX_MM,
             }),
@@ -157,6 +159,7 @@ impl ParticleKind {
                 Some(Spectrum::Exponential {
                     n0_per_m3_mm: n0,
                     slope_per_mm: slope,
+                    support_mm: (HAIL_DIAMETER_MIN_MM, HAIL_DIAMETER_MAX_MM),
                     simulated_from_mm: HAIL_DIAMETER_MIN_MM,
                     simulated_to_mm: HAIL_DIAMETER_MAX_MM,
                 })
@@ -222,14 +225,18 @@ impl ParticleKind {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Spectrum {
     /// `N(d) = N0·e^(−Λd)` per m³ per mm of the kind's spectral size `d`, mm
-    /// ([`ParticleKind::diameter_at_spectral_size_m`]); the sizes in
-    /// `[simulated_from_mm, simulated_to_mm]` are simulated one by one, the rest is
-    /// only in the haze.
+    /// ([`ParticleKind::diameter_at_spectral_size_m`]), for the sizes in
+    /// `support_mm`; those in `[simulated_from_mm, simulated_to_mm]` are simulated
+    /// one by one, the rest is only in the haze.
     Exponential {
         /// `N0`, per m³ per mm.
         n0_per_m3_mm: f32,
         /// `Λ`, per mm.
         slope_per_mm: f32,
+        /// The sizes that exist, mm: from 0 to no end for snow and rain; 5–50 mm
+        /// for hail (its `N0` holds there alone). Sums over the spectrum run over
+        /// these only.
+        support_mm: (f32, f32),
         /// The smallest size simulated one by one, mm.
         simulated_from_mm: f32,
         /// The largest, mm (may be infinite).
@@ -255,6 +262,7 @@ impl Spectrum {
                 slope_per_mm,
                 simulated_from_mm,
                 simulated_to_mm,
+                ..
             } => crate::weather::visibility::exponential_tail_per_m3(
                 n0_per_m3_mm,
                 slope_per_mm,

@@ -466,12 +466,12 @@ impl SpectrumParts {
                 Some(Spectrum::Exponential {
                     n0_per_m3_mm,
                     slope_per_mm,
+                    support_mm,
                     simulated_from_mm,
                     simulated_to_mm,
                 }) => parts.add_spectrum(
                     kind,
-                    n0_per_m3_mm,
-                    slope_per_mm,
+                    (n0_per_m3_mm, slope_per_mm, support_mm),
                     |d_mm| kind.diameter_at_spectral_size_m(d_mm),
                     |d_mm| !(simulated_from_mm..=simulated_to_mm).contains(&d_mm),
                 ),
@@ -499,22 +499,23 @@ impl SpectrumParts {
         parts
     }
 
-    /// Adds `∫ N0·e^(−Λd)·C(D(d)) dd` (d in mm, N0 per m³ per mm) by the midpoint
-    /// rule, to the total and, where `unresolved(d)`, to the unresolved part.
+    /// Adds `∫ N0·e^(−Λd)·C(D(d)) dd` (d in mm, N0 per m³ per mm) over the
+    /// spectrum's support (to [`SPECTRUM_REACH`] mean sizes past its start) by the
+    /// midpoint rule, to the total and, where `unresolved(d)`, to the unresolved part.
     fn add_spectrum(
         &mut self,
         kind: ParticleKind,
-        n0_per_m3_mm: f32,
-        slope_per_mm: f32,
+        (n0_per_m3_mm, slope_per_mm, (from_mm, to_mm)): (f32, f32, (f32, f32)),
         diameter_m: impl Fn(f32) -> f32,
         unresolved: impl Fn(f32) -> bool,
     ) {
         if slope_per_mm <= 0.0 || !slope_per_mm.is_finite() {
             return;
         }
-        let step_mm = SPECTRUM_REACH / slope_per_mm / SPECTRUM_BINS as f32;
+        let end_mm = (from_mm + SPECTRUM_REACH / slope_per_mm).min(to_mm);
+        let step_mm = (end_mm - from_mm) / SPECTRUM_BINS as f32;
         for i in 0..SPECTRUM_BINS {
-            let d_mm = (i as f32 + 0.5) * step_mm;
+            let d_mm = from_mm + (i as f32 + 0.5) * step_mm;
             let count_per_m3 = n0_per_m3_mm * (-slope_per_mm * d_mm).exp() * step_mm;
             let size_m = diameter_m(d_mm);
             for band in Band::ALL {

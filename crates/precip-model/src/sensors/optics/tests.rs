@@ -63,6 +63,32 @@ fn rain_and_snow_extinction_are_the_visibility_modules_and_do_not_depend_on_the_
     }
 }
 
+/// The optics' sums over each kind's spectrum agree with the visibility's closed
+/// forms, for every kind whose stones or drops are large against the wavelength
+/// (hail's spectrum exists from 5 mm alone: summing below it tripled its haze).
+#[test]
+fn every_kind_s_visible_extinction_is_the_visibility_s() {
+    for kind in PrecipitationKind::ALL {
+        if kind.default_grain().is_some() {
+            continue; // grains are small against the wavelength: not efficiency 2
+        }
+        for rate in [0.5, 10.0, 30.0] {
+            let w = Weather {
+                kind,
+                intensity_mm_per_h: rate,
+                air_temperature_c: kind.default_air_temperature_c(),
+                ..Weather::default()
+            };
+            let got = Optics::of_weather(&w).band(Band::Visible).extinction_per_m;
+            let expected = w.extinction_per_m();
+            assert!(
+                (got / expected - 1.0).abs() < 0.02,
+                "{kind} at {rate} mm/h: {got} vs {expected}"
+            );
+        }
+    }
+}
+
 #[test]
 fn rain_extinction_is_within_half_again_of_carbonneaus_relation() {
     // Carbonneau (1998), the free-space optics link budget's rain: 1.076·R^0.67
