@@ -17,7 +17,7 @@ views=(
   "far 70,35,95 0,0,0"
   "pond -17,0.5,21 0,2.5,0"
 )
-weathers=(light-snow blizzard drizzle downpour sleet sandstorm valley-fog fair-cumulus thunderstorm)
+weathers=(light-snow blizzard drizzle downpour sleet sandstorm valley-fog fair-cumulus thunderstorm hail)
 # The sky from the lawn and from the air: name, preset, extra options, eye, look-at.
 sky_shots=(
   "fair-cumulus-up fair-cumulus - 5,1.7,25 0,60,-80"

@@ -43,6 +43,11 @@ fn kind_is_drop(kind: u32) -> bool {
     return kind == KIND_RAIN;
 }
 
+// Rust: ParticleKind::rings_water (wave_excite, water_waves.wgsl).
+fn kind_rings_water(kind: u32) -> bool {
+    return kind == KIND_DRY_SNOW || kind == KIND_WET_SNOW || kind == KIND_RAIN || kind == KIND_GRAIN;
+}
+
 // Rust: ParticleKind::deposit_channel.
 fn kind_deposit_channel(kind: u32) -> u32 {
     if (kind == KIND_RAIN) {

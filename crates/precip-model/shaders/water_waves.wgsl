@@ -47,7 +47,7 @@ fn wave_excite(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgr
     let area = WAVE_CELL_M * WAVE_CELL_M;
     for (var k = linear_index(id, groups); k < count; k += lanes) {
         let p = particles[pending.indices[k]];
-        if ((p.flags & FLAG_LANDED) == 0u) {
+        if ((p.flags & FLAG_LANDED) == 0u || !kind_rings_water(particle_kind(p.flags))) {
             continue;
         }
         let cell = grid_texel_index(frames.waves, p.position_m.xz);

@@ -116,6 +116,16 @@ impl ParticleKind {
         matches!(self, Self::Rain)
     }
 
+    /// Whether striking a water body it rings it: the ripples' crater law is a
+    /// drop's ([`crate::physics::water_waves::crater_volume_m3`]); a hailstone's
+    /// cavity is not, and its strikes, at the simulated stones' count (about the
+    /// physical one, where drops are sampled), shook the 4 cm wave grid into blocks.
+    /// GPU only (the reference draws no ripples): `kind_rings_water`.
+    #[must_use]
+    pub const fn rings_water(self) -> bool {
+        !matches!(self, Self::Hail)
+    }
+
     /// Its share of `weather`'s rate: mm/h of water (grains: kg/(m²·h)); 0 when
     /// the weather has none of it ([`crate::PrecipitationKind::share_of`]).
     #[must_use]
