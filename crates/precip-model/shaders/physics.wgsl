@@ -37,10 +37,14 @@ fn raindrop_terminal_speed_mps(diameter_mm: f32) -> f32 {
     return 9.65 - 10.3 * exp(-0.6 * d);
 }
 
-fn marshall_palmer_diameter_mm(slope_per_mm: f32, f: f32) -> f32 {
-    let span = RAIN_DIAMETER_MAX_MM - RAIN_DIAMETER_MIN_MM;
+fn truncated_exponential_mm(from_mm: f32, to_mm: f32, slope_per_mm: f32, f: f32) -> f32 {
+    let span = to_mm - from_mm;
     let tail = 1.0 - exp(-slope_per_mm * span);
-    return RAIN_DIAMETER_MIN_MM - log(1.0 - f * tail) / slope_per_mm;
+    return from_mm - log(1.0 - f * tail) / slope_per_mm;
+}
+
+fn marshall_palmer_diameter_mm(slope_per_mm: f32, f: f32) -> f32 {
+    return truncated_exponential_mm(RAIN_DIAMETER_MIN_MM, RAIN_DIAMETER_MAX_MM, slope_per_mm, f);
 }
 
 fn draw_raindrop_diameter_mm(key: u32, slope_per_mm: f32) -> f32 {
@@ -66,9 +70,7 @@ fn hailstone_terminal_speed_mps(diameter_mm: f32) -> f32 {
 }
 
 fn hail_diameter_mm(slope_per_mm: f32, f: f32) -> f32 {
-    let span = HAIL_DIAMETER_MAX_MM - HAIL_DIAMETER_MIN_MM;
-    let tail = 1.0 - exp(-slope_per_mm * span);
-    return HAIL_DIAMETER_MIN_MM - log(1.0 - f * tail) / slope_per_mm;
+    return truncated_exponential_mm(HAIL_DIAMETER_MIN_MM, HAIL_DIAMETER_MAX_MM, slope_per_mm, f);
 }
 
 fn draw_hail_diameter_mm(key: u32, slope_per_mm: f32) -> f32 {

@@ -12,6 +12,7 @@
 //! stones.
 
 use crate::particles::rng::{draw, random_unit};
+use crate::physics::raindrop::truncated_exponential_mm;
 
 /// Smallest hailstone, mm (hail is 5 mm and up; smaller is graupel).
 pub const HAIL_DIAMETER_MIN_MM: f32 = 5.0;
@@ -137,9 +138,7 @@ pub fn hail_extinction_per_m(rate_mm_per_h: f32) -> f32 {
 /// CDF of the truncated exponential (`f ∈ [0, 1)`).
 #[must_use]
 pub fn hail_diameter_mm(slope_per_mm: f32, f: f32) -> f32 {
-    let span = HAIL_DIAMETER_MAX_MM - HAIL_DIAMETER_MIN_MM;
-    let tail = 1.0 - (-slope_per_mm * span).exp();
-    HAIL_DIAMETER_MIN_MM - (1.0 - f * tail).ln() / slope_per_mm
+    truncated_exponential_mm(HAIL_DIAMETER_MIN_MM, HAIL_DIAMETER_MAX_MM, slope_per_mm, f)
 }
 
 /// A newborn stone's diameter, mm, drawn from the flux `N(D)·v(D)` so that the

@@ -57,13 +57,21 @@ pub fn rain_rate_from_spectrum_mm_per_h(rain_rate_mm_per_h: f32) -> f64 {
     3.6e-3 * std::f64::consts::PI / 6.0 * sum * h / 3.0
 }
 
-/// A drop diameter from Marshall–Palmer truncated to `[0.3, 6]` mm, mm: inverse-CDF
-/// of the truncated exponential (`f ∈ [0, 1)`).
+/// A size from an exponential spectrum `e^(−ΛD)` truncated to `[from_mm, to_mm]`,
+/// mm: its inverse CDF at `f ∈ [0, 1)`,
+/// `D = from − ln(1 − f·(1 − e^(−Λ·(to − from))))/Λ` (drops and hailstones).
+#[must_use]
+pub fn truncated_exponential_mm(from_mm: f32, to_mm: f32, slope_per_mm: f32, f: f32) -> f32 {
+    let span = to_mm - from_mm;
+    let tail = 1.0 - (-slope_per_mm * span).exp();
+    from_mm - (1.0 - f * tail).ln() / slope_per_mm
+}
+
+/// A drop diameter from Marshall–Palmer truncated to `[0.3, 6]` mm, mm
+/// ([`truncated_exponential_mm`], `f ∈ [0, 1)`).
 #[must_use]
 pub fn marshall_palmer_diameter_mm(slope_per_mm: f32, f: f32) -> f32 {
-    let span = RAIN_DIAMETER_MAX_MM - RAIN_DIAMETER_MIN_MM;
-    let tail = 1.0 - (-slope_per_mm * span).exp();
-    RAIN_DIAMETER_MIN_MM - (1.0 - f * tail).ln() / slope_per_mm
+    truncated_exponential_mm(RAIN_DIAMETER_MIN_MM, RAIN_DIAMETER_MAX_MM, slope_per_mm, f)
 }
 
 /// A newborn drop's diameter, mm, drawn so that the drops **in the air** follow
