@@ -19,6 +19,7 @@
 
 pub mod peer;
 pub mod plot;
+pub mod terrain;
 pub mod traffic;
 
 use glam::Vec3;

@@ -11,7 +11,9 @@
 //! viewer in windows of the same size over the demo scene); printed as a table,
 //! written as JSON and plotted as a PNG beside it. Build the viewer first
 //! (`cargo build --release`) for its window run; `report --peer` runs only that
-//! (the peer, then precip's viewer at each `--quality`).
+//! (the peer, then precip's viewer at each `--quality`), `report --terrain` only
+//! the frame over the demo against the demo on 10 km of terrain
+//! ([`precip_benches::terrain`]).
 
 use std::path::Path;
 use std::time::Instant;
@@ -300,6 +302,15 @@ fn series(rows: &[serde_json::Value], key: &str, job: &str) -> Vec<Series> {
 }
 
 fn main() {
+    // `report --terrain`: only the demo's frame against the demo's on 10 km of terrain.
+    if std::env::args().nth(1).as_deref() == Some("--terrain") {
+        let rows = precip_benches::terrain::measure_terrain();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&rows).unwrap_or_default()
+        );
+        return;
+    }
     // `report --peer`: only the side-by-side window run against the peer.
     if std::env::args().nth(1).as_deref() == Some("--peer") {
         let peer = measure_peer();
@@ -364,6 +375,7 @@ fn main() {
     measure_frames(&mut frame_rows);
     let frame_ratios = ratios(&frame_rows, "frame_ms", "frame time");
     let peer = measure_peer();
+    let terrain = precip_benches::terrain::measure_terrain();
     let mut plotted = series(&rows, "step_ms", "step");
     plotted.extend(series(&frame_rows, "frame_ms", "frame 1280×720"));
     // An earlier report's (or docs/performance-before.json's) frames, for comparison.
@@ -393,6 +405,7 @@ fn main() {
         "vk_over_wgpu_frame": frame_ratios,
         "step_over_copy_64b": step_over_copy_64b,
         "peer": peer,
+        "terrain": terrain,
     });
     let png = Path::new(&out).with_extension("png");
     match write_png(

@@ -91,6 +91,13 @@ struct RenderParams {
     // the waves coming in: amplitude m, angular frequency rad/s, phase rad,
     // wavenumber along the incoming edge rad/m
     shore_waves: array<vec4<f32>, 8>,
+    // The terrain's clipmap (render_terrain.wgsl; Rust: precip_model::scene::terrain::ClipmapRows).
+    terrain: vec4<f32>,
+    terrain_levels: vec4<u32>,
+    terrain_samples: array<vec4<u32>, 8>,
+    terrain_offsets: array<vec4<u32>, 4>,
+    // The cover beyond the grid (Rust: RenderParams::far_cover): cover_at's A, B, C.
+    far_cover: array<vec4<f32>, 3>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

@@ -292,9 +292,11 @@ var<private> cover_roughness_m: f32;
 
 fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
     let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
-    let a = textureSampleLevel(cover_a, cover_sampler, uv, 0.0);
-    let b = textureSampleLevel(cover_b, cover_sampler, uv, 0.0);
-    let c = textureSampleLevel(cover_c, cover_sampler, uv, 0.0);
+    // Off the grid, the cover beyond it (RenderParams::far_cover: the weather's own).
+    let on_grid = grid_texel_index(params.cover, xz_m) >= 0;
+    let a = select(params.far_cover[0], textureSampleLevel(cover_a, cover_sampler, uv, 0.0), on_grid);
+    let b = select(params.far_cover[1], textureSampleLevel(cover_b, cover_sampler, uv, 0.0), on_grid);
+    let c = select(params.far_cover[2], textureSampleLevel(cover_c, cover_sampler, uv, 0.0), on_grid);
     var t: CoverTexel;
     t.dust_kg_m2 = c.x;
     cover_roughness_m = c.y;
@@ -360,10 +362,11 @@ fn displaced(v: SceneVertex) -> vec3<f32> {
         return p;
     }
     let n = normalize(v.normal);
-    if (grid_texel_index(params.cover, p.xz) >= 0) {
-        let depth_m = cover_at(p.xz).depth_mm * 1.0e-3;
-        p.y += depth_m * clamp(v.eligibility, 0.0, 1.0) * upward(n) * exposure(p, n);
-    }
+    // The depth alone (cover_at's first texture; off the grid the cover beyond it).
+    let uv = (p.xz - params.cover.origin_m) / params.cover.size_m;
+    let on_grid = grid_texel_index(params.cover, p.xz) >= 0;
+    let depth_mm = select(params.far_cover[0].x, textureSampleLevel(cover_a, cover_sampler, uv, 0.0).x, on_grid);
+    p.y += depth_mm * 1.0e-3 * clamp(v.eligibility, 0.0, 1.0) * upward(n) * exposure(p, n);
     return p;
 }
 
@@ -408,6 +411,11 @@ struct SurfaceLook {
 
 @fragment
 fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
+    return scene_fragment(in);
+}
+
+// A surface of the scene (a mesh's, the terrain's) lit, wetted and seen through the air.
+fn scene_fragment(in: SceneVarying) -> vec4<f32> {
     let camera = params.camera_m_cone_cos.xyz;
     let look = surface_look(in, camera);
     let seen = with_air(look.shaded, air_between(camera, in.world_m, switches.fog_layer));
@@ -450,8 +458,9 @@ fn surface_look(in: SceneVarying, camera: vec3<f32>) -> SurfaceLook {
     var open_water = 0.0;
     // A water body's vertices carry eligibility -1 (gpu_scene::WATER_BODY_ELIGIBILITY).
     let body = select(0.0, 1.0, in.eligibility < -0.5);
-    let i = grid_texel_index(params.cover, in.surface_m.xz);
-    if (i >= 0) {
+    // On the cover grid its texels, beyond it the cover the weather laid there
+    // (cover_at): every surface under the sky takes the weather.
+    {
         // Read the cover a little off the point (under half a texel), so where a
         // drift or a bare patch ends follows no texel's edge.
         let cell = params.cover.size_m / vec2<f32>(params.cover.texels);

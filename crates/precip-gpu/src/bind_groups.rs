@@ -542,6 +542,7 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         ) => &[SHORE_KERNEL],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
+        (Program::Render, e) if e == render_passes::TERRAIN_SHADOW.0 => &[RENDER_FRAME],
         (Program::Render, "vs_sky" | "fs_sky" | "vs_clouds_all" | "fs_clouds_all") => {
             &[RENDER_FRAME]
         }
@@ -563,6 +564,8 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
             Program::Render,
             "vs_scene"
             | "fs_scene"
+            | "vs_terrain"
+            | "fs_terrain"
             | "fs_water_body"
             | "fs_water_body_planar"
             | "vs_sea"

@@ -143,6 +143,13 @@ pub enum DrawOf {
     },
     /// One triangle of 3 vertices covering the target.
     FullScreenTriangle,
+    /// The terrain's clipmap: `precip_model::scene::terrain::ClipmapRows::vertices`
+    /// vertices pulled by their index, with the terrain's material group bound
+    /// when `materials`.
+    TerrainClipmap {
+        /// Bind the terrain's material group.
+        materials: bool,
+    },
     /// `drawIndirect` with the frame's [`FrameDraws`] at this byte offset.
     Indirect {
         /// Byte offset of the [`crate::recipe::DrawArgs`].
@@ -283,6 +290,8 @@ pub enum PassWhen {
     Sea,
     /// While the sea has a shore ([`precip_model::drawing::shore::ShoreGrid`]).
     Shore,
+    /// While the scene stands on a terrain (`precip_model::PreparedScene::on_terrain`).
+    Terrain,
 }
 
 /// One pass of the frame.
@@ -308,6 +317,25 @@ const SHADOW_DRAW: Draw = Draw {
     depth_bias: Some((2, 2.0)),
     blend: Blend::None,
     when: PassWhen::Always,
+};
+
+// The terrain's clipmap into the shadow map.
+const TERRAIN_SHADOW_DRAW: Draw = Draw {
+    entry_points: render_passes::TERRAIN_SHADOW,
+    of: DrawOf::TerrainClipmap { materials: false },
+    scene_vertices: false,
+    when: PassWhen::Terrain,
+    ..SHADOW_DRAW
+};
+
+// The terrain's clipmap, its fragments the scene's (a pipeline of its own: its
+// vertices come from the pyramid, not the scene's buffer).
+const TERRAIN_DRAW: Draw = Draw {
+    entry_points: render_passes::TERRAIN,
+    of: DrawOf::TerrainClipmap { materials: true },
+    scene_vertices: false,
+    when: PassWhen::Terrain,
+    ..SCENE_DRAW
 };
 
 const SCENE_DRAW: Draw = Draw {
@@ -534,7 +562,7 @@ pub const FRAME_PASSES: [FramePass; 16] = [
             depth_stored: true,
             colour: None,
             colour_target: ColourTarget::Frame,
-            draws: &[SHADOW_DRAW],
+            draws: &[SHADOW_DRAW, TERRAIN_SHADOW_DRAW],
         }),
         when: PassWhen::ShadowRedrawn,
     },
@@ -591,6 +619,7 @@ pub const FRAME_PASSES: [FramePass; 16] = [
             draws: &[
                 SCENE_DRAW,
                 GROUND_MIRROR_DRAW,
+                TERRAIN_DRAW,
                 WATER_BODY_DRAW,
                 WATER_BODY_PLANAR_DRAW,
                 SEA_DRAW,
@@ -718,6 +747,8 @@ pub struct FrameConditions {
     pub sea: bool,
     /// The sea has a shore ([`PassWhen::Shore`]).
     pub shore: bool,
+    /// The scene stands on a terrain ([`PassWhen::Terrain`]).
+    pub terrain: bool,
 }
 
 impl PassWhen {
@@ -744,6 +775,7 @@ impl PassWhen {
             Self::CloudsNot => !conditions.clouds,
             Self::Sea => conditions.sea,
             Self::Shore => conditions.shore,
+            Self::Terrain => conditions.terrain,
         }
     }
 }
@@ -934,6 +966,9 @@ impl FrameHost {
         if let Some(frame) = &shore {
             params = params.with_shore_rows(&frame.rows);
         }
+        params = params
+            .with_clipmap_rows(&host.clipmap_rows())
+            .with_far_cover(host.far_cover());
         FrameDecision {
             params,
             conditions: FrameConditions {
@@ -948,6 +983,7 @@ impl FrameHost {
                 clouds_fresh: false,
                 sea: self.sea,
                 shore: shore.is_some(),
+                terrain: host.terrain_pyramid().is_some(),
             },
             sky_colour: haze_colour(&setup.render, host.weather()),
             mirror_rect_px: mirror.map(|m| m.rect_px),
@@ -1022,6 +1058,7 @@ mod tests {
                     clouds_fresh: into_b,
                     sea: into_b,
                     shore: into_b && particles,
+                    terrain: particles,
                 })
                 .collect();
                 assert_eq!(plan.len(), FRAME_PASSES.len());
@@ -1074,6 +1111,7 @@ mod tests {
                 clouds_fresh: false,
                 sea: false,
                 shore: false,
+                terrain: false,
             };
             let ground: Vec<_> = recipe
                 .draws
@@ -1108,6 +1146,7 @@ mod tests {
                     clouds_fresh: fresh,
                     sea: false,
                     shore: false,
+                    terrain: true,
                 };
                 let ran: Vec<_> = frame_plan(conditions)
                     .filter(|p| p.runs && p.pass.name.starts_with("clouds"))

@@ -762,6 +762,11 @@ pub mod render_passes {
     pub const SHADOW: (&str, Option<&str>) = ("vs_shadow", None);
     /// The scene with its cover.
     pub const SCENE: (&str, Option<&str>) = ("vs_scene", Some("fs_scene"));
+    /// The terrain's clipmap with its cover (render_terrain.wgsl): its vertices
+    /// pulled from the pyramid by their index, its fragments the scene's.
+    pub const TERRAIN: (&str, Option<&str>) = ("vs_terrain", Some("fs_terrain"));
+    /// Sun's depth: the terrain's clipmap.
+    pub const TERRAIN_SHADOW: (&str, Option<&str>) = ("vs_terrain_shadow", None);
     /// The water bodies, mirroring the scene (render_reflections.wgsl).
     pub const WATER_BODIES: (&str, Option<&str>) = ("vs_scene", Some("fs_water_body"));
     /// The water bodies where the planar mirror is drawn: its image sampled.

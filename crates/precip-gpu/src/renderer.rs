@@ -829,6 +829,16 @@ impl<G: Gpu> FrameState<G> {
                                 }
                             }
                             DrawOf::FullScreenTriangle => commands.push(Command::Draw(3)),
+                            DrawOf::TerrainClipmap { materials } => {
+                                if let Some(scene) = &self.scene {
+                                    scene.draw_terrain(
+                                        &mut commands,
+                                        materials,
+                                        decision.params.terrain.w as u32
+                                            * precip_model::scene::terrain::CLIPMAP_LEVEL_VERTICES,
+                                    );
+                                }
+                            }
                             DrawOf::Indirect { offset } => {
                                 commands.push(Command::DrawIndirect(draws, offset));
                             }

@@ -28,7 +28,8 @@ pub enum SimBuffer {
     Deposits,
     /// The particles to re-birth this sub-step ([`pending_births_bytes`]).
     PendingBirths,
-    /// Ground heights ([`GroundMap::gpu_words`]).
+    /// Ground heights ([`GroundMap::gpu_words`]), then the terrain's pyramid
+    /// (`precip_model::scene::terrain::TerrainPyramid`) if the scene stands on one.
     Ground,
     /// The water bodies' waves ([`initial_waves`]).
     Waves,
@@ -169,7 +170,15 @@ pub fn simulation_buffers(
                     BufferUsage::Storage,
                     Contents::Undefined,
                 ),
-                SimBuffer::Ground => bytes(bytemuck::cast_slice(&ground.gpu_words()).to_vec()),
+                SimBuffer::Ground => {
+                    // The ground map's words, then the terrain's pyramid (the
+                    // clipmap's, render_terrain.wgsl).
+                    let mut words = ground.gpu_words();
+                    if let Some(p) = host.terrain_pyramid() {
+                        words.extend_from_slice(&p.heights_m);
+                    }
+                    bytes(bytemuck::cast_slice(&words).to_vec())
+                }
                 SimBuffer::Waves => {
                     bytes(bytemuck::cast_slice(&initial_waves(&frames.waves, ground)).to_vec())
                 }

@@ -7,6 +7,7 @@
 
 use glam::Vec3;
 use precip_model::scene::gpu_scene::{PackedScene, SceneLod, TileCull};
+use precip_model::scene::terrain::terrain_ramp;
 use precip_model::{BackendError, Setup, TextureRgba8};
 
 use crate::bind_groups::RENDER_MATERIAL;
@@ -28,6 +29,72 @@ struct Material<G: Gpu> {
     sea: bool,
 }
 
+impl<G: Gpu> Material<G> {
+    /// A material of `base_colour` (linear RGBA) over `texture`; `(water_body, sea)`.
+    fn new(
+        gpu: &mut G,
+        base_colour: [f32; 4],
+        texture: &TextureRgba8,
+        (water_body, sea): (bool, bool),
+    ) -> Result<Self, BackendError> {
+        let colour = gpu.create_buffer(
+            "precip material",
+            16,
+            BufferUsage::Uniform,
+            Some(bytemuck::cast_slice(&base_colour)),
+        )?;
+        match gpu.create_texture(&TextureDesc {
+            label: "precip base colour",
+            size: (texture.width_px, texture.height_px),
+            format: TexelFormat::Rgba8UnormSrgb,
+            usage: TextureUsage::Sampled,
+            contents: Some(&texture.rgba8),
+        }) {
+            Ok(texture) => Ok(Self {
+                colour,
+                texture,
+                group: None,
+                water_body,
+                sea,
+            }),
+            Err(e) => {
+                gpu.destroy_buffer(colour);
+                Err(e)
+            }
+        }
+    }
+
+    /// Makes its group (of [`RENDER_MATERIAL`]) with `sampler`.
+    fn bind(
+        &mut self,
+        gpu: &mut G,
+        layout: &G::GroupLayout,
+        sampler: &G::Sampler,
+    ) -> Result<(), BackendError> {
+        self.group = Some(gpu.bind_group(
+            layout,
+            &RENDER_MATERIAL,
+            &[
+                (rb::MATERIAL, BindingResource::Buffer(&self.colour)),
+                (
+                    rb::BASE_COLOUR_TEXTURE,
+                    BindingResource::Texture(&self.texture),
+                ),
+                (rb::MATERIAL_SAMPLER, BindingResource::Sampler(sampler)),
+            ],
+        )?);
+        Ok(())
+    }
+
+    fn destroy(self, gpu: &mut G) {
+        if let Some(g) = self.group {
+            gpu.destroy_bind_group(g);
+        }
+        gpu.destroy_texture(self.texture);
+        gpu.destroy_buffer(self.colour);
+    }
+}
+
 /// The uploaded scene.
 #[derive(Debug)]
 pub struct SceneGpu<G: Gpu> {
@@ -35,6 +102,8 @@ pub struct SceneGpu<G: Gpu> {
     indices: Option<G::Buffer>,
     sampler: Option<G::Sampler>,
     materials: Vec<Material<G>>,
+    /// The terrain's material (its slope's colours), where the scene stands on one.
+    terrain: Option<Material<G>>,
     lod: SceneLod,
 }
 
@@ -56,9 +125,10 @@ impl<G: Gpu> SceneGpu<G> {
             indices: None,
             sampler: None,
             materials: Vec::new(),
+            terrain: None,
             lod: packed.lod.clone(),
         };
-        match made.fill(gpu, &packed, material_layout) {
+        match made.fill(gpu, &packed, material_layout, scene.terrain().is_some()) {
             Ok(()) => Ok(Some(made)),
             Err(e) => {
                 made.destroy(gpu);
@@ -72,6 +142,7 @@ impl<G: Gpu> SceneGpu<G> {
         gpu: &mut G,
         packed: &PackedScene,
         material_layout: &G::GroupLayout,
+        on_terrain: bool,
     ) -> Result<(), BackendError> {
         let vertices: &[u8] = bytemuck::cast_slice(&packed.vertices);
         let indices: &[u8] = bytemuck::cast_slice(&packed.indices);
@@ -95,51 +166,50 @@ impl<G: Gpu> SceneGpu<G> {
             rgba8: vec![255; 4],
         };
         for mesh in packed.scene.meshes.iter().take(packed.ranges.len()) {
-            let colour = gpu.create_buffer(
-                "precip material",
-                16,
-                BufferUsage::Uniform,
-                Some(bytemuck::cast_slice(&mesh.material.base_colour)),
-            )?;
             // Its size was checked against the device with the setup (DeviceLimits).
             let t = mesh.material.base_colour_texture.as_ref().unwrap_or(&white);
-            let texture = match gpu.create_texture(&TextureDesc {
-                label: "precip base colour",
-                size: (t.width_px, t.height_px),
-                format: TexelFormat::Rgba8UnormSrgb,
-                usage: TextureUsage::Sampled,
-                contents: Some(&t.rgba8),
-            }) {
-                Ok(texture) => texture,
-                Err(e) => {
-                    gpu.destroy_buffer(colour);
-                    return Err(e);
-                }
-            };
-            self.materials.push(Material {
-                colour,
-                texture,
-                group: None,
-                water_body: mesh.is_water_body(),
-                sea: mesh.is_sea(),
-            });
-            let Some(material) = self.materials.last_mut() else {
-                continue;
-            };
-            material.group = Some(gpu.bind_group(
-                material_layout,
-                &RENDER_MATERIAL,
-                &[
-                    (rb::MATERIAL, BindingResource::Buffer(&material.colour)),
-                    (
-                        rb::BASE_COLOUR_TEXTURE,
-                        BindingResource::Texture(&material.texture),
-                    ),
-                    (rb::MATERIAL_SAMPLER, BindingResource::Sampler(sampler)),
-                ],
+            self.materials.push(Material::new(
+                gpu,
+                mesh.material.base_colour,
+                t,
+                (mesh.is_water_body(), mesh.is_sea()),
             )?);
+            if let Some(material) = self.materials.last_mut() {
+                material.bind(gpu, material_layout, sampler)?;
+            }
+        }
+        if on_terrain {
+            let ramp = terrain_ramp();
+            let terrain = self
+                .terrain
+                .insert(Material::new(gpu, [1.0; 4], &ramp, (false, false))?);
+            terrain.bind(gpu, material_layout, sampler)?;
         }
         Ok(())
+    }
+
+    /// The commands drawing the terrain's clipmap (`vertices` vertices), its
+    /// material group bound at 2 when `with_material`.
+    pub fn draw_terrain<'a>(
+        &'a self,
+        commands: &mut Vec<Command<'a, G>>,
+        with_material: bool,
+        vertices: u32,
+    ) {
+        let Some(terrain) = &self.terrain else {
+            return;
+        };
+        if vertices == 0 {
+            return;
+        }
+        if with_material && let Some(group) = &terrain.group {
+            commands.push(Command::Group {
+                index: 2,
+                group,
+                offsets: &[],
+            });
+        }
+        commands.push(Command::Draw(vertices));
     }
 
     /// How far the fine triangles are drawn for `view`, m.
@@ -191,12 +261,8 @@ impl<G: Gpu> SceneGpu<G> {
 
     /// Hands everything back to `gpu`.
     pub fn destroy(self, gpu: &mut G) {
-        for m in self.materials {
-            if let Some(g) = m.group {
-                gpu.destroy_bind_group(g);
-            }
-            gpu.destroy_texture(m.texture);
-            gpu.destroy_buffer(m.colour);
+        for m in self.materials.into_iter().chain(self.terrain) {
+            m.destroy(gpu);
         }
         if let Some(s) = self.sampler {
             gpu.destroy_sampler(s);

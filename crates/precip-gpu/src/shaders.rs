@@ -87,6 +87,8 @@ pub const DRAWING: ShaderFile = twin_file!("drawing.wgsl", precip_model::wgsl::D
 pub const SHADING: ShaderFile = twin_file!("shading.wgsl", precip_cover::wgsl::SHADING);
 /// The render bindings, shadow map and scene passes.
 pub const RENDER_SCENE: ShaderFile = shader_file!("render_scene.wgsl");
+/// The terrain's clipmap (Rust twin: `scene::terrain`).
+pub const RENDER_TERRAIN: ShaderFile = shader_file!("render_terrain.wgsl");
 /// Snow sprites and rain tetrahedra.
 pub const RENDER_PARTICLES: ShaderFile = shader_file!("render_particles.wgsl");
 /// Kernel `cover_texture`: the cover texels into the surfaces' filtered textures.
@@ -199,6 +201,7 @@ impl Program {
                 SHADING,
                 WATER_LOOK,
                 RENDER_SCENE,
+                RENDER_TERRAIN,
                 PARTICLE_LISTS,
                 RENDER_PARTICLES,
                 RENDER_SPLAT,

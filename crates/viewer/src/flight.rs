@@ -96,10 +96,14 @@ impl Flight {
         Ok(Self { waypoints })
     }
 
-    /// `orbit` (built in) or the flight in the file `name`.
+    /// `orbit` or `valley` (built in: [`crate::terrain_file::valley_flight`], over
+    /// `--terrain generated`) or the flight in the file `name`.
     pub fn load(name: &str) -> Result<Self, String> {
         if name == "orbit" {
             return Self::parse(ORBIT, "orbit");
+        }
+        if name == "valley" {
+            return Self::parse(&crate::terrain_file::valley_flight(), "valley");
         }
         let text = std::fs::read_to_string(name).map_err(|e| format!("--flight {name}: {e}"))?;
         Self::parse(&text, name)

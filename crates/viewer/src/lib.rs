@@ -52,6 +52,7 @@ pub mod presets;
 pub mod scenario;
 pub mod scene_setup;
 pub mod snow_summary;
+pub mod terrain_file;
 pub mod water_summary;
 pub mod window;
 

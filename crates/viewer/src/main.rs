@@ -219,7 +219,7 @@ struct RunArgs {
     #[arg(long, value_parser = precip_viewer::cigi_view::parse_origin, allow_negative_numbers = true)]
     origin: Option<precip_cigi::GeodeticOrigin>,
     /// Fly the camera along waypoints: a file of `t_s x_m y_m z_m heading_deg
-    /// pitch_deg [roll_deg]` lines, or `orbit` (once around the demo house in 24 s);
+    /// pitch_deg [roll_deg]` lines, or `orbit` (once around the demo house in 24 s), or `valley` (up the valley of `--terrain generated` at 70 m/s, 250 m up);
     /// on the simulated clock, headless and in the window.
     #[arg(long, value_parser = precip_viewer::flight::Flight::load)]
     flight: Option<precip_viewer::flight::Flight>,
@@ -254,6 +254,19 @@ struct RunArgs {
     /// stronger echo of each beam, from the ground or a particle.
     #[arg(long)]
     lidar: bool,
+    /// Stand the scene on a terrain: a height map (16- or 8-bit greyscale .png, or
+    /// a GeoTIFF .tif), or `generated` (10 km of valleys and ridges with the town's
+    /// flat ground at the origin). Centred on the origin, its height there 0 m.
+    #[arg(long, value_parser = |s: &str| Ok::<_, String>(precip_viewer::terrain_file::TerrainSource::parse(s)))]
+    terrain: Option<precip_viewer::terrain_file::TerrainSource>,
+    /// Metres between the height map's samples (default: a GeoTIFF's pixel
+    /// scale, else 1 m; 2.5 m for `generated`).
+    #[arg(long, requires = "terrain")]
+    terrain_spacing: Option<f32>,
+    /// The heights of the smallest and largest integer sample, m: `LOW,HIGH`
+    /// (default for a PNG 0,1000; a GeoTIFF's samples are metres unless given).
+    #[arg(long, requires = "terrain", value_parser = parse_vec2, allow_hyphen_values = true)]
+    terrain_heights: Option<glam::Vec2>,
 }
 
 /// A rig channel's forward: `forward` turned `yaw_deg` to the right about the
@@ -454,6 +467,40 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     };
     for line in &loaded.report.skipped {
         eprintln!("warning: skipped {line}");
+    }
+    let mut loaded = loaded;
+    if let Some(source) = &args.terrain {
+        let started = std::time::Instant::now();
+        let terrain = precip_viewer::terrain_file::load_terrain(
+            source,
+            precip_viewer::terrain_file::TerrainScale {
+                spacing_m: args.terrain_spacing,
+                heights_m: args.terrain_heights.map(|v| (v.x, v.y)),
+            },
+        )?;
+        let (low, high) = terrain.height_range_m();
+        let size = terrain.size_m();
+        let decimation = precip_model::scene::terrain::TerrainPyramid::decimation(
+            &terrain,
+            precip_model::scene::terrain::TERRAIN_GPU_BUDGET_BYTES,
+        );
+        let drawn = if decimation > 1 {
+            format!(
+                ", drawn at {decimation}× its spacing (the GPU's copy is at most 96 MiB; the snow's ground map keeps every sample)"
+            )
+        } else {
+            String::new()
+        };
+        eprintln!(
+            "terrain: {} × {} samples {} m apart ({:.1} × {:.1} km), heights {low:.0} to {high:.0} m{drawn} ({:.1} s)",
+            terrain.samples().x,
+            terrain.samples().y,
+            terrain.spacing_m(),
+            size.x / 1000.0,
+            size.y / 1000.0,
+            started.elapsed().as_secs_f32()
+        );
+        loaded.scene = loaded.scene.on_terrain(std::sync::Arc::new(terrain));
     }
     let scenario = args
         .scenario

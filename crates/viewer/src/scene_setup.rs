@@ -66,7 +66,14 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
     let frame = GridFrame::centred(centre, Vec2::splat(side), UVec2::splat(texels));
     let cover_frame =
         GridFrame::centred(centre, Vec2::splat(side), UVec2::splat((texels / 2).max(4)));
-    let ground = GroundMap::from_scene(&scene, frame);
+    let ground = GroundMap::of_prepared(&scene, frame);
+    // On a terrain the emitter starts above its highest point under the grid, and
+    // the camera sees to the terrain's far side.
+    let (ground_lo, ground_hi) = ground
+        .height_m
+        .iter()
+        .fold((lo.y, hi.y), |(a, b), &h| (a.min(h), b.max(h)));
+    let far_m = scene.terrain().map_or(0.0, |t| 1.5 * t.size_m().length());
 
     let budget = options.particle_budget.max(1);
     let area = side * side;
@@ -80,7 +87,7 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
     let world_particles = budget - camera_physical;
     let world = (world_particles as f32 / area >= MIN_WORLD_DENSITY_PER_M2).then(|| {
         let clearance = 10.0;
-        let top = hi.y + clearance;
+        let top = ground_hi + clearance;
         // Over the scene: the emitter is aimed (each particle is born up-wind of
         // where it lands by its own fall's drift; precip_model::birth_on_emitter).
         EmitterSetup {
@@ -88,7 +95,7 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
                 Vec3::new(centre.x, top, centre.y),
                 side,
                 side,
-                top - lo.y,
+                top - ground_lo,
             ),
             particle_count: world_particles,
         }
@@ -96,16 +103,17 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
     // Without an emitter the camera volume keeps the whole budget: it is all there is
     // to draw.
     let camera_particles = budget - world.map_or(0, |w| w.particle_count);
-    let camera = options.camera.unwrap_or_else(|| {
+    let mut camera = options.camera.unwrap_or_else(|| {
         let look_at = Vec3::new(centre.x, lo.y + 0.2 * (hi.y - lo.y), centre.y);
         let eye = look_at + Vec3::new(0.35, 0.28, 0.8) * side * 0.45;
         Camera {
             position_m: eye,
             forward: look_at - eye,
-            far_m: (side * 4.0).max(100.0),
+            far_m: (side * 4.0).max(100.0).max(far_m),
             ..Camera::default()
         }
     });
+    camera.far_m = camera.far_m.max(far_m);
     let setup = Setup {
         seed: options.seed,
         weather: options.weather,

@@ -329,7 +329,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (1152 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (1424 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -468,8 +468,23 @@ pub struct RenderParams {
     /// The waves coming in: each sinusoid's amplitude m, angular frequency rad/s,
     /// phase at this frame's first shore step rad, wavenumber along the edge rad/m.
     pub shore_waves: [Vec4; crate::drawing::shore::SHORE_WAVE_COMPONENTS],
+    /// The terrain's clipmap ([`crate::scene::terrain::ClipmapRows::placement`]):
+    /// the pyramid's corner x, z m, level 0's spacing m, the levels drawn.
+    pub terrain: Vec4,
+    /// The first level drawn, the pyramid's levels, its first word in the ground
+    /// buffer, 0.
+    pub terrain_levels: UVec4,
+    /// Each level's samples along x and z, two levels a row.
+    pub terrain_samples: [UVec4; crate::scene::terrain::MAX_TERRAIN_LEVELS / 2],
+    /// Each level's first word in the ground buffer, four levels a row.
+    pub terrain_offsets: [UVec4; crate::scene::terrain::MAX_TERRAIN_LEVELS / 4],
+    /// The cover beyond the cover grid ([`crate::host::HostState::far_cover`]) as
+    /// the grid's three textures hold a texel: (depth mm, SWE mm, peak SWE mm,
+    /// wetness), (accumulation mask, melt mask, age days, puddle ratio), (dust
+    /// kg/m², roughness length under snow m, 0, 0).
+    pub far_cover: [Vec4; 3],
 }
-const _: () = assert!(size_of::<RenderParams>() == 1152);
+const _: () = assert!(size_of::<RenderParams>() == 1424);
 
 /// The block's rows of the cloud layers: base m, top m, coverage, kind each.
 fn cloud_layer_rows(layers: &CloudLayers) -> [Vec4; MAX_CLOUD_LAYERS] {
@@ -850,6 +865,11 @@ impl RenderParams {
             shore_edges: Vec4::ZERO,
             shore_steps: Vec4::ZERO,
             shore_waves: [Vec4::ZERO; crate::drawing::shore::SHORE_WAVE_COMPONENTS],
+            terrain: Vec4::ZERO,
+            terrain_levels: UVec4::ZERO,
+            terrain_samples: [UVec4::ZERO; crate::scene::terrain::MAX_TERRAIN_LEVELS / 2],
+            terrain_offsets: [UVec4::ZERO; crate::scene::terrain::MAX_TERRAIN_LEVELS / 4],
+            far_cover: [Vec4::ZERO; 3],
         }
         .with_unresolved_streaks(f, pixel_angle, aspect)
     }
@@ -862,6 +882,39 @@ impl RenderParams {
         self.shore_edges = rows[2];
         self.shore_steps = rows[3];
         self.shore_waves.copy_from_slice(&rows[4..]);
+        self
+    }
+
+    /// The block with the cover beyond the grid, `texel` (its rows as
+    /// `cover_texture.wgsl` writes a grid texel's).
+    #[must_use]
+    pub fn with_far_cover(mut self, texel: &precip_cover::CoverTexel) -> Self {
+        let surface = precip_cover::Surface::from_raw(texel.surface);
+        self.far_cover = [
+            Vec4::new(
+                texel.depth_mm,
+                texel.swe_mm,
+                texel.peak_swe_mm,
+                texel.wetness,
+            ),
+            Vec4::new(
+                texel.accumulation_mask,
+                texel.melt_mask,
+                texel.age_days,
+                texel.puddle_ratio(),
+            ),
+            Vec4::new(texel.dust_kg_m2, surface.snow_roughness_m(), 0.0, 0.0),
+        ];
+        self
+    }
+
+    /// The block with the terrain's clipmap rows ([`crate::host::HostState::clipmap_rows`]).
+    #[must_use]
+    pub fn with_clipmap_rows(mut self, rows: &crate::scene::terrain::ClipmapRows) -> Self {
+        self.terrain = rows.placement;
+        self.terrain_levels = rows.levels;
+        self.terrain_samples = rows.samples;
+        self.terrain_offsets = rows.offsets;
         self
     }
 

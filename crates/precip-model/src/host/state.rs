@@ -2,7 +2,9 @@
 //! weather, the baked wind volume, the camera and the clock — and every uniform
 //! block computed from them, once, for the CPU reference and every GPU backend.
 
-use glam::Vec3;
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
 use precip_cover::{CoverStepParams, GridFrame};
 use precip_wind::{WindParams, WindVolume};
 
@@ -16,9 +18,11 @@ use crate::host::activity::Activity;
 use crate::host::layout::Frames;
 use crate::particles::step::StepParams;
 use crate::physics::drag::MAX_SUBSTEP_S;
+use crate::scene::terrain::{ClipmapRows, TerrainPyramid};
 use crate::sensors::lidar::UnresolvedAir;
 use crate::sensors::optics::Optics;
 use crate::weather::Weather;
+use precip_cover::{CoverInput, CoverTexel, DepositBuffer, Surface, update_texel};
 
 /// The host side of a configured simulation.
 ///
@@ -44,7 +48,24 @@ pub struct HostState {
     /// Which of the cover's features may have work, from every weather since
     /// configure.
     activity: Activity,
+    /// The terrain's pyramid for the GPU's clipmap, made once per configuration.
+    terrain: Option<Arc<TerrainPyramid>>,
+    /// The cover beyond the cover grid: one texel of flat grass fed by the weather's
+    /// rate, stepped with the grid's cover physics ([`HostState::far_cover`]).
+    far_cover: CoverTexel,
     time_s: f64,
+}
+
+/// The far cover's texel at configure: bare flat grass that holds snow, its masks
+/// at their middle (each fragment's patch noise moves them).
+fn far_cover_texel() -> CoverTexel {
+    CoverTexel {
+        eligibility: 1.0,
+        accumulation_mask: 0.5,
+        melt_mask: 0.5,
+        surface: Surface::Grass as u32,
+        ..CoverTexel::default()
+    }
 }
 
 /// The uniform blocks of one sub-step.
@@ -86,6 +107,12 @@ impl HostState {
             step_template: setup.step_params(&setup.weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0),
             pools: setup.pool_drawing(&setup.weather, Vec3::ZERO),
             activity: Activity::default().after(&setup.weather),
+            terrain: setup
+                .scene
+                .as_ref()
+                .and_then(|s| s.terrain())
+                .map(|t| Arc::new(t.pyramid())),
+            far_cover: far_cover_texel(),
             setup: setup.clone(),
             weather: setup.weather,
             wind,
@@ -206,6 +233,33 @@ impl HostState {
     /// The clock after `steps`.
     pub fn advance(&mut self, steps: &SubSteps) {
         self.time_s = steps.end_time_s;
+        let w = &self.weather;
+        let dt_days = steps.dt_s * self.setup.cover.time_scale / 86_400.0;
+        for _ in &steps.blocks {
+            self.far_cover = update_texel(
+                self.far_cover,
+                CoverInput {
+                    snow_mm: w.channel_rate_mm_per_h(DepositBuffer::SNOW) * 24.0 * dt_days,
+                    rain_mm: w.channel_rate_mm_per_h(DepositBuffer::RAIN) * 24.0 * dt_days,
+                    air_temperature_c: w.air_temperature_c,
+                    relative_humidity: w.relative_humidity,
+                    wind_speed_mps: w.ground_wind_speed_mps(),
+                    dt_days,
+                },
+                &self.setup.cover.params,
+            );
+        }
+    }
+
+    /// The cover beyond the cover grid (a scene's far meshes, a terrain's
+    /// kilometres): flat grass under the weather since configure, its snow fallen at
+    /// the weather's rate and melted, settled and aged, its surface wetted and dried,
+    /// by the grid's own texel physics (`precip_cover::update_texel`) — no particles,
+    /// no drift or flow, and outside the water's books. The renderer shades what lies
+    /// off the grid with it, each fragment's slope and patch noise as on the grid.
+    #[must_use]
+    pub fn far_cover(&self) -> &CoverTexel {
+        &self.far_cover
     }
 
     /// The block `init_particles` runs with at configure (the particles born warm
@@ -281,6 +335,35 @@ impl HostState {
             self.camera.position_m,
             self.time_s,
         )
+    }
+
+    /// The terrain's pyramid the GPU draws it from, where the scene stands on one.
+    #[must_use]
+    pub fn terrain_pyramid(&self) -> Option<&Arc<TerrainPyramid>> {
+        self.terrain.as_ref()
+    }
+
+    /// The words of the ground buffer before the terrain's pyramid
+    /// ([`crate::GroundMap::gpu_words`]).
+    #[must_use]
+    pub fn ground_words(&self) -> u32 {
+        2 * self.setup.ground.frame.texel_count() as u32
+    }
+
+    /// The clipmap's rows of the frame block for the camera now (zeros without a
+    /// terrain: nothing drawn).
+    #[must_use]
+    pub fn clipmap_rows(&self) -> ClipmapRows {
+        self.terrain
+            .as_ref()
+            .map_or_else(ClipmapRows::default, |p| {
+                let at = self.camera.position_m;
+                p.clipmap(
+                    at,
+                    p.height_under(Vec2::new(at.x, at.z)),
+                    self.ground_words(),
+                )
+            })
     }
 
     /// The setup it was configured with.
@@ -388,7 +471,7 @@ mod tests {
                 &view(*host.camera()),
                 (Vec3::ZERO, Vec3::ONE),
                 384,
-                GridFrame::centred(glam::Vec2::ZERO, glam::Vec2::ONE, glam::UVec2::ONE),
+                GridFrame::centred(Vec2::ZERO, Vec2::ONE, glam::UVec2::ONE),
             )
         };
         let first = frame(&host);

@@ -11,8 +11,11 @@
 pub mod builtin;
 pub mod displacement;
 pub mod gpu_scene;
+pub mod terrain;
 pub mod tessellate;
 pub mod top_down;
+
+pub use terrain::{SharedTerrain, Terrain, TerrainError};
 
 use glam::{Vec2, Vec3};
 
@@ -312,22 +315,40 @@ impl Mesh {
 /// positions, in-range indices, unit normals, texture coordinates and eligibility for
 /// every vertex. Only `prepare` makes one, so a [`crate::Setup`] cannot carry an
 /// unprepared scene to a backend; it reads as a [`Scene`] (`Deref`) and cannot be
-/// changed in place.
+/// changed in place. It may stand on a [`Terrain`] ([`PreparedScene::on_terrain`]).
 #[derive(Debug, Clone, PartialEq)]
-pub struct PreparedScene(Scene);
+pub struct PreparedScene {
+    scene: Scene,
+    terrain: Option<SharedTerrain>,
+}
 
 impl std::ops::Deref for PreparedScene {
     type Target = Scene;
     fn deref(&self) -> &Scene {
-        &self.0
+        &self.scene
     }
 }
 
 impl PreparedScene {
-    /// The scene, to change and prepare again.
+    /// The scene, to change and prepare again (without its terrain).
     #[must_use]
     pub fn into_scene(self) -> Scene {
-        self.0
+        self.scene
+    }
+
+    /// The scene standing on `terrain` (validated when it was made): the ground
+    /// map takes the top-most of both ([`crate::GroundMap::from_scene_and_terrain`])
+    /// and the GPU backends draw the terrain as a clipmap under the meshes.
+    #[must_use]
+    pub fn on_terrain(mut self, terrain: SharedTerrain) -> Self {
+        self.terrain = Some(terrain);
+        self
+    }
+
+    /// The terrain it stands on.
+    #[must_use]
+    pub fn terrain(&self) -> Option<&SharedTerrain> {
+        self.terrain.as_ref()
     }
 }
 
@@ -344,7 +365,13 @@ impl Scene {
         if meshes.is_empty() {
             return Err(SceneError::Empty);
         }
-        Ok((PreparedScene(Self { meshes }), report))
+        Ok((
+            PreparedScene {
+                scene: Self { meshes },
+                terrain: None,
+            },
+            report,
+        ))
     }
 
     /// Axis-aligned bounds `(min, max)` of the vertices of all but the sea, m (the

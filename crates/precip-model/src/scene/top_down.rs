@@ -16,7 +16,8 @@ use glam::{Vec2, Vec3};
 use precip_cover::{GridFrame, Surface};
 
 use crate::particles::ground::GroundMap;
-use crate::scene::Scene;
+use crate::scene::terrain::Terrain;
+use crate::scene::{PreparedScene, Scene};
 
 /// Barycentric weights of `p` in the XZ triangle `(a, b, c)`, or `None` outside it
 /// (edges included, so abutting triangles leave no gap).
@@ -89,6 +90,44 @@ impl GroundMap {
         Self::top_down(scene.meshes.iter(), frame, floor, None)
     }
 
+    /// The top-most surface of a prepared scene, and of the terrain it stands on if
+    /// any ([`PreparedScene::on_terrain`]), over `frame`.
+    #[must_use]
+    pub fn of_prepared(scene: &PreparedScene, frame: GridFrame) -> Self {
+        match scene.terrain() {
+            Some(terrain) => Self::from_scene_and_terrain(scene, terrain, frame),
+            None => Self::from_scene(scene, frame),
+        }
+    }
+
+    /// The top-most of a prepared `scene` and `terrain` over `frame`: where the
+    /// terrain rises above every mesh (or no mesh lies) its height, its slope's
+    /// eligibility and surface ([`Terrain::eligibility_for`], [`Terrain::surface_for`]);
+    /// off the terrain and the meshes the scene's lowest height, as
+    /// [`GroundMap::from_scene`].
+    #[must_use]
+    pub fn from_scene_and_terrain(scene: &Scene, terrain: &Terrain, frame: GridFrame) -> Self {
+        let floor = scene.bounds_m().map_or(0.0, |(lo, _)| lo.y);
+        let mut map = Self::top_down(scene.meshes.iter(), frame, f32::NEG_INFINITY, None);
+        let cell = frame.cell_m();
+        let nx = frame.texels.x as usize;
+        for (k, h) in map.height_m.iter_mut().enumerate() {
+            let centre =
+                frame.origin_m + (Vec2::new((k % nx) as f32, (k / nx) as f32) + 0.5) * cell;
+            match terrain.height_at(centre) {
+                Some(t) if t > *h => {
+                    let normal = terrain.normal_at(centre);
+                    *h = t;
+                    map.eligibility[k] = Terrain::eligibility_for(normal);
+                    map.surface[k] = Terrain::surface_for(normal);
+                }
+                _ if !h.is_finite() => *h = floor,
+                _ => {}
+            }
+        }
+        map
+    }
+
     /// The top-most surface of `meshes` (prepared) over `frame`, `floor` m where
     /// none lies; with `under`, the top-most upward face at or under that height
     /// (the bed under a level: a deck or a wall's top above it is none).
@@ -147,6 +186,62 @@ mod tests {
 
     use super::*;
     use crate::scene::builtin::house_on_plane;
+    use crate::scene::terrain::Terrain;
+
+    #[test]
+    fn on_a_terrain_the_ground_is_the_top_most_of_the_meshes_and_the_terrain() {
+        let (scene, _) = house_on_plane()
+            .prepare()
+            .expect("the built-in scene is valid");
+        let (lo, hi) = scene.bounds_m().expect("it has vertices");
+        // A terrain rising along x from 2 m under the plane at x = 0 by 1 in 4, over
+        // twice the scene's width.
+        let n = 41;
+        let side = 2.0 * (hi.x - lo.x);
+        let spacing = side / (n - 1) as f32;
+        let mut h = Vec::new();
+        for _ in 0..n {
+            for i in 0..n {
+                let x = i as f32 * spacing - 0.5 * side;
+                h.push(lo.y - 2.0 + 0.25 * x);
+            }
+        }
+        let terrain = Terrain::new(UVec2::splat(n), spacing, Vec2::ZERO, h).expect("valid");
+        let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(side), UVec2::splat(64));
+        // The meshes alone, −∞ where none lies.
+        let meshes = GroundMap::top_down(scene.meshes.iter(), frame, f32::NEG_INFINITY, None);
+        let both = GroundMap::from_scene_and_terrain(&scene, &terrain, frame);
+        let (mut terrain_wins, mut mesh_wins, mut off_meshes) = (0, 0, 0);
+        for k in 0..frame.texel_count() {
+            let t = terrain
+                .height_at(frame.texel_centre(k))
+                .expect("on the terrain");
+            let m = meshes.height_m[k];
+            let expected = if m.is_finite() { m.max(t) } else { t };
+            assert!(
+                (both.height_m[k] - expected).abs() < 1e-4,
+                "texel {k}: {} against {expected}",
+                both.height_m[k]
+            );
+            if t > m {
+                assert_eq!(
+                    both.surface[k],
+                    Terrain::surface_for(terrain.normal_at(frame.texel_centre(k)))
+                );
+                if m.is_finite() {
+                    terrain_wins += 1;
+                } else {
+                    off_meshes += 1;
+                }
+            } else {
+                mesh_wins += 1;
+            }
+        }
+        // The terrain rises through the plane on one side and the plane stands over
+        // it on the other; off the plane the terrain alone (not the scene's floor).
+        assert!(terrain_wins > 0 && mesh_wins > 0 && off_meshes > 0);
+        assert!(hi.y > lo.y);
+    }
 
     #[test]
     fn a_roof_hides_the_ground_and_walls_never_win() {

@@ -1,0 +1,173 @@
+//! A scene standing on a terrain (issue 29's elevation data), alike on every GPU
+//! backend: the clipmap puts the terrain's ridge where its heights say, both
+//! backends draw the same picture, the Vulkan one without a validation message, and
+//! the ground map lands snow on the terrain where it rises above the meshes.
+
+use std::sync::Arc;
+
+use glam::{UVec2, Vec2, Vec3};
+use precip_conformance::gpu_subjects;
+use precip_model::scene::builtin::house_on_plane;
+use precip_model::scene::terrain::Terrain;
+use precip_model::{Camera, GroundMap, Image, Setup, View, Weather};
+
+/// A valley 4 km square: flat around the house, a ridge 200 m high 1 km north
+/// (−z) of it.
+fn valley() -> Terrain {
+    let n = 801;
+    let spacing = 5.0;
+    let half = 0.5 * (n - 1) as f32 * spacing;
+    let mut h = Vec::with_capacity(n * n);
+    for j in 0..n {
+        for i in 0..n {
+            let (x, z) = (i as f32 * spacing - half, j as f32 * spacing - half);
+            let ridge = 200.0 * (-((z + 1000.0) / 150.0).powi(2)).exp();
+            h.push(-0.5 + ridge + 2.0 * (x / 90.0).sin());
+        }
+    }
+    Terrain::new(UVec2::splat(n as u32), spacing, Vec2::ZERO, h).expect("a valid terrain")
+}
+
+/// The house's setup, on the valley or not, in clear calm air, looking north from
+/// 2 m up.
+fn setup(on_terrain: bool) -> Setup {
+    let (mut setup, _) = Setup::over_scene(house_on_plane(), 64, 6.0, 2_000).expect("valid");
+    if on_terrain {
+        let scene = setup.scene.take().expect("a scene");
+        let scene = Arc::unwrap_or_clone(scene).on_terrain(Arc::new(valley()));
+        setup.ground = GroundMap::of_prepared(&scene, setup.ground.frame);
+        setup.scene = Some(Arc::new(scene));
+    }
+    setup.weather = Weather {
+        intensity_mm_per_h: 0.0,
+        ..Weather::default()
+    };
+    setup.camera = Camera {
+        position_m: Vec3::new(0.0, 2.0, 30.0),
+        forward: Vec3::NEG_Z,
+        far_m: 6000.0,
+        ..Camera::default()
+    };
+    setup
+}
+
+const WIDTH: u32 = 320;
+const HEIGHT: u32 = 240;
+
+fn render(subject: &mut precip_conformance::Subject, setup: &Setup) -> Image {
+    let backend = &mut subject.backend;
+    backend.configure(setup).expect("configures");
+    backend.step(0.05).expect("steps");
+    backend
+        .render(&View {
+            camera: setup.camera,
+            width_px: WIDTH,
+            height_px: HEIGHT,
+        })
+        .expect("renders");
+    backend.read_image().expect("an image")
+}
+
+/// The share of the pixels of rows `rows` (top = 0), but the middle two fifths
+/// where the house stands, that differ by more than 6/255 in a channel between `a`
+/// and `b`.
+fn differing(a: &Image, b: &Image, rows: std::ops::Range<u32>) -> f32 {
+    let mut n = 0;
+    let mut total = 0;
+    for y in rows {
+        for x in (0..WIDTH).filter(|x| *x < 3 * WIDTH / 10 || *x >= 7 * WIDTH / 10) {
+            let i = 4 * (y * WIDTH + x) as usize;
+            total += 1;
+            if (0..3).any(|c| a.rgba8[i + c].abs_diff(b.rgba8[i + c]) > 6) {
+                n += 1;
+            }
+        }
+    }
+    n as f32 / total as f32
+}
+
+/// The image row at `elevation_deg` above the camera's level (its forward is
+/// level).
+fn row_at(camera: &Camera, elevation_deg: f32) -> u32 {
+    let half = 0.5 * camera.vertical_fov_rad;
+    let t = elevation_deg.to_radians().tan() / half.tan();
+    ((0.5 - 0.5 * t) * HEIGHT as f32).round() as u32
+}
+
+#[test]
+fn the_terrain_s_ridge_stands_where_its_heights_put_it_on_every_gpu_backend() {
+    let bare = setup(false);
+    let on = setup(true);
+    let camera = on.camera;
+    // The ridge's top: 200 m up, 1 030 m away, seen from 2 m up.
+    let top_deg = (198.0f32 / 1030.0).atan().to_degrees();
+    let mut images = Vec::new();
+    for mut subject in gpu_subjects("the_terrain_s_ridge_stands_where_its_heights_put_it") {
+        if !subject.renders() {
+            continue;
+        }
+        let without = render(&mut subject, &bare);
+        let with = render(&mut subject, &on);
+        subject.check_clean("drawing a terrain");
+        // Between the horizon and the ridge's top the terrain hides the sky; well
+        // above the top the sky is as it was.
+        let ridge = differing(
+            &with,
+            &without,
+            row_at(&camera, top_deg - 2.0)..row_at(&camera, 1.5),
+        );
+        let sky = differing(&with, &without, 0..row_at(&camera, top_deg + 3.0));
+        println!(
+            "{}: the ridge's rows differ in {:.1} %, the sky above in {:.1} %",
+            subject.name,
+            100.0 * ridge,
+            100.0 * sky
+        );
+        assert!(
+            ridge > 0.95,
+            "{}: the ridge is not drawn ({ridge})",
+            subject.name
+        );
+        assert!(
+            sky < 0.02,
+            "{}: terrain above its heights ({sky})",
+            subject.name
+        );
+        images.push((subject.name.clone(), with));
+    }
+    // Every GPU backend draws the same terrain (within 1/255 but a few pixels).
+    if let Some(((first_name, first), rest)) = images.split_first() {
+        for (name, image) in rest {
+            let off = first
+                .rgba8
+                .iter()
+                .zip(&image.rgba8)
+                .filter(|(a, b)| a.abs_diff(**b) > 1)
+                .count();
+            assert!(
+                (off as f32) < 0.001 * first.rgba8.len() as f32,
+                "{name} against {first_name}: {off} values differ"
+            );
+        }
+    }
+}
+
+#[test]
+fn snow_lands_on_the_terrain_where_it_rises_above_the_meshes() {
+    let setup = setup(true);
+    let ground = &setup.ground;
+    let terrain = valley();
+    // The house's plane is the top-most over its square, the terrain beyond it.
+    let inside = ground
+        .frame
+        .texel_index(Vec2::new(0.0, 15.0))
+        .expect("on the grid");
+    assert!(ground.height_m[inside].abs() < 1e-3);
+    let corner = ground.frame.texel_centre(0);
+    let t = terrain.height_at(corner).expect("on the terrain");
+    assert!(
+        ground.height_m[0] >= t - 1e-4,
+        "{} under the terrain's {t}",
+        ground.height_m[0]
+    );
+}

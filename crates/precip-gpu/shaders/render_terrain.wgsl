@@ -1,0 +1,150 @@
+// render_terrain.wgsl: the terrain drawn as a geometry clipmap (Losasso & Hoppe 2004)
+// from its pyramid, which follows the ground map's words in `ground_height`
+// (RenderParams::terrain_offsets). Rust twins:
+// precip_model::scene::terrain::{clipmap_centre, clipmap_vertex} and
+// precip_model::scene::slope_eligibility. Its vertices go through the scene's
+// `scene_varying` (the snow raises them) and its fragments are the scene's.
+
+const CLIPMAP_QUADS: i32 = 48;
+const CLIPMAP_MORPH_QUADS: i32 = 8;
+const CLIPMAP_LEVEL_VERTICES: u32 = 13824u;
+// Rust: precip_model::scene::{FULL_SNOW_SLOPE_DEG, NO_SNOW_SLOPE_DEG} as cosines.
+const FULL_SNOW_COS: f32 = 0.8660254;
+const NO_SNOW_COS: f32 = 0.64278764;
+
+// Snow eligibility from a unit normal: 1 up to 30°, 0 from 50°, smooth between.
+fn slope_eligibility(normal: vec3<f32>) -> f32 {
+    let t = clamp((normal.y - NO_SNOW_COS) / (FULL_SNOW_COS - NO_SNOW_COS), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+fn terrain_level_samples(k: u32) -> vec2<i32> {
+    let row = params.terrain_samples[k / 2u];
+    return vec2<i32>(select(row.xy, row.zw, (k & 1u) == 1u));
+}
+
+fn terrain_level_spacing_m(k: u32) -> f32 {
+    return params.terrain.z * f32(1u << k);
+}
+
+// Level k's height at its sample g (clamped to the level), m.
+fn terrain_height(k: u32, g: vec2<i32>) -> f32 {
+    let n = terrain_level_samples(k);
+    let c = clamp(g, vec2<i32>(0), n - 1);
+    return ground_height[params.terrain_offsets[k / 4u][k % 4u] + u32(c.x + n.x * c.y)];
+}
+
+// Level k's normal at its sample g (central differences).
+fn terrain_level_normal(k: u32, g: vec2<i32>) -> vec3<f32> {
+    let dx = terrain_height(k, g - vec2<i32>(1, 0)) - terrain_height(k, g + vec2<i32>(1, 0));
+    let dz = terrain_height(k, g - vec2<i32>(0, 1)) - terrain_height(k, g + vec2<i32>(0, 1));
+    return normalize(vec3<f32>(dx, 2.0 * terrain_level_spacing_m(k), dz));
+}
+
+// The snapped centre of level k in its own samples (an even sample).
+fn clipmap_centre(k: u32, camera_xz_m: vec2<f32>) -> vec2<i32> {
+    let t = vec2<i32>(floor((camera_xz_m - params.terrain.xy) / terrain_level_spacing_m(k)));
+    return (t >> vec2<u32>(1u)) * 2;
+}
+
+struct TerrainPoint {
+    position_m: vec3<f32>,
+    normal: vec3<f32>,
+    drawn: bool,
+}
+
+// Vertex v of the clipmap's draw: its position and normal, blended into the next
+// level's over the level's last CLIPMAP_MORPH_QUADS quads; not drawn inside the
+// finer level or wholly off the terrain.
+fn clipmap_vertex(v: u32, camera_xz_m: vec2<f32>) -> TerrainPoint {
+    var out: TerrainPoint;
+    out.drawn = false;
+    out.normal = vec3<f32>(0.0, 1.0, 0.0);
+    let first = params.terrain_levels.x;
+    let levels = params.terrain_levels.y;
+    let k = first + v / CLIPMAP_LEVEL_VERTICES;
+    if (k >= levels) {
+        return out;
+    }
+    let quad = i32((v % CLIPMAP_LEVEL_VERTICES) / 6u);
+    let centre = clipmap_centre(k, camera_xz_m);
+    let q = centre + vec2<i32>(quad % CLIPMAP_QUADS, quad / CLIPMAP_QUADS) - vec2<i32>(CLIPMAP_QUADS / 2);
+    if (k > first) {
+        let inner = clipmap_centre(k - 1u, camera_xz_m) / 2;
+        let lo = inner - vec2<i32>(CLIPMAP_QUADS / 4);
+        let hi = inner + vec2<i32>(CLIPMAP_QUADS / 4);
+        if (all(q >= lo) && all(q + 1 <= hi)) {
+            return out;
+        }
+    }
+    let last = terrain_level_samples(k) - 1;
+    if (any(q + 1 <= vec2<i32>(0)) || any(q >= last)) {
+        return out;
+    }
+    // Two triangles a quad: corners (0,0) (0,1) (1,0), (1,0) (0,1) (1,1).
+    let c = v % 6u;
+    let g = q + vec2<i32>(
+        select(0, 1, c == 2u || c == 3u || c == 5u),
+        select(0, 1, c == 1u || c == 4u || c == 5u),
+    );
+    var height = terrain_height(k, g);
+    var normal = terrain_level_normal(k, g);
+    if (k + 1u < levels) {
+        let d = f32(max(abs(g.x - centre.x), abs(g.y - centre.y)));
+        let start = f32(CLIPMAP_QUADS / 2 - CLIPMAP_MORPH_QUADS);
+        let alpha = clamp((d - start) / f32(CLIPMAP_MORPH_QUADS), 0.0, 1.0);
+        if (alpha > 0.0) {
+            let c0 = g >> vec2<u32>(1u);
+            let c1 = (g + 1) >> vec2<u32>(1u);
+            let coarse = 0.25 * (terrain_height(k + 1u, c0) + terrain_height(k + 1u, vec2<i32>(c1.x, c0.y))
+                + terrain_height(k + 1u, vec2<i32>(c0.x, c1.y)) + terrain_height(k + 1u, c1));
+            height = height + (coarse - height) * alpha;
+            let coarse_normal = terrain_level_normal(k + 1u, c0);
+            normal = normalize(normal + (coarse_normal - normal) * alpha);
+        }
+    }
+    let xz = params.terrain.xy + vec2<f32>(g) * terrain_level_spacing_m(k);
+    out.position_m = vec3<f32>(xz.x, height, xz.y);
+    out.normal = normal;
+    out.drawn = true;
+    return out;
+}
+
+// The terrain as a scene vertex: its slope picks the colour from the terrain's
+// ramp (Rust: precip_model::scene::terrain::terrain_ramp_u) and its snow eligibility.
+fn terrain_scene_vertex(p: TerrainPoint) -> SceneVertex {
+    var vertex: SceneVertex;
+    vertex.position_m = p.position_m;
+    vertex.normal = p.normal;
+    let steep = clamp((1.0 - p.normal.y) * 2.0, 0.0, 1.0);
+    vertex.uv = vec2<f32>((0.5 + 15.0 * steep) / 16.0, 0.5);
+    vertex.eligibility = slope_eligibility(p.normal);
+    return vertex;
+}
+
+// Off the frustum: every vertex of a quad not drawn lands on this one point.
+const TERRAIN_NOT_DRAWN: vec4<f32> = vec4<f32>(2.0, 2.0, 2.0, 1.0);
+
+@vertex
+fn vs_terrain(@builtin(vertex_index) v: u32) -> SceneVarying {
+    let p = clipmap_vertex(v, params.camera_m_cone_cos.xz);
+    var out = scene_varying(terrain_scene_vertex(p), params.view_proj);
+    if (!p.drawn) {
+        out.clip = TERRAIN_NOT_DRAWN;
+    }
+    return out;
+}
+
+@fragment
+fn fs_terrain(in: SceneVarying) -> @location(0) vec4<f32> {
+    return scene_fragment(in);
+}
+
+@vertex
+fn vs_terrain_shadow(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+    let p = clipmap_vertex(v, params.camera_m_cone_cos.xz);
+    if (!p.drawn) {
+        return TERRAIN_NOT_DRAWN;
+    }
+    return params.sun_view_proj * vec4<f32>(displaced(terrain_scene_vertex(p)), 1.0);
+}

@@ -1,0 +1,844 @@
+//! [`Terrain`]: the ground from elevation data — a regular grid of heights (a 16-bit
+//! PNG or GeoTIFF height map read by the viewer, or one generated in code) under
+//! the scene's meshes, kilometres across.
+//!
+//! ## What it is for
+//!
+//! - **The ground map** ([`crate::GroundMap::from_scene_and_terrain`]): within the
+//!   cover grid the terrain is part of the top-most surface, at its full resolution,
+//!   so particles land on it and snow lies, drifts and melts on it. Its snow
+//!   eligibility comes from its slope ([`crate::scene::slope_eligibility`], as a
+//!   mesh's without tags), its surface is grass where it is gentle, soil where it is
+//!   steep ([`TERRAIN_GRASS_SLOPE_DEG`]).
+//! - **The picture**: drawn as a *geometry clipmap* (Losasso & Hoppe 2004, *ACM
+//!   Transactions on Graphics* 23(3)): nested square grids of [`CLIPMAP_QUADS`]²
+//!   quads centred on the camera, each level's quads twice the size of the level
+//!   inside it, its heights read from a pyramid of the terrain
+//!   ([`TerrainPyramid`]) whose level `k` has samples `2^k` times as far apart. The
+//!   count of triangles drawn is the same over a 100 m field and a 16 km range: the
+//!   frame does not grow with the terrain. Levels finer than the camera's height
+//!   above the ground needs are not drawn ([`TerrainPyramid::clipmap`]). Near its
+//!   outer edge a level's heights and normals blend into the next level's over
+//!   [`CLIPMAP_MORPH_QUADS`] quads, so at the edge both meet on the same line: no
+//!   cracks, no popping. The vertex shader (`vs_terrain`,
+//!   `precip-gpu/shaders/render_terrain.wgsl`) is the twin of [`clipmap_vertex`].
+//!
+//! ## The GPU's copy
+//!
+//! The pyramid lives on the GPU after the ground map's words in one storage
+//! buffer, at most [`TERRAIN_GPU_BUDGET_BYTES`]: a terrain with more samples is
+//! drawn from every `f`-th sample (averaged over `f × f`), the smallest integer `f`
+//! that fits ([`TerrainPyramid::decimation`]): 16 384² samples are drawn at 4× their
+//! spacing. The ground map where snow lies always takes the full resolution.
+
+use std::sync::Arc;
+
+use glam::{UVec2, Vec2, Vec3};
+
+use crate::scene::slope_eligibility;
+
+/// Quads along a side of each level of the clipmap. WGSL twin: `CLIPMAP_QUADS`.
+pub const CLIPMAP_QUADS: u32 = 48;
+/// Quads over which a level blends into the next near its outer edge. WGSL twin:
+/// `CLIPMAP_MORPH_QUADS`.
+pub const CLIPMAP_MORPH_QUADS: u32 = 8;
+/// Vertices one level of the clipmap draws (two triangles a quad, unindexed).
+pub const CLIPMAP_LEVEL_VERTICES: u32 = CLIPMAP_QUADS * CLIPMAP_QUADS * 6;
+/// The most levels of a pyramid (the frame block's rows hold their offsets).
+pub const MAX_TERRAIN_LEVELS: usize = 16;
+/// The most samples along a side of a terrain.
+pub const MAX_TERRAIN_SAMPLES: u32 = 16_384;
+/// The most bytes of the pyramid on the GPU (beside the ground map, under the
+/// 128 MiB every device binds as one storage buffer).
+pub const TERRAIN_GPU_BUDGET_BYTES: u64 = 96 << 20;
+/// Heights beyond this, m, are refused (a datum or a scale gone wrong).
+pub const MAX_TERRAIN_HEIGHT_M: f32 = 20_000.0;
+/// Slope up to which the terrain is grass, beyond it soil, degrees.
+pub const TERRAIN_GRASS_SLOPE_DEG: f32 = 25.0;
+
+/// What is wrong with a terrain.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum TerrainError {
+    /// Too few or too many samples along a side.
+    #[error("the terrain has {x} × {z} samples: give 2 to {MAX_TERRAIN_SAMPLES} along each side")]
+    Samples {
+        /// Along x.
+        x: u32,
+        /// Along z.
+        z: u32,
+    },
+    /// The spacing is not a positive finite length.
+    #[error("the terrain's spacing is {0} m: give the metres between samples, above 0")]
+    Spacing(f32),
+    /// The centre is not finite.
+    #[error("the terrain's centre is not finite: give x and z in metres")]
+    Centre,
+    /// The heights do not match the samples.
+    #[error("the terrain has {got} heights for {x} × {z} samples: give one per sample")]
+    HeightCount {
+        /// Heights given.
+        got: usize,
+        /// Along x.
+        x: u32,
+        /// Along z.
+        z: u32,
+    },
+    /// A height is not finite or out of range.
+    #[error(
+        "the terrain's sample ({x}, {z}) is {height_m} m: heights must be finite and within ±{MAX_TERRAIN_HEIGHT_M} m (check the height scale and offset)"
+    )]
+    Height {
+        /// Column.
+        x: u32,
+        /// Row.
+        z: u32,
+        /// Its height, m.
+        height_m: f32,
+    },
+}
+
+/// Heights on a regular grid: sample `(i, j)` at world
+/// `(corner.x + i·spacing, height, corner.z + j·spacing)`, rows along z.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Terrain {
+    samples: UVec2,
+    spacing_m: f32,
+    corner_m: Vec2,
+    heights_m: Vec<f32>,
+}
+
+impl Terrain {
+    /// A terrain of `samples` (x, z) heights `spacing_m` apart, centred on
+    /// `centre_m` (x, z); `heights_m` row by row (x fastest), m.
+    pub fn new(
+        samples: UVec2,
+        spacing_m: f32,
+        centre_m: Vec2,
+        heights_m: Vec<f32>,
+    ) -> Result<Self, TerrainError> {
+        let (x, z) = (samples.x, samples.y);
+        if !(2..=MAX_TERRAIN_SAMPLES).contains(&x) || !(2..=MAX_TERRAIN_SAMPLES).contains(&z) {
+            return Err(TerrainError::Samples { x, z });
+        }
+        if !(spacing_m.is_finite() && spacing_m > 0.0 && spacing_m < 1.0e5) {
+            return Err(TerrainError::Spacing(spacing_m));
+        }
+        if !centre_m.is_finite() {
+            return Err(TerrainError::Centre);
+        }
+        if heights_m.len() != (x as usize) * (z as usize) {
+            return Err(TerrainError::HeightCount {
+                got: heights_m.len(),
+                x,
+                z,
+            });
+        }
+        if let Some(k) = heights_m
+            .iter()
+            .position(|h| !(h.is_finite() && h.abs() <= MAX_TERRAIN_HEIGHT_M))
+        {
+            return Err(TerrainError::Height {
+                x: (k % x as usize) as u32,
+                z: (k / x as usize) as u32,
+                height_m: heights_m[k],
+            });
+        }
+        let size = (samples - 1).as_vec2() * spacing_m;
+        Ok(Self {
+            samples,
+            spacing_m,
+            corner_m: centre_m - 0.5 * size,
+            heights_m,
+        })
+    }
+
+    /// Samples along x and z.
+    #[must_use]
+    pub fn samples(&self) -> UVec2 {
+        self.samples
+    }
+
+    /// Metres between samples.
+    #[must_use]
+    pub fn spacing_m(&self) -> f32 {
+        self.spacing_m
+    }
+
+    /// World (x, z) of sample (0, 0), m.
+    #[must_use]
+    pub fn corner_m(&self) -> Vec2 {
+        self.corner_m
+    }
+
+    /// The side lengths along x and z, m.
+    #[must_use]
+    pub fn size_m(&self) -> Vec2 {
+        (self.samples - 1).as_vec2() * self.spacing_m
+    }
+
+    /// The heights, row by row, m.
+    #[must_use]
+    pub fn heights_m(&self) -> &[f32] {
+        &self.heights_m
+    }
+
+    /// The lowest and highest heights, m.
+    #[must_use]
+    pub fn height_range_m(&self) -> (f32, f32) {
+        self.heights_m
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| {
+                (lo.min(h), hi.max(h))
+            })
+    }
+
+    /// The terrain raised or lowered as a whole so that its height at `xz_m` is
+    /// `height_m` (unchanged where `xz_m` is off it).
+    #[must_use]
+    pub fn with_height_at(mut self, xz_m: Vec2, height_m: f32) -> Self {
+        if let Some(h) = self.height_at(xz_m) {
+            let shift = height_m - h;
+            for v in &mut self.heights_m {
+                *v += shift;
+            }
+        }
+        self
+    }
+
+    fn sample(&self, i: i64, j: i64) -> f32 {
+        let i = i.clamp(0, i64::from(self.samples.x) - 1) as usize;
+        let j = j.clamp(0, i64::from(self.samples.y) - 1) as usize;
+        self.heights_m[i + self.samples.x as usize * j]
+    }
+
+    /// The height at world `(x, z)` between samples (bilinear), m; `None` off the
+    /// terrain.
+    #[must_use]
+    pub fn height_at(&self, xz_m: Vec2) -> Option<f32> {
+        let t = (xz_m - self.corner_m) / self.spacing_m;
+        let last = (self.samples - 1).as_vec2();
+        if !(t.x >= 0.0 && t.y >= 0.0 && t.x <= last.x && t.y <= last.y) {
+            return None;
+        }
+        let base = t.floor();
+        let w = t - base;
+        let (i, j) = (base.x as i64, base.y as i64);
+        let low = self.sample(i, j) + (self.sample(i + 1, j) - self.sample(i, j)) * w.x;
+        let high =
+            self.sample(i, j + 1) + (self.sample(i + 1, j + 1) - self.sample(i, j + 1)) * w.x;
+        Some(low + (high - low) * w.y)
+    }
+
+    /// The unit normal at world `(x, z)` (central differences one spacing apart,
+    /// clamped at the edges); up off the terrain.
+    #[must_use]
+    pub fn normal_at(&self, xz_m: Vec2) -> Vec3 {
+        let s = self.spacing_m;
+        let h = |dx: f32, dz: f32| self.height_at(xz_m + Vec2::new(dx, dz));
+        match (h(-s, 0.0), h(s, 0.0), h(0.0, -s), h(0.0, s), h(0.0, 0.0)) {
+            (Some(w), Some(e), Some(n), Some(so), _) => {
+                Vec3::new(w - e, 2.0 * s, n - so).normalize_or(Vec3::Y)
+            }
+            (w, e, n, so, Some(c)) => {
+                let (w, e, n, so) = (
+                    w.unwrap_or(c),
+                    e.unwrap_or(c),
+                    n.unwrap_or(c),
+                    so.unwrap_or(c),
+                );
+                Vec3::new(w - e, 2.0 * s, n - so).normalize_or(Vec3::Y)
+            }
+            _ => Vec3::Y,
+        }
+    }
+
+    /// What the terrain is made of where its normal is `normal`: grass up to
+    /// [`TERRAIN_GRASS_SLOPE_DEG`], soil beyond.
+    #[must_use]
+    pub fn surface_for(normal: Vec3) -> precip_cover::Surface {
+        if normal.y >= TERRAIN_GRASS_SLOPE_DEG.to_radians().cos() {
+            precip_cover::Surface::Grass
+        } else {
+            precip_cover::Surface::Soil
+        }
+    }
+
+    /// Snow eligibility where the normal is `normal` (the slope's, as an untagged
+    /// mesh's).
+    #[must_use]
+    pub fn eligibility_for(normal: Vec3) -> f32 {
+        slope_eligibility(normal)
+    }
+
+    /// The pyramid the GPU draws the terrain from ([`TERRAIN_GPU_BUDGET_BYTES`]).
+    #[must_use]
+    pub fn pyramid(&self) -> TerrainPyramid {
+        TerrainPyramid::of(self, TERRAIN_GPU_BUDGET_BYTES)
+    }
+}
+
+/// Texels of the terrain's colour ramp ([`terrain_ramp`]).
+pub const TERRAIN_RAMP_TEXELS: u32 = 16;
+
+/// Where along the terrain's colour ramp a surface of unit normal `normal` reads
+/// (texel centres only, so the repeating sampler never wraps): flat at the first
+/// texel's centre, 60° and steeper at the last's. WGSL twin:
+/// `terrain_scene_vertex`'s `uv`.
+#[must_use]
+pub fn terrain_ramp_u(normal: Vec3) -> f32 {
+    let steep = ((1.0 - normal.y) * 2.0).clamp(0.0, 1.0);
+    let n = TERRAIN_RAMP_TEXELS as f32;
+    (0.5 + (n - 1.0) * steep) / n
+}
+
+/// The terrain's colours by slope (sRGB), flat to steep: winter grass up to about
+/// 25°, bare soil to 45°, grey rock beyond — what a land-cover raster would say
+/// where none is given.
+#[must_use]
+pub fn terrain_ramp() -> crate::TextureRgba8 {
+    const GRASS: [f32; 3] = [104.0, 112.0, 66.0];
+    const SOIL: [f32; 3] = [112.0, 96.0, 74.0];
+    const ROCK: [f32; 3] = [122.0, 120.0, 114.0];
+    let n = TERRAIN_RAMP_TEXELS;
+    let mut rgba8 = Vec::with_capacity(4 * n as usize);
+    for i in 0..n {
+        // The texel's slope: back from terrain_ramp_u.
+        let steep = i as f32 / (n - 1) as f32;
+        let up = 1.0 - 0.5 * steep;
+        let slope_deg = up.clamp(-1.0, 1.0).acos().to_degrees();
+        let blend = |a: [f32; 3], b: [f32; 3], t: f32| {
+            let t = t.clamp(0.0, 1.0);
+            [0, 1, 2].map(|c| a[c] + (b[c] - a[c]) * t)
+        };
+        let colour = if slope_deg < 35.0 {
+            blend(GRASS, SOIL, (slope_deg - 20.0) / 15.0)
+        } else {
+            blend(SOIL, ROCK, (slope_deg - 35.0) / 15.0)
+        };
+        rgba8.extend(colour.map(|c| c.round() as u8));
+        rgba8.push(255);
+    }
+    crate::TextureRgba8 {
+        width_px: n,
+        height_px: 1,
+        rgba8,
+    }
+}
+
+/// A terrain shared between the scene and the backends.
+pub type SharedTerrain = Arc<Terrain>;
+
+/// One level of a [`TerrainPyramid`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PyramidLevel {
+    /// Samples along x and z.
+    pub samples: UVec2,
+    /// Metres between samples.
+    pub spacing_m: f32,
+    /// Its first word in [`TerrainPyramid::heights_m`].
+    pub offset: u32,
+}
+
+/// The terrain's levels for the GPU: level 0 the terrain (decimated to fit
+/// [`TERRAIN_GPU_BUDGET_BYTES`]), level `k + 1` level `k` filtered by `[1 2 1]/4`
+/// along each axis and kept at every other sample, so its sample `i` lies on level
+/// `k`'s sample `2i`, down to a level of at most [`CLIPMAP_QUADS`]` / 4` samples a
+/// side (whose clipmap level covers the whole terrain from anywhere on it).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TerrainPyramid {
+    /// The levels, finest first.
+    pub levels: Vec<PyramidLevel>,
+    /// Every level's heights, row by row, one after the other, m.
+    pub heights_m: Vec<f32>,
+    /// World (x, z) of every level's sample (0, 0), m.
+    pub corner_m: Vec2,
+    /// Level 0's samples are every `decimation`-th of the terrain's.
+    pub decimation: u32,
+}
+
+/// The rows of the frame block that place the clipmap (`RenderParams::terrain*`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ClipmapRows {
+    /// The pyramid's corner x, z m, level 0's spacing m, the levels drawn (0: none).
+    pub placement: glam::Vec4,
+    /// The first level drawn, the pyramid's levels, the word where the pyramid
+    /// starts in the ground buffer, 0.
+    pub levels: glam::UVec4,
+    /// Level `k`'s samples along x (`.x` of row `k / 2`'s pair) and z, two levels a
+    /// row: (x₀, z₀, x₁, z₁), …
+    pub samples: [glam::UVec4; MAX_TERRAIN_LEVELS / 2],
+    /// Level `k`'s first word in the pyramid, four levels a row.
+    pub offsets: [glam::UVec4; MAX_TERRAIN_LEVELS / 4],
+}
+
+impl ClipmapRows {
+    /// Vertices the clipmap draws (0 without a terrain).
+    #[must_use]
+    pub fn vertices(&self) -> u32 {
+        self.placement.w as u32 * CLIPMAP_LEVEL_VERTICES
+    }
+}
+
+impl TerrainPyramid {
+    /// The smallest `f` for which `terrain` at every `f`-th sample, with its
+    /// coarser levels, fits `budget_bytes`.
+    #[must_use]
+    pub fn decimation(terrain: &Terrain, budget_bytes: u64) -> u32 {
+        let words = |f: u32| {
+            let n = (terrain.samples - 1) / f + 1;
+            // The levels below sum to under a third more.
+            u64::from(n.x) * u64::from(n.y) * 4 / 3
+        };
+        (1..=MAX_TERRAIN_SAMPLES)
+            .find(|&f| words(f) * 4 <= budget_bytes)
+            .unwrap_or(MAX_TERRAIN_SAMPLES)
+    }
+
+    /// The pyramid of `terrain` within `budget_bytes`.
+    #[must_use]
+    pub fn of(terrain: &Terrain, budget_bytes: u64) -> Self {
+        let f = Self::decimation(terrain, budget_bytes);
+        let mut samples = (terrain.samples - 1) / f + 1;
+        // Level 0: each kept sample the mean of the f × f around it.
+        let mut level: Vec<f32> = if f == 1 {
+            terrain.heights_m.clone()
+        } else {
+            let half = i64::from(f / 2);
+            let mut v = Vec::with_capacity((samples.x * samples.y) as usize);
+            for j in 0..i64::from(samples.y) {
+                for i in 0..i64::from(samples.x) {
+                    let (ci, cj) = (i * i64::from(f), j * i64::from(f));
+                    let mut sum = 0.0;
+                    let mut n = 0.0;
+                    for dj in -half..=half {
+                        for di in -half..=half {
+                            sum += terrain.sample(ci + di, cj + dj);
+                            n += 1.0;
+                        }
+                    }
+                    v.push(sum / n);
+                }
+            }
+            v
+        };
+        let mut spacing = terrain.spacing_m * f as f32;
+        let mut levels = Vec::new();
+        let mut heights_m = Vec::new();
+        loop {
+            levels.push(PyramidLevel {
+                samples,
+                spacing_m: spacing,
+                offset: heights_m.len() as u32,
+            });
+            heights_m.extend_from_slice(&level);
+            if samples.max_element() <= CLIPMAP_QUADS / 4 || levels.len() == MAX_TERRAIN_LEVELS {
+                break;
+            }
+            let next = (samples - 1) / 2 + 1;
+            let at = |i: i64, j: i64| {
+                let i = i.clamp(0, i64::from(samples.x) - 1) as usize;
+                let j = j.clamp(0, i64::from(samples.y) - 1) as usize;
+                level[i + samples.x as usize * j]
+            };
+            let mut coarse = Vec::with_capacity((next.x * next.y) as usize);
+            for j in 0..i64::from(next.y) {
+                for i in 0..i64::from(next.x) {
+                    let (ci, cj) = (2 * i, 2 * j);
+                    let row = |dj: i64| {
+                        0.25 * at(ci - 1, cj + dj)
+                            + 0.5 * at(ci, cj + dj)
+                            + 0.25 * at(ci + 1, cj + dj)
+                    };
+                    coarse.push(0.25 * row(-1) + 0.5 * row(0) + 0.25 * row(1));
+                }
+            }
+            level = coarse;
+            samples = next;
+            spacing *= 2.0;
+        }
+        Self {
+            levels,
+            heights_m,
+            corner_m: terrain.corner_m,
+            decimation: f,
+        }
+    }
+
+    /// Level 0's height at its sample nearest `xz_m` (clamped to the terrain), m.
+    #[must_use]
+    pub fn height_under(&self, xz_m: Vec2) -> f32 {
+        let t = ((xz_m - self.corner_m) / self.levels[0].spacing_m).round();
+        self.height(0, t.x as i32, t.y as i32)
+    }
+
+    /// Level `k`'s height at its sample `(i, j)` (clamped to the level), m.
+    #[must_use]
+    pub fn height(&self, k: usize, i: i32, j: i32) -> f32 {
+        let Some(l) = self.levels.get(k) else {
+            return 0.0;
+        };
+        let i = i.clamp(0, l.samples.x as i32 - 1) as u32;
+        let j = j.clamp(0, l.samples.y as i32 - 1) as u32;
+        self.heights_m[(l.offset + i + l.samples.x * j) as usize]
+    }
+
+    /// The levels the clipmap draws for a camera at `camera_m` whose ground is
+    /// `ground_m` below it… : from the finest whose half side
+    /// (`CLIPMAP_QUADS / 2` quads) reaches twice the camera's height above the
+    /// terrain's highest point under it (finer ones would be under a pixel), to
+    /// the last; `words_before` is where the pyramid starts in the ground buffer.
+    #[must_use]
+    pub fn clipmap(&self, camera_m: Vec3, ground_m: f32, words_before: u32) -> ClipmapRows {
+        let above = (camera_m.y - ground_m).max(0.0);
+        let half_side = |k: usize| (CLIPMAP_QUADS / 2) as f32 * self.levels[k].spacing_m;
+        let last = self.levels.len() - 1;
+        let first = (0..=last)
+            .find(|&k| half_side(k) >= 2.0 * above)
+            .unwrap_or(last);
+        let mut rows = ClipmapRows {
+            placement: glam::Vec4::new(
+                self.corner_m.x,
+                self.corner_m.y,
+                self.levels[0].spacing_m,
+                (last - first + 1) as f32,
+            ),
+            levels: glam::UVec4::new(first as u32, self.levels.len() as u32, words_before, 0),
+            ..ClipmapRows::default()
+        };
+        for (k, l) in self.levels.iter().enumerate() {
+            let row = &mut rows.samples[k / 2];
+            if k % 2 == 0 {
+                row.x = l.samples.x;
+                row.y = l.samples.y;
+            } else {
+                row.z = l.samples.x;
+                row.w = l.samples.y;
+            }
+            rows.offsets[k / 4][k % 4] = words_before + l.offset;
+        }
+        rows
+    }
+}
+
+/// The snapped centre of clipmap level `k` in its own samples: the camera's sample
+/// rounded down to an even one, so the level's vertices lie on the next level's
+/// samples every other one. WGSL twin: `clipmap_centre`.
+#[must_use]
+pub fn clipmap_centre(pyramid: &TerrainPyramid, k: usize, camera_xz_m: Vec2) -> glam::IVec2 {
+    let spacing = pyramid.levels[k].spacing_m;
+    let t = ((camera_xz_m - pyramid.corner_m) / spacing).floor();
+    let even = |v: f32| 2 * ((v as i32).div_euclid(2));
+    glam::IVec2::new(even(t.x), even(t.y))
+}
+
+/// A vertex of the clipmap: vertex `v` of the draw whose first level is `first`
+/// (two triangles a quad, quads row by row, levels one after the other): its world
+/// position and normal, or `None` where its quad is not drawn (inside the finer
+/// level, or wholly off the terrain). WGSL twin: `vs_terrain`'s `clipmap_vertex`.
+#[must_use]
+pub fn clipmap_vertex(
+    pyramid: &TerrainPyramid,
+    first: usize,
+    camera_xz_m: Vec2,
+    v: u32,
+) -> Option<(Vec3, Vec3)> {
+    const CORNERS: [(i32, i32); 6] = [(0, 0), (0, 1), (1, 0), (1, 0), (0, 1), (1, 1)];
+    let n = CLIPMAP_QUADS as i32;
+    let k = first + (v / CLIPMAP_LEVEL_VERTICES) as usize;
+    let level = pyramid.levels.get(k)?;
+    let quad = (v % CLIPMAP_LEVEL_VERTICES) / 6;
+    let (qi, qj) = ((quad % CLIPMAP_QUADS) as i32, (quad / CLIPMAP_QUADS) as i32);
+    let centre = clipmap_centre(pyramid, k, camera_xz_m);
+    // The quad's first sample on level k.
+    let q = centre + glam::IVec2::new(qi - n / 2, qj - n / 2);
+    if k > first {
+        // Inside level k − 1 (its centre in level k's samples ± n/4).
+        let inner = clipmap_centre(pyramid, k - 1, camera_xz_m) / 2;
+        let lo = inner - n / 4;
+        let hi = inner + n / 4;
+        if q.x >= lo.x && q.x < hi.x && q.y >= lo.y && q.y < hi.y {
+            return None;
+        }
+    }
+    let last = level.samples.as_ivec2() - 1;
+    if q.x < 0 || q.y < 0 || q.x >= last.x || q.y >= last.y {
+        return None;
+    }
+    let (ci, cj) = CORNERS[(v % 6) as usize];
+    let g = q + glam::IVec2::new(ci, cj);
+    let (height, normal) = morphed(pyramid, k, g, centre);
+    let xz = pyramid.corner_m + g.as_vec2() * level.spacing_m;
+    Some((Vec3::new(xz.x, height, xz.y), normal))
+}
+
+/// The height and normal of level `k`'s sample `g`, blended into level `k + 1`'s
+/// (interpolated along the coarse quad's edges) over the last
+/// [`CLIPMAP_MORPH_QUADS`] quads before the level's edge. WGSL twin:
+/// `clipmap_morphed`.
+fn morphed(pyramid: &TerrainPyramid, k: usize, g: glam::IVec2, centre: glam::IVec2) -> (f32, Vec3) {
+    let fine = pyramid.height(k, g.x, g.y);
+    let fine_normal = level_normal(pyramid, k, g);
+    if k + 1 >= pyramid.levels.len() {
+        return (fine, fine_normal);
+    }
+    let d = (g - centre).abs().max_element() as f32;
+    let start = (CLIPMAP_QUADS / 2 - CLIPMAP_MORPH_QUADS) as f32;
+    let alpha = ((d - start) / CLIPMAP_MORPH_QUADS as f32).clamp(0.0, 1.0);
+    if alpha <= 0.0 {
+        return (fine, fine_normal);
+    }
+    // On level k + 1: the mean of the coarse samples the fine one lies between.
+    let c0 = glam::IVec2::new(g.x.div_euclid(2), g.y.div_euclid(2));
+    let c1 = glam::IVec2::new((g.x + 1).div_euclid(2), (g.y + 1).div_euclid(2));
+    let coarse = 0.25
+        * (pyramid.height(k + 1, c0.x, c0.y)
+            + pyramid.height(k + 1, c1.x, c0.y)
+            + pyramid.height(k + 1, c0.x, c1.y)
+            + pyramid.height(k + 1, c1.x, c1.y));
+    let coarse_normal = level_normal(pyramid, k + 1, c0);
+    (
+        fine + (coarse - fine) * alpha,
+        (fine_normal + (coarse_normal - fine_normal) * alpha).normalize_or(Vec3::Y),
+    )
+}
+
+/// Level `k`'s normal at its sample `g` (central differences).
+fn level_normal(pyramid: &TerrainPyramid, k: usize, g: glam::IVec2) -> Vec3 {
+    let s = pyramid.levels[k].spacing_m;
+    let dx = pyramid.height(k, g.x - 1, g.y) - pyramid.height(k, g.x + 1, g.y);
+    let dz = pyramid.height(k, g.x, g.y - 1) - pyramid.height(k, g.x, g.y + 1);
+    Vec3::new(dx, 2.0 * s, dz).normalize_or(Vec3::Y)
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    /// A terrain of `n`² samples `spacing` apart with heights `f(x, z)`.
+    fn terrain(n: u32, spacing: f32, f: impl Fn(f32, f32) -> f32) -> Terrain {
+        let half = 0.5 * (n - 1) as f32 * spacing;
+        let mut h = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                h.push(f(i as f32 * spacing - half, j as f32 * spacing - half));
+            }
+        }
+        Terrain::new(UVec2::splat(n), spacing, Vec2::ZERO, h).expect("a valid terrain")
+    }
+
+    fn rough(x: f32, z: f32) -> f32 {
+        40.0 * (x / 37.0).sin() * (z / 53.0).cos() + 7.0 * (x / 5.3 + z / 7.1).sin()
+    }
+
+    #[test]
+    fn bad_terrains_are_refused_with_what_to_give() {
+        let ok = |n: u32| vec![0.0; (n * n) as usize];
+        let e = Terrain::new(UVec2::new(1, 4), 1.0, Vec2::ZERO, vec![0.0; 4]).unwrap_err();
+        assert!(matches!(e, TerrainError::Samples { x: 1, z: 4 }), "{e}");
+        let e = Terrain::new(UVec2::splat(4), 0.0, Vec2::ZERO, ok(4)).unwrap_err();
+        assert!(e.to_string().contains("metres between samples"), "{e}");
+        let e = Terrain::new(UVec2::splat(4), f32::NAN, Vec2::ZERO, ok(4)).unwrap_err();
+        assert!(matches!(e, TerrainError::Spacing(_)));
+        let e = Terrain::new(UVec2::splat(4), 1.0, Vec2::ZERO, ok(3)).unwrap_err();
+        assert!(matches!(e, TerrainError::HeightCount { got: 9, .. }));
+        let mut h = ok(4);
+        h[6] = f32::INFINITY;
+        let e = Terrain::new(UVec2::splat(4), 1.0, Vec2::ZERO, h).unwrap_err();
+        assert!(matches!(e, TerrainError::Height { x: 2, z: 1, .. }), "{e}");
+        let e = Terrain::new(UVec2::splat(4), 1.0, Vec2::NAN, ok(4)).unwrap_err();
+        assert_eq!(e, TerrainError::Centre);
+    }
+
+    #[test]
+    fn heights_are_the_samples_and_bilinear_between_them() {
+        let t = terrain(5, 2.0, |x, z| x + 10.0 * z);
+        assert_eq!(t.corner_m(), Vec2::new(-4.0, -4.0));
+        assert_eq!(t.height_at(Vec2::new(-4.0, -4.0)), Some(-44.0));
+        assert_eq!(t.height_at(Vec2::new(4.0, 4.0)), Some(44.0));
+        // A plane is its own bilinear interpolation.
+        let h = t.height_at(Vec2::new(1.3, -2.7)).expect("on the terrain");
+        assert!((h - (1.3 - 27.0)).abs() < 1e-4, "{h}");
+        assert_eq!(t.height_at(Vec2::new(4.1, 0.0)), None);
+        let n = t.normal_at(Vec2::ZERO);
+        let expected = Vec3::new(-1.0, 1.0, -10.0).normalize();
+        assert!(n.distance(expected) < 1e-5, "{n}");
+        let raised = t.with_height_at(Vec2::new(1.0, 1.0), 3.0);
+        assert!((raised.height_at(Vec2::new(1.0, 1.0)).unwrap_or(0.0) - 3.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn slopes_pick_grass_soil_and_the_snow_eligibility() {
+        let flat = Vec3::Y;
+        let steep = Vec3::new(1.0, 1.0, 0.0).normalize();
+        assert_eq!(Terrain::surface_for(flat), precip_cover::Surface::Grass);
+        assert_eq!(Terrain::surface_for(steep), precip_cover::Surface::Soil);
+        assert!((Terrain::eligibility_for(flat) - 1.0).abs() < 1e-6);
+        assert!(Terrain::eligibility_for(Vec3::new(1.0, 0.5, 0.0).normalize()) < 1e-6);
+        // The ramp reads texel centres only: flat at the first, steep at the last.
+        let n = TERRAIN_RAMP_TEXELS as f32;
+        assert!((terrain_ramp_u(flat) - 0.5 / n).abs() < 1e-6);
+        assert!(
+            (terrain_ramp_u(Vec3::new(1.0, 0.2, 0.0).normalize()) - (n - 0.5) / n).abs() < 1e-6
+        );
+        let ramp = terrain_ramp();
+        assert_eq!(ramp.rgba8.len(), 4 * TERRAIN_RAMP_TEXELS as usize);
+        // Grass is greener than rock.
+        assert!(ramp.rgba8[1] > ramp.rgba8[0] && ramp.rgba8[1] > ramp.rgba8[2]);
+        let last = ramp.rgba8.len() - 4;
+        assert!(ramp.rgba8[last + 1] <= ramp.rgba8[last]);
+    }
+
+    #[test]
+    fn the_pyramid_halves_each_level_on_the_samples_of_the_one_below() {
+        let t = terrain(257, 1.0, |x, z| 0.5 * x - 0.25 * z + 3.0);
+        let p = TerrainPyramid::of(&t, u64::MAX);
+        assert_eq!(p.decimation, 1);
+        let sides: Vec<u32> = p.levels.iter().map(|l| l.samples.x).collect();
+        assert_eq!(sides, [257, 129, 65, 33, 17, 9]);
+        let mut offset = 0;
+        for (k, l) in p.levels.iter().enumerate() {
+            assert_eq!(l.offset, offset);
+            offset += l.samples.x * l.samples.y;
+            assert!((l.spacing_m - (1u32 << k) as f32).abs() < 1e-6);
+        }
+        assert_eq!(p.heights_m.len(), offset as usize);
+        // A plane passes the [1 2 1] filter unchanged away from the edges: level k's
+        // sample i lies on level 0's sample i·2^k.
+        for k in 0..p.levels.len() {
+            let h = p.height(k, 3, 2);
+            let s = (1u32 << k) as f32;
+            let expected = t
+                .height_at(t.corner_m() + Vec2::new(3.0, 2.0) * s)
+                .unwrap_or(0.0);
+            assert!(
+                (h - expected).abs() < 1e-3,
+                "level {k}: {h} against {expected}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_terrain_over_the_budget_is_drawn_from_fewer_samples_and_fits() {
+        let t = terrain(1001, 0.5, rough);
+        let budget = 1 << 20;
+        let p = TerrainPyramid::of(&t, budget);
+        assert!(p.decimation > 1);
+        assert!(
+            (p.heights_m.len() * 4) as u64 <= budget,
+            "{}",
+            p.heights_m.len()
+        );
+        // The next smaller decimation would not fit.
+        let f = p.decimation - 1;
+        let n = u64::from((1000 / f) + 1);
+        assert!(n * n * 4 > budget * 3 / 4);
+        assert!((p.levels[0].spacing_m - 0.5 * p.decimation as f32).abs() < 1e-6);
+        // Every-f-th sample, averaged round it: near the terrain's own height there.
+        let h = p.height(0, 10, 10);
+        let at = t.corner_m() + Vec2::splat(10.0 * p.levels[0].spacing_m);
+        assert!((h - t.height_at(at).unwrap_or(0.0)).abs() < 8.0);
+    }
+
+    #[test]
+    fn the_first_level_drawn_follows_the_camera_s_height_above_the_ground() {
+        let t = terrain(1025, 1.0, |_, _| 10.0);
+        let p = t.pyramid();
+        let low = p.clipmap(Vec3::new(0.0, 12.0, 0.0), 10.0, 100);
+        assert_eq!(low.levels.x, 0);
+        assert_eq!(low.placement.w as usize, p.levels.len());
+        assert_eq!(
+            low.vertices(),
+            p.levels.len() as u32 * CLIPMAP_LEVEL_VERTICES
+        );
+        // 300 m up: levels whose half side is under 600 m are not drawn.
+        let high = p.clipmap(Vec3::new(0.0, 310.0, 0.0), 10.0, 100);
+        assert_eq!(high.levels.x, 5, "32 · 2^5 = 1024 m ≥ 600 m");
+        assert_eq!(high.levels.z, 100);
+        assert_eq!(high.offsets[0].x, 100);
+        assert_eq!(high.offsets[0].y, 100 + 1025 * 1025);
+        assert_eq!(high.samples[0].z, 513);
+    }
+
+    /// The levels' quads that hold `xz` (its quad's corners' positions), for
+    /// `first` level drawn.
+    fn quads_over(p: &TerrainPyramid, first: usize, camera: Vec2, xz: Vec2) -> usize {
+        let mut count = 0;
+        for k in first..p.levels.len() {
+            let s = p.levels[k].spacing_m;
+            let g = ((xz - p.corner_m) / s).floor().as_ivec2();
+            let centre = clipmap_centre(p, k, camera);
+            let local = g - centre + glam::IVec2::splat(CLIPMAP_QUADS as i32 / 2);
+            if local.min_element() < 0 || local.max_element() >= CLIPMAP_QUADS as i32 {
+                continue;
+            }
+            let quad = (local.x + CLIPMAP_QUADS as i32 * local.y) as u32;
+            let v = (k - first) as u32 * CLIPMAP_LEVEL_VERTICES + 6 * quad;
+            if clipmap_vertex(p, first, camera, v).is_some() {
+                count += 1;
+            }
+        }
+        count
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+
+        /// The levels tile the ground: every point of the terrain within the last
+        /// level's square lies in exactly one drawn quad.
+        #[test]
+        fn the_levels_cover_the_terrain_once(
+            cx in -700.0f32..700.0, cz in -700.0f32..700.0,
+            px in -1.0f32..1.0, pz in -1.0f32..1.0, first in 0usize..3,
+        ) {
+            let t = terrain(1025, 1.5, rough);
+            let p = t.pyramid();
+            let camera = Vec2::new(cx, cz);
+            let last = p.levels.len() - 1;
+            let reach = 0.5 * CLIPMAP_QUADS as f32 * p.levels[last].spacing_m - 2.0 * p.levels[last].spacing_m;
+            let xz = camera + Vec2::new(px, pz) * reach.min(600.0);
+            let inside = t.height_at(xz).is_some()
+                && (xz - t.corner_m()).min_element() > 2.0 * p.levels[last].spacing_m
+                && (t.corner_m() + t.size_m() - xz).min_element() > 2.0 * p.levels[last].spacing_m;
+            prop_assume!(inside);
+            prop_assert_eq!(quads_over(&p, first, camera, xz), 1);
+        }
+
+        /// No cracks: each level's outer edge lies on the next level's quads'
+        /// edges — every vertex there at the coarse level's height interpolated
+        /// along that edge.
+        #[test]
+        fn each_level_s_edge_meets_the_next_level(
+            cx in -400.0f32..400.0, cz in -400.0f32..400.0, first in 0usize..3,
+        ) {
+            let t = terrain(1025, 1.5, rough);
+            let p = t.pyramid();
+            let camera = Vec2::new(cx, cz);
+            let mut checked = 0;
+            for k in first..p.levels.len() - 1 {
+                let n = CLIPMAP_QUADS;
+                // The quads of the level's top row (z = −n/2 side) and their
+                // upper-left corner (vertex 0 of each quad).
+                for qi in 0..n {
+                    let v = (k - first) as u32 * CLIPMAP_LEVEL_VERTICES + 6 * qi;
+                    let Some((pos, _)) = clipmap_vertex(&p, first, camera, v) else {
+                        continue;
+                    };
+                    // The coarse edge's two ends on level k + 1.
+                    let s = p.levels[k + 1].spacing_m;
+                    let g = (Vec2::new(pos.x, pos.z) - p.corner_m) / s;
+                    let (a, b) = (g.x.floor() as i32, g.x.ceil() as i32);
+                    let j = g.y.round() as i32;
+                    prop_assert!((g.y - j as f32).abs() < 1e-3, "the edge lies on a coarse row");
+                    let w = g.x - a as f32;
+                    let coarse = p.height(k + 1, a, j) + (p.height(k + 1, b, j) - p.height(k + 1, a, j)) * w;
+                    prop_assert!((pos.y - coarse).abs() < 1e-3, "level {k}: {} against {coarse}", pos.y);
+                    checked += 1;
+                }
+            }
+            prop_assert!(checked >= CLIPMAP_QUADS, "{checked} edge vertices on the terrain");
+        }
+    }
+}
