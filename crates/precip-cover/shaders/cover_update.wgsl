@@ -150,7 +150,8 @@ fn cover_tiles_of(p: CoverStepParams) -> CoverTiles {
 }
 
 // Where list `list` starts in cover_tiles: its count; then, per tile, its mark;
-// whether it was listed the time before; then the list.
+// per tile, whether it was near a mark at the last listing (bit 0) and whether that
+// listing listed it (bit 1); then the list.
 fn tile_set_start(list: u32, g: CoverTiles) -> u32 {
     return list * (1u + 3u * g.tiles_x * g.tiles_z);
 }
@@ -215,9 +216,10 @@ fn list_cover_tiles(list: u32, lane: u32) {
                 }
             }
         }
-        let before = atomicLoad(&cover_tiles[start + 1u + count + tile]);
-        atomicStore(&cover_tiles[start + 1u + count + tile], near);
-        if ((near | before) != 0u) {
+        let before = atomicLoad(&cover_tiles[start + 1u + count + tile]) & 1u;
+        let listed = near | before;
+        atomicStore(&cover_tiles[start + 1u + count + tile], near | (listed << 1u));
+        if (listed != 0u) {
             let k = atomicAdd(&tiles_listed, 1u);
             atomicStore(&cover_tiles[start + 1u + 2u * count + k], u32(tx) | (u32(tz) << 16u));
         }
@@ -230,6 +232,15 @@ fn list_cover_tiles(list: u32, lane: u32) {
     if (lane == 0u) {
         atomicStore(&cover_tiles[start], atomicLoad(&tiles_listed));
     }
+}
+
+// Whether the last listing of `list` listed the tile of texel `j`: only a listed
+// texel's outflows are this exchange's (the flow and the drift share the field, so
+// an unlisted texel may hold the other's last outflows; on the whole grid, as the
+// CPU runs it, an unlisted texel sends nothing).
+fn cover_texel_listed(list: u32, j: u32, g: CoverTiles) -> bool {
+    let count = g.tiles_x * g.tiles_z;
+    return (atomicLoad(&cover_tiles[tile_set_start(list, g) + 1u + count + tile_of_texel(j, g)]) & 2u) != 0u;
 }
 
 // Lists the tiles the next WATER_TILE_GROUP flow iterations run over.
@@ -300,7 +311,9 @@ fn water_inflow(
                 let j = neighbour_of(i, n, p);
                 if (j >= 0) {
                     out_inside += t.outflow_mm[n];
-                    inflow += cover[u32(j)].outflow_mm[n ^ 1u];
+                    if (cover_texel_listed(WATER_TILES, u32(j), g)) {
+                        inflow += cover[u32(j)].outflow_mm[n ^ 1u];
+                    }
                 } else {
                     out_edge += t.outflow_mm[n];
                 }
@@ -538,6 +551,7 @@ fn snow_inflow(
 // Texel i's exchange in a drift iteration.
 fn take_drift(i: u32) {
     let p = cover_params;
+    let g = cover_tiles_of(p);
     var t = cover[i];
     let wind_mps = vec2<f32>(p.wind_x_mps, p.wind_z_mps);
     let speed = length(wind_mps);
@@ -551,7 +565,7 @@ fn take_drift(i: u32) {
         if (j >= 0) {
             out_inside += t.outflow_mm[k];
             let o = cover[u32(j)];
-            let arriving = o.outflow_mm[k ^ 1u];
+            let arriving = select(0.0, o.outflow_mm[k ^ 1u], cover_texel_listed(SNOW_TILES, u32(j), g));
             if (arriving > 0.0) {
                 in_mm += arriving;
                 in_depth_mm += arriving * 1000.0 / o.moving_density_kg_m3;

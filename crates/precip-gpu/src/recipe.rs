@@ -265,8 +265,10 @@ pub fn cover_tiles(cover: &GridFrame) -> (u32, u32) {
 }
 
 /// Bytes of the cover tiles' buffer (`u32` words): for each [`CoverTileSet`] in
-/// turn, the count of listed tiles, then per tile whether it is marked and whether
-/// it was listed the time before, then the list (each tile's x | z << 16). WGSL
+/// turn, the count of listed tiles, then per tile whether it is marked, then per
+/// tile whether the last listing found it near a mark (bit 0) and whether it
+/// listed it (bit 1: an exchange takes only listed texels' outflows, as the flow
+/// and the drift share the field), then the list (each tile's x | z << 16). WGSL
 /// twin: binding `cover_tiles` of `cover_update.wgsl`.
 #[must_use]
 pub fn cover_tiles_bytes(cover: &GridFrame) -> u64 {
