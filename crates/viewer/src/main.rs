@@ -261,11 +261,11 @@ struct RunArgs {
     terrain: Option<precip_viewer::terrain_file::TerrainSource>,
     /// Metres between the height map's samples (default: a GeoTIFF's pixel
     /// scale, else 1 m; 2.5 m for `generated`).
-    #[arg(long, requires = "terrain")]
+    #[arg(long, requires = "terrain", allow_negative_numbers = true)]
     terrain_spacing: Option<f32>,
     /// The heights of the smallest and largest integer sample, m: `LOW,HIGH`
     /// (default for a PNG 0,1000; a GeoTIFF's samples are metres unless given).
-    #[arg(long, requires = "terrain", value_parser = parse_vec2, allow_hyphen_values = true)]
+    #[arg(long, requires = "terrain", value_parser = parse_heights, allow_hyphen_values = true)]
     terrain_heights: Option<glam::Vec2>,
 }
 
@@ -328,6 +328,18 @@ fn parse_vec2(s: &str) -> Result<glam::Vec2, String> {
     match parts[..] {
         [x, y] if x.abs() <= 4.0 && y.abs() <= 4.0 => Ok(glam::Vec2::new(x, y)),
         _ => Err("expected x,y, each within ±4 (half-widths, half-heights)".into()),
+    }
+}
+
+/// `LOW,HIGH` metres (checked when the terrain is read: low below high).
+fn parse_heights(s: &str) -> Result<glam::Vec2, String> {
+    let parts: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|e| format!("{p}: {e}")))
+        .collect::<Result<_, _>>()?;
+    match parts[..] {
+        [low, high] => Ok(glam::Vec2::new(low, high)),
+        _ => Err("expected LOW,HIGH in metres".into()),
     }
 }
 
@@ -491,13 +503,16 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         } else {
             String::new()
         };
+        let extent = if size.max_element() >= 2000.0 {
+            format!("{:.1} × {:.1} km", size.x / 1000.0, size.y / 1000.0)
+        } else {
+            format!("{:.0} × {:.0} m", size.x, size.y)
+        };
         eprintln!(
-            "terrain: {} × {} samples {} m apart ({:.1} × {:.1} km), heights {low:.0} to {high:.0} m{drawn} ({:.1} s)",
+            "terrain: {} × {} samples {} m apart ({extent}), heights {low:.0} to {high:.0} m{drawn} ({:.1} s)",
             terrain.samples().x,
             terrain.samples().y,
             terrain.spacing_m(),
-            size.x / 1000.0,
-            size.y / 1000.0,
             started.elapsed().as_secs_f32()
         );
         loaded.scene = loaded.scene.on_terrain(std::sync::Arc::new(terrain));

@@ -64,12 +64,12 @@ pub enum TerrainFileError {
         file: PathBuf,
     },
     /// The samples make no terrain.
-    #[error("{file}: {source}")]
+    #[error("{file}: {problem}")]
     Terrain {
         /// The file.
         file: PathBuf,
         /// The check that failed.
-        source: TerrainError,
+        problem: TerrainError,
     },
     /// The heights option is not a range.
     #[error("--terrain-heights {low},{high}: give the lowest height below the highest, in metres")]
@@ -125,7 +125,7 @@ pub fn load_terrain(
                 t.with_height_at(Vec2::ZERO, 0.0)
             }
         })
-        .map_err(|source| TerrainFileError::Terrain { file, source })
+        .map_err(|problem| TerrainFileError::Terrain { file, problem })
 }
 
 fn unreadable(file: &Path, detail: impl std::fmt::Display) -> TerrainFileError {
@@ -140,7 +140,7 @@ fn check_size(file: &Path, w: u32, h: u32) -> Result<UVec2, TerrainFileError> {
     if w > MAX_TERRAIN_SAMPLES || h > MAX_TERRAIN_SAMPLES || w < 2 || h < 2 {
         return Err(TerrainFileError::Terrain {
             file: file.to_path_buf(),
-            source: TerrainError::Samples { x: w, z: h },
+            problem: TerrainError::Samples { x: w, z: h },
         });
     }
     Ok(UVec2::new(w, h))
