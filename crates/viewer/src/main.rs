@@ -320,11 +320,15 @@ fn parse_vec3(s: &str) -> Result<Vec3, String> {
     }
 }
 
-fn parse_vec2(s: &str) -> Result<glam::Vec2, String> {
-    let parts: Vec<f32> = s
-        .split(',')
+/// Comma-separated numbers.
+fn parse_numbers(s: &str) -> Result<Vec<f32>, String> {
+    s.split(',')
         .map(|p| p.trim().parse::<f32>().map_err(|e| format!("{p}: {e}")))
-        .collect::<Result<_, _>>()?;
+        .collect()
+}
+
+fn parse_vec2(s: &str) -> Result<glam::Vec2, String> {
+    let parts = parse_numbers(s)?;
     match parts[..] {
         [x, y] if x.abs() <= 4.0 && y.abs() <= 4.0 => Ok(glam::Vec2::new(x, y)),
         _ => Err("expected x,y, each within ±4 (half-widths, half-heights)".into()),
@@ -333,10 +337,7 @@ fn parse_vec2(s: &str) -> Result<glam::Vec2, String> {
 
 /// `LOW,HIGH` metres (checked when the terrain is read: low below high).
 fn parse_heights(s: &str) -> Result<glam::Vec2, String> {
-    let parts: Vec<f32> = s
-        .split(',')
-        .map(|p| p.trim().parse::<f32>().map_err(|e| format!("{p}: {e}")))
-        .collect::<Result<_, _>>()?;
+    let parts = parse_numbers(s)?;
     match parts[..] {
         [low, high] => Ok(glam::Vec2::new(low, high)),
         _ => Err("expected LOW,HIGH in metres".into()),

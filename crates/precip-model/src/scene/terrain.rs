@@ -468,19 +468,25 @@ impl TerrainPyramid {
     /// Level 0's height at its sample nearest `xz_m` (clamped to the terrain), m.
     #[must_use]
     pub fn height_under(&self, xz_m: Vec2) -> f32 {
-        let t = ((xz_m - self.corner_m) / self.levels[0].spacing_m).round();
+        let Some(level) = self.levels.first() else {
+            return 0.0;
+        };
+        let t = ((xz_m - self.corner_m) / level.spacing_m).round();
         self.height(0, t.x as i32, t.y as i32)
     }
 
     /// Level `k`'s height at its sample `(i, j)` (clamped to the level), m.
     #[must_use]
     pub fn height(&self, k: usize, i: i32, j: i32) -> f32 {
-        let Some(l) = self.levels.get(k) else {
+        let Some(l) = self.levels.get(k).filter(|l| l.samples.min_element() > 0) else {
             return 0.0;
         };
         let i = i.clamp(0, l.samples.x as i32 - 1) as u32;
         let j = j.clamp(0, l.samples.y as i32 - 1) as u32;
-        self.heights_m[(l.offset + i + l.samples.x * j) as usize]
+        self.heights_m
+            .get((l.offset + i + l.samples.x * j) as usize)
+            .copied()
+            .unwrap_or(0.0)
     }
 
     /// The levels the clipmap draws for a camera at `camera_m` whose ground is
@@ -490,6 +496,10 @@ impl TerrainPyramid {
     /// the last; `words_before` is where the pyramid starts in the ground buffer.
     #[must_use]
     pub fn clipmap(&self, camera_m: Vec3, ground_m: f32, words_before: u32) -> ClipmapRows {
+        // A pyramid built by hand without levels draws nothing.
+        if self.levels.is_empty() || self.levels.len() > MAX_TERRAIN_LEVELS {
+            return ClipmapRows::default();
+        }
         let above = (camera_m.y - ground_m).max(0.0);
         let half_side = |k: usize| (CLIPMAP_QUADS / 2) as f32 * self.levels[k].spacing_m;
         let last = self.levels.len() - 1;
@@ -525,11 +535,15 @@ impl TerrainPyramid {
 /// rounded down to an even one, so the level's vertices lie on the next level's
 /// samples every other one. WGSL twin: `clipmap_centre`.
 #[must_use]
-pub fn clipmap_centre(pyramid: &TerrainPyramid, k: usize, camera_xz_m: Vec2) -> glam::IVec2 {
-    let spacing = pyramid.levels[k].spacing_m;
+pub fn clipmap_centre(
+    pyramid: &TerrainPyramid,
+    k: usize,
+    camera_xz_m: Vec2,
+) -> Option<glam::IVec2> {
+    let spacing = pyramid.levels.get(k)?.spacing_m;
     let t = ((camera_xz_m - pyramid.corner_m) / spacing).floor();
     let even = |v: f32| 2 * ((v as i32).div_euclid(2));
-    glam::IVec2::new(even(t.x), even(t.y))
+    Some(glam::IVec2::new(even(t.x), even(t.y)))
 }
 
 /// A vertex of the clipmap: vertex `v` of the draw whose first level is `first`
@@ -549,12 +563,12 @@ pub fn clipmap_vertex(
     let level = pyramid.levels.get(k)?;
     let quad = (v % CLIPMAP_LEVEL_VERTICES) / 6;
     let (qi, qj) = ((quad % CLIPMAP_QUADS) as i32, (quad / CLIPMAP_QUADS) as i32);
-    let centre = clipmap_centre(pyramid, k, camera_xz_m);
+    let centre = clipmap_centre(pyramid, k, camera_xz_m)?;
     // The quad's first sample on level k.
     let q = centre + glam::IVec2::new(qi - n / 2, qj - n / 2);
     if k > first {
         // Inside level k − 1 (its centre in level k's samples ± n/4).
-        let inner = clipmap_centre(pyramid, k - 1, camera_xz_m) / 2;
+        let inner = clipmap_centre(pyramid, k - 1, camera_xz_m)? / 2;
         let lo = inner - n / 4;
         let hi = inner + n / 4;
         if q.x >= lo.x && q.x < hi.x && q.y >= lo.y && q.y < hi.y {
@@ -743,6 +757,29 @@ mod tests {
     }
 
     #[test]
+    fn a_pyramid_built_by_hand_wrong_draws_nothing_and_does_not_panic() {
+        let empty = TerrainPyramid {
+            levels: Vec::new(),
+            heights_m: Vec::new(),
+            corner_m: Vec2::ZERO,
+            decimation: 1,
+        };
+        assert_eq!(empty.clipmap(Vec3::ONE, 0.0, 0).vertices(), 0);
+        assert!((empty.height_under(Vec2::ONE)).abs() < f32::MIN_POSITIVE);
+        assert_eq!(clipmap_vertex(&empty, 0, Vec2::ZERO, 0), None);
+        let short = TerrainPyramid {
+            levels: vec![PyramidLevel {
+                samples: UVec2::new(0, 4),
+                spacing_m: 1.0,
+                offset: 0,
+            }],
+            ..empty.clone()
+        };
+        assert!((short.height(0, 2, 2)).abs() < f32::MIN_POSITIVE);
+        assert_eq!(clipmap_vertex(&short, 0, Vec2::ZERO, 0), None);
+    }
+
+    #[test]
     fn the_first_level_drawn_follows_the_camera_s_height_above_the_ground() {
         let t = terrain(1025, 1.0, |_, _| 10.0);
         let p = t.pyramid();
@@ -769,7 +806,7 @@ mod tests {
         for k in first..p.levels.len() {
             let s = p.levels[k].spacing_m;
             let g = ((xz - p.corner_m) / s).floor().as_ivec2();
-            let centre = clipmap_centre(p, k, camera);
+            let centre = clipmap_centre(p, k, camera).expect("a level");
             let local = g - centre + glam::IVec2::splat(CLIPMAP_QUADS as i32 / 2);
             if local.min_element() < 0 || local.max_element() >= CLIPMAP_QUADS as i32 {
                 continue;
