@@ -1,12 +1,14 @@
 //! A scene standing on a terrain (issue 29's elevation data), alike on every GPU
 //! backend: the clipmap puts the terrain's ridge where its heights say, both
-//! backends draw the same picture, the Vulkan one without a validation message, and
-//! the ground map lands snow on the terrain where it rises above the meshes.
+//! backends draw the same picture, the Vulkan one without a validation message, its
+//! land cover colours it by class, and the ground map lands snow on the terrain
+//! where it rises above the meshes.
 
 use std::sync::Arc;
 
 use glam::{UVec2, Vec2, Vec3};
 use precip_conformance::gpu_subjects;
+use precip_model::scene::LandCover;
 use precip_model::scene::builtin::house_on_plane;
 use precip_model::scene::terrain::Terrain;
 use precip_model::{Camera, GroundMap, Image, Setup, View, Weather};
@@ -31,10 +33,16 @@ fn valley() -> Terrain {
 /// The house's setup, on the valley or not, in clear calm air, looking north from
 /// 2 m up.
 fn setup(on_terrain: bool) -> Setup {
+    setup_on(on_terrain.then(valley))
+}
+
+/// The house's setup on `terrain` if any, in clear calm air, looking north from
+/// 2 m up.
+fn setup_on(terrain: Option<Terrain>) -> Setup {
     let (mut setup, _) = Setup::over_scene(house_on_plane(), 64, 6.0, 2_000).expect("valid");
-    if on_terrain {
+    if let Some(terrain) = terrain {
         let scene = setup.scene.take().expect("a scene");
-        let scene = Arc::unwrap_or_clone(scene).on_terrain(Arc::new(valley()));
+        let scene = Arc::unwrap_or_clone(scene).on_terrain(Arc::new(terrain));
         setup.ground = GroundMap::of_prepared(&scene, setup.ground.frame);
         setup.scene = Some(Arc::new(scene));
     }
@@ -86,6 +94,24 @@ fn differing(a: &Image, b: &Image, rows: std::ops::Range<u32>) -> f32 {
     n as f32 / total as f32
 }
 
+/// Every GPU backend draws the same picture (within 1/255 but a few pixels).
+fn assert_backends_agree(images: &[(String, Image)]) {
+    if let Some(((first_name, first), rest)) = images.split_first() {
+        for (name, image) in rest {
+            let off = first
+                .rgba8
+                .iter()
+                .zip(&image.rgba8)
+                .filter(|(a, b)| a.abs_diff(**b) > 1)
+                .count();
+            assert!(
+                (off as f32) < 0.001 * first.rgba8.len() as f32,
+                "{name} against {first_name}: {off} values differ"
+            );
+        }
+    }
+}
+
 /// The image row at `elevation_deg` above the camera's level (its forward is
 /// level).
 fn row_at(camera: &Camera, elevation_deg: f32) -> u32 {
@@ -135,21 +161,64 @@ fn the_terrain_s_ridge_stands_where_its_heights_put_it_on_every_gpu_backend() {
         );
         images.push((subject.name.clone(), with));
     }
-    // Every GPU backend draws the same terrain (within 1/255 but a few pixels).
-    if let Some(((first_name, first), rest)) = images.split_first() {
-        for (name, image) in rest {
-            let off = first
-                .rgba8
-                .iter()
-                .zip(&image.rgba8)
-                .filter(|(a, b)| a.abs_diff(**b) > 1)
-                .count();
-            assert!(
-                (off as f32) < 0.001 * first.rgba8.len() as f32,
-                "{name} against {first_name}: {off} values differ"
-            );
+    assert_backends_agree(&images);
+}
+
+/// The mean of the three channels over rows `rows` and columns `columns`.
+fn mean_level(image: &Image, rows: std::ops::Range<u32>, columns: std::ops::Range<u32>) -> f32 {
+    let mut sum = 0.0;
+    let mut n = 0.0;
+    for y in rows {
+        for x in columns.clone() {
+            let i = 4 * (y * WIDTH + x) as usize;
+            sum += (0..3).map(|c| f32::from(image.rgba8[i + c])).sum::<f32>() / 3.0;
+            n += 1.0;
         }
     }
+    sum / n
+}
+
+#[test]
+fn the_land_cover_colours_the_terrain_by_class_on_every_gpu_backend() {
+    // West of the house forest, east of it glacier ice (WorldCover 10 and 70).
+    let cover = LandCover::from_worldcover(UVec2::new(2, 1), &[10, 70]).expect("valid codes");
+    let plain = setup(true);
+    let covered = setup_on(Some(valley().with_land_cover(cover)));
+    let camera = plain.camera;
+    let top_deg = (198.0f32 / 1030.0).atan().to_degrees();
+    let rows = row_at(&camera, top_deg - 2.0)..row_at(&camera, 1.5);
+    let (west, east) = (0..3 * WIDTH / 10, 7 * WIDTH / 10..WIDTH);
+    let mut images = Vec::new();
+    for mut subject in gpu_subjects("the_land_cover_colours_the_terrain_by_class") {
+        if !subject.renders() {
+            continue;
+        }
+        let without = render(&mut subject, &plain);
+        let with = render(&mut subject, &covered);
+        subject.check_clean("drawing a terrain's land cover");
+        let level =
+            |image: &Image, columns: std::ops::Range<u32>| mean_level(image, rows.clone(), columns);
+        let (forest, grass_w) = (level(&with, west.clone()), level(&without, west.clone()));
+        let (ice, grass_e) = (level(&with, east.clone()), level(&without, east.clone()));
+        println!(
+            "{}: the ridge west {grass_w:.1} → forest {forest:.1}, east {grass_e:.1} → ice {ice:.1}",
+            subject.name
+        );
+        // Through 1 km of clear air the forest is darker than the grass, the ice
+        // brighter.
+        assert!(
+            forest < grass_w - 3.0,
+            "{}: forest {forest} against grass {grass_w}",
+            subject.name
+        );
+        assert!(
+            ice > grass_e + 10.0,
+            "{}: ice {ice} against grass {grass_e}",
+            subject.name
+        );
+        images.push((subject.name.clone(), with));
+    }
+    assert_backends_agree(&images);
 }
 
 #[test]

@@ -318,37 +318,7 @@ impl CoverGrid {
     #[must_use]
     pub fn totals(&self) -> CoverTotals {
         let area = f64::from(self.frame.texel_area_m2());
-        let kg = |mm: f32| f64::from(mm) * area;
-        let initial = CoverTotals {
-            area_m2: area * self.texels.len() as f64,
-            ..CoverTotals::default()
-        };
-        self.texels.iter().fold(initial, |acc, t| CoverTotals {
-            deposited_kg: acc.deposited_kg + kg(t.deposited_mm),
-            swe_kg: acc.swe_kg + kg(t.swe_mm),
-            liquid_kg: acc.liquid_kg + kg(t.liquid_mm),
-            runoff_kg: acc.runoff_kg + kg(t.runoff_mm),
-            film_kg: acc.film_kg + kg(t.film_mm),
-            standing_kg: acc.standing_kg + kg(t.standing_mm),
-            infiltrated_kg: acc.infiltrated_kg + kg(t.infiltrated_mm),
-            evaporated_kg: acc.evaporated_kg + kg(t.evaporated_mm),
-            net_inflow_kg: acc.net_inflow_kg + kg(t.net_inflow_mm),
-            drifted_kg: acc.drifted_kg + kg(t.drifted_mm),
-            edge_drifted_kg: acc.edge_drifted_kg + kg(t.edge_drifted_mm),
-            dust_kg: acc.dust_kg + kg(t.dust_kg_m2),
-            blowing_area_m2: acc.blowing_area_m2
-                + if t.saltation_kg_per_m_s > 0.0 {
-                    area
-                } else {
-                    0.0
-                },
-            snow_area_m2: acc.snow_area_m2 + if t.depth_mm > 0.0 { area } else { 0.0 },
-            max_snow_depth_mm: acc.max_snow_depth_mm.max(f64::from(t.depth_mm)),
-            snow_volume_m3: acc.snow_volume_m3 + f64::from(t.depth_mm) * 1.0e-3 * area,
-            wet_area_m2: acc.wet_area_m2 + if t.wetness >= 0.5 { area } else { 0.0 },
-            puddle_area_m2: acc.puddle_area_m2 + if t.puddle_ratio() >= 1.0 { area } else { 0.0 },
-            area_m2: acc.area_m2,
-        })
+        CoverTotals::of_texels(self.texels.iter().map(|t| (t, area)))
     }
 
     /// What a shader needs, per texel.
@@ -363,6 +333,44 @@ impl CoverGrid {
         self.frame
             .texel_index(glam::Vec2::new(x_m, z_m))
             .and_then(|i| self.texels.get(i))
+    }
+}
+
+impl CoverTotals {
+    /// The books of `texels`, each standing for its area, m² (a grid's texels, or
+    /// the cover beyond the grid: a texel for all the land of its surface).
+    #[must_use]
+    pub fn of_texels<'a>(texels: impl Iterator<Item = (&'a CoverTexel, f64)>) -> Self {
+        texels.fold(Self::default(), |acc, (t, area)| {
+            let kg = |mm: f32| f64::from(mm) * area;
+            Self {
+                deposited_kg: acc.deposited_kg + kg(t.deposited_mm),
+                swe_kg: acc.swe_kg + kg(t.swe_mm),
+                liquid_kg: acc.liquid_kg + kg(t.liquid_mm),
+                runoff_kg: acc.runoff_kg + kg(t.runoff_mm),
+                film_kg: acc.film_kg + kg(t.film_mm),
+                standing_kg: acc.standing_kg + kg(t.standing_mm),
+                infiltrated_kg: acc.infiltrated_kg + kg(t.infiltrated_mm),
+                evaporated_kg: acc.evaporated_kg + kg(t.evaporated_mm),
+                net_inflow_kg: acc.net_inflow_kg + kg(t.net_inflow_mm),
+                drifted_kg: acc.drifted_kg + kg(t.drifted_mm),
+                edge_drifted_kg: acc.edge_drifted_kg + kg(t.edge_drifted_mm),
+                dust_kg: acc.dust_kg + kg(t.dust_kg_m2),
+                blowing_area_m2: acc.blowing_area_m2
+                    + if t.saltation_kg_per_m_s > 0.0 {
+                        area
+                    } else {
+                        0.0
+                    },
+                snow_area_m2: acc.snow_area_m2 + if t.depth_mm > 0.0 { area } else { 0.0 },
+                max_snow_depth_mm: acc.max_snow_depth_mm.max(f64::from(t.depth_mm)),
+                snow_volume_m3: acc.snow_volume_m3 + f64::from(t.depth_mm) * 1.0e-3 * area,
+                wet_area_m2: acc.wet_area_m2 + if t.wetness >= 0.5 { area } else { 0.0 },
+                puddle_area_m2: acc.puddle_area_m2
+                    + if t.puddle_ratio() >= 1.0 { area } else { 0.0 },
+                area_m2: acc.area_m2 + area,
+            }
+        })
     }
 }
 

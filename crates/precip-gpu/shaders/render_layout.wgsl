@@ -96,8 +96,15 @@ struct RenderParams {
     terrain_levels: vec4<u32>,
     terrain_samples: array<vec4<u32>, 8>,
     terrain_offsets: array<vec4<u32>, 4>,
-    // The cover beyond the grid (Rust: RenderParams::far_cover): cover_at's A, B, C.
-    far_cover: array<vec4<f32>, 3>,
+    // The cover beyond the grid (Rust: RenderParams::far_cover): cover_at's A, B, C
+    // for each of precip_model::host::FAR_COVER_SURFACES.
+    far_cover: array<vec4<f32>, 12>,
+    // The terrain's land cover (render_terrain.wgsl; Rust: LandCoverRows): pixels x,
+    // z, first word in the ground buffer, present; the terrain's corner and size, m.
+    land_cover: vec4<u32>,
+    land_cover_extent: vec4<f32>,
+    // Each land class: snow share seen from above, far cover triple, ramp row v, 0.
+    land_classes: array<vec4<f32>, 12>,
 }
 
 // drawIndirect's arguments (Rust: precip_gpu::recipe::DrawArgs).

@@ -289,14 +289,19 @@ fn upward(normal: vec3<f32>) -> f32 {
 // C.y, cover_texture.wgsl): kept here from the same sample, as CoverTexel has no
 // field for it.
 var<private> cover_roughness_m: f32;
+// Which of the far cover's texels a fragment off the grid reads
+// (precip_model::host::far_cover_slot of its surface): 0, grass, unless the
+// terrain's fragment set another (fs_terrain).
+var<private> far_cover_slot: u32;
 
 fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
     let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
     // Off the grid, the cover beyond it (RenderParams::far_cover: the weather's own).
     let on_grid = grid_texel_index(params.cover, xz_m) >= 0;
-    let a = select(params.far_cover[0], textureSampleLevel(cover_a, cover_sampler, uv, 0.0), on_grid);
-    let b = select(params.far_cover[1], textureSampleLevel(cover_b, cover_sampler, uv, 0.0), on_grid);
-    let c = select(params.far_cover[2], textureSampleLevel(cover_c, cover_sampler, uv, 0.0), on_grid);
+    let far = 3u * min(far_cover_slot, 3u);
+    let a = select(params.far_cover[far], textureSampleLevel(cover_a, cover_sampler, uv, 0.0), on_grid);
+    let b = select(params.far_cover[far + 1u], textureSampleLevel(cover_b, cover_sampler, uv, 0.0), on_grid);
+    let c = select(params.far_cover[far + 2u], textureSampleLevel(cover_c, cover_sampler, uv, 0.0), on_grid);
     var t: CoverTexel;
     t.dust_kg_m2 = c.x;
     cover_roughness_m = c.y;
@@ -365,7 +370,7 @@ fn displaced(v: SceneVertex) -> vec3<f32> {
     // The depth alone (cover_at's first texture; off the grid the cover beyond it).
     let uv = (p.xz - params.cover.origin_m) / params.cover.size_m;
     let on_grid = grid_texel_index(params.cover, p.xz) >= 0;
-    let depth_mm = select(params.far_cover[0].x, textureSampleLevel(cover_a, cover_sampler, uv, 0.0).x, on_grid);
+    let depth_mm = select(params.far_cover[3u * min(far_cover_slot, 3u)].x, textureSampleLevel(cover_a, cover_sampler, uv, 0.0).x, on_grid);
     p.y += depth_mm * 1.0e-3 * clamp(v.eligibility, 0.0, 1.0) * upward(n) * exposure(p, n);
     return p;
 }

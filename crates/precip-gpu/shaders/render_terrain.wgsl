@@ -11,6 +11,36 @@ const CLIPMAP_LEVEL_VERTICES: u32 = 13824u;
 // Rust: precip_model::scene::{FULL_SNOW_SLOPE_DEG, NO_SNOW_SLOPE_DEG} as cosines.
 const FULL_SNOW_COS: f32 = 0.8660254;
 const NO_SNOW_COS: f32 = 0.64278764;
+// Rust: precip_model::scene::terrain::TERRAIN_GRASS_SLOPE_DEG as a cosine.
+const TERRAIN_GRASS_COS: f32 = 0.90630776;
+// Rows of the terrain's colour ramp (Rust: precip_model::scene::land_cover::LAND_CLASSES).
+const LAND_CLASSES: f32 = 12.0;
+
+// The land class at world (x, z): its pixel of the terrain's land cover, which spans
+// the terrain's extent (0, no data, without one or off it). Rust twin:
+// precip_model::scene::LandCover::class_at.
+fn land_class_at(xz_m: vec2<f32>) -> u32 {
+    if (params.land_cover.w == 0u) {
+        return 0u;
+    }
+    let uv = (xz_m - params.land_cover_extent.xy) / params.land_cover_extent.zw;
+    if (any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0))) {
+        return 0u;
+    }
+    let n = params.land_cover.xy;
+    let p = min(vec2<u32>(uv * vec2<f32>(n)), n - 1u);
+    return min(u32(ground_height[params.land_cover.z + p.x + n.x * p.y]), 11u);
+}
+
+// The far cover's texel for land class `land` where the normal's up component is
+// `up` (Rust: Terrain::surface_at and far_cover_slot): the class's surface, else
+// grass up to TERRAIN_GRASS_SLOPE_DEG and soil beyond.
+fn terrain_far_slot(land: u32, up: f32) -> u32 {
+    if (land == 0u) {
+        return select(0u, 1u, up < TERRAIN_GRASS_COS);
+    }
+    return u32(params.land_classes[land].y);
+}
 
 // Snow eligibility from a unit normal: 1 up to 30°, 0 from 50°, smooth between.
 fn slope_eligibility(normal: vec3<f32>) -> f32 {
@@ -110,15 +140,18 @@ fn clipmap_vertex(v: u32, camera_xz_m: vec2<f32>) -> TerrainPoint {
     return out;
 }
 
-// The terrain as a scene vertex: its slope picks the colour from the terrain's
-// ramp (Rust: precip_model::scene::terrain::terrain_ramp_u) and its snow eligibility.
+// The terrain as a scene vertex: its slope picks the colour along the terrain's
+// ramp (Rust: precip_model::scene::terrain::terrain_ramp_u; the land class picks
+// the row, per fragment, in fs_terrain) and its snow eligibility; the far cover it
+// is raised by is its land class's (far_cover_slot, for `displaced`).
 fn terrain_scene_vertex(p: TerrainPoint) -> SceneVertex {
     var vertex: SceneVertex;
     vertex.position_m = p.position_m;
     vertex.normal = p.normal;
     let steep = clamp((1.0 - p.normal.y) * 2.0, 0.0, 1.0);
-    vertex.uv = vec2<f32>((0.5 + 15.0 * steep) / 16.0, 0.5);
+    vertex.uv = vec2<f32>((0.5 + 15.0 * steep) / 16.0, 0.5 / LAND_CLASSES);
     vertex.eligibility = slope_eligibility(p.normal);
+    far_cover_slot = terrain_far_slot(land_class_at(p.position_m.xz), p.normal.y);
     return vertex;
 }
 
@@ -135,9 +168,22 @@ fn vs_terrain(@builtin(vertex_index) v: u32) -> SceneVarying {
     return out;
 }
 
+// A terrain fragment: its land class (Rust: Terrain::land_class_at) picks the
+// ramp's row, the share of its snow seen from above and the far cover it reads.
+// The class is looked up up to 1.5 pixels (at most 15 m) off the point (smooth
+// noise, as the cover's cover_warp_m), so the borders between classes wind instead
+// of following the raster's pixels (the ground map's classes, on the CPU, are the
+// pixels').
 @fragment
 fn fs_terrain(in: SceneVarying) -> @location(0) vec4<f32> {
-    return scene_fragment(in);
+    let pixel_m = params.land_cover_extent.zw / max(vec2<f32>(params.land_cover.xy), vec2<f32>(1.0));
+    let land = land_class_at(in.surface_m.xz + cover_warp_m(in.surface_m.xz, min(3.0 * pixel_m, vec2<f32>(30.0))));
+    let row = params.land_classes[land];
+    var v = in;
+    v.uv.y = row.z;
+    v.eligibility = in.eligibility * row.x;
+    far_cover_slot = terrain_far_slot(land, normalize_or_zero(in.normal).y);
+    return scene_fragment(v);
 }
 
 @vertex

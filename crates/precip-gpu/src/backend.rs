@@ -358,6 +358,10 @@ impl<G: Gpu> Backend for GpuBackend<G> {
     fn device_memory(&self) -> Option<DeviceMemory> {
         self.gpu.device_memory()
     }
+
+    fn far_cover_totals(&self) -> Option<precip_model::cover::CoverTotals> {
+        self.state.as_ref()?.sim.host().far_cover_totals()
+    }
 }
 
 /// Implements [`Backend`] for a newtype over a [`GpuBackend`] (its field `0`), by
@@ -480,6 +484,9 @@ macro_rules! delegate_backend {
             }
             fn device_memory(&self) -> Option<::precip_model::DeviceMemory> {
                 self.0.device_memory()
+            }
+            fn far_cover_totals(&self) -> Option<::precip_model::cover::CoverTotals> {
+                self.0.far_cover_totals()
             }
         }
     };

@@ -172,10 +172,13 @@ pub fn simulation_buffers(
                 ),
                 SimBuffer::Ground => {
                     // The ground map's words, then the terrain's pyramid (the
-                    // clipmap's, render_terrain.wgsl).
+                    // clipmap's, render_terrain.wgsl) and its land cover.
                     let mut words = ground.gpu_words();
                     if let Some(p) = host.terrain_pyramid() {
                         words.extend_from_slice(&p.heights_m);
+                        if let Some(classes) = host.land_cover_samples() {
+                            words.extend_from_slice(classes);
+                        }
                     }
                     bytes(bytemuck::cast_slice(&words).to_vec())
                 }

@@ -594,3 +594,38 @@ fn the_clouds_constants_are_their_rust_twins() {
         assert_eq!(wgsl, rust.to_array(), "{name}");
     }
 }
+
+#[test]
+fn the_terrain_s_constants_are_their_rust_twins() {
+    use precip_model::scene::land_cover::LAND_CLASSES;
+    use precip_model::scene::terrain as t;
+    use precip_model::scene::{FULL_SNOW_SLOPE_DEG, NO_SNOW_SLOPE_DEG};
+    let module = parse(Program::Render);
+    for (name, rust) in [
+        ("CLIPMAP_QUADS", f64::from(t::CLIPMAP_QUADS)),
+        ("CLIPMAP_MORPH_QUADS", f64::from(t::CLIPMAP_MORPH_QUADS)),
+        (
+            "CLIPMAP_LEVEL_VERTICES",
+            f64::from(t::CLIPMAP_LEVEL_VERTICES),
+        ),
+        ("LAND_CLASSES", LAND_CLASSES as f64),
+        (
+            "FULL_SNOW_COS",
+            f64::from(FULL_SNOW_SLOPE_DEG.to_radians().cos()),
+        ),
+        (
+            "NO_SNOW_COS",
+            f64::from(NO_SNOW_SLOPE_DEG.to_radians().cos()),
+        ),
+        (
+            "TERRAIN_GRASS_COS",
+            f64::from(t::TERRAIN_GRASS_SLOPE_DEG.to_radians().cos()),
+        ),
+    ] {
+        let wgsl = wgsl_constant(&module, name);
+        assert!(
+            (wgsl - rust).abs() < 1e-6,
+            "{name}: WGSL {wgsl}, Rust {rust}"
+        );
+    }
+}

@@ -29,6 +29,9 @@ pub struct Summary {
     pub max_depth_mm: f32,
     /// The water on the surfaces: films, puddles, where the water went.
     pub water: crate::water_summary::WaterSummary,
+    /// The books of the cover beyond the grid, over the terrain's land off it
+    /// (`None` without a terrain).
+    pub far_cover: Option<precip_model::cover::CoverTotals>,
     /// The snow: depths, the steepest face, blowing snow.
     pub snow: crate::snow_summary::SnowSummary,
     /// The PNGs.
@@ -255,6 +258,7 @@ pub fn run_headless_with(
         cover_water_mm: water,
         max_depth_mm,
         water: crate::water_summary::WaterSummary::of(&cover),
+        far_cover: backend.far_cover_totals(),
         snow: crate::snow_summary::SnowSummary::of(&cover),
         files,
         lidar_points,

@@ -267,6 +267,33 @@ struct RunArgs {
     /// (default for a PNG 0,1000; a GeoTIFF's samples are metres unless given).
     #[arg(long, requires = "terrain", value_parser = parse_heights, allow_hyphen_values = true)]
     terrain_heights: Option<glam::Vec2>,
+    /// The terrain's land cover: an 8-bit greyscale .png or a GeoTIFF of ESA
+    /// WorldCover codes (10 trees, 20 shrubs, 30 grass, 40 crops, 50 built-up, 60
+    /// bare, 70 snow and ice, 80 water, 90 wetland, 95 mangroves, 100 moss; 0 no
+    /// data) over the terrain's extent at any resolution: each class its colour,
+    /// its surface (paved towns, open water) and how much of its snow shows from
+    /// above (half under forest). `--terrain generated` has its own.
+    #[arg(long, requires = "terrain")]
+    land_cover: Option<PathBuf>,
+}
+
+/// One line on a land cover: its pixels and the share of each class it holds.
+fn land_cover_summary(land_cover: &precip_model::scene::LandCover) -> String {
+    let counts = land_cover.class_counts();
+    let total = counts.iter().sum::<usize>().max(1) as f64;
+    let shares: Vec<String> = precip_model::scene::LandClass::ALL
+        .iter()
+        .zip(counts)
+        .filter(|(_, n)| *n > 0)
+        .map(|(c, n)| format!("{c:?} {:.1} %", 100.0 * n as f64 / total))
+        .collect();
+    let p = land_cover.pixels();
+    format!(
+        "land cover: {} × {} pixels: {}",
+        p.x,
+        p.y,
+        shares.join(", ")
+    )
 }
 
 /// A rig channel's forward: `forward` turned `yaw_deg` to the right about the
@@ -516,6 +543,20 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             terrain.spacing_m(),
             started.elapsed().as_secs_f32()
         );
+        let land_cover = match (&args.land_cover, source) {
+            (Some(file), _) => Some(precip_viewer::land_cover_file::load_land_cover(file)?),
+            (None, precip_viewer::terrain_file::TerrainSource::Generated) => Some(
+                precip_viewer::land_cover_file::generated_land_cover(&terrain)?,
+            ),
+            (None, _) => None,
+        };
+        let terrain = match land_cover {
+            Some(land_cover) => {
+                eprintln!("{}", land_cover_summary(&land_cover));
+                terrain.with_land_cover(land_cover)
+            }
+            None => terrain,
+        };
         loaded.scene = loaded.scene.on_terrain(std::sync::Arc::new(terrain));
     }
     let scenario = args
@@ -834,6 +875,12 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
     );
     println!("{}", summary.snow.describe());
     println!("{}", summary.water.describe_books());
+    if let Some(far) = &summary.far_cover {
+        println!(
+            "{}",
+            precip_viewer::water_summary::describe_far_books(far, &summary.water.totals)
+        );
+    }
     if let Some(passes) = summary.stats.describe_passes() {
         println!("{passes}");
     }

@@ -268,7 +268,7 @@ fn lattice(i: i32, j: i32, seed: u32) -> f32 {
 }
 
 /// Smooth value noise in [0, 1).
-fn value_noise(p: Vec2, seed: u32) -> f32 {
+pub(crate) fn value_noise(p: Vec2, seed: u32) -> f32 {
     let base = p.floor();
     let f = p - base;
     let u = f * f * (Vec2::splat(3.0) - 2.0 * f);
@@ -285,7 +285,8 @@ fn value_noise(p: Vec2, seed: u32) -> f32 {
 /// A side of `side_m` at `spacing_m` of valleys and ridges (ridged multifractal
 /// noise, Musgrave 1994, up to about 900 m of relief, 1–3 km between ridges), a
 /// river valley winding through, and a town's flat ground at the origin, blended
-/// into the hills over 250 m: the samples and their heights, m.
+/// into the hills over 250 m: the samples and their heights, m
+/// ([`generated_height_m`]).
 #[must_use]
 pub fn generated_valleys(side_m: f32, spacing_m: f32) -> (UVec2, Vec<f32>) {
     let n = ((side_m / spacing_m).round() as u32 + 1).clamp(2, MAX_TERRAIN_SAMPLES);
@@ -295,25 +296,53 @@ pub fn generated_valleys(side_m: f32, spacing_m: f32) -> (UVec2, Vec<f32>) {
     for j in 0..n {
         for i in 0..n {
             let p = Vec2::new(i as f32 * spacing_m - half, j as f32 * spacing_m - half);
-            let d = p.length();
-            let t = ((d - GENERATED_TOWN_RADIUS_M) / 250.0).clamp(0.0, 1.0);
-            let t = t * t * (3.0 - 2.0 * t);
-            // The town's ground graded as the demo's site (2 % toward −z), a metre
-            // under it so the demo's own ground is the top-most over its square.
-            let town = 0.02 * p.y - 1.2;
-            let land = if t > 0.0 {
-                hills_and_river(p) - origin
-            } else {
-                town
-            };
-            heights.push(town + (land - town) * t);
+            heights.push(generated_height_m(p, origin));
         }
     }
     (UVec2::splat(n), heights)
 }
 
+/// How far under the demo's ground the generated terrain lies inside its square,
+/// m (clear of the pond's hollow and the road's sag between samples), rising to
+/// [`SITE_SEAM_M`] under it at its edge.
+const UNDER_SITE_M: f32 = 0.5;
+/// How far under the demo's ground's edge the generated terrain meets it, m.
+const SITE_SEAM_M: f32 = 0.05;
+
+/// The generated terrain's height at `p` (x, z), m, `origin` the hills' height at
+/// the origin: under the demo's square its ground [`UNDER_SITE_M`] lower, rising
+/// to meet the square's edge [`SITE_SEAM_M`] under it over its last 2 m (so the
+/// demo's ground and the terrain join without a step); from the edge the town's
+/// ground graded as the demo's site (2 % toward −z) over 30 m; the hills and the
+/// river's valley from [`GENERATED_TOWN_RADIUS_M`], blended in over 250 m.
+fn generated_height_m(p: Vec2, origin: f32) -> f32 {
+    let half = crate::demo::TERRAIN_SIDE_M / 2.0;
+    let outside = p.abs().max_element() - half;
+    let edge = p.clamp(Vec2::splat(-half), Vec2::splat(half));
+    let site = crate::demo::terrain_height_m(edge.x, edge.y);
+    if outside <= 0.0 {
+        let rise = ((outside + 2.0) / 2.0).clamp(0.0, 1.0);
+        return site - UNDER_SITE_M + (UNDER_SITE_M - SITE_SEAM_M) * rise;
+    }
+    let s = smooth(outside / 30.0);
+    let graded = 0.02 * p.y - 0.2;
+    let town = site - SITE_SEAM_M + (graded - site + SITE_SEAM_M) * s;
+    let t = smooth((p.length() - GENERATED_TOWN_RADIUS_M) / 250.0);
+    if t > 0.0 {
+        town + (hills_and_river(p) - origin - town) * t
+    } else {
+        town
+    }
+}
+
+/// `t` clamped to [0, 1] and eased (smoothstep).
+fn smooth(t: f32) -> f32 {
+    let t = t.clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
 /// The river's course: its z at `x`, m (west to east, past the town).
-fn river_z_m(x: f32) -> f32 {
+pub(crate) fn river_z_m(x: f32) -> f32 {
     600.0 * (x / 1700.0).sin() + 250.0 * (x / 610.0 + 1.3).sin()
 }
 
@@ -325,12 +354,7 @@ fn river_z_m(x: f32) -> f32 {
 pub fn valley_flight() -> String {
     const SPEED_MPS: f32 = 70.0;
     let origin = hills_and_river(Vec2::ZERO);
-    let ground = |p: Vec2| {
-        let d = p.length();
-        let t = ((d - GENERATED_TOWN_RADIUS_M) / 250.0).clamp(0.0, 1.0);
-        let town = 0.02 * p.y - 1.2;
-        town + (hills_and_river(p) - origin - town) * (t * t * (3.0 - 2.0 * t))
-    };
+    let ground = |p: Vec2| generated_height_m(p, origin);
     let points: Vec<Vec2> = (0..=36)
         .map(|k| {
             let x = -4500.0 + 250.0 * k as f32;
@@ -518,10 +542,27 @@ mod tests {
     fn the_generated_valleys_hold_a_level_town_under_the_demo_and_hills_around() {
         let (samples, h) = generated_valleys(4000.0, 20.0);
         let t = Terrain::new(samples, 20.0, Vec2::ZERO, h).expect("valid");
-        // The town's ground a metre under the demo's graded site.
+        // Under the demo's square half a metre under its ground, meeting its edge
+        // 5 cm under it; the town's ground graded as the site beyond.
         let at = |x: f32, z: f32| t.height_at(Vec2::new(x, z)).expect("on it");
-        assert!((at(0.0, 0.0) + 1.2).abs() < 1e-3);
-        assert!((at(0.0, 100.0) - (2.0 - 1.2)).abs() < 1e-3);
+        let demo = crate::demo::terrain_height_m;
+        assert!((at(0.0, 0.0) - (demo(0.0, 0.0) - 0.5)).abs() < 1e-3);
+        assert!((at(-40.0, 0.0) - (demo(-40.0, 0.0) - 0.05)).abs() < 1e-3);
+        assert!((at(0.0, 100.0) - (2.0 - 0.2)).abs() < 1e-3);
+        // Nowhere within the square does the terrain rise through the demo's ground.
+        let (s, h) = generated_valleys(200.0, 2.5);
+        let fine = Terrain::new(s, 2.5, Vec2::ZERO, h).expect("valid");
+        for i in 0..=160 {
+            for j in 0..=160 {
+                let (x, z) = (-40.0 + 0.5 * i as f32, -40.0 + 0.5 * j as f32);
+                let under = fine.height_at(Vec2::new(x, z)).expect("on it");
+                assert!(
+                    under < demo(x, z) - 0.01,
+                    "({x}, {z}): {under} over {}",
+                    demo(x, z)
+                );
+            }
+        }
         let (lo, hi) = t.height_range_m();
         assert!(hi > 200.0 && lo > -100.0, "{lo} … {hi}");
     }

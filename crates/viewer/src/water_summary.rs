@@ -61,19 +61,53 @@ impl WaterSummary {
     /// The books, in words: where the water that landed went.
     #[must_use]
     pub fn describe_books(&self) -> String {
-        let t = &self.totals;
-        format!(
-            "water landed {:.0} kg + drifted in over the edges {:.0} kg = snow {:.0} + held {:.0} + films {:.0} + standing {:.0} + infiltrated {:.0} + evaporated {:.0} + run off {:.0} (imbalance {:.2e} kg)",
-            t.deposited_kg,
-            t.drifted_kg,
-            t.swe_kg,
-            t.liquid_kg,
-            t.film_kg,
-            t.standing_kg,
-            t.infiltrated_kg,
-            t.evaporated_kg,
-            t.runoff_kg,
-            t.imbalance_kg()
-        )
+        describe_totals(&self.totals)
     }
+}
+
+/// The books of the cover beyond the grid (`far`, over the terrain's land off it)
+/// and of the whole terrain (with the grid's, `grid`), in words.
+#[must_use]
+pub fn describe_far_books(far: &CoverTotals, grid: &CoverTotals) -> String {
+    let mut whole = *far;
+    for (sum, part) in [
+        (&mut whole.deposited_kg, grid.deposited_kg),
+        (&mut whole.drifted_kg, grid.drifted_kg),
+        (&mut whole.swe_kg, grid.swe_kg),
+        (&mut whole.liquid_kg, grid.liquid_kg),
+        (&mut whole.film_kg, grid.film_kg),
+        (&mut whole.standing_kg, grid.standing_kg),
+        (&mut whole.infiltrated_kg, grid.infiltrated_kg),
+        (&mut whole.evaporated_kg, grid.evaporated_kg),
+        (&mut whole.runoff_kg, grid.runoff_kg),
+        (&mut whole.net_inflow_kg, grid.net_inflow_kg),
+        (&mut whole.area_m2, grid.area_m2),
+    ] {
+        *sum += part;
+    }
+    format!(
+        "beyond the grid ({:.2} km² of terrain): {}\nthe whole terrain ({:.2} km²): imbalance {:.2e} kg of {:.3e}",
+        far.area_m2 * 1e-6,
+        describe_totals(far),
+        whole.area_m2 * 1e-6,
+        whole.imbalance_kg(),
+        whole.deposited_kg
+    )
+}
+
+/// A cover's books in words: where the water that landed went.
+fn describe_totals(t: &CoverTotals) -> String {
+    format!(
+        "water landed {:.0} kg + drifted in over the edges {:.0} kg = snow {:.0} + held {:.0} + films {:.0} + standing {:.0} + infiltrated {:.0} + evaporated {:.0} + run off {:.0} (imbalance {:.2e} kg)",
+        t.deposited_kg,
+        t.drifted_kg,
+        t.swe_kg,
+        t.liquid_kg,
+        t.film_kg,
+        t.standing_kg,
+        t.infiltrated_kg,
+        t.evaporated_kg,
+        t.runoff_kg,
+        t.imbalance_kg()
+    )
 }

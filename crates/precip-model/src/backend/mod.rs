@@ -202,4 +202,10 @@ pub trait Backend {
     fn device_memory(&self) -> Option<DeviceMemory> {
         None
     }
+    /// The books of the cover beyond the grid over the terrain's land off it
+    /// ([`crate::host::HostState::far_cover_totals`]; `None` without a terrain or
+    /// before configure): with [`Backend::read_cover`]'s, the whole terrain's.
+    fn far_cover_totals(&self) -> Option<precip_cover::CoverTotals> {
+        None
+    }
 }

@@ -245,6 +245,10 @@ impl Backend for CpuBackend {
         Ok(self.state_mut("read_cover")?.cover.clone())
     }
 
+    fn far_cover_totals(&self) -> Option<precip_cover::CoverTotals> {
+        self.state.as_ref()?.host.far_cover_totals()
+    }
+
     fn read_image(&mut self) -> Result<Image, BackendError> {
         Err(BackendError::NotSupported {
             backend: NAME,

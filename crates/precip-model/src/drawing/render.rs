@@ -329,7 +329,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (1424 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (1792 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -478,13 +478,39 @@ pub struct RenderParams {
     pub terrain_samples: [UVec4; crate::scene::terrain::MAX_TERRAIN_LEVELS / 2],
     /// Each level's first word in the ground buffer, four levels a row.
     pub terrain_offsets: [UVec4; crate::scene::terrain::MAX_TERRAIN_LEVELS / 4],
-    /// The cover beyond the cover grid ([`crate::host::HostState::far_cover`]) as
-    /// the grid's three textures hold a texel: (depth mm, SWE mm, peak SWE mm,
-    /// wetness), (accumulation mask, melt mask, age days, puddle ratio), (dust
-    /// kg/m², roughness length under snow m, 0, 0).
-    pub far_cover: [Vec4; 3],
+    /// The cover beyond the cover grid ([`crate::host::HostState::far_cover`]), a
+    /// triple for each of [`crate::host::FAR_COVER_SURFACES`], as the grid's three
+    /// textures hold a texel: (depth mm, SWE mm, peak SWE mm, wetness),
+    /// (accumulation mask, melt mask, age days, puddle ratio), (dust kg/m²,
+    /// roughness length under snow m, 0, 0).
+    pub far_cover: [Vec4; 3 * FAR_COVER_TEXELS],
+    /// The terrain's land cover ([`crate::scene::terrain::LandCoverRows`]): its GPU
+    /// copy's pixels along x and z, first word in the ground buffer, 1 if present.
+    pub land_cover: UVec4,
+    /// The terrain's corner x, z and size along x, z, m.
+    pub land_cover_extent: Vec4,
+    /// Each land class ([`crate::scene::LandClass`] order): its share of the snow
+    /// seen from above, its far cover's triple, its row of the terrain's colour
+    /// ramp (v), 0.
+    pub land_classes: [Vec4; crate::scene::land_cover::LAND_CLASSES],
 }
-const _: () = assert!(size_of::<RenderParams>() == 1424);
+const _: () = assert!(size_of::<RenderParams>() == 1792);
+
+/// Texels of the cover beyond the grid ([`crate::host::FAR_COVER_SURFACES`]).
+pub const FAR_COVER_TEXELS: usize = crate::host::FAR_COVER_SURFACES.len();
+
+/// The block's rows of the land classes (`RenderParams::land_classes`).
+fn land_class_rows() -> [Vec4; crate::scene::land_cover::LAND_CLASSES] {
+    crate::scene::LandClass::ALL.map(|c| {
+        let slot = c.surface().map_or(0, crate::host::far_cover_slot);
+        Vec4::new(
+            c.snow_share(),
+            slot as f32,
+            crate::scene::terrain::terrain_ramp_v(c),
+            0.0,
+        )
+    })
+}
 
 /// The block's rows of the cloud layers: base m, top m, coverage, kind each.
 fn cloud_layer_rows(layers: &CloudLayers) -> [Vec4; MAX_CLOUD_LAYERS] {
@@ -869,7 +895,10 @@ impl RenderParams {
             terrain_levels: UVec4::ZERO,
             terrain_samples: [UVec4::ZERO; crate::scene::terrain::MAX_TERRAIN_LEVELS / 2],
             terrain_offsets: [UVec4::ZERO; crate::scene::terrain::MAX_TERRAIN_LEVELS / 4],
-            far_cover: [Vec4::ZERO; 3],
+            far_cover: [Vec4::ZERO; 3 * FAR_COVER_TEXELS],
+            land_cover: UVec4::ZERO,
+            land_cover_extent: Vec4::ZERO,
+            land_classes: land_class_rows(),
         }
         .with_unresolved_streaks(f, pixel_angle, aspect)
     }
@@ -885,26 +914,37 @@ impl RenderParams {
         self
     }
 
-    /// The block with the cover beyond the grid, `texel` (its rows as
+    /// The block with the cover beyond the grid, `texels` (each one's rows as
     /// `cover_texture.wgsl` writes a grid texel's).
     #[must_use]
-    pub fn with_far_cover(mut self, texel: &precip_cover::CoverTexel) -> Self {
-        let surface = precip_cover::Surface::from_raw(texel.surface);
-        self.far_cover = [
-            Vec4::new(
-                texel.depth_mm,
-                texel.swe_mm,
-                texel.peak_swe_mm,
-                texel.wetness,
-            ),
-            Vec4::new(
-                texel.accumulation_mask,
-                texel.melt_mask,
-                texel.age_days,
-                texel.puddle_ratio(),
-            ),
-            Vec4::new(texel.dust_kg_m2, surface.snow_roughness_m(), 0.0, 0.0),
-        ];
+    pub fn with_far_cover(mut self, texels: &[precip_cover::CoverTexel; FAR_COVER_TEXELS]) -> Self {
+        for (rows, texel) in self.far_cover.chunks_exact_mut(3).zip(texels) {
+            let surface = precip_cover::Surface::from_raw(texel.surface);
+            rows.copy_from_slice(&[
+                Vec4::new(
+                    texel.depth_mm,
+                    texel.swe_mm,
+                    texel.peak_swe_mm,
+                    texel.wetness,
+                ),
+                Vec4::new(
+                    texel.accumulation_mask,
+                    texel.melt_mask,
+                    texel.age_days,
+                    texel.puddle_ratio(),
+                ),
+                Vec4::new(texel.dust_kg_m2, surface.snow_roughness_m(), 0.0, 0.0),
+            ]);
+        }
+        self
+    }
+
+    /// The block with the terrain's land cover rows
+    /// ([`crate::host::HostState::land_cover_rows`]).
+    #[must_use]
+    pub fn with_land_cover_rows(mut self, rows: &crate::scene::terrain::LandCoverRows) -> Self {
+        self.land_cover = rows.pixels;
+        self.land_cover_extent = rows.extent_m;
         self
     }
 

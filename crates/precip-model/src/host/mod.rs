@@ -16,4 +16,6 @@ mod state;
 pub use activity::Activity;
 pub use dispatch::{MAX_WORKGROUPS_PER_DIMENSION, WORKGROUP_SIZE, cull_groups, dispatch_size};
 pub use layout::{Frames, SceneVertex};
-pub use state::{HostState, SubStepBlocks, SubSteps, WeatherChange};
+pub use state::{
+    FAR_COVER_SURFACES, HostState, SubStepBlocks, SubSteps, WeatherChange, far_cover_slot,
+};

@@ -18,7 +18,7 @@ use crate::host::activity::Activity;
 use crate::host::layout::Frames;
 use crate::particles::step::StepParams;
 use crate::physics::drag::MAX_SUBSTEP_S;
-use crate::scene::terrain::{ClipmapRows, TerrainPyramid};
+use crate::scene::terrain::{ClipmapRows, LandCoverRows, Terrain, TerrainPyramid};
 use crate::sensors::lidar::UnresolvedAir;
 use crate::sensors::optics::Optics;
 use crate::weather::Weather;
@@ -50,22 +50,80 @@ pub struct HostState {
     activity: Activity,
     /// The terrain's pyramid for the GPU's clipmap, made once per configuration.
     terrain: Option<Arc<TerrainPyramid>>,
-    /// The cover beyond the cover grid: one texel of flat grass fed by the weather's
-    /// rate, stepped with the grid's cover physics ([`HostState::far_cover`]).
-    far_cover: CoverTexel,
+    /// The terrain's land cover for the GPU (pixels, classes), made once per
+    /// configuration.
+    land_cover: Option<Arc<(glam::UVec2, Vec<f32>)>>,
+    /// The cover beyond the cover grid: a texel of each of [`FAR_COVER_SURFACES`]
+    /// fed by the weather's rate, stepped with the grid's cover physics
+    /// ([`HostState::far_cover`]).
+    far_cover: [CoverTexel; FAR_COVER_SURFACES.len()],
+    /// The terrain's land off the cover grid that each far cover texel stands for,
+    /// m² (0 without a terrain).
+    far_cover_area_m2: [f64; FAR_COVER_SURFACES.len()],
     time_s: f64,
 }
 
-/// The far cover's texel at configure: bare flat grass that holds snow, its masks
-/// at their middle (each fragment's patch noise moves them).
-fn far_cover_texel() -> CoverTexel {
-    CoverTexel {
-        eligibility: 1.0,
+/// Most terrain samples [`far_cover_areas_m2`] classifies (every `s`-th along each
+/// side beyond).
+const FAR_AREA_SAMPLES: u64 = 1 << 20;
+
+/// The area of `terrain` off the cover grid `grid` that each far cover texel stands
+/// for ([`far_cover_slot`] of [`Terrain::surface_at`]), m²: each sample (every
+/// `s`-th, at most [`FAR_AREA_SAMPLES`]) counts for its cell.
+fn far_cover_areas_m2(terrain: &Terrain, grid: &GridFrame) -> [f64; FAR_COVER_SURFACES.len()] {
+    let n = terrain.samples();
+    let total = u64::from(n.x) * u64::from(n.y);
+    let stride = ((total as f64 / FAR_AREA_SAMPLES as f64).sqrt().ceil() as u32).max(1);
+    let cell_m = terrain.spacing_m() * stride as f32;
+    let cell_m2 = f64::from(cell_m) * f64::from(cell_m);
+    let mut areas = [0.0; FAR_COVER_SURFACES.len()];
+    for j in (0..n.y).step_by(stride as usize) {
+        for i in (0..n.x).step_by(stride as usize) {
+            let xz = terrain.corner_m() + Vec2::new(i as f32, j as f32) * terrain.spacing_m();
+            if grid.texel_index(xz).is_some() {
+                continue;
+            }
+            let surface = terrain.surface_at(xz, terrain.normal_at(xz));
+            areas[far_cover_slot(surface)] += cell_m2;
+        }
+    }
+    areas
+}
+
+/// The surfaces the cover beyond the grid keeps a texel of, in the order of
+/// `RenderParams::far_cover`'s triples: a mesh's fragments and gentle untagged
+/// terrain read the grass, steep terrain, fields and forest floors the soil, a
+/// town the paving, a lake the water ([`far_cover_slot`]).
+pub const FAR_COVER_SURFACES: [Surface; 4] = [
+    Surface::Grass,
+    Surface::Soil,
+    Surface::Asphalt,
+    Surface::Water,
+];
+
+/// Which of [`FAR_COVER_SURFACES`] stands for `surface` (roofing as paving, sand
+/// as soil).
+#[must_use]
+pub const fn far_cover_slot(surface: Surface) -> usize {
+    match surface {
+        Surface::Grass => 0,
+        Surface::Soil | Surface::Sand => 1,
+        Surface::Asphalt | Surface::Roof => 2,
+        Surface::Water => 3,
+    }
+}
+
+/// The far cover's texels at configure: bare and flat, holding snow but on water
+/// (as the grid's water texels, `CoverGrid::with_ground`), their masks at their
+/// middle (each fragment's patch noise moves them).
+fn far_cover_texels() -> [CoverTexel; FAR_COVER_SURFACES.len()] {
+    FAR_COVER_SURFACES.map(|surface| CoverTexel {
+        eligibility: if surface == Surface::Water { 0.0 } else { 1.0 },
         accumulation_mask: 0.5,
         melt_mask: 0.5,
-        surface: Surface::Grass as u32,
+        surface: surface as u32,
         ..CoverTexel::default()
-    }
+    })
 }
 
 /// The uniform blocks of one sub-step.
@@ -112,7 +170,20 @@ impl HostState {
                 .as_ref()
                 .and_then(|s| s.terrain())
                 .map(|t| Arc::new(t.pyramid())),
-            far_cover: far_cover_texel(),
+            land_cover: setup
+                .scene
+                .as_ref()
+                .and_then(|s| s.terrain())
+                .and_then(|t| t.land_cover())
+                .map(|l| Arc::new(l.gpu_samples())),
+            far_cover: far_cover_texels(),
+            far_cover_area_m2: setup
+                .scene
+                .as_ref()
+                .and_then(|s| s.terrain())
+                .map_or([0.0; FAR_COVER_SURFACES.len()], |t| {
+                    far_cover_areas_m2(t, &setup.cover.frame)
+                }),
             setup: setup.clone(),
             weather: setup.weather,
             wind,
@@ -235,31 +306,75 @@ impl HostState {
         self.time_s = steps.end_time_s;
         let w = &self.weather;
         let dt_days = steps.dt_s * self.setup.cover.time_scale / 86_400.0;
+        let input = CoverInput {
+            snow_mm: w.channel_rate_mm_per_h(DepositBuffer::SNOW) * 24.0 * dt_days,
+            rain_mm: w.channel_rate_mm_per_h(DepositBuffer::RAIN) * 24.0 * dt_days,
+            air_temperature_c: w.air_temperature_c,
+            relative_humidity: w.relative_humidity,
+            wind_speed_mps: w.ground_wind_speed_mps(),
+            dt_days,
+        };
         for _ in &steps.blocks {
-            self.far_cover = update_texel(
-                self.far_cover,
-                CoverInput {
-                    snow_mm: w.channel_rate_mm_per_h(DepositBuffer::SNOW) * 24.0 * dt_days,
-                    rain_mm: w.channel_rate_mm_per_h(DepositBuffer::RAIN) * 24.0 * dt_days,
-                    air_temperature_c: w.air_temperature_c,
-                    relative_humidity: w.relative_humidity,
-                    wind_speed_mps: w.ground_wind_speed_mps(),
-                    dt_days,
-                },
-                &self.setup.cover.params,
-            );
+            for texel in &mut self.far_cover {
+                *texel = update_texel(*texel, input, &self.setup.cover.params);
+            }
         }
     }
 
     /// The cover beyond the cover grid (a scene's far meshes, a terrain's
-    /// kilometres): flat grass under the weather since configure, its snow fallen at
-    /// the weather's rate and melted, settled and aged, its surface wetted and dried,
-    /// by the grid's own texel physics (`precip_cover::update_texel`) — no particles,
-    /// no drift or flow, and outside the water's books. The renderer shades what lies
-    /// off the grid with it, each fragment's slope and patch noise as on the grid.
+    /// kilometres): a flat texel of each of [`FAR_COVER_SURFACES`] under the weather
+    /// since configure, its snow fallen at the weather's rate and melted, settled
+    /// and aged, its surface wetted and dried, by the grid's own texel physics
+    /// (`precip_cover::update_texel`) — no particles, no drift or flow; on a
+    /// terrain each texel keeps the books of its surface's land off the grid
+    /// ([`HostState::far_cover_totals`]). The renderer shades what lies off the grid with the texel
+    /// of its surface ([`far_cover_slot`]), each fragment's slope, land class and
+    /// patch noise as on the grid.
     #[must_use]
-    pub fn far_cover(&self) -> &CoverTexel {
+    pub fn far_cover(&self) -> &[CoverTexel; FAR_COVER_SURFACES.len()] {
         &self.far_cover
+    }
+
+    /// The books of the cover beyond the grid: each far texel for the terrain's
+    /// land of its surface off the grid (`None` without a terrain). With the
+    /// grid's books they are the whole terrain's.
+    #[must_use]
+    pub fn far_cover_totals(&self) -> Option<precip_cover::CoverTotals> {
+        let area = self.far_cover_area_m2.iter().sum::<f64>();
+        (area > 0.0).then(|| {
+            precip_cover::CoverTotals::of_texels(self.far_cover.iter().zip(self.far_cover_area_m2))
+        })
+    }
+
+    /// The rows of the frame block that place the terrain's land cover on the GPU
+    /// (zeros without one: every fragment's class is no data).
+    #[must_use]
+    pub fn land_cover_rows(&self) -> LandCoverRows {
+        match (&self.terrain, &self.land_cover, self.terrain_extent_m()) {
+            (Some(p), Some(l), Some((corner, size))) => LandCoverRows {
+                pixels: glam::UVec4::new(
+                    l.0.x,
+                    l.0.y,
+                    self.ground_words() + p.heights_m.len() as u32,
+                    1,
+                ),
+                extent_m: glam::Vec4::new(corner.x, corner.y, size.x, size.y),
+            },
+            _ => LandCoverRows::default(),
+        }
+    }
+
+    /// The land cover's classes for the GPU, after the pyramid in the ground
+    /// buffer, where the terrain has one.
+    #[must_use]
+    pub fn land_cover_samples(&self) -> Option<&[f32]> {
+        self.land_cover.as_ref().map(|l| l.1.as_slice())
+    }
+
+    /// The terrain's corner (x, z) and size, m.
+    fn terrain_extent_m(&self) -> Option<(Vec2, Vec2)> {
+        let t = self.setup.scene.as_ref()?.terrain()?;
+        Some((t.corner_m(), t.size_m()))
     }
 
     /// The block `init_particles` runs with at configure (the particles born warm
@@ -515,5 +630,108 @@ mod tests {
         assert_eq!(host.wind_params().mean_wind_mps, weather.wind.mean_wind_mps);
         let [x, z] = blocks.cover.air().wind_mps;
         assert!((x - 3.0).abs() < f32::EPSILON && (z + 4.0).abs() < f32::EPSILON);
+    }
+
+    /// 2 mm/h of dry snow at −5 °C for half a second (half a day of cover at a
+    /// day a second).
+    fn snow_for_half_a_second(host: &mut HostState) {
+        let snow = Weather {
+            kind: crate::PrecipitationKind::DrySnow,
+            intensity_mm_per_h: 2.0,
+            air_temperature_c: -5.0,
+            ..*host.weather()
+        };
+        let _rebaked = host.set_weather(&snow).expect("a valid weather");
+        for _ in 0..10 {
+            let steps = host.substeps(0.05).expect("a valid step");
+            host.advance(&steps);
+        }
+    }
+
+    #[test]
+    fn the_cover_beyond_the_grid_keeps_a_texel_of_each_surface() {
+        let mut setup = Setup::over_flat_ground(20.0, 8, 10.0, 256);
+        // A day a second, so a few seconds of steps lay a visible snowfall.
+        setup.cover.time_scale = 86_400.0;
+        let mut host = HostState::configure(&setup).expect("a valid setup");
+        snow_for_half_a_second(&mut host);
+        let far = *host.far_cover();
+        for (texel, surface) in far.iter().zip(FAR_COVER_SURFACES) {
+            assert_eq!(texel.surface, surface as u32);
+            assert_eq!(
+                far_cover_slot(surface),
+                far_cover_slot(Surface::from_raw(texel.surface))
+            );
+        }
+        let grass = far[far_cover_slot(Surface::Grass)];
+        let paving = far[far_cover_slot(Surface::Asphalt)];
+        let water = far[far_cover_slot(Surface::Water)];
+        // Half a simulated day of 2 mm/h: grass and paving hold the snow, a lake
+        // takes it in.
+        assert!(grass.swe_mm > 5.0, "grass {}", grass.swe_mm);
+        assert!(paving.swe_mm > 5.0, "paving {}", paving.swe_mm);
+        assert!(water.swe_mm < 1e-3, "water {}", water.swe_mm);
+        assert_eq!(
+            far_cover_slot(Surface::Roof),
+            far_cover_slot(Surface::Asphalt)
+        );
+        assert_eq!(far_cover_slot(Surface::Sand), far_cover_slot(Surface::Soil));
+    }
+
+    #[test]
+    fn the_books_beyond_the_grid_cover_the_terrain_off_it_and_close() {
+        use crate::scene::LandCover;
+        use crate::scene::builtin::house_on_plane;
+        // 2 km of flat terrain, its west half a lake, under the house's 40 m grid.
+        let (mut setup, _) = Setup::over_scene(house_on_plane(), 32, 6.0, 256).expect("valid");
+        let terrain = Terrain::new(
+            glam::UVec2::splat(201),
+            10.0,
+            Vec2::ZERO,
+            vec![-0.5; 201 * 201],
+        )
+        .expect("valid")
+        .with_land_cover(
+            LandCover::from_worldcover(glam::UVec2::new(2, 1), &[80, 30]).expect("valid"),
+        );
+        let scene = setup.scene.take().expect("a scene");
+        setup.scene = Some(Arc::new(
+            Arc::unwrap_or_clone(scene).on_terrain(Arc::new(terrain)),
+        ));
+        setup.cover.time_scale = 86_400.0;
+        let mut host = HostState::configure(&setup).expect("a valid setup");
+        snow_for_half_a_second(&mut host);
+        let far = host.far_cover_totals().expect("a terrain");
+        // The terrain's 4 km² but the grid's square, half of it lake.
+        let grid = f64::from(setup.cover.frame.size_m.element_product());
+        assert!(
+            (far.area_m2 - (4.0e6 - grid)).abs() < 0.01 * 4.0e6,
+            "{}",
+            far.area_m2
+        );
+        assert!(far.deposited_kg > 0.0);
+        assert!(
+            far.imbalance_kg().abs() < 1e-5 * far.deposited_kg,
+            "{} of {}",
+            far.imbalance_kg(),
+            far.deposited_kg
+        );
+        // The lake took its half in (run off into a water body), the grass holds
+        // its half as snow.
+        assert!(
+            (far.runoff_kg / far.deposited_kg - 0.5).abs() < 0.02,
+            "{far:?}"
+        );
+        assert!(
+            (far.swe_kg / far.deposited_kg - 0.5).abs() < 0.02,
+            "{far:?}"
+        );
+        // Without a terrain there are no books beyond the grid.
+        assert!(
+            HostState::configure(&Setup::over_flat_ground(20.0, 8, 10.0, 256))
+                .expect("valid")
+                .far_cover_totals()
+                .is_none()
+        );
     }
 }

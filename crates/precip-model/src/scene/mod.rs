@@ -11,10 +11,12 @@
 pub mod builtin;
 pub mod displacement;
 pub mod gpu_scene;
+pub mod land_cover;
 pub mod terrain;
 pub mod tessellate;
 pub mod top_down;
 
+pub use land_cover::{LandClass, LandCover, LandCoverError};
 pub use terrain::{SharedTerrain, Terrain, TerrainError};
 
 use glam::{Vec2, Vec3};

@@ -9,7 +9,10 @@
 //!   so particles land on it and snow lies, drifts and melts on it. Its snow
 //!   eligibility comes from its slope ([`crate::scene::slope_eligibility`], as a
 //!   mesh's without tags), its surface is grass where it is gentle, soil where it is
-//!   steep ([`TERRAIN_GRASS_SLOPE_DEG`]).
+//!   steep ([`TERRAIN_GRASS_SLOPE_DEG`]) — or, where it has a land cover
+//!   ([`Terrain::with_land_cover`], [`crate::scene::land_cover`]), its class's
+//!   surface, and the slope's eligibility times its class's share of snow seen from
+//!   above.
 //! - **The picture**: drawn as a *geometry clipmap* (Losasso & Hoppe 2004, *ACM
 //!   Transactions on Graphics* 23(3)): nested square grids of [`CLIPMAP_QUADS`]²
 //!   quads centred on the camera, each level's quads twice the size of the level
@@ -35,6 +38,7 @@ use std::sync::Arc;
 
 use glam::{UVec2, Vec2, Vec3};
 
+use crate::scene::land_cover::{LAND_CLASSES, LandClass, LandCover};
 use crate::scene::slope_eligibility;
 
 /// Quads along a side of each level of the clipmap. WGSL twin: `CLIPMAP_QUADS`.
@@ -106,6 +110,7 @@ pub struct Terrain {
     spacing_m: f32,
     corner_m: Vec2,
     heights_m: Vec<f32>,
+    land_cover: Option<LandCover>,
 }
 
 impl Terrain {
@@ -150,7 +155,46 @@ impl Terrain {
             spacing_m,
             corner_m: centre_m - 0.5 * size,
             heights_m,
+            land_cover: None,
         })
+    }
+
+    /// The terrain with `land_cover` over its extent (module docs of
+    /// [`crate::scene::land_cover`]).
+    #[must_use]
+    pub fn with_land_cover(mut self, land_cover: LandCover) -> Self {
+        self.land_cover = Some(land_cover);
+        self
+    }
+
+    /// Its land cover, if it has one.
+    #[must_use]
+    pub fn land_cover(&self) -> Option<&LandCover> {
+        self.land_cover.as_ref()
+    }
+
+    /// The land-cover class at world `(x, z)` (no data without a raster or off it).
+    #[must_use]
+    pub fn land_class_at(&self, xz_m: Vec2) -> LandClass {
+        self.land_cover.as_ref().map_or(LandClass::NoData, |l| {
+            l.class_at((xz_m - self.corner_m) / self.size_m())
+        })
+    }
+
+    /// The surface at world `(x, z)` where the normal is `normal`: its land class's,
+    /// else the slope's ([`Terrain::surface_for`]).
+    #[must_use]
+    pub fn surface_at(&self, xz_m: Vec2, normal: Vec3) -> precip_cover::Surface {
+        self.land_class_at(xz_m)
+            .surface()
+            .unwrap_or_else(|| Self::surface_for(normal))
+    }
+
+    /// Snow eligibility at world `(x, z)` where the normal is `normal`: the
+    /// slope's times its land class's share seen from above.
+    #[must_use]
+    pub fn eligibility_at(&self, xz_m: Vec2, normal: Vec3) -> f32 {
+        Self::eligibility_for(normal) * self.land_class_at(xz_m).snow_share()
     }
 
     /// Samples along x and z.
@@ -292,36 +336,51 @@ pub fn terrain_ramp_u(normal: Vec3) -> f32 {
     (0.5 + (n - 1.0) * steep) / n
 }
 
-/// The terrain's colours by slope (sRGB), flat to steep: winter grass up to about
-/// 25°, bare soil to 45°, grey rock beyond — what a land-cover raster would say
-/// where none is given.
+/// Where down the terrain's colour ramp land class `class` reads (its row's
+/// centre). WGSL twin: `fs_terrain`'s `uv.y`.
+#[must_use]
+pub fn terrain_ramp_v(class: LandClass) -> f32 {
+    (class as u32 as f32 + 0.5) / LAND_CLASSES as f32
+}
+
+/// The terrain's colours (sRGB): a row per land class ([`LandClass`] order; row 0,
+/// no data, what the slope alone says), by slope along it, flat to steep. Each
+/// class's colour holds to 35° (forests grow on steep sides) and gives way to grey
+/// rock from 35° to 50°; row 0 is winter grass up to about 25°, bare soil to 45°,
+/// rock beyond.
 #[must_use]
 pub fn terrain_ramp() -> crate::TextureRgba8 {
-    const GRASS: [f32; 3] = [104.0, 112.0, 66.0];
     const SOIL: [f32; 3] = [112.0, 96.0, 74.0];
     const ROCK: [f32; 3] = [122.0, 120.0, 114.0];
     let n = TERRAIN_RAMP_TEXELS;
-    let mut rgba8 = Vec::with_capacity(4 * n as usize);
-    for i in 0..n {
-        // The texel's slope: back from terrain_ramp_u.
-        let steep = i as f32 / (n - 1) as f32;
-        let up = 1.0 - 0.5 * steep;
-        let slope_deg = up.clamp(-1.0, 1.0).acos().to_degrees();
-        let blend = |a: [f32; 3], b: [f32; 3], t: f32| {
-            let t = t.clamp(0.0, 1.0);
-            [0, 1, 2].map(|c| a[c] + (b[c] - a[c]) * t)
-        };
-        let colour = if slope_deg < 35.0 {
-            blend(GRASS, SOIL, (slope_deg - 20.0) / 15.0)
-        } else {
-            blend(SOIL, ROCK, (slope_deg - 35.0) / 15.0)
-        };
-        rgba8.extend(colour.map(|c| c.round() as u8));
-        rgba8.push(255);
+    let mut rgba8 = Vec::with_capacity(4 * n as usize * LAND_CLASSES);
+    let blend = |a: [f32; 3], b: [f32; 3], t: f32| {
+        let t = t.clamp(0.0, 1.0);
+        [0, 1, 2].map(|c| a[c] + (b[c] - a[c]) * t)
+    };
+    for class in LandClass::ALL {
+        let flat = class.colour().map(f32::from);
+        let to_rock = class != LandClass::NoData;
+        for i in 0..n {
+            // The texel's slope: back from terrain_ramp_u.
+            let steep = i as f32 / (n - 1) as f32;
+            let up = 1.0 - 0.5 * steep;
+            let slope_deg = up.clamp(-1.0, 1.0).acos().to_degrees();
+            let rock = (slope_deg - 35.0) / 15.0;
+            let colour = if to_rock {
+                blend(flat, ROCK, rock)
+            } else if slope_deg < 35.0 {
+                blend(flat, SOIL, (slope_deg - 20.0) / 15.0)
+            } else {
+                blend(SOIL, ROCK, rock)
+            };
+            rgba8.extend(colour.map(|c| c.round() as u8));
+            rgba8.push(255);
+        }
     }
     crate::TextureRgba8 {
         width_px: n,
-        height_px: 1,
+        height_px: LAND_CLASSES as u32,
         rgba8,
     }
 }
@@ -370,6 +429,17 @@ pub struct ClipmapRows {
     pub samples: [glam::UVec4; MAX_TERRAIN_LEVELS / 2],
     /// Level `k`'s first word in the pyramid, four levels a row.
     pub offsets: [glam::UVec4; MAX_TERRAIN_LEVELS / 4],
+}
+
+/// The rows of the frame block that place the terrain's land cover
+/// (`RenderParams::land_cover*`; [`crate::host::HostState::land_cover_rows`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LandCoverRows {
+    /// The GPU copy's pixels along x and z, its first word in the ground buffer,
+    /// and 1 (0: no land cover).
+    pub pixels: glam::UVec4,
+    /// The terrain's corner x, z and its size along x and z, m.
+    pub extent_m: glam::Vec4,
 }
 
 impl ClipmapRows {
@@ -698,11 +768,44 @@ mod tests {
             (terrain_ramp_u(Vec3::new(1.0, 0.2, 0.0).normalize()) - (n - 0.5) / n).abs() < 1e-6
         );
         let ramp = terrain_ramp();
-        assert_eq!(ramp.rgba8.len(), 4 * TERRAIN_RAMP_TEXELS as usize);
+        let row = 4 * TERRAIN_RAMP_TEXELS as usize;
+        assert_eq!(ramp.rgba8.len(), row * LAND_CLASSES);
         // Grass is greener than rock.
         assert!(ramp.rgba8[1] > ramp.rgba8[0] && ramp.rgba8[1] > ramp.rgba8[2]);
-        let last = ramp.rgba8.len() - 4;
+        let last = row - 4;
         assert!(ramp.rgba8[last + 1] <= ramp.rgba8[last]);
+        // Each class's row starts at its colour and ends at the rock's.
+        for class in LandClass::ALL {
+            let start = class as usize * row;
+            assert_eq!(ramp.rgba8[start..start + 3], class.colour(), "{class:?}");
+            assert_eq!(
+                ramp.rgba8[start + row - 4..start + row - 1],
+                ramp.rgba8[last..last + 3],
+                "{class:?}"
+            );
+        }
+        assert!((terrain_ramp_v(LandClass::NoData) - 0.5 / LAND_CLASSES as f32).abs() < 1e-6);
+        assert!((terrain_ramp_v(LandClass::MossAndLichen) - 1.0 + 0.5 / 12.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_land_cover_gives_the_surface_and_the_snow_seen_from_above() {
+        // West half forest, east half a lake, over a flat 100 m.
+        let t = terrain(11, 10.0, |_, _| 0.0).with_land_cover(
+            LandCover::from_worldcover(UVec2::new(2, 1), &[10, 80]).expect("valid"),
+        );
+        let (west, east) = (Vec2::new(-20.0, 0.0), Vec2::new(20.0, 0.0));
+        assert_eq!(t.land_class_at(west), LandClass::Trees);
+        assert_eq!(t.land_class_at(east), LandClass::Water);
+        assert_eq!(t.land_class_at(Vec2::new(80.0, 0.0)), LandClass::NoData);
+        assert_eq!(t.surface_at(west, Vec3::Y), precip_cover::Surface::Soil);
+        assert_eq!(t.surface_at(east, Vec3::Y), precip_cover::Surface::Water);
+        assert!((t.eligibility_at(west, Vec3::Y) - 0.5).abs() < 1e-6);
+        assert!(t.eligibility_at(east, Vec3::Y).abs() < 1e-6);
+        // Without a raster, the slope alone.
+        let bare = terrain(11, 10.0, |_, _| 0.0);
+        assert_eq!(bare.surface_at(west, Vec3::Y), precip_cover::Surface::Grass);
+        assert!((bare.eligibility_at(west, Vec3::Y) - 1.0).abs() < 1e-6);
     }
 
     #[test]

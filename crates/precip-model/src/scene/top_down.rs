@@ -101,8 +101,9 @@ impl GroundMap {
     }
 
     /// The top-most of a prepared `scene` and `terrain` over `frame`: where the
-    /// terrain rises above every mesh (or no mesh lies) its height, its slope's
-    /// eligibility and surface ([`Terrain::eligibility_for`], [`Terrain::surface_for`]);
+    /// terrain rises above every mesh (or no mesh lies) its height, its eligibility
+    /// and surface from its slope and land cover ([`Terrain::eligibility_at`],
+    /// [`Terrain::surface_at`]);
     /// off the terrain and the meshes the scene's lowest height, as
     /// [`GroundMap::from_scene`].
     #[must_use]
@@ -118,8 +119,8 @@ impl GroundMap {
                 Some(t) if t > *h => {
                     let normal = terrain.normal_at(centre);
                     *h = t;
-                    map.eligibility[k] = Terrain::eligibility_for(normal);
-                    map.surface[k] = Terrain::surface_for(normal);
+                    map.eligibility[k] = terrain.eligibility_at(centre, normal);
+                    map.surface[k] = terrain.surface_at(centre, normal);
                 }
                 _ if !h.is_finite() => *h = floor,
                 _ => {}

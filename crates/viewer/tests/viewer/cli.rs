@@ -490,3 +490,75 @@ fn bad_command_lines_are_refused_naming_the_value_and_what_is_allowed_once() {
         "{preset}"
     );
 }
+
+#[test]
+fn a_terrain_with_a_land_cover_keeps_the_books_of_the_land_beyond_the_grid() {
+    if !gpu_or_skip("a_terrain_with_a_land_cover_keeps_the_books_of_the_land_beyond_the_grid") {
+        return;
+    }
+    let dir = temp_dir("land-cover");
+    // 1 km of gentle slope at 10 m, its west half a lake, its east half forest.
+    let heights = dir.join("heights.png");
+    image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_fn(101, 101, |x, _| {
+        image::Luma([(x * 100) as u16])
+    })
+    .save(&heights)
+    .expect("written");
+    let cover = dir.join("cover.png");
+    image::GrayImage::from_raw(2, 1, vec![80, 10])
+        .expect("pixels")
+        .save(&cover)
+        .expect("written");
+    let terrain = [
+        "--terrain",
+        heights.to_str().expect("utf-8"),
+        "--terrain-spacing",
+        "10",
+        "--land-cover",
+        cover.to_str().expect("utf-8"),
+        "--kind",
+        "rain",
+        "--intensity",
+        "4",
+    ];
+    let out = small_headless_run(4, &terrain, &dir);
+    let (text, err) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("land cover: 2 × 1 pixels: Trees 50.0 %, Water 50.0 %"),
+        "{err}"
+    );
+    let far = text
+        .lines()
+        .find(|l| l.starts_with("beyond the grid ("))
+        .unwrap_or_else(|| panic!("no far books in {text}"));
+    assert!(far.contains("km² of terrain): water landed"), "{far}");
+    assert!(
+        text.lines().any(|l| l.starts_with("the whole terrain (")),
+        "{text}"
+    );
+    // A land cover of another map's codes is refused with the pixel.
+    image::GrayImage::from_raw(2, 1, vec![80, 211])
+        .expect("pixels")
+        .save(&cover)
+        .expect("written");
+    let out = small_headless_run(1, &terrain, &dir);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("land cover code 211 at pixel (1, 0) is not an ESA WorldCover class"),
+        "{err}"
+    );
+    // And a land cover needs a terrain.
+    let out = small_headless_run(1, &["--land-cover", "x.png"], &dir);
+    assert!(!out.status.success());
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("--terrain"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
