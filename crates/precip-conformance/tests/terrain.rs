@@ -39,7 +39,13 @@ fn setup(on_terrain: bool) -> Setup {
 /// The house's setup on `terrain` if any, in clear calm air, looking north from
 /// 2 m up.
 fn setup_on(terrain: Option<Terrain>) -> Setup {
-    let (mut setup, _) = Setup::over_scene(house_on_plane(), 64, 6.0, 2_000).expect("valid");
+    scene_on(house_on_plane(), terrain)
+}
+
+/// `scene`'s setup on `terrain` if any, in clear calm air, looking north from 2 m
+/// up.
+fn scene_on(scene: precip_model::Scene, terrain: Option<Terrain>) -> Setup {
+    let (mut setup, _) = Setup::over_scene(scene, 64, 6.0, 2_000).expect("valid");
     if let Some(terrain) = terrain {
         let scene = setup.scene.take().expect("a scene");
         let scene = Arc::unwrap_or_clone(scene).on_terrain(Arc::new(terrain));
@@ -214,6 +220,51 @@ fn the_land_cover_colours_the_terrain_by_class_on_every_gpu_backend() {
         assert!(
             ice > grass_e + 10.0,
             "{}: ice {ice} against grass {grass_e}",
+            subject.name
+        );
+        images.push((subject.name.clone(), with));
+    }
+    assert_backends_agree(&images);
+}
+
+#[test]
+fn the_pond_mirrors_the_terrain_s_ridge_on_every_gpu_backend() {
+    use precip_model::scene::builtin::house_with_pond;
+    let bare = scene_on(house_with_pond(), None);
+    let on = scene_on(house_with_pond(), Some(valley()));
+    // The pond (z 4–14 m, x ±8 m) from 2 m up at z = 30: 4.4° to 7.1° below the
+    // horizon; its mirror looks as far above it, at the ridge (0°–11° up), but for
+    // the house's reflection in its middle (so its sides are read).
+    let camera = on.camera;
+    let rows = row_at(&camera, -4.8)..row_at(&camera, -6.8);
+    let mut images = Vec::new();
+    for mut subject in gpu_subjects("the_pond_mirrors_the_terrain_s_ridge") {
+        if !subject.renders() {
+            continue;
+        }
+        let without = render(&mut subject, &bare);
+        let with = render(&mut subject, &on);
+        subject.check_clean("mirroring a terrain");
+        let mut n = 0;
+        let mut total = 0;
+        for y in rows.clone() {
+            for x in (7 * WIDTH / 32..12 * WIDTH / 32).chain(20 * WIDTH / 32..25 * WIDTH / 32) {
+                let i = 4 * (y * WIDTH + x) as usize;
+                total += 1;
+                if (0..3).any(|c| with.rgba8[i + c].abs_diff(without.rgba8[i + c]) > 6) {
+                    n += 1;
+                }
+            }
+        }
+        let share = n as f32 / total as f32;
+        println!(
+            "{}: the pond's pixels differ in {:.1} % with the ridge behind",
+            subject.name,
+            100.0 * share
+        );
+        assert!(
+            share > 0.5,
+            "{}: the pond does not mirror the terrain ({share})",
             subject.name
         );
         images.push((subject.name.clone(), with));

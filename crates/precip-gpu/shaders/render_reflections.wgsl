@@ -109,6 +109,10 @@ const MIRROR_CUT_M: f32 = 0.005;
 // the level cut.
 @fragment
 fn fs_mirror(in: SceneVarying) -> @location(0) vec4<f32> {
+    return mirror_fragment(in);
+}
+
+fn mirror_fragment(in: SceneVarying) -> vec4<f32> {
     // From the storage copy: a branch tests it (render_scene.wgsl's `switches`).
     let level = switches.mirror.x;
     if (in.world_m.y < level - MIRROR_CUT_M) {

@@ -83,14 +83,14 @@ struct TerrainPoint {
     drawn: bool,
 }
 
-// Vertex v of the clipmap's draw: its position and normal, blended into the next
-// level's over the level's last CLIPMAP_MORPH_QUADS quads; not drawn inside the
-// finer level or wholly off the terrain.
-fn clipmap_vertex(v: u32, camera_xz_m: vec2<f32>) -> TerrainPoint {
+// Vertex v of the clipmap's draw from level `first` (params.terrain_levels.x, the
+// water's mirror's .w): its position and normal, blended into the next level's
+// over the level's last CLIPMAP_MORPH_QUADS quads; not drawn inside the finer
+// level or wholly off the terrain.
+fn clipmap_vertex(v: u32, camera_xz_m: vec2<f32>, first: u32) -> TerrainPoint {
     var out: TerrainPoint;
     out.drawn = false;
     out.normal = vec3<f32>(0.0, 1.0, 0.0);
-    let first = params.terrain_levels.x;
     let levels = params.terrain_levels.y;
     let k = first + v / CLIPMAP_LEVEL_VERTICES;
     if (k >= levels) {
@@ -158,14 +158,19 @@ fn terrain_scene_vertex(p: TerrainPoint) -> SceneVertex {
 // Off the frustum: every vertex of a quad not drawn lands on this one point.
 const TERRAIN_NOT_DRAWN: vec4<f32> = vec4<f32>(2.0, 2.0, 2.0, 1.0);
 
-@vertex
-fn vs_terrain(@builtin(vertex_index) v: u32) -> SceneVarying {
-    let p = clipmap_vertex(v, params.camera_m_cone_cos.xz);
-    var out = scene_varying(terrain_scene_vertex(p), params.view_proj);
+// Vertex v of the clipmap from level `first` through `view_proj`.
+fn terrain_varying_of(v: u32, first: u32, view_proj: mat4x4<f32>) -> SceneVarying {
+    let p = clipmap_vertex(v, params.camera_m_cone_cos.xz, first);
+    var out = scene_varying(terrain_scene_vertex(p), view_proj);
     if (!p.drawn) {
         out.clip = TERRAIN_NOT_DRAWN;
     }
     return out;
+}
+
+@vertex
+fn vs_terrain(@builtin(vertex_index) v: u32) -> SceneVarying {
+    return terrain_varying_of(v, params.terrain_levels.x, params.view_proj);
 }
 
 // A terrain fragment: its land class (Rust: Terrain::land_class_at) picks the
@@ -176,19 +181,40 @@ fn vs_terrain(@builtin(vertex_index) v: u32) -> SceneVarying {
 // pixels').
 @fragment
 fn fs_terrain(in: SceneVarying) -> @location(0) vec4<f32> {
-    let pixel_m = params.land_cover_extent.zw / max(vec2<f32>(params.land_cover.xy), vec2<f32>(1.0));
-    let land = land_class_at(in.surface_m.xz + cover_warp_m(in.surface_m.xz, min(3.0 * pixel_m, vec2<f32>(30.0))));
+    return scene_fragment(terrain_varying(in));
+}
+
+// The terrain reflected about the water bodies' level, into the mirror image
+// (render_reflections.wgsl's fs_mirror, its fragments the terrain's).
+@vertex
+fn vs_terrain_mirror(@builtin(vertex_index) v: u32) -> SceneVarying {
+    return terrain_varying_of(v, params.terrain_levels.w, params.mirror_view_proj);
+}
+
+@fragment
+fn fs_terrain_mirror(in: SceneVarying) -> @location(0) vec4<f32> {
+    return mirror_fragment(terrain_varying(in));
+}
+
+// A terrain fragment's varyings with its land class's row, snow share and far
+// cover texel (fs_terrain above).
+fn terrain_varying(in: SceneVarying) -> SceneVarying {
+    var land = 0u;
+    if (params.land_cover.w != 0u) {
+        let pixel_m = params.land_cover_extent.zw / max(vec2<f32>(params.land_cover.xy), vec2<f32>(1.0));
+        land = land_class_at(in.surface_m.xz + cover_warp_m(in.surface_m.xz, min(3.0 * pixel_m, vec2<f32>(30.0))));
+    }
     let row = params.land_classes[land];
     var v = in;
     v.uv.y = row.z;
     v.eligibility = in.eligibility * row.x;
     far_cover_slot = terrain_far_slot(land, normalize_or_zero(in.normal).y);
-    return scene_fragment(v);
+    return v;
 }
 
 @vertex
 fn vs_terrain_shadow(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
-    let p = clipmap_vertex(v, params.camera_m_cone_cos.xz);
+    let p = clipmap_vertex(v, params.camera_m_cone_cos.xz, params.terrain_levels.x);
     if (!p.drawn) {
         return TERRAIN_NOT_DRAWN;
     }

@@ -557,9 +557,10 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
             &[RENDER_FRAME, CLOUD_IMAGE, CLOUD_FRESH]
         }
         (Program::Render, "vs_clouds" | "fs_clouds") => &[RENDER_FRAME, CLOUD_IMAGE_B, CLOUD_FRESH],
-        (Program::Render, "vs_mirror" | "fs_mirror") => {
-            &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL]
-        }
+        (
+            Program::Render,
+            "vs_mirror" | "fs_mirror" | "vs_terrain_mirror" | "fs_terrain_mirror",
+        ) => &[RENDER_FRAME, RENDER_LIGHT, RENDER_MATERIAL],
         (
             Program::Render,
             "vs_scene"

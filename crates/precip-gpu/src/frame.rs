@@ -144,11 +144,13 @@ pub enum DrawOf {
     /// One triangle of 3 vertices covering the target.
     FullScreenTriangle,
     /// The terrain's clipmap: `precip_model::scene::terrain::ClipmapRows::vertices`
-    /// vertices pulled by their index, with the terrain's material group bound
-    /// when `materials`.
+    /// vertices pulled by their index (`mirror_vertices` in the water's mirror),
+    /// with the terrain's material group bound when `materials`.
     TerrainClipmap {
         /// Bind the terrain's material group.
         materials: bool,
+        /// The mirror's levels (from `ClipmapRows::levels.w`), not the frame's.
+        mirror: bool,
     },
     /// `drawIndirect` with the frame's [`FrameDraws`] at this byte offset.
     Indirect {
@@ -322,7 +324,10 @@ const SHADOW_DRAW: Draw = Draw {
 // The terrain's clipmap into the shadow map.
 const TERRAIN_SHADOW_DRAW: Draw = Draw {
     entry_points: render_passes::TERRAIN_SHADOW,
-    of: DrawOf::TerrainClipmap { materials: false },
+    of: DrawOf::TerrainClipmap {
+        materials: false,
+        mirror: false,
+    },
     scene_vertices: false,
     when: PassWhen::Terrain,
     ..SHADOW_DRAW
@@ -332,7 +337,10 @@ const TERRAIN_SHADOW_DRAW: Draw = Draw {
 // vertices come from the pyramid, not the scene's buffer).
 const TERRAIN_DRAW: Draw = Draw {
     entry_points: render_passes::TERRAIN,
-    of: DrawOf::TerrainClipmap { materials: true },
+    of: DrawOf::TerrainClipmap {
+        materials: true,
+        mirror: false,
+    },
     scene_vertices: false,
     when: PassWhen::Terrain,
     ..SCENE_DRAW
@@ -399,6 +407,19 @@ const MIRROR_DRAW: Draw = Draw {
     entry_points: render_passes::MIRROR,
     when: PassWhen::Always,
     ..SCENE_DRAW
+};
+
+// The terrain's clipmap reflected into the mirror image (the hills in the pond),
+// from a coarser level than the frame's (ClipmapRows::mirror_vertices).
+const TERRAIN_MIRROR_DRAW: Draw = Draw {
+    entry_points: render_passes::TERRAIN_MIRROR,
+    of: DrawOf::TerrainClipmap {
+        materials: true,
+        mirror: true,
+    },
+    scene_vertices: false,
+    when: PassWhen::Terrain,
+    ..MIRROR_DRAW
 };
 
 // The cloud layers at a quarter of the frame's side (render_clouds.wgsl), into
@@ -574,7 +595,7 @@ pub const FRAME_PASSES: [FramePass; 16] = [
             depth_stored: true,
             colour: Some(AttachmentLoad::Clear),
             colour_target: ColourTarget::Mirror,
-            draws: &[MIRROR_DRAW],
+            draws: &[MIRROR_DRAW, TERRAIN_MIRROR_DRAW],
         }),
         when: PassWhen::WaterMirrored,
     },

@@ -780,6 +780,10 @@ pub mod render_passes {
     /// The scene but the water bodies, reflected about their level, into the
     /// mirror image.
     pub const MIRROR: (&str, Option<&str>) = ("vs_mirror", Some("fs_mirror"));
+    /// The terrain's clipmap reflected about the water bodies' level, into the
+    /// mirror image.
+    pub const TERRAIN_MIRROR: (&str, Option<&str>) =
+        ("vs_terrain_mirror", Some("fs_terrain_mirror"));
     /// Snow sprites: triangle strip of 4 vertices per drawn particle, indirect draw 0.
     pub const SNOW: (&str, Option<&str>) = ("vs_snow", Some("fs_snow"));
     /// Rain tetrahedra: triangle list of 12 vertices per drawn particle, indirect draw 1.

@@ -829,13 +829,17 @@ impl<G: Gpu> FrameState<G> {
                                 }
                             }
                             DrawOf::FullScreenTriangle => commands.push(Command::Draw(3)),
-                            DrawOf::TerrainClipmap { materials } => {
+                            DrawOf::TerrainClipmap { materials, mirror } => {
                                 if let Some(scene) = &self.scene {
+                                    let rows = decision.params.clipmap_rows();
                                     scene.draw_terrain(
                                         &mut commands,
                                         materials,
-                                        decision.params.terrain.w as u32
-                                            * precip_model::scene::terrain::CLIPMAP_LEVEL_VERTICES,
+                                        if mirror {
+                                            rows.mirror_vertices()
+                                        } else {
+                                            rows.vertices()
+                                        },
                                     );
                                 }
                             }

@@ -543,20 +543,16 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             terrain.spacing_m(),
             started.elapsed().as_secs_f32()
         );
-        let land_cover = match (&args.land_cover, source) {
-            (Some(file), _) => Some(precip_viewer::land_cover_file::load_land_cover(file)?),
-            (None, precip_viewer::terrain_file::TerrainSource::Generated) => Some(
-                precip_viewer::land_cover_file::generated_land_cover(&terrain)?,
-            ),
-            (None, _) => None,
-        };
-        let terrain = match land_cover {
-            Some(land_cover) => {
-                eprintln!("{}", land_cover_summary(&land_cover));
-                terrain.with_land_cover(land_cover)
+        // A file's land cover, or the generated terrain's own.
+        let terrain = match &args.land_cover {
+            Some(file) => {
+                terrain.with_land_cover(precip_viewer::land_cover_file::load_land_cover(file)?)
             }
             None => terrain,
         };
+        if let Some(land_cover) = terrain.land_cover() {
+            eprintln!("{}", land_cover_summary(land_cover));
+        }
         loaded.scene = loaded.scene.on_terrain(std::sync::Arc::new(terrain));
     }
     let scenario = args

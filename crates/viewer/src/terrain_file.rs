@@ -117,10 +117,14 @@ pub fn load_terrain(
     };
     let generated = matches!(source, TerrainSource::Generated);
     Terrain::new(samples, spacing, Vec2::ZERO, heights)
-        // The generated terrain's town is graded for the demo already.
         .map(|t| {
             if generated {
-                t
+                // Its town is graded for the demo already; it comes with its own
+                // land cover (whose codes are all WorldCover's: it cannot fail).
+                match crate::land_cover_file::generated_land_cover(&t) {
+                    Ok(cover) => t.with_land_cover(cover),
+                    Err(_) => t,
+                }
             } else {
                 t.with_height_at(Vec2::ZERO, 0.0)
             }

@@ -948,6 +948,17 @@ impl RenderParams {
         self
     }
 
+    /// The terrain's clipmap rows it holds.
+    #[must_use]
+    pub fn clipmap_rows(&self) -> crate::scene::terrain::ClipmapRows {
+        crate::scene::terrain::ClipmapRows {
+            placement: self.terrain,
+            levels: self.terrain_levels,
+            samples: self.terrain_samples,
+            offsets: self.terrain_offsets,
+        }
+    }
+
     /// The block with the terrain's clipmap rows ([`crate::host::HostState::clipmap_rows`]).
     #[must_use]
     pub fn with_clipmap_rows(mut self, rows: &crate::scene::terrain::ClipmapRows) -> Self {

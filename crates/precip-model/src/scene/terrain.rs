@@ -422,7 +422,8 @@ pub struct ClipmapRows {
     /// The pyramid's corner x, z m, level 0's spacing m, the levels drawn (0: none).
     pub placement: glam::Vec4,
     /// The first level drawn, the pyramid's levels, the word where the pyramid
-    /// starts in the ground buffer, 0.
+    /// starts in the ground buffer, the first level the water's mirror draws
+    /// ([`MIRROR_SKIPPED_LEVELS`] coarser, at most the last).
     pub levels: glam::UVec4,
     /// Level `k`'s samples along x (`.x` of row `k / 2`'s pair) and z, two levels a
     /// row: (x₀, z₀, x₁, z₁), …
@@ -448,7 +449,23 @@ impl ClipmapRows {
     pub fn vertices(&self) -> u32 {
         self.placement.w as u32 * CLIPMAP_LEVEL_VERTICES
     }
+
+    /// Vertices the clipmap draws into the water's mirror: from its first level
+    /// (`levels.w`) to the last (0 without a terrain).
+    #[must_use]
+    pub fn mirror_vertices(&self) -> u32 {
+        if self.placement.w < 1.0 {
+            return 0;
+        }
+        self.levels.y.saturating_sub(self.levels.w) * CLIPMAP_LEVEL_VERTICES
+    }
 }
+
+/// Levels of the clipmap the water's mirror leaves out at the fine end: its image
+/// is drawn at half the frame's side and shows the distant terrain above the
+/// water (the near ground round a pond is the scene's meshes), so its finest
+/// levels would be all vertices and no pixels; the coarser level fills the hole.
+pub const MIRROR_SKIPPED_LEVELS: u32 = 2;
 
 impl TerrainPyramid {
     /// The smallest `f` for which `terrain` at every `f`-th sample, with its
@@ -583,7 +600,12 @@ impl TerrainPyramid {
                 self.levels[0].spacing_m,
                 (last - first + 1) as f32,
             ),
-            levels: glam::UVec4::new(first as u32, self.levels.len() as u32, words_before, 0),
+            levels: glam::UVec4::new(
+                first as u32,
+                self.levels.len() as u32,
+                words_before,
+                (first as u32 + MIRROR_SKIPPED_LEVELS).min(last as u32),
+            ),
             ..ClipmapRows::default()
         };
         for (k, l) in self.levels.iter().enumerate() {
@@ -900,6 +922,17 @@ mod tests {
         assert_eq!(high.offsets[0].x, 100);
         assert_eq!(high.offsets[0].y, 100 + 1025 * 1025);
         assert_eq!(high.samples[0].z, 513);
+        // The water's mirror starts MIRROR_SKIPPED_LEVELS coarser, at most the last.
+        assert_eq!(low.levels.w, MIRROR_SKIPPED_LEVELS);
+        assert_eq!(
+            low.mirror_vertices(),
+            (p.levels.len() as u32 - MIRROR_SKIPPED_LEVELS) * CLIPMAP_LEVEL_VERTICES
+        );
+        let last = p.levels.len() as u32 - 1;
+        let top = p.clipmap(Vec3::new(0.0, 1.0e5, 0.0), 10.0, 100);
+        assert_eq!((top.levels.x, top.levels.w), (last, last));
+        assert_eq!(top.mirror_vertices(), CLIPMAP_LEVEL_VERTICES);
+        assert_eq!(ClipmapRows::default().mirror_vertices(), 0);
     }
 
     /// The levels' quads that hold `xz` (its quad's corners' positions), for
