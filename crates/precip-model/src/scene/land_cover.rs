@@ -17,7 +17,10 @@
 //!   built-up land is paved, water is a water body (all that lands goes into it:
 //!   no snow lies on open water), fields and bare land are soil, the rest turf;
 //! - the **share of the ground's snow seen from above** ([`LandClass::snow_share`]),
-//!   which multiplies the slope's eligibility: under a forest's canopy the snow on
+//!   which weighs the snow drawn there (not the snow that lies: what falls through
+//!   a canopy or is unloaded from it lies on the floor, in the books as any other
+//!   snow; the ground map's eligibility is the slope's, none on open water): under
+//!   a forest's canopy the snow on
 //!   the floor shows through its gaps only (the canopy's *viewable gap fraction*,
 //!   which Klein, Hall & Riggs 1998, *Hydrological Processes* 12, 1723–1744, model
 //!   for satellites' snow maps over forests); we take half the floor for a closed
@@ -149,8 +152,8 @@ impl LandClass {
         }
     }
 
-    /// The share of the snow on the ground seen from above (module docs), times
-    /// the slope's eligibility.
+    /// The share of the snow on the ground seen from above (module docs): a
+    /// weight of its drawing.
     #[must_use]
     pub const fn snow_share(self) -> f32 {
         match self {

@@ -11,8 +11,8 @@
 //!   mesh's without tags), its surface is grass where it is gentle, soil where it is
 //!   steep ([`TERRAIN_GRASS_SLOPE_DEG`]) — or, where it has a land cover
 //!   ([`Terrain::with_land_cover`], [`crate::scene::land_cover`]), its class's
-//!   surface, and the slope's eligibility times its class's share of snow seen from
-//!   above.
+//!   surface (open water holding no snow); its class's share of snow seen from
+//!   above weighs the snow drawn there, not the snow that lies.
 //! - **The picture**: drawn as a *geometry clipmap* (Losasso & Hoppe 2004, *ACM
 //!   Transactions on Graphics* 23(3)): nested square grids of [`CLIPMAP_QUADS`]²
 //!   quads centred on the camera, each level's quads twice the size of the level
@@ -191,10 +191,17 @@ impl Terrain {
     }
 
     /// Snow eligibility at world `(x, z)` where the normal is `normal`: the
-    /// slope's times its land class's share seen from above.
+    /// slope's, none on open water (what lands there joins it). The share of a
+    /// class's snow seen from above ([`LandClass::snow_share`]: half under a
+    /// forest's canopy) weighs only its drawing: the snow under the trees lies and
+    /// is in the books as any other.
     #[must_use]
     pub fn eligibility_at(&self, xz_m: Vec2, normal: Vec3) -> f32 {
-        Self::eligibility_for(normal) * self.land_class_at(xz_m).snow_share()
+        if self.land_class_at(xz_m) == LandClass::Water {
+            0.0
+        } else {
+            Self::eligibility_for(normal)
+        }
     }
 
     /// Samples along x and z.
@@ -822,7 +829,9 @@ mod tests {
         assert_eq!(t.land_class_at(Vec2::new(80.0, 0.0)), LandClass::NoData);
         assert_eq!(t.surface_at(west, Vec3::Y), precip_cover::Surface::Soil);
         assert_eq!(t.surface_at(east, Vec3::Y), precip_cover::Surface::Water);
-        assert!((t.eligibility_at(west, Vec3::Y) - 0.5).abs() < 1e-6);
+        // Under the trees the snow lies (only its drawing is halved); none on water.
+        assert!((t.eligibility_at(west, Vec3::Y) - 1.0).abs() < 1e-6);
+        assert!((t.land_class_at(west).snow_share() - 0.5).abs() < 1e-6);
         assert!(t.eligibility_at(east, Vec3::Y).abs() < 1e-6);
         // Without a raster, the slope alone.
         let bare = terrain(11, 10.0, |_, _| 0.0);

@@ -102,8 +102,8 @@ impl GroundMap {
 
     /// The top-most of a prepared `scene` and `terrain` over `frame`: where the
     /// terrain rises above every mesh (or no mesh lies) its height, its eligibility
-    /// and surface from its slope and land cover ([`Terrain::eligibility_at`],
-    /// [`Terrain::surface_at`]);
+    /// (from its slope; none on open water) and surface (from its land cover, else
+    /// its slope) ([`Terrain::eligibility_at`], [`Terrain::surface_at`]);
     /// off the terrain and the meshes the scene's lowest height, as
     /// [`GroundMap::from_scene`].
     #[must_use]
