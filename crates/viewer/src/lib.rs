@@ -40,6 +40,7 @@ pub mod error;
 pub mod flight;
 pub mod fly_camera;
 pub mod frame_stats;
+pub mod geotiff_place;
 pub mod glb;
 pub mod gltf_data;
 pub mod gltf_scene;

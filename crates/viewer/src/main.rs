@@ -543,15 +543,36 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             terrain.spacing_m(),
             started.elapsed().as_secs_f32()
         );
-        // A file's land cover, or the generated terrain's own.
-        let terrain = match &args.land_cover {
+        // A file's land cover (placed by where both GeoTIFFs lie, when they say),
+        // or the generated terrain's own.
+        let (terrain, laid) = match &args.land_cover {
             Some(file) => {
-                terrain.with_land_cover(precip_viewer::land_cover_file::load_land_cover(file)?)
+                let place = match source {
+                    precip_viewer::terrain_file::TerrainSource::File(f) => {
+                        precip_viewer::geotiff_place::GeoPlacement::of_file(f)
+                    }
+                    precip_viewer::terrain_file::TerrainSource::Generated => None,
+                };
+                let (cover, laid) = precip_viewer::land_cover_file::load_land_cover_over(
+                    file,
+                    &terrain,
+                    place.as_ref(),
+                )?;
+                (terrain.with_land_cover(cover), Some(laid))
             }
-            None => terrain,
+            None => (terrain, None),
         };
         if let Some(land_cover) = terrain.land_cover() {
-            eprintln!("{}", land_cover_summary(land_cover));
+            let how = match laid {
+                Some(precip_viewer::land_cover_file::Laid::ByGeoreference(crs)) => {
+                    format!(" (laid by its georeferencing, {crs})")
+                }
+                Some(precip_viewer::land_cover_file::Laid::Stretched) => {
+                    " (stretched over the terrain's extent: one of the files says not where it lies)".to_owned()
+                }
+                None => String::new(),
+            };
+            eprintln!("{}{how}", land_cover_summary(land_cover));
         }
         loaded.scene = loaded.scene.on_terrain(std::sync::Arc::new(terrain));
     }

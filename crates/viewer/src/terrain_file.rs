@@ -71,6 +71,16 @@ pub enum TerrainFileError {
         /// The check that failed.
         problem: TerrainError,
     },
+    /// A GeoTIFF in degrees, and no spacing given.
+    #[error(
+        "{file} is in geographic coordinates ({pixel_deg}° a pixel), not metres: reproject it (gdalwarp -t_srs EPSG:<its UTM zone> {file} out.tif) or give --terrain-spacing in metres"
+    )]
+    Degrees {
+        /// The file.
+        file: PathBuf,
+        /// Its pixel's size, degrees.
+        pixel_deg: f64,
+    },
     /// The heights option is not a range.
     #[error("--terrain-heights {low},{high}: give the lowest height below the highest, in metres")]
     Heights {
@@ -108,7 +118,7 @@ pub fn load_terrain(
                     let (samples, heights) = read_png(file, scale.heights_m)?;
                     (samples, heights, None)
                 }
-                Some("tif" | "tiff") => read_geotiff(file, scale.heights_m)?,
+                Some("tif" | "tiff") => read_geotiff(file, scale.heights_m, scale.spacing_m)?,
                 _ => return Err(TerrainFileError::Kind { file: file.clone() }),
             };
             let spacing = scale.spacing_m.or(pixel_m).unwrap_or(1.0);
@@ -177,10 +187,12 @@ fn read_png(
 const MODEL_PIXEL_SCALE_TAG: u16 = 33550;
 const GDAL_NODATA_TAG: u16 = 42113;
 
-/// A GeoTIFF's first band as heights, and its pixel scale (x) if it gives one.
+/// A GeoTIFF's first band as heights, and its pixel scale (x) if it gives one; one
+/// in degrees is refused unless `spacing_m` is given.
 fn read_geotiff(
     file: &Path,
     heights_m: Option<(f32, f32)>,
+    spacing_m: Option<f32>,
 ) -> Result<(UVec2, Vec<f32>, Option<f32>), TerrainFileError> {
     use tiff::decoder::{Decoder, DecodingResult, Limits};
     use tiff::tags::Tag;
@@ -205,6 +217,17 @@ fn read_geotiff(
         .and_then(|v| v.first().copied())
         .map(|s| s as f32)
         .filter(|s| s.is_finite() && *s > 0.0);
+    // A pixel size in degrees is not a spacing (SRTM and Copernicus DEM tiles are
+    // in EPSG:4326): the caller asks for one (TerrainFileError::Degrees).
+    if let Some(place) = crate::geotiff_place::GeoPlacement::of(&mut decoder)
+        && matches!(place.crs, crate::geotiff_place::Crs::Geographic(_))
+        && spacing_m.is_none()
+    {
+        return Err(TerrainFileError::Degrees {
+            file: file.to_path_buf(),
+            pixel_deg: place.pixel.x,
+        });
+    }
     let nodata = decoder
         .get_tag_ascii_string(Tag::Unknown(GDAL_NODATA_TAG))
         .ok()
