@@ -142,8 +142,10 @@ fn clipmap_vertex(v: u32, camera_xz_m: vec2<f32>, first: u32) -> TerrainPoint {
 
 // The terrain as a scene vertex: its slope picks the colour along the terrain's
 // ramp (Rust: precip_model::scene::terrain::terrain_ramp_u; the land class picks
-// the row, per fragment, in fs_terrain) and its snow eligibility; the far cover it
-// is raised by is its land class's (far_cover_slot, for `displaced`).
+// the row, per fragment, in fs_terrain) and its snow eligibility. Off the grid it
+// is raised by the grass's far cover whatever its class (a few centimetres at
+// most; the class's texel shades it, per fragment): a vertex stage that writes a
+// module-scope private (far_cover_slot) made lavapipe grow by ~450 KiB a frame.
 fn terrain_scene_vertex(p: TerrainPoint) -> SceneVertex {
     var vertex: SceneVertex;
     vertex.position_m = p.position_m;
@@ -151,7 +153,6 @@ fn terrain_scene_vertex(p: TerrainPoint) -> SceneVertex {
     let steep = clamp((1.0 - p.normal.y) * 2.0, 0.0, 1.0);
     vertex.uv = vec2<f32>((0.5 + 15.0 * steep) / 16.0, 0.5 / LAND_CLASSES);
     vertex.eligibility = slope_eligibility(p.normal);
-    far_cover_slot = terrain_far_slot(land_class_at(p.position_m.xz), p.normal.y);
     return vertex;
 }
 
