@@ -313,7 +313,7 @@ pub(crate) fn value_noise(p: Vec2, seed: u32) -> f32 {
 /// noise, Musgrave 1994, up to about 900 m of relief, 1–3 km between ridges), a
 /// river valley winding through, and a town's flat ground at the origin, blended
 /// into the hills over 250 m: the samples and their heights, m
-/// ([`generated_height_m`]).
+/// (`generated_height_m`).
 #[must_use]
 pub fn generated_valleys(side_m: f32, spacing_m: f32) -> (UVec2, Vec<f32>) {
     let n = ((side_m / spacing_m).round() as u32 + 1).clamp(2, MAX_TERRAIN_SAMPLES);
