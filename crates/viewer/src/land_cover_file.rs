@@ -93,8 +93,11 @@ pub fn load_land_cover_over(
     terrain_place: Option<&GeoPlacement>,
 ) -> Result<(LandCover, Laid), LandCoverFileError> {
     let (pixels, codes, place) = read_codes(file)?;
+    // Validated whole first: as many codes as pixels (a malformed file's short
+    // read indexes nothing below), each a class.
+    let whole = land_cover(file, pixels, &codes)?;
     let (Some(over), Some(place)) = (terrain_place, place) else {
-        return Ok((land_cover(file, pixels, &codes)?, Laid::Stretched));
+        return Ok((whole, Laid::Stretched));
     };
     if over.crs != place.crs || matches!(place.crs, Crs::Unknown) {
         return Err(LandCoverFileError::Crs {
