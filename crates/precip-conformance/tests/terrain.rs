@@ -1,8 +1,10 @@
 //! A scene standing on a terrain (issue 29's elevation data), alike on every GPU
 //! backend: the clipmap puts the terrain's ridge where its heights say, both
 //! backends draw the same picture, the Vulkan one without a validation message, its
-//! land cover colours it by class, and the ground map lands snow on the terrain
-//! where it rises above the meshes.
+//! land cover colours it by class, the cover beyond the grid is kept per place with
+//! the air at each place's height (a ridge holds the snow a sleet leaves in the
+//! valley as rain), and the ground map lands snow on the terrain where it rises
+//! above the meshes.
 
 use std::sync::Arc;
 
@@ -16,18 +18,25 @@ use precip_model::{Camera, GroundMap, Image, Setup, View, Weather};
 /// A valley 4 km square: flat around the house, a ridge 200 m high 1 km north
 /// (−z) of it.
 fn valley() -> Terrain {
-    let n = 801;
-    let spacing = 5.0;
-    let half = 0.5 * (n - 1) as f32 * spacing;
-    let mut h = Vec::with_capacity(n * n);
+    terrain_of(801, 5.0, |x, z| {
+        -0.5 + 200.0 * (-((z + 1000.0) / 150.0).powi(2)).exp() + 2.0 * (x / 90.0).sin()
+    })
+}
+
+/// `n × n` samples `spacing_m` apart centred on the origin, of heights
+/// `height_m(x, z)`.
+fn terrain_of(n: u32, spacing_m: f32, height_m: impl Fn(f32, f32) -> f32) -> Terrain {
+    let half = 0.5 * (n - 1) as f32 * spacing_m;
+    let mut h = Vec::with_capacity((n * n) as usize);
     for j in 0..n {
         for i in 0..n {
-            let (x, z) = (i as f32 * spacing - half, j as f32 * spacing - half);
-            let ridge = 200.0 * (-((z + 1000.0) / 150.0).powi(2)).exp();
-            h.push(-0.5 + ridge + 2.0 * (x / 90.0).sin());
+            h.push(height_m(
+                i as f32 * spacing_m - half,
+                j as f32 * spacing_m - half,
+            ));
         }
     }
-    Terrain::new(UVec2::splat(n as u32), spacing, Vec2::ZERO, h).expect("a valid terrain")
+    Terrain::new(UVec2::splat(n), spacing_m, Vec2::ZERO, h).expect("a valid terrain")
 }
 
 /// The house's setup, on the valley or not, in clear calm air, looking north from
@@ -72,6 +81,12 @@ fn render(subject: &mut precip_conformance::Subject, setup: &Setup) -> Image {
     let backend = &mut subject.backend;
     backend.configure(setup).expect("configures");
     backend.step(0.05).expect("steps");
+    frame(subject, setup)
+}
+
+/// The frame of `setup`'s camera now.
+fn frame(subject: &mut precip_conformance::Subject, setup: &Setup) -> Image {
+    let backend = &mut subject.backend;
     backend
         .render(&View {
             camera: setup.camera,
@@ -290,4 +305,104 @@ fn snow_lands_on_the_terrain_where_it_rises_above_the_meshes() {
         "{} under the terrain's {t}",
         ground.height_m[0]
     );
+}
+
+/// The house's flat at −0.5 m out to x = 300 m, a plateau 600 m up from x = 700 m
+/// on, a slope between (4 km square).
+fn plateau() -> Terrain {
+    terrain_of(401, 10.0, |x, _| {
+        -0.5 + 600.0 * ((x - 300.0) / 400.0).clamp(0.0, 1.0)
+    })
+}
+
+/// Four days (a day a simulated second) of 2 mm/h falling at `air_c` at the site,
+/// then clear air for the frame; the frame.
+fn after_four_days(
+    subject: &mut precip_conformance::Subject,
+    setup: &Setup,
+    kind: precip_model::PrecipitationKind,
+    air_c: f32,
+) -> Image {
+    let backend = &mut subject.backend;
+    backend.configure(setup).expect("configures");
+    let falling = Weather {
+        kind,
+        intensity_mm_per_h: 2.0,
+        air_temperature_c: air_c,
+        ..setup.weather
+    };
+    backend.set_weather(&falling).expect("a valid weather");
+    for _ in 0..40 {
+        backend.step(0.1).expect("steps");
+    }
+    backend
+        .set_weather(&Weather {
+            intensity_mm_per_h: 0.0,
+            ..falling
+        })
+        .expect("a valid weather");
+    for _ in 0..4 {
+        backend.step(0.01).expect("steps");
+    }
+    frame(subject, setup)
+}
+
+#[test]
+fn the_cover_beyond_the_grid_is_kept_per_place_with_the_air_at_its_height_on_every_gpu_backend() {
+    use precip_model::PrecipitationKind;
+    let mut setup = setup_on(Some(plateau()));
+    setup.cover.time_scale = 86_400.0;
+    // Looking down from 1.9 km above the plateau's edge: the flat in the image's
+    // west (left) third, the plateau in its east third.
+    setup.camera.position_m = Vec3::new(500.0, 2500.0, 0.0);
+    setup.camera.forward = Vec3::NEG_Y;
+    setup.camera.up = Vec3::NEG_Z;
+    let rows = HEIGHT / 4..3 * HEIGHT / 4;
+    let (flat, high) = (0..WIDTH / 4, 3 * WIDTH / 4..WIDTH);
+    let mut images = Vec::new();
+    for mut subject in gpu_subjects("the_cover_beyond_the_grid_is_kept_per_place") {
+        if !subject.renders() {
+            continue;
+        }
+        // Rain at +0.2 °C at the site is three tenths snow on the plateau
+        // (−3.7 °C), which lies there; at +12 °C it is rain there too.
+        let cold = after_four_days(&mut subject, &setup, PrecipitationKind::Rain, 0.2);
+        let books = subject
+            .backend
+            .far_cover_totals()
+            .expect("a terrain's far cover");
+        let warm = after_four_days(&mut subject, &setup, PrecipitationKind::Rain, 12.0);
+        subject.check_clean("drawing the far cover per place");
+        let level =
+            |image: &Image, columns: std::ops::Range<u32>| mean_level(image, rows.clone(), columns);
+        let (snowy, bare) = (level(&cold, high.clone()), level(&warm, high.clone()));
+        let (cold_flat, warm_flat) = (level(&cold, flat.clone()), level(&warm, flat.clone()));
+        println!(
+            "{}: the plateau {bare:.1} after warm rain, {snowy:.1} after cold rain; the flat {warm_flat:.1} and {cold_flat:.1}; beyond the grid {:.0} kg landed, {:.0} kg snow, imbalance {:.2e} kg",
+            subject.name,
+            books.deposited_kg,
+            books.swe_kg,
+            books.imbalance_kg()
+        );
+        assert!(
+            snowy > bare + 20.0,
+            "{}: the plateau's snow does not show ({snowy} against {bare})",
+            subject.name
+        );
+        assert!(
+            (cold_flat - warm_flat).abs() < 0.25 * (snowy - bare),
+            "{}: the flat below changed as the plateau did ({cold_flat} against {warm_flat})",
+            subject.name
+        );
+        // The flat's cells took the rain as rain: the snow beyond the grid is the
+        // plateau's and the slope's, a part of what landed, and the books close.
+        assert!(books.swe_kg > 0.05 * books.deposited_kg, "{books:?}");
+        assert!(books.swe_kg < 0.3 * books.deposited_kg, "{books:?}");
+        assert!(
+            books.imbalance_kg().abs() < 1e-4 * books.deposited_kg,
+            "{books:?}"
+        );
+        images.push((subject.name.clone(), cold));
+    }
+    assert_backends_agree(&images);
 }

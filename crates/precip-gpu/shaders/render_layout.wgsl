@@ -96,9 +96,12 @@ struct RenderParams {
     terrain_levels: vec4<u32>,
     terrain_samples: array<vec4<u32>, 8>,
     terrain_offsets: array<vec4<u32>, 4>,
-    // The cover beyond the grid (Rust: RenderParams::far_cover): cover_at's A, B, C
-    // for each of precip_model::host::FAR_COVER_SURFACES.
-    far_cover: array<vec4<f32>, 12>,
+    // The cover beyond the grid (Rust: RenderParams::far_cover_grid/_cells,
+    // precip_model::host::FarCover): its cells' corner x, z and size x, z, m; cells
+    // along x, z, the first word of their rows in ground_height (each cell's texels
+    // of precip_model::host::FAR_COVER_SURFACES, each cover_at's A, B, C), 0.
+    far_cover_grid: vec4<f32>,
+    far_cover_cells: vec4<u32>,
     // The terrain's land cover (render_terrain.wgsl; Rust: LandCoverRows): pixels x,
     // z, first word in the ground buffer, present; the terrain's corner and size, m.
     land_cover: vec4<u32>,

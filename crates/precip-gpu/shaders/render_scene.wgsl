@@ -294,14 +294,112 @@ var<private> cover_roughness_m: f32;
 // terrain's fragment set another (fs_terrain).
 var<private> far_cover_slot: u32;
 
-fn cover_at(xz_m: vec2<f32>) -> CoverTexel {
+// Texels a far cell holds (Rust: precip_model::host::FAR_COVER_SURFACES), their
+// surfaces (precip_cover::Surface as u32: grass, soil, paving, water), and the
+// floats a texel's two rows take (Rust: FAR_ROW_FLOATS).
+const FAR_SLOTS: u32 = 4u;
+const FAR_SLOT_SURFACES: vec4<f32> = vec4<f32>(2.0, 0.0, 1.0, 4.0);
+const FAR_ROW_FLOATS: u32 = 8u;
+// The far texels' masks (Rust: FarCover's texels, at their middle).
+const FAR_MASK: f32 = 0.5;
+
+// Row `row` (0: depth, SWE, peak SWE, wetness; 1: age, puddle ratio, dust, the
+// cell's mean height) of slot `slot`'s texel in far cell `cell`.
+fn far_row(cell: vec2<u32>, slot: u32, row: u32) -> vec4<f32> {
+    let n = params.far_cover_cells.xy;
+    let w = params.far_cover_cells.z + ((cell.x + n.x * cell.y) * FAR_SLOTS + slot) * FAR_ROW_FLOATS + 4u * row;
+    return vec4<f32>(ground_height[w], ground_height[w + 1u], ground_height[w + 2u], ground_height[w + 3u]);
+}
+
+// The far cells around (x, z), the lower one and the upper (clamped to the cells),
+// and the weights between them: bilinear between the cells' centres.
+struct FarCells {
+    low: vec2<u32>,
+    high: vec2<u32>,
+    f: vec2<f32>,
+}
+
+fn far_cells(xz_m: vec2<f32>) -> FarCells {
+    let n = max(params.far_cover_cells.xy, vec2<u32>(1u));
+    let t = clamp((xz_m - params.far_cover_grid.xy) / params.far_cover_grid.zw - 0.5, vec2<f32>(0.0), vec2<f32>(n - 1u));
+    var c: FarCells;
+    c.low = vec2<u32>(floor(t));
+    c.high = min(c.low + 1u, n - 1u);
+    c.f = t - floor(t);
+    return c;
+}
+
+// How far in height a far cell's state stands for a point, m: the cells around a
+// point weigh by 1 / (1 + (Δh / FAR_HEIGHT_BLEND_M)²) on their bilinear weights.
+const FAR_HEIGHT_BLEND_M: f32 = 25.0;
+
+// The far cover of slot `slot` for a point at height `height_m` among the cells
+// `c`: each cell's two rows weighed bilinearly between the cells' centres and by
+// how near the cell's mean height is to the point's, so the snow line (each
+// cell's air is at its mean height: Rust precip_model::host::FarCover) follows
+// the terrain's contours rather than the cells.
+struct FarRows {
+    a: vec4<f32>,
+    b: vec4<f32>,
+}
+
+fn far_cover_rows(c: FarCells, slot: u32, height_m: f32) -> FarRows {
+    let cells = array<vec2<u32>, 4>(c.low, vec2<u32>(c.high.x, c.low.y), vec2<u32>(c.low.x, c.high.y), c.high);
+    let bilinear = vec4<f32>((1.0 - c.f.x) * (1.0 - c.f.y), c.f.x * (1.0 - c.f.y), (1.0 - c.f.x) * c.f.y, c.f.x * c.f.y);
+    var out: FarRows;
+    var total = 0.0;
+    for (var k = 0u; k < 4u; k++) {
+        let b = far_row(cells[k], slot, 1u);
+        let dh = (height_m - b.w) / FAR_HEIGHT_BLEND_M;
+        let w = bilinear[k] / (1.0 + dh * dh);
+        out.a += w * far_row(cells[k], slot, 0u);
+        out.b += w * b;
+        total += w;
+    }
+    let inv = 1.0 / max(total, 1.0e-12);
+    out.a *= inv;
+    out.b *= inv;
+    return out;
+}
+
+// The far cover's snow depth alone (far_cover_rows' first field), mm.
+fn far_depth_mm(c: FarCells, slot: u32, height_m: f32) -> f32 {
+    let cells = array<vec2<u32>, 4>(c.low, vec2<u32>(c.high.x, c.low.y), vec2<u32>(c.low.x, c.high.y), c.high);
+    let bilinear = vec4<f32>((1.0 - c.f.x) * (1.0 - c.f.y), c.f.x * (1.0 - c.f.y), (1.0 - c.f.x) * c.f.y, c.f.x * c.f.y);
+    let n = params.far_cover_cells.xy;
+    var depth = 0.0;
+    var total = 0.0;
+    for (var k = 0u; k < 4u; k++) {
+        let w0 = params.far_cover_cells.z + ((cells[k].x + n.x * cells[k].y) * FAR_SLOTS + slot) * FAR_ROW_FLOATS;
+        let dh = (height_m - ground_height[w0 + 7u]) / FAR_HEIGHT_BLEND_M;
+        let w = bilinear[k] / (1.0 + dh * dh);
+        depth += w * ground_height[w0];
+        total += w;
+    }
+    return depth / max(total, 1.0e-12);
+}
+
+// The cover at the surface point `p_m` (x and z looked up, y the point's height
+// for the far cover's weights).
+fn cover_at(p_m: vec3<f32>) -> CoverTexel {
+    let xz_m = p_m.xz;
     let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
-    // Off the grid, the cover beyond it (RenderParams::far_cover: the weather's own).
-    let on_grid = grid_texel_index(params.cover, xz_m) >= 0;
-    let far = 3u * min(far_cover_slot, 3u);
-    let a = select(params.far_cover[far], textureSampleLevel(cover_a, cover_sampler, uv, 0.0), on_grid);
-    let b = select(params.far_cover[far + 1u], textureSampleLevel(cover_b, cover_sampler, uv, 0.0), on_grid);
-    let c = select(params.far_cover[far + 2u], textureSampleLevel(cover_c, cover_sampler, uv, 0.0), on_grid);
+    // Off the grid, the cover beyond it at its place (far_cover_row).
+    var a: vec4<f32>;
+    var b: vec4<f32>;
+    var c: vec4<f32>;
+    if (grid_texel_index(params.cover, xz_m) >= 0) {
+        a = textureSampleLevel(cover_a, cover_sampler, uv, 0.0);
+        b = textureSampleLevel(cover_b, cover_sampler, uv, 0.0);
+        c = textureSampleLevel(cover_c, cover_sampler, uv, 0.0);
+    } else {
+        // The far texel's rows as the grid's textures hold a texel's.
+        let slot = min(far_cover_slot, FAR_SLOTS - 1u);
+        let far = far_cover_rows(far_cells(xz_m), slot, p_m.y);
+        a = far.a;
+        b = vec4<f32>(FAR_MASK, FAR_MASK, far.b.x, far.b.y);
+        c = vec4<f32>(far.b.z, surface_snow_roughness_m(u32(FAR_SLOT_SURFACES[slot])), 0.0, 0.0);
+    }
     var t: CoverTexel;
     t.dust_kg_m2 = c.x;
     cover_roughness_m = c.y;
@@ -369,8 +467,12 @@ fn displaced(v: SceneVertex) -> vec3<f32> {
     let n = normalize(v.normal);
     // The depth alone (cover_at's first texture; off the grid the cover beyond it).
     let uv = (p.xz - params.cover.origin_m) / params.cover.size_m;
-    let on_grid = grid_texel_index(params.cover, p.xz) >= 0;
-    let depth_mm = select(params.far_cover[3u * min(far_cover_slot, 3u)].x, textureSampleLevel(cover_a, cover_sampler, uv, 0.0).x, on_grid);
+    var depth_mm: f32;
+    if (grid_texel_index(params.cover, p.xz) >= 0) {
+        depth_mm = textureSampleLevel(cover_a, cover_sampler, uv, 0.0).x;
+    } else {
+        depth_mm = far_depth_mm(far_cells(p.xz), min(far_cover_slot, FAR_SLOTS - 1u), p.y);
+    }
     p.y += depth_mm * 1.0e-3 * clamp(v.eligibility, 0.0, 1.0) * upward(n) * exposure(p, n);
     return p;
 }
@@ -469,7 +571,7 @@ fn surface_look(in: SceneVarying, camera: vec3<f32>) -> SurfaceLook {
         // Read the cover a little off the point (under half a texel), so where a
         // drift or a bare patch ends follows no texel's edge.
         let cell = params.cover.size_m / vec2<f32>(params.cover.texels);
-        let texel = cover_at(in.surface_m.xz + cover_warp_m(in.surface_m.xz, cell));
+        let texel = cover_at(vec3<f32>(in.surface_m.xz + cover_warp_m(in.surface_m.xz, cell), in.surface_m.y));
         // The texel's threshold moved by noise finer than a texel, so patch borders
         // and thin snow follow neither texels nor triangles.
         var threshold = texel.accumulation_mask;

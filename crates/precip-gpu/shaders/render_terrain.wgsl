@@ -143,9 +143,9 @@ fn clipmap_vertex(v: u32, camera_xz_m: vec2<f32>, first: u32) -> TerrainPoint {
 // The terrain as a scene vertex: its slope picks the colour along the terrain's
 // ramp (Rust: precip_model::scene::terrain::terrain_ramp_u; the land class picks
 // the row, per fragment, in fs_terrain) and its snow eligibility. Off the grid it
-// is raised by the grass's far cover whatever its class (a few centimetres at
-// most; the class's texel shades it, per fragment): a vertex stage that writes a
-// module-scope private (far_cover_slot) made lavapipe grow by ~450 KiB a frame.
+// is raised by its place's grass far cover whatever its class (the class's texel
+// shades it, per fragment): a vertex stage that writes a module-scope private
+// (far_cover_slot) made lavapipe grow by ~450 KiB a frame.
 fn terrain_scene_vertex(p: TerrainPoint) -> SceneVertex {
     var vertex: SceneVertex;
     vertex.position_m = p.position_m;

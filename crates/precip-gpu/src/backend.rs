@@ -362,6 +362,10 @@ impl<G: Gpu> Backend for GpuBackend<G> {
     fn far_cover_totals(&self) -> Option<precip_model::cover::CoverTotals> {
         self.state.as_ref()?.sim.host().far_cover_totals()
     }
+
+    fn far_snow_line_m(&self) -> Option<f32> {
+        self.state.as_ref()?.sim.host().far_snow_line_m()
+    }
 }
 
 /// Implements [`Backend`] for a newtype over a [`GpuBackend`] (its field `0`), by
@@ -487,6 +491,9 @@ macro_rules! delegate_backend {
             }
             fn far_cover_totals(&self) -> Option<::precip_model::cover::CoverTotals> {
                 self.0.far_cover_totals()
+            }
+            fn far_snow_line_m(&self) -> Option<f32> {
+                self.0.far_snow_line_m()
             }
         }
     };

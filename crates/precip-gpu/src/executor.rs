@@ -528,6 +528,15 @@ impl<G: Gpu> Simulation<G> {
         self.last_step = substep.iter().map(|(p, _)| p.entry_point).collect();
         self.steps_submitted += 1;
         self.host.advance(&steps);
+        // A far step's rows go to the region of the ground buffer no frame in
+        // flight reads (precip_model::host::FarCover).
+        if let Some((word, rows)) = self.host.take_far_cover_upload() {
+            gpu.write_buffer(
+                self.buffer_mut(SimBuffer::Ground),
+                u64::from(word) * 4,
+                bytemuck::cast_slice(&rows),
+            )?;
+        }
         Ok(())
     }
 

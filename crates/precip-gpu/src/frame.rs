@@ -990,7 +990,7 @@ impl FrameHost {
         params = params
             .with_clipmap_rows(&host.clipmap_rows())
             .with_land_cover_rows(&host.land_cover_rows())
-            .with_far_cover(host.far_cover());
+            .with_far_cover_rows(&host.far_cover_rows());
         FrameDecision {
             params,
             conditions: FrameConditions {

@@ -172,7 +172,8 @@ pub fn simulation_buffers(
                 ),
                 SimBuffer::Ground => {
                     // The ground map's words, then the terrain's pyramid (the
-                    // clipmap's, render_terrain.wgsl) and its land cover.
+                    // clipmap's, render_terrain.wgsl) and its land cover, then the
+                    // far cover's two regions (render_scene.wgsl's far_row).
                     let mut words = ground.gpu_words();
                     if let Some(p) = host.terrain_pyramid() {
                         words.extend_from_slice(&p.heights_m);
@@ -180,6 +181,8 @@ pub fn simulation_buffers(
                             words.extend_from_slice(classes);
                         }
                     }
+                    debug_assert_eq!(words.len() as u32, host.far_cover_first_word());
+                    words.extend(host.far_cover().initial_words());
                     bytes(bytemuck::cast_slice(&words).to_vec())
                 }
                 SimBuffer::Waves => {

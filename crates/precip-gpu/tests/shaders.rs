@@ -485,6 +485,26 @@ fn the_cover_tiles_are_the_same_in_wgsl_and_rust() {
 }
 
 /// A WGSL module's `const NAME` as a number (a literal).
+/// The components of the WGSL `vec` constant `name` of `module`.
+fn wgsl_vector(module: &naga::Module, name: &str) -> Vec<f32> {
+    let (_, constant) = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("no const {name}"));
+    let naga::Expression::Compose { ref components, .. } = module.global_expressions[constant.init]
+    else {
+        panic!("const {name} is not a vector");
+    };
+    components
+        .iter()
+        .map(|&e| match module.global_expressions[e] {
+            naga::Expression::Literal(naga::Literal::F32(v)) => v,
+            ref other => panic!("{name}: {other:?}"),
+        })
+        .collect()
+}
+
 fn wgsl_constant(module: &naga::Module, name: &str) -> f64 {
     let (_, constant) = module
         .constants
@@ -574,24 +594,7 @@ fn the_clouds_constants_are_their_rust_twins() {
         ("FAR_GROUND_BARE_COLOUR", g::FAR_GROUND_BARE_COLOUR),
         ("FAR_GROUND_SNOW_TINT", g::FAR_GROUND_SNOW_TINT),
     ] {
-        let (_, constant) = module
-            .constants
-            .iter()
-            .find(|(_, c)| c.name.as_deref() == Some(name))
-            .unwrap_or_else(|| panic!("no const {name}"));
-        let naga::Expression::Compose { ref components, .. } =
-            module.global_expressions[constant.init]
-        else {
-            panic!("const {name} is not a vector");
-        };
-        let wgsl: Vec<f32> = components
-            .iter()
-            .map(|&e| match module.global_expressions[e] {
-                naga::Expression::Literal(naga::Literal::F32(v)) => v,
-                ref other => panic!("{name}: {other:?}"),
-            })
-            .collect();
-        assert_eq!(wgsl, rust.to_array(), "{name}");
+        assert_eq!(wgsl_vector(&module, name), rust.to_array(), "{name}");
     }
 }
 
@@ -621,6 +624,12 @@ fn the_terrain_s_constants_are_their_rust_twins() {
             "TERRAIN_GRASS_COS",
             f64::from(t::TERRAIN_GRASS_SLOPE_DEG.to_radians().cos()),
         ),
+        (
+            "FAR_SLOTS",
+            precip_model::host::FAR_COVER_SURFACES.len() as f64,
+        ),
+        ("FAR_ROW_FLOATS", precip_model::host::FAR_ROW_FLOATS as f64),
+        ("FAR_MASK", f64::from(precip_model::host::FAR_MASK)),
     ] {
         let wgsl = wgsl_constant(&module, name);
         assert!(
@@ -628,4 +637,14 @@ fn the_terrain_s_constants_are_their_rust_twins() {
             "{name}: WGSL {wgsl}, Rust {rust}"
         );
     }
+    // The far cover's slots' surfaces, as precip_cover::Surface's raw values.
+    let rust: Vec<f32> = precip_model::host::FAR_COVER_SURFACES
+        .iter()
+        .map(|&s| s as u32 as f32)
+        .collect();
+    assert_eq!(
+        wgsl_vector(&module, "FAR_SLOT_SURFACES"),
+        rust,
+        "FAR_SLOT_SURFACES"
+    );
 }

@@ -32,6 +32,9 @@ pub struct Summary {
     /// The books of the cover beyond the grid, over the terrain's land off it
     /// (`None` without a terrain).
     pub far_cover: Option<precip_model::cover::CoverTotals>,
+    /// The snow line beyond the grid, m (`None` without a terrain or where no
+    /// place holds snow).
+    pub far_snow_line_m: Option<f32>,
     /// The snow: depths, the steepest face, blowing snow.
     pub snow: crate::snow_summary::SnowSummary,
     /// The PNGs.
@@ -259,6 +262,7 @@ pub fn run_headless_with(
         max_depth_mm,
         water: crate::water_summary::WaterSummary::of(&cover),
         far_cover: backend.far_cover_totals(),
+        far_snow_line_m: backend.far_snow_line_m(),
         snow: crate::snow_summary::SnowSummary::of(&cover),
         files,
         lidar_points,

@@ -897,6 +897,13 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             "{}",
             precip_viewer::water_summary::describe_far_books(far, &summary.water.totals)
         );
+        if let Some(line) = summary.far_snow_line_m {
+            println!(
+                "snow line beyond the grid: {line:.0} m (from the top down, each {} m of height half covered by {} mm of snow or more)",
+                precip_model::host::SNOW_LINE_BAND_M,
+                precip_model::host::SNOW_LINE_DEPTH_MM
+            );
+        }
     }
     if let Some(passes) = summary.stats.describe_passes() {
         println!("{passes}");

@@ -208,4 +208,9 @@ pub trait Backend {
     fn far_cover_totals(&self) -> Option<precip_cover::CoverTotals> {
         None
     }
+    /// The snow line beyond the grid, m ([`crate::host::FarCover::snow_line_m`];
+    /// `None` without a terrain, before configure or where no cell holds snow).
+    fn far_snow_line_m(&self) -> Option<f32> {
+        None
+    }
 }

@@ -249,6 +249,10 @@ impl Backend for CpuBackend {
         self.state.as_ref()?.host.far_cover_totals()
     }
 
+    fn far_snow_line_m(&self) -> Option<f32> {
+        self.state.as_ref()?.host.far_snow_line_m()
+    }
+
     fn read_image(&mut self) -> Result<Image, BackendError> {
         Err(BackendError::NotSupported {
             backend: NAME,

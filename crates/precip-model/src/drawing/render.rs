@@ -329,7 +329,7 @@ impl RenderSettings {
 
 /// The per-frame uniform block of the render program.
 ///
-/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (1792 bytes).
+/// WGSL twin: `RenderParams` in `shaders/render_layout.wgsl` (1632 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct RenderParams {
@@ -478,12 +478,12 @@ pub struct RenderParams {
     pub terrain_samples: [UVec4; crate::scene::terrain::MAX_TERRAIN_LEVELS / 2],
     /// Each level's first word in the ground buffer, four levels a row.
     pub terrain_offsets: [UVec4; crate::scene::terrain::MAX_TERRAIN_LEVELS / 4],
-    /// The cover beyond the cover grid ([`crate::host::HostState::far_cover`]), a
-    /// triple for each of [`crate::host::FAR_COVER_SURFACES`], as the grid's three
-    /// textures hold a texel: (depth mm, SWE mm, peak SWE mm, wetness),
-    /// (accumulation mask, melt mask, age days, puddle ratio), (dust kg/m²,
-    /// roughness length under snow m, 0, 0).
-    pub far_cover: [Vec4; 3 * FAR_COVER_TEXELS],
+    /// Where the cover beyond the cover grid is read ([`crate::host::FarCoverRows`]):
+    /// its cells' corner x, z and a cell's size along x, z, m.
+    pub far_cover_grid: Vec4,
+    /// Its cells along x and z, the first word of its rows in the ground buffer
+    /// (each texel's three rows as the grid's three textures hold a texel), 0.
+    pub far_cover_cells: UVec4,
     /// The terrain's land cover ([`crate::scene::terrain::LandCoverRows`]): its GPU
     /// copy's pixels along x and z, first word in the ground buffer, 1 if present.
     pub land_cover: UVec4,
@@ -494,10 +494,7 @@ pub struct RenderParams {
     /// ramp (v), 0.
     pub land_classes: [Vec4; crate::scene::land_cover::LAND_CLASSES],
 }
-const _: () = assert!(size_of::<RenderParams>() == 1792);
-
-/// Texels of the cover beyond the grid ([`crate::host::FAR_COVER_SURFACES`]).
-pub const FAR_COVER_TEXELS: usize = crate::host::FAR_COVER_SURFACES.len();
+const _: () = assert!(size_of::<RenderParams>() == 1632);
 
 /// The block's rows of the land classes (`RenderParams::land_classes`).
 fn land_class_rows() -> [Vec4; crate::scene::land_cover::LAND_CLASSES] {
@@ -895,7 +892,8 @@ impl RenderParams {
             terrain_levels: UVec4::ZERO,
             terrain_samples: [UVec4::ZERO; crate::scene::terrain::MAX_TERRAIN_LEVELS / 2],
             terrain_offsets: [UVec4::ZERO; crate::scene::terrain::MAX_TERRAIN_LEVELS / 4],
-            far_cover: [Vec4::ZERO; 3 * FAR_COVER_TEXELS],
+            far_cover_grid: Vec4::ZERO,
+            far_cover_cells: UVec4::ZERO,
             land_cover: UVec4::ZERO,
             land_cover_extent: Vec4::ZERO,
             land_classes: land_class_rows(),
@@ -914,28 +912,12 @@ impl RenderParams {
         self
     }
 
-    /// The block with the cover beyond the grid, `texels` (each one's rows as
-    /// `cover_texture.wgsl` writes a grid texel's).
+    /// The block with where the cover beyond the grid is read
+    /// ([`crate::host::HostState::far_cover_rows`]).
     #[must_use]
-    pub fn with_far_cover(mut self, texels: &[precip_cover::CoverTexel; FAR_COVER_TEXELS]) -> Self {
-        for (rows, texel) in self.far_cover.chunks_exact_mut(3).zip(texels) {
-            let surface = precip_cover::Surface::from_raw(texel.surface);
-            rows.copy_from_slice(&[
-                Vec4::new(
-                    texel.depth_mm,
-                    texel.swe_mm,
-                    texel.peak_swe_mm,
-                    texel.wetness,
-                ),
-                Vec4::new(
-                    texel.accumulation_mask,
-                    texel.melt_mask,
-                    texel.age_days,
-                    texel.puddle_ratio(),
-                ),
-                Vec4::new(texel.dust_kg_m2, surface.snow_roughness_m(), 0.0, 0.0),
-            ]);
-        }
+    pub fn with_far_cover_rows(mut self, rows: &crate::host::FarCoverRows) -> Self {
+        self.far_cover_grid = rows.grid;
+        self.far_cover_cells = rows.cells;
         self
     }
 

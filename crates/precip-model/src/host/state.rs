@@ -18,11 +18,13 @@ use crate::host::activity::Activity;
 use crate::host::layout::Frames;
 use crate::particles::step::StepParams;
 use crate::physics::drag::MAX_SUBSTEP_S;
-use crate::scene::terrain::{ClipmapRows, LandCoverRows, Terrain, TerrainPyramid};
+use crate::scene::terrain::{ClipmapRows, LandCoverRows, TerrainPyramid};
 use crate::sensors::lidar::UnresolvedAir;
 use crate::sensors::optics::Optics;
 use crate::weather::Weather;
-use precip_cover::{CoverInput, CoverTexel, DepositBuffer, Surface, update_texel};
+use precip_cover::{CoverInput, DepositBuffer};
+
+use crate::host::far_cover::{FarCover, FarCoverRows};
 
 /// The host side of a configured simulation.
 ///
@@ -53,77 +55,9 @@ pub struct HostState {
     /// The terrain's land cover for the GPU (pixels, classes), made once per
     /// configuration.
     land_cover: Option<Arc<(glam::UVec2, Vec<f32>)>>,
-    /// The cover beyond the cover grid: a texel of each of [`FAR_COVER_SURFACES`]
-    /// fed by the weather's rate, stepped with the grid's cover physics
-    /// ([`HostState::far_cover`]).
-    far_cover: [CoverTexel; FAR_COVER_SURFACES.len()],
-    /// The terrain's land off the cover grid that each far cover texel stands for,
-    /// m² (0 without a terrain).
-    far_cover_area_m2: [f64; FAR_COVER_SURFACES.len()],
+    /// The cover beyond the cover grid, per place ([`HostState::far_cover`]).
+    far_cover: FarCover,
     time_s: f64,
-}
-
-/// Most terrain samples [`far_cover_areas_m2`] classifies (every `s`-th along each
-/// side beyond).
-const FAR_AREA_SAMPLES: u64 = 1 << 20;
-
-/// The area of `terrain` off the cover grid `grid` that each far cover texel stands
-/// for ([`far_cover_slot`] of [`Terrain::surface_at`]), m²: each sample (every
-/// `s`-th, at most [`FAR_AREA_SAMPLES`]) counts for its cell.
-fn far_cover_areas_m2(terrain: &Terrain, grid: &GridFrame) -> [f64; FAR_COVER_SURFACES.len()] {
-    let n = terrain.samples();
-    let total = u64::from(n.x) * u64::from(n.y);
-    let stride = ((total as f64 / FAR_AREA_SAMPLES as f64).sqrt().ceil() as u32).max(1);
-    let cell_m = terrain.spacing_m() * stride as f32;
-    let cell_m2 = f64::from(cell_m) * f64::from(cell_m);
-    let mut areas = [0.0; FAR_COVER_SURFACES.len()];
-    for j in (0..n.y).step_by(stride as usize) {
-        for i in (0..n.x).step_by(stride as usize) {
-            let xz = terrain.corner_m() + Vec2::new(i as f32, j as f32) * terrain.spacing_m();
-            if grid.texel_index(xz).is_some() {
-                continue;
-            }
-            let surface = terrain.surface_at(xz, terrain.normal_at(xz));
-            areas[far_cover_slot(surface)] += cell_m2;
-        }
-    }
-    areas
-}
-
-/// The surfaces the cover beyond the grid keeps a texel of, in the order of
-/// `RenderParams::far_cover`'s triples: a mesh's fragments and gentle untagged
-/// terrain read the grass, steep terrain, fields and forest floors the soil, a
-/// town the paving, a lake the water ([`far_cover_slot`]).
-pub const FAR_COVER_SURFACES: [Surface; 4] = [
-    Surface::Grass,
-    Surface::Soil,
-    Surface::Asphalt,
-    Surface::Water,
-];
-
-/// Which of [`FAR_COVER_SURFACES`] stands for `surface` (roofing as paving, sand
-/// as soil).
-#[must_use]
-pub const fn far_cover_slot(surface: Surface) -> usize {
-    match surface {
-        Surface::Grass => 0,
-        Surface::Soil | Surface::Sand => 1,
-        Surface::Asphalt | Surface::Roof => 2,
-        Surface::Water => 3,
-    }
-}
-
-/// The far cover's texels at configure: bare and flat, holding snow but on water
-/// (as the grid's water texels, `CoverGrid::with_ground`), their masks at their
-/// middle (each fragment's patch noise moves them).
-fn far_cover_texels() -> [CoverTexel; FAR_COVER_SURFACES.len()] {
-    FAR_COVER_SURFACES.map(|surface| CoverTexel {
-        eligibility: if surface == Surface::Water { 0.0 } else { 1.0 },
-        accumulation_mask: 0.5,
-        melt_mask: 0.5,
-        surface: surface as u32,
-        ..CoverTexel::default()
-    })
 }
 
 /// The uniform blocks of one sub-step.
@@ -176,13 +110,12 @@ impl HostState {
                 .and_then(|s| s.terrain())
                 .and_then(|t| t.land_cover())
                 .map(|l| Arc::new(l.gpu_samples())),
-            far_cover: far_cover_texels(),
-            far_cover_area_m2: setup
+            far_cover: setup
                 .scene
                 .as_ref()
                 .and_then(|s| s.terrain())
-                .map_or([0.0; FAR_COVER_SURFACES.len()], |t| {
-                    far_cover_areas_m2(t, &setup.cover.frame)
+                .map_or_else(FarCover::everywhere, |t| {
+                    FarCover::over(t, &setup.cover.frame)
                 }),
             setup: setup.clone(),
             weather: setup.weather,
@@ -301,11 +234,13 @@ impl HostState {
         })
     }
 
-    /// The clock after `steps`.
+    /// The clock after `steps`, and the far cover given their weather (it steps
+    /// every [`crate::host::FAR_STEP_EVERY`] steps).
     pub fn advance(&mut self, steps: &SubSteps) {
         self.time_s = steps.end_time_s;
         let w = &self.weather;
-        let dt_days = steps.dt_s * self.setup.cover.time_scale / 86_400.0;
+        let dt_days =
+            steps.dt_s * steps.blocks.len() as f32 * self.setup.cover.time_scale / 86_400.0;
         let input = CoverInput {
             snow_mm: w.channel_rate_mm_per_h(DepositBuffer::SNOW) * 24.0 * dt_days,
             rain_mm: w.channel_rate_mm_per_h(DepositBuffer::RAIN) * 24.0 * dt_days,
@@ -314,36 +249,62 @@ impl HostState {
             wind_speed_mps: w.ground_wind_speed_mps(),
             dt_days,
         };
-        for _ in &steps.blocks {
-            for texel in &mut self.far_cover {
-                *texel = update_texel(*texel, input, &self.setup.cover.params);
-            }
-        }
+        self.far_cover.add_step(input, &self.setup.cover.params);
     }
 
     /// The cover beyond the cover grid (a scene's far meshes, a terrain's
-    /// kilometres): a flat texel of each of [`FAR_COVER_SURFACES`] under the weather
-    /// since configure, its snow fallen at the weather's rate and melted, settled
-    /// and aged, its surface wetted and dried, by the grid's own texel physics
-    /// (`precip_cover::update_texel`) — no particles, no drift or flow; on a
-    /// terrain each texel keeps the books of its surface's land off the grid
-    /// ([`HostState::far_cover_totals`]). The renderer shades what lies off the grid with the texel
-    /// of its surface ([`far_cover_slot`]), each fragment's slope, land class and
-    /// patch noise as on the grid.
+    /// kilometres), per place ([`FarCover`]): cells over the terrain, each with a
+    /// texel of each of [`crate::host::FAR_COVER_SURFACES`] under the weather since configure at
+    /// the cell's height, its snow fallen at the weather's rate and melted, settled
+    /// and aged, its surface wetted and dried, by the grid's own texel physics —
+    /// no particles, no drift or flow; each texel keeps the books of its surface's
+    /// land in its cell off the grid ([`HostState::far_cover_totals`]). The
+    /// renderer shades what lies off the grid with its place's texels of its
+    /// surface ([`crate::host::far_cover_slot`]), each fragment's slope, land class and patch
+    /// noise as on the grid.
     #[must_use]
-    pub fn far_cover(&self) -> &[CoverTexel; FAR_COVER_SURFACES.len()] {
+    pub fn far_cover(&self) -> &FarCover {
         &self.far_cover
     }
 
     /// The books of the cover beyond the grid: each far texel for the terrain's
-    /// land of its surface off the grid (`None` without a terrain). With the
-    /// grid's books they are the whole terrain's.
+    /// land of its surface in its cell off the grid (`None` without a terrain).
+    /// With the grid's books they are the whole terrain's.
     #[must_use]
     pub fn far_cover_totals(&self) -> Option<precip_cover::CoverTotals> {
-        let area = self.far_cover_area_m2.iter().sum::<f64>();
-        (area > 0.0).then(|| {
-            precip_cover::CoverTotals::of_texels(self.far_cover.iter().zip(self.far_cover_area_m2))
-        })
+        self.far_cover.totals()
+    }
+
+    /// The snow line beyond the grid ([`FarCover::snow_line_m`]), m.
+    #[must_use]
+    pub fn far_snow_line_m(&self) -> Option<f32> {
+        self.far_cover.snow_line_m()
+    }
+
+    /// The first word of the far cover's two regions in the ground buffer: after
+    /// the ground map, the terrain's pyramid and its land cover.
+    #[must_use]
+    pub fn far_cover_first_word(&self) -> u32 {
+        self.ground_words()
+            + self
+                .terrain
+                .as_ref()
+                .map_or(0, |p| p.heights_m.len() as u32)
+            + self.land_cover.as_ref().map_or(0, |l| l.1.len() as u32)
+    }
+
+    /// The rows of the frame block that say where the GPU reads the far cover now.
+    #[must_use]
+    pub fn far_cover_rows(&self) -> FarCoverRows {
+        self.far_cover.rows(self.far_cover_first_word())
+    }
+
+    /// After a far step, the far cover's rows the GPU lacks and the ground
+    /// buffer's word they go to (`None` when it has them). A GPU backend uploads
+    /// them after each step; the CPU reference has no use for them.
+    pub fn take_far_cover_upload(&mut self) -> Option<(u32, Vec<f32>)> {
+        let first = self.far_cover_first_word();
+        self.far_cover.take_upload(first)
     }
 
     /// The rows of the frame block that place the terrain's land cover on the GPU
@@ -531,6 +492,7 @@ impl HostState {
 mod tests {
     use super::*;
     use crate::backend::MAX_STEP_S;
+    use crate::scene::terrain::Terrain;
 
     fn host() -> HostState {
         HostState::configure(&Setup::over_flat_ground(20.0, 8, 10.0, 256)).expect("a valid setup")
@@ -650,12 +612,14 @@ mod tests {
 
     #[test]
     fn the_cover_beyond_the_grid_keeps_a_texel_of_each_surface() {
+        use crate::host::{FAR_COVER_SURFACES, far_cover_slot};
+        use precip_cover::Surface;
         let mut setup = Setup::over_flat_ground(20.0, 8, 10.0, 256);
         // A day a second, so a few seconds of steps lay a visible snowfall.
         setup.cover.time_scale = 86_400.0;
         let mut host = HostState::configure(&setup).expect("a valid setup");
         snow_for_half_a_second(&mut host);
-        let far = *host.far_cover();
+        let far = host.far_cover().texels();
         for (texel, surface) in far.iter().zip(FAR_COVER_SURFACES) {
             assert_eq!(texel.surface, surface as u32);
             assert_eq!(
@@ -676,6 +640,10 @@ mod tests {
             far_cover_slot(Surface::Asphalt)
         );
         assert_eq!(far_cover_slot(Surface::Sand), far_cover_slot(Surface::Soil));
+        // The GPU's rows: after the ground map, in the region the last step wrote.
+        let rows = host.far_cover_rows();
+        assert_eq!(rows.cells.x * rows.cells.y, 1);
+        assert!(rows.cells.z >= host.far_cover_first_word());
     }
 
     #[test]

@@ -1,0 +1,630 @@
+//! [`FarCover`]: the cover beyond the cover grid, kept per place.
+//!
+//! The cover grid (`precip_cover::CoverGrid`) is fed by the particles that land on
+//! it and is at most 1024² texels; a terrain reaches kilometres beyond it. There the
+//! cover is a coarse grid of cells over the terrain's extent (at most
+//! [`FAR_CELLS_MAX`] along a side), each holding a texel of every one of
+//! [`FAR_COVER_SURFACES`] (grass, soil, paving, water), fed by the weather's rate
+//! and stepped with the grid's own texel physics (`precip_cover::update_texel`): no
+//! particles, drift or flow. Each cell keeps its own state, so the cover of a
+//! valley the camera left is there when it comes back, and each cell's air is the
+//! weather's at the cell's mean height — the standard atmosphere's lapse rate
+//! ([`LAPSE_RATE_C_PER_M`], docs/model.md (4.18)) from the site's height, where the
+//! weather is set — with the snow's share of what falls moved by the sleet ramp's
+//! difference between the two temperatures ([`local_snow_share`]): a wet snowfall
+//! at the site is rain in the valley below and dry snow on the ridge above, and the
+//! snow line is where the cells' melt stops. Without a terrain it is one cell that
+//! stands for everywhere (a scene's far meshes), at the site's air.
+//!
+//! The cells are stepped every [`FAR_STEP_EVERY`] steps with the weather those
+//! steps had (their water summed, their air time-weighted), in pieces of at most
+//! [`FAR_PIECE_DAYS`] days; each step's shading rows go to the GPU into one of two
+//! regions of the ground buffer, in turn, so a frame in flight never reads the
+//! region being written (the steps between two writes of a region outnumber the
+//! frames in flight). The books count each texel for the terrain's land of its
+//! surface in its cell off the grid, so with the grid's they close over the whole
+//! terrain.
+
+use glam::{UVec2, UVec4, Vec2, Vec4};
+use precip_cover::{
+    CoverInput, CoverParams, CoverTexel, CoverTotals, GridFrame, Surface, update_texel,
+};
+use rayon::prelude::*;
+
+use crate::scene::terrain::Terrain;
+use crate::weather::sleet_snow_fraction;
+
+/// The surfaces a far cell keeps a texel of, in the order of its shading rows: a
+/// mesh's fragments and gentle untagged terrain read the grass, steep terrain,
+/// fields and forest floors the soil, a town the paving, a lake the water
+/// ([`far_cover_slot`]).
+pub const FAR_COVER_SURFACES: [Surface; 4] = [
+    Surface::Grass,
+    Surface::Soil,
+    Surface::Asphalt,
+    Surface::Water,
+];
+
+/// Which of [`FAR_COVER_SURFACES`] stands for `surface` (roofing as paving, sand
+/// as soil).
+#[must_use]
+pub const fn far_cover_slot(surface: Surface) -> usize {
+    match surface {
+        Surface::Grass => 0,
+        Surface::Soil | Surface::Sand => 1,
+        Surface::Asphalt | Surface::Roof => 2,
+        Surface::Water => 3,
+    }
+}
+
+/// Most cells along a side of the far cover (10 km of terrain: ~104 m cells).
+pub const FAR_CELLS_MAX: u32 = 96;
+
+/// The far cover is stepped once every this many steps (at least the frames in
+/// flight plus one, so its two GPU regions are never written while read).
+pub const FAR_STEP_EVERY: u32 = 4;
+
+/// The longest piece a far step advances its texels by at once, days (the texel
+/// physics' limits are explicit; a far step at 2 days a second of the time scale
+/// is cut into such pieces).
+pub const FAR_PIECE_DAYS: f32 = 0.25;
+
+/// The air's cooling with height, °C per metre: the ICAO standard atmosphere's
+/// troposphere, 6.5 K/km (ISO 2533:1975).
+pub const LAPSE_RATE_C_PER_M: f32 = 0.0065;
+
+/// The far texels' threshold masks (`T_M.g`, `T_M.r`): at their middle, each
+/// fragment's patch noise moves them (WGSL twin `FAR_MASK`).
+pub const FAR_MASK: f32 = 0.5;
+
+/// The snow depth a cell holds to count as snowy for [`FarCover::snow_line_m`], mm.
+pub const SNOW_LINE_DEPTH_MM: f32 = 10.0;
+
+/// The height bands [`FarCover::snow_line_m`] looks at, m.
+pub const SNOW_LINE_BAND_M: f32 = 25.0;
+
+/// Floats of one texel's shading rows (two `vec4`s: what varies of the three the
+/// grid's textures hold a texel, `cover_texture.wgsl`, and the cell's height).
+pub const FAR_ROW_FLOATS: usize = 8;
+
+/// Most terrain samples classified at configure (every `s`-th along each side
+/// beyond).
+const FAR_AREA_SAMPLES: u64 = 1 << 20;
+
+/// The share of snow in what falls where the air is `local_c`, given the share
+/// `site_share` the weather has at `site_c` (model (4.18)): moved by the sleet
+/// ramp's difference between the two temperatures, so it is the weather's own at
+/// the site's height and a kind's snow stays snow wherever it is colder.
+#[must_use]
+pub fn local_snow_share(site_share: f32, site_c: f32, local_c: f32) -> f32 {
+    (site_share + sleet_snow_fraction(local_c) - sleet_snow_fraction(site_c)).clamp(0.0, 1.0)
+}
+
+/// The weather accumulated over the steps since the last far step.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Pending {
+    steps: u32,
+    snow_mm: f64,
+    rain_mm: f64,
+    dt_days: f64,
+    /// Time-weighted sums (divided by `dt_days` at the step).
+    temperature_c_days: f64,
+    humidity_days: f64,
+    wind_mps_days: f64,
+}
+
+/// The cover beyond the grid, per place (the module's docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FarCover {
+    corner_m: Vec2,
+    cell_m: Vec2,
+    cells: UVec2,
+    /// Each cell's texels, [`FAR_COVER_SURFACES`]' order within a cell, cells row
+    /// by row along x.
+    texels: Vec<CoverTexel>,
+    /// Each cell's mean height, m.
+    height_m: Vec<f32>,
+    /// Each cell's air temperature less the site's, °C.
+    air_offset_c: Vec<f32>,
+    /// The land off the cover grid each texel stands for, m².
+    area_m2: Vec<f64>,
+    pending: Pending,
+    /// Which of the GPU's two regions holds the rows now.
+    region: u32,
+    /// Whether a step has made rows the GPU does not have yet.
+    fresh: bool,
+}
+
+/// Where the GPU reads the far cover (`RenderParams::far_cover_grid` and
+/// `far_cover_cells`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FarCoverRows {
+    /// The cells' corner x, z and a cell's size along x, z, m.
+    pub grid: Vec4,
+    /// Cells along x and z, the first word of the current region in the ground
+    /// buffer, 0.
+    pub cells: UVec4,
+}
+
+fn bare_texels() -> [CoverTexel; FAR_COVER_SURFACES.len()] {
+    FAR_COVER_SURFACES.map(|surface| CoverTexel {
+        eligibility: if surface == Surface::Water { 0.0 } else { 1.0 },
+        accumulation_mask: FAR_MASK,
+        melt_mask: FAR_MASK,
+        surface: surface as u32,
+        ..CoverTexel::default()
+    })
+}
+
+impl FarCover {
+    /// One cell for everywhere at the site's air, standing for no land (a scene
+    /// without a terrain: its far meshes read it).
+    #[must_use]
+    pub fn everywhere() -> Self {
+        Self {
+            corner_m: Vec2::ZERO,
+            cell_m: Vec2::ONE,
+            cells: UVec2::ONE,
+            texels: bare_texels().to_vec(),
+            height_m: vec![0.0],
+            air_offset_c: vec![0.0],
+            area_m2: vec![0.0; FAR_COVER_SURFACES.len()],
+            pending: Pending::default(),
+            region: 0,
+            fresh: false,
+        }
+    }
+
+    /// The cells over `terrain`: each texel's land off `grid` (samples classified
+    /// by [`Terrain::surface_at`], every `s`-th, at most 2²⁰) and each cell's mean
+    /// height against the terrain's under the grid's centre.
+    #[must_use]
+    pub fn over(terrain: &Terrain, grid: &GridFrame) -> Self {
+        let n = terrain.samples();
+        let spans = (n.saturating_sub(UVec2::ONE)).max(UVec2::ONE);
+        let cells = spans.min(UVec2::splat(FAR_CELLS_MAX));
+        let size = terrain.size_m().max(Vec2::splat(f32::MIN_POSITIVE));
+        let cell_m = size / cells.as_vec2();
+        let corner = terrain.corner_m();
+        let count = (cells.x * cells.y) as usize;
+        let total = u64::from(n.x) * u64::from(n.y);
+        let stride = ((total as f64 / FAR_AREA_SAMPLES as f64).sqrt().ceil() as u32).max(1);
+        let sample_m = terrain.spacing_m() * stride as f32;
+        let sample_m2 = f64::from(sample_m) * f64::from(sample_m);
+        let mut area_m2 = vec![0.0; count * FAR_COVER_SURFACES.len()];
+        let mut height_sum = vec![0.0_f64; count];
+        let mut height_count = vec![0_u32; count];
+        for j in (0..n.y).step_by(stride as usize) {
+            for i in (0..n.x).step_by(stride as usize) {
+                let xz = corner + Vec2::new(i as f32, j as f32) * terrain.spacing_m();
+                let cell = ((xz - corner) / cell_m).as_uvec2().min(cells - UVec2::ONE);
+                let c = (cell.x + cells.x * cell.y) as usize;
+                let h = terrain.heights_m()[(i + n.x * j) as usize];
+                height_sum[c] += f64::from(h);
+                height_count[c] += 1;
+                if grid.texel_index(xz).is_some() {
+                    continue;
+                }
+                let surface = terrain.surface_at(xz, terrain.normal_at(xz));
+                area_m2[c * FAR_COVER_SURFACES.len() + far_cover_slot(surface)] += sample_m2;
+            }
+        }
+        let site = terrain
+            .height_at(grid.origin_m + 0.5 * grid.size_m)
+            .unwrap_or_else(|| {
+                let (low, high) = terrain.height_range_m();
+                0.5 * (low + high)
+            });
+        let height_m: Vec<f32> = height_sum
+            .iter()
+            .zip(&height_count)
+            .map(|(&sum, &k)| {
+                if k > 0 {
+                    (sum / f64::from(k)) as f32
+                } else {
+                    site
+                }
+            })
+            .collect();
+        let air_offset_c = height_m
+            .iter()
+            .map(|&h| -LAPSE_RATE_C_PER_M * (h - site))
+            .collect();
+        Self {
+            corner_m: corner,
+            cell_m,
+            cells,
+            texels: (0..count).flat_map(|_| bare_texels()).collect(),
+            height_m,
+            air_offset_c,
+            area_m2,
+            pending: Pending::default(),
+            region: 0,
+            fresh: false,
+        }
+    }
+
+    /// Cells along x and z.
+    #[must_use]
+    pub fn cells(&self) -> UVec2 {
+        self.cells
+    }
+
+    /// The texels, [`FAR_COVER_SURFACES`]' order within a cell, cells row by row.
+    #[must_use]
+    pub fn texels(&self) -> &[CoverTexel] {
+        &self.texels
+    }
+
+    /// The cell over world (x, z), clamped to the cells.
+    #[must_use]
+    pub fn cell_at(&self, xz_m: Vec2) -> UVec2 {
+        ((xz_m - self.corner_m) / self.cell_m)
+            .max(Vec2::ZERO)
+            .as_uvec2()
+            .min(self.cells - UVec2::ONE)
+    }
+
+    /// The texel of `surface` in the cell over (x, z).
+    #[must_use]
+    pub fn texel_at(&self, xz_m: Vec2, surface: Surface) -> &CoverTexel {
+        let c = self.cell_at(xz_m);
+        &self.texels[(c.x + self.cells.x * c.y) as usize * FAR_COVER_SURFACES.len()
+            + far_cover_slot(surface)]
+    }
+
+    /// The air temperature of the cell over (x, z) less the site's, °C.
+    #[must_use]
+    pub fn air_offset_c_at(&self, xz_m: Vec2) -> f32 {
+        let c = self.cell_at(xz_m);
+        self.air_offset_c[(c.x + self.cells.x * c.y) as usize]
+    }
+
+    /// The land off the grid all its texels stand for, m² (0 without a terrain).
+    #[must_use]
+    pub fn area_m2(&self) -> f64 {
+        self.area_m2.iter().sum()
+    }
+
+    /// The books of the land off the grid (`None` where it stands for none).
+    #[must_use]
+    pub fn totals(&self) -> Option<CoverTotals> {
+        (self.area_m2() > 0.0).then(|| {
+            CoverTotals::of_texels(
+                self.texels
+                    .iter()
+                    .zip(self.area_m2.iter().copied())
+                    .filter(|(_, a)| *a > 0.0),
+            )
+        })
+    }
+
+    /// The snow line beyond the grid, m: the cells (by their land off the grid)
+    /// in bands of [`SNOW_LINE_BAND_M`] of height, from the highest down, while
+    /// at least half of a band's land holds [`SNOW_LINE_DEPTH_MM`] of snow or
+    /// more; the lowest such band's foot. `None` where the highest band is not
+    /// snowy (or there is no terrain).
+    #[must_use]
+    pub fn snow_line_m(&self) -> Option<f32> {
+        let per_cell = FAR_COVER_SURFACES.len();
+        let mut cells: Vec<(f32, f64, f64)> = self
+            .texels
+            .chunks(per_cell)
+            .zip(self.area_m2.chunks(per_cell))
+            .zip(&self.height_m)
+            .filter_map(|((texels, areas), &h)| {
+                let land: f64 = areas.iter().sum();
+                let snowy: f64 = texels
+                    .iter()
+                    .zip(areas)
+                    .filter(|(t, _)| t.depth_mm >= SNOW_LINE_DEPTH_MM)
+                    .map(|(_, a)| a)
+                    .sum();
+                (land > 0.0).then_some((h, land, snowy))
+            })
+            .collect();
+        cells.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let top = cells.first()?.0;
+        let mut line = None;
+        let mut k = 0;
+        while k < cells.len() {
+            let foot = top
+                - SNOW_LINE_BAND_M * ((top - cells[k].0) / SNOW_LINE_BAND_M).floor()
+                - SNOW_LINE_BAND_M;
+            let (mut land, mut snowy) = (0.0, 0.0);
+            while k < cells.len() && cells[k].0 > foot {
+                land += cells[k].1;
+                snowy += cells[k].2;
+                k += 1;
+            }
+            if snowy < 0.5 * land {
+                break;
+            }
+            line = Some(foot.max(cells[k.saturating_sub(1)].0));
+        }
+        line
+    }
+
+    /// Adds a step's weather, `input` (its snow and rain, its air at the site);
+    /// every [`FAR_STEP_EVERY`] steps the cells take what came since
+    /// ([`FarCover::step_now`]).
+    pub fn add_step(&mut self, input: CoverInput, params: &CoverParams) {
+        let p = &mut self.pending;
+        let days = f64::from(input.dt_days);
+        p.steps += 1;
+        p.snow_mm += f64::from(input.snow_mm);
+        p.rain_mm += f64::from(input.rain_mm);
+        p.dt_days += days;
+        p.temperature_c_days += f64::from(input.air_temperature_c) * days;
+        p.humidity_days += f64::from(input.relative_humidity) * days;
+        p.wind_mps_days += f64::from(input.wind_speed_mps) * days;
+        if p.steps >= FAR_STEP_EVERY {
+            self.step_now(params);
+        }
+    }
+
+    /// Steps every cell by the weather accumulated since the last step, in pieces
+    /// of at most [`FAR_PIECE_DAYS`], and flips the GPU's region.
+    pub fn step_now(&mut self, params: &CoverParams) {
+        let p = std::mem::take(&mut self.pending);
+        if p.dt_days <= 0.0 && p.snow_mm + p.rain_mm <= 0.0 {
+            return;
+        }
+        let days = p.dt_days.max(f64::MIN_POSITIVE);
+        let site_c = (p.temperature_c_days / days) as f32;
+        let humidity = (p.humidity_days / days) as f32;
+        let wind = (p.wind_mps_days / days) as f32;
+        let water = p.snow_mm + p.rain_mm;
+        let site_share = if water > 0.0 {
+            (p.snow_mm / water) as f32
+        } else {
+            0.0
+        };
+        let pieces = ((p.dt_days / f64::from(FAR_PIECE_DAYS)).ceil() as u32).max(1);
+        let piece = 1.0 / f64::from(pieces);
+        let per_cell = FAR_COVER_SURFACES.len();
+        let offsets = &self.air_offset_c;
+        self.texels
+            .par_chunks_mut(per_cell)
+            .zip(offsets.par_iter())
+            .for_each(|(cell, &offset)| {
+                let local_c = site_c + offset;
+                let share = local_snow_share(site_share, site_c, local_c);
+                let input = CoverInput {
+                    snow_mm: (water * piece) as f32 * share,
+                    rain_mm: (water * piece) as f32 * (1.0 - share),
+                    air_temperature_c: local_c,
+                    relative_humidity: humidity,
+                    wind_speed_mps: wind,
+                    dt_days: (p.dt_days * piece) as f32,
+                };
+                for texel in cell.iter_mut() {
+                    for _ in 0..pieces {
+                        *texel = update_texel(*texel, input, params);
+                    }
+                }
+            });
+        self.region ^= 1;
+        self.fresh = true;
+    }
+
+    /// The shading rows of every texel (cells row by row, [`FAR_COVER_SURFACES`]'
+    /// order within a cell, [`FAR_ROW_FLOATS`] each): (depth mm, SWE mm, peak SWE
+    /// mm, wetness), (age days, puddle ratio, dust kg/m², the cell's mean height
+    /// m) — what varies of a grid texel's rows (`cover_texture.wgsl`: the far
+    /// texels' masks are ½, their roughness their surface's) and the height
+    /// `far_cover_rows` weighs the cells by.
+    #[must_use]
+    pub fn shading_rows(&self) -> Vec<f32> {
+        let per_cell = FAR_COVER_SURFACES.len();
+        self.texels
+            .iter()
+            .enumerate()
+            .flat_map(|(k, t)| {
+                [
+                    t.depth_mm,
+                    t.swe_mm,
+                    t.peak_swe_mm,
+                    t.wetness,
+                    t.age_days,
+                    t.puddle_ratio(),
+                    t.dust_kg_m2,
+                    self.height_m[k / per_cell],
+                ]
+            })
+            .collect()
+    }
+
+    /// The words of the two GPU regions at configure (both the rows now).
+    #[must_use]
+    pub fn initial_words(&self) -> Vec<f32> {
+        let rows = self.shading_rows();
+        [rows.as_slice(), rows.as_slice()].concat()
+    }
+
+    /// Words of one region.
+    #[must_use]
+    pub fn region_words(&self) -> u32 {
+        (self.texels.len() * FAR_ROW_FLOATS) as u32
+    }
+
+    /// Where the GPU reads the rows now, the regions starting at word `first_word`
+    /// of the ground buffer.
+    #[must_use]
+    pub fn rows(&self, first_word: u32) -> FarCoverRows {
+        FarCoverRows {
+            grid: Vec4::new(
+                self.corner_m.x,
+                self.corner_m.y,
+                self.cell_m.x,
+                self.cell_m.y,
+            ),
+            cells: UVec4::new(
+                self.cells.x,
+                self.cells.y,
+                first_word + self.region * self.region_words(),
+                0,
+            ),
+        }
+    }
+
+    /// After a step, the rows the GPU lacks and the word of the ground buffer they
+    /// go to (the regions starting at `first_word`); `None` when it has them.
+    pub fn take_upload(&mut self, first_word: u32) -> Option<(u32, Vec<f32>)> {
+        if !self.fresh {
+            return None;
+        }
+        self.fresh = false;
+        Some((
+            first_word + self.region * self.region_words(),
+            self.shading_rows(),
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn snow_input(air_c: f32) -> CoverInput {
+        CoverInput {
+            snow_mm: 0.1,
+            rain_mm: 0.0,
+            air_temperature_c: air_c,
+            relative_humidity: 0.9,
+            wind_speed_mps: 2.0,
+            dt_days: 0.01,
+        }
+    }
+
+    /// A terrain 2 km square: flat at 0 m in its west half, a plateau 1 200 m up
+    /// in its east half.
+    fn step_terrain() -> Terrain {
+        let n = 201_u32;
+        let heights = (0..n * n)
+            .map(|k| if k % n > n / 2 { 1200.0 } else { 0.0 })
+            .collect();
+        Terrain::new(UVec2::splat(n), 10.0, Vec2::ZERO, heights).expect("a terrain")
+    }
+
+    fn grid() -> GridFrame {
+        GridFrame::centred(Vec2::new(-500.0, 0.0), Vec2::splat(64.0), UVec2::splat(64))
+    }
+
+    #[test]
+    fn the_snow_share_is_the_weathers_at_the_site_and_follows_the_ramp_away() {
+        assert!((local_snow_share(0.7, 1.0, 1.0) - 0.7).abs() < 1e-6);
+        assert!((local_snow_share(1.0, -10.0, -2.0) - 1.0).abs() < 1e-6);
+        assert!(local_snow_share(0.0, 8.0, 4.0).abs() < 1e-6);
+        // Wet snow at +1 °C: rain 1 000 m lower (+7.5 °C), snow 1 000 m higher.
+        let at = sleet_snow_fraction(1.0);
+        assert!(local_snow_share(at, 1.0, 7.5).abs() < 1e-6);
+        assert!((local_snow_share(at, 1.0, -5.5) - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn each_cell_breathes_the_air_at_its_height() {
+        let far = FarCover::over(&step_terrain(), &grid());
+        assert_eq!(far.cells(), UVec2::splat(96).min(UVec2::splat(200)));
+        assert!(far.air_offset_c_at(Vec2::new(-800.0, 0.0)).abs() < 1e-3);
+        let high = far.air_offset_c_at(Vec2::new(800.0, 0.0));
+        assert!((high + 1200.0 * LAPSE_RATE_C_PER_M).abs() < 1e-3, "{high}");
+        // The land off the grid: the terrain's less the grid's 64 m square.
+        let expected = 2010.0_f64 * 2010.0 - 64.0 * 64.0;
+        assert!(
+            (far.area_m2() - expected).abs() / expected < 0.01,
+            "{}",
+            far.area_m2()
+        );
+    }
+
+    #[test]
+    fn a_snow_line_forms_where_the_cells_melt_stops_and_the_books_close() {
+        let params = CoverParams::default();
+        // A valley floor 800 m below the site, a ridge 800 m above.
+        let n = 301_u32;
+        let heights = (0..n * n)
+            .map(|k| match k % n {
+                i if i < 100 => -800.0,
+                i if i > 200 => 800.0,
+                _ => 0.0,
+            })
+            .collect();
+        let terrain = Terrain::new(UVec2::splat(n), 10.0, Vec2::ZERO, heights).expect("valid");
+        let grid = GridFrame::centred(Vec2::ZERO, Vec2::splat(64.0), UVec2::splat(64));
+        let mut far = FarCover::over(&terrain, &grid);
+        // Sleet at +1.5 °C at the site for four days: rain on the floor (+6.7 °C),
+        // snow on the ridge (−3.7 °C).
+        let share = sleet_snow_fraction(1.5);
+        for _ in 0..400 {
+            far.add_step(
+                CoverInput {
+                    snow_mm: 0.1 * share,
+                    rain_mm: 0.1 * (1.0 - share),
+                    ..snow_input(1.5)
+                },
+                &params,
+            );
+        }
+        let floor = far.texel_at(Vec2::new(-1200.0, 0.0), Surface::Grass);
+        let ridge = far.texel_at(Vec2::new(1200.0, 0.0), Surface::Grass);
+        assert!(ridge.swe_mm > 35.0, "the ridge holds {} mm", ridge.swe_mm);
+        assert!(floor.swe_mm < 1e-3, "the floor holds {} mm", floor.swe_mm);
+        assert!(floor.infiltrated_mm + floor.film_mm + floor.standing_mm > 30.0);
+        let lake = far.texel_at(Vec2::new(1200.0, 0.0), Surface::Water);
+        assert!(lake.depth_mm.abs() < 1e-6);
+        let books = far.totals().expect("a terrain");
+        assert!(books.deposited_kg > 0.0);
+        assert!(
+            books.imbalance_kg().abs() < 1e-5 * books.deposited_kg,
+            "{}",
+            books.imbalance_kg()
+        );
+        // The snow line: the middle third (the site's 0 m, +1.5 °C, 37 % snow)
+        // keeps some of its snow after four days, the floor none.
+        let line = far.snow_line_m().expect("the ridge holds snow");
+        assert!((-1.0..=1.0).contains(&line), "{line}");
+        assert!(FarCover::everywhere().snow_line_m().is_none());
+    }
+
+    #[test]
+    fn a_cell_keeps_its_cover_and_the_gpu_gets_each_step_in_the_other_region() {
+        let params = CoverParams::default();
+        let mut far = FarCover::over(&step_terrain(), &grid());
+        let first = 1000;
+        let before = far.rows(first).cells.z;
+        for _ in 0..FAR_STEP_EVERY - 1 {
+            far.add_step(snow_input(-5.0), &params);
+            assert!(far.take_upload(first).is_none());
+        }
+        far.add_step(snow_input(-5.0), &params);
+        let (word, rows) = far.take_upload(first).expect("a step's rows");
+        assert_eq!(word, far.rows(first).cells.z);
+        assert_ne!(word, before);
+        assert_eq!(rows.len() as u32, far.region_words());
+        assert!(far.take_upload(first).is_none());
+        // Rows are (depth, SWE, …): the first grass texel holds the snow.
+        assert!(rows[1] > 0.0);
+        let held = *far.texel_at(Vec2::new(800.0, 500.0), Surface::Grass);
+        for _ in 0..FAR_STEP_EVERY {
+            far.add_step(
+                CoverInput {
+                    snow_mm: 0.0,
+                    ..snow_input(-5.0)
+                },
+                &params,
+            );
+        }
+        let after = far.texel_at(Vec2::new(800.0, 500.0), Surface::Grass);
+        assert!((after.swe_mm - held.swe_mm).abs() < 1e-3 * held.swe_mm.max(1.0));
+        assert_eq!(far.initial_words().len() as u32, 2 * far.region_words());
+    }
+
+    #[test]
+    fn everywhere_is_one_cell_standing_for_no_land() {
+        let far = FarCover::everywhere();
+        assert_eq!(far.cells(), UVec2::ONE);
+        assert!(far.totals().is_none());
+        assert_eq!(far.cell_at(Vec2::splat(1.0e6)), UVec2::ZERO);
+    }
+}
