@@ -344,15 +344,9 @@ struct FarRows {
 }
 
 fn far_cover_rows(c: FarCells, slot: u32, height_m: f32) -> FarRows {
-    var out: FarRows;
-    // One cell for everywhere (no terrain): its rows as they are.
-    if (all(params.far_cover_cells.xy == vec2<u32>(1u))) {
-        out.a = far_row(vec2<u32>(0u), slot, 0u);
-        out.b = far_row(vec2<u32>(0u), slot, 1u);
-        return out;
-    }
     let cells = array<vec2<u32>, 4>(c.low, vec2<u32>(c.high.x, c.low.y), vec2<u32>(c.low.x, c.high.y), c.high);
     let bilinear = vec4<f32>((1.0 - c.f.x) * (1.0 - c.f.y), c.f.x * (1.0 - c.f.y), (1.0 - c.f.x) * c.f.y, c.f.x * c.f.y);
+    var out: FarRows;
     var total = 0.0;
     for (var k = 0u; k < 4u; k++) {
         let b = far_row(cells[k], slot, 1u);
@@ -370,9 +364,6 @@ fn far_cover_rows(c: FarCells, slot: u32, height_m: f32) -> FarRows {
 
 // The far cover's snow depth alone (far_cover_rows' first field), mm.
 fn far_depth_mm(c: FarCells, slot: u32, height_m: f32) -> f32 {
-    if (all(params.far_cover_cells.xy == vec2<u32>(1u))) {
-        return far_row(vec2<u32>(0u), slot, 0u).x;
-    }
     let cells = array<vec2<u32>, 4>(c.low, vec2<u32>(c.high.x, c.low.y), vec2<u32>(c.low.x, c.high.y), c.high);
     let bilinear = vec4<f32>((1.0 - c.f.x) * (1.0 - c.f.y), c.f.x * (1.0 - c.f.y), (1.0 - c.f.x) * c.f.y, c.f.x * c.f.y);
     let n = params.far_cover_cells.xy;
@@ -393,14 +384,15 @@ fn far_depth_mm(c: FarCells, slot: u32, height_m: f32) -> f32 {
 fn cover_at(p_m: vec3<f32>) -> CoverTexel {
     let xz_m = p_m.xz;
     let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
-    // Off the grid, the cover beyond it at its place (far_cover_rows). The
-    // grid's textures are sampled by every fragment (in uniform control flow, as
-    // before the far cells: the default scene's frame measured no cheaper with
-    // the samples in a branch); only a fragment off the grid reads the far cells.
-    var a = textureSampleLevel(cover_a, cover_sampler, uv, 0.0);
-    var b = textureSampleLevel(cover_b, cover_sampler, uv, 0.0);
-    var c = textureSampleLevel(cover_c, cover_sampler, uv, 0.0);
-    if (grid_texel_index(params.cover, xz_m) < 0) {
+    // Off the grid, the cover beyond it at its place (far_cover_row).
+    var a: vec4<f32>;
+    var b: vec4<f32>;
+    var c: vec4<f32>;
+    if (grid_texel_index(params.cover, xz_m) >= 0) {
+        a = textureSampleLevel(cover_a, cover_sampler, uv, 0.0);
+        b = textureSampleLevel(cover_b, cover_sampler, uv, 0.0);
+        c = textureSampleLevel(cover_c, cover_sampler, uv, 0.0);
+    } else {
         // The far texel's rows as the grid's textures hold a texel's.
         let slot = min(far_cover_slot, FAR_SLOTS - 1u);
         let far = far_cover_rows(far_cells(xz_m), slot, p_m.y);
@@ -475,8 +467,10 @@ fn displaced(v: SceneVertex) -> vec3<f32> {
     let n = normalize(v.normal);
     // The depth alone (cover_at's first texture; off the grid the cover beyond it).
     let uv = (p.xz - params.cover.origin_m) / params.cover.size_m;
-    var depth_mm = textureSampleLevel(cover_a, cover_sampler, uv, 0.0).x;
-    if (grid_texel_index(params.cover, p.xz) < 0) {
+    var depth_mm: f32;
+    if (grid_texel_index(params.cover, p.xz) >= 0) {
+        depth_mm = textureSampleLevel(cover_a, cover_sampler, uv, 0.0).x;
+    } else {
         depth_mm = far_depth_mm(far_cells(p.xz), min(far_cover_slot, FAR_SLOTS - 1u), p.y);
     }
     p.y += depth_mm * 1.0e-3 * clamp(v.eligibility, 0.0, 1.0) * upward(n) * exposure(p, n);
