@@ -307,11 +307,13 @@ fn snow_lands_on_the_terrain_where_it_rises_above_the_meshes() {
     );
 }
 
-/// The house's flat at −0.5 m out to x = 300 m, a plateau 600 m up from x = 700 m
-/// on, a slope between (4 km square).
+/// The house's flat at −0.5 m out to 300 m north (z = −300 m), a plateau 600 m up
+/// from 700 m north on, a slope between (4 km square). Along z, so a fragment
+/// that looked its cover up by its height instead of its z would read the flat's
+/// cells on the plateau.
 fn plateau() -> Terrain {
-    terrain_of(401, 10.0, |x, _| {
-        -0.5 + 600.0 * ((x - 300.0) / 400.0).clamp(0.0, 1.0)
+    terrain_of(401, 10.0, |_, z| {
+        -0.5 + 600.0 * ((-z - 300.0) / 400.0).clamp(0.0, 1.0)
     })
 }
 
@@ -352,13 +354,13 @@ fn the_cover_beyond_the_grid_is_kept_per_place_with_the_air_at_its_height_on_eve
     use precip_model::PrecipitationKind;
     let mut setup = setup_on(Some(plateau()));
     setup.cover.time_scale = 86_400.0;
-    // Looking down from 1.9 km above the plateau's edge: the flat in the image's
-    // west (left) third, the plateau in its east third.
-    setup.camera.position_m = Vec3::new(500.0, 2500.0, 0.0);
+    // Looking down from 1.9 km above the plateau's edge, east up: the plateau in
+    // the image's north (left) quarter, the flat in its south quarter.
+    setup.camera.position_m = Vec3::new(0.0, 2500.0, -500.0);
     setup.camera.forward = Vec3::NEG_Y;
-    setup.camera.up = Vec3::NEG_Z;
+    setup.camera.up = Vec3::X;
     let rows = HEIGHT / 4..3 * HEIGHT / 4;
-    let (flat, high) = (0..WIDTH / 4, 3 * WIDTH / 4..WIDTH);
+    let (flat, high) = (3 * WIDTH / 4..WIDTH, 0..WIDTH / 4);
     let mut images = Vec::new();
     for mut subject in gpu_subjects("the_cover_beyond_the_grid_is_kept_per_place") {
         if !subject.renders() {

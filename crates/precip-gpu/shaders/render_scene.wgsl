@@ -571,7 +571,8 @@ fn surface_look(in: SceneVarying, camera: vec3<f32>) -> SurfaceLook {
         // Read the cover a little off the point (under half a texel), so where a
         // drift or a bare patch ends follows no texel's edge.
         let cell = params.cover.size_m / vec2<f32>(params.cover.texels);
-        let texel = cover_at(vec3<f32>(in.surface_m.xz + cover_warp_m(in.surface_m.xz, cell), in.surface_m.y));
+        let warped_xz = in.surface_m.xz + cover_warp_m(in.surface_m.xz, cell);
+        let texel = cover_at(vec3<f32>(warped_xz.x, in.surface_m.y, warped_xz.y));
         // The texel's threshold moved by noise finer than a texel, so patch borders
         // and thin snow follow neither texels nor triangles.
         var threshold = texel.accumulation_mask;
