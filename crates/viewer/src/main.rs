@@ -110,8 +110,9 @@ struct WeatherArgs {
     #[arg(long)]
     cloud_transition_band: Option<f32>,
     /// The rate falling beyond the camera's 3 km, averaged over the land, mm/h:
-    /// shafts of rain or snow under the lowest cloud layer's clouds, seen from afar
-    /// (the weather's own rate by default; docs/model.md (6.16)).
+    /// shafts of rain or snow under the lowest cloud layer's clouds, seen from afar,
+    /// and landing there on a terrain's cells (the weather's own rate by default;
+    /// docs/model.md (6.16), (4.16)).
     #[arg(long)]
     rate_beyond: Option<f32>,
     /// Another cloud layer, `TYPE[:COVER[:BASE_M[:THICKNESS_M]]]` (e.g.

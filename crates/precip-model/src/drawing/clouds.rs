@@ -68,7 +68,7 @@ pub use shadow_map::{
 };
 pub use shafts::{
     CLOUD_BASE_SKY_SHARE, HazeExtinctions, LOCAL_WEATHER_RADIUS_M, MIN_SHAFT_COVERAGE,
-    RAIN_SHAFT_SAMPLES, precipitation_haze, shaft_extinction_per_m,
+    RAIN_SHAFT_SAMPLES, precipitation_haze, shaft_extinction_per_m, shaft_share,
 };
 
 /// The cloud types the layer can have (WMO genera).

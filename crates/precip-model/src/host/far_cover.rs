@@ -16,6 +16,14 @@
 //! snow line is where the cells' melt stops. Without a terrain it is one cell that
 //! stands for everywhere (a scene's far meshes), at the site's air.
 //!
+//! The weather set is the weather around the camera (docs/model.md (6.16)): a cell
+//! whose centre is within [`LOCAL_WEATHER_RADIUS_M`] of the camera takes its water;
+//! one beyond takes the rate set for the land beyond ([`WaterBeyond`], the
+//! weather's own unless `--rate-beyond` sets another), and under a cloud layer only
+//! where the drawn shafts fall — under the lowest layer's clouds, at `rate/s` (`s`
+//! the share of the land under them), none between — so showers seen from a dry town wet and whiten the
+//! land they are seen falling on, and the mean over the land beyond is the rate set.
+//!
 //! The cells are stepped every [`FAR_STEP_EVERY`] steps with the weather those
 //! steps had (their water summed, their air time-weighted), in pieces of at most
 //! [`FAR_PIECE_DAYS`] days; each step's shading rows go to the GPU into one of two
@@ -31,6 +39,10 @@ use precip_cover::{
 };
 use rayon::prelude::*;
 
+use crate::drawing::clouds::{
+    LOCAL_WEATHER_RADIUS_M, cloud_column, cloud_map_uv, cloud_noise, sample_coverage_map,
+    shaft_share,
+};
 use crate::scene::terrain::Terrain;
 use crate::weather::sleet_snow_fraction;
 
@@ -100,12 +112,56 @@ pub fn local_snow_share(site_share: f32, site_c: f32, local_c: f32) -> f32 {
     (site_share + sleet_snow_fraction(local_c) - sleet_snow_fraction(site_c)).clamp(0.0, 1.0)
 }
 
+/// What falls on the land beyond the camera's surroundings in a step (model
+/// (6.16)): the cells whose centres are farther than [`LOCAL_WEATHER_RADIUS_M`]
+/// from the camera take it instead of the weather's water.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct WaterBeyond {
+    /// The camera's x and z, m.
+    pub camera_xz_m: Vec2,
+    /// Snow's water over the step, as the mean over the land beyond, mm.
+    pub snow_mm: f32,
+    /// Rain's, mm.
+    pub rain_mm: f32,
+    /// The lowest cloud layer's shafts, where it has one: the water falls under
+    /// its clouds alone.
+    pub shafts: Option<Shafts>,
+}
+
+/// Where the lowest cloud layer's shafts fall: under its clouds, at `1/s` of the
+/// mean rate (`s` the share of the land under its columns, [`shaft_share`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Shafts {
+    /// The layer's coverage `[0, 1]`.
+    pub coverage: f32,
+    /// The coverage map's drift with the wind (`cloud_drift_m`), m.
+    pub drift_m: Vec2,
+}
+
+impl Shafts {
+    /// The rate at (x, z) over the layer's mean rate: `column(c − m)/s`, `m` the
+    /// coverage map's value there (WGSL: `precipitation_haze`'s shafts,
+    /// render_clouds.wgsl, read the same map and column).
+    #[must_use]
+    pub fn rate_factor(&self, xz_m: Vec2) -> f32 {
+        let m = sample_coverage_map(
+            &cloud_noise().coverage,
+            cloud_map_uv(glam::Vec3::new(xz_m.x, 0.0, xz_m.y), self.drift_m),
+        );
+        cloud_column(self.coverage, m) / shaft_share(self.coverage)
+    }
+}
+
 /// The weather accumulated over the steps since the last far step.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 struct Pending {
     steps: u32,
     snow_mm: f64,
     rain_mm: f64,
+    snow_beyond_mm: f64,
+    rain_beyond_mm: f64,
+    /// The last step's camera and shafts.
+    beyond: WaterBeyond,
     dt_days: f64,
     /// Time-weighted sums (divided by `dt_days` at the step).
     temperature_c_days: f64,
@@ -128,6 +184,9 @@ pub struct FarCover {
     air_offset_c: Vec<f32>,
     /// The land off the cover grid each texel stands for, m².
     area_m2: Vec<f64>,
+    /// Whether the cells are places (a terrain's) rather than one cell for
+    /// everywhere, which always takes the weather's water.
+    per_place: bool,
     pending: Pending,
     /// Which of the GPU's two regions holds the rows now.
     region: u32,
@@ -169,6 +228,7 @@ impl FarCover {
             height_m: vec![0.0],
             air_offset_c: vec![0.0],
             area_m2: vec![0.0; FAR_COVER_SURFACES.len()],
+            per_place: false,
             pending: Pending::default(),
             region: 0,
             fresh: false,
@@ -238,6 +298,7 @@ impl FarCover {
             height_m,
             air_offset_c,
             area_m2,
+            per_place: true,
             pending: Pending::default(),
             region: 0,
             fresh: false,
@@ -345,15 +406,19 @@ impl FarCover {
         line
     }
 
-    /// Adds a step's weather, `input` (its snow and rain, its air at the site);
-    /// every [`FAR_STEP_EVERY`] steps the cells take what came since
+    /// Adds a step's weather, `input` (its snow and rain, its air at the site),
+    /// and what fell beyond the camera's surroundings, `beyond`; every
+    /// [`FAR_STEP_EVERY`] steps the cells take what came since
     /// ([`FarCover::step_now`]).
-    pub fn add_step(&mut self, input: CoverInput, params: &CoverParams) {
+    pub fn add_step(&mut self, input: CoverInput, beyond: WaterBeyond, params: &CoverParams) {
         let p = &mut self.pending;
         let days = f64::from(input.dt_days);
         p.steps += 1;
         p.snow_mm += f64::from(input.snow_mm);
         p.rain_mm += f64::from(input.rain_mm);
+        p.snow_beyond_mm += f64::from(beyond.snow_mm);
+        p.rain_beyond_mm += f64::from(beyond.rain_mm);
+        p.beyond = beyond;
         p.dt_days += days;
         p.temperature_c_days += f64::from(input.air_temperature_c) * days;
         p.humidity_days += f64::from(input.relative_humidity) * days;
@@ -363,31 +428,60 @@ impl FarCover {
         }
     }
 
+    /// The water a cell takes over a far step and the snow's share of it at the
+    /// site's air: the weather's within [`LOCAL_WEATHER_RADIUS_M`] of the camera
+    /// (and everywhere for the one cell without a terrain), the land beyond's
+    /// beyond it, under the lowest layer's clouds alone where it has one.
+    fn cell_water(&self, p: &Pending, cell: usize) -> (f64, f32) {
+        let share = |snow: f64, rain: f64| {
+            if snow + rain > 0.0 {
+                (snow / (snow + rain)) as f32
+            } else {
+                0.0
+            }
+        };
+        let centre = self.corner_m
+            + (Vec2::new(
+                (cell as u32 % self.cells.x) as f32,
+                (cell as u32 / self.cells.x) as f32,
+            ) + 0.5)
+                * self.cell_m;
+        if !self.per_place || centre.distance(p.beyond.camera_xz_m) <= LOCAL_WEATHER_RADIUS_M {
+            return (p.snow_mm + p.rain_mm, share(p.snow_mm, p.rain_mm));
+        }
+        let factor = p
+            .beyond
+            .shafts
+            .map_or(1.0, |s| f64::from(s.rate_factor(centre)));
+        (
+            (p.snow_beyond_mm + p.rain_beyond_mm) * factor,
+            share(p.snow_beyond_mm, p.rain_beyond_mm),
+        )
+    }
+
     /// Steps every cell by the weather accumulated since the last step, in pieces
     /// of at most [`FAR_PIECE_DAYS`], and flips the GPU's region.
     pub fn step_now(&mut self, params: &CoverParams) {
         let p = std::mem::take(&mut self.pending);
-        if p.dt_days <= 0.0 && p.snow_mm + p.rain_mm <= 0.0 {
+        let all_water = p.snow_mm + p.rain_mm + p.snow_beyond_mm + p.rain_beyond_mm;
+        if p.dt_days <= 0.0 && all_water <= 0.0 {
             return;
         }
         let days = p.dt_days.max(f64::MIN_POSITIVE);
         let site_c = (p.temperature_c_days / days) as f32;
         let humidity = (p.humidity_days / days) as f32;
         let wind = (p.wind_mps_days / days) as f32;
-        let water = p.snow_mm + p.rain_mm;
-        let site_share = if water > 0.0 {
-            (p.snow_mm / water) as f32
-        } else {
-            0.0
-        };
         let pieces = ((p.dt_days / f64::from(FAR_PIECE_DAYS)).ceil() as u32).max(1);
         let piece = 1.0 / f64::from(pieces);
         let per_cell = FAR_COVER_SURFACES.len();
+        let waters: Vec<(f64, f32)> = (0..self.height_m.len())
+            .map(|cell| self.cell_water(&p, cell))
+            .collect();
         let offsets = &self.air_offset_c;
         self.texels
             .par_chunks_mut(per_cell)
-            .zip(offsets.par_iter())
-            .for_each(|(cell, &offset)| {
+            .zip(offsets.par_iter().zip(waters.par_iter()))
+            .for_each(|(cell, (&offset, &(water, site_share)))| {
                 let local_c = site_c + offset;
                 let share = local_snow_share(site_share, site_c, local_c);
                 let input = CoverInput {
@@ -486,6 +580,17 @@ impl FarCover {
 mod tests {
     use super::*;
 
+    /// Adds `input` as the weather here and beyond alike.
+    fn add(far: &mut FarCover, input: CoverInput, params: &CoverParams) {
+        let beyond = WaterBeyond {
+            camera_xz_m: Vec2::ZERO,
+            snow_mm: input.snow_mm,
+            rain_mm: input.rain_mm,
+            shafts: None,
+        };
+        far.add_step(input, beyond, params);
+    }
+
     fn snow_input(air_c: f32) -> CoverInput {
         CoverInput {
             snow_mm: 0.1,
@@ -557,7 +662,8 @@ mod tests {
         // snow on the ridge (−3.7 °C).
         let share = sleet_snow_fraction(1.5);
         for _ in 0..400 {
-            far.add_step(
+            add(
+                &mut far,
                 CoverInput {
                     snow_mm: 0.1 * share,
                     rain_mm: 0.1 * (1.0 - share),
@@ -594,10 +700,10 @@ mod tests {
         let first = 1000;
         let before = far.rows(first).cells.z;
         for _ in 0..FAR_STEP_EVERY - 1 {
-            far.add_step(snow_input(-5.0), &params);
+            add(&mut far, snow_input(-5.0), &params);
             assert!(far.take_upload(first).is_none());
         }
-        far.add_step(snow_input(-5.0), &params);
+        add(&mut far, snow_input(-5.0), &params);
         let (word, rows) = far.take_upload(first).expect("a step's rows");
         assert_eq!(word, far.rows(first).cells.z);
         assert_ne!(word, before);
@@ -607,7 +713,8 @@ mod tests {
         assert!(rows[1] > 0.0);
         let held = *far.texel_at(Vec2::new(800.0, 500.0), Surface::Grass);
         for _ in 0..FAR_STEP_EVERY {
-            far.add_step(
+            add(
+                &mut far,
                 CoverInput {
                     snow_mm: 0.0,
                     ..snow_input(-5.0)
@@ -626,5 +733,138 @@ mod tests {
         assert_eq!(far.cells(), UVec2::ONE);
         assert!(far.totals().is_none());
         assert_eq!(far.cell_at(Vec2::splat(1.0e6)), UVec2::ZERO);
+    }
+
+    /// An 8 km flat terrain at the site's height, its grid at the centre.
+    fn wide_flat() -> (Terrain, GridFrame) {
+        let n = 201_u32;
+        let terrain = Terrain::new(
+            UVec2::splat(n),
+            40.0,
+            Vec2::ZERO,
+            vec![0.0; (n * n) as usize],
+        )
+        .expect("a terrain");
+        let grid = GridFrame::centred(Vec2::ZERO, Vec2::splat(64.0), UVec2::splat(64));
+        (terrain, grid)
+    }
+
+    /// A day of dry air here and 1 mm of snow a step beyond (−8 °C: none melts).
+    fn showers_around(far: &mut FarCover, shafts: Option<Shafts>, params: &CoverParams) {
+        for _ in 0..100 {
+            far.add_step(
+                CoverInput {
+                    snow_mm: 0.0,
+                    ..snow_input(-8.0)
+                },
+                WaterBeyond {
+                    camera_xz_m: Vec2::new(500.0, 0.0),
+                    snow_mm: 1.0,
+                    rain_mm: 0.0,
+                    shafts,
+                },
+                params,
+            );
+        }
+    }
+
+    #[test]
+    fn the_land_beyond_the_camera_s_surroundings_takes_the_rate_set_for_it() {
+        let params = CoverParams::default();
+        let (terrain, grid) = wide_flat();
+        let mut far = FarCover::over(&terrain, &grid);
+        showers_around(&mut far, None, &params);
+        // Within 3 km of the camera (at x = 500 m) it stayed dry; beyond, the
+        // 100 mm of snow lies (less what the dry air took).
+        let here = far.texel_at(Vec2::new(2500.0, 1500.0), Surface::Grass);
+        let there = far.texel_at(Vec2::new(-3000.0, 2500.0), Surface::Grass);
+        assert!(here.deposited_mm.abs() < 1e-12, "{}", here.deposited_mm);
+        assert!(
+            (there.deposited_mm - 100.0).abs() < 1e-3,
+            "{}",
+            there.deposited_mm
+        );
+        assert!(there.swe_mm > 95.0, "{}", there.swe_mm);
+        // The books: what landed is the land beyond's area times 100 mm.
+        let books = far.totals().expect("a terrain");
+        let beyond_m2: f64 = far
+            .texels()
+            .iter()
+            .zip(&far.area_m2)
+            .filter(|(t, _)| t.deposited_mm > 0.0)
+            .map(|(_, a)| a)
+            .sum();
+        assert!((books.deposited_kg - 100.0 * beyond_m2).abs() < 1e-4 * books.deposited_kg);
+        assert!(books.imbalance_kg().abs() < 1e-5 * books.deposited_kg);
+        // The one cell without a terrain stands for everywhere: the weather's own.
+        let mut everywhere = FarCover::everywhere();
+        showers_around(&mut everywhere, None, &params);
+        assert!(
+            everywhere.texels()[0].deposited_mm.abs() < 1e-12,
+            "{}",
+            everywhere.texels()[0].deposited_mm
+        );
+    }
+
+    #[test]
+    fn under_a_cloud_layer_the_land_beyond_takes_its_shafts_rate_under_its_clouds_alone() {
+        let params = CoverParams::default();
+        let (terrain, grid) = wide_flat();
+        let mut far = FarCover::over(&terrain, &grid);
+        let shafts = Shafts {
+            coverage: 0.3,
+            drift_m: Vec2::new(1500.0, -700.0),
+        };
+        showers_around(&mut far, Some(shafts), &params);
+        let camera = Vec2::new(500.0, 0.0);
+        let (mut wet, mut dry, mut factor_sum, mut count) = (0, 0, 0.0_f64, 0);
+        for j in 0..far.cells().y {
+            for i in 0..far.cells().x {
+                let centre = far.corner_m + (Vec2::new(i as f32, j as f32) + 0.5) * far.cell_m;
+                let t = far.texel_at(centre, Surface::Grass);
+                if centre.distance(camera) <= LOCAL_WEATHER_RADIUS_M {
+                    assert!(t.deposited_mm.abs() < 1e-12, "{}", t.deposited_mm);
+                    continue;
+                }
+                let factor = shafts.rate_factor(centre);
+                // Each cell took 100 mm at its shafts' rate: 1/s under a cloud, 0
+                // between, the column's edge between.
+                assert!((t.deposited_mm - 100.0 * factor).abs() < 1e-3 * (1.0 + 100.0 * factor));
+                let full = 1.0 / shaft_share(0.3);
+                assert!((0.0..=full + 1e-4).contains(&factor), "{factor}");
+                if factor > 0.99 * full {
+                    wet += 1;
+                }
+                if factor < 1e-6 {
+                    dry += 1;
+                }
+                factor_sum += f64::from(factor);
+                count += 1;
+            }
+        }
+        // Under the clouds at 1/s, clear between; over the land beyond the mean is
+        // the share of these 8 km (two thirds of the map's period) the clouds
+        // happen to cover over s.
+        assert!(
+            wet > count / 10 && dry > count / 3,
+            "{wet} wet, {dry} dry of {count}"
+        );
+        let mean = factor_sum / f64::from(count);
+        eprintln!(
+            "beyond: {count} cells, {wet} under clouds, {dry} clear, mean rate {mean:.3} of the set"
+        );
+        assert!((0.3..=1.7).contains(&mean), "mean {mean}");
+        // Over the map's whole 12 km period the shafts' mean is the rate set.
+        let n = 256;
+        let period = crate::drawing::clouds::CLOUD_MAP_PERIOD_M;
+        let whole: f64 = (0..n * n)
+            .map(|k| {
+                let xz = Vec2::new((k % n) as f32, (k / n) as f32) * (period / n as f32);
+                f64::from(shafts.rate_factor(xz))
+            })
+            .sum::<f64>()
+            / f64::from(n * n);
+        eprintln!("over the map's period: mean rate {whole:.3} of the set");
+        assert!((whole - 1.0).abs() < 0.01, "{whole}");
     }
 }

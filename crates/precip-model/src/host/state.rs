@@ -24,7 +24,8 @@ use crate::sensors::optics::Optics;
 use crate::weather::Weather;
 use precip_cover::{CoverInput, DepositBuffer};
 
-use crate::host::far_cover::{FarCover, FarCoverRows};
+use crate::drawing::clouds::cloud_drift_m;
+use crate::host::far_cover::{FarCover, FarCoverRows, Shafts, WaterBeyond};
 
 /// The host side of a configured simulation.
 ///
@@ -249,7 +250,24 @@ impl HostState {
             wind_speed_mps: w.ground_wind_speed_mps(),
             dt_days,
         };
-        self.far_cover.add_step(input, &self.setup.cover.params);
+        // Beyond the camera's surroundings the land takes the rate set for it, under
+        // the lowest layer's clouds alone (model (6.16), as the shafts are drawn).
+        let render = &self.setup.render;
+        let there = Weather {
+            intensity_mm_per_h: render.rate_beyond_mm_per_h.unwrap_or(w.intensity_mm_per_h),
+            ..*w
+        };
+        let beyond = WaterBeyond {
+            camera_xz_m: Vec2::new(self.camera.position_m.x, self.camera.position_m.z),
+            snow_mm: there.channel_rate_mm_per_h(DepositBuffer::SNOW) * 24.0 * dt_days,
+            rain_mm: there.channel_rate_mm_per_h(DepositBuffer::RAIN) * 24.0 * dt_days,
+            shafts: render.cloud_layers.lowest().map(|lowest| Shafts {
+                coverage: lowest.coverage,
+                drift_m: cloud_drift_m(w.wind.mean_wind_mps, self.time_s as f32),
+            }),
+        };
+        self.far_cover
+            .add_step(input, beyond, &self.setup.cover.params);
     }
 
     /// The cover beyond the cover grid (a scene's far meshes, a terrain's
@@ -393,10 +411,7 @@ impl HostState {
         let at = self.camera.position_m;
         optics.in_fog(render.fog_layer, at).in_cloud(
             &render.cloud_layers,
-            crate::drawing::clouds::cloud_drift_m(
-                self.weather.wind.mean_wind_mps,
-                self.time_s as f32,
-            ),
+            cloud_drift_m(self.weather.wind.mean_wind_mps, self.time_s as f32),
             at,
         )
     }
@@ -597,14 +612,19 @@ mod tests {
     /// 2 mm/h of dry snow at −5 °C for half a second (half a day of cover at a
     /// day a second).
     fn snow_for_half_a_second(host: &mut HostState) {
+        dry_snow(host, 2.0, 10);
+    }
+
+    /// `rate_mm_per_h` of dry snow at −5 °C for `steps` steps of 0.05 s.
+    fn dry_snow(host: &mut HostState, rate_mm_per_h: f32, steps: u32) {
         let snow = Weather {
             kind: crate::PrecipitationKind::DrySnow,
-            intensity_mm_per_h: 2.0,
+            intensity_mm_per_h: rate_mm_per_h,
             air_temperature_c: -5.0,
             ..*host.weather()
         };
         let _rebaked = host.set_weather(&snow).expect("a valid weather");
-        for _ in 0..10 {
+        for _ in 0..steps {
             let steps = host.substeps(0.05).expect("a valid step");
             host.advance(&steps);
         }
@@ -646,27 +666,35 @@ mod tests {
         assert!(rows.cells.z >= host.far_cover_first_word());
     }
 
-    #[test]
-    fn the_books_beyond_the_grid_cover_the_terrain_off_it_and_close() {
-        use crate::scene::LandCover;
+    /// The house's setup on 201² samples of flat terrain `spacing_m` apart at
+    /// its ground's −0.5 m (made by `terrain` from the flat one), a day a second.
+    fn house_on_flat_terrain(spacing_m: f32, terrain: impl Fn(Terrain) -> Terrain) -> Setup {
         use crate::scene::builtin::house_on_plane;
-        // 2 km of flat terrain, its west half a lake, under the house's 40 m grid.
         let (mut setup, _) = Setup::over_scene(house_on_plane(), 32, 6.0, 256).expect("valid");
-        let terrain = Terrain::new(
+        let flat = Terrain::new(
             glam::UVec2::splat(201),
-            10.0,
+            spacing_m,
             Vec2::ZERO,
             vec![-0.5; 201 * 201],
         )
-        .expect("valid")
-        .with_land_cover(
-            LandCover::from_worldcover(glam::UVec2::new(2, 1), &[80, 30]).expect("valid"),
-        );
+        .expect("valid");
         let scene = setup.scene.take().expect("a scene");
         setup.scene = Some(Arc::new(
-            Arc::unwrap_or_clone(scene).on_terrain(Arc::new(terrain)),
+            Arc::unwrap_or_clone(scene).on_terrain(Arc::new(terrain(flat))),
         ));
         setup.cover.time_scale = 86_400.0;
+        setup
+    }
+
+    #[test]
+    fn the_books_beyond_the_grid_cover_the_terrain_off_it_and_close() {
+        use crate::scene::LandCover;
+        // 2 km of flat terrain, its west half a lake, under the house's 40 m grid.
+        let setup = house_on_flat_terrain(10.0, |t| {
+            t.with_land_cover(
+                LandCover::from_worldcover(glam::UVec2::new(2, 1), &[80, 30]).expect("valid"),
+            )
+        });
         let mut host = HostState::configure(&setup).expect("a valid setup");
         snow_for_half_a_second(&mut host);
         let far = host.far_cover_totals().expect("a terrain");
@@ -701,5 +729,46 @@ mod tests {
                 .far_cover_totals()
                 .is_none()
         );
+    }
+
+    #[test]
+    fn the_land_beyond_the_camera_s_three_km_takes_the_rate_beyond_under_the_clouds() {
+        use crate::drawing::clouds::{CloudKind, CloudLayer, CloudLayers};
+        // 10 km of flat terrain under the house's grid; no snow here, 2 mm/h around.
+        let mut setup = house_on_flat_terrain(50.0, |t| t);
+        setup.render.rate_beyond_mm_per_h = Some(2.0);
+        let mut host = HostState::configure(&setup).expect("a valid setup");
+        dry_snow(&mut host, 0.0, 8);
+        let near = host
+            .far_cover()
+            .texel_at(Vec2::new(1000.0, 0.0), precip_cover::Surface::Grass);
+        let far = host
+            .far_cover()
+            .texel_at(Vec2::new(4500.0, 4500.0), precip_cover::Surface::Grass);
+        assert!(near.deposited_mm.abs() < 1e-12, "{}", near.deposited_mm);
+        // 0.4 s at a day a second of 2 mm/h: 19.2 mm beyond.
+        assert!(
+            (far.deposited_mm - 19.2).abs() < 0.01,
+            "{}",
+            far.deposited_mm
+        );
+        // Under a cumulus layer the water beyond falls under its clouds alone, and
+        // the books close.
+        setup.render.cloud_layers = CloudLayers::one(CloudLayer::typical(CloudKind::Cumulus, 0.3));
+        let mut host = HostState::configure(&setup).expect("a valid setup");
+        dry_snow(&mut host, 0.0, 8);
+        let beyond: Vec<f32> = host
+            .far_cover()
+            .texels()
+            .iter()
+            .filter(|t| t.surface == precip_cover::Surface::Grass as u32 && t.deposited_mm > 0.0)
+            .map(|t| t.deposited_mm)
+            .collect();
+        let most = beyond.iter().copied().fold(0.0, f32::max);
+        let full = 19.2 / crate::drawing::clouds::shaft_share(0.3);
+        assert!((most - full).abs() < 0.01 * full, "{most} of {full}");
+        assert!(beyond.len() < 9216 / 2, "{} cells wet", beyond.len());
+        let books = host.far_cover_totals().expect("a terrain");
+        assert!(books.imbalance_kg().abs() < 1e-5 * books.deposited_kg);
     }
 }

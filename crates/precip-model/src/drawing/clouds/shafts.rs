@@ -2,8 +2,10 @@
 //! weather around the camera — within [`LOCAL_WEATHER_RADIUS_M`], where its
 //! particles fall and its cover lies — and beyond it the same mean rate falls only
 //! from the lowest layer's clouds, under the columns they stand over
-//! ([`super::cloud_column`]), from their base to the ground: `rate/c` under a layer
-//! covering `c` ([`shaft_extinction_per_m`]), none between. Seen from under the
+//! ([`super::cloud_column`]), from their base to the ground: `rate/s` under a layer
+//! whose columns stand over the share `s` of the land ([`shaft_share`]: about its
+//! coverage `c`, less the columns' soft edges; [`shaft_extinction_per_m`]), none
+//! between, so the mean over the layer's area is the rate set. Seen from under the
 //! deck, the far air between the camera and the clouds is grey where a shaft hangs
 //! and clear between them; the haze of sand and dust, which no cloud drops, stays
 //! everywhere.
@@ -24,17 +26,41 @@ pub const RAIN_SHAFT_SAMPLES: u32 = 8;
 /// scatter (in their clouds' shade; docs/model.md (6.10), (6.16)): a look.
 pub const CLOUD_BASE_SKY_SHARE: f32 = 0.4;
 
-/// The least coverage a shaft's rate is concentrated by (`rate/c`, at most 20×).
+/// The least share of the land a shaft's rate is concentrated by (`rate/s`, at
+/// most 20×).
 pub const MIN_SHAFT_COVERAGE: f32 = 0.05;
 
+/// The share of the land under the columns of a layer covering `coverage`: the
+/// mean of `column(c − m)` over the coverage map (its texels' values counted once
+/// in 256 bins), at least [`MIN_SHAFT_COVERAGE`] — a little less than `c`, the
+/// columns' edges being soft.
+#[must_use]
+pub fn shaft_share(coverage: f32) -> f32 {
+    static BINS: std::sync::OnceLock<[u32; 256]> = std::sync::OnceLock::new();
+    let bins = BINS.get_or_init(|| {
+        let mut bins = [0_u32; 256];
+        for &m in &super::cloud_noise().coverage {
+            bins[usize::from(m)] += 1;
+        }
+        bins
+    });
+    let total: u32 = bins.iter().sum();
+    let under: f64 = bins
+        .iter()
+        .enumerate()
+        .map(|(m, &count)| f64::from(count) * f64::from(cloud_column(coverage, m as f32 / 255.0)))
+        .sum();
+    ((under / f64::from(total.max(1))) as f32).max(MIN_SHAFT_COVERAGE)
+}
+
 /// The extinction per m of what falls under one of `lowest`'s clouds: `weather`'s
-/// rain and snow at `rate/c` (capped at the largest rate a weather may have), so the
-/// mean over the layer's area is the rate set; sand and dust do not fall from
-/// clouds (0).
+/// rain and snow at `rate/s` ([`shaft_share`]; capped at the largest rate a weather
+/// may have), so the mean over the layer's area is the rate set; sand and dust do
+/// not fall from clouds (0).
 #[must_use]
 pub fn shaft_extinction_per_m(weather: &Weather, lowest: &CloudLayer) -> f32 {
     let concentrated = Weather {
-        intensity_mm_per_h: (weather.intensity_mm_per_h / lowest.coverage.max(MIN_SHAFT_COVERAGE))
+        intensity_mm_per_h: (weather.intensity_mm_per_h / shaft_share(lowest.coverage))
             .min(Weather::MAX_INTENSITY_MM_PER_H),
         ..*weather
     };
@@ -223,18 +249,30 @@ mod tests {
             ..Weather::default()
         };
         let cell = CloudLayer::typical(CloudKind::Cumulonimbus, 0.4);
+        // 0.4 of the sky covered: the columns stand over a little less of the land.
+        let share = shaft_share(0.4);
+        eprintln!("the columns of a 0.4 layer stand over {share:.3} of the land");
+        assert!((0.34..0.4).contains(&share), "{share}");
         let under = Weather {
-            intensity_mm_per_h: 5.0,
+            intensity_mm_per_h: 2.0 / share,
             ..weather
         };
         assert!((shaft_extinction_per_m(&weather, &cell) - under.extinction_per_m()).abs() < 1e-9);
-        // A full deck rains the rate itself; sand falls from no cloud.
+        assert!((shaft_share(0.0) - MIN_SHAFT_COVERAGE).abs() < 1e-9);
+        // A full deck stands over all but the map's clearest texels' soft edges and
+        // rains about the rate itself; sand falls from no cloud.
         let deck = CloudLayer {
             coverage: 1.0,
             ..cell
         };
+        let whole = shaft_share(1.0);
+        assert!((0.97..=1.0).contains(&whole), "{whole}");
+        let under_deck = Weather {
+            intensity_mm_per_h: 2.0 / whole,
+            ..weather
+        };
         assert!(
-            (shaft_extinction_per_m(&weather, &deck) - weather.extinction_per_m()).abs() < 1e-9
+            (shaft_extinction_per_m(&weather, &deck) - under_deck.extinction_per_m()).abs() < 1e-9
         );
         let sand = Weather {
             kind: crate::PrecipitationKind::Sand,
