@@ -13,8 +13,10 @@
 //! weather is set — with the snow's share of what falls moved by the sleet ramp's
 //! difference between the two temperatures ([`local_snow_share`]): a wet snowfall
 //! at the site is rain in the valley below and dry snow on the ridge above, and the
-//! snow line is where the cells' melt stops. Without a terrain it is one cell that
-//! stands for everywhere (a scene's far meshes), at the site's air.
+//! snow line is where the cells' melt stops. A cell's melt is also its slope's
+//! under the sun drawn ([`slope_irradiance_factor`], (4.19)): in a thaw the faces
+//! toward the sun go bare first. Without a terrain it is one cell that stands for
+//! everywhere (a scene's far meshes), level, at the site's air.
 //!
 //! The weather set is the weather around the camera (docs/model.md (6.16)): a cell
 //! whose centre is within [`LOCAL_WEATHER_RADIUS_M`] of the camera takes its water;
@@ -33,7 +35,7 @@
 //! surface in its cell off the grid, so with the grid's they close over the whole
 //! terrain.
 
-use glam::{UVec2, UVec4, Vec2, Vec4};
+use glam::{UVec2, UVec4, Vec2, Vec3, Vec4};
 use precip_cover::{
     CoverInput, CoverParams, CoverTexel, CoverTotals, GridFrame, Surface, update_texel,
 };
@@ -103,6 +105,30 @@ pub const FAR_ROW_FLOATS: usize = 8;
 /// beyond).
 const FAR_AREA_SAMPLES: u64 = 1 << 20;
 
+/// The share of an open level site's melt that the direct sun brings (the rest the
+/// air's warmth, the sky's long waves), which a slope's aspect scales
+/// ([`slope_irradiance_factor`]): a choice of the order of the absorbed short
+/// waves' share of the melt energy over snow in a mid-latitude melt season
+/// (Ohmura 2001, *J. Appl. Meteor.* 40).
+pub const SUN_MELT_SHARE: f32 = 0.5;
+
+/// The most a slope facing the sun multiplies the direct sun's part
+/// ([`slope_irradiance_factor`]).
+pub const MAX_SLOPE_SUN_RATIO: f32 = 3.0;
+
+/// The solar irradiance factor `R_l` of a slope of unit normal `normal` under the
+/// sun toward `to_sun` (model (4.6), (4.19)): the open level site's 1 with its sun's
+/// part, [`SUN_MELT_SHARE`], scaled by the direct beam on the slope over that on
+/// level ground, `max(n·s, 0)/s_y` (the sun at least 0.05 above the horizon, the
+/// ratio at most [`MAX_SLOPE_SUN_RATIO`]): `R_l = 1 − p + p·ratio`. A north face
+/// under a southern sun 30° up keeps half the melt, a 30° south face 1.37×.
+#[must_use]
+pub fn slope_irradiance_factor(normal: Vec3, to_sun: Vec3) -> f32 {
+    let sun = to_sun.normalize_or(Vec3::Y);
+    let ratio = (normal.dot(sun).max(0.0) / sun.y.max(0.05)).min(MAX_SLOPE_SUN_RATIO);
+    1.0 - SUN_MELT_SHARE + SUN_MELT_SHARE * ratio
+}
+
 /// The share of snow in what falls where the air is `local_c`, given the share
 /// `site_share` the weather has at `site_c` (model (4.18)): moved by the sleet
 /// ramp's difference between the two temperatures, so it is the weather's own at
@@ -146,7 +172,7 @@ impl Shafts {
     pub fn rate_factor(&self, xz_m: Vec2) -> f32 {
         let m = sample_coverage_map(
             &cloud_noise().coverage,
-            cloud_map_uv(glam::Vec3::new(xz_m.x, 0.0, xz_m.y), self.drift_m),
+            cloud_map_uv(Vec3::new(xz_m.x, 0.0, xz_m.y), self.drift_m),
         );
         cloud_column(self.coverage, m) / shaft_share(self.coverage)
     }
@@ -162,6 +188,8 @@ struct Pending {
     rain_beyond_mm: f64,
     /// The last step's camera and shafts.
     beyond: WaterBeyond,
+    /// The last step's way to the sun.
+    to_sun: Vec3,
     dt_days: f64,
     /// Time-weighted sums (divided by `dt_days` at the step).
     temperature_c_days: f64,
@@ -180,6 +208,8 @@ pub struct FarCover {
     texels: Vec<CoverTexel>,
     /// Each cell's mean height, m.
     height_m: Vec<f32>,
+    /// Each cell's mean unit normal (its slope and aspect).
+    normal: Vec<Vec3>,
     /// Each cell's air temperature less the site's, °C.
     air_offset_c: Vec<f32>,
     /// The land off the cover grid each texel stands for, m².
@@ -226,6 +256,7 @@ impl FarCover {
             cells: UVec2::ONE,
             texels: bare_texels().to_vec(),
             height_m: vec![0.0],
+            normal: vec![Vec3::Y],
             air_offset_c: vec![0.0],
             area_m2: vec![0.0; FAR_COVER_SURFACES.len()],
             per_place: false,
@@ -254,6 +285,7 @@ impl FarCover {
         let mut area_m2 = vec![0.0; count * FAR_COVER_SURFACES.len()];
         let mut height_sum = vec![0.0_f64; count];
         let mut height_count = vec![0_u32; count];
+        let mut normal_sum = vec![Vec3::ZERO; count];
         for j in (0..n.y).step_by(stride as usize) {
             for i in (0..n.x).step_by(stride as usize) {
                 let xz = corner + Vec2::new(i as f32, j as f32) * terrain.spacing_m();
@@ -262,10 +294,12 @@ impl FarCover {
                 let h = terrain.heights_m()[(i + n.x * j) as usize];
                 height_sum[c] += f64::from(h);
                 height_count[c] += 1;
+                let normal = terrain.normal_at(xz);
+                normal_sum[c] += normal;
                 if grid.texel_index(xz).is_some() {
                     continue;
                 }
-                let surface = terrain.surface_at(xz, terrain.normal_at(xz));
+                let surface = terrain.surface_at(xz, normal);
                 area_m2[c * FAR_COVER_SURFACES.len() + far_cover_slot(surface)] += sample_m2;
             }
         }
@@ -286,6 +320,7 @@ impl FarCover {
                 }
             })
             .collect();
+        let normal = normal_sum.iter().map(|n| n.normalize_or(Vec3::Y)).collect();
         let air_offset_c = height_m
             .iter()
             .map(|&h| -LAPSE_RATE_C_PER_M * (h - site))
@@ -296,6 +331,7 @@ impl FarCover {
             cells,
             texels: (0..count).flat_map(|_| bare_texels()).collect(),
             height_m,
+            normal,
             air_offset_c,
             area_m2,
             per_place: true,
@@ -407,10 +443,16 @@ impl FarCover {
     }
 
     /// Adds a step's weather, `input` (its snow and rain, its air at the site),
-    /// and what fell beyond the camera's surroundings, `beyond`; every
-    /// [`FAR_STEP_EVERY`] steps the cells take what came since
-    /// ([`FarCover::step_now`]).
-    pub fn add_step(&mut self, input: CoverInput, beyond: WaterBeyond, params: &CoverParams) {
+    /// what fell beyond the camera's surroundings, `beyond`, and the way to the
+    /// sun, `to_sun`; every [`FAR_STEP_EVERY`] steps the cells take what came
+    /// since ([`FarCover::step_now`]).
+    pub fn add_step(
+        &mut self,
+        input: CoverInput,
+        beyond: WaterBeyond,
+        to_sun: Vec3,
+        params: &CoverParams,
+    ) {
         let p = &mut self.pending;
         let days = f64::from(input.dt_days);
         p.steps += 1;
@@ -419,6 +461,7 @@ impl FarCover {
         p.snow_beyond_mm += f64::from(beyond.snow_mm);
         p.rain_beyond_mm += f64::from(beyond.rain_mm);
         p.beyond = beyond;
+        p.to_sun = to_sun;
         p.dt_days += days;
         p.temperature_c_days += f64::from(input.air_temperature_c) * days;
         p.humidity_days += f64::from(input.relative_humidity) * days;
@@ -478,10 +521,18 @@ impl FarCover {
             .map(|cell| self.cell_water(&p, cell))
             .collect();
         let offsets = &self.air_offset_c;
+        let normals = &self.normal;
         self.texels
             .par_chunks_mut(per_cell)
             .zip(offsets.par_iter().zip(waters.par_iter()))
-            .for_each(|(cell, (&offset, &(water, site_share)))| {
+            .zip(normals.par_iter())
+            .for_each(|((cell, (&offset, &(water, site_share))), &normal)| {
+                // Its slope and aspect under the sun scale the melt's sun part.
+                let params = &CoverParams {
+                    solar_irradiance_factor: params.solar_irradiance_factor
+                        * slope_irradiance_factor(normal, p.to_sun),
+                    ..*params
+                };
                 let local_c = site_c + offset;
                 let share = local_snow_share(site_share, site_c, local_c);
                 let input = CoverInput {
@@ -588,7 +639,7 @@ mod tests {
             rain_mm: input.rain_mm,
             shafts: None,
         };
-        far.add_step(input, beyond, params);
+        far.add_step(input, beyond, Vec3::Y, params);
     }
 
     fn snow_input(air_c: f32) -> CoverInput {
@@ -763,6 +814,7 @@ mod tests {
                     rain_mm: 0.0,
                     shafts,
                 },
+                Vec3::Y,
                 params,
             );
         }
@@ -866,5 +918,84 @@ mod tests {
             / f64::from(n * n);
         eprintln!("over the map's period: mean rate {whole:.3} of the set");
         assert!((whole - 1.0).abs() < 0.01, "{whole}");
+    }
+
+    #[test]
+    fn a_slope_facing_the_sun_melts_faster_than_one_facing_away() {
+        // Flat ground and the sun anywhere: the open site's melt.
+        for sun in [Vec3::Y, Vec3::new(0.4, 0.8, 0.3), Vec3::new(0.0, 0.1, -1.0)] {
+            assert!((slope_irradiance_factor(Vec3::Y, sun) - 1.0).abs() < 1e-6);
+        }
+        // 30° faces under a sun 30° up in the south (+z): the north face gets no
+        // beam, the south face √3 times level ground's.
+        let sun = Vec3::new(0.0, 0.5, 0.866_025_4);
+        let (s30, c30) = (0.5, 0.866_025_4);
+        let north = slope_irradiance_factor(Vec3::new(0.0, c30, -s30), sun);
+        let south = slope_irradiance_factor(Vec3::new(0.0, c30, s30), sun);
+        assert!((north - 0.5).abs() < 1e-4, "{north}");
+        assert!(
+            (south - (0.5 + 0.5 * 3.0_f32.sqrt())).abs() < 1e-4,
+            "{south}"
+        );
+        // A low sun is capped: a face toward it at most 3× the beam.
+        let low = slope_irradiance_factor(Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.0, 0.01, 1.0));
+        assert!(
+            (low - (0.5 + 0.5 * MAX_SLOPE_SUN_RATIO)).abs() < 1e-4,
+            "{low}"
+        );
+
+        // A ridge along x, 30° faces north and south: a pack laid at −10 °C, then
+        // two days at +6 °C at the crest under that sun.
+        let params = CoverParams::default();
+        let n = 201_u32;
+        let heights = (0..n * n)
+            .map(|k| 600.0 - 0.577_350_3 * ((k / n) as f32 * 10.0 - 1000.0).abs())
+            .collect();
+        let terrain = Terrain::new(UVec2::splat(n), 10.0, Vec2::ZERO, heights).expect("valid");
+        let grid = GridFrame::centred(Vec2::new(-900.0, 0.0), Vec2::splat(32.0), UVec2::splat(8));
+        let mut far = FarCover::over(&terrain, &grid);
+        let step = |far: &mut FarCover, input: CoverInput| {
+            let beyond = WaterBeyond {
+                camera_xz_m: Vec2::ZERO,
+                snow_mm: input.snow_mm,
+                rain_mm: input.rain_mm,
+                shafts: None,
+            };
+            far.add_step(input, beyond, sun, &params);
+        };
+        for _ in 0..40 {
+            step(
+                &mut far,
+                CoverInput {
+                    snow_mm: 1.5,
+                    ..snow_input(-10.0)
+                },
+            );
+        }
+        let laid = far.texel_at(Vec2::new(0.0, 500.0), Surface::Grass).swe_mm;
+        for _ in 0..200 {
+            step(
+                &mut far,
+                CoverInput {
+                    snow_mm: 0.0,
+                    ..snow_input(6.0)
+                },
+            );
+        }
+        let south_swe = far.texel_at(Vec2::new(0.0, 500.0), Surface::Grass).swe_mm;
+        let north_swe = far.texel_at(Vec2::new(0.0, -500.0), Surface::Grass).swe_mm;
+        let (south_melt, north_melt) = (laid - south_swe, laid - north_swe);
+        eprintln!(
+            "laid {laid:.1} mm; after two warm days the south face {south_swe:.1}, the north face {north_swe:.1} mm"
+        );
+        assert!(
+            north_melt > 0.0 && south_swe > 0.0,
+            "{south_swe} {north_swe}"
+        );
+        let ratio = south_melt / north_melt;
+        assert!(
+            (ratio - south / north).abs() < 0.1 * south / north,
+            "{ratio}"
+        );
     }
 }

@@ -267,7 +267,7 @@ impl HostState {
             }),
         };
         self.far_cover
-            .add_step(input, beyond, &self.setup.cover.params);
+            .add_step(input, beyond, render.to_sun, &self.setup.cover.params);
     }
 
     /// The cover beyond the cover grid (a scene's far meshes, a terrain's
