@@ -37,7 +37,8 @@
 
 use glam::{UVec2, UVec4, Vec2, Vec3, Vec4};
 use precip_cover::{
-    CoverInput, CoverParams, CoverTexel, CoverTotals, GridFrame, Surface, update_texel,
+    CoverInput, CoverParams, CoverTexel, CoverTotals, GridFrame, Surface,
+    saturation_vapour_pressure_hpa, update_texel,
 };
 use rayon::prelude::*;
 
@@ -127,6 +128,18 @@ pub fn slope_irradiance_factor(normal: Vec3, to_sun: Vec3) -> f32 {
     let sun = to_sun.normalize_or(Vec3::Y);
     let ratio = (normal.dot(sun).max(0.0) / sun.y.max(0.05)).min(MAX_SLOPE_SUN_RATIO);
     1.0 - SUN_MELT_SHARE + SUN_MELT_SHARE * ratio
+}
+
+/// The relative humidity where the air is `local_c`, given `site_humidity` at
+/// `site_c` (model (4.18)): the site's vapour pressure over the saturation
+/// pressure there (Magnus, `saturation_vapour_pressure_hpa`), at most 1 — the
+/// same air colder is nearer saturation (the pressure's fall with height left
+/// out).
+#[must_use]
+pub fn local_relative_humidity(site_humidity: f32, site_c: f32, local_c: f32) -> f32 {
+    (site_humidity * saturation_vapour_pressure_hpa(site_c)
+        / saturation_vapour_pressure_hpa(local_c))
+    .clamp(0.0, 1.0)
 }
 
 /// The share of snow in what falls where the air is `local_c`, given the share
@@ -539,7 +552,7 @@ impl FarCover {
                     snow_mm: (water * piece) as f32 * share,
                     rain_mm: (water * piece) as f32 * (1.0 - share),
                     air_temperature_c: local_c,
-                    relative_humidity: humidity,
+                    relative_humidity: local_relative_humidity(humidity, site_c, local_c),
                     wind_speed_mps: wind,
                     dt_days: (p.dt_days * piece) as f32,
                 };
@@ -676,6 +689,17 @@ mod tests {
         let at = sleet_snow_fraction(1.0);
         assert!(local_snow_share(at, 1.0, 7.5).abs() < 1e-6);
         assert!((local_snow_share(at, 1.0, -5.5) - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn the_same_air_colder_is_nearer_saturation() {
+        assert!((local_relative_humidity(0.6, 10.0, 10.0) - 0.6).abs() < 1e-6);
+        // 1 km up (6.5 K colder): 0.6 at +10 °C is 0.94.
+        let up = local_relative_humidity(0.6, 10.0, 3.5);
+        assert!((up - 0.937).abs() < 0.005, "{up}");
+        // 1 km down it is drier; saturation caps it.
+        assert!(local_relative_humidity(0.6, 10.0, 16.5) < 0.41);
+        assert!((local_relative_humidity(0.9, 10.0, -5.0) - 1.0).abs() < 1e-6);
     }
 
     #[test]

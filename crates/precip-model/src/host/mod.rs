@@ -19,8 +19,8 @@ pub use dispatch::{MAX_WORKGROUPS_PER_DIMENSION, WORKGROUP_SIZE, cull_groups, di
 pub use far_cover::{
     FAR_CELLS_MAX, FAR_COVER_SURFACES, FAR_MASK, FAR_PIECE_DAYS, FAR_ROW_FLOATS, FAR_STEP_EVERY,
     FarCover, FarCoverRows, LAPSE_RATE_C_PER_M, MAX_SLOPE_SUN_RATIO, SNOW_LINE_BAND_M,
-    SNOW_LINE_DEPTH_MM, SUN_MELT_SHARE, Shafts, WaterBeyond, far_cover_slot, local_snow_share,
-    slope_irradiance_factor,
+    SNOW_LINE_DEPTH_MM, SUN_MELT_SHARE, Shafts, WaterBeyond, far_cover_slot,
+    local_relative_humidity, local_snow_share, slope_irradiance_factor,
 };
 pub use layout::{Frames, SceneVertex};
 pub use state::{HostState, SubStepBlocks, SubSteps, WeatherChange};
