@@ -37,17 +37,16 @@
 
 use glam::{UVec2, UVec4, Vec2, Vec3, Vec4};
 use precip_cover::{
-    CoverInput, CoverParams, CoverTexel, CoverTotals, GridFrame, Surface,
-    saturation_vapour_pressure_hpa, update_texel,
+    CoverInput, CoverParams, CoverTexel, CoverTotals, GridFrame, Surface, update_texel,
 };
 use rayon::prelude::*;
 
-use crate::drawing::clouds::{
-    LOCAL_WEATHER_RADIUS_M, cloud_column, cloud_map_uv, cloud_noise, sample_coverage_map,
-    shaft_share,
+use crate::drawing::clouds::{LOCAL_WEATHER_RADIUS_M, shaft_share};
+use crate::host::far_air::{
+    LAPSE_RATE_C_PER_M, local_relative_humidity, local_snow_share, slope_irradiance_factor,
 };
+use crate::host::far_water::WaterBeyond;
 use crate::scene::terrain::Terrain;
-use crate::weather::sleet_snow_fraction;
 
 /// The surfaces a far cell keeps a texel of, in the order of its shading rows: a
 /// mesh's fragments and gentle untagged terrain read the grass, steep terrain,
@@ -84,10 +83,6 @@ pub const FAR_STEP_EVERY: u32 = 4;
 /// is cut into such pieces).
 pub const FAR_PIECE_DAYS: f32 = 0.25;
 
-/// The air's cooling with height, °C per metre: the ICAO standard atmosphere's
-/// troposphere, 6.5 K/km (ISO 2533:1975).
-pub const LAPSE_RATE_C_PER_M: f32 = 0.0065;
-
 /// The far texels' threshold masks (`T_M.g`, `T_M.r`): at their middle, each
 /// fragment's patch noise moves them (WGSL twin `FAR_MASK`).
 pub const FAR_MASK: f32 = 0.5;
@@ -105,91 +100,6 @@ pub const FAR_ROW_FLOATS: usize = 8;
 /// Most terrain samples classified at configure (every `s`-th along each side
 /// beyond).
 const FAR_AREA_SAMPLES: u64 = 1 << 20;
-
-/// The share of an open level site's melt that the direct sun brings (the rest the
-/// air's warmth, the sky's long waves), which a slope's aspect scales
-/// ([`slope_irradiance_factor`]): a choice of the order of the absorbed short
-/// waves' share of the melt energy over snow in a mid-latitude melt season
-/// (Ohmura 2001, *J. Appl. Meteor.* 40).
-pub const SUN_MELT_SHARE: f32 = 0.5;
-
-/// The most a slope facing the sun multiplies the direct sun's part
-/// ([`slope_irradiance_factor`]).
-pub const MAX_SLOPE_SUN_RATIO: f32 = 3.0;
-
-/// The solar irradiance factor `R_l` of a slope of unit normal `normal` under the
-/// sun toward `to_sun` (model (4.6), (4.19)): the open level site's 1 with its sun's
-/// part, [`SUN_MELT_SHARE`], scaled by the direct beam on the slope over that on
-/// level ground, `max(n·s, 0)/s_y` (the sun at least 0.05 above the horizon, the
-/// ratio at most [`MAX_SLOPE_SUN_RATIO`]): `R_l = 1 − p + p·ratio`. A north face
-/// under a southern sun 30° up keeps half the melt, a 30° south face 1.37×.
-#[must_use]
-pub fn slope_irradiance_factor(normal: Vec3, to_sun: Vec3) -> f32 {
-    let sun = to_sun.normalize_or(Vec3::Y);
-    let ratio = (normal.dot(sun).max(0.0) / sun.y.max(0.05)).min(MAX_SLOPE_SUN_RATIO);
-    1.0 - SUN_MELT_SHARE + SUN_MELT_SHARE * ratio
-}
-
-/// The relative humidity where the air is `local_c`, given `site_humidity` at
-/// `site_c` (model (4.18)): the site's vapour pressure over the saturation
-/// pressure there (Magnus, `saturation_vapour_pressure_hpa`), at most 1 — the
-/// same air colder is nearer saturation (the pressure's fall with height left
-/// out).
-#[must_use]
-pub fn local_relative_humidity(site_humidity: f32, site_c: f32, local_c: f32) -> f32 {
-    (site_humidity * saturation_vapour_pressure_hpa(site_c)
-        / saturation_vapour_pressure_hpa(local_c))
-    .clamp(0.0, 1.0)
-}
-
-/// The share of snow in what falls where the air is `local_c`, given the share
-/// `site_share` the weather has at `site_c` (model (4.18)): moved by the sleet
-/// ramp's difference between the two temperatures, so it is the weather's own at
-/// the site's height and a kind's snow stays snow wherever it is colder.
-#[must_use]
-pub fn local_snow_share(site_share: f32, site_c: f32, local_c: f32) -> f32 {
-    (site_share + sleet_snow_fraction(local_c) - sleet_snow_fraction(site_c)).clamp(0.0, 1.0)
-}
-
-/// What falls on the land beyond the camera's surroundings in a step (model
-/// (6.16)): the cells whose centres are farther than [`LOCAL_WEATHER_RADIUS_M`]
-/// from the camera take it instead of the weather's water.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct WaterBeyond {
-    /// The camera's x and z, m.
-    pub camera_xz_m: Vec2,
-    /// Snow's water over the step, as the mean over the land beyond, mm.
-    pub snow_mm: f32,
-    /// Rain's, mm.
-    pub rain_mm: f32,
-    /// The lowest cloud layer's shafts, where it has one: the water falls under
-    /// its clouds alone.
-    pub shafts: Option<Shafts>,
-}
-
-/// Where the lowest cloud layer's shafts fall: under its clouds, at `1/s` of the
-/// mean rate (`s` the share of the land under its columns, [`shaft_share`]).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Shafts {
-    /// The layer's coverage `[0, 1]`.
-    pub coverage: f32,
-    /// The coverage map's drift with the wind (`cloud_drift_m`), m.
-    pub drift_m: Vec2,
-}
-
-impl Shafts {
-    /// The rate at (x, z) over the layer's mean rate: `column(c − m)/s`, `m` the
-    /// coverage map's value there (WGSL: `precipitation_haze`'s shafts,
-    /// render_clouds.wgsl, read the same map and column).
-    #[must_use]
-    pub fn rate_factor(&self, xz_m: Vec2) -> f32 {
-        let m = sample_coverage_map(
-            &cloud_noise().coverage,
-            cloud_map_uv(Vec3::new(xz_m.x, 0.0, xz_m.y), self.drift_m),
-        );
-        cloud_column(self.coverage, m) / shaft_share(self.coverage)
-    }
-}
 
 /// The weather accumulated over the steps since the last far step.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -488,7 +398,8 @@ impl FarCover {
     /// site's air: the weather's within [`LOCAL_WEATHER_RADIUS_M`] of the camera
     /// (and everywhere for the one cell without a terrain), the land beyond's
     /// beyond it, under the lowest layer's clouds alone where it has one.
-    fn cell_water(&self, p: &Pending, cell: usize) -> (f64, f32) {
+    /// `share_under_columns` is the shafts' [`shaft_share`], computed once a step.
+    fn cell_water(&self, p: &Pending, share_under_columns: f32, cell: usize) -> (f64, f32) {
         let share = |snow: f64, rain: f64| {
             if snow + rain > 0.0 {
                 (snow / (snow + rain)) as f32
@@ -505,10 +416,9 @@ impl FarCover {
         if !self.per_place || centre.distance(p.beyond.camera_xz_m) <= LOCAL_WEATHER_RADIUS_M {
             return (p.snow_mm + p.rain_mm, share(p.snow_mm, p.rain_mm));
         }
-        let factor = p
-            .beyond
-            .shafts
-            .map_or(1.0, |s| f64::from(s.rate_factor(centre)));
+        let factor = p.beyond.shafts.map_or(1.0, |s| {
+            f64::from(s.column_at(centre)) / f64::from(share_under_columns)
+        });
         (
             (p.snow_beyond_mm + p.rain_beyond_mm) * factor,
             share(p.snow_beyond_mm, p.rain_beyond_mm),
@@ -530,8 +440,9 @@ impl FarCover {
         let pieces = ((p.dt_days / f64::from(FAR_PIECE_DAYS)).ceil() as u32).max(1);
         let piece = 1.0 / f64::from(pieces);
         let per_cell = FAR_COVER_SURFACES.len();
+        let share = p.beyond.shafts.map_or(1.0, |s| shaft_share(s.coverage));
         let waters: Vec<(f64, f32)> = (0..self.height_m.len())
-            .map(|cell| self.cell_water(&p, cell))
+            .map(|cell| self.cell_water(&p, share, cell))
             .collect();
         let offsets = &self.air_offset_c;
         let normals = &self.normal;
@@ -643,6 +554,8 @@ impl FarCover {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::host::far_water::Shafts;
+    use crate::weather::sleet_snow_fraction;
 
     /// Adds `input` as the weather here and beyond alike.
     fn add(far: &mut FarCover, input: CoverInput, params: &CoverParams) {
@@ -678,28 +591,6 @@ mod tests {
 
     fn grid() -> GridFrame {
         GridFrame::centred(Vec2::new(-500.0, 0.0), Vec2::splat(64.0), UVec2::splat(64))
-    }
-
-    #[test]
-    fn the_snow_share_is_the_weathers_at_the_site_and_follows_the_ramp_away() {
-        assert!((local_snow_share(0.7, 1.0, 1.0) - 0.7).abs() < 1e-6);
-        assert!((local_snow_share(1.0, -10.0, -2.0) - 1.0).abs() < 1e-6);
-        assert!(local_snow_share(0.0, 8.0, 4.0).abs() < 1e-6);
-        // Wet snow at +1 °C: rain 1 000 m lower (+7.5 °C), snow 1 000 m higher.
-        let at = sleet_snow_fraction(1.0);
-        assert!(local_snow_share(at, 1.0, 7.5).abs() < 1e-6);
-        assert!((local_snow_share(at, 1.0, -5.5) - 1.0).abs() < 1e-6);
-    }
-
-    #[test]
-    fn the_same_air_colder_is_nearer_saturation() {
-        assert!((local_relative_humidity(0.6, 10.0, 10.0) - 0.6).abs() < 1e-6);
-        // 1 km up (6.5 K colder): 0.6 at +10 °C is 0.94.
-        let up = local_relative_humidity(0.6, 10.0, 3.5);
-        assert!((up - 0.937).abs() < 0.005, "{up}");
-        // 1 km down it is drier; saturation caps it.
-        assert!(local_relative_humidity(0.6, 10.0, 16.5) < 0.41);
-        assert!((local_relative_humidity(0.9, 10.0, -5.0) - 1.0).abs() < 1e-6);
     }
 
     #[test]
@@ -946,28 +837,10 @@ mod tests {
 
     #[test]
     fn a_slope_facing_the_sun_melts_faster_than_one_facing_away() {
-        // Flat ground and the sun anywhere: the open site's melt.
-        for sun in [Vec3::Y, Vec3::new(0.4, 0.8, 0.3), Vec3::new(0.0, 0.1, -1.0)] {
-            assert!((slope_irradiance_factor(Vec3::Y, sun) - 1.0).abs() < 1e-6);
-        }
-        // 30° faces under a sun 30° up in the south (+z): the north face gets no
-        // beam, the south face √3 times level ground's.
         let sun = Vec3::new(0.0, 0.5, 0.866_025_4);
         let (s30, c30) = (0.5, 0.866_025_4);
         let north = slope_irradiance_factor(Vec3::new(0.0, c30, -s30), sun);
         let south = slope_irradiance_factor(Vec3::new(0.0, c30, s30), sun);
-        assert!((north - 0.5).abs() < 1e-4, "{north}");
-        assert!(
-            (south - (0.5 + 0.5 * 3.0_f32.sqrt())).abs() < 1e-4,
-            "{south}"
-        );
-        // A low sun is capped: a face toward it at most 3× the beam.
-        let low = slope_irradiance_factor(Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.0, 0.01, 1.0));
-        assert!(
-            (low - (0.5 + 0.5 * MAX_SLOPE_SUN_RATIO)).abs() < 1e-4,
-            "{low}"
-        );
-
         // A ridge along x, 30° faces north and south: a pack laid at −10 °C, then
         // two days at +6 °C at the crest under that sun.
         let params = CoverParams::default();

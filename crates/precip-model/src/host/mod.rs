@@ -10,17 +10,22 @@
 
 mod activity;
 mod dispatch;
+mod far_air;
 mod far_cover;
+mod far_water;
 mod layout;
 mod state;
 
 pub use activity::Activity;
 pub use dispatch::{MAX_WORKGROUPS_PER_DIMENSION, WORKGROUP_SIZE, cull_groups, dispatch_size};
+pub use far_air::{
+    LAPSE_RATE_C_PER_M, MAX_SLOPE_SUN_RATIO, SUN_MELT_SHARE, local_relative_humidity,
+    local_snow_share, slope_irradiance_factor,
+};
 pub use far_cover::{
     FAR_CELLS_MAX, FAR_COVER_SURFACES, FAR_MASK, FAR_PIECE_DAYS, FAR_ROW_FLOATS, FAR_STEP_EVERY,
-    FarCover, FarCoverRows, LAPSE_RATE_C_PER_M, MAX_SLOPE_SUN_RATIO, SNOW_LINE_BAND_M,
-    SNOW_LINE_DEPTH_MM, SUN_MELT_SHARE, Shafts, WaterBeyond, far_cover_slot,
-    local_relative_humidity, local_snow_share, slope_irradiance_factor,
+    FarCover, FarCoverRows, SNOW_LINE_BAND_M, SNOW_LINE_DEPTH_MM, far_cover_slot,
 };
+pub use far_water::{Shafts, WaterBeyond};
 pub use layout::{Frames, SceneVertex};
 pub use state::{HostState, SubStepBlocks, SubSteps, WeatherChange};

@@ -25,7 +25,8 @@ use crate::weather::Weather;
 use precip_cover::{CoverInput, DepositBuffer};
 
 use crate::drawing::clouds::cloud_drift_m;
-use crate::host::far_cover::{FarCover, FarCoverRows, Shafts, WaterBeyond};
+use crate::host::far_cover::{FarCover, FarCoverRows};
+use crate::host::far_water::{Shafts, WaterBeyond};
 
 /// The host side of a configured simulation.
 ///
