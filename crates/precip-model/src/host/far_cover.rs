@@ -417,7 +417,8 @@ impl FarCover {
             return (p.snow_mm + p.rain_mm, share(p.snow_mm, p.rain_mm));
         }
         let factor = p.beyond.shafts.map_or(1.0, |s| {
-            f64::from(s.column_at(centre)) / f64::from(share_under_columns)
+            f64::from(s.mean_column(centre - 0.5 * self.cell_m, self.cell_m))
+                / f64::from(share_under_columns)
         });
         (
             (p.snow_beyond_mm + p.rain_beyond_mm) * factor,
@@ -793,9 +794,9 @@ mod tests {
                     assert!(t.deposited_mm.abs() < 1e-12, "{}", t.deposited_mm);
                     continue;
                 }
-                let factor = shafts.rate_factor(centre);
-                // Each cell took 100 mm at its shafts' rate: 1/s under a cloud, 0
-                // between, the column's edge between.
+                let factor = shafts.mean_rate_factor(centre - 0.5 * far.cell_m, far.cell_m);
+                // Each cell took 100 mm at its shafts' rate over its land: 1/s
+                // under a cloud, 0 between, the part under it on a cloud's edge.
                 assert!((t.deposited_mm - 100.0 * factor).abs() < 1e-3 * (1.0 + 100.0 * factor));
                 let full = 1.0 / shaft_share(0.3);
                 assert!((0.0..=full + 1e-4).contains(&factor), "{factor}");

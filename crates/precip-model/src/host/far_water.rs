@@ -37,6 +37,9 @@ pub struct Shafts {
     pub drift_m: Vec2,
 }
 
+/// Samples along each side of a cell that [`Shafts::mean_rate_factor`] averages.
+pub const SHAFT_SAMPLES_PER_SIDE: u32 = 4;
+
 impl Shafts {
     /// The rate at (x, z) over the layer's mean rate: `column(c − m)/s`, `m` the
     /// coverage map's value there (WGSL: `precipitation_haze`'s shafts,
@@ -46,8 +49,30 @@ impl Shafts {
         self.column_at(xz_m) / shaft_share(self.coverage)
     }
 
+    /// The rate over the square from `corner_m` of side `size_m` over the
+    /// layer's mean rate: [`Shafts::rate_factor`]'s mean over its area
+    /// ([`SHAFT_SAMPLES_PER_SIDE`]² midpoints), so a cell on a cloud's edge takes
+    /// the part of its land under the cloud, not its centre's all or nothing.
+    #[must_use]
+    pub fn mean_rate_factor(&self, corner_m: Vec2, size_m: Vec2) -> f32 {
+        self.mean_column(corner_m, size_m) / shaft_share(self.coverage)
+    }
+
+    /// `column(c − m)`'s mean over the square from `corner_m` of side `size_m`.
+    pub(crate) fn mean_column(&self, corner_m: Vec2, size_m: Vec2) -> f32 {
+        let n = SHAFT_SAMPLES_PER_SIDE;
+        let step = size_m / n as f32;
+        let sum: f32 = (0..n * n)
+            .map(|k| {
+                let at = Vec2::new((k % n) as f32 + 0.5, (k / n) as f32 + 0.5);
+                self.column_at(corner_m + at * step)
+            })
+            .sum();
+        sum / (n * n) as f32
+    }
+
     /// How much a column stands under a cloud at (x, z): `column(c − m)`.
-    pub(crate) fn column_at(&self, xz_m: Vec2) -> f32 {
+    fn column_at(&self, xz_m: Vec2) -> f32 {
         let m = sample_coverage_map(
             &cloud_noise().coverage,
             cloud_map_uv(Vec3::new(xz_m.x, 0.0, xz_m.y), self.drift_m),
