@@ -8,7 +8,7 @@
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use precip_benches::{COUNTS, DT_S, backends, frame, frame_scenario, scenario};
+use precip_benches::{COUNTS, DT_S, FRAME_SIZE, backends, frame, frame_scenario, scenario};
 
 fn step(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
@@ -44,7 +44,7 @@ fn full_frame(c: &mut Criterion) {
             continue;
         }
         for count in COUNTS {
-            let (setup, view) = frame_scenario(count);
+            let (setup, view) = frame_scenario(count, FRAME_SIZE);
             if backend.configure(&setup).is_err() {
                 continue;
             }

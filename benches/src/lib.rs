@@ -1,6 +1,6 @@
 //! What the benches and the report share: the step scenario (wind over flat ground,
-//! a 128² cover grid), the frame scenario (the built-in house, 1280×720), the
-//! backends present on this machine, and the report's plot ([`plot`]).
+//! a 128² cover grid), the frame scenario (the built-in house, 1280×720 unless asked
+//! otherwise), the backends present on this machine, and the report's plot ([`plot`]).
 //!
 //! # Example
 //!
@@ -54,9 +54,10 @@ pub fn scenario(count: u32) -> Setup {
 pub const FRAME_SIZE: (u32, u32) = (1280, 720);
 
 /// The frame scenario at `count` particles: snow in a light wind over the built-in
-/// house (a 128² ground map), seen from its default camera at [`FRAME_SIZE`].
+/// house (a 128² ground map), seen from its default camera at `size_px` (width,
+/// height; [`FRAME_SIZE`] unless asked otherwise).
 #[must_use]
-pub fn frame_scenario(count: u32) -> (Setup, View) {
+pub fn frame_scenario(count: u32, size_px: (u32, u32)) -> (Setup, View) {
     let (mut setup, _) =
         Setup::over_scene(house_on_plane(), 128, 6.0, count).expect("the built-in house is valid");
     setup.weather.wind = WindField {
@@ -66,8 +67,8 @@ pub fn frame_scenario(count: u32) -> (Setup, View) {
     };
     let view = View {
         camera: setup.camera,
-        width_px: FRAME_SIZE.0,
-        height_px: FRAME_SIZE.1,
+        width_px: size_px.0,
+        height_px: size_px.1,
     };
     (setup, view)
 }

@@ -1,12 +1,14 @@
-//! `cargo run --release -p precip-benches --bin report [out.json [before.json]]`
-//! (`before.json`: an earlier report, or `docs/performance-before.json`, whose frames
-//! are plotted beside today's): every backend side
+//! `cargo run --release -p precip-benches --bin report -- [out.json [before.json]]
+//! [--size WxH] [--no-peer]` (`before.json`: an earlier report, or
+//! `docs/performance-before.json`, whose frames are plotted beside today's; `--size`:
+//! the full frames' size, 1280×720 unless given, 1920×1080 for a GPU's 10⁷
+//! particles; `--no-peer`: without the window runs): every backend side
 //! by side — particles per second of a step, the step's bytes per second against the
 //! device's own buffer-copy bandwidth (and `step_over_copy_64b`: step particles/s at
 //! 10⁶ over copy bytes/s ÷ 128, the rate of a kernel that only copies a 64-byte
 //! particle), GPU time per kernel and per render pass and the bytes each moves
 //! ([`precip_benches::traffic`]), a full frame (step + render at
-//! 1280×720) from 10⁴ to 10⁷ particles and vk ÷ wgpu for both, and the peer in the
+//! `--size`) from 10⁴ to 10⁷ particles and vk ÷ wgpu for both, and the peer in the
 //! same run ([`precip_benches::peer`]: `osgprecipitation --snow 0.5` and precip's
 //! viewer in windows of the same size over the demo scene); printed as a table,
 //! written as JSON and plotted as a PNG beside it. Build the viewer first
@@ -15,8 +17,10 @@
 //! the frame over the demo against the demo on 10 km of terrain
 //! ([`precip_benches::terrain`]).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+use clap::Parser;
 
 use precip_benches::peer::{Display, osgprecipitation_fps, viewer_run, write_obj};
 use precip_benches::plot::{Series, write_png};
@@ -77,12 +81,53 @@ fn passes_text(passes: &[(&str, f64)]) -> String {
         .join(", ")
 }
 
-/// Full frames on every backend that renders: wall-clock ms per frame and GPU ms
-/// per pass.
+/// The report's command line.
+#[derive(Parser)]
+#[command(
+    name = "report",
+    about = "Every backend side by side: steps, full frames, the peer and the terrain"
+)]
+struct Args {
+    /// The report's JSON (its plot is written beside it as a PNG)
+    #[arg(default_value = "target/precip-report.json")]
+    out: PathBuf,
+    /// An earlier report (or docs/performance-before.json) whose frames are plotted
+    /// beside today's
+    before: Option<PathBuf>,
+    /// Only the side-by-side window run against osgprecipitation
+    #[arg(long, conflicts_with = "terrain")]
+    peer: bool,
+    /// Only the demo's frame against the demo's on 10 km of terrain
+    #[arg(long)]
+    terrain: bool,
+    /// The full frames' size, WIDTHxHEIGHT px
+    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    size: (u32, u32),
+    /// Leave out the window runs (osgprecipitation and the viewer under a display)
+    #[arg(long)]
+    no_peer: bool,
+}
+
+/// `WIDTHxHEIGHT` in pixels, each 1 to 8192.
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("`{text}` is not WIDTHxHEIGHT in pixels (e.g. 1920x1080)");
+    let (w, h) = text.split_once(['x', '×']).ok_or_else(bad)?;
+    let (w, h): (u32, u32) = (
+        w.trim().parse().map_err(|_| bad())?,
+        h.trim().parse().map_err(|_| bad())?,
+    );
+    if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+        return Err(format!("{w}x{h}: each side must be 1 to 8192 px"));
+    }
+    Ok((w, h))
+}
+
 /// Frames drawn after each configure before the measured ones.
 const WARM_UP_FRAMES: u32 = 10;
 
-fn measure_frames(rows: &mut Vec<serde_json::Value>) {
+/// Full frames of `size_px` on every backend that renders: wall-clock ms per frame and
+/// GPU ms per pass.
+fn measure_frames(rows: &mut Vec<serde_json::Value>, size_px: (u32, u32)) {
     for (name, mut backend) in backends() {
         if !backend.info().renders {
             continue;
@@ -95,7 +140,7 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>) {
                 );
                 continue;
             }
-            let (setup, view) = frame_scenario(count);
+            let (setup, view) = frame_scenario(count, size_px);
             if let Err(e) = backend.configure(&setup) {
                 eprintln!("{name} frame at {count}: {e}");
                 continue;
@@ -120,8 +165,8 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>) {
             let drawn = backend.drawn().ok().flatten().unwrap_or_default();
             println!(
                 "{name:>5} {count:>8}: {ms:>8.1} ms/frame ({}×{}); {}; drawn {} sprites, {} streaks, {} splats",
-                FRAME_SIZE.0,
-                FRAME_SIZE.1,
+                size_px.0,
+                size_px.1,
                 passes_text(&passes),
                 drawn.sprites,
                 drawn.streaks,
@@ -138,7 +183,7 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>) {
             );
             rows.push(json!({
                 "backend": name, "particles": count, "frame_ms": ms,
-                "width_px": FRAME_SIZE.0, "height_px": FRAME_SIZE.1,
+                "width_px": size_px.0, "height_px": size_px.1,
                 "passes_ms": passes.iter().map(|(n, ms)| json!({"pass": n, "ms": ms})).collect::<Vec<_>>(),
                 "features": shares.iter().map(|(f, ms, share)| json!({"feature": f, "ms": ms, "share": share})).collect::<Vec<_>>(),
                 "drawn": json!({"sprites": drawn.sprites, "streaks": drawn.streaks, "splats": drawn.splats}),
@@ -302,8 +347,8 @@ fn series(rows: &[serde_json::Value], key: &str, job: &str) -> Vec<Series> {
 }
 
 fn main() {
-    // `report --terrain`: only the demo's frame against the demo's on 10 km of terrain.
-    if std::env::args().nth(1).as_deref() == Some("--terrain") {
+    let args = Args::parse();
+    if args.terrain {
         let rows = precip_benches::terrain::measure_terrain();
         println!(
             "{}",
@@ -311,8 +356,7 @@ fn main() {
         );
         return;
     }
-    // `report --peer`: only the side-by-side window run against the peer.
-    if std::env::args().nth(1).as_deref() == Some("--peer") {
+    if args.peer {
         let peer = measure_peer();
         println!(
             "{}",
@@ -320,9 +364,7 @@ fn main() {
         );
         return;
     }
-    let out = std::env::args()
-        .nth(1)
-        .unwrap_or_else(|| "target/precip-report.json".into());
+    let out = args.out.display().to_string();
     let bandwidth = wgpu_copy_bandwidth();
     if let Some(bw) = bandwidth {
         println!("device buffer copy: {:.1} GB/s (read + write)", bw * 1e-9);
@@ -372,15 +414,23 @@ fn main() {
     let step_ratios = ratios(&rows, "step_ms", "step time");
     let step_over_copy_64b = step_over_copy(&rows, bandwidth);
     let mut frame_rows = Vec::new();
-    measure_frames(&mut frame_rows);
+    measure_frames(&mut frame_rows, args.size);
     let frame_ratios = ratios(&frame_rows, "frame_ms", "frame time");
-    let peer = measure_peer();
+    let peer = if args.no_peer {
+        json!({"error": "left out (--no-peer)"})
+    } else {
+        measure_peer()
+    };
     let terrain = precip_benches::terrain::measure_terrain();
     let mut plotted = series(&rows, "step_ms", "step");
-    plotted.extend(series(&frame_rows, "frame_ms", "frame 1280×720"));
+    plotted.extend(series(
+        &frame_rows,
+        "frame_ms",
+        &format!("frame {}×{}", args.size.0, args.size.1),
+    ));
     // An earlier report's (or docs/performance-before.json's) frames, for comparison.
-    if let Some(before) = std::env::args().nth(2) {
-        match std::fs::read_to_string(&before)
+    if let Some(before) = &args.before {
+        match std::fs::read_to_string(before)
             .map_err(|e| e.to_string())
             .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).map_err(|e| e.to_string()))
         {
@@ -388,7 +438,7 @@ fn main() {
                 let rows = v["frames"].as_array().cloned().unwrap_or_default();
                 plotted.extend(series(&rows, "frame_ms", "frame before"));
             }
-            Err(e) => eprintln!("{before}: {e}"),
+            Err(e) => eprintln!("{}: {e}", before.display()),
         }
     }
     let device = backends()
