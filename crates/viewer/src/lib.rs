@@ -50,6 +50,7 @@ pub mod lidar_scan;
 pub mod meshopt_views;
 pub mod node_graph;
 pub mod optics_report;
+pub mod png_writer;
 pub mod presets;
 pub mod scenario;
 pub mod scene_setup;

@@ -880,7 +880,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         }
     }
     println!(
-        "{} frames in {}: mean {:.1} ms, p95 {:.1} ms per frame (PNG included; {}); {} particles; snow cover water {:.2} mm on average, deepest snow {:.0} mm; {}",
+        "{} frames in {}: mean {:.1} ms, p95 {:.1} ms per frame (read-back included, PNGs encoded beside; {}); {} particles; snow cover water {:.2} mm on average, deepest snow {:.0} mm; {}",
         summary.frames,
         args.out.display(),
         summary.mean_frame_ms,
