@@ -6,7 +6,8 @@
 //! by side — particles per second of a step, the step's bytes per second against the
 //! device's own buffer-copy bandwidth (and `step_over_copy_64b`: step particles/s at
 //! 10⁶ over copy bytes/s ÷ 128, the rate of a kernel that only copies a 64-byte
-//! particle), GPU time per kernel and per render pass and the bytes each moves
+//! particle; `step_particles_over_copy_64b` the same of the particles' kernel's GPU
+//! time alone), GPU time per kernel and per render pass and the bytes each moves
 //! ([`precip_benches::traffic`]), a full frame (step + render at
 //! `--size`) from 10⁴ to 10⁷ particles and vk ÷ wgpu for both, and the peer in the
 //! same run ([`precip_benches::peer`]: `osgprecipitation --snow 0.5` and precip's
@@ -194,25 +195,47 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>, size_px: (u32, u32)) {
 }
 
 /// `step_over_copy_64b` of each GPU backend: step particles/s at 10⁶ divided by
-/// (copy bytes/s ÷ 128), printed.
-fn step_over_copy(rows: &[serde_json::Value], bandwidth: Option<f64>) -> serde_json::Value {
-    let mut out = serde_json::Map::new();
-    let Some(bw) = bandwidth else {
-        return serde_json::Value::Object(out);
-    };
-    for r in rows {
-        if r["particles"] != 1_000_000 || r["backend"] == "cpu" {
-            continue;
-        }
-        if let (Some(name), Some(rate)) =
-            (r["backend"].as_str(), r["particles_per_second"].as_f64())
-        {
-            let ratio = rate / (bw / 128.0);
-            println!("step_over_copy_64b {name}: {ratio:.3}");
-            out.insert(name.to_string(), json!(ratio));
+/// (copy bytes/s ÷ 128), printed; and the same of `step_particles` alone (its GPU
+/// time, without the step's fixed cost: the cover grid's kernels, the submit and
+/// the wait), as `step_particles_over_copy_64b`.
+fn step_over_copy(
+    rows: &[serde_json::Value],
+    bandwidth: Option<f64>,
+) -> (serde_json::Value, serde_json::Value) {
+    let mut step = serde_json::Map::new();
+    let mut kernel = serde_json::Map::new();
+    if let Some(bw) = bandwidth {
+        let per_second_64b = bw / 128.0;
+        for r in rows {
+            if r["particles"] != 1_000_000 || r["backend"] == "cpu" {
+                continue;
+            }
+            let Some(name) = r["backend"].as_str() else {
+                continue;
+            };
+            if let Some(rate) = r["particles_per_second"].as_f64() {
+                let ratio = rate / per_second_64b;
+                println!("step_over_copy_64b {name}: {ratio:.3}");
+                step.insert(name.to_string(), json!(ratio));
+            }
+            let kernel_ms = r["kernels_ms"].as_array().and_then(|k| {
+                k.iter()
+                    .find(|p| p["pass"] == "step_particles")
+                    .and_then(|p| p["ms"].as_f64())
+            });
+            if let Some(ms) = kernel_ms.filter(|ms| *ms > 0.0) {
+                let ratio = 1e6 / (ms * 1e-3) / per_second_64b;
+                println!(
+                    "step_particles_over_copy_64b {name}: {ratio:.3} (the particles' kernel alone, {ms:.2} GPU ms)"
+                );
+                kernel.insert(name.to_string(), json!(ratio));
+            }
         }
     }
-    serde_json::Value::Object(out)
+    (
+        serde_json::Value::Object(step),
+        serde_json::Value::Object(kernel),
+    )
 }
 
 /// osgprecipitation and precip's viewer in windows of [`FRAME_SIZE`] over the demo.
@@ -412,7 +435,7 @@ fn main() {
         }
     }
     let step_ratios = ratios(&rows, "step_ms", "step time");
-    let step_over_copy_64b = step_over_copy(&rows, bandwidth);
+    let (step_over_copy_64b, step_particles_over_copy_64b) = step_over_copy(&rows, bandwidth);
     let mut frame_rows = Vec::new();
     measure_frames(&mut frame_rows, args.size);
     let frame_ratios = ratios(&frame_rows, "frame_ms", "frame time");
@@ -454,6 +477,7 @@ fn main() {
         "vk_over_wgpu_step": step_ratios,
         "vk_over_wgpu_frame": frame_ratios,
         "step_over_copy_64b": step_over_copy_64b,
+        "step_particles_over_copy_64b": step_particles_over_copy_64b,
         "peer": peer,
         "terrain": terrain,
     });
@@ -472,5 +496,39 @@ fn main() {
     ) {
         Ok(()) => println!("wrote {out}"),
         Err(e) => eprintln!("could not write {out}: {e}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_kernel_s_ratio_leaves_the_step_s_fixed_cost_out() {
+        let rows = vec![
+            json!({"backend": "cpu", "particles": 1_000_000, "particles_per_second": 1.0e7,
+                   "kernels_ms": [{"pass": "step_particles", "ms": 100.0}]}),
+            json!({"backend": "wgpu", "particles": 100_000, "particles_per_second": 1.0e8,
+                   "kernels_ms": [{"pass": "step_particles", "ms": 0.05}]}),
+            json!({"backend": "wgpu", "particles": 1_000_000, "particles_per_second": 8.0e8,
+                   "kernels_ms": [{"pass": "birth_particles", "ms": 0.01},
+                                  {"pass": "step_particles", "ms": 0.16}]}),
+        ];
+        // 640 GB/s of copy: 5·10⁹ 64-byte particles read and written a second.
+        let (step, kernel) = step_over_copy(&rows, Some(640.0e9));
+        assert!((step["wgpu"].as_f64().unwrap() - 0.16).abs() < 1e-9);
+        assert!((kernel["wgpu"].as_f64().unwrap() - 1.25).abs() < 1e-9);
+        assert!(step.get("cpu").is_none() && kernel.get("cpu").is_none());
+        let (step, kernel) = step_over_copy(&rows, None);
+        assert_eq!((step, kernel), (json!({}), json!({})));
+    }
+
+    #[test]
+    fn sizes_are_width_by_height_within_bounds() {
+        assert_eq!(parse_size("1920x1080"), Ok((1920, 1080)));
+        assert_eq!(parse_size("640×360"), Ok((640, 360)));
+        assert!(parse_size("1920").is_err());
+        assert!(parse_size("0x10").is_err());
+        assert!(parse_size("9000x10").is_err());
     }
 }
