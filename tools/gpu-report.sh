@@ -6,7 +6,8 @@
 # BIN holds `precip` and `report` (target/release, or copies) and, when present, the
 # conformance suites' test binaries under their test names (contract, terrain, …;
 # `cargo test --release -p precip-conformance --no-run` builds them). OUT receives
-#   gpu.txt          everything printed, in order;
+#   gpu.txt          the report's output, the viewer's summary lines, the suites'
+#                    results, in order;
 #   report.json/png  the report with its full frames at 1920×1080 (10⁴ to 10⁷
 #                    particles; no window runs: the peer needs a display);
 #   frames.tar       the last frame of each viewer run, as PNG.
@@ -20,7 +21,9 @@ set -u -o pipefail
 BIN=${1:?BIN: the folder of precip and report}
 OUT=${2:?OUT: the folder for the results}
 mkdir -p "$OUT"
+OUT=$(cd "$OUT" && pwd)
 LOG=$OUT/gpu.txt
+: > "$LOG"
 say() { echo "== $*" | tee -a "$LOG"; }
 
 say "$(date -u +%FT%TZ) $(nvidia-smi -L 2>/dev/null || echo 'no nvidia-smi')"
@@ -36,13 +39,14 @@ for size in 1280x720 1920x1080; do
       [ "$preset" != default ] && args+=(--preset "$preset")
       say "precip ${args[*]}"
       timeout 120 "$BIN/precip" "${args[@]}" 2>&1 | grep -E "frames in|GPU ms|error|warning" | tee -a "$LOG"
-      last=$(ls "$FRAMES/$name"/frame_*.png 2>/dev/null | sort | tail -1)
+      last=$(ls "$FRAMES/$name"/frame_*.png 2>/dev/null | sort -V | tail -1)
       [ -n "$last" ] && cp "$last" "$FRAMES/$name.png"
       rm -rf "${FRAMES:?}/$name"
     done
   done
 done
-(cd "$FRAMES" && tar cf "$OUT/frames.tar" ./*.png)
+tar cf "$OUT/frames.tar" -C "$FRAMES" .
+rm -rf "${FRAMES:?}"
 
 for suite in contract terrain fast_camera sea shore sensors soak; do
   [ -x "$BIN/$suite" ] || continue

@@ -1,5 +1,7 @@
 //! The CPU-side model work every backend shares: baking the wind volume (on each
-//! weather change with new noise) and one cover update on the CPU reference.
+//! weather change with new noise), one cover update on the CPU reference, and one
+//! far step of the cover beyond the grid over 10 km of generated terrain (the host
+//! does it every `FAR_STEP_EVERY` steps, for every backend).
 //!
 //! `cargo bench -p precip-benches --bench model`
 
@@ -50,5 +52,48 @@ fn cover_update(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, wind_bake, cover_update);
+fn far_cover_step(c: &mut Criterion) {
+    use precip_model::host::{FAR_STEP_EVERY, FarCover, WaterBeyond};
+    use precip_viewer::terrain_file::{TerrainScale, TerrainSource, load_terrain};
+    let mut group = c.benchmark_group("far_cover_step");
+    group
+        .sample_size(20)
+        .measurement_time(Duration::from_secs(3));
+    let terrain = load_terrain(
+        &TerrainSource::Generated,
+        TerrainScale {
+            spacing_m: None,
+            heights_m: None,
+        },
+    )
+    .expect("the generated terrain");
+    let setup = scenario(1_000);
+    let mut far = FarCover::over(&terrain, &setup.cover.frame);
+    let input = precip_model::cover::CoverInput {
+        snow_mm: 0.01,
+        rain_mm: 0.0,
+        air_temperature_c: -2.0,
+        relative_humidity: 0.8,
+        wind_speed_mps: 3.0,
+        dt_days: 1.0e-5,
+    };
+    let beyond = WaterBeyond {
+        camera_xz_m: glam::Vec2::ZERO,
+        snow_mm: 0.01,
+        rain_mm: 0.0,
+        shafts: None,
+    };
+    let cells = far.cells();
+    group.throughput(Throughput::Elements(u64::from(cells.x * cells.y)));
+    group.bench_function(BenchmarkId::new("cells", cells.x * cells.y), |b| {
+        b.iter(|| {
+            for _ in 0..FAR_STEP_EVERY {
+                far.add_step(input, beyond, glam::Vec3::Y, &setup.cover.params);
+            }
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, wind_bake, cover_update, far_cover_step);
 criterion_main!(benches);

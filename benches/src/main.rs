@@ -96,10 +96,10 @@ struct Args {
     /// beside today's
     before: Option<PathBuf>,
     /// Only the side-by-side window run against osgprecipitation
-    #[arg(long, conflicts_with = "terrain")]
+    #[arg(long, conflicts_with_all = ["terrain", "before", "size", "no_peer"])]
     peer: bool,
     /// Only the demo's frame against the demo's on 10 km of terrain
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = ["before", "size", "no_peer"])]
     terrain: bool,
     /// The full frames' size, WIDTHxHEIGHT px
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]

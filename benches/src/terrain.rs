@@ -22,9 +22,12 @@ const FRAMES: u32 = 8;
 
 /// The calling thread's CPU time, ms (the `cpu-time` crate's `ThreadTime`:
 /// `CLOCK_THREAD_CPUTIME_ID` on Linux).
+/// `None` where the system does not give it.
 #[must_use]
-pub fn thread_cpu_ms() -> f64 {
-    cpu_time::ThreadTime::try_now().map_or(0.0, |t| t.as_duration().as_secs_f64() * 1e3)
+pub fn thread_cpu_ms() -> Option<f64> {
+    cpu_time::ThreadTime::try_now()
+        .ok()
+        .map(|t| t.as_duration().as_secs_f64() * 1e3)
 }
 
 /// A setup's measured frames: wall-clock ms, the host thread's CPU ms and the
@@ -33,7 +36,8 @@ pub fn thread_cpu_ms() -> f64 {
 pub struct FrameCost {
     /// Wall-clock ms a frame (step, render, the wait for the GPU).
     pub wall_ms: f64,
-    /// The calling thread's CPU ms a frame (recording, uploads, host physics).
+    /// The calling thread's CPU ms a frame (recording, uploads, host physics);
+    /// NaN where the system gives no thread CPU time.
     pub host_ms: f64,
     /// GPU ms a frame per pass, in the order first met.
     pub passes_ms: Vec<(&'static str, f64)>,
@@ -118,7 +122,10 @@ fn mean_frame_cost(backend: &mut dyn Backend, on_terrain: bool) -> Result<FrameC
         let host = thread_cpu_ms();
         backend.step(DT_S).map_err(|e| e.to_string())?;
         backend.render(&view).map_err(|e| e.to_string())?;
-        cost.host_ms += (thread_cpu_ms() - host) / n;
+        cost.host_ms += match (host, thread_cpu_ms()) {
+            (Some(before), Some(after)) => (after - before) / n,
+            _ => f64::NAN,
+        };
         let timings = backend.timings().map_err(|e| e.to_string())?;
         for p in timings.passes {
             match cost.passes_ms.iter_mut().find(|(name, _)| *name == p.pass) {

@@ -72,7 +72,9 @@ impl PngWriter {
     }
 
     /// Hands `image` over to be written as `file`; waits while every worker is
-    /// busy and the queue is full. An earlier write's failure is returned here.
+    /// busy and the queue is full. An earlier write's failure is returned here, and
+    /// from then on by every call (the frame handed over then is not written): a
+    /// run stops at its first failed frame.
     pub fn write(&mut self, file: PathBuf, image: Image) -> Result<(), HeadlessError> {
         self.failed()?;
         match &self.sender {
@@ -147,7 +149,10 @@ fn work(receiver: &Mutex<Receiver<Job>>, failure: &Mutex<Option<(PathBuf, String
         let Ok(job) = job else {
             return;
         };
-        if let Err(detail) = save(&job) {
+        // A panic inside the encoder is this frame's failure, not a lost thread.
+        let saved = std::panic::catch_unwind(|| save(&job))
+            .unwrap_or_else(|_| Err("the PNG encoder stopped on this frame".to_string()));
+        if let Err(detail) = saved {
             failure
                 .lock()
                 .unwrap_or_else(PoisonError::into_inner)
@@ -156,8 +161,18 @@ fn work(receiver: &Mutex<Receiver<Job>>, failure: &Mutex<Option<(PathBuf, String
     }
 }
 
-/// Encodes and writes one frame.
+/// Encodes and writes one frame (an image whose bytes are not its 4 × width ×
+/// height is refused, not handed to the encoder, which would panic).
 fn save(job: &Job) -> Result<(), String> {
+    let expected = 4 * u64::from(job.image.width_px) * u64::from(job.image.height_px);
+    if job.image.rgba8.len() as u64 != expected {
+        return Err(format!(
+            "a {}×{} image needs {expected} bytes of RGBA, it has {}",
+            job.image.width_px,
+            job.image.height_px,
+            job.image.rgba8.len()
+        ));
+    }
     image::save_buffer(
         &job.file,
         &job.image.rgba8,
@@ -199,6 +214,31 @@ mod tests {
                 assert_eq!(back.dimensions(), (3, 2));
                 assert!(back.pixels().all(|p| p.0 == [k * 20; 4]), "frame {k}");
             }
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn an_image_whose_bytes_are_not_its_size_is_refused_with_its_file() {
+        let dir =
+            std::env::temp_dir().join(format!("precip-png-writer-bad-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a temporary folder");
+        let file = dir.join("frame_0000.png");
+        let mut writer = PngWriter::with_threads(1);
+        let short = Image {
+            width_px: 3,
+            height_px: 2,
+            rgba8: vec![0; 5],
+        };
+        let outcome = writer
+            .write(file.clone(), short)
+            .and_then(|()| writer.finish());
+        match outcome {
+            Err(HeadlessError::Write { file: f, detail }) => {
+                assert_eq!(f, file);
+                assert!(detail.contains("needs 24 bytes"), "{detail}");
+            }
+            other => panic!("expected a write error, got {other:?}"),
         }
         std::fs::remove_dir_all(&dir).ok();
     }
