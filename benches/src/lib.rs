@@ -81,6 +81,22 @@ pub fn frame(backend: &mut dyn Backend, view: &View) -> precip_model::Timings {
     backend.timings().expect("waits for the GPU")
 }
 
+/// `timings`' passes added to `passes` (by name, in the order first met) as
+/// `1 / n` of a mean.
+pub fn accumulate_passes(
+    passes: &mut Vec<(&'static str, f64)>,
+    timings: precip_model::Timings,
+    n: f64,
+) {
+    for p in timings.passes {
+        let ms = p.milliseconds / n;
+        match passes.iter_mut().find(|(name, _)| *name == p.pass) {
+            Some(k) => k.1 += ms,
+            None => passes.push((p.pass, ms)),
+        }
+    }
+}
+
 /// Every backend this machine has, by name (a missing one is reported and left out).
 #[must_use]
 pub fn backends() -> Vec<(&'static str, Box<dyn Backend>)> {

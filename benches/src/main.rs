@@ -31,7 +31,6 @@ use precip_benches::{
     step_bytes_per_particle,
 };
 use precip_gpu_wgpu::WgpuBackend;
-use precip_model::Timings;
 use serde_json::json;
 
 /// Buffer-copy bandwidth of the wgpu device (read + write bytes per second).
@@ -64,16 +63,6 @@ fn wgpu_copy_bandwidth() -> Option<f64> {
 }
 
 /// Adds `timings` / `n` to the running mean per pass `passes`.
-fn accumulate(passes: &mut Vec<(&'static str, f64)>, timings: Timings, n: u32) {
-    for p in timings.passes {
-        let ms = p.milliseconds / f64::from(n);
-        match passes.iter_mut().find(|(name, _)| *name == p.pass) {
-            Some(k) => k.1 += ms,
-            None => passes.push((p.pass, ms)),
-        }
-    }
-}
-
 fn passes_text(passes: &[(&str, f64)]) -> String {
     passes
         .iter()
@@ -160,7 +149,7 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>, size_px: (u32, u32)) {
             let start = Instant::now();
             for _ in 0..frames {
                 let t = frame(backend.as_mut(), &view);
-                accumulate(&mut passes, t, frames);
+                precip_benches::accumulate_passes(&mut passes, t, f64::from(frames));
             }
             let ms = start.elapsed().as_secs_f64() * 1e3 / f64::from(frames);
             let drawn = backend.drawn().ok().flatten().unwrap_or_default();
@@ -407,7 +396,7 @@ fn main() {
             for _ in 0..steps {
                 backend.step(DT_S).expect("valid step");
                 if let Ok(t) = backend.timings() {
-                    accumulate(&mut kernels, t, steps);
+                    precip_benches::accumulate_passes(&mut kernels, t, f64::from(steps));
                 }
             }
             let seconds = start.elapsed().as_secs_f64() / f64::from(steps);
