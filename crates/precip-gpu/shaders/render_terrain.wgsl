@@ -7,7 +7,10 @@
 
 const CLIPMAP_QUADS: i32 = 48;
 const CLIPMAP_MORPH_QUADS: i32 = 8;
-const CLIPMAP_LEVEL_VERTICES: u32 = 13824u;
+// Rust: CLIPMAP_GRID_VERTICES ((CLIPMAP_QUADS + 1)²) and CLIPMAP_LEVEL_VERTICES (the
+// grid's, then the edge quads' six each: precip_model::scene::terrain::clipmap_indices).
+const CLIPMAP_GRID_VERTICES: u32 = 2401u;
+const CLIPMAP_LEVEL_VERTICES: u32 = 2977u;
 // Rust: precip_model::scene::{FULL_SNOW_SLOPE_DEG, NO_SNOW_SLOPE_DEG} as cosines.
 const FULL_SNOW_COS: f32 = 0.8660254;
 const NO_SNOW_COS: f32 = 0.64278764;
@@ -83,10 +86,32 @@ struct TerrainPoint {
     drawn: bool,
 }
 
-// Vertex v of the clipmap's draw from level `first` (params.terrain_levels.x, the
-// water's mirror's .w): its position and normal, blended into the next level's
-// over the level's last CLIPMAP_MORPH_QUADS quads; not drawn inside the finer
-// level or wholly off the terrain.
+// Edge quad m of a level: its quad in the level's CLIPMAP_QUADS² (the ring of side
+// CLIPMAP_QUADS / 2 + 1 from quad CLIPMAP_QUADS / 4: bottom row, top row, left and
+// right columns). Rust twin: clipmap_edge_quad.
+fn clipmap_edge_quad(m: i32) -> vec2<i32> {
+    let lo = CLIPMAP_QUADS / 4;
+    let side = CLIPMAP_QUADS / 2 + 1;
+    let hi = lo + side - 1;
+    if (m < side) {
+        return vec2<i32>(lo + m, lo);
+    }
+    if (m < 2 * side) {
+        return vec2<i32>(lo + m - side, hi);
+    }
+    if (m < 3 * side - 2) {
+        return vec2<i32>(lo, lo + 1 + m - 2 * side);
+    }
+    return vec2<i32>(hi, lo + 1 + m - (3 * side - 2));
+}
+
+// Vertex number v of the clipmap's indexed draw from level `first`
+// (params.terrain_levels.x, the water's mirror's .w; the index buffer is
+// precip_model::scene::terrain::clipmap_indices): its position and normal,
+// blended into the next level's over the level's last CLIPMAP_MORPH_QUADS quads;
+// not drawn where it is a grid vertex only the hole's quads use, or an edge quad's
+// inside the finer level. Samples off the terrain are clamped to its edge (a quad
+// wholly off it collapses).
 fn clipmap_vertex(v: u32, camera_xz_m: vec2<f32>, first: u32) -> TerrainPoint {
     var out: TerrainPoint;
     out.drawn = false;
@@ -96,27 +121,40 @@ fn clipmap_vertex(v: u32, camera_xz_m: vec2<f32>, first: u32) -> TerrainPoint {
     if (k >= levels) {
         return out;
     }
-    let quad = i32((v % CLIPMAP_LEVEL_VERTICES) / 6u);
+    let local = v % CLIPMAP_LEVEL_VERTICES;
     let centre = clipmap_centre(k, camera_xz_m);
-    let q = centre + vec2<i32>(quad % CLIPMAP_QUADS, quad / CLIPMAP_QUADS) - vec2<i32>(CLIPMAP_QUADS / 2);
-    if (k > first) {
-        let inner = clipmap_centre(k - 1u, camera_xz_m) / 2;
-        let lo = inner - vec2<i32>(CLIPMAP_QUADS / 4);
-        let hi = inner + vec2<i32>(CLIPMAP_QUADS / 4);
-        if (all(q >= lo) && all(q + 1 <= hi)) {
+    var ij: vec2<i32>;
+    if (local < CLIPMAP_GRID_VERTICES) {
+        ij = vec2<i32>(i32(local % u32(CLIPMAP_QUADS + 1)), i32(local / u32(CLIPMAP_QUADS + 1)));
+        let lo = CLIPMAP_QUADS / 4 + 1;
+        let hi = 3 * CLIPMAP_QUADS / 4;
+        if (k > first && all(ij >= vec2<i32>(lo)) && all(ij <= vec2<i32>(hi))) {
             return out;
         }
+    } else {
+        let e = i32(local - CLIPMAP_GRID_VERTICES);
+        let a = clipmap_edge_quad(e / 6);
+        if (k > first) {
+            let q = centre + a - vec2<i32>(CLIPMAP_QUADS / 2);
+            let inner = clipmap_centre(k - 1u, camera_xz_m) / 2;
+            let lo = inner - vec2<i32>(CLIPMAP_QUADS / 4);
+            let hi = inner + vec2<i32>(CLIPMAP_QUADS / 4);
+            if (all(q >= lo) && all(q + 1 <= hi)) {
+                return out;
+            }
+        }
+        // Two triangles a quad: corners (0,0) (0,1) (1,0), (1,0) (0,1) (1,1).
+        let c = e % 6;
+        ij = a + vec2<i32>(
+            select(0, 1, c == 2 || c == 3 || c == 5),
+            select(0, 1, c == 1 || c == 4 || c == 5),
+        );
     }
     let last = terrain_level_samples(k) - 1;
-    if (any(q + 1 <= vec2<i32>(0)) || any(q >= last)) {
+    if (any(last < vec2<i32>(1))) {
         return out;
     }
-    // Two triangles a quad: corners (0,0) (0,1) (1,0), (1,0) (0,1) (1,1).
-    let c = v % 6u;
-    let g = q + vec2<i32>(
-        select(0, 1, c == 2u || c == 3u || c == 5u),
-        select(0, 1, c == 1u || c == 4u || c == 5u),
-    );
+    let g = clamp(centre + ij - vec2<i32>(CLIPMAP_QUADS / 2), vec2<i32>(0), last);
     var height = terrain_height(k, g);
     var normal = terrain_level_normal(k, g);
     if (k + 1u < levels) {

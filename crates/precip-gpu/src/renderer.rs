@@ -836,9 +836,9 @@ impl<G: Gpu> FrameState<G> {
                                         &mut commands,
                                         materials,
                                         if mirror {
-                                            rows.mirror_vertices()
+                                            rows.mirror_indices()
                                         } else {
-                                            rows.vertices()
+                                            rows.indices()
                                         },
                                     );
                                 }

@@ -104,6 +104,9 @@ pub struct SceneGpu<G: Gpu> {
     materials: Vec<Material<G>>,
     /// The terrain's material (its slope's colours), where the scene stands on one.
     terrain: Option<Material<G>>,
+    /// The terrain's clipmap's indices, every level the pyramid may have
+    /// (`precip_model::scene::terrain::clipmap_indices`), where it stands on one.
+    terrain_indices: Option<G::Buffer>,
     lod: SceneLod,
 }
 
@@ -126,6 +129,7 @@ impl<G: Gpu> SceneGpu<G> {
             sampler: None,
             materials: Vec::new(),
             terrain: None,
+            terrain_indices: None,
             lod: packed.lod.clone(),
         };
         match made.fill(gpu, &packed, material_layout, scene.terrain().is_some()) {
@@ -184,22 +188,33 @@ impl<G: Gpu> SceneGpu<G> {
                 .terrain
                 .insert(Material::new(gpu, [1.0; 4], &ramp, (false, false))?);
             terrain.bind(gpu, material_layout, sampler)?;
+            let indices = precip_model::scene::terrain::clipmap_indices(
+                precip_model::scene::terrain::MAX_TERRAIN_LEVELS as u32,
+            );
+            self.terrain_indices = Some(gpu.create_buffer(
+                "precip terrain clipmap indices",
+                (indices.len() * 4) as u64,
+                BufferUsage::Indices,
+                Some(bytemuck::cast_slice(&indices)),
+            )?);
         }
         Ok(())
     }
 
-    /// The commands drawing the terrain's clipmap (`vertices` vertices), its
-    /// material group bound at 2 when `with_material`.
+    /// The commands drawing the terrain's clipmap (its first `indices` indices),
+    /// its material group bound at 2 when `with_material`.
     pub fn draw_terrain<'a>(
         &'a self,
         commands: &mut Vec<Command<'a, G>>,
         with_material: bool,
-        vertices: u32,
+        indices: u32,
     ) {
-        let Some(terrain) = &self.terrain else {
+        let (Some(terrain), Some(terrain_indices), Some(vertices)) =
+            (&self.terrain, &self.terrain_indices, &self.vertices)
+        else {
             return;
         };
-        if vertices == 0 {
+        if indices == 0 {
             return;
         }
         if with_material && let Some(group) = &terrain.group {
@@ -209,7 +224,13 @@ impl<G: Gpu> SceneGpu<G> {
                 offsets: &[],
             });
         }
-        commands.push(Command::Draw(vertices));
+        // The clipmap's vertices come from storage: the scene's vertex buffer is
+        // bound beside its indices only because the command binds both.
+        commands.push(Command::Meshes {
+            vertices,
+            indices: terrain_indices,
+        });
+        commands.push(Command::DrawIndexed(0..indices));
     }
 
     /// How far the fine triangles are drawn for `view`, m.
@@ -267,7 +288,10 @@ impl<G: Gpu> SceneGpu<G> {
         if let Some(s) = self.sampler {
             gpu.destroy_sampler(s);
         }
-        for b in [self.vertices, self.indices].into_iter().flatten() {
+        for b in [self.vertices, self.indices, self.terrain_indices]
+            .into_iter()
+            .flatten()
+        {
             gpu.destroy_buffer(b);
         }
     }

@@ -611,6 +611,7 @@ fn the_terrain_s_constants_are_their_rust_twins() {
             "CLIPMAP_LEVEL_VERTICES",
             f64::from(t::CLIPMAP_LEVEL_VERTICES),
         ),
+        ("CLIPMAP_GRID_VERTICES", f64::from(t::CLIPMAP_GRID_VERTICES)),
         ("LAND_CLASSES", LAND_CLASSES as f64),
         (
             "FULL_SNOW_COS",

@@ -46,8 +46,19 @@ pub const CLIPMAP_QUADS: u32 = 48;
 /// Quads over which a level blends into the next near its outer edge. WGSL twin:
 /// `CLIPMAP_MORPH_QUADS`.
 pub const CLIPMAP_MORPH_QUADS: u32 = 8;
-/// Vertices one level of the clipmap draws (two triangles a quad, unindexed).
-pub const CLIPMAP_LEVEL_VERTICES: u32 = CLIPMAP_QUADS * CLIPMAP_QUADS * 6;
+/// A level's grid vertices, shared by the quads around them: `(CLIPMAP_QUADS + 1)²`.
+pub const CLIPMAP_GRID_VERTICES: u32 = (CLIPMAP_QUADS + 1) * (CLIPMAP_QUADS + 1);
+/// The quads round a level's hole that are in it or not by where the finer level
+/// stands (its centre is 0 or 1 of this level's quads off along each axis): the
+/// ring of side `CLIPMAP_QUADS / 2 + 1` quads from quad `CLIPMAP_QUADS / 4`,
+/// `2 · CLIPMAP_QUADS` of them. Each has six vertices of its own, so it is drawn or
+/// not by itself ([`clipmap_vertex`]).
+pub const CLIPMAP_EDGE_QUADS: u32 = 2 * CLIPMAP_QUADS;
+/// Vertex numbers a level takes: its grid's, then its edge quads' six each. WGSL
+/// twin: `CLIPMAP_LEVEL_VERTICES`.
+pub const CLIPMAP_LEVEL_VERTICES: u32 = CLIPMAP_GRID_VERTICES + 6 * CLIPMAP_EDGE_QUADS;
+/// Indices a level draws: two triangles a quad ([`clipmap_indices`]).
+pub const CLIPMAP_LEVEL_INDICES: u32 = CLIPMAP_QUADS * CLIPMAP_QUADS * 6;
 /// The most levels of a pyramid (the frame block's rows hold their offsets).
 pub const MAX_TERRAIN_LEVELS: usize = 16;
 /// The most samples along a side of a terrain.
@@ -451,20 +462,21 @@ pub struct LandCoverRows {
 }
 
 impl ClipmapRows {
-    /// Vertices the clipmap draws (0 without a terrain).
+    /// Indices the clipmap draws, from the start of [`clipmap_indices`] (0
+    /// without a terrain).
     #[must_use]
-    pub fn vertices(&self) -> u32 {
-        self.placement.w as u32 * CLIPMAP_LEVEL_VERTICES
+    pub fn indices(&self) -> u32 {
+        self.placement.w as u32 * CLIPMAP_LEVEL_INDICES
     }
 
-    /// Vertices the clipmap draws into the water's mirror: from its first level
+    /// Indices the clipmap draws into the water's mirror: from its first level
     /// (`levels.w`) to the last (0 without a terrain).
     #[must_use]
-    pub fn mirror_vertices(&self) -> u32 {
+    pub fn mirror_indices(&self) -> u32 {
         if self.placement.w < 1.0 {
             return 0;
         }
-        self.levels.y.saturating_sub(self.levels.w) * CLIPMAP_LEVEL_VERTICES
+        self.levels.y.saturating_sub(self.levels.w) * CLIPMAP_LEVEL_INDICES
     }
 }
 
@@ -645,10 +657,65 @@ pub fn clipmap_centre(
     Some(glam::IVec2::new(even(t.x), even(t.y)))
 }
 
-/// A vertex of the clipmap: vertex `v` of the draw whose first level is `first`
-/// (two triangles a quad, quads row by row, levels one after the other): its world
-/// position and normal, or `None` where its quad is not drawn (inside the finer
-/// level, or wholly off the terrain). WGSL twin: `vs_terrain`'s `clipmap_vertex`.
+/// The corners of a quad's two triangles, `(i, j)` steps from its first sample:
+/// (0,0) (0,1) (1,0), (1,0) (0,1) (1,1).
+const QUAD_CORNERS: [(u32, u32); 6] = [(0, 0), (0, 1), (1, 0), (1, 0), (0, 1), (1, 1)];
+
+/// Edge quad `m` of a level ([`CLIPMAP_EDGE_QUADS`]): its quad `(a, b)` in the
+/// level's `CLIPMAP_QUADS`² (the ring's bottom row, its top row, then its left and
+/// right columns between them).
+fn clipmap_edge_quad(m: u32) -> (u32, u32) {
+    let lo = CLIPMAP_QUADS / 4;
+    let side = CLIPMAP_QUADS / 2 + 1;
+    let hi = lo + side - 1;
+    match m {
+        m if m < side => (lo + m, lo),
+        m if m < 2 * side => (lo + m - side, hi),
+        m if m < 3 * side - 2 => (lo, lo + 1 + m - 2 * side),
+        m => (hi, lo + 1 + m - (3 * side - 2)),
+    }
+}
+
+/// The clipmap's index buffer for `levels` levels (at most
+/// [`MAX_TERRAIN_LEVELS`]): level by level, its quads row by row, two triangles a
+/// quad; a quad's corners are the level's shared grid vertices, but an edge quad's
+/// are its own six ([`CLIPMAP_LEVEL_VERTICES`] numbers a level). Sharing lets a
+/// GPU shade a grid vertex once for the up to six triangles round it, where the
+/// unindexed draw shaded it for each.
+#[must_use]
+pub fn clipmap_indices(levels: u32) -> Vec<u32> {
+    let side = CLIPMAP_QUADS + 1;
+    let mut edge_of = vec![u32::MAX; (CLIPMAP_QUADS * CLIPMAP_QUADS) as usize];
+    for m in 0..CLIPMAP_EDGE_QUADS {
+        let (a, b) = clipmap_edge_quad(m);
+        edge_of[(a + CLIPMAP_QUADS * b) as usize] = m;
+    }
+    let mut indices = Vec::with_capacity((levels * CLIPMAP_LEVEL_INDICES) as usize);
+    for level in 0..levels {
+        let base = level * CLIPMAP_LEVEL_VERTICES;
+        for b in 0..CLIPMAP_QUADS {
+            for a in 0..CLIPMAP_QUADS {
+                let edge = edge_of[(a + CLIPMAP_QUADS * b) as usize];
+                for (c, (ci, cj)) in (0..).zip(QUAD_CORNERS) {
+                    indices.push(if edge == u32::MAX {
+                        base + (a + ci) + side * (b + cj)
+                    } else {
+                        base + CLIPMAP_GRID_VERTICES + 6 * edge + c
+                    });
+                }
+            }
+        }
+    }
+    indices
+}
+
+/// A vertex of the clipmap: vertex number `v` of the draw whose first level is
+/// `first` ([`clipmap_indices`]' numbers): its world position and normal, or
+/// `None` where it is not drawn — a grid vertex inside the hole the finer level
+/// fills whatever its place (only the hole's quads use them), an edge quad's in
+/// the hole where the finer level stands now. Samples beyond the terrain are
+/// clamped to its edge, so a quad wholly off it collapses to a line and draws
+/// nothing. WGSL twin: `vs_terrain`'s `clipmap_vertex`.
 #[must_use]
 pub fn clipmap_vertex(
     pyramid: &TerrainPyramid,
@@ -656,30 +723,41 @@ pub fn clipmap_vertex(
     camera_xz_m: Vec2,
     v: u32,
 ) -> Option<(Vec3, Vec3)> {
-    const CORNERS: [(i32, i32); 6] = [(0, 0), (0, 1), (1, 0), (1, 0), (0, 1), (1, 1)];
     let n = CLIPMAP_QUADS as i32;
     let k = first + (v / CLIPMAP_LEVEL_VERTICES) as usize;
-    let level = pyramid.levels.get(k)?;
-    let quad = (v % CLIPMAP_LEVEL_VERTICES) / 6;
-    let (qi, qj) = ((quad % CLIPMAP_QUADS) as i32, (quad / CLIPMAP_QUADS) as i32);
+    let level = pyramid
+        .levels
+        .get(k)
+        .filter(|l| l.samples.min_element() >= 2)?;
+    let local = v % CLIPMAP_LEVEL_VERTICES;
     let centre = clipmap_centre(pyramid, k, camera_xz_m)?;
-    // The quad's first sample on level k.
-    let q = centre + glam::IVec2::new(qi - n / 2, qj - n / 2);
-    if k > first {
-        // Inside level k − 1 (its centre in level k's samples ± n/4).
-        let inner = clipmap_centre(pyramid, k - 1, camera_xz_m)? / 2;
-        let lo = inner - n / 4;
-        let hi = inner + n / 4;
-        if q.x >= lo.x && q.x < hi.x && q.y >= lo.y && q.y < hi.y {
+    let (i, j) = if local < CLIPMAP_GRID_VERTICES {
+        let (i, j) = (local % (CLIPMAP_QUADS + 1), local / (CLIPMAP_QUADS + 1));
+        // The grid vertices only the hole's quads use (never any edge quad's).
+        let hole = (CLIPMAP_QUADS / 4 + 1)..=(3 * CLIPMAP_QUADS / 4);
+        if k > first && hole.contains(&i) && hole.contains(&j) {
             return None;
         }
-    }
+        (i, j)
+    } else {
+        let m = (local - CLIPMAP_GRID_VERTICES) / 6;
+        let (a, b) = clipmap_edge_quad(m);
+        if k > first {
+            // Inside level k − 1 (its centre in level k's samples ± n/4).
+            let inner = clipmap_centre(pyramid, k - 1, camera_xz_m)? / 2;
+            let q = centre + glam::IVec2::new(a as i32 - n / 2, b as i32 - n / 2);
+            let lo = inner - n / 4;
+            let hi = inner + n / 4;
+            if q.x >= lo.x && q.x < hi.x && q.y >= lo.y && q.y < hi.y {
+                return None;
+            }
+        }
+        let (ci, cj) = QUAD_CORNERS[((local - CLIPMAP_GRID_VERTICES) % 6) as usize];
+        (a + ci, b + cj)
+    };
     let last = level.samples.as_ivec2() - 1;
-    if q.x < 0 || q.y < 0 || q.x >= last.x || q.y >= last.y {
-        return None;
-    }
-    let (ci, cj) = CORNERS[(v % 6) as usize];
-    let g = q + glam::IVec2::new(ci, cj);
+    let g = (centre + glam::IVec2::new(i as i32 - n / 2, j as i32 - n / 2))
+        .clamp(glam::IVec2::ZERO, last);
     let (height, normal) = morphed(pyramid, k, g, centre);
     let xz = pyramid.corner_m + g.as_vec2() * level.spacing_m;
     Some((Vec3::new(xz.x, height, xz.y), normal))
@@ -898,7 +976,7 @@ mod tests {
             corner_m: Vec2::ZERO,
             decimation: 1,
         };
-        assert_eq!(empty.clipmap(Vec3::ONE, 0.0, 0).vertices(), 0);
+        assert_eq!(empty.clipmap(Vec3::ONE, 0.0, 0).indices(), 0);
         assert!((empty.height_under(Vec2::ONE)).abs() < f32::MIN_POSITIVE);
         assert_eq!(clipmap_vertex(&empty, 0, Vec2::ZERO, 0), None);
         let short = TerrainPyramid {
@@ -920,10 +998,7 @@ mod tests {
         let low = p.clipmap(Vec3::new(0.0, 12.0, 0.0), 10.0, 100);
         assert_eq!(low.levels.x, 0);
         assert_eq!(low.placement.w as usize, p.levels.len());
-        assert_eq!(
-            low.vertices(),
-            p.levels.len() as u32 * CLIPMAP_LEVEL_VERTICES
-        );
+        assert_eq!(low.indices(), p.levels.len() as u32 * CLIPMAP_LEVEL_INDICES);
         // 300 m up: levels whose half side is under 600 m are not drawn.
         let high = p.clipmap(Vec3::new(0.0, 310.0, 0.0), 10.0, 100);
         assert_eq!(high.levels.x, 5, "32 · 2^5 = 1024 m ≥ 600 m");
@@ -934,14 +1009,29 @@ mod tests {
         // The water's mirror starts MIRROR_SKIPPED_LEVELS coarser, at most the last.
         assert_eq!(low.levels.w, MIRROR_SKIPPED_LEVELS);
         assert_eq!(
-            low.mirror_vertices(),
-            (p.levels.len() as u32 - MIRROR_SKIPPED_LEVELS) * CLIPMAP_LEVEL_VERTICES
+            low.mirror_indices(),
+            (p.levels.len() as u32 - MIRROR_SKIPPED_LEVELS) * CLIPMAP_LEVEL_INDICES
         );
         let last = p.levels.len() as u32 - 1;
         let top = p.clipmap(Vec3::new(0.0, 1.0e5, 0.0), 10.0, 100);
         assert_eq!((top.levels.x, top.levels.w), (last, last));
-        assert_eq!(top.mirror_vertices(), CLIPMAP_LEVEL_VERTICES);
-        assert_eq!(ClipmapRows::default().mirror_vertices(), 0);
+        assert_eq!(top.mirror_indices(), CLIPMAP_LEVEL_INDICES);
+        assert_eq!(ClipmapRows::default().mirror_indices(), 0);
+    }
+
+    /// Whether quad `(a, b)` of level `k` is drawn from level `first` on: its six
+    /// indices' vertices all drawn and its two triangles not collapsed.
+    fn quad_drawn(p: &TerrainPyramid, first: usize, camera: Vec2, k: usize, quad: u32) -> bool {
+        let indices = clipmap_indices((k - first + 1) as u32);
+        let at = ((k - first) as u32 * CLIPMAP_LEVEL_INDICES + 6 * quad) as usize;
+        let corners: Option<Vec<Vec3>> = indices[at..at + 6]
+            .iter()
+            .map(|&v| clipmap_vertex(p, first, camera, v).map(|(pos, _)| pos))
+            .collect();
+        corners.is_some_and(|c| {
+            c.chunks(3)
+                .all(|t| (t[1] - t[0]).cross(t[2] - t[0]).length() > 1e-6)
+        })
     }
 
     /// The levels' quads that hold `xz` (its quad's corners' positions), for
@@ -957,12 +1047,56 @@ mod tests {
                 continue;
             }
             let quad = (local.x + CLIPMAP_QUADS as i32 * local.y) as u32;
-            let v = (k - first) as u32 * CLIPMAP_LEVEL_VERTICES + 6 * quad;
-            if clipmap_vertex(p, first, camera, v).is_some() {
+            if quad_drawn(p, first, camera, k, quad) {
                 count += 1;
             }
         }
         count
+    }
+
+    #[test]
+    fn each_level_s_indices_name_its_shared_grid_and_its_edge_quads_own_corners() {
+        let indices = clipmap_indices(2);
+        assert_eq!(indices.len() as u32, 2 * CLIPMAP_LEVEL_INDICES);
+        let mut used = vec![0u32; 2 * CLIPMAP_LEVEL_VERTICES as usize];
+        for &v in &indices {
+            used[v as usize] += 1;
+        }
+        // Every vertex number a level has is used; an edge quad's exactly once,
+        // a grid vertex by up to six triangles.
+        for (v, &n) in (0u32..).zip(&used) {
+            let local = v % CLIPMAP_LEVEL_VERTICES;
+            if local < CLIPMAP_GRID_VERTICES {
+                assert!((1..=6).contains(&n), "grid vertex {v}: {n}");
+            } else {
+                assert_eq!(n, 1, "edge vertex {v}");
+            }
+        }
+        let side = CLIPMAP_QUADS / 2 + 1;
+        let mut edge = std::collections::HashSet::new();
+        for m in 0..CLIPMAP_EDGE_QUADS {
+            let (a, b) = clipmap_edge_quad(m);
+            let lo = CLIPMAP_QUADS / 4;
+            assert!(
+                (a == lo || a == lo + side - 1 || b == lo || b == lo + side - 1)
+                    && a.max(b) < lo + side
+            );
+            assert!(edge.insert((a, b)), "edge quad {m} twice");
+        }
+        // The grid vertices the hole's quads use are no quad's outside the hole.
+        let hole = (CLIPMAP_QUADS / 4 + 1)..(3 * CLIPMAP_QUADS / 4);
+        for quad in 0..CLIPMAP_QUADS * CLIPMAP_QUADS {
+            let (a, b) = (quad % CLIPMAP_QUADS, quad / CLIPMAP_QUADS);
+            let inside = hole.contains(&a) && hole.contains(&b);
+            for &v in &indices[(6 * quad) as usize..(6 * quad + 6) as usize] {
+                if v < CLIPMAP_GRID_VERTICES {
+                    let (i, j) = (v % (CLIPMAP_QUADS + 1), v / (CLIPMAP_QUADS + 1));
+                    let in_block = (hole.start..=hole.end).contains(&i)
+                        && (hole.start..=hole.end).contains(&j);
+                    assert_eq!(in_block, inside, "quad ({a}, {b}), vertex ({i}, {j})");
+                }
+            }
+        }
     }
 
     proptest! {
@@ -1003,8 +1137,15 @@ mod tests {
                 let n = CLIPMAP_QUADS;
                 // The quads of the level's top row (z = −n/2 side) and their
                 // upper-left corner (vertex 0 of each quad).
-                for qi in 0..n {
-                    let v = (k - first) as u32 * CLIPMAP_LEVEL_VERTICES + 6 * qi;
+                let centre = clipmap_centre(&p, k, camera).expect("a level");
+                let last = p.levels[k].samples.as_ivec2() - 1;
+                for qi in 0..=n {
+                    // Grid vertex (qi, 0), where it stands on the terrain.
+                    let g = centre + glam::IVec2::new(qi as i32 - n as i32 / 2, -(n as i32) / 2);
+                    if g.min_element() < 0 || g.x > last.x || g.y > last.y {
+                        continue;
+                    }
+                    let v = (k - first) as u32 * CLIPMAP_LEVEL_VERTICES + qi;
                     let Some((pos, _)) = clipmap_vertex(&p, first, camera, v) else {
                         continue;
                     };
