@@ -81,6 +81,27 @@ pub fn frame(backend: &mut dyn Backend, view: &View) -> precip_model::Timings {
     backend.timings().expect("waits for the GPU")
 }
 
+/// Seconds a backend runs frames (or steps) after it is configured before they
+/// are measured, at least: a GPU's clock follows its load within a second or so,
+/// and the first frames after a configure (seconds of host work, the GPU idle)
+/// ran at a lower one (an H200: a frame's passes up to 4× their steady ms).
+pub const WARM_UP_S: f64 = 1.5;
+
+/// Seconds a measure takes at least (and at least its count of frames or steps).
+pub const MEASURE_S: f64 = 0.5;
+
+/// Runs `run` at least `count` times and for at least `seconds`; how many times
+/// it ran.
+pub fn repeat_for(count: u32, seconds: f64, mut run: impl FnMut()) -> u32 {
+    let start = std::time::Instant::now();
+    let mut done = 0;
+    while done < count || start.elapsed().as_secs_f64() < seconds {
+        run();
+        done += 1;
+    }
+    done
+}
+
 /// `timings`' passes added to `passes` (by name, in the order first met) as
 /// `1 / n` of a mean.
 pub fn accumulate_passes(
@@ -118,4 +139,19 @@ pub fn backends() -> Vec<(&'static str, Box<dyn Backend>)> {
 #[must_use]
 pub fn step_bytes_per_particle() -> u64 {
     precip_gpu::recipe::step_bytes_per_particle()
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn repeat_for_runs_at_least_its_count_and_its_seconds() {
+        let mut runs = 0;
+        assert_eq!(super::repeat_for(3, 0.0, || runs += 1), 3);
+        assert_eq!(runs, 3);
+        let start = std::time::Instant::now();
+        let done = super::repeat_for(1, 0.05, || {
+            std::thread::sleep(std::time::Duration::from_millis(10))
+        });
+        assert!(done >= 5 && start.elapsed().as_secs_f64() >= 0.05, "{done}");
+    }
 }

@@ -27,8 +27,8 @@ use precip_benches::peer::{Display, osgprecipitation_fps, viewer_run, write_obj}
 use precip_benches::plot::{Series, write_png};
 use precip_benches::traffic::pass_traffic;
 use precip_benches::{
-    COUNTS, DT_S, FRAME_COUNTS, FRAME_SIZE, backends, frame, frame_scenario, scenario,
-    step_bytes_per_particle,
+    COUNTS, DT_S, FRAME_COUNTS, FRAME_SIZE, MEASURE_S, WARM_UP_S, backends, frame, frame_scenario,
+    repeat_for, scenario, step_bytes_per_particle,
 };
 use precip_gpu_wgpu::WgpuBackend;
 use serde_json::json;
@@ -136,20 +136,23 @@ fn measure_frames(rows: &mut Vec<serde_json::Value>, size_px: (u32, u32)) {
                 continue;
             }
             // Frames before the measured ones, so the measured ones are the steady
-            // state's.
-            for _ in 0..WARM_UP_FRAMES {
+            // state's (the device's clock too: WARM_UP_S).
+            repeat_for(WARM_UP_FRAMES, WARM_UP_S, || {
                 frame(backend.as_mut(), &view);
-            }
-            let frames = match count {
+            });
+            let least = match count {
                 10_000_000.. => 2,
                 1_000_000.. => 3,
                 _ => 6,
             };
             let mut passes = Vec::new();
             let start = Instant::now();
-            for _ in 0..frames {
+            let frames = repeat_for(least, MEASURE_S, || {
                 let t = frame(backend.as_mut(), &view);
-                precip_benches::accumulate_passes(&mut passes, t, f64::from(frames));
+                precip_benches::accumulate_passes(&mut passes, t, 1.0);
+            });
+            for (_, ms) in &mut passes {
+                *ms /= f64::from(frames);
             }
             let ms = start.elapsed().as_secs_f64() * 1e3 / f64::from(frames);
             let drawn = backend.drawn().ok().flatten().unwrap_or_default();
@@ -388,16 +391,20 @@ fn main() {
                 eprintln!("{name} at {count}: {e}");
                 continue;
             }
-            backend.step(DT_S).ok();
-            let _ = backend.timings();
-            let steps = 10;
+            repeat_for(1, WARM_UP_S, || {
+                backend.step(DT_S).ok();
+                let _ = backend.timings();
+            });
             let start = Instant::now();
             let mut kernels: Vec<(&str, f64)> = Vec::new();
-            for _ in 0..steps {
+            let steps = repeat_for(10, MEASURE_S, || {
                 backend.step(DT_S).expect("valid step");
                 if let Ok(t) = backend.timings() {
-                    precip_benches::accumulate_passes(&mut kernels, t, f64::from(steps));
+                    precip_benches::accumulate_passes(&mut kernels, t, 1.0);
                 }
+            });
+            for (_, ms) in &mut kernels {
+                *ms /= f64::from(steps);
             }
             let seconds = start.elapsed().as_secs_f64() / f64::from(steps);
             let per_second = f64::from(count) / seconds;

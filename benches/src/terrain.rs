@@ -23,10 +23,6 @@ use crate::{DT_S, FRAME_SIZE, backends};
 /// Frames a setup runs at least in the warm-up and again in the measure.
 const FRAMES: u32 = 8;
 
-/// Seconds the warm-up and the measure each take at least (a fast GPU runs many
-/// more than [`FRAMES`] frames in them, so its clock settles).
-const PHASE_S: f64 = 1.5;
-
 /// The calling thread's CPU time, ms (the `cpu-time` crate's `ThreadTime`:
 /// `CLOCK_THREAD_CPUTIME_ID` on Linux).
 /// `None` where the system does not give it.
@@ -155,7 +151,7 @@ fn timed_frame(
 
 /// The demo's frame and the terrain's on two backends of one kind, their frames
 /// interleaved (ABBA) through a warm-up and the measure, each at least [`FRAMES`]
-/// frames a setup and [`PHASE_S`] long: both setups meet the device in the same
+/// frames a setup and [`crate::WARM_UP_S`] long: both setups meet the device in the same
 /// state. A GPU's clock follows its load within a second or so; measured one
 /// after the other, a setup that followed the terrain's loading (seconds of host
 /// work, the GPU idle) ran at a lower clock than the other, and every pass grew
@@ -172,7 +168,7 @@ fn measure_pair(
         costs = (FrameCost::default(), FrameCost::default());
         let start = Instant::now();
         let mut frames = 0u32;
-        while frames < FRAMES || start.elapsed().as_secs_f64() < PHASE_S {
+        while frames < FRAMES || start.elapsed().as_secs_f64() < crate::WARM_UP_S {
             let order = if frames.is_multiple_of(2) {
                 [0, 1]
             } else {
