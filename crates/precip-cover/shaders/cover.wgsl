@@ -97,6 +97,8 @@ fn surface_water(surface: u32) -> SurfaceWater {
 
 // water.rs
 const STILL_WATER_MM: f32 = 1.0e-4;
+// Rust: precip_cover::water::LEVEL_WATER_M (surfaces this close are level: no flow).
+const LEVEL_WATER_M: f32 = 1.0e-4;
 
 fn saturation_vapour_pressure_hpa(air_temperature_c: f32) -> f32 {
     let t = clamp(air_temperature_c, -60.0, 60.0);

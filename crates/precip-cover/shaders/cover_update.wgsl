@@ -61,7 +61,6 @@ fn water_outflow_of(i: u32, tau_s: f32, p: CoverStepParams) -> vec4<f32> {
     }
     let n = surface_water(t.surface).manning_n;
     let z_i = t.ground_m;
-    let h_i = z_i + d_mm * 1.0e-3;
     var out = vec4<f32>(0.0);
     var drops = vec4<f32>(0.0);
     var faces_down = 0u;
@@ -72,11 +71,11 @@ fn water_outflow_of(i: u32, tau_s: f32, p: CoverStepParams) -> vec4<f32> {
         }
         let j = neighbour_of(i, k, p);
         var z_j = 0.0;
-        var h_j = 0.0;
+        var d_j_mm = 0.0;
         if (j >= 0) {
             let o = cover[u32(j)];
             z_j = o.ground_m;
-            h_j = o.ground_m + o.standing_mm * 1.0e-3;
+            d_j_mm = o.standing_mm;
         } else {
             let opposite = neighbour_of(i, k ^ 1u, p);
             var z_o = z_i;
@@ -84,11 +83,11 @@ fn water_outflow_of(i: u32, tau_s: f32, p: CoverStepParams) -> vec4<f32> {
                 z_o = cover[u32(opposite)].ground_m;
             }
             z_j = min(z_i, 2.0 * z_i - z_o);
-            h_j = z_j;
         }
-        let drop_m = h_i - h_j;
-        let h_flow = h_i - max(z_i, z_j);
-        if (drop_m <= 0.0 || h_flow <= 0.0) {
+        // From the differences (Rust: a kilometre up, z + d rounds to 0.06 mm).
+        let drop_m = (z_i - z_j) + (d_mm - d_j_mm) * 1.0e-3;
+        let h_flow = d_mm * 1.0e-3 - max(z_j - z_i, 0.0);
+        if (drop_m <= LEVEL_WATER_M || h_flow <= 0.0) {
             continue;
         }
         out[k] = pow(h_flow, 5.0 / 3.0) * sqrt(drop_m / dx) * tau_s / (n * dx);
@@ -116,16 +115,20 @@ fn water_outflow_of(i: u32, tau_s: f32, p: CoverStepParams) -> vec4<f32> {
 // its list (WATER_TILES, SNOW_TILES). Water and snow move at most a texel an
 // iteration, and a texel starts to send only when it or a neighbour took or sent
 // something, so between two lists what moves stays within COVER_TILE_REACH tiles of
-// a marked tile; the tiles listed are those within that reach of one, and, once
-// more, those listed the time before (they write their outflows back to zero).
-// Every texel left out would neither send nor take anything: the exchange is the
-// whole grid's, bit for bit, at the cost of the area where it has work.
+// a marked tile; the tiles listed are those within that reach of one, and, for
+// the snow, once more those listed the time before (they write their outflows back
+// to zero). Every texel left out would neither send nor take anything: the
+// exchange is the whole grid's, bit for bit, at the cost of the area where it has
+// work.
 //
-// Water: a tile is marked by any kernel that leaves water that can flow on one of
-// its texels (cover_update, water_inflow), and listed every WATER_TILE_GROUP flow
-// iterations. Snow: a tile is marked by snow_wind where a texel would send snow,
-// and listed once a sub-step, before the drift's iterations. Every mark is cleared
-// once its list is made.
+// Water: cover_update marks the tiles where it leaves water that can flow (the
+// weather's, the melt's, what evaporated or soaked away: it changed), so a
+// sub-step's first list (before its first flow iteration alone: the recipe's
+// FLOW_GROUPS) holds every wet tile; water_inflow marks the tiles where water moved
+// (sent or taken), and the later lists hold those: water at rest, level to
+// LEVEL_WATER_M, runs one iteration a sub-step. Snow: a tile is marked by
+// snow_wind where a texel would send snow, and listed once a sub-step, before the
+// drift's iterations. Every mark is cleared once its list is made.
 const COVER_TILE_SIDE: u32 = 8u;
 const COVER_TILE_REACH: i32 = 1;
 const WATER_TILES: u32 = 0u;
@@ -216,7 +219,13 @@ fn list_cover_tiles(list: u32, lane: u32) {
                 }
             }
         }
-        let before = atomicLoad(&cover_tiles[start + 1u + count + tile]) & 1u;
+        // Snow: once more the tiles near a mark at the last listing, so they write
+        // their outflows back to zero. Water needs not: a texel whose outflows were
+        // not zero at the last iteration marked its tile.
+        var before = 0u;
+        if (list == SNOW_TILES) {
+            before = atomicLoad(&cover_tiles[start + 1u + count + tile]) & 1u;
+        }
         let listed = near | before;
         atomicStore(&cover_tiles[start + 1u + count + tile], near | (listed << 1u));
         if (listed != 0u) {
@@ -243,7 +252,8 @@ fn cover_texel_listed(list: u32, j: u32, g: CoverTiles) -> bool {
     return (atomicLoad(&cover_tiles[tile_set_start(list, g) + 1u + count + tile_of_texel(j, g)]) & 2u) != 0u;
 }
 
-// Lists the tiles the next WATER_TILE_GROUP flow iterations run over.
+// Lists the tiles the next group of flow iterations runs over (the recipe's
+// FLOW_GROUPS).
 @compute @workgroup_size(64)
 fn water_tiles_list(@builtin(local_invocation_index) lane: u32) {
     list_cover_tiles(WATER_TILES, lane);
@@ -326,7 +336,12 @@ fn water_inflow(
                 t.standing_mm = max(t.standing_mm + inflow - out_inside - out_edge, 0.0);
             }
             cover[i] = t;
-            mark_water_tile(tile.x + g.tiles_x * tile.y, t, g);
+            // Its tile is listed again while its water moves: a texel that sent or
+            // took nothing this iteration is level with its neighbours (or dry),
+            // and stays so until a neighbour's water moves (whose mark reaches it).
+            if (out_inside + out_edge > 0.0 || inflow > 0.0) {
+                mark_cover_tile(WATER_TILES, tile.x + g.tiles_x * tile.y, g);
+            }
         }
     }
 }

@@ -399,6 +399,72 @@ mod tests {
         CoverGrid::new(frame, &vec![1.0; count], &masks, &vec![feed; count]).expect("valid")
     }
 
+    /// Water poured into a bowl on a hillside 800 m up (where `f32` rounds a
+    /// height to 6·10⁻⁵ m) runs down and settles; once at rest, level to
+    /// `LEVEL_WATER_M`, it stays at rest while it dries (evaporation takes the same
+    /// from every texel between iterations): no texel sends anything and an
+    /// iteration changes no bit — what lets the GPU leave resting water out of the
+    /// flow. Without the threshold it never came to rest (still trading water
+    /// after 20 000 iterations); with the surfaces' heights added before their
+    /// difference was taken, the drying's rounding set it flowing again.
+    #[test]
+    fn water_in_a_bowl_comes_to_rest_bit_for_bit() {
+        let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(16.0), UVec2::splat(32));
+        let masks = generate_threshold_masks(&frame, 3, 4.0);
+        let count = frame.texel_count();
+        let heights: Vec<f32> = (0..count)
+            .map(|i| {
+                let c = frame.texel_centre(i);
+                // A hillside 800 m up, with a bowl 0.3 m deep in it.
+                800.0 + 0.02 * c.x + 0.3 * (c.length() / 5.0).min(1.0).powi(2)
+            })
+            .collect();
+        let surfaces = vec![Surface::Grass; count];
+        let mut g = CoverGrid::new(
+            frame,
+            &vec![1.0; count],
+            &masks,
+            &vec![CoverFeed::WeatherRate; count],
+        )
+        .and_then(|g| g.with_ground(&heights, &surfaces))
+        .expect("valid");
+        for t in &mut g.texels {
+            t.standing_mm = 20.0;
+        }
+        let mut iterations = 0;
+        while g
+            .texels
+            .iter()
+            .any(|t| t.outflow_mm.iter().any(|&o| o > 0.0))
+            || iterations == 0
+        {
+            g.flow_water(30.0);
+            iterations += 1;
+            assert!(iterations < 20_000, "the water never comes to rest");
+        }
+        for round in 0..50 {
+            for t in &mut g.texels {
+                if t.standing_mm > 0.0 {
+                    t.standing_mm = (t.standing_mm - 2.5e-3).max(0.0);
+                }
+            }
+            let before = g.clone();
+            g.flow_water(30.0);
+            assert!(
+                g.texels
+                    .iter()
+                    .zip(&before.texels)
+                    .all(|(a, b)| a.standing_mm.to_bits() == b.standing_mm.to_bits()),
+                "round {round}: resting water moved"
+            );
+        }
+        let held: f32 = g.texels.iter().map(|t| t.standing_mm).sum();
+        assert!(
+            held > 1_000.0,
+            "the bowl holds water: {held} mm over its texels"
+        );
+    }
+
     #[test]
     fn sizes_must_match() {
         let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(8.0), UVec2::splat(4));

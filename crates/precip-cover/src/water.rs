@@ -29,6 +29,9 @@
 //! Q/w = h_flow^(5/3) · √S / n,   h_flow = max(H_i, H_j) − max(z_i, z_j),   S = (H_i − H_j)/Δx
 //! ```
 //!
+//! and none where the surfaces are level to [`LEVEL_WATER_M`] (0.1 mm), so water
+//! at rest is at rest, bit for bit;
+//!
 //! over an iteration of `τ` seconds that moves `Δd = h_flow^(5/3)·√S·τ/(n·Δx)` of
 //! depth, limited to half the level difference shared among the faces that go down
 //! (the flow limiter of Hunter et al. 2005, *J. Hydrology* 310, is ΔH/4 on every
@@ -56,6 +59,17 @@ pub const WATER_FLOW_ITERATIONS: u32 = 16;
 /// Standing water below this depth, mm, does not flow (it is part of the film's
 /// roughness and only evaporates or infiltrates).
 pub const STILL_WATER_MM: f32 = 1.0e-4;
+
+/// Water surfaces within this of each other, m, are level: no flow between them.
+/// Without it water never rests: the exchanges shrink as the surfaces level but
+/// do not reach zero (a bowl of water still traded some after 20 000 iterations),
+/// so the GPU could not leave a resting puddle out of the flow
+/// (`precip_gpu::recipe::FLOW_GROUPS`: only tiles where water moved run most of
+/// the iterations). 0.1 mm: a water surface that much off level over half a
+/// metre shows nothing. The levels are compared by their differences,
+/// `(z_i − z_j) + (d_i − d_j)`, not as `z + d` (a kilometre up, `f32` rounds that
+/// to 0.06 mm, which the drying's rounding crossed).
+pub const LEVEL_WATER_M: f32 = 1.0e-4;
 
 /// Saturation vapour pressure over water at `air_temperature_c`, hPa (Magnus form).
 #[must_use]
@@ -110,7 +124,6 @@ pub fn water_outflow_of(
     let n = Surface::from_raw(t.surface).water().manning_n;
     let cell = frame.cell_m();
     let z_i = t.ground_m;
-    let h_i = z_i + d_mm * 1.0e-3;
     let mut out = [0.0f32; 4];
     let mut total = 0.0f32;
     let mut drops = [0.0f32; 4];
@@ -118,21 +131,22 @@ pub fn water_outflow_of(
     for (k, offset) in NEIGHBOURS.into_iter().enumerate() {
         let dx = if k < 2 { cell.x } else { cell.y };
         let inside = neighbour(frame, index, offset).and_then(|j| texels.get(j));
-        let (z_j, h_j) = match inside {
-            Some(o) => (o.ground_m, o.ground_m + o.standing_mm * 1.0e-3),
+        let (z_j, d_j_mm) = match inside {
+            Some(o) => (o.ground_m, o.standing_mm),
             // Free outflow: the ground beyond the edge continues the slope across
             // the edge texel, and holds no water.
             None => {
                 let opposite = neighbour(frame, index, (-offset.0, -offset.1))
                     .and_then(|o| texels.get(o))
                     .map_or(z_i, |o| o.ground_m);
-                let beyond = z_i.min(2.0 * z_i - opposite);
-                (beyond, beyond)
+                (z_i.min(2.0 * z_i - opposite), 0.0)
             }
         };
-        let drop_m = h_i - h_j;
-        let h_flow = h_i - z_i.max(z_j);
-        if drop_m <= 0.0 || h_flow <= 0.0 {
+        // H_i − H_j and H_i − max(z_i, z_j) from the differences: a kilometre up,
+        // z + d in f32 rounds the water's surface to 0.06 mm.
+        let drop_m = (z_i - z_j) + (d_mm - d_j_mm) * 1.0e-3;
+        let h_flow = d_mm * 1.0e-3 - (z_j - z_i).max(0.0);
+        if drop_m <= LEVEL_WATER_M || h_flow <= 0.0 {
             continue;
         }
         out[k] = h_flow.powf(5.0 / 3.0) * (drop_m / dx).sqrt() * tau_s / (n * dx);

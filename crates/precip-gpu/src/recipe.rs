@@ -203,8 +203,11 @@ impl DispatchOver {
 /// [`COVER_TILE_REACH`] of a marked tile, and, one list more, those listed the time
 /// before, so they write their outflows back to zero.
 ///
-/// - **Water** is listed every [`WATER_TILE_GROUP`] flow iterations; the cover
-///   kernel and each inflow mark the tiles where they leave water that can flow.
+/// - **Water** is listed before each group of [`FLOW_GROUPS`]; the cover kernel
+///   marks the tiles where it leaves water that can flow, each inflow the tiles
+///   where water moved (the first list holds every wet tile, the later ones where
+///   water moves), and the water needs no list more: a texel that sent something
+///   in a group's last iteration marked its tile.
 /// - **Snow** is listed once a sub-step, before its
 ///   [`precip_cover::SNOW_DRIFT_ITERATIONS`] iterations; the wind's kernel
 ///   (`snow_wind`) marks the tiles where a texel would send snow (the wind lifts
@@ -229,17 +232,32 @@ pub const COVER_TILE_SIDE: u32 = 8;
 /// it gets one tile a workgroup.
 pub const COVER_TILES_PER_WORKGROUP: u32 = 8;
 
-/// Flow iterations between two lists of the water tiles.
-pub const WATER_TILE_GROUP: u32 = 8;
+/// The flow's iterations of a sub-step in groups, each after a list of the water
+/// tiles: the first list holds every tile where water stands (the cover kernel
+/// marks them), the later ones the tiles where water moved
+/// (`water_inflow` marks them), so water at rest, level to
+/// [`precip_cover::water::LEVEL_WATER_M`], runs one iteration of
+/// [`precip_cover::WATER_FLOW_ITERATIONS`] a sub-step and water on the move all of
+/// them. A group is at most [`COVER_TILE_REACH`] tiles of iterations (water moves
+/// a texel an iteration).
+pub const FLOW_GROUPS: [u32; 3] = [1, 8, 7];
 
 /// Tiles water or snow can reach from a marked tile before the next list (a texel
-/// an iteration: [`WATER_TILE_GROUP`] or [`precip_cover::SNOW_DRIFT_ITERATIONS`]
+/// an iteration: a group of [`FLOW_GROUPS`] or [`precip_cover::SNOW_DRIFT_ITERATIONS`]
 /// texels). WGSL twin: `COVER_TILE_REACH`.
 pub const COVER_TILE_REACH: u32 = 1;
 
 const _: () = assert!(COVER_TILE_SIDE * COVER_TILE_SIDE == WORKGROUP_SIZE);
-const _: () = assert!(precip_cover::WATER_FLOW_ITERATIONS.is_multiple_of(WATER_TILE_GROUP));
-const _: () = assert!(WATER_TILE_GROUP <= COVER_TILE_REACH * COVER_TILE_SIDE);
+const _: () = {
+    let mut k = 0;
+    let mut iterations = 0;
+    while k < FLOW_GROUPS.len() {
+        assert!(FLOW_GROUPS[k] >= 1 && FLOW_GROUPS[k] <= COVER_TILE_REACH * COVER_TILE_SIDE);
+        iterations += FLOW_GROUPS[k];
+        k += 1;
+    }
+    assert!(iterations == precip_cover::WATER_FLOW_ITERATIONS);
+};
 const _: () = assert!(precip_cover::SNOW_DRIFT_ITERATIONS <= COVER_TILE_REACH * COVER_TILE_SIDE);
 
 /// Which list of cover tiles: the flow's or the drift's. WGSL twins: `WATER_TILES`,
@@ -414,7 +432,7 @@ const DRIFT_ITERATION: [KernelPass; 2] = [
     },
 ];
 
-/// Before every [`WATER_TILE_GROUP`] flow iterations: the list of the tiles they
+/// Before each group of [`FLOW_GROUPS`]: the list of the tiles its iterations
 /// run over ([`COVER_TILE_SIDE`]).
 const FLOW_LIST: KernelPass = KernelPass {
     program: Program::CoverUpdate,
@@ -459,12 +477,30 @@ const SUBSTEP_TAIL: [KernelPass; 2] = [
 /// Drift kernels a sub-step.
 const DRIFT_KERNELS: usize = DRIFT_ITERATION.len() * precip_cover::SNOW_DRIFT_ITERATIONS as usize;
 
-/// Kernels of a group of flow iterations, its list included.
-const FLOW_GROUP_KERNELS: usize = 1 + FLOW_ITERATION.len() * WATER_TILE_GROUP as usize;
-
 /// Flow kernels a sub-step, the lists included.
 const FLOW_KERNELS: usize =
-    FLOW_GROUP_KERNELS * (precip_cover::WATER_FLOW_ITERATIONS / WATER_TILE_GROUP) as usize;
+    FLOW_GROUPS.len() + FLOW_ITERATION.len() * precip_cover::WATER_FLOW_ITERATIONS as usize;
+
+/// The `k`th of the flow's kernels a sub-step: a list before each group of
+/// [`FLOW_GROUPS`], then the group's iterations.
+const fn flow_kernel(k: usize) -> KernelPass {
+    let mut group = 0;
+    let mut start = 0;
+    while group < FLOW_GROUPS.len() {
+        let len = 1 + FLOW_ITERATION.len() * FLOW_GROUPS[group] as usize;
+        if k < start + len {
+            let in_group = k - start;
+            return if in_group == 0 {
+                FLOW_LIST
+            } else {
+                FLOW_ITERATION[(in_group - 1) % FLOW_ITERATION.len()]
+            };
+        }
+        start += len;
+        group += 1;
+    }
+    FLOW_LIST
+}
 
 /// Kernels of one sub-step.
 pub const SUBSTEP_KERNELS: usize =
@@ -478,7 +514,7 @@ pub const SUBSTEP_KERNELS: usize =
 /// snow drifts and slides over the tiles listed then
 /// ([`precip_cover::SNOW_DRIFT_ITERATIONS`] iterations of two kernels), standing
 /// water flows ([`precip_cover::WATER_FLOW_ITERATIONS`] iterations of two kernels,
-/// over the water tiles listed before every [`WATER_TILE_GROUP`]),
+/// over the water tiles listed before each group of [`FLOW_GROUPS`]),
 /// and the waves advance ([`precip_model::physics::water_waves`]). Sub-steps repeat this with their
 /// own uniform blocks (dynamic offsets).
 pub const SUBSTEP_PASSES: [KernelPass; SUBSTEP_KERNELS] = {
@@ -491,12 +527,7 @@ pub const SUBSTEP_PASSES: [KernelPass; SUBSTEP_KERNELS] = {
         } else if k < head + DRIFT_KERNELS {
             DRIFT_ITERATION[(k - head) % DRIFT_ITERATION.len()]
         } else if k < head + DRIFT_KERNELS + FLOW_KERNELS {
-            let in_group = (k - head - DRIFT_KERNELS) % FLOW_GROUP_KERNELS;
-            if in_group == 0 {
-                FLOW_LIST
-            } else {
-                FLOW_ITERATION[(in_group - 1) % FLOW_ITERATION.len()]
-            }
+            flow_kernel(k - head - DRIFT_KERNELS)
         } else {
             SUBSTEP_TAIL[k - head - DRIFT_KERNELS - FLOW_KERNELS]
         };
