@@ -4,7 +4,7 @@
 //! terrain's own pixels and vertices (issue 29's target: within 1.2×). Both as the
 //! viewer sets them up (300 000 particles, its default view), on two instances of
 //! each GPU backend whose frames alternate (ABBA), so both meet the device in the
-//! same state (a GPU's clock follows its load: [`measure_pair`]); the scene's copy,
+//! same state (a GPU's clock follows its load: `measure_pair`); the scene's copy,
 //! the same work in both, is printed beside them as the control.
 //! Each frame is split into the host's share (the calling thread's CPU time in the
 //! step and the render, [`thread_cpu_ms`]) and the GPU's passes, so a GPU run says
@@ -195,7 +195,7 @@ fn measure_pair(
 
 /// Each GPU backend's frame over the demo and over the demo on the terrain, and
 /// their ratio, printed; two instances of each backend, one a setup, interleaved
-/// ([`measure_pair`]).
+/// (`measure_pair`).
 #[must_use]
 pub fn measure_terrain() -> serde_json::Value {
     let terrain = match load_terrain(
