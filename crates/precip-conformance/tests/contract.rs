@@ -401,6 +401,46 @@ fn rain_gathers_in_a_dip_conserving_water_alike_on_every_backend() {
     assert_water_alike(&covers);
 }
 
+/// Rain on the dip, then a dry spell in which the puddle comes to rest (level to
+/// `LEVEL_WATER_M`: the GPUs then flow only the sub-step's first iteration over it,
+/// the tiles where nothing moves left out of the rest), then rain again, which
+/// must wake it: the books close and every backend's water is the CPU's, which
+/// flows over the whole grid every iteration.
+#[test]
+fn a_puddle_at_rest_sleeps_and_wakes_when_the_rain_comes_back_alike_on_every_backend() {
+    let mut covers = Vec::new();
+    for mut s in all_subjects("resting water") {
+        let good = rain_on_a_dip();
+        s.backend.configure(&good).expect("configure");
+        let dry = Weather {
+            intensity_mm_per_h: 0.0,
+            ..good.weather
+        };
+        for (weather, steps) in [(&good.weather, 10), (&dry, 20), (&good.weather, 5)] {
+            s.backend.set_weather(weather).expect("a valid weather");
+            for _ in 0..steps {
+                s.backend.step(0.1).expect("step");
+            }
+        }
+        let cover = s.backend.read_cover().expect("cover");
+        let totals = cover.totals();
+        let centre = cover.texel_at(0.5, 0.5).expect("on the grid").standing_mm;
+        assert!(
+            centre > 5.0,
+            "{}: the puddle is still there: {centre} mm",
+            s.name
+        );
+        assert!(
+            totals.imbalance_kg().abs() < 1e-4 * totals.deposited_kg,
+            "{}: the books close through rest and waking: {totals:?}",
+            s.name
+        );
+        s.check_clean("resting water");
+        covers.push((s.name.clone(), cover));
+    }
+    assert_water_alike(&covers);
+}
+
 /// Every backend's water where the CPU reference (`covers[0]`) has it.
 fn assert_water_alike(covers: &[(String, CoverGrid)]) {
     // Every backend's water where the CPU reference has it: the same landed water

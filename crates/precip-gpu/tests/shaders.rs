@@ -484,6 +484,22 @@ fn the_cover_tiles_are_the_same_in_wgsl_and_rust() {
     );
 }
 
+#[test]
+fn the_flow_s_thresholds_are_their_rust_twins() {
+    use precip_model::cover::water::{LEVEL_WATER_M, STILL_WATER_MM};
+    let module = parse(Program::CoverUpdate);
+    for (name, rust) in [
+        ("LEVEL_WATER_M", f64::from(LEVEL_WATER_M)),
+        ("STILL_WATER_MM", f64::from(STILL_WATER_MM)),
+    ] {
+        let wgsl = wgsl_constant(&module, name);
+        assert!(
+            (wgsl - rust).abs() <= 1e-6 * rust.abs(),
+            "{name}: WGSL {wgsl}, Rust {rust}"
+        );
+    }
+}
+
 /// A WGSL module's `const NAME` as a number (a literal).
 /// The components of the WGSL `vec` constant `name` of `module`.
 fn wgsl_vector(module: &naga::Module, name: &str) -> Vec<f32> {

@@ -684,6 +684,7 @@ fn clipmap_edge_quad(m: u32) -> (u32, u32) {
 /// unindexed draw shaded it for each.
 #[must_use]
 pub fn clipmap_indices(levels: u32) -> Vec<u32> {
+    let levels = levels.min(MAX_TERRAIN_LEVELS as u32);
     let side = CLIPMAP_QUADS + 1;
     let mut edge_of = vec![u32::MAX; (CLIPMAP_QUADS * CLIPMAP_QUADS) as usize];
     for m in 0..CLIPMAP_EDGE_QUADS {
