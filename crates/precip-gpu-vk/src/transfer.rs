@@ -14,6 +14,12 @@ use crate::image::Image;
 /// queries, so the host writes step n + 1's while step n runs.
 pub const FRAMES_IN_FLIGHT: usize = 2;
 
+// Each frame in flight has its own copy of the terrain's windows.
+const _: () = assert!(
+    FRAMES_IN_FLIGHT as u32 <= precip_model::scene::terrain::CLIPMAP_WINDOW_SLOTS,
+    "a frame slot without terrain windows"
+);
+
 /// Copies `bytes` into `target` at `offset` through a staging buffer (waits).
 pub fn upload_at(
     device: &Device,

@@ -95,7 +95,7 @@ struct RenderParams {
     terrain: vec4<f32>,
     terrain_levels: vec4<u32>,
     terrain_samples: array<vec4<u32>, 8>,
-    terrain_offsets: array<vec4<u32>, 4>,
+    terrain_windows: array<vec4<u32>, 4>,
     // The cover beyond the grid (Rust: RenderParams::far_cover_grid/_cells,
     // precip_model::host::FarCover): its cells' corner x, z and size x, z, m; cells
     // along x, z, the first word of their rows in ground_height (each cell's texels

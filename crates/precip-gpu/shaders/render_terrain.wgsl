@@ -1,7 +1,7 @@
 // render_terrain.wgsl: the terrain drawn as a geometry clipmap (Losasso & Hoppe 2004)
-// from its pyramid, which follows the ground map's words in `ground_height`
-// (RenderParams::terrain_offsets). Rust twins:
-// precip_model::scene::terrain::{clipmap_centre, clipmap_vertex} and
+// from its pyramid's windows round the camera, which follow the ground map's words
+// in `ground_height` (RenderParams::terrain_levels.z, terrain_windows). Rust twins:
+// precip_model::scene::terrain::{clipmap_centre, ClipmapWindows::vertex} and
 // precip_model::scene::slope_eligibility. Its vertices go through the scene's
 // `scene_varying` (the snow raises them) and its fragments are the scene's.
 
@@ -11,6 +11,8 @@ const CLIPMAP_MORPH_QUADS: i32 = 8;
 // grid's, then the edge quads' six each: precip_model::scene::terrain::clipmap_indices).
 const CLIPMAP_GRID_VERTICES: u32 = 2401u;
 const CLIPMAP_LEVEL_VERTICES: u32 = 2977u;
+// Rust: CLIPMAP_WINDOW_SAMPLES.
+const CLIPMAP_WINDOW_SAMPLES: i32 = 64;
 // Rust: precip_model::scene::{FULL_SNOW_SLOPE_DEG, NO_SNOW_SLOPE_DEG} as cosines.
 const FULL_SNOW_COS: f32 = 0.8660254;
 const NO_SNOW_COS: f32 = 0.64278764;
@@ -60,11 +62,20 @@ fn terrain_level_spacing_m(k: u32) -> f32 {
     return params.terrain.z * f32(1u << k);
 }
 
-// Level k's height at its sample g (clamped to the level), m.
+// Level k's window origin: two i16 in a word, x low. Rust twin:
+// ClipmapRows::window_origin.
+fn terrain_window_origin(k: u32) -> vec2<i32> {
+    let w = params.terrain_windows[k / 4u][k % 4u];
+    return vec2<i32>(i32(w << 16u) >> 16u, i32(w) >> 16u);
+}
+
+// Level k's height at its sample g, m: its window's sample (which holds the
+// level's, clamped to the level), g clamped to the window. Rust twin:
+// ClipmapWindows::height.
 fn terrain_height(k: u32, g: vec2<i32>) -> f32 {
-    let n = terrain_level_samples(k);
-    let c = clamp(g, vec2<i32>(0), n - 1);
-    return ground_height[params.terrain_offsets[k / 4u][k % 4u] + u32(c.x + n.x * c.y)];
+    let p = clamp(g - terrain_window_origin(k), vec2<i32>(0), vec2<i32>(CLIPMAP_WINDOW_SAMPLES - 1));
+    let level = params.terrain_levels.z + k * u32(CLIPMAP_WINDOW_SAMPLES * CLIPMAP_WINDOW_SAMPLES);
+    return ground_height[level + u32(p.x + CLIPMAP_WINDOW_SAMPLES * p.y)];
 }
 
 // Level k's normal at its sample g (central differences).

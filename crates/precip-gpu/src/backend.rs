@@ -99,7 +99,7 @@ impl<G: Gpu> GpuBackend<G> {
             state.frame = Some(FrameState::new(&mut self.gpu, drawing, &state.sim)?);
         }
         match state.frame.as_mut() {
-            Some(frame) => frame.draw(&mut self.gpu, drawing, &state.sim, view, surface),
+            Some(frame) => frame.draw(&mut self.gpu, drawing, &mut state.sim, view, surface),
             None => Err(BackendError::NotConfigured {
                 operation: "render",
             }),

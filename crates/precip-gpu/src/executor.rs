@@ -9,7 +9,8 @@
 //! [`Simulation::destroy`] / [`Kernels::destroy`], and on every error path.
 //!
 //! The frame ([`crate::renderer`]) reads the simulation's buffers through
-//! [`Simulation::buffer`].
+//! [`Simulation::buffer`], and writes the terrain's windows round its camera into
+//! the ground buffer ([`Simulation::upload_terrain_windows`]).
 
 use precip_cover::{CoverGrid, GridFrame};
 use precip_model::host::HostState;
@@ -195,6 +196,9 @@ pub struct Simulation<G: Gpu> {
     steps_submitted: u64,
     /// The kernels the last step dispatched, in order (its timings' names).
     last_step: Vec<&'static str>,
+    /// Each frame slot's terrain windows as written: every level's origin
+    /// (`None`: not written yet).
+    terrain_windows: Vec<Vec<Option<glam::IVec2>>>,
 }
 
 /// A setup checked and computed on the host ([`Simulation::prepare`]).
@@ -281,6 +285,7 @@ impl<G: Gpu> Simulation<G> {
                     uniform_stride: parts.1,
                     steps_submitted: 0,
                     last_step: Vec::new(),
+                    terrain_windows: Vec::new(),
                 };
                 match sim.init(gpu, kernels) {
                     Ok(()) => Ok(sim),
@@ -536,6 +541,55 @@ impl<G: Gpu> Simulation<G> {
                 u64::from(word) * 4,
                 bytemuck::cast_slice(&rows),
             )?;
+        }
+        Ok(())
+    }
+
+    /// Places the terrain's windows of the frame in `slot` (of [`Gpu::slots`]) in
+    /// that slot's words and writes those whose place moved since the slot's last
+    /// frame: the levels from the first `params` draws (the scene's or the
+    /// mirror's) to the last, each `precip_model::scene::terrain::CLIPMAP_WINDOW_WORDS`
+    /// heights. A camera at rest writes nothing. The caller has freed the slot
+    /// ([`Gpu::free_slot`]): no frame in flight reads its words.
+    pub fn upload_terrain_windows(
+        &mut self,
+        gpu: &mut G,
+        slot: u32,
+        params: &mut precip_model::drawing::render::RenderParams,
+    ) -> Result<(), BackendError> {
+        use precip_model::scene::terrain::{CLIPMAP_WINDOW_SLOTS, CLIPMAP_WINDOW_WORDS};
+        let Some(pyramid) = self.host.terrain_pyramid().cloned() else {
+            return Ok(());
+        };
+        if slot >= CLIPMAP_WINDOW_SLOTS {
+            return Err(BackendError::Device {
+                backend: "precip-gpu",
+                message: format!(
+                    "frame slot {slot} has no terrain windows (CLIPMAP_WINDOW_SLOTS is {CLIPMAP_WINDOW_SLOTS}: a bug in precip, please report it)"
+                ),
+            });
+        }
+        let levels = pyramid.levels.len();
+        if self.terrain_windows.is_empty() {
+            self.terrain_windows = vec![vec![None; levels]; CLIPMAP_WINDOW_SLOTS as usize];
+        }
+        let first_word = params.terrain_levels.z + slot * pyramid.window_words();
+        params.terrain_levels.z = first_word;
+        let rows = params.clipmap_rows();
+        let first_drawn = params.terrain_levels.x.min(params.terrain_levels.w) as usize;
+        for k in first_drawn..levels {
+            let origin = rows.window_origin(k);
+            if self.terrain_windows[slot as usize][k] == Some(origin) {
+                continue;
+            }
+            let words = pyramid.window(k, origin);
+            let at = u64::from(first_word + k as u32 * CLIPMAP_WINDOW_WORDS) * 4;
+            gpu.write_buffer(
+                self.buffer_mut(SimBuffer::Ground),
+                at,
+                bytemuck::cast_slice(&words),
+            )?;
+            self.terrain_windows[slot as usize][k] = Some(origin);
         }
         Ok(())
     }

@@ -988,7 +988,7 @@ impl FrameHost {
             params = params.with_shore_rows(&frame.rows);
         }
         params = params
-            .with_clipmap_rows(&host.clipmap_rows())
+            .with_clipmap_rows(&host.clipmap_rows(view.camera.position_m))
             .with_land_cover_rows(&host.land_cover_rows())
             .with_far_cover_rows(&host.far_cover_rows());
         FrameDecision {

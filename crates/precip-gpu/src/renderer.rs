@@ -601,7 +601,7 @@ impl<G: Gpu> FrameState<G> {
         &mut self,
         gpu: &mut G,
         drawing: &mut Drawing<G>,
-        sim: &Simulation<G>,
+        sim: &mut Simulation<G>,
         view: &View,
         surface: Option<&G::Surface>,
     ) -> Result<(), BackendError> {
@@ -641,6 +641,7 @@ impl<G: Gpu> FrameState<G> {
         self.reuse_clouds(&mut decision, view);
         let slot = (self.frames_drawn % u64::from(gpu.slots().max(1))) as u32;
         gpu.free_slot(slot)?;
+        sim.upload_terrain_windows(gpu, slot, &mut decision.params)?;
         let offset = u64::from(slot) * self.params_stride;
         let params = self
             .buffers

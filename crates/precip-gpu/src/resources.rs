@@ -28,8 +28,9 @@ pub enum SimBuffer {
     Deposits,
     /// The particles to re-birth this sub-step ([`pending_births_bytes`]).
     PendingBirths,
-    /// Ground heights ([`GroundMap::gpu_words`]), then the terrain's pyramid
-    /// (`precip_model::scene::terrain::TerrainPyramid`) if the scene stands on one.
+    /// Ground heights ([`GroundMap::gpu_words`]), then the terrain's windows
+    /// (`precip_model::scene::terrain::TerrainPyramid::window`, a copy per frame
+    /// slot) if the scene stands on one.
     Ground,
     /// The water bodies' waves ([`initial_waves`]).
     Waves,
@@ -171,12 +172,13 @@ pub fn simulation_buffers(
                     Contents::Undefined,
                 ),
                 SimBuffer::Ground => {
-                    // The ground map's words, then the terrain's pyramid (the
-                    // clipmap's, render_terrain.wgsl) and its land cover, then the
-                    // far cover's two regions (render_scene.wgsl's far_row).
+                    // The ground map's words, then the terrain's windows (the
+                    // clipmap's, render_terrain.wgsl: written by each frame,
+                    // Simulation::upload_terrain_windows) and its land cover, then
+                    // the far cover's two regions (render_scene.wgsl's far_row).
                     let mut words = ground.gpu_words();
-                    if let Some(p) = host.terrain_pyramid() {
-                        words.extend_from_slice(&p.heights_m);
+                    if host.terrain_pyramid().is_some() {
+                        words.resize(words.len() + host.terrain_window_words() as usize, 0.0);
                         if let Some(classes) = host.land_cover_samples() {
                             words.extend_from_slice(classes);
                         }

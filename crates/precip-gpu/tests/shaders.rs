@@ -628,6 +628,10 @@ fn the_terrain_s_constants_are_their_rust_twins() {
             f64::from(t::CLIPMAP_LEVEL_VERTICES),
         ),
         ("CLIPMAP_GRID_VERTICES", f64::from(t::CLIPMAP_GRID_VERTICES)),
+        (
+            "CLIPMAP_WINDOW_SAMPLES",
+            f64::from(t::CLIPMAP_WINDOW_SAMPLES),
+        ),
         ("LAND_CLASSES", LAND_CLASSES as f64),
         (
             "FULL_SNOW_COS",

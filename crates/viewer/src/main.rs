@@ -521,24 +521,13 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         )?;
         let (low, high) = terrain.height_range_m();
         let size = terrain.size_m();
-        let decimation = precip_model::scene::terrain::TerrainPyramid::decimation(
-            &terrain,
-            precip_model::scene::terrain::TERRAIN_GPU_BUDGET_BYTES,
-        );
-        let drawn = if decimation > 1 {
-            format!(
-                ", drawn at {decimation}× its spacing (the GPU's copy is at most 96 MiB; the snow's ground map keeps every sample)"
-            )
-        } else {
-            String::new()
-        };
         let extent = if size.max_element() >= 2000.0 {
             format!("{:.1} × {:.1} km", size.x / 1000.0, size.y / 1000.0)
         } else {
             format!("{:.0} × {:.0} m", size.x, size.y)
         };
         eprintln!(
-            "terrain: {} × {} samples {} m apart ({extent}), heights {low:.0} to {high:.0} m{drawn} ({:.1} s)",
+            "terrain: {} × {} samples {} m apart ({extent}), heights {low:.0} to {high:.0} m ({:.1} s)",
             terrain.samples().x,
             terrain.samples().y,
             terrain.spacing_m(),

@@ -471,13 +471,14 @@ pub struct RenderParams {
     /// The terrain's clipmap ([`crate::scene::terrain::ClipmapRows::placement`]):
     /// the pyramid's corner x, z m, level 0's spacing m, the levels drawn.
     pub terrain: Vec4,
-    /// The first level drawn, the pyramid's levels, its first word in the ground
-    /// buffer, 0.
+    /// The first level drawn, the pyramid's levels, the first word of the frame's
+    /// windows in the ground buffer, the first level the water's mirror draws.
     pub terrain_levels: UVec4,
     /// Each level's samples along x and z, two levels a row.
     pub terrain_samples: [UVec4; crate::scene::terrain::MAX_TERRAIN_LEVELS / 2],
-    /// Each level's first word in the ground buffer, four levels a row.
-    pub terrain_offsets: [UVec4; crate::scene::terrain::MAX_TERRAIN_LEVELS / 4],
+    /// Each level's window origin, x and z as two `i16` (x low), four levels a
+    /// row ([`crate::scene::terrain::ClipmapRows::windows`]).
+    pub terrain_windows: [UVec4; crate::scene::terrain::MAX_TERRAIN_LEVELS / 4],
     /// Where the cover beyond the cover grid is read ([`crate::host::FarCoverRows`]):
     /// its cells' corner x, z and a cell's size along x, z, m.
     pub far_cover_grid: Vec4,
@@ -891,7 +892,7 @@ impl RenderParams {
             terrain: Vec4::ZERO,
             terrain_levels: UVec4::ZERO,
             terrain_samples: [UVec4::ZERO; crate::scene::terrain::MAX_TERRAIN_LEVELS / 2],
-            terrain_offsets: [UVec4::ZERO; crate::scene::terrain::MAX_TERRAIN_LEVELS / 4],
+            terrain_windows: [UVec4::ZERO; crate::scene::terrain::MAX_TERRAIN_LEVELS / 4],
             far_cover_grid: Vec4::ZERO,
             far_cover_cells: UVec4::ZERO,
             land_cover: UVec4::ZERO,
@@ -937,7 +938,7 @@ impl RenderParams {
             placement: self.terrain,
             levels: self.terrain_levels,
             samples: self.terrain_samples,
-            offsets: self.terrain_offsets,
+            windows: self.terrain_windows,
         }
     }
 
@@ -947,7 +948,7 @@ impl RenderParams {
         self.terrain = rows.placement;
         self.terrain_levels = rows.levels;
         self.terrain_samples = rows.samples;
-        self.terrain_offsets = rows.offsets;
+        self.terrain_windows = rows.windows;
         self
     }
 

@@ -18,7 +18,7 @@ use crate::host::activity::Activity;
 use crate::host::layout::Frames;
 use crate::particles::step::StepParams;
 use crate::physics::drag::MAX_SUBSTEP_S;
-use crate::scene::terrain::{ClipmapRows, LandCoverRows, TerrainPyramid};
+use crate::scene::terrain::{CLIPMAP_WINDOW_SLOTS, ClipmapRows, LandCoverRows, TerrainPyramid};
 use crate::sensors::lidar::UnresolvedAir;
 use crate::sensors::optics::Optics;
 use crate::weather::Weather;
@@ -105,7 +105,7 @@ impl HostState {
                 .scene
                 .as_ref()
                 .and_then(|s| s.terrain())
-                .map(|t| Arc::new(t.pyramid())),
+                .map(|t| Arc::new(TerrainPyramid::of(t))),
             land_cover: setup
                 .scene
                 .as_ref()
@@ -300,15 +300,21 @@ impl HostState {
         self.far_cover.snow_line_m()
     }
 
+    /// Words of the terrain's windows in the ground buffer (every frame slot's,
+    /// [`CLIPMAP_WINDOW_SLOTS`]; 0 without a terrain), after the ground map.
+    #[must_use]
+    pub fn terrain_window_words(&self) -> u32 {
+        self.terrain
+            .as_ref()
+            .map_or(0, |p| CLIPMAP_WINDOW_SLOTS * p.window_words())
+    }
+
     /// The first word of the far cover's two regions in the ground buffer: after
-    /// the ground map, the terrain's pyramid and its land cover.
+    /// the ground map, the terrain's windows and its land cover.
     #[must_use]
     pub fn far_cover_first_word(&self) -> u32 {
         self.ground_words()
-            + self
-                .terrain
-                .as_ref()
-                .map_or(0, |p| p.heights_m.len() as u32)
+            + self.terrain_window_words()
             + self.land_cover.as_ref().map_or(0, |l| l.1.len() as u32)
     }
 
@@ -331,11 +337,11 @@ impl HostState {
     #[must_use]
     pub fn land_cover_rows(&self) -> LandCoverRows {
         match (&self.terrain, &self.land_cover, self.terrain_extent_m()) {
-            (Some(p), Some(l), Some((corner, size))) => LandCoverRows {
+            (Some(_), Some(l), Some((corner, size))) => LandCoverRows {
                 pixels: glam::UVec4::new(
                     l.0.x,
                     l.0.y,
-                    self.ground_words() + p.heights_m.len() as u32,
+                    self.ground_words() + self.terrain_window_words(),
                     1,
                 ),
                 extent_m: glam::Vec4::new(corner.x, corner.y, size.x, size.y),
@@ -435,21 +441,23 @@ impl HostState {
         self.terrain.as_ref()
     }
 
-    /// The words of the ground buffer before the terrain's pyramid
+    /// The words of the ground buffer before the terrain's windows
     /// ([`crate::GroundMap::gpu_words`]).
     #[must_use]
     pub fn ground_words(&self) -> u32 {
         2 * self.setup.ground.frame.texel_count() as u32
     }
 
-    /// The clipmap's rows of the frame block for the camera now (zeros without a
-    /// terrain: nothing drawn).
+    /// The clipmap's rows of the frame block for a view from `camera_m` (zeros
+    /// without a terrain: nothing drawn), its windows in the first frame slot's
+    /// words (a GPU backend moves them to its slot's: `TerrainPyramid::window_words`
+    /// further each).
     #[must_use]
-    pub fn clipmap_rows(&self) -> ClipmapRows {
+    pub fn clipmap_rows(&self, camera_m: Vec3) -> ClipmapRows {
         self.terrain
             .as_ref()
             .map_or_else(ClipmapRows::default, |p| {
-                let at = self.camera.position_m;
+                let at = camera_m;
                 p.clipmap(
                     at,
                     p.height_under(Vec2::new(at.x, at.z)),

@@ -26,13 +26,22 @@
 //!   cracks, no popping. The vertex shader (`vs_terrain`,
 //!   `precip-gpu/shaders/render_terrain.wgsl`) is the twin of [`clipmap_vertex`].
 //!
-//! ## The GPU's copy
+//! ## The GPU's copy: a window of each level round the camera
 //!
-//! The pyramid lives on the GPU after the ground map's words in one storage
-//! buffer, at most [`TERRAIN_GPU_BUDGET_BYTES`]: a terrain with more samples is
-//! drawn from every `f`-th sample (averaged over `f × f`), the smallest integer `f`
-//! that fits ([`TerrainPyramid::decimation`]): 16 384² samples are drawn at 4× their
-//! spacing. The ground map where snow lies always takes the full resolution.
+//! The host keeps the whole pyramid at the terrain's full resolution (level 0 is
+//! the terrain's own heights, shared; the coarser levels add a third: 16 384²
+//! samples take 1 GiB of `f32` and the pyramid 0.33 GiB more); the GPU holds, for each level, only the
+//! [`CLIPMAP_WINDOW_SAMPLES`]² samples round where that level is drawn now
+//! ([`TerrainPyramid::window_origin`], [`TerrainPyramid::window`]), one copy per
+//! frame in flight ([`CLIPMAP_WINDOW_SLOTS`]), in the ground buffer after the
+//! ground map's words. A level's window is written again only when the camera
+//! has moved it (every other sample of that level), so a camera at rest uploads
+//! nothing and one flying at 70 m/s over a 0.6 m terrain a few windows of 16 KiB a
+//! frame. The GPU's memory for the terrain is the same for 1 km and for 10 km
+//! (at most 16 levels × 16 KiB × 2), and every level is drawn from every sample.
+//! The clipmap reads no sample beyond its window: [`ClipmapWindows`] evaluates the
+//! vertices from the windows alone, and a property test checks they are the
+//! pyramid's bit for bit wherever the camera is, on the terrain or off it.
 
 use std::sync::Arc;
 
@@ -63,9 +72,17 @@ pub const CLIPMAP_LEVEL_INDICES: u32 = CLIPMAP_QUADS * CLIPMAP_QUADS * 6;
 pub const MAX_TERRAIN_LEVELS: usize = 16;
 /// The most samples along a side of a terrain.
 pub const MAX_TERRAIN_SAMPLES: u32 = 16_384;
-/// The most bytes of the pyramid on the GPU (beside the ground map, under the
-/// 128 MiB every device binds as one storage buffer).
-pub const TERRAIN_GPU_BUDGET_BYTES: u64 = 96 << 20;
+/// Samples along a side of a level's window on the GPU (its clipmap reaches
+/// `CLIPMAP_QUADS / 2 + 1` samples round the level's centre, and a level's morph
+/// half as far into the next: [`ClipmapWindows`]). WGSL twin:
+/// `CLIPMAP_WINDOW_SAMPLES`.
+pub const CLIPMAP_WINDOW_SAMPLES: u32 = 64;
+/// Words of a level's window.
+pub const CLIPMAP_WINDOW_WORDS: u32 = CLIPMAP_WINDOW_SAMPLES * CLIPMAP_WINDOW_SAMPLES;
+/// Copies of the windows on the GPU, one per frame in flight: a frame's windows
+/// are written while the frame before may still read its own. At least every
+/// backend's slots (`precip_gpu::Gpu::slots`).
+pub const CLIPMAP_WINDOW_SLOTS: u32 = 2;
 /// Heights beyond this, m, are refused (a datum or a scale gone wrong).
 pub const MAX_TERRAIN_HEIGHT_M: f32 = 20_000.0;
 /// Slope up to which the terrain is grass, beyond it soil, degrees.
@@ -332,12 +349,6 @@ impl Terrain {
     pub fn eligibility_for(normal: Vec3) -> f32 {
         slope_eligibility(normal)
     }
-
-    /// The pyramid the GPU draws the terrain from ([`TERRAIN_GPU_BUDGET_BYTES`]).
-    #[must_use]
-    pub fn pyramid(&self) -> TerrainPyramid {
-        TerrainPyramid::of(self, TERRAIN_GPU_BUDGET_BYTES)
-    }
 }
 
 /// Texels of the terrain's colour ramp ([`terrain_ramp`]).
@@ -413,12 +424,13 @@ pub struct PyramidLevel {
     pub samples: UVec2,
     /// Metres between samples.
     pub spacing_m: f32,
-    /// Its first word in [`TerrainPyramid::heights_m`].
+    /// Its first word in [`TerrainPyramid::heights_m`] (level 0's in the
+    /// terrain's own heights: 0).
     pub offset: u32,
 }
 
-/// The terrain's levels for the GPU: level 0 the terrain (decimated to fit
-/// [`TERRAIN_GPU_BUDGET_BYTES`]), level `k + 1` level `k` filtered by `[1 2 1]/4`
+/// The terrain's levels for the clipmap: level 0 the terrain at its full
+/// resolution, level `k + 1` level `k` filtered by `[1 2 1]/4`
 /// along each axis and kept at every other sample, so its sample `i` lies on level
 /// `k`'s sample `2i`, down to a level of at most [`CLIPMAP_QUADS`]` / 4` samples a
 /// side (whose clipmap level covers the whole terrain from anywhere on it).
@@ -426,12 +438,12 @@ pub struct PyramidLevel {
 pub struct TerrainPyramid {
     /// The levels, finest first.
     pub levels: Vec<PyramidLevel>,
-    /// Every level's heights, row by row, one after the other, m.
+    /// Level 0: the terrain itself, shared (its heights are not copied).
+    pub terrain: SharedTerrain,
+    /// The coarser levels' heights, row by row, one after the other, m.
     pub heights_m: Vec<f32>,
     /// World (x, z) of every level's sample (0, 0), m.
     pub corner_m: Vec2,
-    /// Level 0's samples are every `decimation`-th of the terrain's.
-    pub decimation: u32,
 }
 
 /// The rows of the frame block that place the clipmap (`RenderParams::terrain*`).
@@ -439,15 +451,18 @@ pub struct TerrainPyramid {
 pub struct ClipmapRows {
     /// The pyramid's corner x, z m, level 0's spacing m, the levels drawn (0: none).
     pub placement: glam::Vec4,
-    /// The first level drawn, the pyramid's levels, the word where the pyramid
-    /// starts in the ground buffer, the first level the water's mirror draws
-    /// ([`MIRROR_SKIPPED_LEVELS`] coarser, at most the last).
+    /// The first level drawn, the pyramid's levels, the word where the frame's
+    /// windows start in the ground buffer ([`TerrainPyramid::window`], level by
+    /// level), the first level the water's mirror draws ([`MIRROR_SKIPPED_LEVELS`]
+    /// coarser, at most the last).
     pub levels: glam::UVec4,
     /// Level `k`'s samples along x (`.x` of row `k / 2`'s pair) and z, two levels a
     /// row: (x₀, z₀, x₁, z₁), …
     pub samples: [glam::UVec4; MAX_TERRAIN_LEVELS / 2],
-    /// Level `k`'s first word in the pyramid, four levels a row.
-    pub offsets: [glam::UVec4; MAX_TERRAIN_LEVELS / 4],
+    /// Level `k`'s window origin ([`TerrainPyramid::window_origin`]), x and z as
+    /// two `i16` in a word (x low), four levels a row
+    /// ([`ClipmapRows::window_origin`]).
+    pub windows: [glam::UVec4; MAX_TERRAIN_LEVELS / 4],
 }
 
 /// The rows of the frame block that place the terrain's land cover
@@ -462,6 +477,17 @@ pub struct LandCoverRows {
 }
 
 impl ClipmapRows {
+    /// Level `k`'s window origin as the frame block holds it (WGSL twin:
+    /// `terrain_window_origin`).
+    #[must_use]
+    pub fn window_origin(&self, k: usize) -> glam::IVec2 {
+        let w = self.windows[(k / 4) % (MAX_TERRAIN_LEVELS / 4)][k % 4];
+        glam::IVec2::new(
+            i32::from(w as u16 as i16),
+            i32::from((w >> 16) as u16 as i16),
+        )
+    }
+
     /// Indices the clipmap draws, from the start of [`clipmap_indices`] (0
     /// without a terrain).
     #[must_use]
@@ -487,60 +513,25 @@ impl ClipmapRows {
 pub const MIRROR_SKIPPED_LEVELS: u32 = 2;
 
 impl TerrainPyramid {
-    /// The smallest `f` for which `terrain` at every `f`-th sample, with its
-    /// coarser levels, fits `budget_bytes`.
+    /// The pyramid of `terrain`, level 0 every sample of it (the terrain's own
+    /// heights, shared).
     #[must_use]
-    pub fn decimation(terrain: &Terrain, budget_bytes: u64) -> u32 {
-        let words = |f: u32| {
-            let n = (terrain.samples - 1) / f + 1;
-            // The levels below sum to under a third more.
-            u64::from(n.x) * u64::from(n.y) * 4 / 3
-        };
-        (1..=MAX_TERRAIN_SAMPLES)
-            .find(|&f| words(f) * 4 <= budget_bytes)
-            .unwrap_or(MAX_TERRAIN_SAMPLES)
-    }
-
-    /// The pyramid of `terrain` within `budget_bytes`.
-    #[must_use]
-    pub fn of(terrain: &Terrain, budget_bytes: u64) -> Self {
-        let f = Self::decimation(terrain, budget_bytes);
-        let mut samples = (terrain.samples - 1) / f + 1;
-        // Level 0: each kept sample the mean of the f × f around it.
-        let mut level: Vec<f32> = if f == 1 {
-            terrain.heights_m.clone()
-        } else {
-            let half = i64::from(f / 2);
-            let mut v = Vec::with_capacity((samples.x * samples.y) as usize);
-            for j in 0..i64::from(samples.y) {
-                for i in 0..i64::from(samples.x) {
-                    let (ci, cj) = (i * i64::from(f), j * i64::from(f));
-                    let mut sum = 0.0;
-                    let mut n = 0.0;
-                    for dj in -half..=half {
-                        for di in -half..=half {
-                            sum += terrain.sample(ci + di, cj + dj);
-                            n += 1.0;
-                        }
-                    }
-                    v.push(sum / n);
-                }
-            }
-            v
-        };
-        let mut spacing = terrain.spacing_m * f as f32;
-        let mut levels = Vec::new();
+    pub fn of(terrain: &SharedTerrain) -> Self {
+        let mut samples = terrain.samples;
+        let mut spacing = terrain.spacing_m;
+        let mut levels = vec![PyramidLevel {
+            samples,
+            spacing_m: spacing,
+            offset: 0,
+        }];
         let mut heights_m = Vec::new();
-        loop {
-            levels.push(PyramidLevel {
-                samples,
-                spacing_m: spacing,
-                offset: heights_m.len() as u32,
-            });
-            heights_m.extend_from_slice(&level);
-            if samples.max_element() <= CLIPMAP_QUADS / 4 || levels.len() == MAX_TERRAIN_LEVELS {
-                break;
-            }
+        // The last level's words in `heights_m` (`None`: the terrain's own).
+        let mut last: Option<std::ops::Range<usize>> = None;
+        while samples.max_element() > CLIPMAP_QUADS / 4 && levels.len() < MAX_TERRAIN_LEVELS {
+            let level: &[f32] = match &last {
+                None => &terrain.heights_m,
+                Some(r) => &heights_m[r.clone()],
+            };
             let next = (samples - 1) / 2 + 1;
             let at = |i: i64, j: i64| {
                 let i = i.clamp(0, i64::from(samples.x) - 1) as usize;
@@ -559,15 +550,22 @@ impl TerrainPyramid {
                     coarse.push(0.25 * row(-1) + 0.5 * row(0) + 0.25 * row(1));
                 }
             }
-            level = coarse;
+            let first = heights_m.len();
+            heights_m.extend_from_slice(&coarse);
+            last = Some(first..heights_m.len());
             samples = next;
             spacing *= 2.0;
+            levels.push(PyramidLevel {
+                samples,
+                spacing_m: spacing,
+                offset: first as u32,
+            });
         }
         Self {
             levels,
+            terrain: Arc::clone(terrain),
             heights_m,
             corner_m: terrain.corner_m,
-            decimation: f,
         }
     }
 
@@ -589,7 +587,12 @@ impl TerrainPyramid {
         };
         let i = i.clamp(0, l.samples.x as i32 - 1) as u32;
         let j = j.clamp(0, l.samples.y as i32 - 1) as u32;
-        self.heights_m
+        let words = if k == 0 {
+            &self.terrain.heights_m
+        } else {
+            &self.heights_m
+        };
+        words
             .get((l.offset + i + l.samples.x * j) as usize)
             .copied()
             .unwrap_or(0.0)
@@ -599,9 +602,11 @@ impl TerrainPyramid {
     /// `ground_m` below it… : from the finest whose half side
     /// (`CLIPMAP_QUADS / 2` quads) reaches twice the camera's height above the
     /// terrain's highest point under it (finer ones would be under a pixel), to
-    /// the last; `words_before` is where the pyramid starts in the ground buffer.
+    /// the last; `windows_word` is where the frame's windows start in the ground
+    /// buffer, and each level's window is placed round the camera
+    /// ([`TerrainPyramid::window_origin`]).
     #[must_use]
-    pub fn clipmap(&self, camera_m: Vec3, ground_m: f32, words_before: u32) -> ClipmapRows {
+    pub fn clipmap(&self, camera_m: Vec3, ground_m: f32, windows_word: u32) -> ClipmapRows {
         // A pyramid built by hand without levels draws nothing.
         if self.levels.is_empty() || self.levels.len() > MAX_TERRAIN_LEVELS {
             return ClipmapRows::default();
@@ -622,7 +627,7 @@ impl TerrainPyramid {
             levels: glam::UVec4::new(
                 first as u32,
                 self.levels.len() as u32,
-                words_before,
+                windows_word,
                 (first as u32 + MIRROR_SKIPPED_LEVELS).min(last as u32),
             ),
             ..ClipmapRows::default()
@@ -636,9 +641,110 @@ impl TerrainPyramid {
                 row.z = l.samples.x;
                 row.w = l.samples.y;
             }
-            rows.offsets[k / 4][k % 4] = words_before + l.offset;
+            let o = self
+                .window_origin(k, Vec2::new(camera_m.x, camera_m.z))
+                .unwrap_or_default();
+            rows.windows[k / 4][k % 4] =
+                u32::from(o.x as i16 as u16) | u32::from(o.y as i16 as u16) << 16;
         }
         rows
+    }
+
+    /// Words of one frame's windows: [`CLIPMAP_WINDOW_WORDS`] a level.
+    #[must_use]
+    pub fn window_words(&self) -> u32 {
+        self.levels.len() as u32 * CLIPMAP_WINDOW_WORDS
+    }
+
+    /// Level `k`'s sample at the corner of its window for a camera over
+    /// `camera_xz_m`: the window's middle on the level's centre
+    /// ([`clipmap_centre`]), clamped to the level (a camera off the terrain draws
+    /// its edge). Between `−CLIPMAP_WINDOW_SAMPLES / 2` and the level's last
+    /// sample, so it fits an `i16` ([`MAX_TERRAIN_SAMPLES`]).
+    #[must_use]
+    pub fn window_origin(&self, k: usize, camera_xz_m: Vec2) -> Option<glam::IVec2> {
+        let last = self.levels.get(k)?.samples.as_ivec2() - 1;
+        let centre = clipmap_centre(self, k, camera_xz_m)?;
+        Some(
+            centre.clamp(glam::IVec2::ZERO, last.max(glam::IVec2::ZERO))
+                - (CLIPMAP_WINDOW_SAMPLES / 2) as i32,
+        )
+    }
+
+    /// Level `k`'s window from `origin`: [`CLIPMAP_WINDOW_SAMPLES`]² heights row
+    /// by row, its sample `p` the level's `origin + p` (clamped to the level).
+    #[must_use]
+    pub fn window(&self, k: usize, origin: glam::IVec2) -> Vec<f32> {
+        let n = CLIPMAP_WINDOW_SAMPLES as i32;
+        let mut words = Vec::with_capacity(CLIPMAP_WINDOW_WORDS as usize);
+        for j in 0..n {
+            for i in 0..n {
+                words.push(self.height(k, origin.x + i, origin.y + j));
+            }
+        }
+        words
+    }
+}
+
+/// The heights the GPU holds for a frame: every level's window placed by
+/// [`TerrainPyramid::clipmap`]'s rows. The clipmap's vertices evaluated from them
+/// ([`ClipmapWindows::vertex`]) are the GPU's (`terrain_height` reads the window,
+/// its sample clamped to it); a property test holds them to [`clipmap_vertex`]'s
+/// from the whole pyramid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClipmapWindows {
+    /// Each level's origin.
+    pub origins: Vec<glam::IVec2>,
+    /// Each level's window, one after the other.
+    pub heights_m: Vec<f32>,
+}
+
+impl ClipmapWindows {
+    /// The windows of `pyramid` placed as `rows` say.
+    #[must_use]
+    pub fn of(pyramid: &TerrainPyramid, rows: &ClipmapRows) -> Self {
+        let origins: Vec<_> = (0..pyramid.levels.len())
+            .map(|k| rows.window_origin(k))
+            .collect();
+        let heights_m = origins
+            .iter()
+            .enumerate()
+            .flat_map(|(k, &o)| pyramid.window(k, o))
+            .collect();
+        Self { origins, heights_m }
+    }
+
+    /// Level `k`'s height at its sample `(i, j)` as the GPU reads it: the
+    /// window's sample, clamped to the window. WGSL twin: `terrain_height`.
+    #[must_use]
+    pub fn height(&self, k: usize, i: i32, j: i32) -> f32 {
+        let Some(o) = self.origins.get(k) else {
+            return 0.0;
+        };
+        let last = CLIPMAP_WINDOW_SAMPLES as i32 - 1;
+        let p = (glam::IVec2::new(i, j) - *o).clamp(glam::IVec2::ZERO, glam::IVec2::splat(last));
+        self.heights_m
+            .get(k * CLIPMAP_WINDOW_WORDS as usize + (p.x + (last + 1) * p.y) as usize)
+            .copied()
+            .unwrap_or(0.0)
+    }
+
+    /// [`clipmap_vertex`] from the windows alone (the GPU's `clipmap_vertex`).
+    #[must_use]
+    pub fn vertex(
+        &self,
+        pyramid: &TerrainPyramid,
+        first: usize,
+        camera_xz_m: Vec2,
+        v: u32,
+    ) -> Option<(Vec3, Vec3)> {
+        vertex_from(
+            pyramid,
+            &|k, i, j| self.height(k, i, j),
+            first,
+            camera_xz_m,
+            v,
+        )
     }
 }
 
@@ -716,10 +822,32 @@ pub fn clipmap_indices(levels: u32) -> Vec<u32> {
 /// fills whatever its place (only the hole's quads use them), an edge quad's in
 /// the hole where the finer level stands now. Samples beyond the terrain are
 /// clamped to its edge, so a quad wholly off it collapses to a line and draws
-/// nothing. WGSL twin: `vs_terrain`'s `clipmap_vertex`.
+/// nothing. WGSL twin: `vs_terrain`'s `clipmap_vertex` (which reads the heights
+/// from the windows: [`ClipmapWindows::vertex`]).
 #[must_use]
 pub fn clipmap_vertex(
     pyramid: &TerrainPyramid,
+    first: usize,
+    camera_xz_m: Vec2,
+    v: u32,
+) -> Option<(Vec3, Vec3)> {
+    vertex_from(
+        pyramid,
+        &|k, i, j| pyramid.height(k, i, j),
+        first,
+        camera_xz_m,
+        v,
+    )
+}
+
+/// Level `k`'s height at its sample `(i, j)`, from the whole pyramid or from the
+/// windows.
+type LevelHeight<'a> = dyn Fn(usize, i32, i32) -> f32 + 'a;
+
+/// [`clipmap_vertex`] with its heights from `height`.
+fn vertex_from(
+    pyramid: &TerrainPyramid,
+    height: &LevelHeight<'_>,
     first: usize,
     camera_xz_m: Vec2,
     v: u32,
@@ -759,7 +887,7 @@ pub fn clipmap_vertex(
     let last = level.samples.as_ivec2() - 1;
     let g = (centre + glam::IVec2::new(i as i32 - n / 2, j as i32 - n / 2))
         .clamp(glam::IVec2::ZERO, last);
-    let (height, normal) = morphed(pyramid, k, g, centre);
+    let (height, normal) = morphed(pyramid, height, k, g, centre);
     let xz = pyramid.corner_m + g.as_vec2() * level.spacing_m;
     Some((Vec3::new(xz.x, height, xz.y), normal))
 }
@@ -768,9 +896,15 @@ pub fn clipmap_vertex(
 /// (interpolated along the coarse quad's edges) over the last
 /// [`CLIPMAP_MORPH_QUADS`] quads before the level's edge. WGSL twin:
 /// `clipmap_morphed`.
-fn morphed(pyramid: &TerrainPyramid, k: usize, g: glam::IVec2, centre: glam::IVec2) -> (f32, Vec3) {
-    let fine = pyramid.height(k, g.x, g.y);
-    let fine_normal = level_normal(pyramid, k, g);
+fn morphed(
+    pyramid: &TerrainPyramid,
+    height: &LevelHeight<'_>,
+    k: usize,
+    g: glam::IVec2,
+    centre: glam::IVec2,
+) -> (f32, Vec3) {
+    let fine = height(k, g.x, g.y);
+    let fine_normal = level_normal(pyramid, height, k, g);
     if k + 1 >= pyramid.levels.len() {
         return (fine, fine_normal);
     }
@@ -784,11 +918,11 @@ fn morphed(pyramid: &TerrainPyramid, k: usize, g: glam::IVec2, centre: glam::IVe
     let c0 = glam::IVec2::new(g.x.div_euclid(2), g.y.div_euclid(2));
     let c1 = glam::IVec2::new((g.x + 1).div_euclid(2), (g.y + 1).div_euclid(2));
     let coarse = 0.25
-        * (pyramid.height(k + 1, c0.x, c0.y)
-            + pyramid.height(k + 1, c1.x, c0.y)
-            + pyramid.height(k + 1, c0.x, c1.y)
-            + pyramid.height(k + 1, c1.x, c1.y));
-    let coarse_normal = level_normal(pyramid, k + 1, c0);
+        * (height(k + 1, c0.x, c0.y)
+            + height(k + 1, c1.x, c0.y)
+            + height(k + 1, c0.x, c1.y)
+            + height(k + 1, c1.x, c1.y));
+    let coarse_normal = level_normal(pyramid, height, k + 1, c0);
     (
         fine + (coarse - fine) * alpha,
         (fine_normal + (coarse_normal - fine_normal) * alpha).normalize_or(Vec3::Y),
@@ -796,10 +930,15 @@ fn morphed(pyramid: &TerrainPyramid, k: usize, g: glam::IVec2, centre: glam::IVe
 }
 
 /// Level `k`'s normal at its sample `g` (central differences).
-fn level_normal(pyramid: &TerrainPyramid, k: usize, g: glam::IVec2) -> Vec3 {
+fn level_normal(
+    pyramid: &TerrainPyramid,
+    height: &LevelHeight<'_>,
+    k: usize,
+    g: glam::IVec2,
+) -> Vec3 {
     let s = pyramid.levels[k].spacing_m;
-    let dx = pyramid.height(k, g.x - 1, g.y) - pyramid.height(k, g.x + 1, g.y);
-    let dz = pyramid.height(k, g.x, g.y - 1) - pyramid.height(k, g.x, g.y + 1);
+    let dx = height(k, g.x - 1, g.y) - height(k, g.x + 1, g.y);
+    let dz = height(k, g.x, g.y - 1) - height(k, g.x, g.y + 1);
     Vec3::new(dx, 2.0 * s, dz).normalize_or(Vec3::Y)
 }
 
@@ -808,6 +947,11 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+
+    /// `t`'s pyramid.
+    fn pyramid_of(t: &Terrain) -> TerrainPyramid {
+        TerrainPyramid::of(&Arc::new(t.clone()))
+    }
 
     /// A terrain of `n`² samples `spacing` apart with heights `f(x, z)`.
     fn terrain(n: u32, spacing: f32, f: impl Fn(f32, f32) -> f32) -> Terrain {
@@ -920,13 +1064,18 @@ mod tests {
 
     #[test]
     fn the_pyramid_halves_each_level_on_the_samples_of_the_one_below() {
-        let t = terrain(257, 1.0, |x, z| 0.5 * x - 0.25 * z + 3.0);
-        let p = TerrainPyramid::of(&t, u64::MAX);
-        assert_eq!(p.decimation, 1);
+        let t = Arc::new(terrain(257, 1.0, |x, z| 0.5 * x - 0.25 * z + 3.0));
+        let p = TerrainPyramid::of(&t);
+        assert!(
+            Arc::ptr_eq(&p.terrain, &t),
+            "level 0 is the terrain, not a copy"
+        );
         let sides: Vec<u32> = p.levels.iter().map(|l| l.samples.x).collect();
         assert_eq!(sides, [257, 129, 65, 33, 17, 9]);
+        // Level 0 is the terrain's own heights; the coarser ones follow each
+        // other in the pyramid's.
         let mut offset = 0;
-        for (k, l) in p.levels.iter().enumerate() {
+        for (k, l) in p.levels.iter().enumerate().skip(1) {
             assert_eq!(l.offset, offset);
             offset += l.samples.x * l.samples.y;
             assert!((l.spacing_m - (1u32 << k) as f32).abs() < 1e-6);
@@ -948,34 +1097,85 @@ mod tests {
     }
 
     #[test]
-    fn a_terrain_over_the_budget_is_drawn_from_fewer_samples_and_fits() {
-        let t = terrain(1001, 0.5, rough);
-        let budget = 1 << 20;
-        let p = TerrainPyramid::of(&t, budget);
-        assert!(p.decimation > 1);
-        assert!(
-            (p.heights_m.len() * 4) as u64 <= budget,
-            "{}",
-            p.heights_m.len()
+    fn a_window_holds_its_level_s_samples_round_the_camera_clamped_to_the_level() {
+        let t = terrain(257, 1.0, rough);
+        let p = pyramid_of(&t);
+        let w = CLIPMAP_WINDOW_SAMPLES as i32;
+        // Over the terrain: the window's middle on the level's centre.
+        let camera = Vec2::new(10.3, -20.7);
+        for k in 0..p.levels.len() {
+            let centre = clipmap_centre(&p, k, camera).expect("a level");
+            let last = p.levels[k].samples.as_ivec2() - 1;
+            let origin = p.window_origin(k, camera).expect("a level");
+            assert_eq!(origin, centre.clamp(glam::IVec2::ZERO, last) - w / 2);
+            let window = p.window(k, origin);
+            assert_eq!(window.len(), CLIPMAP_WINDOW_WORDS as usize);
+            for (i, j) in [(0, 0), (w - 1, 0), (5, 40), (w - 1, w - 1)] {
+                assert_eq!(
+                    window[(i + w * j) as usize].to_bits(),
+                    p.height(k, origin.x + i, origin.y + j).to_bits()
+                );
+            }
+        }
+        // Far off the terrain to the west and north: the window on its edge.
+        let off = Vec2::new(-5_000.0, -9_000.0);
+        assert_eq!(p.window_origin(0, off), Some(glam::IVec2::splat(-w / 2)));
+        let rows = p.clipmap(Vec3::new(off.x, 100.0, off.y), 0.0, 7);
+        assert_eq!(rows.window_origin(0), glam::IVec2::splat(-w / 2));
+        assert_eq!(rows.levels.z, 7);
+        assert_eq!(
+            p.window_words(),
+            p.levels.len() as u32 * CLIPMAP_WINDOW_WORDS
         );
-        // The next smaller decimation would not fit.
-        let f = p.decimation - 1;
-        let n = u64::from((1000 / f) + 1);
-        assert!(n * n * 4 > budget * 3 / 4);
-        assert!((p.levels[0].spacing_m - 0.5 * p.decimation as f32).abs() < 1e-6);
-        // Every-f-th sample, averaged round it: near the terrain's own height there.
-        let h = p.height(0, 10, 10);
-        let at = t.corner_m() + Vec2::splat(10.0 * p.levels[0].spacing_m);
-        assert!((h - t.height_at(at).unwrap_or(0.0)).abs() < 8.0);
+    }
+
+    #[test]
+    fn window_origins_of_the_largest_terrain_fit_the_frame_block_s_words() {
+        // Levels described only (no heights): a 16 384² terrain's pyramid.
+        let mut levels = Vec::new();
+        let mut n = MAX_TERRAIN_SAMPLES;
+        let mut spacing = 0.6;
+        while levels.len() < MAX_TERRAIN_LEVELS && n > CLIPMAP_QUADS / 4 {
+            levels.push(PyramidLevel {
+                samples: UVec2::splat(n),
+                spacing_m: spacing,
+                offset: 0,
+            });
+            n = (n - 1) / 2 + 1;
+            spacing *= 2.0;
+        }
+        let p = TerrainPyramid {
+            levels,
+            terrain: Arc::new(terrain(2, 1.0, |_, _| 0.0)),
+            heights_m: Vec::new(),
+            corner_m: Vec2::ZERO,
+        };
+        let w = CLIPMAP_WINDOW_SAMPLES as i32;
+        // Beyond the far corner (1), before the near one (0), west and south.
+        for (camera, ends) in [
+            (Vec2::splat(1.0e7), glam::IVec2::ONE),
+            (Vec2::splat(-1.0e7), glam::IVec2::ZERO),
+            (Vec2::new(-1.0e7, 1.0e7), glam::IVec2::new(0, 1)),
+        ] {
+            let rows = p.clipmap(Vec3::new(camera.x, 10.0, camera.y), 0.0, 0);
+            for (k, l) in p.levels.iter().enumerate() {
+                let last = l.samples.as_ivec2() - 1;
+                assert_eq!(
+                    rows.window_origin(k),
+                    ends * last - w / 2,
+                    "level {k} from {camera}"
+                );
+            }
+        }
     }
 
     #[test]
     fn a_pyramid_built_by_hand_wrong_draws_nothing_and_does_not_panic() {
         let empty = TerrainPyramid {
             levels: Vec::new(),
+            terrain: Arc::new(terrain(2, 1.0, |_, _| 0.0)),
             heights_m: Vec::new(),
             corner_m: Vec2::ZERO,
-            decimation: 1,
         };
         assert_eq!(empty.clipmap(Vec3::ONE, 0.0, 0).indices(), 0);
         assert!((empty.height_under(Vec2::ONE)).abs() < f32::MIN_POSITIVE);
@@ -995,7 +1195,7 @@ mod tests {
     #[test]
     fn the_first_level_drawn_follows_the_camera_s_height_above_the_ground() {
         let t = terrain(1025, 1.0, |_, _| 10.0);
-        let p = t.pyramid();
+        let p = pyramid_of(&t);
         let low = p.clipmap(Vec3::new(0.0, 12.0, 0.0), 10.0, 100);
         assert_eq!(low.levels.x, 0);
         assert_eq!(low.placement.w as usize, p.levels.len());
@@ -1004,8 +1204,6 @@ mod tests {
         let high = p.clipmap(Vec3::new(0.0, 310.0, 0.0), 10.0, 100);
         assert_eq!(high.levels.x, 5, "32 · 2^5 = 1024 m ≥ 600 m");
         assert_eq!(high.levels.z, 100);
-        assert_eq!(high.offsets[0].x, 100);
-        assert_eq!(high.offsets[0].y, 100 + 1025 * 1025);
         assert_eq!(high.samples[0].z, 513);
         // The water's mirror starts MIRROR_SKIPPED_LEVELS coarser, at most the last.
         assert_eq!(low.levels.w, MIRROR_SKIPPED_LEVELS);
@@ -1101,6 +1299,37 @@ mod tests {
     }
 
     proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+
+        /// The GPU's windows hold every sample the clipmap reads: its vertices
+        /// from the windows are the whole pyramid's, bit for bit, for any first
+        /// level and wherever the camera is (on the terrain, over its edge, or
+        /// kilometres off it).
+        #[test]
+        fn the_windows_give_the_pyramid_s_vertices_wherever_the_camera_is(
+            cx in -3_000.0f32..3_000.0, cz in -3_000.0f32..3_000.0, near in proptest::bool::ANY,
+        ) {
+            let t = terrain(257, 1.5, rough);
+            let p = pyramid_of(&t);
+            // Half the cases over the terrain (±192 m) and its edge.
+            let camera = if near { Vec2::new(cx, cz) * 0.08 } else { Vec2::new(cx, cz) };
+            let rows = p.clipmap(Vec3::new(camera.x, 30.0, camera.y), 0.0, 0);
+            let windows = ClipmapWindows::of(&p, &rows);
+            let mut drawn = 0;
+            for first in 0..p.levels.len() {
+                for v in 0..(p.levels.len() - first) as u32 * CLIPMAP_LEVEL_VERTICES {
+                    let whole = clipmap_vertex(&p, first, camera, v);
+                    let windowed = windows.vertex(&p, first, camera, v);
+                    let bits = |x: Option<(Vec3, Vec3)>| x.map(|(a, b)| (a.to_array().map(f32::to_bits), b.to_array().map(f32::to_bits)));
+                    prop_assert_eq!(bits(whole), bits(windowed), "vertex {} from level {}", v, first);
+                    drawn += usize::from(whole.is_some());
+                }
+            }
+            prop_assert!(drawn > 0);
+        }
+    }
+
+    proptest! {
         #![proptest_config(ProptestConfig::with_cases(48))]
 
         /// The levels tile the ground: every point of the terrain within the last
@@ -1111,7 +1340,7 @@ mod tests {
             px in -1.0f32..1.0, pz in -1.0f32..1.0, first in 0usize..3,
         ) {
             let t = terrain(1025, 1.5, rough);
-            let p = t.pyramid();
+            let p = pyramid_of(&t);
             let camera = Vec2::new(cx, cz);
             let last = p.levels.len() - 1;
             let reach = 0.5 * CLIPMAP_QUADS as f32 * p.levels[last].spacing_m - 2.0 * p.levels[last].spacing_m;
@@ -1131,7 +1360,7 @@ mod tests {
             cx in -400.0f32..400.0, cz in -400.0f32..400.0, first in 0usize..3,
         ) {
             let t = terrain(1025, 1.5, rough);
-            let p = t.pyramid();
+            let p = pyramid_of(&t);
             let camera = Vec2::new(cx, cz);
             let mut checked = 0;
             for k in first..p.levels.len() - 1 {
