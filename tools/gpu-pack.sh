@@ -2,8 +2,9 @@
 # Packs what tools/gpu-report.sh needs on a machine with a GPU and no Rust
 # toolchain, into folders that .git/info/exclude ignores and the device tool
 # carries (`carry: [".gl", ".dev"]`):
-#   .gl/   the Vulkan loader and GL dispatch libraries, and the Khronos validation
-#          layer, as Debian packages (unpacked there with `dpkg -x`);
+#   .gl/   the Vulkan loader and GL dispatch libraries, the Khronos validation
+#          layer and a TrueType font for the report's plot, as Debian packages
+#          (unpacked there with `dpkg -x`);
 #   .dev/pack.tar.xz   bin/ (precip, report and the conformance suites' test
 #          binaries, stripped) — 13 MB where the binaries are 76 MB.
 # Then, on the device (one call, about 2.5 minutes on an H100):
@@ -33,7 +34,7 @@ o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp
 apt-get $o update >/dev/null
 # shellcheck disable=SC2086
 (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 \
-  libgles2 vulkan-validationlayers)
+  libgles2 vulkan-validationlayers fonts-dejavu-core)
 pack=$(mktemp -d)
 mkdir -p "$pack/bin"
 cp target/release/precip target/release/report "$pack/bin/"

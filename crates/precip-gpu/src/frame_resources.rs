@@ -608,6 +608,7 @@ pub const FRAME_GROUPS: [FrameGroupFill; 7] = [
             ),
             (rb::SEA_DEPTH, FrameBound::Texture(FrameTexture::SeaDepth)),
             (rb::SHORE, FrameBound::Buffer(FrameBuffer::Shore)),
+            (rb::FAR_COVER, FrameBound::Sim(SimBuffer::Ground)),
         ],
     },
     FrameGroupFill {
