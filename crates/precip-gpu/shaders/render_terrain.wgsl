@@ -18,6 +18,9 @@ const FULL_SNOW_COS: f32 = 0.8660254;
 const NO_SNOW_COS: f32 = 0.64278764;
 // Rust: precip_model::scene::terrain::TERRAIN_GRASS_SLOPE_DEG as a cosine.
 const TERRAIN_GRASS_COS: f32 = 0.90630776;
+// The cosine between a bent normal and the view (terrain_facing_normal; Rust:
+// TERRAIN_EDGE_ON).
+const TERRAIN_EDGE_ON: f32 = 0.001;
 // Rows of the terrain's colour ramp (Rust: precip_model::scene::land_cover::LAND_CLASSES).
 const LAND_CLASSES: f32 = 12.0;
 
@@ -231,7 +234,9 @@ fn vs_terrain(@builtin(vertex_index) v: u32) -> SceneVarying {
 // pixels').
 @fragment
 fn fs_terrain(in: SceneVarying) -> @location(0) vec4<f32> {
-    return scene_fragment(terrain_varying(in));
+    var v = terrain_varying(in);
+    v.normal = terrain_facing_normal(v.normal, normalize_or_zero(params.camera_m_cone_cos.xyz - in.world_m));
+    return scene_fragment(v);
 }
 
 // The terrain reflected about the water bodies' level, into the mirror image
@@ -244,6 +249,22 @@ fn vs_terrain_mirror(@builtin(vertex_index) v: u32) -> SceneVarying {
 @fragment
 fn fs_terrain_mirror(in: SceneVarying) -> @location(0) vec4<f32> {
     return mirror_fragment(terrain_varying(in));
+}
+
+// A height field is seen from above only: where the normal interpolated over a
+// face seen edge-on turns away from the viewer (a crest's outline against the
+// ground behind it), it is bent to lie across the view, not flipped as a mesh's
+// underside is (surface_look), which lit every crest's outline dark. (The water's
+// mirror sees the terrain from the reflected camera, below the shore: there a
+// face seen from below is one, and is left to surface_look.) Rust twin:
+// precip_model::scene::terrain::facing_normal.
+fn terrain_facing_normal(normal: vec3<f32>, to_viewer: vec3<f32>) -> vec3<f32> {
+    let n = normalize_or_zero(normal);
+    let d = dot(n, to_viewer);
+    if (d >= 0.0) {
+        return n;
+    }
+    return normalize_or_zero(n - (d - TERRAIN_EDGE_ON) * to_viewer);
 }
 
 // A terrain fragment's varyings with its land class's row, snow share and far

@@ -632,6 +632,7 @@ fn the_terrain_s_constants_are_their_rust_twins() {
             "CLIPMAP_WINDOW_SAMPLES",
             f64::from(t::CLIPMAP_WINDOW_SAMPLES),
         ),
+        ("TERRAIN_EDGE_ON", f64::from(t::TERRAIN_EDGE_ON)),
         ("LAND_CLASSES", LAND_CLASSES as f64),
         (
             "FULL_SNOW_COS",

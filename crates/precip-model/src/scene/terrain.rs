@@ -351,6 +351,27 @@ impl Terrain {
     }
 }
 
+/// The cosine between a terrain fragment's bent normal and the view
+/// ([`facing_normal`]). WGSL twin: `TERRAIN_EDGE_ON`.
+pub const TERRAIN_EDGE_ON: f32 = 0.001;
+
+/// A terrain fragment's shading normal for a viewer in direction `to_viewer`
+/// (unit): the normal itself where it faces the viewer; where the normal
+/// interpolated over a face seen edge-on turns away (a crest's outline against
+/// the ground behind it), the normal bent to lie across the view, at
+/// [`TERRAIN_EDGE_ON`] toward it. A height field is seen from above: flipped as a
+/// mesh's underside is, such a normal pointed down and lit every crest's outline
+/// dark. WGSL twin: `terrain_facing_normal`.
+#[must_use]
+pub fn facing_normal(normal: Vec3, to_viewer: Vec3) -> Vec3 {
+    let n = normal.normalize_or_zero();
+    let d = n.dot(to_viewer);
+    if d >= 0.0 {
+        return n;
+    }
+    (n - (d - TERRAIN_EDGE_ON) * to_viewer).normalize_or_zero()
+}
+
 /// Texels of the terrain's colour ramp ([`terrain_ramp`]).
 pub const TERRAIN_RAMP_TEXELS: u32 = 16;
 
@@ -1094,6 +1115,32 @@ mod tests {
                 "level {k}: {h} against {expected}"
             );
         }
+    }
+
+    #[test]
+    fn a_normal_turned_from_the_viewer_is_bent_across_the_view_not_flipped() {
+        // Facing the viewer: unchanged.
+        let n = Vec3::new(0.3, 0.9, 0.1).normalize();
+        let v = Vec3::new(0.0, 0.6, 0.8);
+        assert!((facing_normal(n, v) - n).length() < 1e-6);
+        // A crest's far face seen edge-on from a camera low over the ground: its
+        // normal leans away from the viewer.
+        let away = Vec3::new(0.0, 0.7, -0.714).normalize();
+        let to_viewer = Vec3::new(0.0, 0.05, 1.0).normalize();
+        assert!(away.dot(to_viewer) < 0.0);
+        let bent = facing_normal(away, to_viewer);
+        assert!((bent.length() - 1.0).abs() < 1e-5);
+        assert!(
+            (bent.dot(to_viewer)
+                - TERRAIN_EDGE_ON
+                    / (away - (away.dot(to_viewer) - TERRAIN_EDGE_ON) * to_viewer).length())
+            .abs()
+                < 1e-5
+        );
+        assert!(bent.dot(to_viewer) > 0.0, "it faces the viewer");
+        assert!(bent.y > 0.9, "it still faces up, lit from above: {bent}");
+        // The flip a mesh's underside takes would point it down.
+        assert!((-away).y < 0.0);
     }
 
     #[test]
