@@ -547,9 +547,9 @@ impl<G: Gpu> Simulation<G> {
 
     /// Places the terrain's windows of the frame in `slot` (of [`Gpu::slots`]) in
     /// that slot's words and writes those whose place moved since the slot's last
-    /// frame: the levels from the first `params` draws (the scene's or the
+    /// frame, of the levels from the first `params` draws (the scene's or the
     /// mirror's) to the last, each `precip_model::scene::terrain::CLIPMAP_WINDOW_WORDS`
-    /// heights. A camera at rest writes nothing. The caller has freed the slot
+    /// heights, in one write. A camera at rest writes nothing. The caller has freed the slot
     /// ([`Gpu::free_slot`]): no frame in flight reads its words.
     pub fn upload_terrain_windows(
         &mut self,
@@ -577,21 +577,27 @@ impl<G: Gpu> Simulation<G> {
         params.terrain_levels.z = first_word;
         let rows = params.clipmap_rows();
         let first_drawn = params.terrain_levels.x.min(params.terrain_levels.w) as usize;
-        for k in first_drawn..levels {
+        let written = &mut self.terrain_windows[slot as usize];
+        // The levels whose window moved, written in one piece from the first to
+        // the last of them (a backend's write may wait for the device: vk's).
+        let moved: Vec<usize> = (first_drawn..levels)
+            .filter(|&k| written[k] != Some(rows.window_origin(k)))
+            .collect();
+        let (Some(&low), Some(&high)) = (moved.first(), moved.last()) else {
+            return Ok(());
+        };
+        let mut words = Vec::with_capacity((high - low + 1) * CLIPMAP_WINDOW_WORDS as usize);
+        for (k, window) in written.iter_mut().enumerate().take(high + 1).skip(low) {
             let origin = rows.window_origin(k);
-            if self.terrain_windows[slot as usize][k] == Some(origin) {
-                continue;
-            }
-            let words = pyramid.window(k, origin);
-            let at = u64::from(first_word + k as u32 * CLIPMAP_WINDOW_WORDS) * 4;
-            gpu.write_buffer(
-                self.buffer_mut(SimBuffer::Ground),
-                at,
-                bytemuck::cast_slice(&words),
-            )?;
-            self.terrain_windows[slot as usize][k] = Some(origin);
+            words.extend(pyramid.window(k, origin));
+            *window = Some(origin);
         }
-        Ok(())
+        let at = u64::from(first_word + low as u32 * CLIPMAP_WINDOW_WORDS) * 4;
+        gpu.write_buffer(
+            self.buffer_mut(SimBuffer::Ground),
+            at,
+            bytemuck::cast_slice(&words),
+        )
     }
 
     /// The last step's time per kernel it dispatched, from the device's timestamps.
