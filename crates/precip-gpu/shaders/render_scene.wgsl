@@ -22,8 +22,6 @@ fn frame_pools() -> vec4<u32> {
     return switches.pools;
 }
 @group(0) @binding(2) var<storage, read> ground_height: array<f32>;
-// The same buffer four words a load, for the far cover's rows (far_row).
-@group(0) @binding(30) var<storage, read> far_cover_words: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> particles: array<Particle>;
 // Drawn particles: sprites at [0, N), streaks at [N, 2N) (N = particle count).
 @group(0) @binding(4) var<storage, read> drawn: array<u32>;
@@ -307,11 +305,10 @@ const FAR_MASK: f32 = 0.5;
 
 // Row `row` (0: depth, SWE, peak SWE, wetness; 1: age, puddle ratio, dust, the
 // cell's mean height) of slot `slot`'s texel in far cell `cell`.
-// (The region's first word is a multiple of 4: HostState::far_cover_first_word.)
 fn far_row(cell: vec2<u32>, slot: u32, row: u32) -> vec4<f32> {
     let n = params.far_cover_cells.xy;
     let w = params.far_cover_cells.z + ((cell.x + n.x * cell.y) * FAR_SLOTS + slot) * FAR_ROW_FLOATS + 4u * row;
-    return far_cover_words[w / 4u];
+    return vec4<f32>(ground_height[w], ground_height[w + 1u], ground_height[w + 2u], ground_height[w + 3u]);
 }
 
 // The far cells around (x, z), the lower one and the upper (clamped to the cells),
@@ -369,12 +366,14 @@ fn far_cover_rows(c: FarCells, slot: u32, height_m: f32) -> FarRows {
 fn far_depth_mm(c: FarCells, slot: u32, height_m: f32) -> f32 {
     let cells = array<vec2<u32>, 4>(c.low, vec2<u32>(c.high.x, c.low.y), vec2<u32>(c.low.x, c.high.y), c.high);
     let bilinear = vec4<f32>((1.0 - c.f.x) * (1.0 - c.f.y), c.f.x * (1.0 - c.f.y), (1.0 - c.f.x) * c.f.y, c.f.x * c.f.y);
+    let n = params.far_cover_cells.xy;
     var depth = 0.0;
     var total = 0.0;
     for (var k = 0u; k < 4u; k++) {
-        let dh = (height_m - far_row(cells[k], slot, 1u).w) / FAR_HEIGHT_BLEND_M;
+        let w0 = params.far_cover_cells.z + ((cells[k].x + n.x * cells[k].y) * FAR_SLOTS + slot) * FAR_ROW_FLOATS;
+        let dh = (height_m - ground_height[w0 + 7u]) / FAR_HEIGHT_BLEND_M;
         let w = bilinear[k] / (1.0 + dh * dh);
-        depth += w * far_row(cells[k], slot, 0u).x;
+        depth += w * ground_height[w0];
         total += w;
     }
     return depth / max(total, 1.0e-12);

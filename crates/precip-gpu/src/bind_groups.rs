@@ -295,7 +295,6 @@ pub const RENDER_FRAME: GroupLayout = GroupLayout {
         // The draws' only: the splat kernel's stage holds as many storage buffers
         // as WebGPU allows one stage.
         binding(rb::SHORE, storage(true), Stages::Draw),
-        binding(rb::FAR_COVER, storage(true), Stages::Draw),
     ],
 };
 

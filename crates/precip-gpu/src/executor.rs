@@ -577,7 +577,7 @@ impl<G: Gpu> Simulation<G> {
         params.terrain_levels.z = first_word;
         let rows = params.clipmap_rows();
         let first_drawn = params.terrain_levels.x.min(params.terrain_levels.w) as usize;
-        let written = &mut self.terrain_windows[slot as usize];
+        let written = &self.terrain_windows[slot as usize];
         // The levels whose window moved, written in one piece from the first to
         // the last of them (a backend's write may wait for the device: vk's).
         let moved: Vec<usize> = (first_drawn..levels)
@@ -587,17 +587,20 @@ impl<G: Gpu> Simulation<G> {
             return Ok(());
         };
         let mut words = Vec::with_capacity((high - low + 1) * CLIPMAP_WINDOW_WORDS as usize);
-        for (k, window) in written.iter_mut().enumerate().take(high + 1).skip(low) {
-            let origin = rows.window_origin(k);
-            words.extend(pyramid.window(k, origin));
-            *window = Some(origin);
+        for k in low..=high {
+            words.extend(pyramid.window(k, rows.window_origin(k)));
         }
         let at = u64::from(first_word + low as u32 * CLIPMAP_WINDOW_WORDS) * 4;
         gpu.write_buffer(
             self.buffer_mut(SimBuffer::Ground),
             at,
             bytemuck::cast_slice(&words),
-        )
+        )?;
+        // Taken as written only once written (a failed write is tried again).
+        for k in low..=high {
+            self.terrain_windows[slot as usize][k] = Some(rows.window_origin(k));
+        }
+        Ok(())
     }
 
     /// The last step's time per kernel it dispatched, from the device's timestamps.

@@ -608,7 +608,6 @@ pub const FRAME_GROUPS: [FrameGroupFill; 7] = [
             ),
             (rb::SEA_DEPTH, FrameBound::Texture(FrameTexture::SeaDepth)),
             (rb::SHORE, FrameBound::Buffer(FrameBuffer::Shore)),
-            (rb::FAR_COVER, FrameBound::Sim(SimBuffer::Ground)),
         ],
     },
     FrameGroupFill {

@@ -1154,11 +1154,6 @@ pub mod render_bindings {
     pub const SHORE: u32 = 28;
     /// The same buffer as the shore's kernels step it, read-write storage.
     pub const SHORE_CELLS: u32 = 29;
-    /// Group 0 (the draws only): the ground buffer again, read-only storage as
-    /// `array<vec4<f32>>`, for the far cover's rows — one load a row of four
-    /// instead of four (`precip_model::host::FarCover`; its regions start at a
-    /// word that is a multiple of 4: `HostState::far_cover_first_word`).
-    pub const FAR_COVER: u32 = 30;
     /// Group 1 of the sky's draw (its own group, numbered apart from the light's
     /// bindings): the clouds' image, `texture_2d<f32>` (`Rgba16Float`: their light,
     /// premultiplied, and opacity), read through [`COVER_SAMPLER`].

@@ -183,8 +183,7 @@ pub fn simulation_buffers(
                             words.extend_from_slice(classes);
                         }
                     }
-                    // The far cover's regions at a multiple of 4 words.
-                    words.resize(host.far_cover_first_word() as usize, 0.0);
+                    debug_assert_eq!(words.len() as u32, host.far_cover_first_word());
                     words.extend(host.far_cover().initial_words());
                     bytes(bytemuck::cast_slice(&words).to_vec())
                 }

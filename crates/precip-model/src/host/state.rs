@@ -310,15 +310,12 @@ impl HostState {
     }
 
     /// The first word of the far cover's two regions in the ground buffer: after
-    /// the ground map, the terrain's windows and its land cover, at the next
-    /// multiple of 4 (the draws read its rows four words a load; a region is a
-    /// multiple of 32 words).
+    /// the ground map, the terrain's windows and its land cover.
     #[must_use]
     pub fn far_cover_first_word(&self) -> u32 {
-        (self.ground_words()
+        self.ground_words()
             + self.terrain_window_words()
-            + self.land_cover.as_ref().map_or(0, |l| l.1.len() as u32))
-        .next_multiple_of(4)
+            + self.land_cover.as_ref().map_or(0, |l| l.1.len() as u32)
     }
 
     /// The rows of the frame block that say where the GPU reads the far cover now.

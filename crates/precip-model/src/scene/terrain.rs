@@ -37,8 +37,9 @@
 //! ground map's words. A level's window is written again only when the camera
 //! has moved it (every other sample of that level), so a camera at rest uploads
 //! nothing and one flying at 70 m/s over a 0.6 m terrain a few windows of 16 KiB a
-//! frame. The GPU's memory for the terrain is the same for 1 km and for 10 km
-//! (at most 16 levels × 16 KiB × 2), and every level is drawn from every sample.
+//! frame. The GPU's memory for the terrain is bounded whatever its size (16 KiB
+//! a level and a frame slot: at most 16 levels × 16 KiB × 2; 384 KiB for
+//! 16 384², 256 KiB for 1 000²), and every level is drawn from every sample.
 //! The clipmap reads no sample beyond its window: [`ClipmapWindows`] evaluates the
 //! vertices from the windows alone, and a property test checks they are the
 //! pyramid's bit for bit wherever the camera is, on the terrain or off it.
