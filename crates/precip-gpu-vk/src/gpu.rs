@@ -38,6 +38,7 @@ use crate::programs::{compute, module, pipeline_layout};
 use crate::query::{FRAME_QUERY_COUNT, QUERY_COUNT, QueryPool};
 use crate::retire::Retired;
 use crate::transfer::{download, download_image, to_layout, upload_at, upload_image};
+use crate::uploads::{self, Uploads};
 
 pub use crate::transfer::FRAMES_IN_FLIGHT;
 
@@ -99,6 +100,8 @@ pub struct Hal {
     completed: u64,
     /// Objects waiting for submissions to finish.
     pub retired: Retired,
+    /// Writes of device-local buffers waiting for the next submission.
+    uploads: Uploads,
     /// Timestamp queries, where the device has them.
     pub timestamps: Option<QueryPool>,
     /// Timed submissions so far (picks the queries' slot).
@@ -131,6 +134,7 @@ impl Hal {
             submitted: 0,
             completed: 0,
             retired: Retired::default(),
+            uploads: Uploads::default(),
             timestamps,
             timed: 0,
             frame_stamps,
@@ -150,6 +154,22 @@ impl Hal {
             }
         }
         self.retired.release(&self.device, self.completed);
+        self.uploads.release(&self.device, self.completed);
+        Ok(())
+    }
+
+    /// Submits the writes waiting for a submission, if any, in one of their own.
+    fn flush_uploads(&mut self) -> Result<(), BackendError> {
+        if !self.uploads.pending() {
+            return Ok(());
+        }
+        let copies = self.uploads.take(self.submitted);
+        let device = &self.device;
+        // SAFETY: `cb` is recording outside a render pass (inside `submit`); the
+        // copies' buffers live until the submission finishes (module docs of
+        // `uploads`).
+        let in_flight = submit(device, |cb| unsafe { uploads::record(device, cb, &copies) })?;
+        self.track(in_flight);
         Ok(())
     }
 
@@ -237,9 +257,11 @@ impl Hal {
         Ok(m)
     }
 
-    /// Waits for everything in flight, so an object may be freed (best effort: a
-    /// lost device frees anyway, nothing will run again).
+    /// Waits for everything in flight, the writes waiting included, so an object
+    /// may be freed (best effort: a lost device frees anyway, nothing will run
+    /// again).
     fn idle_for_destroy(&mut self) {
+        let _ = self.flush_uploads();
         let _ = self.wait_until(0);
     }
 }
@@ -316,7 +338,14 @@ impl Gpu for Hal {
         let label = label.trim_start_matches("precip ");
         let mut buffer = Buffer::new(&self.device, label, bytes, flags, location)?;
         if let Some(contents) = contents {
-            let written = self.write_buffer(&mut buffer, 0, contents);
+            // A new buffer's contents are written at once (waits), not staged: a
+            // configuration's buffers would otherwise all sit in staging memory
+            // together until its first submission.
+            let written = if buffer.is_mapped() {
+                buffer.write(0, contents)
+            } else {
+                upload_at(&self.device, &buffer, 0, contents)
+            };
             if let Err(e) = written {
                 buffer.destroy(&self.device);
                 return Err(e);
@@ -334,11 +363,12 @@ impl Gpu for Hal {
         if buffer.is_mapped() {
             buffer.write(offset as usize, bytes)
         } else {
-            upload_at(&self.device, buffer, offset, bytes)
+            self.uploads.write(&self.device, buffer.raw, offset, bytes)
         }
     }
 
     fn read_buffer(&mut self, buffer: &Buffer, bytes: u64) -> Result<Vec<u8>, BackendError> {
+        self.flush_uploads()?;
         self.wait_until(0)?;
         download(&self.device, buffer, bytes)
     }
@@ -629,6 +659,7 @@ impl Gpu for Hal {
     }
 
     fn settle(&mut self) -> Result<(), BackendError> {
+        self.flush_uploads()?;
         self.wait_until(0)
     }
 
@@ -642,7 +673,12 @@ impl Gpu for Hal {
         let slot = self.timed % FRAMES_IN_FLIGHT;
         let first_query = slot as u32 * QUERY_COUNT;
         let mut written = 0;
+        let copies = self.uploads.take(self.submitted);
         let in_flight = submit(device, |cb| {
+            // SAFETY: `cb` is recording outside a render pass (inside `submit`);
+            // the copies' buffers live until the submission finishes (module docs
+            // of `uploads`).
+            unsafe { uploads::record(device, cb, &copies) };
             let stamp = |written: &mut u32| {
                 if let Some(t) = timestamps
                     && *written < QUERY_COUNT
@@ -712,9 +748,13 @@ impl Gpu for Hal {
             wait: waits.as_ref().map_or(&[], |w| w.as_slice()),
             signal: signals.as_ref().map_or(&[], |s| s.as_slice()),
         };
+        let copies = self.uploads.take(self.submitted);
         let stamps = self.frame_stamps.as_ref();
         let hal = &*self;
         let submitted = submit_synced(&self.device, semaphores, |cb| {
+            // SAFETY: `cb` is recording outside a render pass; the copies' buffers
+            // live until the submission finishes (module docs of `uploads`).
+            unsafe { uploads::record(&hal.device, cb, &copies) };
             // SAFETY: `cb` is recording outside a render pass (`submit_synced`); the
             // frame's objects are the executor's, live until it destroys them (which
             // waits for this submission); the framebuffers are retired after it.
@@ -819,6 +859,7 @@ impl Drop for Hal {
         let _ = self.wait_until(0);
         let _ = self.device.wait_idle();
         self.retired.release_all(&self.device);
+        self.uploads.destroy(&self.device);
         if let Some(t) = self.timestamps.take() {
             t.destroy(&self.device);
         }

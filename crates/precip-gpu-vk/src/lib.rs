@@ -20,7 +20,10 @@
 //! - `pipelines` — graphics pipelines from the frame's draws.
 //! - `gpu` — `Hal`, the device calls of `precip_gpu::Gpu` (wgpu twin:
 //!   `precip_gpu_wgpu::gpu`), and the submissions in flight.
-//! - `transfer` — uploads, read-backs, image fills and layout changes.
+//! - `transfer` — uploads, read-backs, image fills and layout changes, each
+//!   waited for (a configuration's).
+//! - `uploads` — the frames' writes of device-local buffers, staged and carried by
+//!   the next submission (what wgpu's queue does for wgpu).
 //! - `query` — timestamps per kernel and per pass.
 //! - `frame` — a frame's commands into a command buffer: render passes,
 //!   framebuffers, layouts, barriers.
@@ -98,6 +101,7 @@ mod retire;
 mod spirv;
 mod swapchain;
 mod transfer;
+mod uploads;
 
 pub use backend::{Presented, VkBackend};
 pub use device::ExternalDevice;
