@@ -593,16 +593,101 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
 mod tests {
     use super::*;
 
+    /// The programs of a configuration and its frames (not the test probes).
+    const FRAME_PROGRAMS: [Program; 6] = [
+        Program::StepParticles,
+        Program::CoverUpdate,
+        Program::CullParticles,
+        Program::Render,
+        Program::QueryBeams,
+        Program::OpticsSums,
+    ];
+
+    /// WebGPU's default limits (W3C WebGPU, "Limits"): what a device opened
+    /// without asking for more has, as an engine's own device handed to precip may
+    /// be. precip opens its own devices with the adapter's (larger) limits, so only
+    /// this test sees a layout outgrow them.
+    const WEBGPU_DEFAULT_BIND_GROUPS: usize = 4;
+    const WEBGPU_DEFAULT_PER_STAGE: [(&str, usize); 5] = [
+        ("storage buffers", 8),
+        ("uniform buffers", 12),
+        ("sampled textures", 16),
+        ("samplers", 16),
+        ("storage textures", 4),
+    ];
+    const WEBGPU_DEFAULT_DYNAMIC_UNIFORM_BUFFERS: usize = 8;
+    const WEBGPU_DEFAULT_DYNAMIC_STORAGE_BUFFERS: usize = 4;
+
+    /// Which of [`WEBGPU_DEFAULT_PER_STAGE`] a binding counts against.
+    const fn class(kind: BindingKind) -> usize {
+        match kind {
+            BindingKind::Storage { .. } => 0,
+            BindingKind::Uniform { .. } => 1,
+            BindingKind::Texture { .. } => 2,
+            BindingKind::Sampler { .. } => 3,
+            BindingKind::StorageTextureRgba16Float => 4,
+        }
+    }
+
+    /// Whether a binding seen by `stages` is seen by stage `s` (0 vertex, 1
+    /// fragment, 2 compute).
+    const fn seen_by(stages: Stages, s: usize) -> bool {
+        match stages {
+            Stages::Compute => s == 2,
+            Stages::Draw => s < 2,
+            Stages::Fragment => s == 1,
+            Stages::DrawAndCompute => true,
+        }
+    }
+
+    #[test]
+    fn every_pipeline_layout_fits_webgpu_s_default_limits() {
+        for program in FRAME_PROGRAMS {
+            for entry in program.entry_points() {
+                let groups = groups_of(program, entry).unwrap_or(&[]);
+                let at = format!("{program:?} {entry}");
+                assert!(
+                    groups.len() <= WEBGPU_DEFAULT_BIND_GROUPS,
+                    "{at}: {} groups",
+                    groups.len()
+                );
+                let bindings = || groups.iter().flat_map(|g| g.bindings.iter());
+                for (stage, stage_name) in ["vertex", "fragment", "compute"].iter().enumerate() {
+                    let mut counts = [0; 5];
+                    for b in bindings().filter(|b| seen_by(b.stages, stage)) {
+                        counts[class(b.kind)] += 1;
+                    }
+                    for ((what, limit), count) in WEBGPU_DEFAULT_PER_STAGE.iter().zip(counts) {
+                        assert!(
+                            count <= *limit,
+                            "{at}: {count} {what} in the {stage_name} stage, over WebGPU's default {limit}"
+                        );
+                    }
+                }
+                let dynamic = |uniform: bool| {
+                    bindings()
+                        .filter(|b| match b.kind {
+                            BindingKind::Uniform { dynamic, .. } => uniform && dynamic,
+                            BindingKind::Storage { dynamic, .. } => !uniform && dynamic,
+                            _ => false,
+                        })
+                        .count()
+                };
+                assert!(
+                    dynamic(true) <= WEBGPU_DEFAULT_DYNAMIC_UNIFORM_BUFFERS,
+                    "{at}"
+                );
+                assert!(
+                    dynamic(false) <= WEBGPU_DEFAULT_DYNAMIC_STORAGE_BUFFERS,
+                    "{at}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn every_entry_point_of_the_frame_has_its_groups_and_no_binding_is_listed_twice() {
-        for program in [
-            Program::StepParticles,
-            Program::CoverUpdate,
-            Program::CullParticles,
-            Program::Render,
-            Program::QueryBeams,
-            Program::OpticsSums,
-        ] {
+        for program in FRAME_PROGRAMS {
             for entry in program.entry_points() {
                 let groups = groups_of(program, entry)
                     .unwrap_or_else(|| panic!("{program:?} {entry} has no groups"));

@@ -194,3 +194,44 @@ fn runs_on_a_device_the_caller_owns() {
         assert!(backend.info().device.contains(&device.info.name));
     }
 }
+
+/// An engine may hand precip a device opened with WebGPU's default limits (8
+/// storage buffers a shader stage, 4 bind groups…), not the adapter's larger ones
+/// precip asks for on its own: every kernel and every draw pipeline (made at the
+/// first frame, whatever the scene) fits them, and a frame is drawn.
+#[test]
+fn runs_on_a_device_opened_with_webgpu_s_default_limits() {
+    let found = precip_gpu_wgpu::adapters();
+    if found.is_empty() {
+        // `gpu_backends` skips (or fails under PRECIP_REQUIRE_GPU=1) with its reason.
+        assert!(common::gpu_backends("WebGPU's default limits").is_empty());
+        return;
+    }
+    for adapter in &found {
+        let info = adapter.get_info();
+        let descriptor = wgpu::DeviceDescriptor {
+            label: Some("an engine's device"),
+            required_features: adapter.features()
+                & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_PASSES),
+            required_limits: wgpu::Limits::default(),
+            ..Default::default()
+        };
+        let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
+            .unwrap_or_else(|e| panic!("{}: a device with the default limits: {e}", info.name));
+        let shared = GpuDevice::from_existing(device, queue, info.clone());
+        let mut backend = WgpuBackend::with_device(shared).unwrap_or_else(|e| {
+            panic!("{}: the kernels within the default limits: {e}", info.name)
+        });
+        common::run(&mut backend, &small(), 2, 0.05);
+        let view = precip_model::View {
+            camera: precip_model::Camera::default(),
+            width_px: 64,
+            height_px: 48,
+        };
+        backend
+            .render(&view)
+            .unwrap_or_else(|e| panic!("{}: a frame within the default limits: {e}", info.name));
+        let image = backend.read_image().expect("the frame reads back");
+        assert_eq!((image.width_px, image.height_px), (64, 48), "{}", info.name);
+    }
+}
