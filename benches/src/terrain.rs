@@ -114,6 +114,7 @@ fn configure(
         particle_budget: 300_000,
         seed: 1,
         texel_m: 0.5,
+        grid_side_m: None,
         cover_days_per_second: 0.05,
         weather: precip_model::Weather::default(),
         camera: None,

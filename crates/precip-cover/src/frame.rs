@@ -81,6 +81,57 @@ impl GridFrame {
         Ok(())
     }
 
+    /// The same grid moved by `shift` whole texels along x and z (texel `(i, j)`
+    /// of the moved grid lies where texel `(i + shift.x, j + shift.y)` of this one
+    /// does).
+    #[must_use]
+    pub fn moved_by_texels(&self, shift: glam::IVec2) -> Self {
+        Self {
+            origin_m: self.origin_m + shift.as_vec2() * self.cell_m(),
+            ..*self
+        }
+    }
+
+    /// The texels of this grid (moved by `shift` texels from where it was: the
+    /// old grid is `self.moved_by_texels(-shift)`) that the old grid did not
+    /// cover, as at most two rectangles, each its first texel and size: the
+    /// columns that entered (every row), then the rows that entered (the other
+    /// columns). None for no shift; the whole grid for a shift of a side or more.
+    #[must_use]
+    pub fn entering_strips(&self, shift: glam::IVec2) -> Vec<(UVec2, UVec2)> {
+        let n = self.texels.as_ivec2();
+        if shift.x.abs() >= n.x || shift.y.abs() >= n.y {
+            return vec![(UVec2::ZERO, self.texels)];
+        }
+        let mut strips = Vec::with_capacity(2);
+        let (w, h) = (shift.x.abs(), shift.y.abs());
+        if w > 0 {
+            let x0 = if shift.x > 0 { n.x - w } else { 0 };
+            strips.push((glam::IVec2::new(x0, 0), glam::IVec2::new(w, n.y)));
+        }
+        if h > 0 {
+            let z0 = if shift.y > 0 { n.y - h } else { 0 };
+            let x0 = if shift.x < 0 { w } else { 0 };
+            strips.push((glam::IVec2::new(x0, z0), glam::IVec2::new(n.x - w, h)));
+        }
+        strips
+            .into_iter()
+            .map(|(first, size)| (first.as_uvec2(), size.as_uvec2()))
+            .collect()
+    }
+
+    /// The grid of texels `first .. first + size` of this one.
+    #[must_use]
+    pub fn sub_grid(&self, first: UVec2, size: UVec2) -> Self {
+        let cell = self.cell_m();
+        Self {
+            origin_m: self.origin_m + first.as_vec2() * cell,
+            size_m: size.as_vec2() * cell,
+            texels: size,
+            reserved: UVec2::ZERO,
+        }
+    }
+
     /// Number of texels.
     #[must_use]
     pub fn texel_count(&self) -> usize {
@@ -128,7 +179,37 @@ impl GridFrame {
 
 #[cfg(test)]
 mod tests {
+    use proptest::prelude::*;
+
     use super::*;
+
+    proptest! {
+        /// Moved by any shift, every texel of the grid is either over the old
+        /// grid or in exactly one entering strip, and each sub-grid lies where
+        /// its texels do.
+        #[test]
+        fn the_entering_strips_are_what_the_old_grid_did_not_cover(
+            nx in 1u32..40, nz in 1u32..40, sx in -50i32..50, sz in -50i32..50,
+        ) {
+            let old = GridFrame::centred(Vec2::new(3.0, -7.0), Vec2::new(nx as f32 * 0.5, nz as f32 * 2.0), UVec2::new(nx, nz));
+            let shift = glam::IVec2::new(sx, sz);
+            let moved = old.moved_by_texels(shift);
+            let mut covered = vec![0u32; moved.texel_count()];
+            for (first, size) in moved.entering_strips(shift) {
+                let sub = moved.sub_grid(first, size);
+                for o in 0..sub.texel_count() {
+                    let k = moved.texel_index(sub.texel_centre(o)).expect("inside the grid");
+                    prop_assert_eq!(k as u32, first.x + o as u32 % size.x + nx * (first.y + o as u32 / size.x));
+                    covered[k] += 1;
+                }
+            }
+            for (k, &c) in covered.iter().enumerate() {
+                let (x, z) = ((k as u32 % nx) as i32 + sx, (k as u32 / nx) as i32 + sz);
+                let over_old = x >= 0 && z >= 0 && x < nx as i32 && z < nz as i32;
+                prop_assert_eq!(c, u32::from(!over_old), "texel {}", k);
+            }
+        }
+    }
 
     #[test]
     fn index_and_centre_agree() {

@@ -8,6 +8,7 @@
 //! accumulation mask (the patches covered last melt first), plus noise of its own.
 
 use noise::{Fbm, MultiFractal, NoiseFn, Perlin};
+use rayon::prelude::*;
 
 use crate::frame::GridFrame;
 
@@ -34,16 +35,17 @@ pub fn generate_threshold_masks(
     let own = Fbm::<Perlin>::new(seed.wrapping_add(0x85EB_CA6B))
         .set_octaves(3)
         .set_frequency(2.0 * frequency);
-    let n = frame.texel_count();
-    let mut raw_g = Vec::with_capacity(n);
-    let mut raw_r = Vec::with_capacity(n);
-    for index in 0..n {
-        let c = frame.texel_centre(index);
-        let p = [f64::from(c.x), f64::from(c.y)];
-        let g = coarse.get(p);
-        raw_g.push(g);
-        raw_r.push(-g + 0.5 * own.get(p));
-    }
+    // Each texel's noise on its own, in parallel (made at configure and again at
+    // each move of a grid that follows the camera).
+    let (raw_g, raw_r): (Vec<f64>, Vec<f64>) = (0..frame.texel_count())
+        .into_par_iter()
+        .map(|index| {
+            let c = frame.texel_centre(index);
+            let p = [f64::from(c.x), f64::from(c.y)];
+            let g = coarse.get(p);
+            (g, -g + 0.5 * own.get(p))
+        })
+        .unzip();
     ThresholdMasks {
         accumulation: rank_uniform(&raw_g),
         melt: rank_uniform(&raw_r),
@@ -53,7 +55,8 @@ pub fn generate_threshold_masks(
 /// Replaces each value by `(rank + 0.5) / n`: a uniform distribution, same order.
 fn rank_uniform(values: &[f64]) -> Vec<f32> {
     let mut order: Vec<usize> = (0..values.len()).collect();
-    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]).then(a.cmp(&b)));
+    // A total order (ties by index): the same ranks on any thread count.
+    order.par_sort_by(|&a, &b| values[a].total_cmp(&values[b]).then(a.cmp(&b)));
     let n = values.len() as f64;
     let mut out = vec![0.0f32; values.len()];
     for (rank, &index) in order.iter().enumerate() {

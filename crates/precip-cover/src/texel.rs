@@ -140,6 +140,85 @@ impl CoverTexel {
         }
     }
 
+    /// This texel's ground (eligibility, masks, feed, height, surface, wind
+    /// factor) holding the cover of `source`, per unit area: its snow, water, dust
+    /// and books. The scratch of the last drift and flow passes (outflows, the
+    /// density sent away, saltation) is cleared; a pass writes it before it reads
+    /// it. A texel that enters a moving cover grid takes the cover of the land it
+    /// came from this way (`precip_model::host::FarCover::lend`).
+    #[must_use]
+    pub fn with_cover_of(self, source: &Self) -> Self {
+        Self {
+            swe_mm: source.swe_mm,
+            liquid_mm: source.liquid_mm,
+            depth_mm: source.depth_mm,
+            age_days: source.age_days,
+            peak_swe_mm: source.peak_swe_mm,
+            wetness: source.wetness,
+            runoff_mm: source.runoff_mm,
+            deposited_mm: source.deposited_mm,
+            film_mm: source.film_mm,
+            standing_mm: source.standing_mm,
+            infiltrated_mm: source.infiltrated_mm,
+            evaporated_mm: source.evaporated_mm,
+            net_inflow_mm: source.net_inflow_mm,
+            drifted_mm: source.drifted_mm,
+            edge_drifted_mm: source.edge_drifted_mm,
+            dust_kg_m2: source.dust_kg_m2,
+            moving_density_kg_m3: 0.0,
+            outflow_mm: [0.0; 4],
+            saltation_kg_per_m_s: 0.0,
+            ..self
+        }
+    }
+
+    /// This texel standing for `area_m2` of land merged with `other` standing for
+    /// `other_area_m2`: the cover of the two together per unit area, on this
+    /// texel's ground. Every column of the books, the depth, wetness, peak SWE and
+    /// dust are area-weighted means (the books are linear, so a merge of balanced
+    /// texels balances and the mass of the two is kept to rounding); the snow's age
+    /// is weighted by its SWE. A texel that leaves a moving cover grid goes into
+    /// the cover beyond it this way (`precip_model::host::FarCover::take_in`).
+    #[must_use]
+    pub fn merged(self, area_m2: f64, other: &Self, other_area_m2: f64) -> Self {
+        let total = area_m2 + other_area_m2;
+        if total <= 0.0 {
+            return self.with_cover_of(other);
+        }
+        let (a, b) = (area_m2 / total, other_area_m2 / total);
+        let mean = |x: f32, y: f32| (a * f64::from(x) + b * f64::from(y)) as f32;
+        let snow = a * f64::from(self.swe_mm) + b * f64::from(other.swe_mm);
+        let age_days = if snow > 0.0 {
+            ((a * f64::from(self.swe_mm) * f64::from(self.age_days)
+                + b * f64::from(other.swe_mm) * f64::from(other.age_days))
+                / snow) as f32
+        } else {
+            0.0
+        };
+        Self {
+            swe_mm: mean(self.swe_mm, other.swe_mm),
+            liquid_mm: mean(self.liquid_mm, other.liquid_mm),
+            depth_mm: mean(self.depth_mm, other.depth_mm),
+            age_days,
+            peak_swe_mm: mean(self.peak_swe_mm, other.peak_swe_mm),
+            wetness: mean(self.wetness, other.wetness),
+            runoff_mm: mean(self.runoff_mm, other.runoff_mm),
+            deposited_mm: mean(self.deposited_mm, other.deposited_mm),
+            film_mm: mean(self.film_mm, other.film_mm),
+            standing_mm: mean(self.standing_mm, other.standing_mm),
+            infiltrated_mm: mean(self.infiltrated_mm, other.infiltrated_mm),
+            evaporated_mm: mean(self.evaporated_mm, other.evaporated_mm),
+            net_inflow_mm: mean(self.net_inflow_mm, other.net_inflow_mm),
+            drifted_mm: mean(self.drifted_mm, other.drifted_mm),
+            edge_drifted_mm: mean(self.edge_drifted_mm, other.edge_drifted_mm),
+            dust_kg_m2: mean(self.dust_kg_m2, other.dust_kg_m2),
+            moving_density_kg_m3: 0.0,
+            outflow_mm: [0.0; 4],
+            saltation_kg_per_m_s: 0.0,
+            ..self
+        }
+    }
+
     /// `deposited + net inflow + drifted − (every column)`: zero up to rounding, mm.
     #[must_use]
     pub fn imbalance_mm(&self) -> f64 {
@@ -152,5 +231,113 @@ impl CoverTexel {
                 + f(self.infiltrated_mm)
                 + f(self.evaporated_mm)
                 + f(self.runoff_mm))
+    }
+}
+
+#[cfg(test)]
+#[expect(
+    clippy::float_cmp,
+    reason = "a copied or cleared field is the source's bit for bit"
+)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    /// A texel whose books balance: snow, water and losses drawn, what it received
+    /// their sum.
+    fn balanced() -> impl Strategy<Value = CoverTexel> {
+        (
+            (0.0f32..200.0, 0.0f32..20.0, 0.0f32..5.0, 0.0f32..30.0),
+            (0.0f32..10.0, 0.0f32..50.0, 0.0f32..5.0, 0.0f32..40.0),
+            (-20.0f32..20.0, -30.0f32..30.0, 0.0f32..30.0, 0.0f32..1.0),
+        )
+            .prop_map(
+                |(
+                    (swe_mm, liquid_mm, film_mm, standing_mm),
+                    (infiltrated_mm, evaporated_mm, runoff_mm, age_days),
+                    (net_inflow_mm, drifted_mm, dust_kg_m2, wetness),
+                )| {
+                    let stored = swe_mm
+                        + liquid_mm
+                        + film_mm
+                        + standing_mm
+                        + infiltrated_mm
+                        + evaporated_mm
+                        + runoff_mm;
+                    CoverTexel {
+                        swe_mm,
+                        liquid_mm,
+                        depth_mm: swe_mm * 8.0,
+                        age_days,
+                        peak_swe_mm: swe_mm * 1.5,
+                        wetness,
+                        runoff_mm,
+                        deposited_mm: stored - net_inflow_mm - drifted_mm,
+                        film_mm,
+                        standing_mm,
+                        infiltrated_mm,
+                        evaporated_mm,
+                        net_inflow_mm,
+                        drifted_mm,
+                        dust_kg_m2,
+                        eligibility: 1.0,
+                        outflow_mm: [1.0, 2.0, 3.0, 4.0],
+                        saltation_kg_per_m_s: 0.5,
+                        ..CoverTexel::default()
+                    }
+                },
+            )
+    }
+
+    proptest! {
+        /// A merge keeps the mass of the two (each column's), balances as they did,
+        /// keeps this texel's ground and clears the passes' scratch.
+        #[test]
+        fn a_merge_keeps_the_mass_and_the_books_of_the_two(
+            mine in balanced(),
+            other in balanced(),
+            area in 0.0f64..1.0e5,
+            other_area in 1.0e-3f64..100.0,
+        ) {
+            let ground = CoverTexel { ground_m: 12.5, surface: 3, eligibility: 0.25, ..mine };
+            let merged = ground.merged(area, &other, other_area);
+            let total = area + other_area;
+            let column = |f: fn(&CoverTexel) -> f32| {
+                let before = f64::from(f(&mine)) * area + f64::from(f(&other)) * other_area;
+                let after = f64::from(f(&merged)) * total;
+                (before - after).abs() <= 1.0e-6 * (before.abs() + total)
+            };
+            prop_assert!(column(|t| t.swe_mm));
+            prop_assert!(column(|t| t.deposited_mm));
+            prop_assert!(column(|t| t.standing_mm));
+            prop_assert!(column(|t| t.drifted_mm));
+            prop_assert!(column(|t| t.dust_kg_m2));
+            prop_assert!(merged.imbalance_mm().abs() <= 1.0e-4 * (1.0 + f64::from(merged.deposited_mm.abs())));
+            prop_assert_eq!((merged.ground_m, merged.surface, merged.eligibility), (12.5, 3, 0.25));
+            prop_assert_eq!(merged.outflow_mm, [0.0; 4]);
+            prop_assert_eq!(merged.saltation_kg_per_m_s, 0.0);
+            let (lo, hi) = (mine.age_days.min(other.age_days), mine.age_days.max(other.age_days));
+            prop_assert!(merged.swe_mm == 0.0 || (lo - 1.0e-5..=hi + 1.0e-5).contains(&merged.age_days));
+        }
+
+        /// A texel that takes another's cover holds it per unit area on its own
+        /// ground; merged with no area of its own it becomes the other's cover.
+        #[test]
+        fn a_lent_cover_is_the_source_s_on_the_texel_s_ground(
+            source in balanced(),
+            ground_m in -10.0f32..100.0,
+        ) {
+            let texel = CoverTexel { ground_m, surface: 2, accumulation_mask: 0.3, ..CoverTexel::default() };
+            let lent = texel.with_cover_of(&source);
+            prop_assert_eq!(lent.swe_mm, source.swe_mm);
+            prop_assert_eq!(lent.deposited_mm, source.deposited_mm);
+            prop_assert_eq!(lent.imbalance_mm(), source.imbalance_mm());
+            prop_assert_eq!((lent.ground_m, lent.surface, lent.accumulation_mask), (ground_m, 2, 0.3));
+            prop_assert_eq!(lent.outflow_mm, [0.0; 4]);
+            let empty = texel.merged(0.0, &source, 4.0);
+            prop_assert_eq!(empty.swe_mm, source.swe_mm);
+            prop_assert_eq!(empty.ground_m, ground_m);
+        }
     }
 }

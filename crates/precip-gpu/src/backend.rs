@@ -366,6 +366,10 @@ impl<G: Gpu> Backend for GpuBackend<G> {
     fn far_snow_line_m(&self) -> Option<f32> {
         self.state.as_ref()?.sim.host().far_snow_line_m()
     }
+
+    fn cover_window(&self) -> Option<precip_model::host::CoverWindow> {
+        Some(self.state.as_ref()?.sim.host().cover_window().clone())
+    }
 }
 
 /// Implements [`Backend`] for a newtype over a [`GpuBackend`] (its field `0`), by
@@ -494,6 +498,9 @@ macro_rules! delegate_backend {
             }
             fn far_snow_line_m(&self) -> Option<f32> {
                 self.0.far_snow_line_m()
+            }
+            fn cover_window(&self) -> Option<::precip_model::host::CoverWindow> {
+                self.0.cover_window()
             }
         }
     };

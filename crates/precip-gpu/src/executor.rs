@@ -23,7 +23,7 @@ use crate::bind_groups::GroupLayout;
 use crate::gpu::{BindingResource, Dispatch, Gpu};
 use crate::recipe::{
     DispatchCounts, INIT_PASS, KernelPass, OPTICS_PASS, OpticsParams, SUBSTEP_PASSES,
-    dispatch_size, substep_timings,
+    cover_tiles_all_marked, dispatch_size, substep_timings,
 };
 use crate::resources::{
     BEAM_GROUP, Bound, BufferUsage, COVER_GROUP, Contents, GroupFill, OPTICS_GROUP, STEP_GROUP,
@@ -478,6 +478,10 @@ impl<G: Gpu> Simulation<G> {
         dt_s: f32,
     ) -> Result<(), BackendError> {
         let steps = self.host.substeps(dt_s)?;
+        // The cover grid follows the camera over a terrain (host::cover_window).
+        if let Some(shift) = self.host.cover_grid_move() {
+            self.move_cover_grid(gpu, shift)?;
+        }
         let slots = u64::from(gpu.slots().max(1));
         let slot = (self.steps_submitted % slots) as u32;
         gpu.free_slot(slot)?;
@@ -543,6 +547,43 @@ impl<G: Gpu> Simulation<G> {
             )?;
         }
         Ok(())
+    }
+
+    /// Moves the cover grid to `shift` cover texels from where it was configured
+    /// (`precip_model::host::cover_window`): waits for the device, reads the
+    /// cover back, moves it on the host as every backend does
+    /// ([`HostState::move_cover_grid`]), and writes what the move changed — the
+    /// cover, the ground map's words, the grids' block, every cover tile marked
+    /// (the far cover's rows go with the step's upload). The deposits are empty
+    /// between steps (the cover kernel takes them). A write that fails leaves
+    /// the device's grid behind the host's: configure again.
+    fn move_cover_grid(&mut self, gpu: &mut G, shift: glam::IVec2) -> Result<(), BackendError> {
+        gpu.settle()?;
+        let cover = self.read_cover(gpu)?;
+        let moved = self.host.move_cover_grid(shift, &cover)?;
+        let ground = self.host.setup().ground.gpu_words();
+        let frames = self.host.frames();
+        let tiles = cover_tiles_all_marked(&moved.frame);
+        gpu.write_buffer(
+            self.buffer_mut(SimBuffer::Cover),
+            0,
+            bytemuck::cast_slice(&moved.texels),
+        )?;
+        gpu.write_buffer(
+            self.buffer_mut(SimBuffer::Ground),
+            0,
+            bytemuck::cast_slice(&ground),
+        )?;
+        gpu.write_buffer(
+            self.buffer_mut(SimBuffer::Frames),
+            0,
+            bytemuck::bytes_of(&frames),
+        )?;
+        gpu.write_buffer(
+            self.buffer_mut(SimBuffer::CoverTiles),
+            0,
+            bytemuck::cast_slice(&tiles),
+        )
     }
 
     /// Places the terrain's windows of the frame in `slot` (of [`Gpu::slots`]) in

@@ -294,6 +294,21 @@ pub fn cover_tiles_bytes(cover: &GridFrame) -> u64 {
     4 * COVER_TILE_SETS * (1 + 3 * u64::from(x) * u64::from(z))
 }
 
+/// The cover tiles' buffer with every tile of both lists marked and nothing
+/// listed: the next listing lists every tile, as after a cover grid's move
+/// (`precip_model::host::cover_window`), when any texel may hold water or snow
+/// to move.
+#[must_use]
+pub fn cover_tiles_all_marked(cover: &GridFrame) -> Vec<u32> {
+    let (x, z) = cover_tiles(cover);
+    let tiles = (x * z) as usize;
+    let mut set = vec![0u32; 1 + 3 * tiles];
+    set[1..=tiles].fill(1);
+    let words = set.repeat(COVER_TILE_SETS as usize);
+    debug_assert_eq!(4 * words.len() as u64, cover_tiles_bytes(cover));
+    words
+}
+
 /// Particles per invocation of a kernel over a list (see [`DispatchOver::ParticleList`]).
 ///
 /// The step appends each particle to re-birth to a list (a count, then one `u32`

@@ -34,6 +34,7 @@ fn main() -> anyhow::Result<()> {
             particle_budget: 150_000,
             seed: 1,
             texel_m: 0.5,
+            grid_side_m: None,
             cover_days_per_second: 0.05,
             weather,
             camera: None,

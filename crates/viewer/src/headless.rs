@@ -38,6 +38,8 @@ pub struct Summary {
     /// The snow line beyond the grid, m (`None` without a terrain or where no
     /// place holds snow).
     pub far_snow_line_m: Option<f32>,
+    /// Where the cover grid ended, as it followed the camera over a terrain.
+    pub cover_window: Option<precip_model::host::CoverWindow>,
     /// The snow: depths, the steepest face, blowing snow.
     pub snow: crate::snow_summary::SnowSummary,
     /// The PNGs.
@@ -258,6 +260,7 @@ pub fn run_headless_with(
         water: crate::water_summary::WaterSummary::of(&cover),
         far_cover: backend.far_cover_totals(),
         far_snow_line_m: backend.far_snow_line_m(),
+        cover_window: backend.cover_window(),
         snow: crate::snow_summary::SnowSummary::of(&cover),
         files,
         lidar_points,

@@ -156,6 +156,11 @@ struct RunArgs {
     /// Ground and cover texel size, m.
     #[arg(long, default_value_t = 0.5)]
     texel: f32,
+    /// The ground map's and cover grid's side, m (default: the scene's size; at
+    /// most 1024 texels). Over a terrain the grid follows the camera, the cover
+    /// beyond it kept per place.
+    #[arg(long, value_parser = parse_grid_side)]
+    grid_side: Option<f32>,
     /// Window or image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]
     size: (u32, u32),
@@ -324,6 +329,19 @@ fn parse_time_scale(s: &str) -> Result<f32, String> {
 }
 
 const MOST_DAYS_PER_SECOND: f32 = precip_viewer::scene_setup::MOST_COVER_DAYS_PER_SECOND;
+
+fn parse_grid_side(s: &str) -> Result<f32, String> {
+    let v: f32 = s
+        .parse()
+        .map_err(|_| format!("`{s}` is not a side in metres"))?;
+    if v.is_finite() && (1.0..=100_000.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!(
+            "a grid side of {s} m is outside 1 to 100000 m (the grid holds at most 1024 texels a side: raise --texel for a larger one)"
+        ))
+    }
+}
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
@@ -645,6 +663,7 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
         particle_budget: args.particles,
         seed: args.seed,
         texel_m: args.texel,
+        grid_side_m: args.grid_side,
         cover_days_per_second: args.time_scale,
         weather,
         camera,
@@ -887,6 +906,18 @@ fn run(args: &RunArgs) -> anyhow::Result<()> {
             "{}",
             precip_viewer::water_summary::describe_far_books(far, &summary.water.totals)
         );
+        if let Some(window) = summary.cover_window.as_ref().filter(|w| w.moves() > 0) {
+            let frame = window.cover_at(window.shift());
+            let centre = frame.origin_m + 0.5 * frame.size_m;
+            println!(
+                "the cover grid followed the camera: {} moves, its centre now at x {:.0} m, z {:.0} m ({} texels along x and {} along z from where it began)",
+                window.moves(),
+                centre.x,
+                centre.y,
+                window.shift().x,
+                window.shift().y
+            );
+        }
         if let Some(line) = summary.far_snow_line_m {
             println!(
                 "snow line beyond the grid: {line:.0} m (from the top down, each {} m of height half covered by {} mm of snow or more)",

@@ -42,6 +42,11 @@ pub struct SceneOptions {
     pub seed: u32,
     /// Ground/cover texel size, m (the grid side is capped at 1024 texels).
     pub texel_m: f32,
+    /// The grids' side, m (`None`: the scene's size, the grid fixed on it). Set,
+    /// the cover grid follows the camera over a terrain
+    /// (`precip_model::host::CoverWindow`), the cover that leaves it kept beyond
+    /// it per place.
+    pub grid_side_m: Option<f32>,
     /// Simulated cover days per real second.
     pub cover_days_per_second: f32,
     /// The weather.
@@ -56,7 +61,10 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
         .land_bounds_m()
         .ok_or(precip_model::SceneError::Empty)?;
     let centre = Vec2::new(0.5 * (lo.x + hi.x), 0.5 * (lo.z + hi.z));
-    let side = (hi.x - lo.x).max(hi.z - lo.z).max(1.0);
+    let side = match options.grid_side_m {
+        Some(s) if s.is_finite() && s > 0.0 => s,
+        _ => (hi.x - lo.x).max(hi.z - lo.z).max(1.0),
+    };
     let texel = if options.texel_m.is_finite() && options.texel_m > 0.0 {
         options.texel_m
     } else {
@@ -131,6 +139,7 @@ pub fn scene_setup(scene: PreparedScene, options: &SceneOptions) -> Result<Setup
         cover: CoverSetup {
             time_scale: (options.cover_days_per_second * 86_400.0)
                 .clamp(0.0, MOST_COVER_DAYS_PER_SECOND * 86_400.0),
+            follows_camera: options.grid_side_m.is_some(),
             ..CoverSetup::real_time(cover_frame)
         },
         wind_volume: precip_model::wind::WindVolumeSpec::default(),
@@ -153,6 +162,7 @@ mod tests {
             particle_budget: budget,
             seed: 1,
             texel_m: 0.5,
+            grid_side_m: None,
             cover_days_per_second: 0.0,
             weather: Weather::default(),
             camera: None,

@@ -213,4 +213,10 @@ pub trait Backend {
     fn far_snow_line_m(&self) -> Option<f32> {
         None
     }
+    /// Where the cover grid is as it follows the camera over a terrain: its
+    /// offset from where it was configured and its moves
+    /// ([`crate::host::CoverWindow`]; `None` before configure).
+    fn cover_window(&self) -> Option<crate::host::CoverWindow> {
+        None
+    }
 }

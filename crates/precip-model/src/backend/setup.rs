@@ -9,6 +9,7 @@ use precip_cover::{
     generate_threshold_masks,
 };
 use precip_wind::WindVolumeSpec;
+use rayon::prelude::*;
 
 use crate::backend::camera::Camera;
 use crate::backend::error::BackendError;
@@ -58,6 +59,13 @@ pub struct CoverSetup {
     /// per second. Landed water is scaled by it too, so accumulation and melt keep
     /// their proportions.
     pub time_scale: f32,
+    /// Over a terrain, the grid follows the camera (by whole tiles, when the
+    /// camera is past a quarter of its side from its centre), the cover that
+    /// leaves it kept beyond it per place ([`crate::host::CoverWindow`]); else it
+    /// stays where it is. Meant for a grid wide against the camera's view of the
+    /// ground (a flight's, a drive's): a grid round a small scene, seen from
+    /// outside it, would leave the scene.
+    pub follows_camera: bool,
 }
 
 impl CoverSetup {
@@ -70,6 +78,7 @@ impl CoverSetup {
             mask_seed: 0,
             mask_patch_scale_m: 8.0,
             time_scale: 1.0,
+            follows_camera: false,
         }
     }
 }
@@ -271,31 +280,46 @@ impl Setup {
     /// each texel's centre, fed by particles where the world emitter's footprint
     /// covers it, else by the weather's rate.
     pub fn initial_cover(&self) -> Result<CoverGrid, BackendError> {
-        let frame = self.cover.frame;
+        self.bare_cover_over(self.cover.frame)
+    }
+
+    /// [`Setup::initial_cover`] over `frame` (a grid, or a strip of one that
+    /// enters a moving grid: its masks ranked over it alone).
+    pub fn bare_cover_over(&self, frame: GridFrame) -> Result<CoverGrid, BackendError> {
         let n = frame.texel_count();
-        let centres: Vec<Vec2> = (0..n).map(|i| frame.texel_centre(i)).collect();
+        let centres: Vec<Vec2> = (0..n)
+            .into_par_iter()
+            .map(|i| frame.texel_centre(i))
+            .collect();
         let eligibility: Vec<f32> = centres
-            .iter()
+            .par_iter()
             .map(|&c| self.ground.eligibility_at(c))
             .collect();
-        let feed: Vec<CoverFeed> = centres
-            .iter()
-            .map(|&c| match &self.world_emitter {
-                Some(e) if e.particle_count > 0 && e.emitter.footprint_contains(c) => {
-                    CoverFeed::Particles
-                }
-                _ => CoverFeed::WeatherRate,
-            })
-            .collect();
+        let feed: Vec<CoverFeed> = centres.par_iter().map(|&c| self.feed_at(c)).collect();
         let masks =
             generate_threshold_masks(&frame, self.cover.mask_seed, self.cover.mask_patch_scale_m);
         let floor = self.ground.floor_m();
         let heights: Vec<f32> = centres
-            .iter()
+            .par_iter()
             .map(|&c| self.ground.height_at(c).unwrap_or(floor))
             .collect();
-        let surfaces: Vec<_> = centres.iter().map(|&c| self.ground.surface_at(c)).collect();
+        let surfaces: Vec<_> = centres
+            .par_iter()
+            .map(|&c| self.ground.surface_at(c))
+            .collect();
         Ok(CoverGrid::new(frame, &eligibility, &masks, &feed)?.with_ground(&heights, &surfaces)?)
+    }
+
+    /// Where a cover texel centred at (x, z) takes its snow from: the particles
+    /// where the world emitter's footprint covers it, else the weather's rate.
+    #[must_use]
+    pub fn feed_at(&self, centre_m: Vec2) -> CoverFeed {
+        match &self.world_emitter {
+            Some(e) if e.particle_count > 0 && e.emitter.footprint_contains(centre_m) => {
+                CoverFeed::Particles
+            }
+            _ => CoverFeed::WeatherRate,
+        }
     }
 
     /// The cover kernel's block for a sub-step of `dt_s` seconds under `weather`: the

@@ -129,6 +129,10 @@ impl Backend for CpuBackend {
     fn step(&mut self, dt_s: f32) -> Result<(), BackendError> {
         let state = self.state_mut("step")?;
         let steps = state.host.substeps(dt_s)?;
+        // The cover grid follows the camera over a terrain (host::cover_window).
+        if let Some(shift) = state.host.cover_grid_move() {
+            state.cover = state.host.move_cover_grid(shift, &state.cover)?;
+        }
         let (mut particle_ms, mut cover_ms) = (0.0, 0.0);
         for blocks in &steps.blocks {
             let start = Instant::now();
@@ -251,6 +255,10 @@ impl Backend for CpuBackend {
 
     fn far_snow_line_m(&self) -> Option<f32> {
         self.state.as_ref()?.host.far_snow_line_m()
+    }
+
+    fn cover_window(&self) -> Option<crate::host::CoverWindow> {
+        Some(self.state.as_ref()?.host.cover_window().clone())
     }
 
     fn read_image(&mut self) -> Result<Image, BackendError> {

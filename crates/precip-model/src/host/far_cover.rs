@@ -365,6 +365,70 @@ impl FarCover {
         line
     }
 
+    /// The index of the texel of `surface` in the cell over (x, z).
+    fn slot_index(&self, xz_m: Vec2, surface: Surface) -> usize {
+        let c = self.cell_at(xz_m);
+        (c.x + self.cells.x * c.y) as usize * FAR_COVER_SURFACES.len() + far_cover_slot(surface)
+    }
+
+    /// Takes in a texel of the cover grid that the grid left (it moved with the
+    /// camera): `texel`, standing for `area_m2` of land at (x, z), merges into its
+    /// cell's texel of its surface ([`CoverTexel::merged`]), which stands for that
+    /// land from now on — the cover beyond the grid keeps its snow, water and
+    /// books, to rounding.
+    pub fn take_in(&mut self, xz_m: Vec2, texel: &CoverTexel, area_m2: f64) {
+        let k = self.slot_index(xz_m, Surface::from_raw(texel.surface));
+        self.texels[k] = self.texels[k].merged(self.area_m2[k], texel, area_m2);
+        self.area_m2[k] += area_m2;
+        self.rows_changed();
+    }
+
+    /// Lends the cover of the land at (x, z) to `texel`, a texel of the cover grid
+    /// that enters it there (the grid moved with the camera), standing for
+    /// `area_m2`: the cover of its cell's texel of its surface per unit area
+    /// ([`CoverTexel::with_cover_of`]), that texel standing for `area_m2` less
+    /// land. Where the cell holds less land of that surface off the grid (its
+    /// land was classified from every few terrain samples, the grid's texel by
+    /// texel) the cell's texel with the most land lends; where the whole cell
+    /// holds less, the texel enters bare — nothing is created either way.
+    #[must_use]
+    pub fn lend(&mut self, xz_m: Vec2, texel: CoverTexel, area_m2: f64) -> CoverTexel {
+        let own = self.slot_index(xz_m, Surface::from_raw(texel.surface));
+        let first = own - own % FAR_COVER_SURFACES.len();
+        let lender = if self.area_m2[own] >= area_m2 {
+            Some(own)
+        } else {
+            (first..first + FAR_COVER_SURFACES.len())
+                .filter(|&k| self.area_m2[k] >= area_m2)
+                .max_by(|&a, &b| self.area_m2[a].total_cmp(&self.area_m2[b]))
+        };
+        match lender {
+            Some(k) => {
+                self.area_m2[k] -= area_m2;
+                texel.with_cover_of(&self.texels[k])
+            }
+            None => texel.with_cover_of(&CoverTexel::default()),
+        }
+    }
+
+    /// The site the weather is set for moved to the cover grid's centre at
+    /// `site_m` height: each cell's air is the weather's less the lapse rate over
+    /// its height above the new site.
+    pub fn move_site(&mut self, site_m: f32) {
+        for (offset, &h) in self.air_offset_c.iter_mut().zip(&self.height_m) {
+            *offset = -LAPSE_RATE_C_PER_M * (h - site_m);
+        }
+    }
+
+    /// The texels changed outside a far step: their rows go to the GPU with the
+    /// next upload, into the region frames do not read (flipped once per upload).
+    fn rows_changed(&mut self) {
+        if !self.fresh {
+            self.region ^= 1;
+            self.fresh = true;
+        }
+    }
+
     /// Adds a step's weather, `input` (its snow and rain, its air at the site),
     /// what fell beyond the camera's surroundings, `beyond`, and the way to the
     /// sun, `to_sun`; every [`FAR_STEP_EVERY`] steps the cells take what came
@@ -592,6 +656,62 @@ mod tests {
 
     fn grid() -> GridFrame {
         GridFrame::centred(Vec2::new(-500.0, 0.0), Vec2::splat(64.0), UVec2::splat(64))
+    }
+
+    /// A texel the grid leaves merges into its cell's texel of its surface and
+    /// is lent back as it was (the cell's cover per unit area), the land off the
+    /// grid and the books as before; a texel entering where the cell has no land
+    /// left off the grid enters bare, and the site's move moves the cells' air.
+    #[test]
+    #[expect(
+        clippy::float_cmp,
+        reason = "a lent texel is its lender's cover bit for bit"
+    )]
+    fn a_texel_taken_in_is_lent_back_with_the_books_unchanged() {
+        let params = CoverParams::default();
+        let mut far = FarCover::over(&step_terrain(), &grid());
+        for _ in 0..FAR_STEP_EVERY {
+            add(&mut far, snow_input(-5.0), &params);
+        }
+        let (area, books) = (far.area_m2(), far.totals().expect("books"));
+        let at = Vec2::new(-700.0, 10.0);
+        let cell = *far.texel_at(at, Surface::Grass);
+        let leaving = CoverTexel {
+            swe_mm: cell.swe_mm + 40.0,
+            deposited_mm: cell.deposited_mm + 40.0,
+            surface: Surface::Grass as u32,
+            ..cell
+        };
+        far.take_in(at, &leaving, 4.0);
+        assert!((far.area_m2() - area - 4.0).abs() < 1e-6);
+        let taken = far.totals().expect("books");
+        assert!((taken.swe_kg - books.swe_kg - f64::from(leaving.swe_mm) * 4.0).abs() < 1e-2);
+        assert!(taken.imbalance_kg().abs() < 1e-3 * taken.deposited_kg);
+        let entering = CoverTexel {
+            surface: Surface::Grass as u32,
+            ground_m: 3.0,
+            ..CoverTexel::default()
+        };
+        let lent = far.lend(at, entering, 4.0);
+        assert_eq!(lent.swe_mm, far.texel_at(at, Surface::Grass).swe_mm);
+        assert_eq!(lent.ground_m, 3.0);
+        assert!((far.area_m2() - area).abs() < 1e-6);
+        let back = far.totals().expect("books");
+        let with_lent = back.swe_kg + f64::from(lent.swe_mm) * 4.0;
+        assert!(
+            (with_lent - taken.swe_kg).abs() < 1e-2,
+            "{with_lent} against {}",
+            taken.swe_kg
+        );
+        // More land than the cell holds off the grid: bare, nothing taken.
+        let before = far.area_m2();
+        let bare = far.lend(at, entering, 1.0e9);
+        assert_eq!((bare.swe_mm, bare.deposited_mm), (0.0, 0.0));
+        assert_eq!(far.area_m2(), before);
+        // The site 1 200 m up, on the plateau: the flat's cells are warmer.
+        far.move_site(1200.0);
+        assert!((far.air_offset_c_at(Vec2::new(800.0, 0.0))).abs() < 1e-3);
+        assert!(far.air_offset_c_at(at) > 5.0);
     }
 
     #[test]

@@ -9,6 +9,7 @@
 //! sampler's block from the one [`crate::Weather`] the host state holds.
 
 mod activity;
+pub mod cover_window;
 mod dispatch;
 mod far_air;
 mod far_cover;
@@ -17,6 +18,7 @@ mod layout;
 mod state;
 
 pub use activity::Activity;
+pub use cover_window::{CoverWindow, MOVE_AT_SIDE_SHARE, MOVE_STEP_TEXELS};
 pub use dispatch::{MAX_WORKGROUPS_PER_DIMENSION, WORKGROUP_SIZE, cull_groups, dispatch_size};
 pub use far_air::{
     LAPSE_RATE_C_PER_M, MAX_SLOPE_SUN_RATIO, SUN_MELT_SHARE, local_relative_humidity,

@@ -4,8 +4,8 @@
 
 use std::sync::Arc;
 
-use glam::{Vec2, Vec3};
-use precip_cover::{CoverStepParams, GridFrame};
+use glam::{IVec2, Vec2, Vec3};
+use precip_cover::{CoverGrid, CoverStepParams, GridFrame};
 use precip_wind::{WindParams, WindVolume};
 
 use crate::backend::camera::{Camera, View};
@@ -25,6 +25,7 @@ use crate::weather::Weather;
 use precip_cover::{CoverInput, DepositBuffer};
 
 use crate::drawing::clouds::cloud_drift_m;
+use crate::host::cover_window::{CoverWindow, moved_cover};
 use crate::host::far_cover::{FarCover, FarCoverRows};
 use crate::host::far_water::{Shafts, WaterBeyond};
 
@@ -59,6 +60,11 @@ pub struct HostState {
     land_cover: Option<Arc<(glam::UVec2, Vec<f32>)>>,
     /// The cover beyond the cover grid, per place ([`HostState::far_cover`]).
     far_cover: FarCover,
+    /// Where the cover grid is, as it follows the camera over a terrain.
+    window: CoverWindow,
+    /// The water bodies' wave grid, made once at configure (the water bodies
+    /// stay where the scene has them when the cover grid moves).
+    waves: GridFrame,
     time_s: f64,
 }
 
@@ -119,12 +125,68 @@ impl HostState {
                 .map_or_else(FarCover::everywhere, |t| {
                     FarCover::over(t, &setup.cover.frame)
                 }),
+            window: CoverWindow::of(setup),
+            waves: setup.frames().waves,
             setup: setup.clone(),
             weather: setup.weather,
             wind,
             camera: setup.camera,
             time_s: 0.0,
         })
+    }
+
+    /// Where the cover grid should move to follow the camera, in cover texels from
+    /// where it was configured ([`CoverWindow::shift_for`]); `None` while it stays.
+    /// A backend that gets one moves its grid before the step
+    /// ([`HostState::move_cover_grid`]).
+    #[must_use]
+    pub fn cover_grid_move(&self) -> Option<IVec2> {
+        let at = self.camera.position_m;
+        self.window.shift_for(Vec2::new(at.x, at.z))
+    }
+
+    /// Moves the cover grid to `shift` texels from where it was configured, its
+    /// cover now `cover` (the backend's texels): the setup's ground map made
+    /// anew under it, the world emitter with it, the texels that leave it taken
+    /// into the far cover and those that enter it lent the far cover's
+    /// ([`crate::host::cover_window`]). Returns the moved grid's texels for the
+    /// backend to hold. Nothing changes on an error.
+    pub fn move_cover_grid(
+        &mut self,
+        shift: IVec2,
+        cover: &CoverGrid,
+    ) -> Result<CoverGrid, BackendError> {
+        let setup = self
+            .window
+            .setup_at(&self.setup, shift)
+            .ok_or(BackendError::NotSupported {
+                backend: "host",
+                operation: "moving the cover grid without a scene",
+            })?;
+        let mut far = self.far_cover.clone();
+        let moved = moved_cover(cover, &setup, &mut far)?;
+        let centre = setup.cover.frame.origin_m + 0.5 * setup.cover.frame.size_m;
+        if let Some(site) = setup
+            .scene
+            .as_ref()
+            .and_then(|s| s.terrain())
+            .and_then(|t| t.height_at(centre))
+        {
+            far.move_site(site);
+        }
+        self.far_cover = far;
+        self.step_template = setup.step_params(&self.weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
+        self.pools = setup.pool_drawing(&self.weather, Vec3::ZERO);
+        self.setup = setup;
+        self.window.moved_to(shift);
+        Ok(moved)
+    }
+
+    /// Where the cover grid is ([`CoverWindow`]): its offset from where it was
+    /// configured and how many times it moved.
+    #[must_use]
+    pub fn cover_window(&self) -> &CoverWindow {
+        &self.window
     }
 
     /// Takes a new weather: validated, the wind re-baked only if its gusts changed.
@@ -380,7 +442,11 @@ impl HostState {
     /// The grids the particle kernels read.
     #[must_use]
     pub fn frames(&self) -> Frames {
-        self.setup.frames()
+        Frames {
+            ground: self.setup.ground.frame,
+            cover: self.setup.cover.frame,
+            waves: self.waves,
+        }
     }
 
     /// The frame's block for `view`, with the shadow map over `shadow_bounds_m`, for

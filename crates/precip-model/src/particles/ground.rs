@@ -37,6 +37,66 @@ impl GroundMap {
         }
     }
 
+    /// This map over `frame`, the same grid moved by whole texels: the texels the
+    /// two share copied, the strips that enter made by `make` over frames of their
+    /// own — a grid that follows the camera makes only what is new
+    /// (`crate::host::CoverWindow`). A frame of another size, or moved by a
+    /// fraction of a texel or by its whole side, is made whole.
+    #[must_use]
+    pub fn moved_to(&self, frame: GridFrame, make: impl Fn(GridFrame) -> Self) -> Self {
+        let cell = self.frame.cell_m();
+        let moved = (frame.origin_m - self.frame.origin_m) / cell;
+        let shift = moved.round();
+        let n = self.frame.texels.as_ivec2();
+        let whole = frame.texels != self.frame.texels
+            || frame.size_m != self.frame.size_m
+            || (moved - shift).abs().max_element() > 1.0e-3
+            || shift.x.abs() >= n.x as f32
+            || shift.y.abs() >= n.y as f32
+            || self.surface.len() != self.height_m.len();
+        if whole {
+            return make(frame);
+        }
+        let shift = shift.as_ivec2();
+        let count = frame.texel_count();
+        let mut out = Self {
+            frame,
+            height_m: vec![0.0; count],
+            eligibility: vec![0.0; count],
+            surface: vec![Surface::default(); count],
+        };
+        let index = |x: i32, z: i32| (x + n.x * z) as usize;
+        for z in 0..n.y {
+            for x in 0..n.x {
+                let (ox, oz) = (x + shift.x, z + shift.y);
+                if ox >= 0 && oz >= 0 && ox < n.x && oz < n.y {
+                    let (k, o) = (index(x, z), index(ox, oz));
+                    out.height_m[k] = self.height_m[o];
+                    out.eligibility[k] = self.eligibility[o];
+                    out.surface[k] = self.surface[o];
+                }
+            }
+        }
+        // The strips that enter, each made over its own frame.
+        for (first, size) in frame.entering_strips(shift) {
+            let strip = make(frame.sub_grid(first, size));
+            let (first, size) = (first.as_ivec2(), size.as_ivec2());
+            for z in 0..size.y {
+                for x in 0..size.x {
+                    let (k, o) = (index(first.x + x, first.y + z), (x + size.x * z) as usize);
+                    out.height_m[k] = strip.height_m[o];
+                    out.eligibility[k] = strip.eligibility[o];
+                    out.surface[k] = strip
+                        .surface
+                        .get(o)
+                        .copied()
+                        .unwrap_or_else(|| Surface::from_eligibility(strip.eligibility[o]));
+                }
+            }
+        }
+        out
+    }
+
     /// Checks the frame, sizes and values.
     pub fn validate(&self) -> Result<(), BackendError> {
         self.frame.validate("ground.frame")?;

@@ -14,6 +14,7 @@
 
 use glam::{Vec2, Vec3};
 use precip_cover::{GridFrame, Surface};
+use rayon::prelude::*;
 
 use crate::particles::ground::GroundMap;
 use crate::scene::terrain::Terrain;
@@ -112,20 +113,28 @@ impl GroundMap {
         let mut map = Self::top_down(scene.meshes.iter(), frame, f32::NEG_INFINITY, None);
         let cell = frame.cell_m();
         let nx = frame.texels.x as usize;
-        for (k, h) in map.height_m.iter_mut().enumerate() {
-            let centre =
-                frame.origin_m + (Vec2::new((k % nx) as f32, (k / nx) as f32) + 0.5) * cell;
-            match terrain.height_at(centre) {
-                Some(t) if t > *h => {
-                    let normal = terrain.normal_at(centre);
-                    *h = t;
-                    map.eligibility[k] = terrain.eligibility_at(centre, normal);
-                    map.surface[k] = terrain.surface_at(centre, normal);
+        // Each texel on its own, in parallel (a 1024² map is a million terrain
+        // lookups: made at configure and again at each move of a grid that follows
+        // the camera).
+        map.height_m
+            .par_iter_mut()
+            .zip(map.eligibility.par_iter_mut())
+            .zip(map.surface.par_iter_mut())
+            .enumerate()
+            .for_each(|(k, ((h, eligibility), surface))| {
+                let centre =
+                    frame.origin_m + (Vec2::new((k % nx) as f32, (k / nx) as f32) + 0.5) * cell;
+                match terrain.height_at(centre) {
+                    Some(t) if t > *h => {
+                        let normal = terrain.normal_at(centre);
+                        *h = t;
+                        *eligibility = terrain.eligibility_at(centre, normal);
+                        *surface = terrain.surface_at(centre, normal);
+                    }
+                    _ if !h.is_finite() => *h = floor,
+                    _ => {}
                 }
-                _ if !h.is_finite() => *h = floor,
-                _ => {}
-            }
-        }
+            });
         map
     }
 

@@ -465,6 +465,11 @@ fn bad_command_lines_are_refused_naming_the_value_and_what_is_allowed_once() {
         scale.contains("--time-scale") && scale.contains("0 to 2"),
         "{scale}"
     );
+    let side = run(&["--grid-side", "0", "--frames", "1"]);
+    assert!(
+        side.contains("--grid-side") && side.contains("1 to 100000 m"),
+        "{side}"
+    );
     // A wind out of range: its field and range, said once (the error chain no
     // longer repeats a cause its message already names).
     let dir = temp_dir("bad-wind");
@@ -536,6 +541,34 @@ fn a_terrain_with_a_land_cover_keeps_the_books_of_the_land_beyond_the_grid() {
         .find(|l| l.starts_with("beyond the grid ("))
         .unwrap_or_else(|| panic!("no far books in {text}"));
     assert!(far.contains("km² of terrain): water landed"), "{far}");
+    assert!(
+        text.lines().any(|l| l.starts_with("the whole terrain (")),
+        "{text}"
+    );
+    // With a grid side given, the cover grid follows a camera 300 m off the
+    // scene, the books still the whole terrain's.
+    let following = [
+        &terrain[..],
+        &[
+            "--grid-side",
+            "64",
+            "--camera=300,60,0",
+            "--look-at=340,0,0",
+        ],
+    ]
+    .concat();
+    let out = small_headless_run(2, &following, &dir);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let moved = text
+        .lines()
+        .find(|l| l.starts_with("the cover grid followed the camera: 1 moves"))
+        .unwrap_or_else(|| panic!("the grid did not follow in {text}"));
+    assert!(moved.contains("x 30"), "{moved}");
     assert!(
         text.lines().any(|l| l.starts_with("the whole terrain (")),
         "{text}"

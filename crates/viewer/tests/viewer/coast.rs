@@ -25,6 +25,7 @@ fn setup(wind_mps: f32) -> precip_model::Setup {
         particle_budget: 2_000,
         seed: 5,
         texel_m: 1.0,
+        grid_side_m: None,
         cover_days_per_second: 1.0,
         weather,
         camera: Some(Camera {

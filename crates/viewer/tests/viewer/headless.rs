@@ -28,6 +28,7 @@ fn a_headless_run_over_the_demo_writes_frames_and_snow_settles_where_it_should()
         particle_budget: 30_000,
         seed: 3,
         texel_m: 0.5,
+        grid_side_m: None,
         cover_days_per_second: 1.0,
         weather: Weather {
             intensity_mm_per_h: 3.0,
