@@ -163,14 +163,22 @@ impl Hal {
         if !self.uploads.pending() {
             return Ok(());
         }
-        let copies = self.uploads.take(self.submitted);
+        let number = self.submitted;
+        let copies = self.uploads.take(number);
         let device = &self.device;
         // SAFETY: `cb` is recording outside a render pass (inside `submit`); the
         // copies' buffers live until the submission finishes (module docs of
         // `uploads`).
-        let in_flight = submit(device, |cb| unsafe { uploads::record(device, cb, &copies) })?;
-        self.track(in_flight);
-        Ok(())
+        match submit(device, |cb| unsafe { uploads::record(device, cb, &copies) }) {
+            Ok(in_flight) => {
+                self.track(in_flight);
+                Ok(())
+            }
+            Err(e) => {
+                self.uploads.restore(copies, number);
+                Err(e)
+            }
+        }
     }
 
     /// Records a submission in flight.
@@ -673,8 +681,9 @@ impl Gpu for Hal {
         let slot = self.timed % FRAMES_IN_FLIGHT;
         let first_query = slot as u32 * QUERY_COUNT;
         let mut written = 0;
-        let copies = self.uploads.take(self.submitted);
-        let in_flight = submit(device, |cb| {
+        let number = self.submitted;
+        let copies = self.uploads.take(number);
+        let submitted = submit(device, |cb| {
             // SAFETY: `cb` is recording outside a render pass (inside `submit`);
             // the copies' buffers live until the submission finishes (module docs
             // of `uploads`).
@@ -718,7 +727,14 @@ impl Gpu for Hal {
                 }
                 stamp(&mut written);
             }
-        })?;
+        });
+        let in_flight = match submitted {
+            Ok(f) => f,
+            Err(e) => {
+                self.uploads.restore(copies, number);
+                return Err(e);
+            }
+        };
         self.track(in_flight);
         if timed && let Some(t) = self.timestamps.as_mut() {
             t.written = (first_query, written);
@@ -748,7 +764,8 @@ impl Gpu for Hal {
             wait: waits.as_ref().map_or(&[], |w| w.as_slice()),
             signal: signals.as_ref().map_or(&[], |s| s.as_slice()),
         };
-        let copies = self.uploads.take(self.submitted);
+        let number = self.submitted;
+        let copies = self.uploads.take(number);
         let stamps = self.frame_stamps.as_ref();
         let hal = &*self;
         let submitted = submit_synced(&self.device, semaphores, |cb| {
@@ -764,6 +781,7 @@ impl Gpu for Hal {
             Ok(f) => f,
             Err(e) => {
                 destroy_framebuffers(&self.device, &begins);
+                self.uploads.restore(copies, number);
                 return Err(e);
             }
         };

@@ -7,8 +7,9 @@
 //! submission, behind a barrier from everything submitted before and ahead of one
 //! to everything after: the host never waits for the device to write a buffer, so
 //! the frames in flight keep their overlap, and the staging buffers are reused —
-//! a staging buffer is written until full, then carried by a submission, and free
-//! again once that submission has finished. One over [`KEPT_STAGING_BYTES`] (a
+//! a staging buffer takes writes until the next submission carries it (a new one
+//! is opened when it is full), and is free again once that submission has
+//! finished; a submission that fails gives its copies back for the next. One over [`KEPT_STAGING_BYTES`] (a
 //! write of an unusual size) is freed instead of kept, so the memory held stays
 //! that of the steady frames' writes.
 //!
@@ -118,6 +119,19 @@ impl Uploads {
             }
         }
         std::mem::take(&mut self.copies)
+    }
+
+    /// Gives back the copies `take` handed to submission `submission` when it was
+    /// not submitted (an error): they wait for the next one, before any written
+    /// since, and their staging buffers take writes again.
+    pub fn restore(&mut self, copies: Vec<Copy>, submission: u64) {
+        for s in &mut self.stagings {
+            if s.stage == Stage::Carried(submission) {
+                s.stage = Stage::Open;
+            }
+        }
+        let later = std::mem::replace(&mut self.copies, copies);
+        self.copies.extend(later);
     }
 
     /// Frees the staging buffers of finished submissions (`completed` have

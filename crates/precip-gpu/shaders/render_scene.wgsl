@@ -303,6 +303,25 @@ const FAR_ROW_FLOATS: u32 = 8u;
 // The far texels' masks (Rust: FarCover's texels, at their middle).
 const FAR_MASK: f32 = 0.5;
 
+// The share of the cover grid's shorter side over which, inside its edge, its
+// cover gives way to the far cover's (Rust: precip_model::host::GRID_BLEND_SHARE).
+const GRID_BLEND_SHARE: f32 = 0.0625;
+
+// How much of the grid's cover shows at (x, z) against the far cover's: 1 inside
+// the grid beyond GRID_BLEND_SHARE of its side from its edge, smoothly to 0 at the
+// edge, 0 off it. Rust twin: precip_model::host::grid_blend.
+fn grid_blend(grid: GridFrame, xz_m: vec2<f32>) -> f32 {
+    let band = GRID_BLEND_SHARE * min(grid.size_m.x, grid.size_m.y);
+    let lo = xz_m - grid.origin_m;
+    let hi = grid.origin_m + grid.size_m - xz_m;
+    let inside = min(min(lo.x, lo.y), min(hi.x, hi.y));
+    if (!(inside > 0.0)) {
+        return 0.0;
+    }
+    let t = min(inside / band, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
 // Row `row` (0: depth, SWE, peak SWE, wetness; 1: age, puddle ratio, dust, the
 // cell's mean height) of slot `slot`'s texel in far cell `cell`.
 fn far_row(cell: vec2<u32>, slot: u32, row: u32) -> vec4<f32> {
@@ -384,21 +403,28 @@ fn far_depth_mm(c: FarCells, slot: u32, height_m: f32) -> f32 {
 fn cover_at(p_m: vec3<f32>) -> CoverTexel {
     let xz_m = p_m.xz;
     let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
-    // Off the grid, the cover beyond it at its place (far_cover_row).
-    var a: vec4<f32>;
-    var b: vec4<f32>;
-    var c: vec4<f32>;
-    if (grid_texel_index(params.cover, xz_m) >= 0) {
+    // On the grid its textures, off it the cover beyond it at its place
+    // (far_cover_row), and inside its edge the one giving way to the other
+    // (grid_blend): a grid that differs from the land round it (its drifts, its
+    // particles' snow) shows no seam.
+    let w = grid_blend(params.cover, xz_m);
+    var a = vec4<f32>(0.0);
+    var b = vec4<f32>(0.0);
+    var c = vec4<f32>(0.0);
+    if (w > 0.0) {
         a = textureSampleLevel(cover_a, cover_sampler, uv, 0.0);
         b = textureSampleLevel(cover_b, cover_sampler, uv, 0.0);
         c = textureSampleLevel(cover_c, cover_sampler, uv, 0.0);
-    } else {
+    }
+    if (w < 1.0) {
         // The far texel's rows as the grid's textures hold a texel's.
         let slot = min(far_cover_slot, FAR_SLOTS - 1u);
         let far = far_cover_rows(far_cells(xz_m), slot, p_m.y);
-        a = far.a;
-        b = vec4<f32>(FAR_MASK, FAR_MASK, far.b.x, far.b.y);
-        c = vec4<f32>(far.b.z, surface_snow_roughness_m(u32(FAR_SLOT_SURFACES[slot])), 0.0, 0.0);
+        let fb = vec4<f32>(FAR_MASK, FAR_MASK, far.b.x, far.b.y);
+        let fc = vec4<f32>(far.b.z, surface_snow_roughness_m(u32(FAR_SLOT_SURFACES[slot])), 0.0, 0.0);
+        a = mix(far.a, a, w);
+        b = mix(fb, b, w);
+        c = mix(fc, c, w);
     }
     var t: CoverTexel;
     t.dust_kg_m2 = c.x;
@@ -467,11 +493,14 @@ fn displaced(v: SceneVertex) -> vec3<f32> {
     let n = normalize(v.normal);
     // The depth alone (cover_at's first texture; off the grid the cover beyond it).
     let uv = (p.xz - params.cover.origin_m) / params.cover.size_m;
-    var depth_mm: f32;
-    if (grid_texel_index(params.cover, p.xz) >= 0) {
+    let w = grid_blend(params.cover, p.xz);
+    var depth_mm = 0.0;
+    if (w > 0.0) {
         depth_mm = textureSampleLevel(cover_a, cover_sampler, uv, 0.0).x;
-    } else {
-        depth_mm = far_depth_mm(far_cells(p.xz), min(far_cover_slot, FAR_SLOTS - 1u), p.y);
+    }
+    if (w < 1.0) {
+        let far_mm = far_depth_mm(far_cells(p.xz), min(far_cover_slot, FAR_SLOTS - 1u), p.y);
+        depth_mm = mix(far_mm, depth_mm, w);
     }
     p.y += depth_mm * 1.0e-3 * clamp(v.eligibility, 0.0, 1.0) * upward(n) * exposure(p, n);
     return p;

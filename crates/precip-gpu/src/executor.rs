@@ -477,10 +477,12 @@ impl<G: Gpu> Simulation<G> {
         kernels: &Kernels<G>,
         dt_s: f32,
     ) -> Result<(), BackendError> {
-        let steps = self.host.substeps(dt_s)?;
-        // The cover grid follows the camera over a terrain (host::cover_window).
+        let mut steps = self.host.substeps(dt_s)?;
+        // The cover grid follows the camera over a terrain (host::cover_window);
+        // the step's blocks then from the moved setup (its emitter, its floor).
         if let Some(shift) = self.host.cover_grid_move() {
             self.move_cover_grid(gpu, shift)?;
+            steps = self.host.substeps(dt_s)?;
         }
         let slots = u64::from(gpu.slots().max(1));
         let slot = (self.steps_submitted % slots) as u32;

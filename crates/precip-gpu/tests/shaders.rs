@@ -652,6 +652,10 @@ fn the_terrain_s_constants_are_their_rust_twins() {
         ),
         ("FAR_ROW_FLOATS", precip_model::host::FAR_ROW_FLOATS as f64),
         ("FAR_MASK", f64::from(precip_model::host::FAR_MASK)),
+        (
+            "GRID_BLEND_SHARE",
+            f64::from(precip_model::host::GRID_BLEND_SHARE),
+        ),
     ] {
         let wgsl = wgsl_constant(&module, name);
         assert!(

@@ -128,10 +128,12 @@ impl Backend for CpuBackend {
 
     fn step(&mut self, dt_s: f32) -> Result<(), BackendError> {
         let state = self.state_mut("step")?;
-        let steps = state.host.substeps(dt_s)?;
-        // The cover grid follows the camera over a terrain (host::cover_window).
+        let mut steps = state.host.substeps(dt_s)?;
+        // The cover grid follows the camera over a terrain (host::cover_window);
+        // the step's blocks then from the moved setup (its emitter, its floor).
         if let Some(shift) = state.host.cover_grid_move() {
             state.cover = state.host.move_cover_grid(shift, &state.cover)?;
+            steps = state.host.substeps(dt_s)?;
         }
         let (mut particle_ms, mut cover_ms) = (0.0, 0.0);
         for blocks in &steps.blocks {

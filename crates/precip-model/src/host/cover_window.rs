@@ -47,12 +47,33 @@ pub const MOVE_STEP_TEXELS: i32 = 8;
 /// (along x or z), past which the grid moves.
 pub const MOVE_AT_SIDE_SHARE: f32 = 0.25;
 
+/// The world emitter as configured over the configured ground map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct HomeEmitter {
+    model: Mat4,
+    /// Its height over the ground map's highest point, m.
+    clearance_m: f32,
+    /// Its height over the ground map's lowest point, m.
+    fall_m: f32,
+    life_time_s: f32,
+}
+
+/// The highest and lowest heights of `ground`, m.
+fn height_range_m(ground: &GroundMap) -> (f32, f32) {
+    ground
+        .height_m
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| {
+            (lo.min(h), hi.max(h))
+        })
+}
+
 /// Where the cover grid is, as offsets from where it was configured.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CoverWindow {
     ground: GridFrame,
     cover: GridFrame,
-    emitter: Option<Mat4>,
+    emitter: Option<HomeEmitter>,
     /// The terrain's corner and size (x, z), m; `None`: the grid never moves.
     terrain_m: Option<(Vec2, Vec2)>,
     shift: IVec2,
@@ -75,7 +96,16 @@ impl CoverWindow {
         Self {
             ground: setup.ground.frame,
             cover: setup.cover.frame,
-            emitter: setup.world_emitter.map(|e| e.emitter.model),
+            emitter: setup.world_emitter.map(|e| {
+                let (lo, hi) = height_range_m(&setup.ground);
+                let top = e.emitter.model.w_axis.y;
+                HomeEmitter {
+                    model: e.emitter.model,
+                    clearance_m: top - hi,
+                    fall_m: top - lo,
+                    life_time_s: e.emitter.life_time_s,
+                }
+            }),
             terrain_m,
             shift: IVec2::ZERO,
             moves: 0,
@@ -134,7 +164,22 @@ impl CoverWindow {
         );
         let home_centre = self.cover.origin_m + half;
         let step = MOVE_STEP_TEXELS as f32 * self.cover.cell_m();
-        let shift = ((target - home_centre) / step).round().as_ivec2() * MOVE_STEP_TEXELS;
+        // Whole tiles, rounded, then within the terrain where it is wider.
+        let mut tiles = ((target - home_centre) / step).round();
+        for axis in 0..2 {
+            if lo[axis] <= hi[axis] {
+                let least = ((lo[axis] - home_centre[axis]) / step[axis]).ceil();
+                let most = ((hi[axis] - home_centre[axis]) / step[axis]).floor();
+                if least <= most {
+                    tiles[axis] = tiles[axis].clamp(least, most);
+                }
+            }
+        }
+        // (Far beyond any terrain a float's tiles saturate, never overflow.)
+        let tiles = tiles
+            .clamp(Vec2::splat(-1.0e8), Vec2::splat(1.0e8))
+            .as_ivec2();
+        let shift = tiles * MOVE_STEP_TEXELS;
         (shift != self.shift).then_some(shift)
     }
 
@@ -157,8 +202,17 @@ impl CoverWindow {
             .ground
             .moved_to(ground, |f| GroundMap::of_prepared(scene, f));
         moved.cover.frame = cover;
+        // The emitter over the moved ground as it was over the configured one: as
+        // far over its highest point, its particles living long enough to fall
+        // to its lowest.
         if let (Some(e), Some(home)) = (moved.world_emitter.as_mut(), self.emitter) {
-            e.emitter.model = Mat4::from_translation(Vec3::new(offset.x, 0.0, offset.y)) * home;
+            let (lo, hi) = height_range_m(&moved.ground);
+            let top = hi + home.clearance_m;
+            let rise = top - home.model.w_axis.y;
+            e.emitter.model =
+                Mat4::from_translation(Vec3::new(offset.x, rise, offset.y)) * home.model;
+            e.emitter.life_time_s =
+                home.life_time_s * ((top - lo) / home.fall_m.max(1.0e-3)).max(1.0);
         }
         Some(moved)
     }

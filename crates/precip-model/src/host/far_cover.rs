@@ -71,6 +71,31 @@ pub const fn far_cover_slot(surface: Surface) -> usize {
     }
 }
 
+/// The share of the cover grid's shorter side over which, inside its edge, the
+/// grid's cover gives way to the far cover's ([`grid_blend`]). WGSL twin:
+/// `GRID_BLEND_SHARE`.
+pub const GRID_BLEND_SHARE: f32 = 1.0 / 16.0;
+
+/// How much of the grid's cover a fragment at world (x, z) shows against the far
+/// cover's: 1 inside `grid` beyond [`GRID_BLEND_SHARE`] of its shorter side from
+/// its edge, falling smoothly (`t²(3 − 2t)`) to 0 at the edge, 0 off it (and for
+/// a NaN). A grid whose cover differs from the land round it — its drifts, its
+/// particles' snow, a grid that follows the camera over a snowy land — shows no
+/// seam. WGSL twin: `grid_blend` (render_scene.wgsl).
+#[must_use]
+pub fn grid_blend(grid: &GridFrame, xz_m: Vec2) -> f32 {
+    let band = GRID_BLEND_SHARE * grid.size_m.min_element();
+    let inside = (xz_m - grid.origin_m)
+        .min(grid.origin_m + grid.size_m - xz_m)
+        .min_element();
+    // (glam's min passes a NaN over: the point is checked itself.)
+    if xz_m.is_nan() || inside.is_nan() || inside <= 0.0 {
+        return 0.0;
+    }
+    let t = (inside / band).min(1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
 /// Most cells along a side of the far cover (10 km of terrain: ~104 m cells).
 pub const FAR_CELLS_MAX: u32 = 96;
 
@@ -420,8 +445,9 @@ impl FarCover {
         }
     }
 
-    /// The texels changed outside a far step: their rows go to the GPU with the
-    /// next upload, into the region frames do not read (flipped once per upload).
+    /// The texels changed (a far step, a move of the grid): their rows go to the
+    /// GPU with the next upload, into the region frames do not read — flipped
+    /// once an upload, so a move and a far step in one step write one region.
     fn rows_changed(&mut self) {
         if !self.fresh {
             self.region ^= 1;
@@ -538,8 +564,7 @@ impl FarCover {
                     }
                 }
             });
-        self.region ^= 1;
-        self.fresh = true;
+        self.rows_changed();
     }
 
     /// The shading rows of every texel (cells row by row, [`FAR_COVER_SURFACES`]'
@@ -712,6 +737,27 @@ mod tests {
         far.move_site(1200.0);
         assert!((far.air_offset_c_at(Vec2::new(800.0, 0.0))).abs() < 1e-3);
         assert!(far.air_offset_c_at(at) > 5.0);
+    }
+
+    /// The grid's cover shows whole inside the band, none off the grid, half
+    /// half-way through the band, rising smoothly between.
+    #[test]
+    fn the_grid_gives_way_to_the_far_cover_over_a_band_inside_its_edge() {
+        let grid = GridFrame::centred(Vec2::ZERO, Vec2::new(64.0, 128.0), UVec2::splat(32));
+        let band = 64.0 * GRID_BLEND_SHARE;
+        assert!((grid_blend(&grid, Vec2::ZERO) - 1.0).abs() < 1e-6);
+        assert!((grid_blend(&grid, Vec2::new(32.0 - band, 0.0)) - 1.0).abs() < 1e-6);
+        assert!((grid_blend(&grid, Vec2::new(32.0 - 0.5 * band, 10.0)) - 0.5).abs() < 1e-5);
+        assert!(grid_blend(&grid, Vec2::new(0.0, 64.0 - 0.5 * band)) > 0.4);
+        assert!(grid_blend(&grid, Vec2::new(32.0, 0.0)).abs() < 1e-6);
+        assert!(grid_blend(&grid, Vec2::new(40.0, 0.0)).abs() < 1e-6);
+        assert!(grid_blend(&grid, Vec2::new(f32::NAN, 0.0)).abs() < 1e-6);
+        let mut last = 0.0;
+        for k in 0..=100 {
+            let w = grid_blend(&grid, Vec2::new(32.0 - band * k as f32 / 100.0, 0.0));
+            assert!(w >= last && (0.0..=1.0).contains(&w), "{k}: {w}");
+            last = w;
+        }
     }
 
     #[test]

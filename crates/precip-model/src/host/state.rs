@@ -175,6 +175,14 @@ impl HostState {
             far.move_site(site);
         }
         self.far_cover = far;
+        // What the texels brought in may hold (a colder cell's snow under rain
+        // here, the land beyond's showers' water): the kernels that move them run.
+        let holds = |f: fn(&precip_cover::CoverTexel) -> bool| moved.texels.iter().any(f);
+        self.activity = Activity {
+            snow_may_lie: self.activity.snow_may_lie || holds(|t| t.swe_mm > 0.0),
+            water_may_stand: self.activity.water_may_stand
+                || holds(|t| t.standing_mm > 0.0 || t.film_mm > 0.0 || t.liquid_mm > 0.0),
+        };
         self.step_template = setup.step_params(&self.weather, Vec3::ZERO, MAX_SUBSTEP_S, 0.0);
         self.pools = setup.pool_drawing(&self.weather, Vec3::ZERO);
         self.setup = setup;

@@ -50,7 +50,8 @@ impl GroundMap {
         let n = self.frame.texels.as_ivec2();
         let whole = frame.texels != self.frame.texels
             || frame.size_m != self.frame.size_m
-            || (moved - shift).abs().max_element() > 1.0e-3
+            // (Origins kilometres out round to a thousandth of a texel.)
+            || (moved - shift).abs().max_element() > 0.05
             || shift.x.abs() >= n.x as f32
             || shift.y.abs() >= n.y as f32
             || self.surface.len() != self.height_m.len();
