@@ -307,6 +307,20 @@ impl Gpu for Hal {
         self.device.limits()
     }
 
+    fn binding_limits(&self) -> precip_gpu::binding_limits::BindingLimits {
+        let limits = &self.device.properties.limits;
+        precip_gpu::binding_limits::BindingLimits {
+            bind_groups: limits.max_bound_descriptor_sets,
+            storage_buffers_per_stage: limits.max_per_stage_descriptor_storage_buffers,
+            uniform_buffers_per_stage: limits.max_per_stage_descriptor_uniform_buffers,
+            sampled_textures_per_stage: limits.max_per_stage_descriptor_sampled_images,
+            samplers_per_stage: limits.max_per_stage_descriptor_samplers,
+            storage_textures_per_stage: limits.max_per_stage_descriptor_storage_images,
+            dynamic_uniform_buffers: limits.max_descriptor_set_uniform_buffers_dynamic,
+            dynamic_storage_buffers: limits.max_descriptor_set_storage_buffers_dynamic,
+        }
+    }
+
     fn uniform_alignment(&self) -> u64 {
         let limits = &self.device.properties.limits;
         limits

@@ -6,6 +6,7 @@
 use std::collections::HashMap;
 
 use precip_gpu::bind_groups::{BindingKind, GroupLayout};
+use precip_gpu::binding_limits::BindingLimits;
 use precip_gpu::frame::{Draw, RenderPassRecipe};
 use precip_gpu::frame_resources::{Sampler, TexelFormat, TextureUsage};
 use precip_gpu::gpu::{BindingResource, Dispatch, FrameWork, Gpu, Target, TextureDesc};
@@ -175,6 +176,20 @@ impl Gpu for Hal {
         self.gpu.limits()
     }
 
+    fn binding_limits(&self) -> BindingLimits {
+        let limits = self.gpu.device.limits();
+        BindingLimits {
+            bind_groups: limits.max_bind_groups,
+            storage_buffers_per_stage: limits.max_storage_buffers_per_shader_stage,
+            uniform_buffers_per_stage: limits.max_uniform_buffers_per_shader_stage,
+            sampled_textures_per_stage: limits.max_sampled_textures_per_shader_stage,
+            samplers_per_stage: limits.max_samplers_per_shader_stage,
+            storage_textures_per_stage: limits.max_storage_textures_per_shader_stage,
+            dynamic_uniform_buffers: limits.max_dynamic_uniform_buffers_per_pipeline_layout,
+            dynamic_storage_buffers: limits.max_dynamic_storage_buffers_per_pipeline_layout,
+        }
+    }
+
     fn uniform_alignment(&self) -> u64 {
         let limits = self.gpu.device.limits();
         u64::from(
@@ -293,9 +308,11 @@ impl Gpu for Hal {
         entry_point: &'static str,
         layouts: &[&wgpu::BindGroupLayout],
     ) -> Result<wgpu::ComputePipeline, BackendError> {
-        let layout = self.pipeline_layout(entry_point, layouts);
         let module = self.module(program).clone();
+        // The layout inside the scope too: one over the device's limits is a
+        // validation error there, not a panic in wgpu's default handler.
         scoped(&self.gpu, entry_point, || {
+            let layout = self.pipeline_layout(entry_point, layouts);
             self.gpu
                 .device
                 .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -392,9 +409,9 @@ impl Gpu for Hal {
         layouts: &[&wgpu::BindGroupLayout],
         colour: Option<wgpu::TextureFormat>,
     ) -> Result<wgpu::RenderPipeline, BackendError> {
-        let layout = self.pipeline_layout(draw.entry_points.0, layouts);
         let module = self.module(Program::Render).clone();
         scoped(&self.gpu, draw.entry_points.0, || {
+            let layout = self.pipeline_layout(draw.entry_points.0, layouts);
             draw_pipeline(&self.gpu.device, &module, &layout, draw, colour)
         })
     }

@@ -54,6 +54,7 @@ pub struct GpuBackend<G: Gpu> {
 impl<G: Gpu> GpuBackend<G> {
     /// The backend over `gpu`, its compute programs compiled.
     pub fn new(mut gpu: G) -> Result<Self, BackendError> {
+        gpu.binding_limits().admit(&gpu.describe())?;
         let kernels = Kernels::new(&mut gpu)?;
         Ok(Self {
             kernels: Some(kernels),

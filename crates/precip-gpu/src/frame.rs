@@ -976,9 +976,13 @@ impl FrameHost {
             params.mirror_view_proj = m.view_proj;
             params.mirror = glam::Vec4::new(m.level_m, 1.0, 0.0, 0.0);
         }
-        let shadow_redrawn =
-            self.shadow_cache
-                .for_frame(setup, host.weather(), &mut params, host.time_s());
+        let shadow_redrawn = self.shadow_cache.for_frame(
+            setup,
+            host.weather(),
+            &mut params,
+            host.time_s(),
+            host.cover_window().moves(),
+        );
         let wind = host.weather().wind.mean_wind_mps;
         let shore = self
             .shore

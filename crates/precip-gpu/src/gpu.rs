@@ -218,6 +218,10 @@ pub trait Gpu {
     /// What the device allows (checked at configure).
     fn limits(&self) -> precip_model::DeviceLimits;
 
+    /// What the device lets a pipeline bind (checked when a backend is made on
+    /// it, [`crate::binding_limits`]).
+    fn binding_limits(&self) -> crate::binding_limits::BindingLimits;
+
     /// Bytes a dynamic offset (uniform or storage) is a multiple of.
     fn uniform_alignment(&self) -> u64;
 

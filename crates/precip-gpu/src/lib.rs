@@ -9,7 +9,8 @@
 //!   `precip_cover::wgsl`) and this crate's GPU-only files (`shaders/`: culling,
 //!   splatting, the render passes, the cover's textures, test probes).
 //! - [`bind_groups`]: every program's bind-group layouts as tables, from which each
-//!   backend makes its layouts.
+//!   backend makes its layouts; [`binding_limits`]: what they need of a device,
+//!   checked when a backend is made on one.
 //! - [`recipe`]: the kernels of configure (`INIT_PASS`), of one sub-step
 //!   (`SUBSTEP_PASSES`) and of the frame's compute passes, what each is dispatched
 //!   over, the bindings' numbers, the buffers' byte sizes and the blocks the kernels
@@ -51,6 +52,7 @@
 
 pub mod backend;
 pub mod bind_groups;
+pub mod binding_limits;
 pub mod executor;
 pub mod frame;
 pub mod frame_resources;

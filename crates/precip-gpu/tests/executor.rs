@@ -92,6 +92,9 @@ impl Gpu for Recording {
             max_texture_side_px: 8192,
         }
     }
+    fn binding_limits(&self) -> precip_gpu::binding_limits::BindingLimits {
+        precip_gpu::binding_limits::BindingLimits::WEBGPU_DEFAULT
+    }
     fn uniform_alignment(&self) -> u64 {
         256
     }

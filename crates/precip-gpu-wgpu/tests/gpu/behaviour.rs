@@ -199,26 +199,37 @@ fn runs_on_a_device_the_caller_owns() {
 /// storage buffers a shader stage, 4 bind groups…), not the adapter's larger ones
 /// precip asks for on its own: every kernel and every draw pipeline (made at the
 /// first frame, whatever the scene) fits them, and a frame is drawn.
-#[test]
-fn runs_on_a_device_opened_with_webgpu_s_default_limits() {
+/// Every adapter, for a test that opens its own devices; none (a skip, or a
+/// failure under PRECIP_REQUIRE_GPU=1, with its reason) where there is none.
+fn adapters_for(test: &str) -> Vec<wgpu::Adapter> {
     let found = precip_gpu_wgpu::adapters();
     if found.is_empty() {
-        // `gpu_backends` skips (or fails under PRECIP_REQUIRE_GPU=1) with its reason.
-        assert!(common::gpu_backends("WebGPU's default limits").is_empty());
-        return;
+        assert!(common::gpu_backends(test).is_empty());
     }
-    for adapter in &found {
+    found
+}
+
+/// A device opened on `adapter` with `limits` (and its timestamps), as an
+/// engine opens its own.
+fn an_engine_s_device(adapter: &wgpu::Adapter, limits: wgpu::Limits) -> GpuDevice {
+    let info = adapter.get_info();
+    let descriptor = wgpu::DeviceDescriptor {
+        label: Some("an engine's device"),
+        required_features: adapter.features()
+            & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_PASSES),
+        required_limits: limits,
+        ..Default::default()
+    };
+    let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
+        .unwrap_or_else(|e| panic!("{}: an engine's device: {e}", info.name));
+    GpuDevice::from_existing(device, queue, info)
+}
+
+#[test]
+fn runs_on_a_device_opened_with_webgpu_s_default_limits() {
+    for adapter in &adapters_for("WebGPU's default limits") {
         let info = adapter.get_info();
-        let descriptor = wgpu::DeviceDescriptor {
-            label: Some("an engine's device"),
-            required_features: adapter.features()
-                & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_PASSES),
-            required_limits: wgpu::Limits::default(),
-            ..Default::default()
-        };
-        let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
-            .unwrap_or_else(|e| panic!("{}: a device with the default limits: {e}", info.name));
-        let shared = GpuDevice::from_existing(device, queue, info.clone());
+        let shared = an_engine_s_device(adapter, wgpu::Limits::default());
         let mut backend = WgpuBackend::with_device(shared).unwrap_or_else(|e| {
             panic!("{}: the kernels within the default limits: {e}", info.name)
         });
@@ -233,5 +244,40 @@ fn runs_on_a_device_opened_with_webgpu_s_default_limits() {
             .unwrap_or_else(|e| panic!("{}: a frame within the default limits: {e}", info.name));
         let image = backend.read_image().expect("the frame reads back");
         assert_eq!((image.width_px, image.height_px), (64, 48), "{}", info.name);
+    }
+}
+
+/// A device the caller opened with fewer storage buffers a stage than precip's
+/// passes bind is refused with a typed error that names the limit, not a panic
+/// inside wgpu.
+#[test]
+fn a_device_below_the_needed_limits_is_refused_with_a_typed_error() {
+    for adapter in &adapters_for("too small limits") {
+        let info = adapter.get_info();
+        let shared = an_engine_s_device(
+            adapter,
+            wgpu::Limits {
+                max_storage_buffers_per_shader_stage: 7,
+                ..wgpu::Limits::default()
+            },
+        );
+        let view = precip_model::View {
+            camera: precip_model::Camera::default(),
+            width_px: 64,
+            height_px: 48,
+        };
+        let error = WgpuBackend::with_device(shared)
+            .and_then(|mut backend| {
+                backend.configure(&small())?;
+                backend.step(0.05)?;
+                backend.render(&view)
+            })
+            .expect_err("a device one storage buffer short is refused");
+        let message = error.to_string();
+        assert!(
+            message.contains("max_storage_buffers_per_shader_stage is 7"),
+            "{}: {message}",
+            info.name
+        );
     }
 }

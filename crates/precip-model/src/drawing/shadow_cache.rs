@@ -80,6 +80,9 @@ struct Drawn {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ShadowCache {
     drawn: Option<Drawn>,
+    /// The cover grid's moves when the map was last decided
+    /// ([`crate::host::CoverWindow::moves`]).
+    cover_moves: u32,
 }
 
 impl ShadowCache {
@@ -135,14 +138,23 @@ impl ShadowCache {
     /// [`ShadowCache::decide`] for a frame of `setup` under `weather` at simulated
     /// time `time_s` (the cover's time is that times its time scale), drawn with
     /// `params`, keeping a stale map for `setup.render.shadow_refresh_frames`;
-    /// `params.sun_view_proj` becomes the projection of the map in use.
+    /// `params.sun_view_proj` becomes the projection of the map in use. A cover
+    /// grid that moved since the last frame (`cover_moves`, the grid's count,
+    /// [`crate::host::CoverWindow::moves`]) redraws the map at once: the texels
+    /// that entered were lent the far cover's snow, those that left are drawn from
+    /// it, so the displaced surface changed along the grid's edges.
     pub fn for_frame(
         &mut self,
         setup: &Setup,
         weather: &Weather,
         params: &mut RenderParams,
         time_s: f64,
+        cover_moves: u32,
     ) -> bool {
+        if cover_moves != self.cover_moves {
+            self.cover_moves = cover_moves;
+            self.invalidate();
+        }
         let (draw, sun_view_proj) = self.decide(
             params.sun_view_proj,
             setup.render.snow_displacement,
@@ -252,6 +264,29 @@ mod tests {
             ..cold
         };
         assert!(snow_surface_speed_bound_mps(&thaw, &cover) > 0.0);
+    }
+
+    /// A move of the cover grid redraws the map on the next frame, however many
+    /// frames a stale map may be kept; frames after it keep it again.
+    #[test]
+    fn a_move_of_the_cover_grid_redraws_the_map_at_once() {
+        let mut setup = Setup::over_flat_ground(16.0, 16, 10.0, 100);
+        setup.render.shadow_refresh_frames = 8;
+        let weather = Weather::default();
+        let params = RenderParams {
+            sun_view_proj: Mat4::from_scale(glam::Vec3::splat(0.1)),
+            ..bytemuck::Zeroable::zeroed()
+        };
+        let mut cache = ShadowCache::default();
+        let frame = |cache: &mut ShadowCache, moves: u32, t: f64| {
+            let mut p = params;
+            cache.for_frame(&setup, &weather, &mut p, t, moves)
+        };
+        assert!(frame(&mut cache, 0, 0.0), "the first frame");
+        assert!(!frame(&mut cache, 0, 0.01), "nothing changed");
+        assert!(frame(&mut cache, 1, 0.02), "the grid moved");
+        assert!(!frame(&mut cache, 1, 0.03), "it stays");
+        assert!(frame(&mut cache, 3, 0.04), "it moved twice more");
     }
 
     #[test]
