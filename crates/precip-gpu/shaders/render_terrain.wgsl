@@ -24,9 +24,11 @@ const TERRAIN_EDGE_ON: f32 = 0.001;
 // Rows of the terrain's colour ramp (Rust: precip_model::scene::land_cover::LAND_CLASSES).
 const LAND_CLASSES: f32 = 12.0;
 
-// The land class at world (x, z): its pixel of the terrain's land cover, which spans
-// the terrain's extent (0, no data, without one or off it). Rust twin:
-// precip_model::scene::LandCover::class_at.
+// The land class drawn at world (x, z) of the terrain's land cover, which spans the
+// terrain's extent (0, no data, without one or off it): of the four pixels round
+// the point, the class with the most bilinear weight (land_class_pick), so borders
+// between classes run smoothly, not along the pixels' edges. Rust twin:
+// precip_model::scene::LandCover::drawn_class_at.
 fn land_class_at(xz_m: vec2<f32>) -> u32 {
     if (params.land_cover.w == 0u) {
         return 0u;
@@ -36,8 +38,20 @@ fn land_class_at(xz_m: vec2<f32>) -> u32 {
         return 0u;
     }
     let n = params.land_cover.xy;
-    let p = min(vec2<u32>(uv * vec2<f32>(n)), n - 1u);
-    return min(u32(ground_height[params.land_cover.z + p.x + n.x * p.y]), 11u);
+    let t = uv * vec2<f32>(n) - 0.5;
+    let base = floor(t);
+    let last = vec2<i32>(n) - 1;
+    let p0 = clamp(vec2<i32>(base), vec2<i32>(0), last);
+    let p1 = clamp(vec2<i32>(base) + 1, vec2<i32>(0), last);
+    let row0 = params.land_cover.z + u32(p0.y) * n.x;
+    let row1 = params.land_cover.z + u32(p1.y) * n.x;
+    let corners = vec4<u32>(
+        u32(ground_height[row0 + u32(p0.x)]),
+        u32(ground_height[row0 + u32(p1.x)]),
+        u32(ground_height[row1 + u32(p0.x)]),
+        u32(ground_height[row1 + u32(p1.x)]),
+    );
+    return min(land_class_pick(corners, t - base), 11u);
 }
 
 // The far cover's texel for land class `land` where the normal's up component is

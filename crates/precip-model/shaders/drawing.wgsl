@@ -614,3 +614,30 @@ fn cloud_shadow_map_weight(uv: vec2<f32>) -> f32 {
 fn cloud_shadow_map_point_m(origin_m: vec2<f32>, texel: vec2<u32>) -> vec2<f32> {
     return origin_m + (vec2<f32>(texel) + 0.5) * (CLOUD_SHADOW_MAP_SPAN_M / f32(CLOUD_SHADOW_MAP_PX));
 }
+
+// land_class_pick (precip_model::drawing::land_borders): the class of the four
+// pixels' `corners` (x0z0, x1z0, x0z1, x1z1) with the largest sum of bilinear
+// weights at fraction `f` between their centres; the first corner's on a tie.
+fn land_class_pick(corners: vec4<u32>, f: vec2<f32>) -> u32 {
+    let w = array<f32, 4>(
+        (1.0 - f.x) * (1.0 - f.y),
+        f.x * (1.0 - f.y),
+        (1.0 - f.x) * f.y,
+        f.x * f.y,
+    );
+    var best = 0u;
+    var best_weight = -1.0;
+    for (var k = 0u; k < 4u; k++) {
+        var weight = 0.0;
+        for (var j = 0u; j < 4u; j++) {
+            if (corners[j] == corners[k]) {
+                weight += w[j];
+            }
+        }
+        if (weight > best_weight) {
+            best = k;
+            best_weight = weight;
+        }
+    }
+    return corners[best];
+}

@@ -11,6 +11,7 @@ use precip_model::drawing::clouds::{
     cloud_fresh_pixel, cloud_history_clamp_weight, cloud_history_clamped, cloud_history_uv,
     cloud_map_uv, cloud_march_slot,
 };
+use precip_model::drawing::land_borders::land_class_pick;
 use precip_model::drawing::multiplicity::drawn_weight;
 use precip_model::drawing::unresolved_streaks::{UnresolvedStreaks, streak_grain, streak_h};
 use precip_model::drawing::{
@@ -290,6 +291,14 @@ fn wgsl_drawing_equals_rust_drawing() {
                     && (g[1] - variance).abs() <= 1e-4 * (1.0 + variance.abs())
                     && ((g[2] - g_value).abs() <= 1e-5 || near_edge),
                 "{name}: input {i} unresolved streaks: WGSL {g:?} vs Rust {h} {variance} {g_value}"
+            );
+            let k = i as u32;
+            let corners = [k % 3, (k / 3) % 3, (k / 9) % 3, (k / 27) % 3];
+            let f = (glam::Vec2::new(centre.x, centre.z).abs() * 0.37).fract();
+            assert_eq!(
+                g[3] as u32,
+                land_class_pick(corners, f),
+                "{name}: input {i} land class among {corners:?} at {f}"
             );
             for (k, (want, uv)) in streak.iter().enumerate() {
                 let g = got[26 * i + 13 + k];

@@ -19,6 +19,7 @@ mod drop_oscillation;
 pub mod far_ground;
 pub mod fog_layer;
 pub mod frame_rate_control;
+pub mod land_borders;
 pub mod multiplicity;
 pub mod render;
 pub mod sea;

@@ -264,8 +264,8 @@ impl LandCover {
         self.pixels
     }
 
-    /// The class at `uv` of the extent (`[0, 1)²`; outside it, no data).
-    /// WGSL twin: `land_class_at` (render_terrain.wgsl).
+    /// The class at `uv` of the extent (`[0, 1)²`; outside it, no data): its
+    /// pixel's (what the ground map and the far cover classify by).
     #[must_use]
     pub fn class_at(&self, uv: Vec2) -> LandClass {
         if !(uv.x >= 0.0 && uv.y >= 0.0 && uv.x < 1.0 && uv.y < 1.0) {
@@ -273,6 +273,28 @@ impl LandCover {
         }
         let p = (uv * self.pixels.as_vec2()).as_uvec2().min(self.pixels - 1);
         self.classes[(p.x + self.pixels.x * p.y) as usize]
+    }
+
+    /// The class drawn at `uv` of the extent (`[0, 1)²`; outside it, no data): of
+    /// the four pixels round it, the class with the most bilinear weight
+    /// ([`crate::drawing::land_borders`]), so borders run smoothly across the
+    /// pixels. At a pixel's centre it is the pixel's class.
+    /// WGSL twin: `land_class_at` (render_terrain.wgsl), over the GPU's copy.
+    #[must_use]
+    pub fn drawn_class_at(&self, uv: Vec2) -> LandClass {
+        if !(uv.x >= 0.0 && uv.y >= 0.0 && uv.x < 1.0 && uv.y < 1.0) {
+            return LandClass::NoData;
+        }
+        let t = uv * self.pixels.as_vec2() - 0.5;
+        let base = t.floor();
+        let last = self.pixels.as_ivec2() - 1;
+        let class = |dx: i32, dz: i32| {
+            let p = (base.as_ivec2() + glam::IVec2::new(dx, dz)).clamp(glam::IVec2::ZERO, last);
+            self.classes[(p.x + self.pixels.x as i32 * p.y) as usize] as u32
+        };
+        let corners = [class(0, 0), class(1, 0), class(0, 1), class(1, 1)];
+        let drawn = crate::drawing::land_borders::land_class_pick(corners, t - base);
+        LandClass::ALL[drawn as usize]
     }
 
     /// How many of each class, in [`LandClass::ALL`] order.
@@ -393,6 +415,62 @@ mod tests {
         let counts = lc.class_counts();
         assert_eq!(counts.iter().sum::<usize>(), 8);
         assert_eq!(counts[LandClass::NoData as usize], 0);
+    }
+
+    /// The drawn class is each pixel's at its centre and off the raster's edge
+    /// pixels, and a staircase of pixels is drawn with a diagonal border: along a
+    /// row through the steps' corners the border moves by as much as the row.
+    #[test]
+    fn the_drawn_class_is_the_pixel_s_at_its_centre_and_smooth_between() {
+        let codes = [10, 20, 30, 40, 50, 60, 70, 80];
+        let lc = LandCover::from_worldcover(UVec2::new(4, 2), &codes).expect("valid");
+        for z in 0..2 {
+            for x in 0..4 {
+                let uv = (Vec2::new(x as f32, z as f32) + 0.5) / Vec2::new(4.0, 2.0);
+                assert_eq!(lc.drawn_class_at(uv), lc.class_at(uv), "pixel {x} {z}");
+            }
+        }
+        assert_eq!(lc.drawn_class_at(Vec2::new(0.001, 0.001)), LandClass::Trees);
+        assert_eq!(lc.drawn_class_at(Vec2::new(0.999, 0.999)), LandClass::Water);
+        assert_eq!(lc.drawn_class_at(Vec2::new(0.5, 1.0)), LandClass::NoData);
+        assert_eq!(lc.drawn_class_at(Vec2::NAN), LandClass::NoData);
+        // Trees (10) below a staircase, ice (70) above it, 8 × 8 pixels.
+        let n = 8;
+        let stairs: Vec<u8> = (0..n * n)
+            .map(|k| if k % n > k / n { 70 } else { 10 })
+            .collect();
+        let lc = LandCover::from_worldcover(UVec2::splat(n as u32), &stairs).expect("valid");
+        // Where along x, on row z (uv), the ice begins: nearest pixel jumps a
+        // whole pixel every pixel of z; the drawn border moves with z.
+        let border = |z: f32, at: fn(&LandCover, Vec2) -> LandClass| {
+            (0..=800)
+                .map(|k| k as f32 / 800.0 * 0.999)
+                .find(|&x| at(&lc, Vec2::new(x, z)) == LandClass::SnowAndIce)
+                .expect("ice along the row")
+        };
+        let rows: Vec<f32> = (0..=10)
+            .map(|k| 0.3 + 0.1 * k as f32 / 10.0 * 1.25)
+            .collect();
+        let nearest: Vec<f32> = rows
+            .iter()
+            .map(|&z| border(z, LandCover::class_at))
+            .collect();
+        let drawn: Vec<f32> = rows
+            .iter()
+            .map(|&z| border(z, LandCover::drawn_class_at))
+            .collect();
+        let distinct = |v: &[f32]| {
+            let mut d = v.to_vec();
+            d.dedup_by(|a, b| (*a - *b).abs() < 1e-6);
+            d.len()
+        };
+        // Over 1.25 pixels of z, the nearest pixel's border takes 2 places, the
+        // drawn one more than 5 (it slides along the diagonal).
+        assert!(distinct(&nearest) <= 2, "{nearest:?}");
+        assert!(distinct(&drawn) > 5, "{drawn:?}");
+        for (z, x) in rows.iter().zip(&drawn) {
+            assert!((x - z).abs() < 1.0 / n as f32, "row {z}: border at {x}");
+        }
     }
 
     #[test]
