@@ -39,7 +39,7 @@ struct ProbeDrawing {
 // camera.xz; 0), then (the streaks' H at 4·side, the unresolved ink's variance of a
 // grain (tumble, 100·a + 1, h, 5) out to |centre.x| + 1, the grain at the pixel
 // 10·centre.xz along the unit (velocity.xy) streaks 20·side + 1 long in exposure i, the
-// land class drawn among probe_land_corners(i) at fract(0.37·|centre.xz|)).
+// land class drawn among probe_land_corners(i) at fract(|centre.xz|/4)).
 @group(0) @binding(1) var<storage, read_write> probe_drawing_out: array<vec4<f32>>;
 
 // A projection-like matrix from a point: clip = (p.x + c.x/100, p.y + c.y/100, p.z, −p.z)
@@ -123,7 +123,7 @@ fn probe_drawing(@builtin(global_invocation_id) id: vec3<u32>) {
         streak_h(4.0 * q.side_m),
         unresolved_streak_variance(vec4<f32>(q.tumble, 100.0 * q.a_m + 1.0, q.h_m, 5.0), abs(q.centre_m.x) + 1.0),
         streak_grain(10.0 * q.centre_m.xz, normalize(q.velocity_mps.xy), 20.0 * q.side_m + 1.0, i),
-        f32(land_class_pick(probe_land_corners(i), fract(abs(q.centre_m.xz) * 0.37))),
+        f32(land_class_pick(probe_land_corners(i), fract(abs(q.centre_m.xz) * 0.25))),
     );
     probe_drawing_out[26u * i + 18u] = vec4<f32>(cover_warp_m(q.centre_m.xz, vec2<f32>(q.a_m + 0.1, q.side_m + 0.1)), flake_sun_phase(q.spin_rad / 6.0), drop_environment_factor(q.spin_rad / 6.0, q.tumble));
 }

@@ -28,7 +28,8 @@ const LAND_CLASSES: f32 = 12.0;
 // terrain's extent (0, no data, without one or off it): of the four pixels round
 // the point, the class with the most bilinear weight (land_class_pick), so borders
 // between classes run smoothly, not along the pixels' edges. Rust twin:
-// precip_model::scene::LandCover::drawn_class_at.
+// precip_model::scene::LandCover::drawn_class_at of the GPU's copy
+// (LandCover::gpu_copy, every f-th pixel of a large raster).
 fn land_class_at(xz_m: vec2<f32>) -> u32 {
     if (params.land_cover.w == 0u) {
         return 0u;
@@ -240,7 +241,8 @@ fn vs_terrain(@builtin(vertex_index) v: u32) -> SceneVarying {
     return terrain_varying_of(v, params.terrain_levels.x, params.view_proj);
 }
 
-// A terrain fragment: its land class (Rust: Terrain::land_class_at) picks the
+// A terrain fragment: its land class drawn (land_class_at; Rust:
+// LandCover::drawn_class_at over LandCover::gpu_copy) picks the
 // ramp's row, the share of its snow seen from above and the far cover it reads.
 // The class is looked up up to 1.5 pixels (at most 15 m) off the point (smooth
 // noise, as the cover's cover_warp_m), so the borders between classes wind instead

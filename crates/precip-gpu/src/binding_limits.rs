@@ -11,7 +11,14 @@
 //! What the plan needs ([`BindingLimits::needed`]) is counted from the bind-group
 //! tables ([`crate::bind_groups::groups_of`]) for every entry point of the
 //! programs a configuration and its frames use ([`FRAME_PROGRAMS`]), per shader
-//! stage, as WebGPU and Vulkan count them.
+//! stage, for WebGPU's per-stage and per-layout limits (Vulkan's
+//! `maxPerStageDescriptor*`, `maxBoundDescriptorSets` and
+//! `maxDescriptorSet*Dynamic` are the same counts: its backend binds samplers and
+//! sampled images apart). Not checked: Vulkan's per-layout totals
+//! (`maxDescriptorSetStorageBuffers`, at least 24 where a layout holds 9) and
+//! `maxPerStageResources`, and wgpu's bindings per group — none near a device's
+//! least; wgpu's layouts are made inside its error scopes, so one over them is a
+//! typed error too.
 
 use precip_model::BackendError;
 

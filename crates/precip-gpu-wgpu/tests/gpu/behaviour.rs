@@ -195,10 +195,6 @@ fn runs_on_a_device_the_caller_owns() {
     }
 }
 
-/// An engine may hand precip a device opened with WebGPU's default limits (8
-/// storage buffers a shader stage, 4 bind groups…), not the adapter's larger ones
-/// precip asks for on its own: every kernel and every draw pipeline (made at the
-/// first frame, whatever the scene) fits them, and a frame is drawn.
 /// Every adapter, for a test that opens its own devices; none (a skip, or a
 /// failure under PRECIP_REQUIRE_GPU=1, with its reason) where there is none.
 fn adapters_for(test: &str) -> Vec<wgpu::Adapter> {
@@ -225,6 +221,10 @@ fn an_engine_s_device(adapter: &wgpu::Adapter, limits: wgpu::Limits) -> GpuDevic
     GpuDevice::from_existing(device, queue, info)
 }
 
+/// An engine may hand precip a device opened with WebGPU's default limits (8
+/// storage buffers a shader stage, 4 bind groups…), not the adapter's larger ones
+/// precip asks for on its own: every kernel and every draw pipeline (made at the
+/// first frame, whatever the scene) fits them, and a frame is drawn.
 #[test]
 fn runs_on_a_device_opened_with_webgpu_s_default_limits() {
     for adapter in &adapters_for("WebGPU's default limits") {

@@ -47,6 +47,16 @@ fn inputs() -> Vec<ProbeDrawing> {
         velocity_mps: [7.0, 0.0, 0.0],
         ..out[0]
     });
+    // Land classes on ties (fractions ½ between the pixels: inputs 501–506, of
+    // corners (0,2,1,0) … (2,0,2,0), the last two classes in columns, at
+    // fractions (½, ½) and (½, 0.3)).
+    for k in 0..6 {
+        let z = if k % 2 == 0 { 2.0 } else { 1.2 };
+        out.push(ProbeDrawing {
+            centre_m: [2.0, 0.5, z],
+            ..out[0]
+        });
+    }
     out
 }
 
@@ -294,7 +304,7 @@ fn wgsl_drawing_equals_rust_drawing() {
             );
             let k = i as u32;
             let corners = [k % 3, (k / 3) % 3, (k / 9) % 3, (k / 27) % 3];
-            let f = (glam::Vec2::new(centre.x, centre.z).abs() * 0.37).fract();
+            let f = (glam::Vec2::new(centre.x, centre.z).abs() * 0.25).fract();
             assert_eq!(
                 g[3] as u32,
                 land_class_pick(corners, f),

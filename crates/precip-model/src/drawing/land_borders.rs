@@ -89,6 +89,17 @@ mod tests {
         assert_eq!(changes, 1, "{across:?}");
     }
 
+    /// On a tie the first corner's class is drawn: half way across columns of
+    /// two classes, and at the middle of four pixels split two by two or of four
+    /// classes.
+    #[test]
+    fn a_tie_goes_to_the_first_corner() {
+        assert_eq!(land_class_pick([2, 0, 2, 0], Vec2::new(0.5, 0.3)), 2);
+        assert_eq!(land_class_pick([0, 2, 0, 2], Vec2::new(0.5, 0.3)), 0);
+        assert_eq!(land_class_pick([4, 7, 7, 4], Vec2::splat(0.5)), 4);
+        assert_eq!(land_class_pick([3, 1, 2, 0], Vec2::splat(0.5)), 3);
+    }
+
     proptest! {
         /// The class drawn is one of the four, holds at least a quarter of the
         /// weight, and no other class holds more.

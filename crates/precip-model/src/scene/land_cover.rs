@@ -279,7 +279,8 @@ impl LandCover {
     /// the four pixels round it, the class with the most bilinear weight
     /// ([`crate::drawing::land_borders`]), so borders run smoothly across the
     /// pixels. At a pixel's centre it is the pixel's class.
-    /// WGSL twin: `land_class_at` (render_terrain.wgsl), over the GPU's copy.
+    /// WGSL twin: `land_class_at` (render_terrain.wgsl), which draws the GPU's
+    /// copy: its twin is `gpu_copy().drawn_class_at(uv)` ([`LandCover::gpu_copy`]).
     #[must_use]
     pub fn drawn_class_at(&self, uv: Vec2) -> LandClass {
         if !(uv.x >= 0.0 && uv.y >= 0.0 && uv.x < 1.0 && uv.y < 1.0) {
@@ -318,10 +319,26 @@ impl LandCover {
             .unwrap_or(MAX_LAND_COVER_PIXELS)
     }
 
+    /// The raster the GPU draws with ([`LandCover::gpu_samples`]) as a land
+    /// cover: the whole raster within [`LAND_COVER_GPU_BUDGET_BYTES`], else
+    /// every `f`-th pixel. The WGSL `land_class_at` is its
+    /// [`LandCover::drawn_class_at`].
+    #[must_use]
+    pub fn gpu_copy(&self) -> Self {
+        let (pixels, classes) = self.gpu_samples();
+        Self {
+            pixels,
+            classes: classes
+                .iter()
+                .map(|&c| LandClass::ALL[(c as usize).min(LAND_CLASSES - 1)])
+                .collect(),
+        }
+    }
+
     /// The GPU's copy: its pixels along x and z and each class as an `f32` (its
     /// index), from every `f`-th pixel ([`LandCover::decimation`] within
-    /// [`LAND_COVER_GPU_BUDGET_BYTES`]; pixel `i` of the copy is the raster's `f·i`,
-    /// the one whose area holds the copy's pixel's first corner).
+    /// [`LAND_COVER_GPU_BUDGET_BYTES`]; pixel `i` of the copy covers `[i/n,
+    /// (i+1)/n)` of the extent and holds the raster's class at that span's centre).
     #[must_use]
     pub fn gpu_samples(&self) -> (UVec2, Vec<f32>) {
         let f = self.decimation(LAND_COVER_GPU_BUDGET_BYTES);
@@ -464,7 +481,7 @@ mod tests {
             d.dedup_by(|a, b| (*a - *b).abs() < 1e-6);
             d.len()
         };
-        // Over 1.25 pixels of z, the nearest pixel's border takes 2 places, the
+        // Over one pixel of z, the nearest pixel's border takes 2 places, the
         // drawn one more than 5 (it slides along the diagonal).
         assert!(distinct(&nearest) <= 2, "{nearest:?}");
         assert!(distinct(&drawn) > 5, "{drawn:?}");
@@ -492,5 +509,11 @@ mod tests {
         // A small one goes whole.
         let small = LandCover::from_worldcover(UVec2::new(2, 1), &[50, 80]).expect("valid");
         assert_eq!(small.gpu_samples(), (UVec2::new(2, 1), vec![5.0, 8.0]));
+        assert_eq!(small.gpu_copy(), small);
+        // The copy as a land cover: the GPU's pixels, the same classes.
+        let copy = lc.gpu_copy();
+        assert_eq!(copy.pixels(), m);
+        assert_eq!(copy.class_at(Vec2::new(0.1, 0.5)), LandClass::Trees);
+        assert_eq!(copy.drawn_class_at(Vec2::new(0.9, 0.5)), LandClass::Water);
     }
 }
