@@ -161,6 +161,7 @@ pub fn run_headless_with(
     let mut files = Vec::with_capacity(frames as usize);
     let mut pngs = PngWriter::for_this_machine();
     let run_started = Instant::now();
+    let mut trim = crate::heap::TrimAfterMoves::default();
     for frame in 0..frames {
         let start = Instant::now();
         if lockstep
@@ -206,6 +207,7 @@ pub fn run_headless_with(
         backend.set_camera(&view.camera)?;
 
         backend.step(dt_s)?;
+        trim.after_step(backend.cover_window().map(|w| w.moves()));
         backend.render(&view)?;
         let image = backend.read_image()?;
         let file = out.join(format!("frame_{frame:04}.png"));

@@ -45,6 +45,7 @@ pub mod glb;
 pub mod gltf_data;
 pub mod gltf_scene;
 pub mod headless;
+pub mod heap;
 pub mod land_cover_file;
 pub mod lidar_scan;
 pub mod meshopt_views;

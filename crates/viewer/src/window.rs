@@ -146,6 +146,8 @@ struct Running {
     frames: u32,
     started: Instant,
     stats: FrameStats,
+    /// The heap's free pages returned after each move of the cover grid.
+    trim: crate::heap::TrimAfterMoves,
     /// The water on the surfaces, sampled every [`WaterSummary::EVERY_FRAMES`].
     water: Option<WaterSummary>,
     /// The snow, sampled with the water.
@@ -260,6 +262,7 @@ impl App {
             frames: 0,
             started: Instant::now(),
             stats: FrameStats::default(),
+            trim: crate::heap::TrimAfterMoves::default(),
             water: None,
             snow: None,
             control: self
@@ -436,6 +439,8 @@ impl Running {
         let backend = self.presenter.backend();
         backend.set_camera(&view.camera)?;
         backend.step(sim_dt)?;
+        self.trim
+            .after_step(backend.cover_window().map(|w| w.moves()));
         self.presenter.present(&view)?;
         self.stats.record(elapsed_ms, self.presenter.backend())?;
         if let Some(next) = self
