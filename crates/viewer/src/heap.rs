@@ -17,7 +17,7 @@
 //! inside the heap) — a walk of the heap's free lists once a move (the frame's
 //! read-back and PNG buffers, freed the frame before, are then faulted in anew:
 //! a few ms on a frame that already waited for the move), nothing on other
-//! frames. Flown as above with the trim: 0.4 KiB a frame on wgpu, 0.1 on vk
+//! frames. Flown as above with the trim: −0.3 KiB a frame on wgpu, 0.1 on vk
 //! (3 000 frames). A program that embeds precip with a following grid can do
 //! the same after a step that moved it (`Backend::cover_window`'s move count).
 
