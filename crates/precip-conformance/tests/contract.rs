@@ -708,7 +708,8 @@ fn snow_over_a_wall() -> Setup {
     let n = frame.texel_count();
     s.ground.height_m = (0..n).map(|i| if wall(i) { 2.0 } else { 0.0 }).collect();
     s.ground.eligibility = (0..n).map(|i| if wall(i) { 0.0 } else { 1.0 }).collect();
-    s.ground.surface = vec![precip_model::cover::Surface::Grass; n];
+    // Bare soil: it holds 1 cm against the wind (a lawn holds 15, more than falls).
+    s.ground.surface = vec![precip_model::cover::Surface::Soil; n];
     s.weather = Weather {
         kind: precip_model::PrecipitationKind::DrySnow,
         intensity_mm_per_h: 3.0,
@@ -1042,9 +1043,59 @@ fn snow_slides_off_a_roof_in_still_air_alike_on_every_backend() {
 }
 
 #[test]
+fn a_lawn_holds_its_snow_against_the_wind_alike_on_every_backend() {
+    // The wall's blizzard over a lawn: 3 s of cover time leave far less than the
+    // 15 cm the grass holds, so nothing drifts on any backend
+    // (precip_cover::Surface::snow_holding_depth_m), where bare soil's drifts.
+    let mut covers = Vec::new();
+    for mut s in all_subjects("lawn") {
+        let mut lawn = snow_over_a_wall();
+        let n = lawn.ground.surface.len();
+        lawn.ground.surface = vec![precip_model::cover::Surface::Grass; n];
+        s.backend.configure(&lawn).expect("configure");
+        for _ in 0..30 {
+            s.backend.step(0.1).expect("step");
+        }
+        let cover = s.backend.read_cover().expect("cover");
+        let totals = cover.totals();
+        let deepest = cover
+            .texels
+            .iter()
+            .map(|t| t.depth_mm)
+            .fold(0.0f32, f32::max);
+        println!(
+            "{}: fallen {:.1} kg, deepest {deepest:.0} mm, blowing over {:.1} m², drifted over the edges {:.2e} kg",
+            s.name, totals.deposited_kg, totals.blowing_area_m2, totals.edge_drifted_kg
+        );
+        assert!(totals.deposited_kg > 0.0, "{}: snow fell", s.name);
+        assert!(deepest < 150.0, "{}: below what the grass holds", s.name);
+        assert!(totals.blowing_area_m2 <= 0.0, "{}: no snow blows", s.name);
+        assert!(
+            totals.edge_drifted_kg.abs() <= 0.0,
+            "{}: none leaves",
+            s.name
+        );
+        assert!(
+            cover.texels.iter().all(|t| t.drifted_mm == 0.0),
+            "{}: none moves",
+            s.name
+        );
+        s.check_clean("lawn");
+        covers.push((s.name.clone(), totals.swe_kg));
+    }
+    let (reference, swe) = covers[0].clone();
+    for (name, other) in &covers[1..] {
+        assert!(
+            (other - swe).abs() <= 1e-3 * swe,
+            "{name} holds {other} kg of snow, {reference} {swe}"
+        );
+    }
+}
+
+#[test]
 fn snow_blown_across_heated_paving_loses_none_between_tiles() {
     // Snow lies only on the up-wind column of tiles (x < −12 m); the rest is heated
-    // paving where none may lie. A 14 m/s wind lifts it off the grass and carries it
+    // paving where none may lie. A 14 m/s wind lifts it off the soil and carries it
     // across the paving a texel a drift iteration, as fast as the drift lets snow
     // move between two lists of its tiles, and over the grid's down-wind edge.
     let mut totals_of = Vec::new();
@@ -1052,13 +1103,13 @@ fn snow_blown_across_heated_paving_loses_none_between_tiles() {
         let mut good = snow_over_a_wall();
         let frame = good.ground.frame;
         let n = frame.texel_count();
-        let grass = |i: usize| frame.texel_centre(i).x < -12.0;
+        let soil = |i: usize| frame.texel_centre(i).x < -12.0;
         good.ground.height_m = vec![0.0; n];
-        good.ground.eligibility = (0..n).map(|i| if grass(i) { 1.0 } else { 0.0 }).collect();
+        good.ground.eligibility = (0..n).map(|i| if soil(i) { 1.0 } else { 0.0 }).collect();
         good.ground.surface = (0..n)
             .map(|i| {
-                if grass(i) {
-                    precip_model::cover::Surface::Grass
+                if soil(i) {
+                    precip_model::cover::Surface::Soil
                 } else {
                     precip_model::cover::Surface::Asphalt
                 }

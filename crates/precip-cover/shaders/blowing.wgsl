@@ -1,6 +1,7 @@
 // blowing.wgsl: when the wind lifts snow and how much it carries. Rust twin:
 // precip_cover::blowing (Li & Pomeroy 1997 thresholds, Liston & Sturm 1998 after
-// Kind 1981 for hardened snow, Pomeroy & Gray 1990 saltation flux).
+// Kind 1981 for hardened snow and the surface's snow-holding depth, Pomeroy &
+// Gray 1990 saltation flux).
 
 const VON_KARMAN: f32 = 0.4;
 const WIND_REFERENCE_HEIGHT_M: f32 = 10.0;
@@ -45,4 +46,22 @@ fn saltation_flux_kg_per_m_s(friction_velocity: f32, threshold_mps: f32, air_den
         return 0.0;
     }
     return 0.68 * air_density * ut * (u * u - ut * ut) / (GRAVITY_MPS2 * u);
+}
+
+// Rust: precip_cover::Surface::snow_holding_depth_m (Liston & Sturm 1998; SnowModel's
+// grassland and bare classes).
+fn surface_snow_holding_depth_m(surface: u32) -> f32 {
+    if (surface == 2u) {
+        return 0.15;
+    }
+    return 0.01;
+}
+
+// Rust: precip_cover::blowing::movable_swe_mm.
+fn movable_swe_mm(swe_mm: f32, depth_mm: f32, holding_depth_m: f32) -> f32 {
+    let held_mm = holding_depth_m * 1000.0;
+    if (!(depth_mm > held_mm) || !(swe_mm > 0.0)) {
+        return 0.0;
+    }
+    return swe_mm * (1.0 - held_mm / depth_mm);
 }

@@ -505,7 +505,17 @@ fn snow_send_of(i: u32, t: CoverTexel) -> SnowSend {
     }
     let share = 0.5 / f32(max(faces_down, 1u));
     let slide = share * excess * density;
-    let wind_total = wind.x + wind.y + wind.z + wind.w;
+    // The wind takes only what lies above the surface's snow-holding depth, in the
+    // share of the texel where snow may lie (none where it passes in transit).
+    var wind_total = wind.x + wind.y + wind.z + wind.w;
+    if (wind_total > 0.0) {
+        let holding_m = surface_snow_holding_depth_m(t.surface) * clamp(t.eligibility, 0.0, 1.0);
+        let movable = movable_swe_mm(t.swe_mm, t.depth_mm, holding_m);
+        let held = min(movable / wind_total, 1.0);
+        wind *= held;
+        flux *= held;
+        wind_total = wind.x + wind.y + wind.z + wind.w;
+    }
     let slide_total = slide.x + slide.y + slide.z + slide.w;
     let total = wind_total + slide_total;
     if (total <= 0.0) {

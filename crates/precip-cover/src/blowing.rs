@@ -29,6 +29,15 @@
 //!   (Liston & Sturm 1998 after Kind 1981): fresh 100 kg/m³ snow 0.13 m/s,
 //!   wind-packed 350 kg/m³ 0.47 m/s.
 //!
+//! ## What the surface holds
+//!
+//! Snow lying among grass blades or the clods of a field is sheltered by them: only
+//! the depth above the surface's snow-holding depth can be lifted
+//! ([`crate::Surface::snow_holding_depth_m`] times the texel's eligibility: where
+//! no snow may lie, snow in transit is not held; Liston & Sturm 1998), so the
+//! wind moves `SWE·(1 − h_v/h)` of a pack `h` deep at most, none while `h ≤ h_v`
+//! ([`movable_swe_mm`]). Snow blown onto turf stays there until it fills it.
+//!
 //! ## Saltation flux
 //!
 //! Pomeroy & Gray (1990, *Water Resources Research* 26) give the mass carried in
@@ -40,6 +49,20 @@
 //!
 //! Suspension (which adds as much again above ~15 m/s and sublimates) is not
 //! modelled: all moved snow stays in the books.
+
+/// The share of a pack's SWE the wind can move, mm: the SWE above the surface's
+/// snow-holding depth `holding_depth_m` of a pack `swe_mm` of water `depth_mm` deep
+/// (none at or below it). WGSL twin: same name (blowing.wgsl).
+#[must_use]
+pub fn movable_swe_mm(swe_mm: f32, depth_mm: f32, holding_depth_m: f32) -> f32 {
+    let held_mm = holding_depth_m * 1000.0;
+    // NaN compares false: nothing moves.
+    if depth_mm > held_mm && swe_mm > 0.0 {
+        swe_mm * (1.0 - held_mm / depth_mm)
+    } else {
+        0.0
+    }
+}
 
 /// von Kármán's constant κ.
 pub const VON_KARMAN: f32 = 0.4;
@@ -124,6 +147,19 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+
+    #[test]
+    fn only_the_snow_above_the_holding_depth_can_move() {
+        // 10 cm of snow on a 15 cm lawn: held; 30 cm: the top half moves.
+        assert!(movable_swe_mm(10.0, 100.0, 0.15) <= 0.0);
+        assert!(movable_swe_mm(10.0, 150.0, 0.15) <= 0.0);
+        assert!((movable_swe_mm(30.0, 300.0, 0.15) - 15.0).abs() < 1.0e-5);
+        // Bare ground holds 1 cm.
+        assert!((movable_swe_mm(10.0, 100.0, 0.01) - 9.0).abs() < 1.0e-5);
+        assert!(movable_swe_mm(0.0, 0.0, 0.01) <= 0.0);
+        assert!(movable_swe_mm(f32::NAN, 100.0, 0.01) <= 0.0);
+        assert!(movable_swe_mm(10.0, f32::NAN, 0.01) <= 0.0);
+    }
 
     #[test]
     fn li_and_pomeroys_thresholds() {

@@ -65,8 +65,8 @@
 use glam::Vec2;
 
 use crate::blowing::{
-    WET_SNOW_LIQUID_FRACTION, air_density_kg_m3, friction_velocity_mps, saltation_flux_kg_per_m_s,
-    threshold_friction_velocity_mps,
+    WET_SNOW_LIQUID_FRACTION, air_density_kg_m3, friction_velocity_mps, movable_swe_mm,
+    saltation_flux_kg_per_m_s, threshold_friction_velocity_mps,
 };
 use crate::frame::GridFrame;
 use crate::surface::Surface;
@@ -215,7 +215,21 @@ pub fn snow_outflow_of(
     for k in 0..4 {
         slide[k] = share * excess[k] * density;
     }
-    let (wind_total, slide_total): (f32, f32) = (wind.iter().sum(), slide.iter().sum());
+    // The wind takes only what lies above the surface's snow-holding depth, in the
+    // share of the texel where snow may lie (none where it passes in transit).
+    let mut wind_total: f32 = wind.iter().sum();
+    if wind_total > 0.0 {
+        let holding_m =
+            Surface::from_raw(t.surface).snow_holding_depth_m() * t.eligibility.clamp(0.0, 1.0);
+        let movable = movable_swe_mm(t.swe_mm, t.depth_mm, holding_m);
+        let held = (movable / wind_total).min(1.0);
+        for w in &mut wind {
+            *w *= held;
+        }
+        flux *= held;
+        wind_total = wind.iter().sum();
+    }
+    let slide_total: f32 = slide.iter().sum();
     let total = wind_total + slide_total;
     if total <= 0.0 {
         return SnowOutflow::default();

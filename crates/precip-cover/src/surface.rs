@@ -183,6 +183,23 @@ impl Surface {
         }
     }
 
+    /// The depth of snow the surface holds against the wind, m: snow up to it lies
+    /// between the grass blades or the clods and no wind lifts it; only the depth
+    /// above it can drift (Liston & Sturm 1998, *J. Glaciology* 44: the vegetation's
+    /// snow-holding depth of SnowTran-3D). Turf 0.15 m, the grassland value of
+    /// SnowModel's vegetation table (Liston & Elder 2006, *J. Hydrometeorology* 7;
+    /// the height of the lawn whose roughness [`Self::snow_roughness_m`] takes);
+    /// bare soil, paving, roofs, sand and water 0.01 m, its bare and urban classes.
+    /// So a blizzard whitens a lawn before it scours it. WGSL twin:
+    /// `surface_snow_holding_depth_m` (blowing.wgsl).
+    #[must_use]
+    pub const fn snow_holding_depth_m(self) -> f32 {
+        match self {
+            Self::Grass => 0.15,
+            Self::Soil | Self::Asphalt | Self::Roof | Self::Sand | Self::Water => 0.01,
+        }
+    }
+
     /// The roughness length `z₀` that snow must bury before it covers the surface
     /// (the snow-cover depletion curve, `crate::shading::snow_cover_fraction`), m.
     /// Bare soil 0.01 m, Niu & Yang's (2007) ground value; turf 0.015 m, a tenth of

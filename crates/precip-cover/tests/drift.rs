@@ -145,6 +145,77 @@ fn wind_moves_snow_without_losing_any() {
     );
 }
 
+/// A level strip of `surface` with no fence and no bare ends: the field goes on
+/// beyond the up-wind edge.
+fn level_strip(surface: Surface) -> CoverGrid {
+    let g = fence_strip(false, false);
+    let n = g.texels.len();
+    g.with_ground(&vec![0.0; n], &vec![surface; n])
+        .expect("valid strip")
+}
+
+#[test]
+fn turf_holds_its_first_snow_against_the_wind_and_bare_soil_does_not() {
+    // A blizzard (14 m/s at −12 °C) for 3 h: 6 mm of water, about 10 cm of fresh
+    // snow — below the 15 cm a lawn holds, above the 1 cm of bare soil.
+    let mut lawn = level_strip(Surface::Grass);
+    run(&mut lawn, air(2.0, 14.0, -12.0), 3.0);
+    let mut soil = level_strip(Surface::Soil);
+    run(&mut soil, air(2.0, 14.0, -12.0), 3.0);
+    books_close(&lawn);
+    books_close(&soil);
+    let deepest = lawn
+        .texels
+        .iter()
+        .map(|t| t.depth_mm)
+        .fold(0.0f32, f32::max);
+    assert!(
+        deepest > 50.0 && deepest < 150.0,
+        "the lawn's snow should lie between 5 and 15 cm: {deepest} mm"
+    );
+    let moved = |g: &CoverGrid| {
+        g.texels
+            .iter()
+            .map(|t| t.drifted_mm.abs())
+            .fold(0.0f32, f32::max)
+    };
+    assert!(
+        moved(&lawn) < 1.0e-6,
+        "the wind moved a lawn's held snow: {} mm",
+        moved(&lawn)
+    );
+    assert!(lawn.texels.iter().all(|t| t.saltation_kg_per_m_s <= 0.0));
+    // The soil's snow saltates (on level ground as much arrives as leaves).
+    assert!(
+        soil.texels.iter().all(|t| t.saltation_kg_per_m_s > 0.0),
+        "the wind left bare soil's snow"
+    );
+}
+
+#[test]
+fn a_lawn_drifts_once_its_grass_is_buried() {
+    // 12 h of the same blizzard: 24 mm of water, over 30 cm of snow; the depth
+    // above 15 cm moves.
+    let mut lawn = level_strip(Surface::Grass);
+    run(&mut lawn, air(2.0, 14.0, -12.0), 12.0);
+    books_close(&lawn);
+    assert!(
+        lawn.texels.iter().any(|t| t.saltation_kg_per_m_s > 0.0),
+        "a buried lawn's snow should saltate"
+    );
+    assert!(lawn.totals().edge_drifted_kg < 0.0, "{:?}", lawn.totals());
+    // None of it goes below what the grass holds.
+    let shallowest = lawn
+        .texels
+        .iter()
+        .map(|t| t.depth_mm)
+        .fold(f32::INFINITY, f32::min);
+    assert!(
+        shallowest >= 150.0 - 1.0e-3,
+        "the wind dug into the lawn's held snow: {shallowest} mm"
+    );
+}
+
 /// A pile of 3 m of snow in one texel of level ground.
 fn pile() -> CoverGrid {
     let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(20.0), UVec2::splat(40));
