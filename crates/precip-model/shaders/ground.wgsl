@@ -1,56 +1,95 @@
 // ground.wgsl: how the ground turns the particles' wind (Rust twin: precip_model::physics::terrain_flow);
 // after ground_map.wgsl.
 
-// Rust: precip_model::physics::terrain_flow (TERRAIN_FLOW_SPAN_M, TERRAIN_FLOW_DEPTH_M).
-const TERRAIN_FLOW_SPAN_M: f32 = 2.0;
-const TERRAIN_FLOW_DEPTH_M: f32 = 10.0;
-const TERRAIN_FLOW_LOOKAHEAD_M: f32 = 12.0;
+// Rust: precip_model::physics::terrain_flow (TERRAIN_FLOW_DEPTH_M, FLOW_LATTICE_M, …).
+const FLOW_LATTICE_M: f32 = 1.5;
 const TERRAIN_FLOW_LOOKAHEAD_SAMPLES: u32 = 8u;
 const TERRAIN_FLOW_MAX_CLIMB: f32 = 1.0;
-const TERRAIN_FLOW_WAKE_REACH_M: f32 = 36.0;
+const TERRAIN_FLOW_WAKE_REACH_M: f32 = 18.0;
 const TERRAIN_FLOW_WAKE_SAMPLES: u32 = 12u;
-// Rust: precip_cover::drift::{WAKE_LENGTH_RATIO, SHELTER_RELIEF_M}.
+// Rust: precip_cover::drift::WAKE_LENGTH_RATIO.
 const FLOW_WAKE_LENGTH_RATIO: f32 = 12.0;
-const FLOW_SHELTER_RELIEF_M: f32 = 0.3;
 
-// The ground's height at xz + offset, `fallback` off the map.
+// The ground at xz + offset, `fallback` off the map.
 fn ground_or(xz_m: vec2<f32>, offset_m: vec2<f32>, fallback: f32) -> f32 {
     let g = ground_height_at(xz_m + offset_m);
     return select(fallback, g.y, g.x > 0.0);
 }
 
-// Rust: steepest_sight_line (max over the samples of (H − level)/d, 0 if none above).
-fn steepest_sight_line(xz: vec2<f32>, direction: vec2<f32>, level_m: f32, reach_m: f32, samples: u32) -> f32 {
-    let spacing = reach_m / f32(samples);
-    var steepest = 0.0;
-    for (var k = 1u; k <= samples; k++) {
-        let d = spacing * f32(k);
-        let h = ground_height_at(xz + direction * d);
-        if (h.x > 0.0) {
-            steepest = max(steepest, (h.y - level_m) / d);
+// The ground where the air along the wind through xz comes onto the map, read half
+// a texel inside its up-wind edge. Rust: inflow_ground_m.
+fn inflow_ground_m(direction: vec2<f32>, xz: vec2<f32>, here_m: f32) -> f32 {
+    let low = frames.ground.origin_m;
+    let high = low + frames.ground.size_m;
+    var to_edge = vec2<f32>(1.0e30, 1.0e30);
+    if (direction.x > 0.0) {
+        to_edge.x = (xz.x - low.x) / direction.x;
+    } else if (direction.x < 0.0) {
+        to_edge.x = (xz.x - high.x) / direction.x;
+    }
+    if (direction.y > 0.0) {
+        to_edge.y = (xz.y - low.y) / direction.y;
+    } else if (direction.y < 0.0) {
+        to_edge.y = (xz.y - high.y) / direction.y;
+    }
+    let to_edge_m = max(min(to_edge.x, to_edge.y), 0.0);
+    let cell = frames.ground.size_m / vec2<f32>(frames.ground.texels);
+    let inside_m = 0.5 * min(cell.x, cell.y);
+    return ground_or(xz, -direction * max(to_edge_m - inside_m, 0.0), here_m);
+}
+
+// The dividing streamline's height G and slope G' along the wind, from the ground
+// at a lattice fixed in the world along it. Rust: dividing_streamline.
+fn dividing_streamline(direction: vec2<f32>, xz: vec2<f32>, here_m: f32) -> vec2<f32> {
+    let s = dot(xz, direction);
+    let past = s - floor(s / FLOW_LATTICE_M) * FLOW_LATTICE_M;
+    let behind_m = ground_or(xz, -direction * past, here_m);
+    let ahead_m = ground_or(xz, direction * (FLOW_LATTICE_M - past), here_m);
+    let ground_slope = (ahead_m - behind_m) / FLOW_LATTICE_M;
+    let ground_m = behind_m + past * ground_slope;
+    var top_m = ground_m;
+    var slope = ground_slope;
+    for (var k = 1u; k <= TERRAIN_FLOW_LOOKAHEAD_SAMPLES; k++) {
+        let d = FLOW_LATTICE_M * f32(k) - past;
+        var h = ahead_m;
+        if (k > 1u) {
+            h = ground_or(xz, direction * d, here_m);
+        }
+        let g = h - TERRAIN_FLOW_MAX_CLIMB * d;
+        if (g > top_m) {
+            top_m = g;
+            slope = TERRAIN_FLOW_MAX_CLIMB;
         }
     }
-    return steepest;
+    for (var k = 0u; k < TERRAIN_FLOW_WAKE_SAMPLES; k++) {
+        let e = FLOW_LATTICE_M * f32(k) + past;
+        var h = behind_m;
+        if (k > 0u) {
+            h = ground_or(xz, -direction * e, here_m);
+        }
+        let within_reach = (h - ground_m) / TERRAIN_FLOW_WAKE_REACH_M;
+        var descent = 1.0 / FLOW_WAKE_LENGTH_RATIO;
+        var descent_slope = 1.0 / FLOW_WAKE_LENGTH_RATIO;
+        if (within_reach > 1.0 / FLOW_WAKE_LENGTH_RATIO) {
+            descent = within_reach;
+            descent_slope = within_reach - e * ground_slope / TERRAIN_FLOW_WAKE_REACH_M;
+        }
+        let g = h - descent * e;
+        if (g > top_m) {
+            top_m = g;
+            slope = -descent_slope;
+        }
+    }
+    return vec2<f32>(top_m, slope);
 }
 
-// Rust: climb_over_what_is_ahead (the slope the flow climbs before an obstacle).
-fn climb_over_what_is_ahead(direction: vec2<f32>, position_m: vec3<f32>) -> f32 {
-    let xz = vec2<f32>(position_m.x, position_m.z);
-    return min(steepest_sight_line(xz, direction, position_m.y, TERRAIN_FLOW_LOOKAHEAD_M, TERRAIN_FLOW_LOOKAHEAD_SAMPLES), TERRAIN_FLOW_MAX_CLIMB);
-}
-
-// Rust: shelter_up_wind (Winstral's S_x for a particle).
-fn shelter_up_wind(direction: vec2<f32>, position_m: vec3<f32>) -> f32 {
-    let xz = vec2<f32>(position_m.x, position_m.z);
-    return steepest_sight_line(xz, -direction, position_m.y + FLOW_SHELTER_RELIEF_M, TERRAIN_FLOW_WAKE_REACH_M, TERRAIN_FLOW_WAKE_SAMPLES);
-}
-
-// The wind turned to follow the ground near it: u' = u − w·(u·n)·n (Jackson & Hunt
-// 1975's no-penetration condition, fading over TERRAIN_FLOW_DEPTH_M), climbing over
-// what is ahead. Rust: terrain_following_wind.
+// The wind turned to follow the ground near it: a divergence-free channel flow
+// between the dividing streamline G and the ceiling T, still air under G.
+// Rust: terrain_following_wind.
 fn terrain_following_wind(wind_mps: vec3<f32>, position_m: vec3<f32>) -> vec3<f32> {
+    let ceiling_m = step_params.flow_ceiling_m;
     // Above the highest ground plus the flow's depth nothing changes: skip the reads.
-    if (position_m.y >= step_params.flow_ceiling_m) {
+    if (position_m.y >= ceiling_m) {
         return wind_mps;
     }
     let xz = vec2<f32>(position_m.x, position_m.z);
@@ -58,29 +97,22 @@ fn terrain_following_wind(wind_mps: vec3<f32>, position_m: vec3<f32>) -> vec3<f3
     if (here.x == 0.0) {
         return wind_mps;
     }
-    let weight = clamp(1.0 - (position_m.y - here.y) / TERRAIN_FLOW_DEPTH_M, 0.0, 1.0);
-    var along_ground = wind_mps;
-    if (weight > 0.0) {
-        let s = TERRAIN_FLOW_SPAN_M;
-        let normal = normalize(vec3<f32>(
-            (ground_or(xz, vec2<f32>(-s, 0.0), here.y) - ground_or(xz, vec2<f32>(s, 0.0), here.y)) / (2.0 * s),
-            1.0,
-            (ground_or(xz, vec2<f32>(0.0, -s), here.y) - ground_or(xz, vec2<f32>(0.0, s), here.y)) / (2.0 * s),
-        ));
-        along_ground = wind_mps - normal * (weight * dot(wind_mps, normal));
-    }
-    let horizontal = vec2<f32>(along_ground.x, along_ground.z);
+    let horizontal = vec2<f32>(wind_mps.x, wind_mps.z);
     let speed = length(horizontal);
     if (speed < 1.0e-3) {
-        return along_ground;
+        let fade = clamp((position_m.y - here.y) / (ceiling_m - here.y), 0.0, 1.0);
+        return vec3<f32>(wind_mps.x, wind_mps.y * fade, wind_mps.z);
     }
     let direction = horizontal / speed;
-    let wake = FLOW_WAKE_LENGTH_RATIO * shelter_up_wind(direction, position_m);
-    let slowed = 1.0 / (1.0 + wake * wake);
-    let climb = climb_over_what_is_ahead(direction, position_m);
-    var rise_mps = along_ground.y;
-    if (climb > 0.0) {
-        rise_mps = max(along_ground.y, speed * slowed * climb);
+    let streamline = dividing_streamline(direction, xz, here.y);
+    let top_m = streamline.x;
+    let base_m = inflow_ground_m(direction, xz, here.y);
+    let depth_m = ceiling_m - top_m;
+    let along_mps = speed * (ceiling_m - base_m) / depth_m;
+    if (position_m.y >= top_m) {
+        let up = (position_m.y - top_m) / depth_m;
+        let rise_mps = along_mps * streamline.y * (1.0 - up) + wind_mps.y * up;
+        return vec3<f32>(direction.x * along_mps, rise_mps, direction.y * along_mps);
     }
-    return vec3<f32>(along_ground.x * slowed, rise_mps, along_ground.z * slowed);
+    return vec3<f32>(0.0, 0.0, 0.0);
 }
