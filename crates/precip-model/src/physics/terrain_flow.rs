@@ -17,7 +17,8 @@
 //!
 //! The flow here is a channel flow in terrain-following (sigma) coordinates, in the
 //! vertical plane of the wind's horizontal direction `ŝ`, between a lower boundary
-//! `G(s)` and the flow's ceiling `T` ([`flow_ceiling_m`]), with the stream function
+//! `G(s)` and the flow's ceiling `T` ([`flow_ceiling_m`]: at least as deep above the
+//! highest ground as the relief below it), with the stream function
 //! `ψ = U·(T − B)·(y − G)/(T − G)` (`B` the ground where the air along `ŝ` comes
 //! onto the map, read half a texel inside its up-wind edge: constant along the
 //! wind, and over ground at that height the flow is the volume's, as off the map).
@@ -71,8 +72,8 @@ use precip_cover::drift::WAKE_LENGTH_RATIO;
 
 use crate::particles::ground::GroundMap;
 
-/// Depth of the flow's channel above the map's highest ground, m: of the order of
-/// a scene's hills, walls and roofs ([`flow_ceiling_m`]).
+/// Least depth of the flow's channel above the map's highest ground, m: of the
+/// order of a scene's hills, walls and roofs ([`flow_ceiling_m`]).
 pub const TERRAIN_FLOW_DEPTH_M: f32 = 10.0;
 
 /// Spacing of the lattice along the wind at which the flow reads the ground, m:
@@ -91,16 +92,22 @@ pub const TERRAIN_FLOW_WAKE_REACH_M: f32 = 18.0;
 /// [`TERRAIN_FLOW_WAKE_REACH_M`]).
 pub const TERRAIN_FLOW_WAKE_SAMPLES: u32 = 12;
 
-/// The height above which the ground does not turn the wind, m: the map's highest
-/// ground plus [`TERRAIN_FLOW_DEPTH_M`] (`StepParams::flow_ceiling_m`).
+/// The height above which the ground does not turn the wind, m
+/// (`StepParams::flow_ceiling_m`): the map's highest ground plus
+/// [`TERRAIN_FLOW_DEPTH_M`] or plus the map's relief (highest less lowest ground),
+/// whichever is more. The channel's air runs `(T − B)/(T − G)` times the volume's
+/// speed over the dividing streamline `G` (module docs), so a channel at least as
+/// deep above the highest ground as the relief below it never more than doubles the
+/// wind: over 300 m ridges a 10 m channel would blow thirty times as fast.
 #[must_use]
 pub fn flow_ceiling_m(ground: &GroundMap) -> f32 {
-    ground
+    let (lowest_m, highest_m) = ground
         .height_m
         .iter()
-        .copied()
-        .fold(f32::NEG_INFINITY, f32::max)
-        + TERRAIN_FLOW_DEPTH_M
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| {
+            (lo.min(h), hi.max(h))
+        });
+    highest_m + TERRAIN_FLOW_DEPTH_M.max(highest_m - lowest_m)
 }
 
 /// The wind `wind_mps` at `position_m` turned to follow the ground (module docs);
@@ -247,6 +254,38 @@ mod tests {
             let flow = terrain_following_wind(wind, under, &ground, ceiling);
             assert!((flow.y - wind.y).abs() < 1.0e-3, "{flow}");
         }
+    }
+
+    #[test]
+    fn over_deep_terrain_the_channel_never_more_than_doubles_the_wind() {
+        // A 300 m ridge rising from a valley floor at the map's up-wind edge.
+        let frame = GridFrame::centred(Vec2::ZERO, Vec2::splat(400.0), UVec2::splat(200));
+        let mut ground = GroundMap::flat(frame, 0.0, 1.0);
+        for i in 0..frame.texel_count() {
+            let x = frame.texel_centre(i).x;
+            ground.height_m[i] = 300.0 * (-(x / 60.0) * (x / 60.0)).exp();
+        }
+        let ceiling = flow_ceiling_m(&ground);
+        assert!(
+            (ceiling - (ground.height_m.iter().fold(0.0f32, |a, &h| a.max(h)) * 2.0)).abs() < 1.0
+        );
+        let wind = Vec3::new(14.0, 0.0, 0.0);
+        let mut fastest = 0.0f32;
+        for x in (-190..190).step_by(5) {
+            for y in (0..600).step_by(10) {
+                let flow = terrain_following_wind(
+                    wind,
+                    Vec3::new(x as f32, y as f32, 0.0),
+                    &ground,
+                    ceiling,
+                );
+                fastest = fastest.max(flow.x);
+            }
+        }
+        assert!(
+            fastest > 14.0 * 1.5 && fastest <= 14.0 * 2.0 + 1e-3,
+            "{fastest}"
+        );
     }
 
     #[test]
