@@ -65,9 +65,24 @@ fn step_in_camera_volume(index: u32, generation: u32, moved: Particle) -> Partic
     return next;
 }
 
+// Where a step reads the particle's wind: the step's predicted midpoint, or the
+// particle itself where the midpoint lies under the ground map. Rust: wind_probe_m.
+fn wind_probe_m(particle: Particle) -> vec3<f32> {
+    let midpoint = particle.position_m + particle.velocity_mps * (0.5 * step_params.dt_s);
+    if (midpoint.y >= step_params.flow_ceiling_m) {
+        return midpoint;
+    }
+    let ground = ground_height_at(vec2<f32>(midpoint.x, midpoint.z));
+    if (ground.x > 0.0 && midpoint.y < ground.y) {
+        return particle.position_m;
+    }
+    return midpoint;
+}
+
 fn step_particle(index: u32, particle: Particle) -> Particle {
     let dt = step_params.dt_s;
-    let wind_mps = terrain_following_wind(wind_velocity_at(particle.position_m, step_params.time_s), particle.position_m);
+    let probe = wind_probe_m(particle);
+    let wind_mps = terrain_following_wind(wind_velocity_at(probe, step_params.time_s), probe);
     let velocity = drag_velocity(particle.velocity_mps, wind_mps, particle.terminal_speed_mps, dt);
     let position = particle.position_m + (particle.velocity_mps + velocity) * (0.5 * dt);
 
