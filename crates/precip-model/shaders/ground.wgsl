@@ -1,7 +1,8 @@
 // ground.wgsl: how the ground turns the particles' wind (Rust twin: precip_model::physics::terrain_flow);
 // after ground_map.wgsl.
 
-// Rust: precip_model::physics::terrain_flow (TERRAIN_FLOW_DEPTH_M, FLOW_LATTICE_M, …).
+// Rust: precip_model::physics::terrain_flow (FLOW_LATTICE_M, TERRAIN_FLOW_*; the
+// ceiling, flow_ceiling_m, comes in step_params).
 const FLOW_LATTICE_M: f32 = 1.5;
 const TERRAIN_FLOW_LOOKAHEAD_SAMPLES: u32 = 8u;
 const TERRAIN_FLOW_MAX_CLIMB: f32 = 1.0;
@@ -88,7 +89,8 @@ fn dividing_streamline(direction: vec2<f32>, xz: vec2<f32>, here_m: f32) -> vec2
 // Rust: terrain_following_wind.
 fn terrain_following_wind(wind_mps: vec3<f32>, position_m: vec3<f32>) -> vec3<f32> {
     let ceiling_m = step_params.flow_ceiling_m;
-    // Above the highest ground plus the flow's depth nothing changes: skip the reads.
+    // Above the ceiling (the highest ground plus 10 m or the map's relief) nothing
+    // changes: skip the reads.
     if (position_m.y >= ceiling_m) {
         return wind_mps;
     }
