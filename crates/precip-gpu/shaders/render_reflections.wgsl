@@ -120,7 +120,7 @@ fn mirror_fragment(in: SceneVarying) -> vec4<f32> {
     }
     let camera = params.camera_m_cone_cos.xyz;
     let reflected = vec3<f32>(camera.x, 2.0 * level - camera.y, camera.z);
-    let look = surface_look(in, reflected);
+    let look = surface_look(in, reflected, true);
     // The fog layer reflected with the camera: the path's part above the water, in
     // fog below the top, lies between the reflected top and the level; the sun's
     // scattered light is left out (its dimming from the top is not a line there).
@@ -135,7 +135,7 @@ fn mirror_fragment(in: SceneVarying) -> vec4<f32> {
 @fragment
 fn fs_water_body_planar(in: SceneVarying) -> @location(0) vec4<f32> {
     let camera = params.camera_m_cone_cos.xyz;
-    var look = surface_look(in, camera);
+    var look = surface_look(in, camera, true);
     if (look.mirror > REFLECTION_LEAST && abs(in.surface_m.y - switches.mirror.x) <= MIRROR_LEVEL_TOLERANCE_M) {
         let to_viewer = normalize_or_zero(camera - in.world_m);
         look.shaded += look.mirror * planar_mirrored_scene(in.clip.xy, to_viewer, look.water_slope);

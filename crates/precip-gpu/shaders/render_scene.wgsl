@@ -399,8 +399,8 @@ fn far_depth_mm(c: FarCells, slot: u32, height_m: f32) -> f32 {
 }
 
 // The cover at the surface point `p_m` (x and z looked up, y the point's height
-// for the far cover's weights).
-fn cover_at(p_m: vec3<f32>) -> CoverTexel {
+// for the far cover's weights); the far cover read only with `far_cover`.
+fn cover_at(p_m: vec3<f32>, far_cover: bool) -> CoverTexel {
     let xz_m = p_m.xz;
     let uv = (xz_m - params.cover.origin_m) / params.cover.size_m;
     // On the grid its textures, off it the cover beyond it at its place
@@ -416,7 +416,9 @@ fn cover_at(p_m: vec3<f32>) -> CoverTexel {
         b = textureSampleLevel(cover_b, cover_sampler, uv, 0.0);
         c = textureSampleLevel(cover_c, cover_sampler, uv, 0.0);
     }
-    if (w < 1.0) {
+    // (Without `far_cover` the caller stands where w is 1: a constant the
+    // compiler folds, so this code is not in its shader.)
+    if (far_cover && w < 1.0) {
         // The far texel's rows as the grid's textures hold a texel's.
         let slot = min(far_cover_slot, FAR_SLOTS - 1u);
         let far = far_cover_rows(far_cells(xz_m), slot, p_m.y);
@@ -547,13 +549,22 @@ struct SurfaceLook {
 
 @fragment
 fn fs_scene(in: SceneVarying) -> @location(0) vec4<f32> {
-    return scene_fragment(in);
+    return scene_fragment(in, true);
 }
 
-// A surface of the scene (a mesh's, the terrain's) lit, wetted and seen through the air.
-fn scene_fragment(in: SceneVarying) -> vec4<f32> {
+// The same for the tiles on the cover grid's interior (the plan's
+// SCENE_ON_GRID_DRAW), where the grid's cover shows alone: the far cover's reads
+// are not in its code (a CPU rasteriser runs a branch's code in every fragment).
+@fragment
+fn fs_scene_on_grid(in: SceneVarying) -> @location(0) vec4<f32> {
+    return scene_fragment(in, false);
+}
+
+// A surface of the scene (a mesh's, the terrain's) lit, wetted and seen through the
+// air; `far_cover`: it may lie where the cover beyond the grid shows (cover_at).
+fn scene_fragment(in: SceneVarying, far_cover: bool) -> vec4<f32> {
     let camera = params.camera_m_cone_cos.xyz;
-    let look = surface_look(in, camera);
+    let look = surface_look(in, camera, far_cover);
     let seen = with_air(look.shaded, air_between(camera, in.world_m, switches.fog_layer));
     return vec4<f32>(with_unresolved_streaks(seen, in.clip.xy, distance(camera, in.world_m)), 1.0);
 }
@@ -564,7 +575,7 @@ fn scene_fragment(in: SceneVarying) -> vec4<f32> {
 @fragment
 fn fs_water_body(in: SceneVarying) -> @location(0) vec4<f32> {
     let camera = params.camera_m_cone_cos.xyz;
-    var look = surface_look(in, camera);
+    var look = surface_look(in, camera, true);
     if (look.mirror > REFLECTION_LEAST) {
         let to_viewer = normalize_or_zero(camera - in.world_m);
         look.shaded += look.mirror * mirrored_scene(in.world_m, to_viewer, look.water_slope);
@@ -575,8 +586,9 @@ fn fs_water_body(in: SceneVarying) -> @location(0) vec4<f32> {
 
 // The look of a surface seen from `camera` (the camera, or its reflection about the
 // water's level for the mirror: the light's path through the mirror is as long and
-// arrives as from there), before the air (air_between).
-fn surface_look(in: SceneVarying, camera: vec3<f32>) -> SurfaceLook {
+// arrives as from there), before the air (air_between); `far_cover` as
+// scene_fragment's.
+fn surface_look(in: SceneVarying, camera: vec3<f32>, far_cover: bool) -> SurfaceLook {
     let base = material.base_colour * textureSample(base_colour_texture, material_sampler, in.uv);
     let to_viewer = normalize_or_zero(camera - in.world_m);
     var n = normalize_or_zero(in.normal);
@@ -601,7 +613,7 @@ fn surface_look(in: SceneVarying, camera: vec3<f32>) -> SurfaceLook {
         // drift or a bare patch ends follows no texel's edge.
         let cell = params.cover.size_m / vec2<f32>(params.cover.texels);
         let warped_xz = in.surface_m.xz + cover_warp_m(in.surface_m.xz, cell);
-        let texel = cover_at(vec3<f32>(warped_xz.x, in.surface_m.y, warped_xz.y));
+        let texel = cover_at(vec3<f32>(warped_xz.x, in.surface_m.y, warped_xz.y), far_cover);
         // The texel's threshold moved by noise finer than a texel, so patch borders
         // and thin snow follow neither texels nor triangles.
         var threshold = texel.accumulation_mask;

@@ -252,7 +252,7 @@ fn vs_terrain(@builtin(vertex_index) v: u32) -> SceneVarying {
 fn fs_terrain(in: SceneVarying) -> @location(0) vec4<f32> {
     var v = terrain_varying(in);
     v.normal = terrain_facing_normal(v.normal, normalize_or_zero(params.camera_m_cone_cos.xyz - in.world_m));
-    return scene_fragment(v);
+    return scene_fragment(v, true);
 }
 
 // The terrain reflected about the water bodies' level, into the mirror image

@@ -565,6 +565,7 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
             Program::Render,
             "vs_scene"
             | "fs_scene"
+            | "fs_scene_on_grid"
             | "vs_terrain"
             | "fs_terrain"
             | "fs_water_body"

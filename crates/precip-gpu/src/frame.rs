@@ -130,6 +130,19 @@ pub enum MeshesOf {
     AllButWaterBodies,
 }
 
+/// Which of the meshes' tiles a draw takes, by where they lie on the cover grid
+/// (`precip_model::scene::gpu_scene::TileRegion`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SceneTiles {
+    /// All of them.
+    All,
+    /// Those wholly on the grid's interior (`precip_model::host::grid_interior_m`),
+    /// where a surface shows the grid's cover alone.
+    OnTheGridInterior,
+    /// The others.
+    OffTheGridInterior,
+}
+
 /// What a draw draws.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DrawOf {
@@ -140,6 +153,8 @@ pub enum DrawOf {
         materials: bool,
         /// Which meshes.
         which: MeshesOf,
+        /// Which of their tiles.
+        tiles: SceneTiles,
     },
     /// One triangle of 3 vertices covering the target.
     FullScreenTriangle,
@@ -312,6 +327,7 @@ const SHADOW_DRAW: Draw = Draw {
     of: DrawOf::SceneMeshes {
         materials: false,
         which: MeshesOf::All,
+        tiles: SceneTiles::All,
     },
     scene_vertices: true,
     topology: Topology::TriangleList,
@@ -351,6 +367,7 @@ const SCENE_DRAW: Draw = Draw {
     of: DrawOf::SceneMeshes {
         materials: true,
         which: MeshesOf::AllButWaterBodies,
+        tiles: SceneTiles::All,
     },
     scene_vertices: true,
     topology: Topology::TriangleList,
@@ -358,6 +375,29 @@ const SCENE_DRAW: Draw = Draw {
     depth_bias: None,
     blend: Blend::Opaque,
     when: PassWhen::GroundMirrorsNot,
+};
+
+// The scene pass's meshes (but the water bodies) on the cover grid's interior: a
+// fragment shader without the far cover's reads (fs_scene_on_grid; lavapipe runs a
+// branch's code in every fragment of a shader that has it, taken or not: 28 ms of
+// the demo's 1280×720 scene pass), then the rest with them.
+const SCENE_ON_GRID_DRAW: Draw = Draw {
+    entry_points: render_passes::SCENE_ON_GRID,
+    of: DrawOf::SceneMeshes {
+        materials: true,
+        which: MeshesOf::AllButWaterBodies,
+        tiles: SceneTiles::OnTheGridInterior,
+    },
+    ..SCENE_DRAW
+};
+
+const SCENE_OFF_GRID_DRAW: Draw = Draw {
+    of: DrawOf::SceneMeshes {
+        materials: true,
+        which: MeshesOf::AllButWaterBodies,
+        tiles: SceneTiles::OffTheGridInterior,
+    },
+    ..SCENE_DRAW
 };
 
 // The same meshes when their puddles mirror the scene: the water bodies' pipeline.
@@ -376,6 +416,7 @@ const WATER_BODY_DRAW: Draw = Draw {
     of: DrawOf::SceneMeshes {
         materials: true,
         which: MeshesOf::WaterBodies,
+        tiles: SceneTiles::All,
     },
     when: PassWhen::WaterMirroredNot,
     ..SCENE_DRAW
@@ -388,6 +429,7 @@ const SEA_DRAW: Draw = Draw {
     of: DrawOf::SceneMeshes {
         materials: true,
         which: MeshesOf::Sea,
+        tiles: SceneTiles::All,
     },
     when: PassWhen::Sea,
     ..SCENE_DRAW
@@ -638,7 +680,8 @@ pub const FRAME_PASSES: [FramePass; 16] = [
             colour: Some(AttachmentLoad::Clear),
             colour_target: ColourTarget::Frame,
             draws: &[
-                SCENE_DRAW,
+                SCENE_ON_GRID_DRAW,
+                SCENE_OFF_GRID_DRAW,
                 GROUND_MIRROR_DRAW,
                 TERRAIN_DRAW,
                 WATER_BODY_DRAW,
@@ -1143,16 +1186,35 @@ mod tests {
                 .draws
                 .iter()
                 .filter(|d| d.when.holds(conditions))
-                .filter(|d| {
-                    d.of == DrawOf::SceneMeshes {
+                .filter_map(|d| match d.of {
+                    DrawOf::SceneMeshes {
                         materials: true,
                         which: MeshesOf::AllButWaterBodies,
-                    }
+                        tiles,
+                    } => Some((d.key(), tiles)),
+                    _ => None,
                 })
                 .collect();
-            assert_eq!(ground.len(), 1);
-            let mirroring = ground[0].key() == render_passes::WATER_BODIES.1.unwrap_or_default();
-            assert_eq!(mirroring, ground_mirrors);
+            // Mirroring, all its tiles by the water bodies' pipeline; else those on
+            // the grid's interior without the far cover's reads, the rest with them.
+            let expected: &[(&str, SceneTiles)] = if ground_mirrors {
+                &[(
+                    render_passes::WATER_BODIES.1.unwrap_or_default(),
+                    SceneTiles::All,
+                )]
+            } else {
+                &[
+                    (
+                        render_passes::SCENE_ON_GRID.1.unwrap_or_default(),
+                        SceneTiles::OnTheGridInterior,
+                    ),
+                    (
+                        render_passes::SCENE.1.unwrap_or_default(),
+                        SceneTiles::OffTheGridInterior,
+                    ),
+                ]
+            };
+            assert_eq!(ground, expected);
         }
     }
 

@@ -810,6 +810,8 @@ pub mod render_passes {
     pub const SHADOW: (&str, Option<&str>) = ("vs_shadow", None);
     /// The scene with its cover.
     pub const SCENE: (&str, Option<&str>) = ("vs_scene", Some("fs_scene"));
+    /// The same where only the cover grid's own cover shows (no far cover read).
+    pub const SCENE_ON_GRID: (&str, Option<&str>) = ("vs_scene", Some("fs_scene_on_grid"));
     /// The terrain's clipmap with its cover (render_terrain.wgsl): its vertices
     /// pulled from the pyramid by their index, its fragments the scene's.
     pub const TERRAIN: (&str, Option<&str>) = ("vs_terrain", Some("fs_terrain"));

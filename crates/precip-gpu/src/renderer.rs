@@ -15,7 +15,7 @@
 
 use precip_model::drawing::clouds::CLOUD_MARCH_ALL;
 use precip_model::drawing::water_mirror::MIRROR_DOWNSCALE;
-use precip_model::scene::gpu_scene::TileCull;
+use precip_model::scene::gpu_scene::{TileCull, TileRegion};
 use precip_model::{
     BackendError, DrawnCounts, Image, Mirrors, ParticleResolution, PassTiming, View,
 };
@@ -24,7 +24,7 @@ use crate::bind_groups::{GroupLayout, RENDER_MATERIAL, groups_of};
 use crate::executor::Simulation;
 use crate::frame::{
     self, ColourTarget, DepthTarget, DrawOf, FRAME_PASSES, FrameDecision, FrameHost, PassWork,
-    frame_plan,
+    SceneTiles, frame_plan,
 };
 use crate::frame_resources::{
     FRAME_GROUPS, FrameBound, FrameBuffer, FrameGroupFill, FrameTexture, Sampler, TARGET_GROUPS,
@@ -818,14 +818,21 @@ impl<G: Gpu> FrameState<G> {
                         commands.push(Command::Pipeline(pipeline));
                         bind(&mut commands, d.groups)?;
                         match d.draw.of {
-                            DrawOf::SceneMeshes { materials, which } => {
+                            DrawOf::SceneMeshes {
+                                materials,
+                                which,
+                                tiles,
+                            } => {
                                 if let Some(scene) = &self.scene {
                                     scene.draw(
                                         &mut commands,
                                         (materials, which),
                                         detail.0,
                                         detail.1,
-                                        Some(tile_cull(recipe.depth, decision)),
+                                        (
+                                            Some(tile_cull(recipe.depth, decision)),
+                                            tile_region(tiles, decision),
+                                        ),
                                     );
                                 }
                             }
@@ -1038,6 +1045,23 @@ impl<G: Gpu> FrameState<G> {
                 })
                 .collect(),
         ))
+    }
+}
+
+/// Where the tiles a draw takes lie: on the cover grid's interior, off it, or
+/// anywhere (None).
+fn tile_region(tiles: SceneTiles, decision: &FrameDecision) -> Option<TileRegion> {
+    let rect_m = precip_model::host::grid_interior_m(&decision.params.cover);
+    match tiles {
+        SceneTiles::All => None,
+        SceneTiles::OnTheGridInterior => Some(TileRegion {
+            rect_m,
+            inside: true,
+        }),
+        SceneTiles::OffTheGridInterior => Some(TileRegion {
+            rect_m,
+            inside: false,
+        }),
     }
 }
 

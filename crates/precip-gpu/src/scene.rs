@@ -6,7 +6,7 @@
 //! triangles near the camera, coarse beyond (`SceneLod::ranges`).
 
 use glam::Vec3;
-use precip_model::scene::gpu_scene::{PackedScene, SceneLod, TileCull};
+use precip_model::scene::gpu_scene::{PackedScene, SceneLod, TileCull, TileRegion};
 use precip_model::scene::terrain::terrain_ramp;
 use precip_model::{BackendError, Setup, TextureRgba8};
 
@@ -240,15 +240,16 @@ impl<G: Gpu> SceneGpu<G> {
     }
 
     /// The commands drawing the meshes `which` picks, fine near `camera_m` and
-    /// coarse beyond `detail_distance_m`, only the tiles `cull` may see; each mesh's
-    /// material group bound at 2 when `with_materials`.
+    /// coarse beyond `detail_distance_m`, only the tiles `cull` may see and `region`
+    /// takes (all without them), nearest first; each mesh's material group bound at
+    /// 2 when `with_materials`.
     pub fn draw<'a>(
         &'a self,
         commands: &mut Vec<Command<'a, G>>,
         (with_materials, which): (bool, MeshesOf),
         camera_m: Vec3,
         detail_distance_m: f32,
-        cull: Option<TileCull>,
+        within: (Option<TileCull>, Option<TileRegion>),
     ) {
         let (Some(vertices), Some(indices)) = (&self.vertices, &self.indices) else {
             return;
@@ -263,20 +264,26 @@ impl<G: Gpu> SceneGpu<G> {
             return;
         }
         commands.push(Command::Meshes { vertices, indices });
-        for (m, material) in self.materials.iter().enumerate() {
-            if !picked(material) {
-                continue;
-            }
-            if with_materials && let Some(group) = &material.group {
+        // Nearest first (SceneLod::front_to_back: what they hide is not shaded),
+        // each mesh's material bound when the draws come to it.
+        let meshes = (0..self.materials.len()).filter(|&m| picked(&self.materials[m]));
+        let mut bound = None;
+        for range in self
+            .lod
+            .front_to_back(meshes, camera_m, detail_distance_m, within)
+        {
+            if with_materials
+                && bound != Some(range.mesh)
+                && let Some(group) = &self.materials[range.mesh].group
+            {
                 commands.push(Command::Group {
                     index: 2,
                     group,
                     offsets: &[],
                 });
+                bound = Some(range.mesh);
             }
-            for range in self.lod.ranges(m, camera_m, detail_distance_m, cull) {
-                commands.push(Command::DrawIndexed(range));
-            }
+            commands.push(Command::DrawIndexed(range.indices));
         }
     }
 

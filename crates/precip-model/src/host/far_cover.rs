@@ -96,6 +96,20 @@ pub fn grid_blend(grid: &GridFrame, xz_m: Vec2) -> f32 {
     t * t * (3.0 - 2.0 * t)
 }
 
+/// Where on `grid` a surface shows the grid's cover alone — [`grid_blend`] is 1 —
+/// even read a texel off its point (the scene's fragments read the cover through
+/// `cover_warp_m`, under half a texel): the grid less [`GRID_BLEND_SHARE`] of its
+/// shorter side and a texel at each edge, as the (x, z) corners (lower, upper), m.
+/// Empty (lower above upper) on a grid too small to have one. A scene tile wholly
+/// inside is drawn by a fragment shader without the far cover's reads
+/// (`fs_scene_on_grid`).
+#[must_use]
+pub fn grid_interior_m(grid: &GridFrame) -> (Vec2, Vec2) {
+    let texel = grid.size_m / grid.texels.max(UVec2::ONE).as_vec2();
+    let margin = Vec2::splat(GRID_BLEND_SHARE * grid.size_m.min_element()) + texel;
+    (grid.origin_m + margin, grid.origin_m + grid.size_m - margin)
+}
+
 /// Most cells along a side of the far cover (10 km of terrain: ~104 m cells).
 pub const FAR_CELLS_MAX: u32 = 96;
 
@@ -758,6 +772,44 @@ mod tests {
             assert!(w >= last && (0.0..=1.0).contains(&w), "{k}: {w}");
             last = w;
         }
+    }
+
+    /// Inside the interior, and a texel round any point of it, the grid's cover
+    /// shows alone; the interior reaches to a texel of where it stops doing so.
+    #[test]
+    fn the_grid_s_interior_shows_its_cover_alone() {
+        let grid = GridFrame::centred(
+            Vec2::new(3.0, -7.0),
+            Vec2::new(64.0, 128.0),
+            UVec2::new(32, 64),
+        );
+        let (lo, hi) = grid_interior_m(&grid);
+        let texel = 2.0;
+        for k in 0..=200 {
+            let t = k as f32 / 200.0;
+            for p in [
+                Vec2::new(lo.x + (hi.x - lo.x) * t, lo.y),
+                Vec2::new(lo.x + (hi.x - lo.x) * t, hi.y),
+                Vec2::new(lo.x, lo.y + (hi.y - lo.y) * t),
+                Vec2::new(hi.x, lo.y + (hi.y - lo.y) * t),
+            ] {
+                for off in [
+                    Vec2::new(-1.0, -1.0),
+                    Vec2::new(1.0, 1.0),
+                    Vec2::new(1.0, -1.0),
+                ] {
+                    let w = grid_blend(&grid, p + 0.5 * texel * off);
+                    assert!((w - 1.0).abs() < 1e-6, "{p} {off}: {w}");
+                }
+            }
+        }
+        // Two texels further out the band has begun.
+        assert!(grid_blend(&grid, Vec2::new(lo.x - 2.0 * texel, 0.5 * (lo.y + hi.y))) < 1.0);
+        assert!(grid_blend(&grid, Vec2::new(hi.x, hi.y + 2.0 * texel)) < 1.0);
+        // A grid narrower than its bands has none.
+        let tiny = GridFrame::centred(Vec2::ZERO, Vec2::splat(2.0), UVec2::splat(1));
+        let (lo, hi) = grid_interior_m(&tiny);
+        assert!(lo.x > hi.x && lo.y > hi.y);
     }
 
     #[test]

@@ -27,7 +27,7 @@ pub use far_air::{
 pub use far_cover::{
     FAR_CELLS_MAX, FAR_COVER_SURFACES, FAR_MASK, FAR_PIECE_DAYS, FAR_ROW_FLOATS, FAR_STEP_EVERY,
     FarCover, FarCoverRows, GRID_BLEND_SHARE, SNOW_LINE_BAND_M, SNOW_LINE_DEPTH_MM, far_cover_slot,
-    grid_blend,
+    grid_blend, grid_interior_m,
 };
 pub use far_water::{SHAFT_SAMPLES_PER_SIDE, Shafts, WaterBeyond};
 pub use layout::{Frames, SceneVertex};
