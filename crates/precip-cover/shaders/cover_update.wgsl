@@ -11,6 +11,14 @@
 // then the snow's, the count of listed tiles; then, per tile, whether it is marked;
 // whether it was listed the time before; then the list (each tile's x | z << 16).
 @group(0) @binding(3) var<storage, read_write> cover_tiles: array<atomic<u32>>;
+// The flow's and the drift's indirect dispatches (precip_gpu::recipe::
+// COVER_TILE_DISPATCH_BYTES_PER_SET), bound in the listings' group only: per list,
+// the workgroups (x, 1, 1) its listing writes, then the tiles a workgroup takes
+// (the host's).
+@group(0) @binding(4) var<storage, read_write> cover_tile_dispatch: array<u32>;
+
+// The most workgroups of a dispatch along x (WebGPU's and Vulkan's least limit).
+const MAX_COVER_TILE_WORKGROUPS: u32 = 65535u;
 
 @compute @workgroup_size(64)
 fn cover_update(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -239,7 +247,15 @@ fn list_cover_tiles(list: u32, lane: u32) {
         atomicStore(&cover_tiles[start + 1u + tile], 0u);
     }
     if (lane == 0u) {
-        atomicStore(&cover_tiles[start], atomicLoad(&tiles_listed));
+        let listed = atomicLoad(&tiles_listed);
+        atomicStore(&cover_tiles[start], listed);
+        // The iterations after this listing run a workgroup per `per` tiles listed
+        // (each walks the list with the dispatch's stride), none when none are.
+        let d = 4u * list;
+        let per = max(cover_tile_dispatch[d + 3u], 1u);
+        cover_tile_dispatch[d] = min((listed + per - 1u) / per, MAX_COVER_TILE_WORKGROUPS);
+        cover_tile_dispatch[d + 1u] = 1u;
+        cover_tile_dispatch[d + 2u] = 1u;
     }
 }
 

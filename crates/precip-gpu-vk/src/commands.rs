@@ -154,14 +154,14 @@ pub unsafe fn compute_barrier(device: &Device, commands: vk::CommandBuffer) {
         vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
     );
     let written = vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE;
+    // The next dispatch may read its workgroups from what this one wrote.
+    let read = (
+        stages | vk::PipelineStageFlags::DRAW_INDIRECT,
+        a | vk::AccessFlags::TRANSFER_READ | vk::AccessFlags::INDIRECT_COMMAND_READ,
+    );
     // SAFETY: the caller's guarantees, passed on.
     unsafe {
-        memory_barrier(
-            device,
-            commands,
-            (stages, written),
-            (stages, a | vk::AccessFlags::TRANSFER_READ),
-        );
+        memory_barrier(device, commands, (stages, written), read);
     }
 }
 
@@ -220,21 +220,33 @@ pub unsafe fn memory_barrier(
     }
 }
 
+/// A dispatch's workgroups.
+#[derive(Debug, Clone, Copy)]
+pub enum Workgroups {
+    /// `(x, y)`, `z` 1.
+    Count((u32, u32)),
+    /// Read from a buffer (made with `INDIRECT_BUFFER` usage) at a byte offset:
+    /// `(x, y, z)`, written by an earlier dispatch.
+    Indirect(vk::Buffer, u64),
+}
+
 /// Records one compute dispatch: binds `pipeline` and `set` (with its dynamic
-/// `offsets`) on `layout`, dispatches `groups` (x, y), and a [`compute_barrier`].
+/// `offsets`) on `layout`, dispatches `groups`, and a [`compute_barrier`].
 ///
 /// # Safety
 /// - `commands` is a command buffer of `device` in the recording state, outside a
 ///   render pass.
 /// - `pipeline`, `layout` and `set` are live, made for each other, and `offsets`
 ///   has one entry per dynamic binding of the set.
+/// - An indirect buffer is live, has `INDIRECT_BUFFER` usage and 12 bytes from the
+///   offset, which is a multiple of 4.
 pub unsafe fn record_dispatch(
     device: &Device,
     commands: vk::CommandBuffer,
     (pipeline, layout): (vk::Pipeline, vk::PipelineLayout),
     set: vk::DescriptorSet,
     offsets: &[u32],
-    (x, y): (u32, u32),
+    groups: Workgroups,
 ) {
     // SAFETY: the caller guarantees the command buffer is recording outside a render
     // pass and the pipeline, layout, set and offsets match.
@@ -250,7 +262,12 @@ pub unsafe fn record_dispatch(
             &[set],
             offsets,
         );
-        device.raw.cmd_dispatch(commands, x, y, 1);
+        match groups {
+            Workgroups::Count((x, y)) => device.raw.cmd_dispatch(commands, x, y, 1),
+            Workgroups::Indirect(buffer, offset) => {
+                device.raw.cmd_dispatch_indirect(commands, buffer, offset);
+            }
+        }
         compute_barrier(device, commands);
     }
 }

@@ -27,7 +27,7 @@ use precip_model::{BackendError, DeviceMemory};
 
 use crate::bind_groups::{descriptor_type, set_layout};
 use crate::buffer::Buffer;
-use crate::commands::{InFlight, Semaphores, record_dispatch, submit, submit_synced};
+use crate::commands::{InFlight, Semaphores, Workgroups, record_dispatch, submit, submit_synced};
 use crate::descriptors::{self, buffer_info, image_info, write};
 use crate::device::Device;
 use crate::error::{NAME, map_vk};
@@ -728,7 +728,10 @@ impl Gpu for Hal {
                 };
                 // SAFETY: `cb` is recording outside a render pass (inside `submit`);
                 // the pipeline was made with the layout of the set's table, and the
-                // offsets match its dynamic bindings (the executor's recipe).
+                // offsets match its dynamic bindings (the executor's recipe); an
+                // indirect dispatch's buffer is a live `BufferUsage::Indirect` one
+                // (INDIRECT_BUFFER usage) and the recipe's offsets are multiples of 16
+                // with the 12 bytes within it.
                 unsafe {
                     record_dispatch(
                         device,
@@ -736,7 +739,10 @@ impl Gpu for Hal {
                         (d.kernel.pipeline, d.kernel.layout),
                         d.group.set,
                         offsets,
-                        d.workgroups,
+                        match d.indirect {
+                            Some((buffer, offset)) => Workgroups::Indirect(buffer.raw, offset),
+                            None => Workgroups::Count(d.workgroups),
+                        },
                     );
                 }
                 stamp(&mut written);

@@ -546,7 +546,10 @@ impl Gpu for Hal {
                         None => &[],
                     };
                     pass.set_bind_group(0, d.group, offsets);
-                    pass.dispatch_workgroups(d.workgroups.0, d.workgroups.1, 1);
+                    match d.indirect {
+                        Some((buffer, offset)) => pass.dispatch_workgroups_indirect(buffer, offset),
+                        None => pass.dispatch_workgroups(d.workgroups.0, d.workgroups.1, 1),
+                    }
                     stamp(&mut pass);
                 }
             }

@@ -238,19 +238,32 @@ pub const STEP: GroupLayout = GroupLayout {
     ],
 };
 
+/// The cover kernels' bindings, the listings' last ([`COVER_LISTING`]).
+const COVER_BINDINGS: &[Binding; 5] = &[
+    binding(
+        cv::COVER_PARAMS,
+        uniform(size_of::<CoverStepParams>(), true),
+        Stages::Compute,
+    ),
+    binding(cv::COVER, storage(false), Stages::Compute),
+    binding(cv::DEPOSITS, storage(false), Stages::Compute),
+    binding(cv::COVER_TILES, storage(false), Stages::Compute),
+    binding(cv::COVER_TILE_DISPATCH, storage(false), Stages::Compute),
+];
+
 /// Group 0 of `CoverUpdate`.
 pub const COVER_UPDATE: GroupLayout = GroupLayout {
     name: "precip cover_update",
-    bindings: &[
-        binding(
-            cv::COVER_PARAMS,
-            uniform(size_of::<CoverStepParams>(), true),
-            Stages::Compute,
-        ),
-        binding(cv::COVER, storage(false), Stages::Compute),
-        binding(cv::DEPOSITS, storage(false), Stages::Compute),
-        binding(cv::COVER_TILES, storage(false), Stages::Compute),
-    ],
+    bindings: COVER_BINDINGS.split_at(4).0,
+};
+
+/// Group 0 of the cover tiles' listings: [`COVER_UPDATE`]'s bindings and the
+/// indirect dispatches they write (`cover_bindings::COVER_TILE_DISPATCH`), which
+/// the flow's and the drift's kernels read as their workgroups and so may not have
+/// bound.
+pub const COVER_LISTING: GroupLayout = GroupLayout {
+    name: "precip cover listing",
+    bindings: COVER_BINDINGS,
 };
 
 /// Group 0 of `CullParticles`.
@@ -523,6 +536,7 @@ pub const OPTICS: GroupLayout = GroupLayout {
 pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupLayout]> {
     Some(match (program, entry_point) {
         (Program::StepParticles, _) => &[STEP],
+        (Program::CoverUpdate, "water_tiles_list" | "snow_tiles_list") => &[COVER_LISTING],
         (Program::CoverUpdate, _) => &[COVER_UPDATE],
         (Program::CullParticles, _) => &[CULL],
         (Program::QueryBeams, _) => &[BEAMS],
@@ -595,6 +609,24 @@ mod tests {
     use super::*;
 
     use crate::binding_limits::FRAME_PROGRAMS;
+
+    #[test]
+    fn only_the_listings_bind_the_dispatches_they_write() {
+        let binds_dispatch = |g: &GroupLayout| {
+            g.bindings
+                .iter()
+                .any(|b| b.binding == cv::COVER_TILE_DISPATCH)
+        };
+        for entry in Program::CoverUpdate.entry_points() {
+            let groups = groups_of(Program::CoverUpdate, entry).expect("a cover kernel's groups");
+            let listing = entry.ends_with("_tiles_list");
+            assert_eq!(groups.iter().any(binds_dispatch), listing, "{entry}");
+        }
+        assert_eq!(
+            COVER_LISTING.bindings.len(),
+            COVER_UPDATE.bindings.len() + 1
+        );
+    }
 
     #[test]
     fn every_entry_point_of_the_frame_has_its_groups_and_no_binding_is_listed_twice() {

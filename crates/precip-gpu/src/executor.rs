@@ -22,12 +22,12 @@ use precip_model::{BackendError, Camera, Particle, PassTiming, Setup, Weather};
 use crate::bind_groups::GroupLayout;
 use crate::gpu::{BindingResource, Dispatch, Gpu};
 use crate::recipe::{
-    DispatchCounts, INIT_PASS, KernelPass, OPTICS_PASS, OpticsParams, SUBSTEP_PASSES,
-    cover_tiles_all_marked, dispatch_size, substep_timings,
+    COVER_TILES_PER_WORKGROUP, DispatchCounts, INIT_PASS, KernelPass, OPTICS_PASS, OpticsParams,
+    SUBSTEP_PASSES, cover_tiles_all_marked, dispatch_size, substep_timings,
 };
 use crate::resources::{
-    BEAM_GROUP, Bound, BufferUsage, COVER_GROUP, Contents, GroupFill, OPTICS_GROUP, STEP_GROUP,
-    SimBuffer, simulation_buffers, uniform_stride,
+    BEAM_GROUP, Bound, BufferUsage, COVER_GROUP, COVER_LISTING_GROUP, Contents, GroupFill,
+    OPTICS_GROUP, STEP_GROUP, SimBuffer, simulation_buffers, uniform_stride,
 };
 use crate::shaders::Program;
 
@@ -36,6 +36,7 @@ use crate::shaders::Program;
 pub struct Kernels<G: Gpu> {
     step_layout: G::GroupLayout,
     cover_layout: G::GroupLayout,
+    cover_listing_layout: G::GroupLayout,
     beams_layout: G::GroupLayout,
     optics_layout: G::GroupLayout,
     init: G::Kernel,
@@ -61,6 +62,7 @@ impl<G: Gpu> Kernels<G> {
         for table in [
             STEP_GROUP.layout,
             COVER_GROUP.layout,
+            COVER_LISTING_GROUP.layout,
             BEAM_GROUP.layout,
             OPTICS_GROUP.layout,
         ] {
@@ -84,9 +86,10 @@ impl<G: Gpu> Kernels<G> {
         ]);
         for kernel in wanted {
             let layout = match kernel.program {
+                Program::CoverUpdate if is_cover_listing(kernel.entry_point) => &layouts[2],
                 Program::CoverUpdate => &layouts[1],
-                Program::QueryBeams => &layouts[2],
-                Program::OpticsSums => &layouts[3],
+                Program::QueryBeams => &layouts[3],
+                Program::OpticsSums => &layouts[4],
                 _ => &layouts[0],
             };
             match gpu.kernel(kernel.program, kernel.entry_point, &[layout]) {
@@ -108,6 +111,7 @@ impl<G: Gpu> Kernels<G> {
             layouts.next(),
             layouts.next(),
             layouts.next(),
+            layouts.next(),
             init,
             query_beams,
             optics_sums,
@@ -115,6 +119,7 @@ impl<G: Gpu> Kernels<G> {
             (
                 Some(step_layout),
                 Some(cover_layout),
+                Some(cover_listing_layout),
                 Some(beams_layout),
                 Some(optics_layout),
                 Some(init),
@@ -123,6 +128,7 @@ impl<G: Gpu> Kernels<G> {
             ) if substep.len() == SUBSTEP_PASSES.len() => Ok(Self {
                 step_layout,
                 cover_layout,
+                cover_listing_layout,
                 beams_layout,
                 optics_layout,
                 init,
@@ -150,6 +156,7 @@ impl<G: Gpu> Kernels<G> {
             vec![
                 self.step_layout,
                 self.cover_layout,
+                self.cover_listing_layout,
                 self.beams_layout,
                 self.optics_layout,
             ],
@@ -160,6 +167,8 @@ impl<G: Gpu> Kernels<G> {
     fn layout_of(&self, fill: &GroupFill) -> &G::GroupLayout {
         if fill.layout.name == COVER_GROUP.layout.name {
             &self.cover_layout
+        } else if fill.layout.name == COVER_LISTING_GROUP.layout.name {
+            &self.cover_listing_layout
         } else if fill.layout.name == BEAM_GROUP.layout.name {
             &self.beams_layout
         } else if fill.layout.name == OPTICS_GROUP.layout.name {
@@ -187,6 +196,8 @@ pub struct Simulation<G: Gpu> {
     wind: G::Volume,
     step_group: G::BindGroup,
     cover_group: G::BindGroup,
+    /// The cover tiles' listings' group ([`COVER_LISTING_GROUP`]).
+    cover_listing_group: G::BindGroup,
     particle_count: u32,
     cover_texel_count: u32,
     wave_frame: GridFrame,
@@ -260,7 +271,7 @@ impl<G: Gpu> Simulation<G> {
                         buffers,
                         wind: Some(wind),
                         groups,
-                    } if groups.len() == 2 => (buffers, wind, groups),
+                    } if groups.len() == 3 => (buffers, wind, groups),
                     incomplete => {
                         incomplete.give_back(gpu);
                         return Err(BackendError::Device {
@@ -269,6 +280,7 @@ impl<G: Gpu> Simulation<G> {
                         });
                     }
                 };
+                let cover_listing_group = groups.remove(2);
                 let (cover_group, step_group) = (groups.remove(1), groups.remove(0));
                 let cover_texel_count = cover.texels.len() as u32;
                 let wave_frame = host.frames().waves;
@@ -278,6 +290,7 @@ impl<G: Gpu> Simulation<G> {
                     wind,
                     step_group,
                     cover_group,
+                    cover_listing_group,
                     particle_count: parts.0,
                     cover_texel_count,
                     wave_frame,
@@ -302,7 +315,8 @@ impl<G: Gpu> Simulation<G> {
         }
     }
 
-    /// Fills `made` with the buffers, the volume and the two groups (step, cover);
+    /// Fills `made` with the buffers, the volume and the three groups (step, cover,
+    /// the cover's listings);
     /// returns the particle count and the uniform stride.
     fn make(
         gpu: &mut G,
@@ -312,7 +326,12 @@ impl<G: Gpu> Simulation<G> {
         made: &mut Made<G>,
     ) -> Result<(u32, u64), BackendError> {
         let stride = uniform_stride(gpu.uniform_alignment());
-        let specs = simulation_buffers(host, cover, stride, gpu.slots());
+        let tiles_per_workgroup = if gpu.rasterises_on_cpu() {
+            COVER_TILES_PER_WORKGROUP
+        } else {
+            1
+        };
+        let specs = simulation_buffers(host, cover, stride, gpu.slots(), tiles_per_workgroup);
         for spec in &specs {
             let zeros;
             let contents = match &spec.contents {
@@ -334,7 +353,7 @@ impl<G: Gpu> Simulation<G> {
         let n = wind.spec.texels;
         made.wind =
             Some(gpu.create_volume("precip wind volume", [n.x, n.y, n.z], wind.as_bytes())?);
-        for fill in [&STEP_GROUP, &COVER_GROUP] {
+        for fill in [&STEP_GROUP, &COVER_GROUP, &COVER_LISTING_GROUP] {
             let group =
                 Self::fill_group(gpu, kernels, fill, &made.buffers, made.wind.as_ref(), None)?;
             made.groups.push(group);
@@ -402,6 +421,7 @@ impl<G: Gpu> Simulation<G> {
                 group: &self.step_group,
                 offset: Some(0),
                 workgroups: dispatch_size(self.particle_count),
+                indirect: None,
             }],
             false,
         )?;
@@ -524,14 +544,22 @@ impl<G: Gpu> Simulation<G> {
             })?;
             for (pass, kernel) in &substep {
                 let group = match pass.program {
+                    Program::CoverUpdate if is_cover_listing(pass.entry_point) => {
+                        &self.cover_listing_group
+                    }
                     Program::CoverUpdate => &self.cover_group,
                     _ => &self.step_group,
                 };
+                let indirect = pass
+                    .over
+                    .indirect_offset()
+                    .map(|at| (&self.buffers[index_of(SimBuffer::CoverTileDispatch)], at));
                 dispatches.push(Dispatch {
                     kernel,
                     group,
                     offset: Some(offset),
                     workgroups: dispatch_size(pass.over.invocations(counts)),
+                    indirect,
                 });
             }
         }
@@ -740,6 +768,7 @@ impl<G: Gpu> Simulation<G> {
                     group: &group,
                     offset: None,
                     workgroups: dispatch_size(params.beam_count),
+                    indirect: None,
                 }],
                 false,
             );
@@ -806,6 +835,7 @@ impl<G: Gpu> Simulation<G> {
                     group: &group,
                     offset: None,
                     workgroups: (x, y),
+                    indirect: None,
                 }],
                 false,
             );
@@ -888,7 +918,7 @@ impl<G: Gpu> Simulation<G> {
         Made::<G> {
             buffers: self.buffers,
             wind: Some(self.wind),
-            groups: vec![self.step_group, self.cover_group],
+            groups: vec![self.step_group, self.cover_group, self.cover_listing_group],
         }
         .give_back(gpu);
     }
@@ -905,6 +935,17 @@ fn index_of(buffer: SimBuffer) -> usize {
 /// The table a group of the simulation was made from (for backends that look a
 /// layout up by its table).
 #[must_use]
-pub fn simulation_tables() -> [&'static GroupLayout; 3] {
-    [STEP_GROUP.layout, COVER_GROUP.layout, BEAM_GROUP.layout]
+pub fn simulation_tables() -> [&'static GroupLayout; 4] {
+    [
+        STEP_GROUP.layout,
+        COVER_GROUP.layout,
+        COVER_LISTING_GROUP.layout,
+        BEAM_GROUP.layout,
+    ]
+}
+
+/// Whether a cover kernel lists tiles (and writes the indirect dispatches of the
+/// iterations after it): it runs with [`COVER_LISTING_GROUP`].
+fn is_cover_listing(entry_point: &str) -> bool {
+    matches!(entry_point, "water_tiles_list" | "snow_tiles_list")
 }

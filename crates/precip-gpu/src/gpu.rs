@@ -49,8 +49,11 @@ pub struct Dispatch<'a, G: Gpu + ?Sized> {
     pub group: &'a G::BindGroup,
     /// The group's dynamic offset, if it has a dynamic binding.
     pub offset: Option<u32>,
-    /// Workgroups `(x, y)`.
+    /// Workgroups `(x, y)`: the dispatch's, or the most an indirect one may hold.
     pub workgroups: (u32, u32),
+    /// An indirect dispatch: the buffer (made [`crate::resources::BufferUsage::Indirect`]) and
+    /// the byte offset of its workgroups `(x, y, z)`, written by a kernel before.
+    pub indirect: Option<(&'a G::Buffer, u64)>,
 }
 
 /// A 2D texture to make.

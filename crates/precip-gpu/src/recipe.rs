@@ -111,12 +111,18 @@ pub enum DispatchOver {
     ShoreFaces,
     /// One invocation per cell of the shore's grid.
     ShoreCells,
-    /// One workgroup per cover tile ([`COVER_TILE_SIDE`]) on a GPU, per
+    /// The tiles of a [`CoverTileSet`] its last listing listed: one workgroup per
+    /// listed cover tile ([`COVER_TILE_SIDE`]) on a GPU, per
     /// [`COVER_TILES_PER_WORKGROUP`] on a device that computes on the CPU, a texel
     /// an invocation, each workgroup taking a listed tile at a time with the
-    /// dispatch's stride: the flow's and the drift's kernels (a fixed dispatch for
-    /// the reason [`LIST_ENTRIES_PER_INVOCATION`] gives).
-    CoverTiles,
+    /// dispatch's stride: the flow's and the drift's kernels. An indirect dispatch
+    /// ([`DispatchOver::indirect_offset`]): the listing writes its workgroups into
+    /// [`crate::resources::SimBuffer::CoverTileDispatch`], so the kernels cost what
+    /// the tiles listed cost and nothing where none are (lavapipe runs a
+    /// workgroup with nothing listed for about 1 µs, and a busy CPU's thread
+    /// wake-ups make a dispatch of many of them dearer still).
+    /// [`DispatchOver::invocations`] gives the most it may be.
+    ListedCoverTiles(CoverTileSet),
 }
 
 /// What the dispatches of a configuration run over.
@@ -183,7 +189,7 @@ impl DispatchOver {
             Self::OceanTexels => OCEAN_ATLAS_PX[0] * OCEAN_ATLAS_PX[1],
             Self::ShoreFaces => counts.shore_faces,
             Self::ShoreCells => counts.shore_cells,
-            Self::CoverTiles => {
+            Self::ListedCoverTiles(_) => {
                 let per_workgroup = match counts.cover_tiles_per_workgroup {
                     0 => 1,
                     n => n,
@@ -195,6 +201,32 @@ impl DispatchOver {
             }
         }
     }
+
+    /// Where an indirect dispatch over this finds its workgroups in
+    /// [`crate::resources::SimBuffer::CoverTileDispatch`], bytes; `None` for a
+    /// dispatch of [`DispatchOver::invocations`].
+    #[must_use]
+    pub const fn indirect_offset(self) -> Option<u64> {
+        match self {
+            Self::ListedCoverTiles(set) => Some(set as u64 * COVER_TILE_DISPATCH_BYTES_PER_SET),
+            _ => None,
+        }
+    }
+}
+
+/// Bytes of one [`CoverTileSet`]'s entry in
+/// [`crate::resources::SimBuffer::CoverTileDispatch`]: the indirect dispatch's
+/// workgroups `(x, 1, 1)` the set's listing writes, then the tiles a workgroup takes
+/// (the host's, [`cover_tile_dispatch_words`]). WGSL twin: `cover_tile_dispatch`
+/// of `precip-cover/shaders/cover_update.wgsl`.
+pub const COVER_TILE_DISPATCH_BYTES_PER_SET: u64 = 16;
+
+/// [`crate::resources::SimBuffer::CoverTileDispatch`] before any listing: for each
+/// [`CoverTileSet`] no workgroups, and the tiles a workgroup takes
+/// (`tiles_per_workgroup`, [`DispatchCounts::cover_tiles_per_workgroup`]; 0 reads as 1).
+#[must_use]
+pub fn cover_tile_dispatch_words(tiles_per_workgroup: u32) -> Vec<u32> {
+    [0, 1, 1, tiles_per_workgroup.max(1)].repeat(COVER_TILE_SETS as usize)
 }
 
 /// Side of a cover tile, texels. The cover's exchanges between neighbours, the
@@ -223,7 +255,7 @@ impl DispatchOver {
 pub const COVER_TILE_SIDE: u32 = 8;
 
 /// Tiles a workgroup of the flow or the drift takes, one after the other, on a
-/// device that computes on the CPU ([`DispatchOver::CoverTiles`]). There each
+/// device that computes on the CPU ([`DispatchOver::ListedCoverTiles`]). There each
 /// workgroup has a cost of its own even when it has nothing to do (lavapipe: about
 /// 1 µs, so that one workgroup per tile of a 320² grid costs 1.4 ms a dispatch, the
 /// whole of the flow's cost where little water stands): a few tiles each keeps that
@@ -436,13 +468,13 @@ const DRIFT_ITERATION: [KernelPass; 2] = [
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "snow_outflow",
-        over: DispatchOver::CoverTiles,
+        over: DispatchOver::ListedCoverTiles(CoverTileSet::Snow),
         when: KernelWhen::WhileSnowMayLie,
     },
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "snow_inflow",
-        over: DispatchOver::CoverTiles,
+        over: DispatchOver::ListedCoverTiles(CoverTileSet::Snow),
         when: KernelWhen::WhileSnowMayLie,
     },
 ];
@@ -462,13 +494,13 @@ const FLOW_ITERATION: [KernelPass; 2] = [
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "water_outflow",
-        over: DispatchOver::CoverTiles,
+        over: DispatchOver::ListedCoverTiles(CoverTileSet::Water),
         when: KernelWhen::WhileWaterMayStand,
     },
     KernelPass {
         program: Program::CoverUpdate,
         entry_point: "water_inflow",
-        over: DispatchOver::CoverTiles,
+        over: DispatchOver::ListedCoverTiles(CoverTileSet::Water),
         when: KernelWhen::WhileWaterMayStand,
     },
 ];
@@ -1297,13 +1329,21 @@ pub mod cover_bindings {
     pub const DEPOSITS: u32 = 2;
     /// The cover tiles ([`super::cover_tiles_bytes`]), read-write storage.
     pub const COVER_TILES: u32 = 3;
+    /// The flow's and the drift's indirect dispatches
+    /// ([`super::COVER_TILE_DISPATCH_BYTES_PER_SET`]), read-write storage: in the
+    /// listings' group only ([`crate::bind_groups::COVER_LISTING`]), as a buffer
+    /// may not be written in the dispatch that reads it as its workgroups.
+    pub const COVER_TILE_DISPATCH: u32 = 4;
 }
 
 #[cfg(test)]
 mod tests {
     #[test]
     fn the_flow_takes_a_tile_a_workgroup_on_a_gpu_and_eight_on_a_cpu() {
-        use super::{DispatchCounts, DispatchOver, GridFrame, WORKGROUP_SIZE, cover_tiles_bytes};
+        use super::{
+            CoverTileSet, DispatchCounts, DispatchOver, GridFrame, WORKGROUP_SIZE,
+            cover_tiles_bytes,
+        };
         let cover = GridFrame::centred(
             glam::Vec2::ZERO,
             glam::Vec2::splat(100.0),
@@ -1314,10 +1354,47 @@ mod tests {
         let gpu = DispatchCounts::of(1, &cover, &waves, false);
         let cpu = DispatchCounts::of(1, &cover, &waves, true);
         assert_eq!(gpu.cover_tiles, 820);
-        let groups = |c| DispatchOver::CoverTiles.invocations(c) / WORKGROUP_SIZE;
+        let groups =
+            |c| DispatchOver::ListedCoverTiles(CoverTileSet::Water).invocations(c) / WORKGROUP_SIZE;
         assert_eq!(groups(gpu), 820);
         assert_eq!(groups(cpu), 103);
         assert_eq!(cover_tiles_bytes(&cover), 4 * 2 * (1 + 3 * 820));
+    }
+
+    #[test]
+    fn the_flow_and_the_drift_take_their_workgroups_from_their_listing() {
+        use super::{
+            COVER_TILE_DISPATCH_BYTES_PER_SET, COVER_TILE_SETS, CoverTileSet, DispatchOver,
+            cover_tile_dispatch_words,
+        };
+        let water = DispatchOver::ListedCoverTiles(CoverTileSet::Water).indirect_offset();
+        let snow = DispatchOver::ListedCoverTiles(CoverTileSet::Snow).indirect_offset();
+        assert_eq!(water, Some(0));
+        assert_eq!(snow, Some(COVER_TILE_DISPATCH_BYTES_PER_SET));
+        assert_eq!(DispatchOver::CoverTexels.indirect_offset(), None);
+        // Every flow and drift kernel is dispatched by its listing, no other.
+        for pass in SUBSTEP_PASSES {
+            let listed = [
+                "water_outflow",
+                "water_inflow",
+                "snow_outflow",
+                "snow_inflow",
+            ];
+            assert_eq!(
+                pass.over.indirect_offset().is_some(),
+                listed.contains(&pass.entry_point),
+                "{}",
+                pass.entry_point
+            );
+        }
+        // Nothing to dispatch before a listing; the tiles a workgroup takes last.
+        let words = cover_tile_dispatch_words(8);
+        assert_eq!(words, [0, 1, 1, 8, 0, 1, 1, 8]);
+        assert_eq!(
+            4 * words.len() as u64,
+            COVER_TILE_SETS * COVER_TILE_DISPATCH_BYTES_PER_SET
+        );
+        assert_eq!(cover_tile_dispatch_words(0)[3], 1);
     }
 
     #[test]

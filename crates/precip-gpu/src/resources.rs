@@ -1,7 +1,7 @@
 //! The resources table of the simulation: every buffer a configuration allocates,
 //! its size rule, usage and initial contents ([`simulation_buffers`]), the wind
 //! volume, and which resource fills each binding of the simulation's bind groups
-//! ([`STEP_GROUP`], [`COVER_GROUP`], [`BEAM_GROUP`]). The executor
+//! ([`STEP_GROUP`], [`COVER_GROUP`], [`COVER_LISTING_GROUP`], [`BEAM_GROUP`]). The executor
 //! ([`crate::executor`]) creates and binds them from these tables on every backend;
 //! a backend only says how a buffer or a binding is made on its device.
 
@@ -12,9 +12,9 @@ use precip_model::particles::step::StepParams;
 use precip_model::physics::water_waves::initial_waves;
 use precip_model::{GroundMap, Particle};
 
-use crate::bind_groups::{BEAMS, COVER_UPDATE, GroupLayout, OPTICS, STEP};
-use crate::recipe::cover_tiles_bytes;
+use crate::bind_groups::{BEAMS, COVER_LISTING, COVER_UPDATE, GroupLayout, OPTICS, STEP};
 use crate::recipe::{beam_bindings as bb, cover_bindings as cv, pending_births_bytes};
+use crate::recipe::{cover_tile_dispatch_words, cover_tiles_bytes};
 use crate::recipe::{optics_bindings as ob, step_bindings as sb};
 
 /// A buffer of a configuration.
@@ -45,11 +45,14 @@ pub enum SimBuffer {
     /// The cover tiles the flow and the drift run over ([`cover_tiles_bytes`]),
     /// zeroed.
     CoverTiles,
+    /// The flow's and the drift's indirect dispatches, written by their listings
+    /// ([`cover_tile_dispatch_words`]).
+    CoverTileDispatch,
 }
 
 impl SimBuffer {
     /// Every buffer, in the order they are made.
-    pub const ALL: [Self; 11] = [
+    pub const ALL: [Self; 12] = [
         Self::Particles,
         Self::Cover,
         Self::Deposits,
@@ -61,6 +64,7 @@ impl SimBuffer {
         Self::StepBlocks,
         Self::CoverBlocks,
         Self::CoverTiles,
+        Self::CoverTileDispatch,
     ];
 
     /// A label for debuggers.
@@ -78,6 +82,7 @@ impl SimBuffer {
             Self::StepBlocks => "precip step params",
             Self::CoverBlocks => "precip cover params",
             Self::CoverTiles => "precip cover tiles",
+            Self::CoverTileDispatch => "precip cover tile dispatch",
         }
     }
 }
@@ -136,13 +141,16 @@ pub fn uniform_stride(alignment: u64) -> u64 {
 }
 
 /// The buffers of a configuration of `host`'s setup with its initial `cover`, uniform
-/// blocks at `stride` bytes, in `slots` rings (submissions in flight at once).
+/// blocks at `stride` bytes, in `slots` rings (submissions in flight at once), the
+/// flow and the drift taking `tiles_per_workgroup` cover tiles a workgroup
+/// ([`crate::recipe::DispatchCounts::cover_tiles_per_workgroup`]).
 #[must_use]
 pub fn simulation_buffers(
     host: &HostState,
     cover: &CoverGrid,
     stride: u64,
     slots: u32,
+    tiles_per_workgroup: u32,
 ) -> Vec<BufferSpec> {
     let setup = host.setup();
     let (world, camera) = setup.particle_counts();
@@ -211,6 +219,14 @@ pub fn simulation_buffers(
                     BufferUsage::Storage,
                     Contents::Zeroed,
                 ),
+                SimBuffer::CoverTileDispatch => {
+                    let words = cover_tile_dispatch_words(tiles_per_workgroup);
+                    (
+                        4 * words.len() as u64,
+                        BufferUsage::Indirect,
+                        Contents::Bytes(bytemuck::cast_slice(&words).to_vec()),
+                    )
+                }
             };
             BufferSpec {
                 buffer,
@@ -267,15 +283,31 @@ pub const STEP_GROUP: GroupFill = GroupFill {
     ],
 };
 
+/// What fills the cover kernels' bindings, the listings' last
+/// ([`COVER_LISTING_GROUP`]).
+const COVER_BOUND: &[(u32, Bound); 5] = &[
+    (cv::COVER_PARAMS, Bound::Buffer(SimBuffer::CoverBlocks)),
+    (cv::COVER, Bound::Buffer(SimBuffer::Cover)),
+    (cv::DEPOSITS, Bound::Buffer(SimBuffer::Deposits)),
+    (cv::COVER_TILES, Bound::Buffer(SimBuffer::CoverTiles)),
+    (
+        cv::COVER_TILE_DISPATCH,
+        Bound::Buffer(SimBuffer::CoverTileDispatch),
+    ),
+];
+
 /// Group 0 of the cover kernels.
 pub const COVER_GROUP: GroupFill = GroupFill {
     layout: &COVER_UPDATE,
-    bound: &[
-        (cv::COVER_PARAMS, Bound::Buffer(SimBuffer::CoverBlocks)),
-        (cv::COVER, Bound::Buffer(SimBuffer::Cover)),
-        (cv::DEPOSITS, Bound::Buffer(SimBuffer::Deposits)),
-        (cv::COVER_TILES, Bound::Buffer(SimBuffer::CoverTiles)),
-    ],
+    bound: COVER_BOUND.split_at(4).0,
+};
+
+/// Group 0 of the cover tiles' listings (`water_tiles_list`, `snow_tiles_list`):
+/// the cover kernels' bindings and the indirect dispatches they write for the
+/// iterations after them.
+pub const COVER_LISTING_GROUP: GroupFill = GroupFill {
+    layout: &COVER_LISTING,
+    bound: COVER_BOUND,
 };
 
 /// Group 0 of the `query_beams` kernel.
@@ -307,7 +339,13 @@ mod tests {
 
     #[test]
     fn every_binding_of_each_group_is_filled_once() {
-        for fill in [STEP_GROUP, COVER_GROUP, BEAM_GROUP, OPTICS_GROUP] {
+        for fill in [
+            STEP_GROUP,
+            COVER_GROUP,
+            COVER_LISTING_GROUP,
+            BEAM_GROUP,
+            OPTICS_GROUP,
+        ] {
             assert_eq!(
                 fill.bound.len(),
                 fill.layout.bindings.len(),
@@ -326,7 +364,7 @@ mod tests {
         let setup = precip_model::Setup::over_flat_ground(20.0, 8, 10.0, 300);
         let host = HostState::configure(&setup).expect("a valid setup");
         let cover = setup.initial_cover().expect("a cover");
-        let specs = simulation_buffers(&host, &cover, uniform_stride(256), 2);
+        let specs = simulation_buffers(&host, &cover, uniform_stride(256), 2, 8);
         assert_eq!(specs.len(), SimBuffer::ALL.len());
         let bytes = |b: SimBuffer| specs.iter().find(|s| s.buffer == b).map(|s| s.bytes);
         assert_eq!(bytes(SimBuffer::Particles), Some(300 * 64));
