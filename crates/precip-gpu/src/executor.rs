@@ -553,7 +553,7 @@ impl<G: Gpu> Simulation<G> {
                 let indirect = pass
                     .over
                     .indirect_offset()
-                    .map(|at| (&self.buffers[index_of(SimBuffer::CoverTileDispatch)], at));
+                    .map(|at| (self.buffer(SimBuffer::CoverTileDispatch), at));
                 dispatches.push(Dispatch {
                     kernel,
                     group,
