@@ -128,6 +128,20 @@ struct FrameDraws {
     reserved2: u32,
 }
 
+// A snow sprite's quad as the frame draws it, made once a frame for each sprite
+// instance (kernel snow_quads, render_particles.wgsl) and read by its four corners
+// (Rust: precip_gpu::recipe::SNOW_QUAD_BYTES): its centre (the copy's), its sides
+// (SnowQuadAxes, drawing.wgsl) and stretch, its lit and fogged colour and opacity.
+// A stretch of 0: the instance draws nothing (a copy that is not).
+struct SnowQuad {
+    centre_m: vec3<f32>,
+    stretch: f32,
+    across_m: vec3<f32>,
+    opacity: f32,
+    along_m: vec3<f32>,
+    colour: vec3<f32>,
+}
+
 // Vertices per snow sprite (a strip) and per rain tetrahedron (a list).
 const SNOW_SPRITE_VERTICES: u32 = 4u;
 const RAIN_TETRAHEDRON_VERTICES: u32 = 12u;

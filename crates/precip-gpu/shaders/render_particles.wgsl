@@ -58,21 +58,39 @@ fn vs_snow_reduced(@builtin(vertex_index) corner: u32, @builtin(instance_index) 
     return snow_vertex(corner, instance);
 }
 
-fn snow_vertex(corner: u32, instance: u32) -> ParticleVarying {
-    // Instance = drawn flake × its copies (snow_copy_position): a camera-volume flake
-    // stands for `m` of the air's, drawn as `copies` flakes of `m/copies` ink each.
+// The frame's snow quads: read by the sprites' corners (group 2 of their draws),
+// written by snow_quads (group 2 of the kernel).
+@group(2) @binding(9) var<storage, read> snow_quads: array<SnowQuad>;
+@group(2) @binding(10) var<storage, read_write> snow_quads_out: array<SnowQuad>;
+
+// Each snow instance's quad, once a frame, where its four corners read it (vertex
+// shading each corner anew cost four times the flake's lighting, fog and sizing: on
+// a CPU device the particles' pass was three quarters vertex work). Over the sprite
+// instances the cull counted, up to the quads' capacity, each invocation walking
+// them with the dispatch's stride (precip_gpu::recipe::DispatchOver::SnowInstances).
+@compute @workgroup_size(64)
+fn snow_quads_write(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let lanes = groups.x * groups.y * 64u;
+    let count = min(splat_draws.snow.instance_count, arrayLength(&snow_quads_out));
+    for (var k = linear_index(id, groups); k < count; k += lanes) {
+        snow_quads_out[k] = snow_quad(k);
+    }
+}
+
+// Instance `instance`'s quad: a drawn flake × its copies (snow_copy_position), a
+// camera-volume flake standing for `m` of the air's drawn as `copies` flakes of
+// `m/copies` ink each.
+fn snow_quad(instance: u32) -> SnowQuad {
     let copies = snow_copies();
     let i = drawn[instance / copies];
     let copy = instance % copies;
     var p = particles[i];
-    var out: ParticleVarying;
     let in_camera_volume = i >= frame_pools().x;
     let original = particles[i];
     let is_resolved = resolved(original);
     if (copy != 0u && !(in_camera_volume && is_resolved)) {
-        // A world or sub-pixel particle has no copies: a degenerate triangle, clipped.
-        out.clip = vec4<f32>(0.0, 0.0, -1.0, 1.0);
-        return out;
+        // A world or sub-pixel particle has no copies.
+        return SnowQuad(p.position_m, 0.0, vec3<f32>(0.0), 0.0, vec3<f32>(0.0), vec3<f32>(0.0));
     }
     p.position_m = snow_copy_position(i, copy, p.position_m);
     let camera = params.camera_m_cone_cos.xyz;
@@ -82,18 +100,41 @@ fn snow_vertex(corner: u32, instance: u32) -> ParticleVarying {
     let size = defocused(sharp.x, sharp.y, defocus_blur_m(params.lens.x, params.lens.y, distance_m), 2);
     let turn = flake_spin_tumble(rotation0_rad(p.rotation0), p.rotation_rad);
     // Swept over the exposure (sizing.w): a streak when it moves half its side.
-    let streak = snow_streak_corner(p.position_m, camera, size.x, turn, p.velocity_mps, params.sizing.w, corner);
-    let world = streak.position_m;
-    out.clip = params.view_proj * vec4<f32>(world, 1.0);
-    out.uv = streak.uv;
-    out.stretch = streak.stretch;
+    let axes = snow_quad_axes(p.position_m, camera, size.x, turn, p.velocity_mps, params.sizing.w);
     // Its multiplicity's ink, up to opaque (precip_model::drawing::multiplicity): a
     // resolved flake's over its copies, a sub-pixel one's its own.
     let weight = resolved_weight(i, original) / select(1.0, f32(copies), in_camera_volume && is_resolved);
     // The ink spreads over the streak: opacity over the stretch.
-    out.shade = vec4<f32>(snow_colour(p), min(1.0, weight * size.y * near_fade(distance_m) / streak.stretch));
-    out.normal = normalize_or_zero(camera - p.position_m);
-    out.world_m = world;
+    let opacity = min(1.0, weight * size.y * near_fade(distance_m) / axes.stretch);
+    return SnowQuad(p.position_m, axes.stretch, axes.across_m, opacity, axes.along_m, snow_colour(p));
+}
+
+fn snow_vertex(corner: u32, instance: u32) -> ParticleVarying {
+    var quad: SnowQuad;
+    if (instance < arrayLength(&snow_quads)) {
+        quad = snow_quads[instance];
+    }
+    // Beyond the quads' capacity (precip_gpu::recipe::SNOW_QUAD_CAPACITY) each corner
+    // makes its instance's quad itself. A loop, not an if: a CPU device runs both
+    // sides of an if under a mask, but leaves a loop no lane enters.
+    var beyond = instance >= arrayLength(&snow_quads);
+    while (beyond) {
+        quad = snow_quad(instance);
+        beyond = false;
+    }
+    var out: ParticleVarying;
+    if (quad.stretch == 0.0) {
+        // Nothing drawn: a degenerate triangle, clipped.
+        out.clip = vec4<f32>(0.0, 0.0, -1.0, 1.0);
+        return out;
+    }
+    let c = snow_quad_corner(quad.centre_m, SnowQuadAxes(quad.across_m, quad.along_m, quad.stretch), corner);
+    out.clip = params.view_proj * vec4<f32>(c.position_m, 1.0);
+    out.uv = c.uv;
+    out.stretch = c.stretch;
+    out.shade = vec4<f32>(quad.colour, quad.opacity);
+    out.normal = normalize_or_zero(params.camera_m_cone_cos.xyz - quad.centre_m);
+    out.world_m = c.position_m;
     return out;
 }
 

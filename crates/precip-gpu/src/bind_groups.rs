@@ -435,14 +435,29 @@ pub const SPLAT_RESOLVE: GroupLayout = GroupLayout {
 };
 
 /// Group 2 of the reduced particles' draws: the camera's depth, which their
-/// fragments test themselves.
+/// fragments test themselves, and the snow quads their sprites' corners read.
 pub const PARTICLE_DEPTH: GroupLayout = GroupLayout {
     name: "precip particle depth",
-    bindings: &[binding(
-        rb::PARTICLE_SCENE_DEPTH,
-        DEPTH_2D,
-        Stages::Fragment,
-    )],
+    bindings: &[
+        binding(rb::PARTICLE_SCENE_DEPTH, DEPTH_2D, Stages::Fragment),
+        binding(rb::SNOW_QUADS, storage(true), Stages::Draw),
+    ],
+};
+
+/// Group 2 of the snow sprites' draw: the frame's snow quads, read by each corner.
+pub const SNOW_QUADS: GroupLayout = GroupLayout {
+    name: "precip snow quads",
+    bindings: &[binding(rb::SNOW_QUADS, storage(true), Stages::Draw)],
+};
+
+/// Group 2 of the kernel that makes the snow quads: the frame's draws (their
+/// count) and the quads.
+pub const SNOW_QUADS_KERNEL: GroupLayout = GroupLayout {
+    name: "precip snow quads kernel",
+    bindings: &[
+        binding(rb::SPLAT_DRAWS, storage(true), Stages::Compute),
+        binding(rb::SNOW_QUADS_OUT, storage(false), Stages::Compute),
+    ],
 };
 
 /// Group 2 of the composite draw: the splat's sums (it resolves them) and the
@@ -555,6 +570,7 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
             | "shore_update_second",
         ) => &[SHORE_KERNEL],
         (Program::Render, "splat_particles") => &[RENDER_FRAME, RENDER_LIGHT, SPLAT],
+        (Program::Render, "snow_quads_write") => &[RENDER_FRAME, RENDER_LIGHT, SNOW_QUADS_KERNEL],
         (Program::Render, e) if e == render_passes::SHADOW.0 => &[RENDER_FRAME],
         (Program::Render, e) if e == render_passes::TERRAIN_SHADOW.0 => &[RENDER_FRAME],
         (Program::Render, "vs_sky" | "fs_sky" | "vs_clouds_all" | "fs_clouds_all") => {
@@ -590,9 +606,8 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::Render, "vs_splat_resolve" | "fs_splat_resolve") => {
             &[RENDER_FRAME, RENDER_LIGHT, SPLAT_RESOLVE]
         }
-        (Program::Render, "vs_snow" | "fs_snow" | "vs_rain" | "fs_rain") => {
-            &[RENDER_FRAME, RENDER_LIGHT]
-        }
+        (Program::Render, "vs_snow" | "fs_snow") => &[RENDER_FRAME, RENDER_LIGHT, SNOW_QUADS],
+        (Program::Render, "vs_rain" | "fs_rain") => &[RENDER_FRAME, RENDER_LIGHT],
         (
             Program::Render,
             "vs_snow_reduced" | "fs_snow_reduced" | "vs_rain_reduced" | "fs_rain_reduced",

@@ -23,7 +23,8 @@ use crate::frame_resources::TargetResource;
 use crate::gpu::Gpu;
 use crate::recipe::{
     CLOUD_SHADOW_PASS, COVER_TEXTURE_PASS, CULL_PASSES, DROP_GROUND_PASS, DispatchCounts,
-    FrameDraws, KernelPass, OCEAN_PASSES, SHORE_PASSES, SPLAT_PASS, dispatch_size, render_passes,
+    FrameDraws, KernelPass, OCEAN_PASSES, SHORE_PASSES, SNOW_QUADS_PASS, SPLAT_PASS, dispatch_size,
+    render_passes,
 };
 use crate::shaders::Program;
 
@@ -601,7 +602,7 @@ const CLOUDS_PASS: RenderPassRecipe = RenderPassRecipe {
 };
 
 /// The frame, in order (see the module docs and [`crate::renderer`]).
-pub const FRAME_PASSES: [FramePass; 16] = [
+pub const FRAME_PASSES: [FramePass; 17] = [
     FramePass {
         name: "cover_texture",
         work: PassWork::Kernels(&[COVER_TEXTURE_PASS, DROP_GROUND_PASS]),
@@ -707,6 +708,11 @@ pub const FRAME_PASSES: [FramePass; 16] = [
     FramePass {
         name: "splat_particles",
         work: PassWork::Kernels(&[SPLAT_PASS]),
+        when: PassWhen::ParticlesInTheAir,
+    },
+    FramePass {
+        name: "snow_quads",
+        work: PassWork::Kernels(&[SNOW_QUADS_PASS]),
         when: PassWhen::ParticlesInTheAir,
     },
     FramePass {
@@ -1135,7 +1141,7 @@ mod tests {
                     let expected = match p.pass.name {
                         "shadow" => shadow_redrawn,
                         "scene_copy" => water_shows,
-                        "cull_particles" | "splat_particles" => particles,
+                        "cull_particles" | "splat_particles" | "snow_quads" => particles,
                         "particles" => particles && !particles_reduced,
                         "particles_reduced" | "particles_composite" => {
                             particles && particles_reduced
@@ -1281,6 +1287,7 @@ mod tests {
                 "scene_copy",
                 "cull_particles",
                 "splat_particles",
+                "snow_quads",
                 "particles",
                 "particles_reduced",
                 "particles_composite"

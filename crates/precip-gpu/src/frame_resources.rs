@@ -18,12 +18,12 @@ use precip_model::drawing::{FLAKE_TEXTURE_PX, snowflake_opacity};
 use crate::bind_groups::{
     CLOUD_FRESH, CLOUD_IMAGE, CLOUD_IMAGE_B, CLOUD_SHADOW_KERNEL, COVER_TEXTURE, CULL, GroupLayout,
     OCEAN_KERNEL, PARTICLE_DEPTH, PARTICLE_IMAGE, REFLECTIONS, RENDER_FRAME, RENDER_LIGHT,
-    SHORE_KERNEL, SPLAT, SPLAT_RESOLVE,
+    SHORE_KERNEL, SNOW_QUADS, SNOW_QUADS_KERNEL, SPLAT, SPLAT_RESOLVE,
 };
 use crate::recipe::{
     DRAWN_LIST_BYTES_PER_PARTICLE, FrameDraws, GROUP_COUNT_BYTES, OCEAN_ATLAS_PX,
-    OCEAN_SPECTRA_BYTES, SPLAT_BYTES_PER_PIXEL, cull_bindings as cb, cull_groups,
-    render_bindings as rb,
+    OCEAN_SPECTRA_BYTES, SNOW_QUAD_BYTES, SPLAT_BYTES_PER_PIXEL, cull_bindings as cb, cull_groups,
+    render_bindings as rb, snow_quad_bytes,
 };
 use crate::resources::{BufferUsage, SimBuffer};
 
@@ -46,6 +46,9 @@ pub enum FrameBuffer {
     DropGround,
     /// The sea's spectra, transformed in place by the ocean kernels.
     OceanSpectra,
+    /// Each snow sprite instance's quad this frame (`recipe::SNOW_QUAD_BYTES`
+    /// each, up to `recipe::SNOW_QUAD_CAPACITY`).
+    SnowQuads,
     /// The shore's grid: a header, two states, faces and sources
     /// ([`ShoreFrames::initial_buffer`]), stepped by the shore's kernels and read by
     /// the sea's draw; 16 bytes without a shore.
@@ -67,9 +70,16 @@ pub struct FrameBufferSpec {
     pub contents: Option<Vec<u8>>,
 }
 
-/// The frame's buffers for `particle_count` particles and the sea's `shore`.
+/// The frame's buffers for `particle_count` particles and the sea's `shore`, with
+/// the snow quads kept or not (`snow_quads`, `RenderSettings::snow_quads`: off, one
+/// quad, the least a binding of them holds, so every corner past the first
+/// instance's makes its own).
 #[must_use]
-pub fn frame_buffers(particle_count: u32, shore: Option<&ShoreFrames>) -> [FrameBufferSpec; 8] {
+pub fn frame_buffers(
+    particle_count: u32,
+    shore: Option<&ShoreFrames>,
+    snow_quads: bool,
+) -> [FrameBufferSpec; 9] {
     let count = u64::from(particle_count);
     let spec = |buffer, label, bytes: u64, usage| FrameBufferSpec {
         buffer,
@@ -110,6 +120,16 @@ pub fn frame_buffers(particle_count: u32, shore: Option<&ShoreFrames>) -> [Frame
             "precip draws",
             FrameDraws::BYTES,
             BufferUsage::Indirect,
+        ),
+        spec(
+            FrameBuffer::SnowQuads,
+            "precip snow quads",
+            if snow_quads {
+                snow_quad_bytes(particle_count)
+            } else {
+                SNOW_QUAD_BYTES
+            },
+            BufferUsage::Storage,
         ),
         spec(
             FrameBuffer::DropGround,
@@ -567,7 +587,7 @@ pub struct FrameGroupFill {
 }
 
 /// The groups made once per configuration (the material group is the scene's).
-pub const FRAME_GROUPS: [FrameGroupFill; 7] = [
+pub const FRAME_GROUPS: [FrameGroupFill; 9] = [
     FrameGroupFill {
         layout: &RENDER_FRAME,
         bound: &[
@@ -667,6 +687,20 @@ pub const FRAME_GROUPS: [FrameGroupFill; 7] = [
         ],
     },
     FrameGroupFill {
+        layout: &SNOW_QUADS,
+        bound: &[(rb::SNOW_QUADS, FrameBound::Buffer(FrameBuffer::SnowQuads))],
+    },
+    FrameGroupFill {
+        layout: &SNOW_QUADS_KERNEL,
+        bound: &[
+            (rb::SPLAT_DRAWS, FrameBound::Buffer(FrameBuffer::Draws)),
+            (
+                rb::SNOW_QUADS_OUT,
+                FrameBound::Buffer(FrameBuffer::SnowQuads),
+            ),
+        ],
+    },
+    FrameGroupFill {
         layout: &RENDER_LIGHT,
         bound: &[
             (rb::SHADOW_MAP, FrameBound::Texture(FrameTexture::ShadowMap)),
@@ -760,10 +794,13 @@ pub const TARGET_GROUPS: [FrameGroupFill; 8] = [
     },
     FrameGroupFill {
         layout: &PARTICLE_DEPTH,
-        bound: &[(
-            rb::PARTICLE_SCENE_DEPTH,
-            FrameBound::Target(TargetResource::CameraDepth),
-        )],
+        bound: &[
+            (
+                rb::PARTICLE_SCENE_DEPTH,
+                FrameBound::Target(TargetResource::CameraDepth),
+            ),
+            (rb::SNOW_QUADS, FrameBound::Buffer(FrameBuffer::SnowQuads)),
+        ],
     },
     FrameGroupFill {
         layout: &CLOUD_IMAGE,
@@ -916,11 +953,24 @@ mod tests {
     #[test]
     fn the_frame_is_sized_from_the_configuration() {
         let setup = Setup::over_flat_ground(20.0, 8, 10.0, 300);
-        let buffers = frame_buffers(300, None);
-        let drawn = buffers.iter().find(|b| b.buffer == FrameBuffer::Drawn);
+        let buffers = frame_buffers(300, None, true);
+        let bytes_of = |buffers: &[FrameBufferSpec], which| {
+            buffers.iter().find(|b| b.buffer == which).map(|b| b.bytes)
+        };
         assert_eq!(
-            drawn.map(|b| b.bytes),
+            bytes_of(&buffers, FrameBuffer::Drawn),
             Some(300 * DRAWN_LIST_BYTES_PER_PARTICLE)
+        );
+        // A quad for each particle's most copies; one (the least a binding
+        // holds) when they are not kept.
+        assert_eq!(
+            bytes_of(&buffers, FrameBuffer::SnowQuads),
+            Some(300 * 4 * SNOW_QUAD_BYTES)
+        );
+        let without = frame_buffers(300, None, false);
+        assert_eq!(
+            bytes_of(&without, FrameBuffer::SnowQuads),
+            Some(SNOW_QUAD_BYTES)
         );
         let textures = frame_textures(&setup);
         for t in &textures {

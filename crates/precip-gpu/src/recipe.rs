@@ -622,6 +622,7 @@ pub const FEATURES: [(&str, &[&str]); 8] = [
             "birth_particles",
             "cull_particles",
             "splat_particles",
+            "snow_quads",
             "particles",
             "particles_reduced",
             "particles_composite",
@@ -1037,6 +1038,38 @@ pub const SPLAT_PASS: KernelPass = KernelPass {
     when: KernelWhen::Always,
 };
 
+/// Each snow sprite instance's quad, once a frame, after the cull and before the
+/// particles' passes, whose corners read it (`snow_quads_write`,
+/// render_particles.wgsl): over the list of drawn sprites' instances, walked as the
+/// splat walks its own.
+pub const SNOW_QUADS_PASS: KernelPass = KernelPass {
+    program: Program::Render,
+    entry_point: "snow_quads_write",
+    over: DispatchOver::ParticleList,
+    when: KernelWhen::Always,
+};
+
+/// Bytes of one snow quad (centre, two sides, stretch, colour and opacity; 56 of
+/// them used, the struct's alignment pads it to 64). WGSL twin: `SnowQuad` in
+/// `shaders/render_layout.wgsl`.
+pub const SNOW_QUAD_BYTES: u64 = 64;
+
+/// The most snow quads a frame keeps: the sprite instances beyond make their quads
+/// in each corner's vertex shader instead (as they all did before the quads were
+/// kept), so the buffer stays bounded at 10⁷ particles (64 MiB at most).
+pub const SNOW_QUAD_CAPACITY: u64 = 1 << 20;
+
+/// Bytes of the snow quads for `particle_count` particles: a quad for each sprite
+/// instance a frame may draw (each particle × the most copies,
+/// `precip_model::drawing::multiplicity::MAX_SNOW_COPIES`), up to
+/// [`SNOW_QUAD_CAPACITY`]; at least one (the least a binding of them holds).
+#[must_use]
+pub fn snow_quad_bytes(particle_count: u32) -> u64 {
+    let instances =
+        u64::from(particle_count) * u64::from(precip_model::drawing::multiplicity::MAX_SNOW_COPIES);
+    instances.clamp(1, SNOW_QUAD_CAPACITY) * SNOW_QUAD_BYTES
+}
+
 /// The passes of a frame as data, and their timed names
 /// ([`crate::frame`]).
 pub use crate::frame::{FRAME_PASSES, TIMED_RENDER_PASSES, cloud_passes};
@@ -1143,6 +1176,13 @@ pub mod render_bindings {
     /// `texture_2d<f32>` (`Rgba16Float`, premultiplied), read through
     /// [`COVER_SAMPLER`].
     pub const PARTICLE_IMAGE: u32 = 7;
+    /// Group 2 of the snow sprites' draws (vertex; the reduced ones' with
+    /// [`PARTICLE_SCENE_DEPTH`]): the frame's snow quads, `array<SnowQuad>`,
+    /// read-only storage ([`super::SNOW_QUAD_BYTES`] each).
+    pub const SNOW_QUADS: u32 = 9;
+    /// Group 2 of the kernel that makes them (`snow_quads_write`, with
+    /// [`SPLAT_DRAWS`] for their count): the same quads, read-write storage.
+    pub const SNOW_QUADS_OUT: u32 = 10;
     /// Group 3 of the scene's draw: the frame before as its scene pass left it
     /// (`scene_copy` pass), `texture_2d<f32>`, read with `textureLoad` by the water's
     /// reflections.
@@ -1422,6 +1462,25 @@ mod tests {
     }
 
     use super::*;
+
+    #[test]
+    fn the_snow_quads_hold_each_particle_s_copies_up_to_their_capacity() {
+        let copies = u64::from(precip_model::drawing::multiplicity::MAX_SNOW_COPIES);
+        assert_eq!(snow_quad_bytes(1_000), 1_000 * copies * SNOW_QUAD_BYTES);
+        assert_eq!(
+            snow_quad_bytes(10_000_000),
+            SNOW_QUAD_CAPACITY * SNOW_QUAD_BYTES
+        );
+        assert_eq!(snow_quad_bytes(0), SNOW_QUAD_BYTES);
+        // Made after the cull (they read its lists and counts), read by the
+        // particles' passes.
+        let at = |name: &str| FRAME_PASSES.iter().position(|p| p.name == name);
+        let quads = at("snow_quads").expect("a pass");
+        assert!(at("cull_particles").is_some_and(|c| c < quads));
+        for drawn in ["particles", "particles_reduced"] {
+            assert!(at(drawn).is_some_and(|p| p > quads), "{drawn}");
+        }
+    }
 
     #[test]
     fn the_step_moves_the_particle_once_each_way() {

@@ -430,7 +430,11 @@ impl<G: Gpu> FrameState<G> {
             let (nx, ny) = (grid.bathymetry.nx as u32, grid.bathymetry.ny as u32);
             self.shore_cells = (nx * ny, (nx + 1) * (ny + 1));
         }
-        for spec in frame_buffers(sim.particle_count(), self.host.shore()) {
+        for spec in frame_buffers(
+            sim.particle_count(),
+            self.host.shore(),
+            setup.render.snow_quads,
+        ) {
             let bytes = if spec.usage == BufferUsage::FrameBlocks {
                 let align = gpu.uniform_alignment().max(16);
                 self.params_stride = spec.bytes.div_ceil(align) * align;

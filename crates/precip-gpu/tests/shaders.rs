@@ -334,6 +334,14 @@ fn rust_and_wgsl_layouts_match() {
         }
         assert!(offsets.len() >= 2, "{name}");
     }
+    // The snow quads have no Rust twin (only the GPU reads and writes them), but the
+    // buffer is sized from their bytes.
+    let (span, _) = wgsl.get("SnowQuad").expect("WGSL struct SnowQuad");
+    assert_eq!(
+        u64::from(*span),
+        precip_gpu::recipe::SNOW_QUAD_BYTES,
+        "SnowQuad"
+    );
 }
 
 /// Whether `kind` can hold the WGSL global `var` of `module`.

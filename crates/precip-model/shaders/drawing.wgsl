@@ -1,12 +1,7 @@
 // drawing.wgsl: the drawing formulas of docs/model.md §5. Rust twins: precip_model::drawing.
 
-// snow_sprite_corners_turned: corner `corner` (0..3, strip order V0 V1 V2 V3).
-fn snow_sprite_corner(centre_m: vec3<f32>, camera_m: vec3<f32>, side_m: f32, spin_rad: f32, tumble: f32, corner: u32) -> vec3<f32> {
-    let to_camera = camera_m - centre_m;
-    if (dot(to_camera, to_camera) <= 0.0) {
-        return centre_m;
-    }
-    let n = normalize(to_camera);
+// turned_sprite_sides: A', B' of a sprite facing the camera along `n`.
+fn turned_sprite_sides(n: vec3<f32>, spin_rad: f32, tumble: f32) -> array<vec3<f32>, 2> {
     var a = cross(vec3<f32>(0.0, 1.0, 0.0), n);
     if (dot(a, a) < 1.0e-12) {
         a = cross(vec3<f32>(0.0, 0.0, 1.0), n);
@@ -15,8 +10,18 @@ fn snow_sprite_corner(centre_m: vec3<f32>, camera_m: vec3<f32>, side_m: f32, spi
     let b = normalize(cross(n, a));
     let s = sin(spin_rad);
     let c = cos(spin_rad);
-    let a2 = c * a + s * b;
-    let b2 = tumble * (c * b - s * a);
+    return array<vec3<f32>, 2>(c * a + s * b, tumble * (c * b - s * a));
+}
+
+// snow_sprite_corners_turned: corner `corner` (0..3, strip order V0 V1 V2 V3).
+fn snow_sprite_corner(centre_m: vec3<f32>, camera_m: vec3<f32>, side_m: f32, spin_rad: f32, tumble: f32, corner: u32) -> vec3<f32> {
+    let to_camera = camera_m - centre_m;
+    if (dot(to_camera, to_camera) <= 0.0) {
+        return centre_m;
+    }
+    let sides = turned_sprite_sides(normalize(to_camera), spin_rad, tumble);
+    let a2 = sides[0];
+    let b2 = sides[1];
     let v0 = centre_m + 0.5 * side_m * (a2 - b2);
     switch corner {
         case 0u: { return v0; }
@@ -32,26 +37,44 @@ struct StreakCorner {
     stretch: f32,
 }
 
-// snow_streak_corners: corner `corner` of a flake swept over the exposure.
-fn snow_streak_corner(centre_m: vec3<f32>, camera_m: vec3<f32>, side_m: f32, spin_tumble: vec2<f32>, velocity_mps: vec3<f32>, exposure_s: f32, corner: u32) -> StreakCorner {
+// snow_quad_axes: a flake's quad as its two sides, corner k at
+// centre + (u − ½)·across + (v − ½)·along for its uv (u, v) (snow_sprite_uv), its
+// texture's v that v × stretch.
+struct SnowQuadAxes {
+    across_m: vec3<f32>,
+    along_m: vec3<f32>,
+    stretch: f32,
+}
+
+fn snow_quad_axes(centre_m: vec3<f32>, camera_m: vec3<f32>, side_m: f32, spin_tumble: vec2<f32>, velocity_mps: vec3<f32>, exposure_s: f32) -> SnowQuadAxes {
     let to_camera = camera_m - centre_m;
     if (dot(to_camera, to_camera) <= 0.0) {
-        return StreakCorner(centre_m, snow_sprite_uv(corner), 1.0);
+        return SnowQuadAxes(vec3<f32>(0.0), vec3<f32>(0.0), 1.0);
     }
     let n = normalize(to_camera);
     let sweep = exposure_s * (velocity_mps - n * dot(n, velocity_mps));
     let length = sqrt(dot(sweep, sweep));
     if (!(length >= 0.5 * side_m)) {
-        let p = snow_sprite_corner(centre_m, camera_m, side_m, spin_tumble.x, spin_tumble.y, corner);
-        return StreakCorner(p, snow_sprite_uv(corner), 1.0);
+        let sides = turned_sprite_sides(n, spin_tumble.x, spin_tumble.y);
+        return SnowQuadAxes(side_m * sides[0], side_m * sides[1], 1.0);
     }
     let along = sweep / length;
     let across = normalize(cross(n, along));
     let stretch = (side_m + length) / side_m;
+    return SnowQuadAxes(side_m * across, stretch * side_m * along, stretch);
+}
+
+// SnowQuadAxes::corner
+fn snow_quad_corner(centre_m: vec3<f32>, axes: SnowQuadAxes, corner: u32) -> StreakCorner {
     let uv = snow_sprite_uv(corner);
-    let v = uv.y * stretch;
-    let p = centre_m + (uv.x - 0.5) * side_m * across + (v - 0.5 * stretch) * side_m * along;
-    return StreakCorner(p, vec2<f32>(uv.x, v), stretch);
+    let p = centre_m + (uv.x - 0.5) * axes.across_m + (uv.y - 0.5) * axes.along_m;
+    return StreakCorner(p, vec2<f32>(uv.x, uv.y * axes.stretch), axes.stretch);
+}
+
+// snow_streak_corners: corner `corner` of a flake swept over the exposure.
+fn snow_streak_corner(centre_m: vec3<f32>, camera_m: vec3<f32>, side_m: f32, spin_tumble: vec2<f32>, velocity_mps: vec3<f32>, exposure_s: f32, corner: u32) -> StreakCorner {
+    let axes = snow_quad_axes(centre_m, camera_m, side_m, spin_tumble, velocity_mps, exposure_s);
+    return snow_quad_corner(centre_m, axes, corner);
 }
 
 // snow_streak_texture_v

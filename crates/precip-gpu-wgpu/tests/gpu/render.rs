@@ -152,6 +152,66 @@ fn culling_on_and_off_give_the_same_image_and_culling_draws_fewer() {
     }
 }
 
+#[test]
+fn snow_quads_kept_or_made_by_each_corner_draw_the_same_image() {
+    // Heavy snow in a wind around a camera by the house: camera-volume flakes drawn
+    // as several copies, sprites near and streaks, world flakes beyond, some
+    // splatted; at the frame's resolution and at half of it.
+    let (mut setup, _) = Setup::over_scene(house_on_plane(), 64, 6.0, 4_000).expect("valid");
+    setup.camera_volume = Some(CameraVolumeSetup {
+        volume: CameraVolume::default(),
+        particle_count: 4_000,
+    });
+    setup.weather.kind = PrecipitationKind::WetSnow;
+    setup.weather.air_temperature_c = -2.0;
+    setup.weather.intensity_mm_per_h = 12.0;
+    setup.weather.wind = WindField {
+        mean_wind_mps: Vec3::new(7.0, 0.0, -2.0),
+        ..WindField::calm()
+    };
+    dark_sky(&mut setup);
+    // Flakes large enough to be sprites, not splats, in a small image; the wind
+    // sweeps the nearer ones into streaks.
+    setup.render.sizing.snow_scale = 40.0;
+    let camera = Camera {
+        position_m: Vec3::new(4.0, 2.0, 10.0),
+        forward: Vec3::new(-0.3, -0.1, -1.0),
+        ..Camera::default()
+    };
+    setup.camera = camera;
+    let view = view(camera, 320, 192);
+    for (name, mut gpu) in common::gpu_backends("snow_quads_kept_or_made_by_each_corner") {
+        for resolution in [
+            precip_model::ParticleResolution::Full,
+            precip_model::ParticleResolution::Half,
+        ] {
+            setup.render.particle_resolution = resolution;
+            let mut images = Vec::new();
+            let mut drawn = Vec::new();
+            for quads in [true, false] {
+                setup.render.snow_quads = quads;
+                common::run(&mut gpu, &setup, 3, 0.05);
+                gpu.render(&view).expect("renders");
+                images.push(gpu.read_image().expect("an image"));
+                drawn.push(gpu.drawn().expect("counts").expect("a drawing backend"));
+            }
+            eprintln!("{name} {resolution:?}: drawn {:?}", drawn[0]);
+            keep(&images[0], "snow_quads");
+            let difference = max_difference(&images[0], &images[1]);
+            assert!(
+                difference <= 1,
+                "{name} {resolution:?}: images differ by {difference}/255"
+            );
+            assert_eq!(drawn[0], drawn[1], "{name}");
+            assert!(
+                drawn[0].sprites > 30,
+                "{name}: sprites drawn {:?}",
+                drawn[0]
+            );
+        }
+    }
+}
+
 /// The house under a day of snow per simulated second, fed by the weather's rate.
 fn snowed_house() -> (Setup, HousePlan) {
     let plan = HousePlan::default();

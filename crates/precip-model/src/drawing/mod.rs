@@ -69,13 +69,7 @@ pub fn snow_sprite_corners_turned(
     tumble: f32,
 ) -> Option<[Vec3; 4]> {
     let n = (camera_m - centre_m).try_normalize()?;
-    let a = Vec3::Y
-        .cross(n)
-        .try_normalize()
-        .or_else(|| Vec3::Z.cross(n).try_normalize())?;
-    let b = n.cross(a).normalize();
-    let (sin, cos) = spin_rad.sin_cos();
-    let (a, b) = (cos * a + sin * b, tumble * (cos * b - sin * a));
+    let (a, b) = turned_sprite_sides(n, spin_rad, tumble)?;
     let v0 = centre_m + 0.5 * side_m * (a - b);
     let v1 = v0 + side_m * b;
     let v2 = v0 - side_m * a;
@@ -83,19 +77,96 @@ pub fn snow_sprite_corners_turned(
     Some([v0, v1, v2, v3])
 }
 
+/// The sides `A'`, `B'` of a sprite facing the camera along `n` (unit), turned by
+/// `spin_rad` and foreshortened by `tumble` ([`snow_sprite_corners_turned`]); `None`
+/// for no `n`.
+fn turned_sprite_sides(n: Vec3, spin_rad: f32, tumble: f32) -> Option<(Vec3, Vec3)> {
+    let a = Vec3::Y
+        .cross(n)
+        .try_normalize()
+        .or_else(|| Vec3::Z.cross(n).try_normalize())?;
+    let b = n.cross(a).normalize();
+    let (sin, cos) = spin_rad.sin_cos();
+    Some((cos * a + sin * b, tumble * (cos * b - sin * a)))
+}
+
+/// A flake's quad as two sides: corner `k`, of `uv` [`SNOW_SPRITE_UV`]`[k]` =
+/// `(u, v)`, is `centre + (u − ½)·across + (v − ½)·along`, its texture's `v` that `v`
+/// times `stretch` ([`snow_streak_texture_v`] reads it). What the renderer computes
+/// once for each flake drawn and each of its four corners reads
+/// ([`snow_quad_axes`]).
+///
+/// WGSL twin: `SnowQuadAxes` in drawing.wgsl.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SnowQuadAxes {
+    /// The side from corner 2 to corner 0 (`u` 0 → 1), m.
+    pub across_m: Vec3,
+    /// The side from corner 0 to corner 1 (`v` 0 → 1), m.
+    pub along_m: Vec3,
+    /// The quad's length over its width: 1 for a sprite, more for a streak.
+    pub stretch: f32,
+}
+
+impl SnowQuadAxes {
+    /// Corner `k` (`0..4`, strip order) of the quad centred at `centre_m`, with its
+    /// `uv` (`uv.y ∈ [0, stretch]`). WGSL twin: `snow_quad_corner`.
+    #[must_use]
+    pub fn corner(&self, centre_m: Vec3, k: usize) -> (Vec3, [f32; 2]) {
+        let [u, v] = SNOW_SPRITE_UV[k % 4];
+        let position = centre_m + (u - 0.5) * self.across_m + (v - 0.5) * self.along_m;
+        (position, [u, v * self.stretch])
+    }
+}
+
+/// A flake as a camera exposing for `exposure_s` records it, as the two sides of its
+/// quad ([`SnowQuadAxes`]): the sprite of side `side_m` swept along its motion across
+/// the view during the exposure, `M = T·(v − n(n·v))` (`n` toward the camera). When
+/// the sweep is at least half a side the sprite becomes a streak: a quad `side` wide
+/// and `side + |M|` long along `M`, whose ends are the flake's halves and whose middle
+/// is the flake's centre line smeared (the fragment reads `uv.y` through
+/// [`snow_streak_texture_v`]); its opacity is divided by the stretch
+/// `(side + |M|)/side`, so its ink stays the flake's. Below that the turned sprite
+/// stands (stretch 1: `across = s·A'`, `along = s·B'` of
+/// [`snow_sprite_corners_turned`], whose corners these are). `None` for a flake at the
+/// camera.
+///
+/// WGSL twin: `snow_quad_axes` in drawing.wgsl.
+#[must_use]
+pub fn snow_quad_axes(
+    centre_m: Vec3,
+    camera_m: Vec3,
+    side_m: f32,
+    (spin_rad, tumble): (f32, f32),
+    velocity_mps: Vec3,
+    exposure_s: f32,
+) -> Option<SnowQuadAxes> {
+    let n = (camera_m - centre_m).try_normalize()?;
+    let sweep = exposure_s * (velocity_mps - n * n.dot(velocity_mps));
+    let length = sweep.length();
+    // Short (or NaN): the turned sprite.
+    if length.is_nan() || length < 0.5 * side_m {
+        let (a, b) = turned_sprite_sides(n, spin_rad, tumble)?;
+        return Some(SnowQuadAxes {
+            across_m: side_m * a,
+            along_m: side_m * b,
+            stretch: 1.0,
+        });
+    }
+    let along = sweep / length;
+    let across = n.cross(along).normalize();
+    let stretch = (side_m + length) / side_m;
+    Some(SnowQuadAxes {
+        across_m: side_m * across,
+        along_m: stretch * side_m * along,
+        stretch,
+    })
+}
+
 /// A snow streak's corners in strip order, each with its `uv`.
 pub type StreakCorners = [(Vec3, [f32; 2]); 4];
 
-/// A flake as a camera exposing for `exposure_s` records it: the sprite of side
-/// `side_m` swept along its motion across the view during the exposure,
-/// `M = T·(v − n(n·v))` (`n` toward the camera). When the sweep is at least half a
-/// side the sprite becomes a streak: a quad `side` wide and `side + |M|` long along
-/// `M`, whose ends are the flake's halves and whose middle is the flake's centre line
-/// smeared (the fragment reads `uv.y` through [`snow_streak_texture_v`]); its opacity
-/// is divided by the stretch `(side + |M|)/side`, so its ink stays the flake's.
-/// Below that the turned sprite stands (stretch 1). Returns the four corners in strip
-/// order with their `uv` (`uv.y ∈ [0, stretch]`) and the stretch, or `None` for a
-/// flake at the camera.
+/// The corners of [`snow_quad_axes`]'s quad in strip order, each with its `uv`
+/// (`uv.y ∈ [0, stretch]`), and the stretch, or `None` for a flake at the camera.
 ///
 /// WGSL twin: `snow_streak_corner` in drawing.wgsl.
 #[must_use]
@@ -103,33 +174,22 @@ pub fn snow_streak_corners(
     centre_m: Vec3,
     camera_m: Vec3,
     side_m: f32,
-    (spin_rad, tumble): (f32, f32),
+    spin_tumble: (f32, f32),
     velocity_mps: Vec3,
     exposure_s: f32,
 ) -> Option<(StreakCorners, f32)> {
-    let n = (camera_m - centre_m).try_normalize()?;
-    let sweep = exposure_s * (velocity_mps - n * n.dot(velocity_mps));
-    let length = sweep.length();
-    // Short (or NaN): the turned sprite.
-    if length.is_nan() || length < 0.5 * side_m {
-        let corners = snow_sprite_corners_turned(centre_m, camera_m, side_m, spin_rad, tumble)?;
-        let mut out = [(Vec3::ZERO, [0.0; 2]); 4];
-        for k in 0..4 {
-            out[k] = (corners[k], SNOW_SPRITE_UV[k]);
-        }
-        return Some((out, 1.0));
-    }
-    let along = sweep / length;
-    let across = n.cross(along).normalize();
-    let stretch = (side_m + length) / side_m;
-    let mut out = [(Vec3::ZERO, [0.0; 2]); 4];
-    for (k, uv) in SNOW_SPRITE_UV.iter().enumerate() {
-        let v = uv[1] * stretch;
-        let position =
-            centre_m + (uv[0] - 0.5) * side_m * across + (v - 0.5 * stretch) * side_m * along;
-        out[k] = (position, [uv[0], v]);
-    }
-    Some((out, stretch))
+    let axes = snow_quad_axes(
+        centre_m,
+        camera_m,
+        side_m,
+        spin_tumble,
+        velocity_mps,
+        exposure_s,
+    )?;
+    Some((
+        std::array::from_fn(|k| axes.corner(centre_m, k)),
+        axes.stretch,
+    ))
 }
 
 /// The flake texture's `v` for a streak's `v ∈ [0, stretch]`: the first half side
@@ -607,6 +667,28 @@ mod tests {
             "parallel to X"
         );
         assert!(raindrop_tetrahedron(Vec3::ZERO, Vec3::ZERO, 0.01, 10.0).is_none());
+    }
+
+    proptest! {
+        #[test]
+        fn a_still_flake_s_quad_has_the_turned_sprite_s_corners(
+            x in -20.0f32..20.0, y in -5.0f32..5.0, z in -20.0f32..20.0,
+            side in 0.001f32..0.2, spin in -7.0f32..7.0, tumble in MIN_TUMBLE..1.0,
+        ) {
+            let camera = Vec3::new(0.3, 1.7, -0.2);
+            let centre = camera + Vec3::new(x, y, z);
+            prop_assume!(Vec3::new(x, y, z).length() > 0.05);
+            let sprite = snow_sprite_corners_turned(centre, camera, side, spin, tumble).expect("away");
+            let axes = snow_quad_axes(centre, camera, side, (spin, tumble), Vec3::ZERO, 1.0 / 60.0).expect("away");
+            prop_assert!((axes.stretch - 1.0).abs() < f32::EPSILON);
+            let tolerance = 1.0e-5 * (1.0 + centre.abs().max_element());
+            for (k, corner) in sprite.iter().enumerate() {
+                let (position, uv) = axes.corner(centre, k);
+                prop_assert!((position - *corner).abs().max_element() < tolerance, "{k}: {position} {corner}");
+                let want = SNOW_SPRITE_UV[k];
+                prop_assert!((uv[0] - want[0]).abs() + (uv[1] - want[1]).abs() < f32::EPSILON);
+            }
+        }
     }
 
     proptest! {

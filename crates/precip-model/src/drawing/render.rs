@@ -114,6 +114,13 @@ pub struct RenderSettings {
     /// order-independent) instead of enlarged sprites and streaks; off draws every
     /// particle as geometry (the reference the splat is tested against).
     pub splat_sub_pixel: bool,
+    /// Make each snow sprite's quad (its corners' positions, light and opacity) once
+    /// a frame and have its four corners read it, in a buffer of 64 bytes per sprite
+    /// instance the frame may draw (at most 2²⁰ of them: `precip_gpu`'s
+    /// `SNOW_QUAD_CAPACITY`; instances beyond make their own); off, each corner
+    /// makes it anew (the first instance's excepted), four times the sprites'
+    /// vertex work and a buffer of one quad (the images must not differ).
+    pub snow_quads: bool,
     /// A factor on a rain streak's physical opacity (`crate::drawing::raindrop_sizing`),
     /// `[0, 1]`: 1 draws each drop's projected area.
     pub rain_opacity: f32,
@@ -163,6 +170,7 @@ impl Default for RenderSettings {
     fn default() -> Self {
         Self {
             view_cone_culling: true,
+            snow_quads: true,
             to_sun: Vec3::new(0.4, 0.8, 0.3),
             lighting: Lighting {
                 ambient: 0.45,
