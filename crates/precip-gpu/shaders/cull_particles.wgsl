@@ -29,6 +29,9 @@ fn frame_pools() -> vec4<u32> {
 // among its workgroup's particles of that class from bit 8, written by cull_count so
 // cull_write reads one word per particle and places it with no barrier.
 @group(0) @binding(5) var<storage, read_write> drawn_kinds: array<u32>;
+// The frame's snow quads, for their capacity: the snow draw takes the instances
+// whose quads are kept, a second draw the rest (render_particles.wgsl).
+@group(0) @binding(6) var<storage, read> cull_snow_quads: array<SnowQuad>;
 
 const RANK_SHIFT: u32 = 8u;
 const CLASS_MASK: u32 = 255u;
@@ -78,11 +81,15 @@ fn cull_scan(@builtin(local_invocation_index) lid: u32) {
             partial[k] = total;
             total += s;
         }
-        // Each sprite drawn as its copies (snow_copies in particle_lists.wgsl).
+        // Each sprite drawn as its copies (snow_copies in particle_lists.wgsl): those
+        // whose quads are kept, then the rest.
+        let sprites = total.x * snow_copies();
+        let kept = min(sprites, arrayLength(&cull_snow_quads));
         draws = FrameDraws(
-            DrawArgs(SNOW_SPRITE_VERTICES, total.x * snow_copies(), 0u, 0u),
+            DrawArgs(SNOW_SPRITE_VERTICES, kept, 0u, 0u),
             DrawArgs(RAIN_TETRAHEDRON_VERTICES, total.y, 0u, 0u),
             total.z, total.x, 0u, 0u,
+            DrawArgs(SNOW_SPRITE_VERTICES, sprites - kept, 0u, 0u),
         );
     }
     workgroupBarrier();

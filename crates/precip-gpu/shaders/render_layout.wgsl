@@ -126,6 +126,8 @@ struct FrameDraws {
     sprite_particles: u32,
     reserved1: u32,
     reserved2: u32,
+    // The snow sprite instances beyond the kept quads (vs_snow_made).
+    snow_made: DrawArgs,
 }
 
 // A snow sprite's quad as the frame draws it, made once a frame for each sprite
@@ -142,9 +144,9 @@ struct SnowQuad {
     colour: vec3<f32>,
 }
 
-// Vertices per snow sprite (a strip) and per rain tetrahedron (a list).
+// Vertices per snow sprite and per rain tetrahedron (strips both).
 const SNOW_SPRITE_VERTICES: u32 = 4u;
-const RAIN_TETRAHEDRON_VERTICES: u32 = 12u;
+const RAIN_TETRAHEDRON_VERTICES: u32 = 6u;
 
 // What a particle is drawn as: nothing, a sprite, a tetrahedron, or a splat.
 const DRAWN_NOT: u32 = 0u;

@@ -58,6 +58,18 @@ fn vs_snow_reduced(@builtin(vertex_index) corner: u32, @builtin(instance_index) 
     return snow_vertex(corner, instance);
 }
 
+// The instances beyond the kept quads (their own draw, FrameDraws::snow_made,
+// numbered from the quads' capacity): each corner makes its quad itself.
+@vertex
+fn vs_snow_made(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance: u32) -> ParticleVarying {
+    return snow_quad_vertex(snow_quad(arrayLength(&snow_quads) + instance), corner);
+}
+
+@vertex
+fn vs_snow_made_reduced(@builtin(vertex_index) corner: u32, @builtin(instance_index) instance: u32) -> ParticleVarying {
+    return snow_quad_vertex(snow_quad(arrayLength(&snow_quads) + instance), corner);
+}
+
 // The frame's snow quads: read by the sprites' corners (group 2 of their draws),
 // written by snow_quads (group 2 of the kernel).
 @group(2) @binding(9) var<storage, read> snow_quads: array<SnowQuad>;
@@ -109,19 +121,14 @@ fn snow_quad(instance: u32) -> SnowQuad {
     return SnowQuad(p.position_m, axes.stretch, axes.across_m, opacity, axes.along_m, snow_colour(p));
 }
 
+// A kept quad's corner. The instances beyond the quads' capacity
+// (precip_gpu::recipe::SNOW_QUAD_CAPACITY) are drawn apart (vs_snow_made), not
+// here under a branch: a CPU device's vertex shader runs both sides of it.
 fn snow_vertex(corner: u32, instance: u32) -> ParticleVarying {
-    var quad: SnowQuad;
-    if (instance < arrayLength(&snow_quads)) {
-        quad = snow_quads[instance];
-    }
-    // Beyond the quads' capacity (precip_gpu::recipe::SNOW_QUAD_CAPACITY) each corner
-    // makes its instance's quad itself. A loop, not an if: a CPU device runs both
-    // sides of an if under a mask, but leaves a loop no lane enters.
-    var beyond = instance >= arrayLength(&snow_quads);
-    while (beyond) {
-        quad = snow_quad(instance);
-        beyond = false;
-    }
+    return snow_quad_vertex(snow_quads[instance], corner);
+}
+
+fn snow_quad_vertex(quad: SnowQuad, corner: u32) -> ParticleVarying {
     var out: ParticleVarying;
     if (quad.stretch == 0.0) {
         // Nothing drawn: a degenerate triangle, clipped.
@@ -145,6 +152,19 @@ fn fs_snow(in: ParticleVarying) -> @location(0) vec4<f32> {
 
 @fragment
 fn fs_snow_reduced(in: ParticleVarying) -> @location(0) vec4<f32> {
+    let c = snow_fragment(in);
+    return vec4<f32>(c.rgb, c.a * in_front_of_scene(in.clip));
+}
+
+// The same for the instances beyond the kept quads (a pipeline is named by its
+// fragment entry point: one each).
+@fragment
+fn fs_snow_made(in: ParticleVarying) -> @location(0) vec4<f32> {
+    return snow_fragment(in);
+}
+
+@fragment
+fn fs_snow_made_reduced(in: ParticleVarying) -> @location(0) vec4<f32> {
     let c = snow_fragment(in);
     return vec4<f32>(c.rgb, c.a * in_front_of_scene(in.clip));
 }
@@ -174,7 +194,7 @@ fn rain_vertex(vertex: u32, instance: u32) -> ParticleVarying {
     // Out of focus: the streak widened by the lens's blur circle, the ink kept.
     let wide = defocused(sharp.y, sharp.z, defocus_blur_m(params.lens.x, params.lens.y, distance_m), 1);
     let size = vec3<f32>(sharp.x, wide.x, wide.y);
-    let k = rain_tetrahedron_face_vertex(vertex);
+    let k = rain_tetrahedron_strip_vertex(vertex);
     let v = raindrop_vertex(p.position_m, p.velocity_mps, size.x, size.y, k);
     var out: ParticleVarying;
     out.clip = params.view_proj * vec4<f32>(v.position_m, 1.0);

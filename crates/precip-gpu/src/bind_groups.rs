@@ -276,6 +276,7 @@ pub const CULL: GroupLayout = GroupLayout {
         binding(cb::DRAWN, storage(false), Stages::Compute),
         binding(cb::DRAWS, storage(false), Stages::Compute),
         binding(cb::DRAWN_KINDS, storage(false), Stages::Compute),
+        binding(cb::SNOW_QUADS, storage(true), Stages::Compute),
     ],
 };
 
@@ -606,11 +607,18 @@ pub fn groups_of(program: Program, entry_point: &str) -> Option<&'static [GroupL
         (Program::Render, "vs_splat_resolve" | "fs_splat_resolve") => {
             &[RENDER_FRAME, RENDER_LIGHT, SPLAT_RESOLVE]
         }
-        (Program::Render, "vs_snow" | "fs_snow") => &[RENDER_FRAME, RENDER_LIGHT, SNOW_QUADS],
+        (Program::Render, "vs_snow" | "fs_snow" | "vs_snow_made" | "fs_snow_made") => {
+            &[RENDER_FRAME, RENDER_LIGHT, SNOW_QUADS]
+        }
         (Program::Render, "vs_rain" | "fs_rain") => &[RENDER_FRAME, RENDER_LIGHT],
         (
             Program::Render,
-            "vs_snow_reduced" | "fs_snow_reduced" | "vs_rain_reduced" | "fs_rain_reduced",
+            "vs_snow_reduced"
+            | "vs_snow_made_reduced"
+            | "fs_snow_made_reduced"
+            | "fs_snow_reduced"
+            | "vs_rain_reduced"
+            | "fs_rain_reduced",
         ) => &[RENDER_FRAME, RENDER_LIGHT, PARTICLE_DEPTH],
         (Program::Render, "vs_particles_composite" | "fs_particles_composite") => {
             &[RENDER_FRAME, RENDER_LIGHT, PARTICLE_IMAGE]

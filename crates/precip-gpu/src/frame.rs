@@ -520,7 +520,22 @@ const SKY_CLOUDS_B_DRAW: Draw = Draw {
     ..SKY_DRAW
 };
 
-const PARTICLE_DRAWS: [Draw; 3] = [
+/// A particles' indirect draw of `entry_points` with the [`FrameDraws`] at `offset`:
+/// strips, blended, depth-tested but not written.
+const fn particle_draw(entry_points: (&'static str, Option<&'static str>), offset: u64) -> Draw {
+    Draw {
+        entry_points,
+        of: DrawOf::Indirect { offset },
+        scene_vertices: false,
+        topology: Topology::TriangleStrip,
+        depth_write: false,
+        depth_bias: None,
+        blend: Blend::Alpha,
+        when: PassWhen::Always,
+    }
+}
+
+const PARTICLE_DRAWS: [Draw; 4] = [
     // At depth 0 it passes the less-equal test everywhere: no depth test.
     Draw {
         entry_points: render_passes::SPLAT_RESOLVE,
@@ -532,43 +547,27 @@ const PARTICLE_DRAWS: [Draw; 3] = [
         blend: Blend::Alpha,
         when: PassWhen::Always,
     },
-    Draw {
-        entry_points: render_passes::SNOW,
-        of: DrawOf::Indirect {
-            offset: FrameDraws::SNOW_OFFSET,
-        },
-        scene_vertices: false,
-        topology: Topology::TriangleStrip,
-        depth_write: false,
-        depth_bias: None,
-        blend: Blend::Alpha,
-        when: PassWhen::Always,
-    },
-    Draw {
-        entry_points: render_passes::RAIN,
-        of: DrawOf::Indirect {
-            offset: FrameDraws::RAIN_OFFSET,
-        },
-        scene_vertices: false,
-        topology: Topology::TriangleList,
-        depth_write: false,
-        depth_bias: None,
-        blend: Blend::Alpha,
-        when: PassWhen::Always,
-    },
+    particle_draw(render_passes::SNOW, FrameDraws::SNOW_OFFSET),
+    // The sprites beyond the kept quads (none unless more than their capacity).
+    particle_draw(render_passes::SNOW_MADE, FrameDraws::SNOW_MADE_OFFSET),
+    particle_draw(render_passes::RAIN, FrameDraws::RAIN_OFFSET),
 ];
 
 // At reduced resolution: the sprites and streaks into the particles' image, each
 // fragment testing the scene's depth itself (the image's depth is cleared and never
 // written: at depth 0 … 1 less-or-equal passes).
-const REDUCED_PARTICLE_DRAWS: [Draw; 2] = [
+const REDUCED_PARTICLE_DRAWS: [Draw; 3] = [
     Draw {
         entry_points: render_passes::SNOW_REDUCED,
         ..PARTICLE_DRAWS[1]
     },
     Draw {
-        entry_points: render_passes::RAIN_REDUCED,
+        entry_points: render_passes::SNOW_MADE_REDUCED,
         ..PARTICLE_DRAWS[2]
+    },
+    Draw {
+        entry_points: render_passes::RAIN_REDUCED,
+        ..PARTICLE_DRAWS[3]
     },
 ];
 
@@ -1070,6 +1069,21 @@ impl FrameHost {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_pipeline_s_name_belongs_to_one_pair_of_entry_points() {
+        // The backends find a draw's pipeline by its key: two draws that share one
+        // must be the same shaders (the kept snow quads' draw and the draw beyond
+        // them once shared `fs_snow`, and the second drew with the first's).
+        let mut seen: Vec<(&str, (&str, Option<&str>))> = Vec::new();
+        for (_, d) in draws() {
+            match seen.iter().find(|(key, _)| *key == d.key()) {
+                Some((_, entries)) => assert_eq!(*entries, d.entry_points, "{}", d.key()),
+                None => seen.push((d.key(), d.entry_points)),
+            }
+        }
+        assert!(seen.iter().any(|(key, _)| *key == "fs_snow_made"));
+    }
     use crate::bind_groups::groups_of;
     use crate::shaders::Program;
 

@@ -724,6 +724,7 @@ pub const FRAME_GROUPS: [FrameGroupFill; 9] = [
             (cb::DRAWN, FrameBound::Buffer(FrameBuffer::Drawn)),
             (cb::DRAWS, FrameBound::Buffer(FrameBuffer::Draws)),
             (cb::DRAWN_KINDS, FrameBound::Buffer(FrameBuffer::DrawnKinds)),
+            (cb::SNOW_QUADS, FrameBound::Buffer(FrameBuffer::SnowQuads)),
         ],
     },
     FrameGroupFill {

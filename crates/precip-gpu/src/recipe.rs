@@ -32,16 +32,18 @@ pub struct DrawArgs {
 }
 const _: () = assert!(size_of::<DrawArgs>() == 16);
 
-/// What the cull kernels write each frame: the two indirect draws and how many
+/// What the cull kernels write each frame: the indirect draws and how many
 /// particles the splat draws.
 ///
-/// WGSL twin: `FrameDraws` in `shaders/render_layout.wgsl` (48 bytes).
+/// WGSL twin: `FrameDraws` in `shaders/render_layout.wgsl` (64 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Pod, Zeroable)]
 pub struct FrameDraws {
-    /// Snow sprites (4-vertex strips), at [`FrameDraws::SNOW_OFFSET`].
+    /// Snow sprites (4-vertex strips) whose quads the frame keeps (the first
+    /// [`SNOW_QUAD_CAPACITY`] instances at most, or as many as the buffer holds), at
+    /// [`FrameDraws::SNOW_OFFSET`].
     pub snow: DrawArgs,
-    /// Rain tetrahedra (12-vertex lists), at [`FrameDraws::RAIN_OFFSET`].
+    /// Rain tetrahedra (6-vertex strips), at [`FrameDraws::RAIN_OFFSET`].
     pub rain: DrawArgs,
     /// Particles splatted (sub-pixel, in the view cone).
     pub splatted: u32,
@@ -51,14 +53,19 @@ pub struct FrameDraws {
     pub sprite_particles: u32,
     /// Unused.
     pub reserved: [u32; 2],
+    /// The snow sprite instances beyond the kept quads, each corner making its own
+    /// (`vs_snow_made`), at [`FrameDraws::SNOW_MADE_OFFSET`].
+    pub snow_made: DrawArgs,
 }
-const _: () = assert!(size_of::<FrameDraws>() == 48);
+const _: () = assert!(size_of::<FrameDraws>() == 64);
 
 impl FrameDraws {
     /// Byte offset of the snow draw in the buffer.
     pub const SNOW_OFFSET: u64 = 0;
     /// Byte offset of the rain draw.
     pub const RAIN_OFFSET: u64 = 16;
+    /// Byte offset of the draw of the snow sprites beyond the kept quads.
+    pub const SNOW_MADE_OFFSET: u64 = 48;
     /// Bytes of the buffer.
     pub const BYTES: u64 = size_of::<Self>() as u64;
 
@@ -781,7 +788,7 @@ pub const KERNEL_BYTES: [KernelBytes; 8] = [
         read: 4 + PARTICLE_BYTES + 4 * 16,
         written: 4 * 16,
     },
-    // The index and the particle, once an instance (its 4 or 12 vertices hit the
+    // The index and the particle, once an instance (its 4 or 6 vertices hit the
     // cache for the rest).
     KernelBytes {
         entry_point: "vs_snow",
@@ -867,7 +874,9 @@ pub mod render_passes {
         ("vs_terrain_mirror", Some("fs_terrain_mirror"));
     /// Snow sprites: triangle strip of 4 vertices per drawn particle, indirect draw 0.
     pub const SNOW: (&str, Option<&str>) = ("vs_snow", Some("fs_snow"));
-    /// Rain tetrahedra: triangle list of 12 vertices per drawn particle, indirect draw 1.
+    /// Snow sprites beyond the kept quads, each corner making its own.
+    pub const SNOW_MADE: (&str, Option<&str>) = ("vs_snow_made", Some("fs_snow_made"));
+    /// Rain tetrahedra: a strip of 6 vertices per drawn particle, indirect draw 1.
     pub const RAIN: (&str, Option<&str>) = ("vs_rain", Some("fs_rain"));
     /// The overcast sky behind the scene: one triangle of 3 vertices at the far plane,
     /// after the meshes, where nothing stands.
@@ -894,6 +903,9 @@ pub mod render_passes {
     /// opacity scaled by the share of the frame's pixels under it where it stands in
     /// front of the scene.
     pub const SNOW_REDUCED: (&str, Option<&str>) = ("vs_snow_reduced", Some("fs_snow_reduced"));
+    /// The same beyond the kept quads.
+    pub const SNOW_MADE_REDUCED: (&str, Option<&str>) =
+        ("vs_snow_made_reduced", Some("fs_snow_made_reduced"));
     /// Rain streaks into the particles' image, likewise.
     pub const RAIN_REDUCED: (&str, Option<&str>) = ("vs_rain_reduced", Some("fs_rain_reduced"));
     /// The splat's sums resolved and the particles' image over them, over the frame:
@@ -1099,6 +1111,10 @@ pub mod cull_bindings {
     /// rank among its workgroup's particles of that class from bit 8 (counted by
     /// the workgroup's first lane), so `cull_write` places it with no barrier.
     pub const DRAWN_KINDS: u32 = 5;
+    /// The frame's snow quads (read-only storage, never read: `cull_scan` takes
+    /// their capacity, `arrayLength`, to split the snow draw between the kept quads
+    /// and the instances beyond).
+    pub const SNOW_QUADS: u32 = 6;
 }
 
 /// Bytes of the drawn lists per particle: three `u32` lists (sprites, streaks,
@@ -1522,6 +1538,9 @@ mod tests {
             render_passes::SHADOW,
             render_passes::SCENE,
             render_passes::SNOW,
+            render_passes::SNOW_MADE,
+            render_passes::SNOW_REDUCED,
+            render_passes::SNOW_MADE_REDUCED,
             render_passes::RAIN,
             render_passes::SPLAT_RESOLVE,
         ] {

@@ -304,7 +304,8 @@ fn rust_and_wgsl_layouts_match() {
             snow,
             rain,
             splatted,
-            sprite_particles
+            sprite_particles,
+            snow_made
         }),
         rust_layout!(ProbeDrawing {
             centre_m,

@@ -208,10 +208,9 @@ fn raindrop_vertex(centre_m: vec3<f32>, velocity_mps: vec3<f32>, h: f32, a: f32,
     }
 }
 
-// RAIN_TETRAHEDRON_FACES
-fn rain_tetrahedron_face_vertex(i: u32) -> u32 {
-    var faces = array<u32, 12>(0u, 1u, 2u, 0u, 2u, 3u, 0u, 3u, 1u, 1u, 3u, 2u);
-    return faces[i % 12u];
+// RAIN_TETRAHEDRON_STRIP: vertex i (0..5) of the strip 0 1 2 3 0 1.
+fn rain_tetrahedron_strip_vertex(i: u32) -> u32 {
+    return i % 4u;
 }
 
 // in_view_cone

@@ -197,6 +197,7 @@ fn snow_quads_kept_or_made_by_each_corner_draw_the_same_image() {
             }
             eprintln!("{name} {resolution:?}: drawn {:?}", drawn[0]);
             keep(&images[0], "snow_quads");
+            keep(&images[1], "snow_quads_off");
             let difference = max_difference(&images[0], &images[1]);
             assert!(
                 difference <= 1,

@@ -507,6 +507,12 @@ pub fn raindrop_tetrahedron_sized(
 /// (drawn two-sided): triangle list of 12 vertices.
 pub const RAIN_TETRAHEDRON_FACES: [u32; 12] = [0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2];
 
+/// The same four faces as one triangle strip of 6 vertices (its triangles 012, 123,
+/// 230, 301): what the renderer draws, each vertex's position and normal being its
+/// number's alone, so half the corners shade every face. WGSL twin:
+/// `rain_tetrahedron_strip_vertex` (drawing.wgsl).
+pub const RAIN_TETRAHEDRON_STRIP: [u32; 6] = [0, 1, 2, 3, 0, 1];
+
 /// The right side of the view-cone test, computed once per frame:
 /// `(1 + tan²(α/2) + tan²(β/2))^(−1/2)` for horizontal and vertical fields of view.
 #[must_use]
@@ -667,6 +673,20 @@ mod tests {
             "parallel to X"
         );
         assert!(raindrop_tetrahedron(Vec3::ZERO, Vec3::ZERO, 0.01, 10.0).is_none());
+    }
+
+    #[test]
+    fn the_rain_strip_draws_the_tetrahedron_s_four_faces() {
+        let sorted = |t: &[u32]| {
+            let mut t = t.to_vec();
+            t.sort_unstable();
+            t
+        };
+        let mut faces: Vec<Vec<u32>> = RAIN_TETRAHEDRON_FACES.chunks(3).map(sorted).collect();
+        let mut strip: Vec<Vec<u32>> = RAIN_TETRAHEDRON_STRIP.windows(3).map(sorted).collect();
+        faces.sort();
+        strip.sort();
+        assert_eq!(strip, faces);
     }
 
     proptest! {
