@@ -131,7 +131,7 @@ struct FrameDraws {
 }
 
 // A snow sprite's quad as the frame draws it, made once a frame for each sprite
-// instance (kernel snow_quads, render_particles.wgsl) and read by its four corners
+// instance (kernel snow_quads_write, render_particles.wgsl) and read by its four corners
 // (Rust: precip_gpu::recipe::SNOW_QUAD_BYTES): its centre (the copy's), its sides
 // (SnowQuadAxes, drawing.wgsl) and stretch, its lit and fogged colour and opacity.
 // A stretch of 0: the instance draws nothing (a copy that is not).

@@ -71,7 +71,7 @@ fn vs_snow_made_reduced(@builtin(vertex_index) corner: u32, @builtin(instance_in
 }
 
 // The frame's snow quads: read by the sprites' corners (group 2 of their draws),
-// written by snow_quads (group 2 of the kernel).
+// written by snow_quads_write (group 2 of the kernel).
 @group(2) @binding(9) var<storage, read> snow_quads: array<SnowQuad>;
 @group(2) @binding(10) var<storage, read_write> snow_quads_out: array<SnowQuad>;
 
@@ -79,7 +79,7 @@ fn vs_snow_made_reduced(@builtin(vertex_index) corner: u32, @builtin(instance_in
 // shading each corner anew cost four times the flake's lighting, fog and sizing: on
 // a CPU device the particles' pass was three quarters vertex work). Over the sprite
 // instances the cull counted, up to the quads' capacity, each invocation walking
-// them with the dispatch's stride (precip_gpu::recipe::DispatchOver::SnowInstances).
+// them with the dispatch's stride (precip_gpu::recipe::DispatchOver::ParticleList).
 @compute @workgroup_size(64)
 fn snow_quads_write(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let lanes = groups.x * groups.y * 64u;

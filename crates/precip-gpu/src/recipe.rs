@@ -743,7 +743,7 @@ pub struct KernelBytes {
 const PARTICLE_BYTES: u32 = size_of::<precip_model::Particle>() as u32;
 
 /// The bytes each particle kernel and draw moves ([`KernelBytes`]).
-pub const KERNEL_BYTES: [KernelBytes; 8] = [
+pub const KERNEL_BYTES: [KernelBytes; 9] = [
     // The particle, read and written whole (52 of its 64 bytes change).
     KernelBytes {
         entry_point: "step_particles",
@@ -788,14 +788,23 @@ pub const KERNEL_BYTES: [KernelBytes; 8] = [
         read: 4 + PARTICLE_BYTES + 4 * 16,
         written: 4 * 16,
     },
-    // The index and the particle, once an instance (its 4 or 6 vertices hit the
-    // cache for the rest).
+    // A sprite's index and particle read, its quad written (once a copy: counted
+    // once a drawn sprite here).
+    KernelBytes {
+        entry_point: "snow_quads_write",
+        per: BytesPer::Drawn,
+        read: 4 + PARTICLE_BYTES,
+        written: SNOW_QUAD_BYTES as u32,
+    },
+    // The quad, once an instance (its 4 vertices hit the cache for the rest).
     KernelBytes {
         entry_point: "vs_snow",
         per: BytesPer::Drawn,
-        read: 4 + PARTICLE_BYTES,
+        read: SNOW_QUAD_BYTES as u32,
         written: 0,
     },
+    // The index and the particle, once an instance (its 6 vertices hit the cache
+    // for the rest).
     KernelBytes {
         entry_point: "vs_rain",
         per: BytesPer::Drawn,
@@ -1506,7 +1515,7 @@ mod tests {
                 SUBSTEP_PASSES
                     .iter()
                     .chain(&CULL_PASSES)
-                    .chain([&SPLAT_PASS])
+                    .chain([&SPLAT_PASS, &SNOW_QUADS_PASS])
                     .any(|p| p.entry_point == k.entry_point)
                     || [render_passes::SNOW.0, render_passes::RAIN.0].contains(&k.entry_point),
                 "{k:?} names no kernel or draw of the frame"
